@@ -1,0 +1,31 @@
+# egg_add_library(<target> <dir> DEPS <libs...>)
+# A library made of every .cpp in <dir> (globbed, so parallel work on different folders never
+# edits the same CMake file). Include paths are rooted at the repository: "core/mesh/mesh.hpp".
+function(egg_add_library target dir)
+  cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${dir}/*.cpp)
+  if(sources)
+    add_library(${target} STATIC ${sources})
+    target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR})
+    target_link_libraries(${target} PUBLIC ${ARG_DEPS} PRIVATE egg_build_options ${ARG_PRIVATE_DEPS})
+  else()
+    add_library(${target} INTERFACE)
+    target_include_directories(${target} INTERFACE ${PROJECT_SOURCE_DIR})
+    target_link_libraries(${target} INTERFACE ${ARG_DEPS})
+  endif()
+endfunction()
+
+# egg_add_test_dir(<dir under tests/> <libs...>)
+# One GoogleTest executable per test folder, one test source per library source (mirrored).
+function(egg_add_test_dir dir)
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${dir}/*.cpp)
+  if(NOT sources)
+    return()
+  endif()
+  string(REPLACE "/" "_" name "test_${dir}")
+  add_executable(${name} ${sources})
+  target_link_libraries(${name} PRIVATE ${ARGN} egg_build_options GTest::gtest GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE EGG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  # Tests whose name starts with Slow get the label "slow"; CI still runs them.
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900)
+endfunction()

@@ -1,0 +1,41 @@
+#pragma once
+// Typed exceptions of eggshell (DESIGN.md "Conventions"). Libraries throw these and never call
+// abort/exit; the `egg` command maps them to messages and exit codes (2 = bad input, 1 = failure).
+#include <stdexcept>
+#include <string>
+
+namespace egg {
+
+// Base of every eggshell error, so callers can catch the family in one place.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The caller handed us something unusable: a bad option, a broken mesh, a malformed scene.
+// The message names the file, field or element at fault.
+class InvalidInput : public Error {
+ public:
+  using Error::Error;
+};
+
+// A file could not be read or written (missing, unreadable, unsupported format, no triangles).
+class IoError : public Error {
+ public:
+  using Error::Error;
+};
+
+// A numerical solve did not produce a usable answer (no convergence, singular system).
+class SolverFailure : public Error {
+ public:
+  using Error::Error;
+};
+
+// A patch violates the EGG criteria (Section 2.4.1 / 3.4): no feasible alpha_bar, eta too large,
+// crossing boundaries. The patching stage catches it and splits the patch.
+class InfeasiblePatch : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace egg

@@ -1,0 +1,99 @@
+#include "core/mesh/mesh.hpp"
+
+#include "core/errors.hpp"
+
+#include <limits>
+#include <string>
+
+namespace egg {
+
+std::array<int, 3> faceVertices(const TriMesh& mesh, int face) {
+  std::array<int, 3> ids{-1, -1, -1};
+  int k = 0;
+  for (auto vh : mesh.fv_range(TriMesh::FaceHandle(face))) {
+    if (k < 3) ids[k] = vh.idx();
+    ++k;
+  }
+  return ids;
+}
+
+Eigen::Vector3d position(const TriMesh& mesh, const SurfacePoint& point) {
+  const auto ids = faceVertices(mesh, point.face);
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) p += point.barycentric[i] * toEigen(mesh.point(TriMesh::VertexHandle(ids[i])));
+  return p;
+}
+
+TriMesh meshFromSoup(const TriangleSoup& soup) {
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> handles;
+  handles.reserve(soup.vertices.size());
+  for (const auto& v : soup.vertices) handles.push_back(mesh.add_vertex(toOpenMesh(v)));
+  const int n = static_cast<int>(soup.vertices.size());
+  for (size_t t = 0; t < soup.triangles.size(); ++t) {
+    const auto& tri = soup.triangles[t];
+    for (int i : tri) {
+      if (i < 0 || i >= n) {
+        throw InvalidInput("triangle " + std::to_string(t) + " refers to vertex " + std::to_string(i) +
+                           ", but there are only " + std::to_string(n) + " vertices");
+      }
+    }
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+      throw InvalidInput("triangle " + std::to_string(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " +
+                         std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
+    }
+    // OpenMesh's own complex-edge/complex-vertex messages go to its log; silence them here and
+    // report the triangle ourselves.
+    auto fh = mesh.add_face(handles[tri[0]], handles[tri[1]], handles[tri[2]]);
+    if (!fh.is_valid()) {
+      throw InvalidInput("triangle " + std::to_string(t) + " (" + std::to_string(tri[0]) + ", " +
+                         std::to_string(tri[1]) + ", " + std::to_string(tri[2]) +
+                         ") makes the mesh non-manifold (an edge shared by more than two triangles, "
+                         "or inconsistent orientation)");
+    }
+  }
+  return mesh;
+}
+
+TriangleSoup soupFromMesh(const TriMesh& mesh) {
+  TriangleSoup soup;
+  soup.vertices.reserve(mesh.n_vertices());
+  for (auto vh : mesh.vertices()) soup.vertices.push_back(toEigen(mesh.point(vh)));
+  soup.triangles.reserve(mesh.n_faces());
+  for (auto fh : mesh.faces()) soup.triangles.push_back(faceVertices(mesh, fh.idx()));
+  return soup;
+}
+
+BoundingBox boundingBox(const TriMesh& mesh) {
+  BoundingBox box;
+  if (mesh.n_vertices() == 0) return box;
+  box.min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  box.max = -box.min;
+  for (auto vh : mesh.vertices()) {
+    const Eigen::Vector3d p = toEigen(mesh.point(vh));
+    box.min = box.min.cwiseMin(p);
+    box.max = box.max.cwiseMax(p);
+  }
+  return box;
+}
+
+double surfaceArea(const TriMesh& mesh) {
+  double area = 0.0;
+  for (auto fh : mesh.faces()) {
+    const auto ids = faceVertices(mesh, fh.idx());
+    const Eigen::Vector3d a = toEigen(mesh.point(TriMesh::VertexHandle(ids[0])));
+    const Eigen::Vector3d b = toEigen(mesh.point(TriMesh::VertexHandle(ids[1])));
+    const Eigen::Vector3d c = toEigen(mesh.point(TriMesh::VertexHandle(ids[2])));
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  return area;
+}
+
+double meanEdgeLength(const TriMesh& mesh) {
+  if (mesh.n_edges() == 0) return 0.0;
+  double sum = 0.0;
+  for (auto eh : mesh.edges()) sum += mesh.calc_edge_length(eh);
+  return sum / static_cast<double>(mesh.n_edges());
+}
+
+}  // namespace egg

@@ -1,0 +1,61 @@
+#include "core/mesh/mesh.hpp"
+
+#include "core/errors.hpp"
+
+#include <gtest/gtest.h>
+
+namespace egg {
+namespace {
+
+TriangleSoup unitSquare() {
+  TriangleSoup soup;
+  soup.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  soup.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return soup;
+}
+
+TEST(Mesh, SquareHasKnownAreaBoxAndEdges) {
+  const TriMesh mesh = meshFromSoup(unitSquare());
+  EXPECT_EQ(mesh.n_vertices(), 4u);
+  EXPECT_EQ(mesh.n_faces(), 2u);
+  EXPECT_DOUBLE_EQ(surfaceArea(mesh), 1.0);
+  EXPECT_DOUBLE_EQ(boundingBox(mesh).size().x(), 1.0);
+  EXPECT_NEAR(meanEdgeLength(mesh), (4.0 + std::sqrt(2.0)) / 5.0, 1e-15);
+}
+
+TEST(Mesh, SurfacePointPositionIsBarycentric) {
+  const TriMesh mesh = meshFromSoup(unitSquare());
+  SurfacePoint p{0, Eigen::Vector3d(0.2, 0.3, 0.5)};
+  const auto ids = faceVertices(mesh, 0);
+  Eigen::Vector3d expected = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) expected += p.barycentric[i] * toEigen(mesh.point(TriMesh::VertexHandle(ids[i])));
+  EXPECT_TRUE(position(mesh, p).isApprox(expected));
+  EXPECT_NEAR(position(mesh, p).z(), 0.0, 1e-15);
+}
+
+TEST(Mesh, SoupRoundTripKeepsTriangles) {
+  const TriangleSoup back = soupFromMesh(meshFromSoup(unitSquare()));
+  ASSERT_EQ(back.triangles.size(), 2u);
+  EXPECT_EQ(back.triangles[1], (std::array<int, 3>{0, 2, 3}));
+}
+
+TEST(Mesh, BadIndexNamesTheTriangle) {
+  TriangleSoup soup = unitSquare();
+  soup.triangles.push_back({0, 3, 7});
+  try {
+    meshFromSoup(soup);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle 2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Mesh, ThirdTriangleOnAnEdgeIsRejected) {
+  TriangleSoup soup = unitSquare();
+  soup.vertices.push_back({0.5, 0.5, 1.0});
+  soup.triangles.push_back({0, 2, 4});  // edge 0-2 is already shared by two triangles
+  EXPECT_THROW(meshFromSoup(soup), InvalidInput);
+}
+
+}  // namespace
+}  // namespace egg

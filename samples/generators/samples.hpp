@@ -1,0 +1,32 @@
+#pragma once
+// Procedural design surfaces (DESIGN.md "Samples"): the three architectural scenes of Chapter 3
+// and the parametric test surfaces whose geodesics and curvatures are known in closed form.
+#include "core/mesh/mesh.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace egg::samples {
+
+// Named numeric parameters of a sample (metres, radians, or dimensionless; 0/1 for switches).
+using Params = std::map<std::string, double>;
+
+struct SampleInfo {
+  std::string name;
+  std::string description;
+  Params defaults;  // every accepted parameter with its default value
+};
+
+// All samples, in a stable order.
+std::vector<SampleInfo> listSamples();
+
+// True if `name` is a sample (so the CLI can tell a sample name from a file path).
+bool isSample(const std::string& name);
+
+// Triangulates sample `name` with edges of about `edgeLengthM` metres. Throws InvalidInput naming
+// the sample or parameter when the name is unknown, a parameter is unknown or out of range, or the
+// edge length is not positive / would give an absurd number of triangles.
+TriMesh generateSample(const std::string& name, const Params& params, double edgeLengthM);
+
+}  // namespace egg::samples

@@ -1,1 +1,3 @@
-int main() { return 0; }
+#include "apps/commands/commands.hpp"
+
+int main(int argc, char** argv) { return egg::app::runCli(argc, argv); }

@@ -1,0 +1,27 @@
+#pragma once
+// Subcommands of the `egg` program. Each subcommand lives in its own file and exposes one
+// registration function; cli.cpp calls them all. A registration function adds a CLI11 subcommand
+// to `parent` and, when that subcommand is chosen, stores in `action` what to run. The action
+// returns an exit code; exceptions from the libraries are mapped to messages and codes in cli.cpp.
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace egg::app {
+
+// Exit codes (DESIGN.md "The egg command").
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;
+constexpr int kExitBadInput = 2;
+
+using Action = std::function<int()>;
+
+void registerSurfaceCommand(CLI::App& parent, Action& action);  // surface.cpp
+void registerRunCommand(CLI::App& parent, Action& action);      // run.cpp
+// `egg bench <kind>`: bench is a group; each benchmark registers under it.
+// (Helpers add their register functions here, one line each, and one call in cli.cpp.)
+
+// Runs the program; returns the process exit code.
+int runCli(int argc, char** argv);
+
+}  // namespace egg::app

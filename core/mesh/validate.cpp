@@ -1,0 +1,535 @@
+#include "core/mesh/validate.hpp"
+
+#include "core/errors.hpp"
+#include "core/mesh/soup_repair.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+
+namespace egg {
+namespace {
+
+enum class Severity { Repaired, Warning, Error };
+
+// The soup being repaired, with the input index of every current vertex and triangle, so that
+// messages name elements as the user's file numbers them (0-based).
+struct WorkingSoup {
+  TriangleSoup soup;
+  std::vector<int> vertexOrigin;
+  std::vector<int> triangleOrigin;
+
+  void applyVertexMap(const std::vector<int>& oldToNew) {
+    std::vector<int> origin(soup.vertices.size(), -1);
+    for (size_t i = 0; i < oldToNew.size(); ++i) {
+      const int k = oldToNew[i];
+      if (k >= 0 && origin[k] < 0) origin[k] = vertexOrigin[i];
+    }
+    vertexOrigin = std::move(origin);
+  }
+  void applyTriangleSelection(const std::vector<int>& kept) {
+    std::vector<int> origin(kept.size());
+    for (size_t j = 0; j < kept.size(); ++j) origin[j] = triangleOrigin[kept[j]];
+    triangleOrigin = std::move(origin);
+  }
+};
+
+std::string formatPoint(const Eigen::Vector3d& p) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
+class Checker {
+ public:
+  Checker(WorkingSoup& work, const MeshCheckOptions& options, MeshCheckResult& result,
+          MeshRepairDiagnostics& diagnostics)
+      : w_(work), o_(options), r_(result), d_(diagnostics) {}
+
+  void run();
+
+ private:
+  std::string vertexName(int v) const {
+    return "vertex " + std::to_string(w_.vertexOrigin[v]) + " at " + formatPoint(w_.soup.vertices[v]);
+  }
+  std::string triangleName(int t) const {
+    const auto& tri = w_.soup.triangles[t];
+    return "triangle " + std::to_string(w_.triangleOrigin[t]) + " (vertices " + std::to_string(w_.vertexOrigin[tri[0]]) +
+           ", " + std::to_string(w_.vertexOrigin[tri[1]]) + ", " + std::to_string(w_.vertexOrigin[tri[2]]) + ")";
+  }
+  std::string edgeName(int a, int b) const {
+    if (w_.vertexOrigin[a] > w_.vertexOrigin[b]) std::swap(a, b);
+    return "edge (" + std::to_string(w_.vertexOrigin[a]) + ", " + std::to_string(w_.vertexOrigin[b]) + ")";
+  }
+  // "a, b, c and 12 more"
+  std::string list(const std::vector<std::string>& names, int total) const {
+    std::string s;
+    for (size_t i = 0; i < names.size(); ++i) s += (i ? "; " : "") + names[i];
+    if (total > static_cast<int>(names.size())) s += "; and " + std::to_string(total - names.size()) + " more";
+    return s;
+  }
+  void add(MeshIssueKind kind, int count, Severity severity, const std::string& message) {
+    MeshIssue issue;
+    issue.kind = kind;
+    issue.count = count;
+    issue.repairable = severity == Severity::Repaired;
+    issue.message = message;
+    r_.issues.push_back(issue);
+    if (severity == Severity::Error) errors_.push_back(kind);
+    if (severity != Severity::Error) d_.warnings.push_back(message);
+  }
+
+  bool checkIndices();
+  void mergeDuplicates(double tolerance);
+  void handleComponents();
+  void handleIsolatedVertices();
+  void checkFinite();
+  void checkFaceShapes();
+  void checkEdgesAndOrientation();
+  void checkVertexFans();
+
+  WorkingSoup& w_;
+  const MeshCheckOptions& o_;
+  MeshCheckResult& r_;
+  MeshRepairDiagnostics& d_;
+  std::vector<MeshIssueKind> errors_;
+};
+
+bool Checker::checkIndices() {
+  const int n = static_cast<int>(w_.soup.vertices.size());
+  std::vector<std::string> named;
+  int bad = 0;
+  for (size_t t = 0; t < w_.soup.triangles.size(); ++t) {
+    const auto& tri = w_.soup.triangles[t];
+    if (std::all_of(tri.begin(), tri.end(), [&](int v) { return v >= 0 && v < n; })) continue;
+    if (++bad <= o_.max_named_elements)
+      named.push_back("triangle " + std::to_string(t) + " (" + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) +
+                      ", " + std::to_string(tri[2]) + ")");
+  }
+  if (bad == 0) return true;
+  add(MeshIssueKind::IndexOutOfRange, bad, Severity::Error,
+      std::to_string(bad) + " triangle(s) refer to vertices that do not exist (there are " + std::to_string(n) +
+          " vertices): " + list(named, bad));
+  return false;
+}
+
+void Checker::mergeDuplicates(double tolerance) {
+  // Triangles that repeat a vertex in the input itself.
+  std::vector<std::string> repeated;
+  int repeatedCount = 0;
+  for (size_t t = 0; t < w_.soup.triangles.size(); ++t) {
+    const auto& tri = w_.soup.triangles[t];
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+      if (++repeatedCount <= o_.max_named_elements) repeated.push_back(triangleName(static_cast<int>(t)));
+  }
+  if (o_.merge_duplicate_vertices) {
+    std::vector<int> oldToNew, kept;
+    const int merged = mergeDuplicateVertices(w_.soup, tolerance, &oldToNew);
+    w_.applyVertexMap(oldToNew);
+    const auto [collapsed, duplicates] = dropCollapsedAndDuplicateTriangles(w_.soup, &kept);
+    w_.applyTriangleSelection(kept);
+    d_.merged_vertices = merged;
+    d_.dropped_collapsed_triangles = collapsed;
+    d_.dropped_duplicate_triangles = duplicates;
+    std::ostringstream tol;
+    tol << tolerance;
+    if (merged > 0)
+      add(MeshIssueKind::DuplicateVertices, merged, Severity::Repaired,
+          "merged " + std::to_string(merged) + " duplicate vertices (tolerance " + tol.str() + " m)");
+    if (collapsed > 0)
+      add(MeshIssueKind::RepeatedVertex, collapsed, Severity::Repaired,
+          "dropped " + std::to_string(collapsed) + " collapsed triangle(s) that repeat a vertex" +
+              (repeatedCount ? " (in the input: " + list(repeated, repeatedCount) + ")" : std::string()));
+    if (duplicates > 0)
+      add(MeshIssueKind::DuplicateTriangles, duplicates, Severity::Repaired,
+          "dropped " + std::to_string(duplicates) + " duplicate triangle(s)");
+    return;
+  }
+  // No merging allowed: report what merging would have fixed as errors.
+  if (repeatedCount > 0)
+    add(MeshIssueKind::RepeatedVertex, repeatedCount, Severity::Error,
+        std::to_string(repeatedCount) + " triangle(s) repeat a vertex: " + list(repeated, repeatedCount));
+  TriangleSoup copy = w_.soup;
+  std::vector<int> oldToNew;
+  const int merged = mergeDuplicateVertices(copy, tolerance, &oldToNew);
+  if (merged > 0) {
+    std::vector<std::string> pairs;
+    std::vector<int> firstOf(copy.vertices.size(), -1);
+    int shown = 0;
+    for (size_t i = 0; i < oldToNew.size(); ++i) {
+      int& first = firstOf[oldToNew[i]];
+      if (first < 0) first = static_cast<int>(i);
+      else if (shown++ < o_.max_named_elements)
+        pairs.push_back(vertexName(static_cast<int>(i)) + " duplicates vertex " + std::to_string(w_.vertexOrigin[first]));
+    }
+    add(MeshIssueKind::DuplicateVertices, merged, Severity::Error,
+        std::to_string(merged) + " duplicate vertices (they leave cracks; enable merging): " + list(pairs, merged));
+  }
+  std::vector<int> kept;
+  TriangleSoup copy2 = w_.soup;
+  const auto [collapsed, duplicates] = dropCollapsedAndDuplicateTriangles(copy2, &kept);
+  (void)collapsed;
+  if (duplicates > 0)
+    add(MeshIssueKind::DuplicateTriangles, duplicates, Severity::Error,
+        std::to_string(duplicates) + " triangle(s) duplicate another triangle");
+}
+
+void Checker::handleComponents() {
+  int count = 0;
+  const std::vector<int> component = triangleComponents(w_.soup, count);
+  r_.components = count;
+  if (count <= 1) return;
+  if (o_.components == ComponentPolicy::KeepLargest) {
+    std::vector<int> kept, oldToNew;
+    const int dropped = keepLargestComponent(w_.soup, &kept, &oldToNew);
+    w_.applyTriangleSelection(kept);
+    w_.applyVertexMap(oldToNew);
+    d_.dropped_component_triangles = dropped;
+    d_.removed_components = count - 1;
+    add(MeshIssueKind::SeveralComponents, count - 1, Severity::Repaired,
+        "the mesh has " + std::to_string(count) + " connected components; kept the largest by area (" +
+            std::to_string(w_.soup.triangles.size()) + " triangles) and dropped " + std::to_string(dropped) +
+            " triangles of the other " + std::to_string(count - 1));
+    r_.components = 1;
+    return;
+  }
+  std::vector<int> size(count, 0), first(count, -1);
+  for (size_t t = 0; t < component.size(); ++t) {
+    if (component[t] >= count) continue;
+    ++size[component[t]];
+    if (first[component[t]] < 0) first[component[t]] = static_cast<int>(t);
+  }
+  std::vector<std::string> named;
+  for (int c = 0; c < count && c < o_.max_named_elements; ++c)
+    named.push_back("component " + std::to_string(c) + ": " + std::to_string(size[c]) + " triangles from " +
+                    triangleName(first[c]));
+  add(MeshIssueKind::SeveralComponents, count, Severity::Error,
+      "the mesh has " + std::to_string(count) + " connected components (keep the largest by option): " +
+          list(named, count));
+}
+
+void Checker::handleIsolatedVertices() {
+  std::vector<char> used(w_.soup.vertices.size(), 0);
+  for (const auto& tri : w_.soup.triangles)
+    for (int v : tri) used[v] = 1;
+  const int isolated = static_cast<int>(std::count(used.begin(), used.end(), 0));
+  if (isolated == 0) return;
+  if (o_.drop_unreferenced_vertices) {
+    std::vector<int> oldToNew;
+    d_.dropped_unreferenced_vertices = dropUnreferencedVertices(w_.soup, &oldToNew);
+    w_.applyVertexMap(oldToNew);
+    add(MeshIssueKind::IsolatedVertices, isolated, Severity::Repaired,
+        "dropped " + std::to_string(isolated) + " vertices that no triangle uses");
+    return;
+  }
+  std::vector<std::string> named;
+  for (size_t v = 0; v < used.size() && static_cast<int>(named.size()) < o_.max_named_elements; ++v)
+    if (!used[v]) named.push_back(vertexName(static_cast<int>(v)));
+  add(MeshIssueKind::IsolatedVertices, isolated, Severity::Error,
+      std::to_string(isolated) + " vertices are used by no triangle: " + list(named, isolated));
+}
+
+void Checker::checkFinite() {
+  std::vector<std::string> named;
+  int bad = 0;
+  for (size_t v = 0; v < w_.soup.vertices.size(); ++v)
+    if (!w_.soup.vertices[v].allFinite() && ++bad <= o_.max_named_elements) named.push_back(vertexName(static_cast<int>(v)));
+  if (bad > 0)
+    add(MeshIssueKind::NonFiniteVertex, bad, Severity::Error,
+        std::to_string(bad) + " vertices have a NaN or infinite coordinate: " + list(named, bad));
+}
+
+void Checker::checkFaceShapes() {
+  const auto& V = w_.soup.vertices;
+  double edgeSum = 0.0;
+  int edgeCount = 0;
+  for (const auto& tri : w_.soup.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const double l = (V[tri[(k + 1) % 3]] - V[tri[k]]).norm();
+      if (std::isfinite(l)) edgeSum += l, ++edgeCount;
+    }
+  r_.mean_edge_length_m = edgeCount ? edgeSum / edgeCount : 0.0;
+  const double areaThreshold = o_.degenerate_area_relative * r_.mean_edge_length_m * r_.mean_edge_length_m;
+
+  std::vector<std::string> degenerate;
+  int degenerateCount = 0, sliverCount = 0, worstSliver = -1;
+  double worstSliverAngle = std::numeric_limits<double>::infinity();
+  r_.min_face_area_m2 = std::numeric_limits<double>::infinity();
+  r_.min_angle_rad = std::numeric_limits<double>::infinity();
+  for (size_t t = 0; t < w_.soup.triangles.size(); ++t) {
+    const auto& tri = w_.soup.triangles[t];
+    const Eigen::Vector3d& a = V[tri[0]];
+    const Eigen::Vector3d& b = V[tri[1]];
+    const Eigen::Vector3d& c = V[tri[2]];
+    if (!a.allFinite() || !b.allFinite() || !c.allFinite()) continue;
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    // Interior angles from atan2 (accurate for tiny and near-pi angles alike).
+    double minAngle = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d e1 = V[tri[(k + 1) % 3]] - V[tri[k]];
+      const Eigen::Vector3d e2 = V[tri[(k + 2) % 3]] - V[tri[k]];
+      minAngle = std::min(minAngle, std::atan2(e1.cross(e2).norm(), e1.dot(e2)));
+    }
+    r_.min_face_area_m2 = std::min(r_.min_face_area_m2, area);
+    if (minAngle < r_.min_angle_rad) {
+      r_.min_angle_rad = minAngle;
+      r_.worst_face = w_.triangleOrigin[t];
+    }
+    if (area <= areaThreshold) {
+      if (++degenerateCount <= o_.max_named_elements) {
+        std::ostringstream s;
+        s << triangleName(static_cast<int>(t)) << " area " << area << " m2";
+        degenerate.push_back(s.str());
+      }
+    } else if (minAngle < o_.sliver_min_angle_rad) {
+      ++sliverCount;
+      if (minAngle < worstSliverAngle) worstSliverAngle = minAngle, worstSliver = static_cast<int>(t);
+    }
+  }
+  if (degenerateCount > 0)
+    add(MeshIssueKind::DegenerateFaces, degenerateCount, Severity::Error,
+        std::to_string(degenerateCount) + " zero-area triangle(s) (area below " + std::to_string(o_.degenerate_area_relative) +
+            " x mean edge length squared): " + list(degenerate, degenerateCount));
+  if (sliverCount > 0) {
+    std::ostringstream s;
+    s << sliverCount << " sliver triangle(s) with an angle below " << o_.sliver_min_angle_rad * 180.0 / std::numbers::pi
+      << " degrees; the worst is " << triangleName(worstSliver) << " with "
+      << worstSliverAngle * 180.0 / std::numbers::pi << " degrees";
+    add(MeshIssueKind::SliverFaces, sliverCount, o_.reject_slivers ? Severity::Error : Severity::Warning, s.str());
+  }
+}
+
+std::uint64_t undirectedKey(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+void Checker::checkEdgesAndOrientation() {
+  struct Use {
+    int triangle;
+    int from, to;
+  };
+  std::unordered_map<std::uint64_t, std::vector<Use>> edges;
+  edges.reserve(3 * w_.soup.triangles.size());
+  for (size_t t = 0; t < w_.soup.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = w_.soup.triangles[t][k], b = w_.soup.triangles[t][(k + 1) % 3];
+      edges[undirectedKey(a, b)].push_back({static_cast<int>(t), a, b});
+    }
+  std::vector<std::pair<std::uint64_t, const std::vector<Use>*>> sorted;  // deterministic messages
+  for (const auto& [key, uses] : edges) sorted.push_back({key, &uses});
+  std::sort(sorted.begin(), sorted.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+
+  std::vector<std::string> nonManifold, conflicts;
+  int nonManifoldCount = 0, conflictCount = 0;
+  r_.boundary_edges = 0;
+  for (const auto& [key, usesPtr] : sorted) {
+    const auto& uses = *usesPtr;
+    if (uses.size() == 1) ++r_.boundary_edges;
+    if (uses.size() > 2 && ++nonManifoldCount <= o_.max_named_elements) {
+      std::string s = edgeName(uses[0].from, uses[0].to) + " is shared by " + std::to_string(uses.size()) + " triangles (";
+      for (size_t i = 0; i < uses.size(); ++i) s += (i ? ", " : "") + std::to_string(w_.triangleOrigin[uses[i].triangle]);
+      nonManifold.push_back(s + ")");
+    }
+    if (uses.size() == 2 && uses[0].from == uses[1].from && ++conflictCount <= o_.max_named_elements)
+      conflicts.push_back(edgeName(uses[0].from, uses[0].to) + " runs the same way in triangles " +
+                          std::to_string(w_.triangleOrigin[uses[0].triangle]) + " and " +
+                          std::to_string(w_.triangleOrigin[uses[1].triangle]));
+  }
+  if (nonManifoldCount > 0)
+    add(MeshIssueKind::NonManifoldEdges, nonManifoldCount, Severity::Error,
+        std::to_string(nonManifoldCount) + " non-manifold edge(s): " + list(nonManifold, nonManifoldCount));
+  if (conflictCount == 0) return;
+  if (!o_.fix_orientation) {
+    add(MeshIssueKind::InconsistentOrientation, conflictCount, Severity::Error,
+        "inconsistent orientation at " + std::to_string(conflictCount) + " edge(s) (fix by option): " +
+            list(conflicts, conflictCount));
+    return;
+  }
+  const int flipped = orientConsistently(w_.soup);
+  if (flipped < 0) {
+    add(MeshIssueKind::NotOrientable, conflictCount, Severity::Error,
+        "the surface is not orientable (a Moebius band): no choice of triangle orientations agrees at " +
+            list(conflicts, conflictCount));
+    return;
+  }
+  d_.flipped_triangles = flipped;
+  add(MeshIssueKind::InconsistentOrientation, conflictCount, Severity::Repaired,
+      "flipped " + std::to_string(flipped) + " triangle(s) to make the orientation consistent");
+}
+
+void Checker::checkVertexFans() {
+  // A manifold vertex's triangles form one fan: they are connected through edges at the vertex
+  // that two triangles share. Two or more fans (two cones touching at their tips) is a bow tie.
+  const int n = static_cast<int>(w_.soup.vertices.size());
+  std::vector<std::vector<int>> incident(n);
+  for (size_t t = 0; t < w_.soup.triangles.size(); ++t)
+    for (int v : w_.soup.triangles[t]) incident[v].push_back(static_cast<int>(t));
+  std::vector<std::string> named;
+  int bad = 0;
+  std::vector<int> parent;
+  for (int v = 0; v < n; ++v) {
+    const auto& tris = incident[v];
+    if (tris.size() < 2) continue;
+    parent.resize(tris.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto root = [&](int i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    // Join triangles that share another vertex (i.e. share an edge at v).
+    std::unordered_map<int, int> firstWithVertex;
+    for (size_t i = 0; i < tris.size(); ++i)
+      for (int u : w_.soup.triangles[tris[i]]) {
+        if (u == v) continue;
+        auto [it, inserted] = firstWithVertex.emplace(u, static_cast<int>(i));
+        if (!inserted) parent[root(static_cast<int>(i))] = root(it->second);
+      }
+    int fans = 0;
+    for (size_t i = 0; i < tris.size(); ++i)
+      if (root(static_cast<int>(i)) == static_cast<int>(i)) ++fans;
+    if (fans > 1 && ++bad <= o_.max_named_elements)
+      named.push_back(vertexName(v) + " joins " + std::to_string(fans) + " separate fans of triangles");
+  }
+  if (bad > 0)
+    add(MeshIssueKind::NonManifoldVertices, bad, Severity::Error,
+        std::to_string(bad) + " non-manifold vertex(es): " + list(named, bad));
+}
+
+void Checker::run() {
+  r_.vertices = static_cast<int>(w_.soup.vertices.size());
+  r_.triangles = static_cast<int>(w_.soup.triangles.size());
+  if (w_.soup.triangles.empty() || w_.soup.vertices.empty()) {
+    add(MeshIssueKind::Empty, 0, Severity::Error,
+        "the mesh is empty (" + std::to_string(r_.vertices) + " vertices, " + std::to_string(r_.triangles) + " triangles)");
+    return;
+  }
+  if (!checkIndices()) return;
+  BoundingBox box;
+  box.min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  box.max = -box.min;
+  for (const auto& p : w_.soup.vertices)
+    if (p.allFinite()) box.min = box.min.cwiseMin(p), box.max = box.max.cwiseMax(p);
+  const double diagonal = box.min.allFinite() ? box.size().norm() : 0.0;
+  mergeDuplicates(o_.merge_tolerance_relative * diagonal);
+  if (w_.soup.triangles.empty()) {
+    add(MeshIssueKind::Empty, 0, Severity::Error, "no triangle is left after merging duplicate vertices");
+    return;
+  }
+  handleComponents();
+  handleIsolatedVertices();
+  checkFinite();
+  checkFaceShapes();
+  checkEdgesAndOrientation();
+  checkVertexFans();
+  r_.vertices_after_repair = static_cast<int>(w_.soup.vertices.size());
+  r_.triangles_after_repair = static_cast<int>(w_.soup.triangles.size());
+}
+
+WorkingSoup makeWorking(TriangleSoup soup) {
+  WorkingSoup work;
+  work.vertexOrigin.resize(soup.vertices.size());
+  std::iota(work.vertexOrigin.begin(), work.vertexOrigin.end(), 0);
+  work.triangleOrigin.resize(soup.triangles.size());
+  std::iota(work.triangleOrigin.begin(), work.triangleOrigin.end(), 0);
+  work.soup = std::move(soup);
+  return work;
+}
+
+bool isError(const MeshIssue& issue, const MeshCheckOptions& options) {
+  if (issue.repairable) return false;
+  return !(issue.kind == MeshIssueKind::SliverFaces && !options.reject_slivers);
+}
+
+}  // namespace
+
+std::string toString(MeshIssueKind kind) {
+  switch (kind) {
+    case MeshIssueKind::Empty: return "empty";
+    case MeshIssueKind::IndexOutOfRange: return "index_out_of_range";
+    case MeshIssueKind::NonFiniteVertex: return "non_finite_vertex";
+    case MeshIssueKind::RepeatedVertex: return "repeated_vertex";
+    case MeshIssueKind::DuplicateVertices: return "duplicate_vertices";
+    case MeshIssueKind::DuplicateTriangles: return "duplicate_triangles";
+    case MeshIssueKind::DegenerateFaces: return "degenerate_faces";
+    case MeshIssueKind::SliverFaces: return "sliver_faces";
+    case MeshIssueKind::NonManifoldEdges: return "non_manifold_edges";
+    case MeshIssueKind::NonManifoldVertices: return "non_manifold_vertices";
+    case MeshIssueKind::IsolatedVertices: return "isolated_vertices";
+    case MeshIssueKind::SeveralComponents: return "several_components";
+    case MeshIssueKind::InconsistentOrientation: return "inconsistent_orientation";
+    case MeshIssueKind::NotOrientable: return "not_orientable";
+  }
+  return "unknown";
+}
+
+void MeshCheckOptions::validate() const {
+  if (!(merge_tolerance_relative >= 0.0 && merge_tolerance_relative < 0.01))
+    throw InvalidInput("MeshCheckOptions.merge_tolerance_relative must be in [0, 0.01), got " +
+                       std::to_string(merge_tolerance_relative));
+  if (!(degenerate_area_relative >= 0.0 && degenerate_area_relative < 0.1))
+    throw InvalidInput("MeshCheckOptions.degenerate_area_relative must be in [0, 0.1), got " +
+                       std::to_string(degenerate_area_relative));
+  if (!(sliver_min_angle_rad >= 0.0 && sliver_min_angle_rad < std::numbers::pi / 3.0))
+    throw InvalidInput("MeshCheckOptions.sliver_min_angle_rad must be in [0, pi/3), got " +
+                       std::to_string(sliver_min_angle_rad));
+  if (max_named_elements < 1)
+    throw InvalidInput("MeshCheckOptions.max_named_elements must be at least 1, got " + std::to_string(max_named_elements));
+}
+
+bool MeshCheckResult::has(MeshIssueKind kind) const { return find(kind) != nullptr; }
+
+const MeshIssue* MeshCheckResult::find(MeshIssueKind kind) const {
+  for (const auto& issue : issues)
+    if (issue.kind == kind) return &issue;
+  return nullptr;
+}
+
+bool MeshCheckResult::acceptable() const { return !has_errors; }
+
+std::string MeshCheckResult::summary() const {
+  std::string s;
+  for (const auto& issue : issues) s += (s.empty() ? "" : "\n") + issue.message;
+  return s;
+}
+
+MeshCheckResult checkMesh(const TriangleSoup& soup, const MeshCheckOptions& options) {
+  options.validate();
+  const auto start = std::chrono::steady_clock::now();
+  WorkingSoup work = makeWorking(soup);
+  MeshCheckResult result;
+  MeshRepairDiagnostics diagnostics;
+  Checker(work, options, result, diagnostics).run();
+  for (const auto& issue : result.issues) result.has_errors = result.has_errors || isError(issue, options);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+TriMesh prepareMesh(TriangleSoup soup, const MeshCheckOptions& options, MeshRepairDiagnostics& diagnostics) {
+  options.validate();
+  const auto start = std::chrono::steady_clock::now();
+  diagnostics = MeshRepairDiagnostics{};
+  WorkingSoup work = makeWorking(std::move(soup));
+  MeshCheckResult& result = diagnostics.check;
+  Checker(work, options, result, diagnostics).run();
+  std::string errors;
+  for (const auto& issue : result.issues)
+    if (isError(issue, options)) {
+      result.has_errors = true;
+      errors += (errors.empty() ? "" : "; ") + issue.message;
+    }
+  if (result.has_errors) throw InvalidInput("invalid mesh: " + errors);
+  TriMesh mesh = meshFromSoup(work.soup);
+  diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = diagnostics.seconds;
+  return mesh;
+}
+
+}  // namespace egg

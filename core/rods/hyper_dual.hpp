@@ -1,0 +1,177 @@
+#pragma once
+// Second-order forward-mode automatic differentiation for the small local stencils of the rod
+// energies (at most 16 variables). Every energy term is written once, templated on the scalar;
+// evaluated with double it gives the energy (line search), with HyperDual<N> it gives the exact
+// gradient and Hessian of the same expression. Why not hand-derived Hessians: the DER bending and
+// twisting Hessians (with parallel-transported reference frames) are long and error-prone, and
+// the connection/anchor terms couple frames of two rods; exact AD Hessians keep Newton quadratic
+// at a cost that is small next to the sparse factorisation for stencils this small.
+#include <Eigen/Core>
+
+#include <cmath>
+
+namespace egg::rods {
+
+template <int N>
+struct HyperDual {
+  using Vec = Eigen::Matrix<double, N, 1>;
+  using Mat = Eigen::Matrix<double, N, N>;
+  double v = 0.0;
+  Vec g = Vec::Zero();
+  Mat h = Mat::Zero();
+
+  HyperDual() = default;
+  HyperDual(double value) : v(value) {}  // NOLINT: constants promote implicitly
+  // The k-th independent variable with the given value.
+  static HyperDual variable(double value, int k) {
+    HyperDual x(value);
+    x.g[k] = 1.0;
+    return x;
+  }
+};
+
+// Chain rule for a scalar function with value f, first derivative d1 and second derivative d2.
+template <int N>
+inline HyperDual<N> chain(const HyperDual<N>& a, double f, double d1, double d2) {
+  HyperDual<N> r;
+  r.v = f;
+  r.g = d1 * a.g;
+  r.h = d1 * a.h + d2 * (a.g * a.g.transpose());
+  return r;
+}
+
+template <int N>
+inline HyperDual<N> operator+(const HyperDual<N>& a, const HyperDual<N>& b) {
+  HyperDual<N> r;
+  r.v = a.v + b.v;
+  r.g = a.g + b.g;
+  r.h = a.h + b.h;
+  return r;
+}
+template <int N>
+inline HyperDual<N> operator-(const HyperDual<N>& a, const HyperDual<N>& b) {
+  HyperDual<N> r;
+  r.v = a.v - b.v;
+  r.g = a.g - b.g;
+  r.h = a.h - b.h;
+  return r;
+}
+template <int N>
+inline HyperDual<N> operator-(const HyperDual<N>& a) {
+  HyperDual<N> r;
+  r.v = -a.v;
+  r.g = -a.g;
+  r.h = -a.h;
+  return r;
+}
+template <int N>
+inline HyperDual<N> operator*(const HyperDual<N>& a, const HyperDual<N>& b) {
+  HyperDual<N> r;
+  r.v = a.v * b.v;
+  r.g = a.v * b.g + b.v * a.g;
+  const typename HyperDual<N>::Mat cross = a.g * b.g.transpose();
+  r.h = a.v * b.h + b.v * a.h + cross + cross.transpose();
+  return r;
+}
+template <int N>
+inline HyperDual<N> operator*(double s, const HyperDual<N>& a) {
+  HyperDual<N> r;
+  r.v = s * a.v;
+  r.g = s * a.g;
+  r.h = s * a.h;
+  return r;
+}
+template <int N>
+inline HyperDual<N> operator*(const HyperDual<N>& a, double s) { return s * a; }
+template <int N>
+inline HyperDual<N> operator+(const HyperDual<N>& a, double s) {
+  HyperDual<N> r = a;
+  r.v += s;
+  return r;
+}
+template <int N>
+inline HyperDual<N> operator+(double s, const HyperDual<N>& a) { return a + s; }
+template <int N>
+inline HyperDual<N> operator-(const HyperDual<N>& a, double s) { return a + (-s); }
+template <int N>
+inline HyperDual<N> operator-(double s, const HyperDual<N>& a) { return (-a) + s; }
+template <int N>
+inline HyperDual<N> inverse(const HyperDual<N>& a) {
+  const double i = 1.0 / a.v;
+  return chain(a, i, -i * i, 2.0 * i * i * i);
+}
+template <int N>
+inline HyperDual<N> operator/(const HyperDual<N>& a, const HyperDual<N>& b) { return a * inverse(b); }
+template <int N>
+inline HyperDual<N> operator/(const HyperDual<N>& a, double s) { return (1.0 / s) * a; }
+template <int N>
+inline HyperDual<N> operator/(double s, const HyperDual<N>& a) { return s * inverse(a); }
+
+template <int N>
+inline HyperDual<N> sqrt(const HyperDual<N>& a) {
+  const double s = std::sqrt(a.v);
+  return chain(a, s, 0.5 / s, -0.25 / (s * a.v));
+}
+template <int N>
+inline HyperDual<N> log(const HyperDual<N>& a) {
+  return chain(a, std::log(a.v), 1.0 / a.v, -1.0 / (a.v * a.v));
+}
+template <int N>
+inline HyperDual<N> sin(const HyperDual<N>& a) {
+  const double s = std::sin(a.v), c = std::cos(a.v);
+  return chain(a, s, c, -s);
+}
+template <int N>
+inline HyperDual<N> cos(const HyperDual<N>& a) {
+  const double s = std::sin(a.v), c = std::cos(a.v);
+  return chain(a, c, -s, -c);
+}
+// atan2(y, x) with its exact first and second partial derivatives.
+template <int N>
+inline HyperDual<N> atan2(const HyperDual<N>& y, const HyperDual<N>& x) {
+  const double r2 = x.v * x.v + y.v * y.v;
+  const double fy = x.v / r2, fx = -y.v / r2;
+  const double r4 = r2 * r2;
+  const double fyy = -2.0 * x.v * y.v / r4, fxx = 2.0 * x.v * y.v / r4, fxy = (y.v * y.v - x.v * x.v) / r4;
+  HyperDual<N> r;
+  r.v = std::atan2(y.v, x.v);
+  r.g = fy * y.g + fx * x.g;
+  const typename HyperDual<N>::Mat mixed = y.g * x.g.transpose();
+  r.h = fy * y.h + fx * x.h + fyy * (y.g * y.g.transpose()) + fxx * (x.g * x.g.transpose()) +
+        fxy * (mixed + mixed.transpose());
+  return r;
+}
+
+inline double value(double a) { return a; }
+template <int N>
+inline double value(const HyperDual<N>& a) { return a.v; }
+
+// A 3-vector over any scalar (Eigen's fixed vectors need NumTraits for custom scalars; this is
+// all the energies need).
+template <class S>
+struct V3 {
+  S x, y, z;
+};
+template <class S>
+inline V3<S> constant(const Eigen::Vector3d& v) { return {S(v.x()), S(v.y()), S(v.z())}; }
+template <class S>
+inline V3<S> operator+(const V3<S>& a, const V3<S>& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+template <class S>
+inline V3<S> operator-(const V3<S>& a, const V3<S>& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+template <class S, class T>
+inline V3<S> operator*(const T& s, const V3<S>& a) { return {s * a.x, s * a.y, s * a.z}; }
+template <class S>
+inline S dot(const V3<S>& a, const V3<S>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+template <class S>
+inline V3<S> cross(const V3<S>& a, const V3<S>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+template <class S>
+inline S squaredNorm(const V3<S>& a) { return dot(a, a); }
+template <class S>
+inline S norm(const V3<S>& a) {
+  using std::sqrt;
+  return sqrt(dot(a, a));
+}
+
+}  // namespace egg::rods

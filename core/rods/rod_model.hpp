@@ -1,0 +1,157 @@
+#pragma once
+// The discretised grid: every rod as a polyline with uniform rest edges, one material angle per
+// edge, one barycentric coordinate per sliding bolt side; the energy E = E_r + E_q + E_a + E_n +
+// E_p (+ gravity and test loads) over that vector of unknowns, with its exact gradient and
+// sparse Hessian (Section 2.5). The solver (rod_solver.hpp) minimises it.
+#include "core/rods/rod_energies.hpp"
+#include "core/rods/rod_network.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <vector>
+
+namespace egg::rods {
+
+struct ModelOptions {
+  double targetEdgeLength_m = 0.0;  // rest edge length; 0 = automatic (a third of the typical bolt spacing)
+  int minEdgesPerRod = 6;           // lower bound on edges per rod
+  int maxEdgesPerRod = 400;         // upper bound on edges per rod
+  bool notches = true;              // false: every bolt is a plain hole (the RMS1 run of Section 2.6.2)
+  bool gravity = false;             // self-weight from density (Section 3.5.2), along -z
+  double gravity_m_s2 = 9.81;       // gravitational acceleration
+  double frictionMu = 0.1;          // mu of E_p (Section 2.5)
+  double frictionEpsilon = 1e-4;    // epsilon of E_p: how far past an edge end a bolt may move per iteration
+  double connectionWeight = 1.0;    // lambda_q1 in units of EA/h of the softer rod
+  double connectionAngleWeight = 1.0;  // lambda_q2 in units of GJ/h of the softer rod
+  double anchorWeight = 10.0;       // lambda_a1 in units of EA/h
+  double anchorAngleWeight = 10.0;  // lambda_a2 in units of GJ/h
+  void validate() const;            // throws InvalidInput naming the field
+};
+
+// Stiffness of a rod from its section and material (thin rectangular strip).
+RodStiffness stiffnessOf(const Rod& rod);
+
+// A point on a rod: edge index and barycentric coordinate on it.
+struct RodPoint {
+  int rod = -1;
+  int edge = 0;
+  double beta = 0.0;
+};
+
+class RodModel {
+ public:
+  RodModel(const RodNetwork& network, const ModelOptions& options);
+
+  // ---- discretisation and unknowns ----
+  int rodCount() const { return static_cast<int>(rods_.size()); }
+  int vertexCount(int rod) const { return rods_[rod].edges + 1; }
+  double restEdgeLength(int rod) const { return rods_[rod].h; }
+  int dofCount() const { return dofCount_; }
+  int vertexDof(int rod, int vertex) const { return rods_[rod].firstVertexDof + 3 * vertex; }
+  int thetaDof(int rod, int edge) const { return rods_[rod].firstThetaDof + edge; }
+  const Eigen::VectorXd& state() const { return state_; }
+  const std::vector<bool>& fixed() const { return fixed_; }
+  const RodStiffness& stiffness(int rod) const { return rods_[rod].stiffness; }
+
+  Eigen::Vector3d vertex(int rod, int i) const { return state_.segment<3>(vertexDof(rod, i)); }
+  std::vector<Eigen::Vector3d> centreline(int rod) const;
+  // Material normal (m1) of an edge, and averaged at a vertex.
+  Eigen::Vector3d edgeNormal(int rod, int edge) const;
+  Eigen::Vector3d vertexNormal(int rod, int vertex) const;
+  // Current arc-length (rest) position of each side of each bolt: [connection][0 = a, 1 = b].
+  double boltPosition(int connection, int side) const;
+  int boltCount() const { return static_cast<int>(bolts_.size()); }
+  int slidingSideCount() const;
+
+  // ---- boundary conditions and loads for analytic cases (tests, stress cases) ----
+  void fixVertex(int rod, int vertex, bool x = true, bool y = true, bool z = true);
+  void fixTwist(int rod, int edge);
+  void setVertex(int rod, int vertex, const Eigen::Vector3d& p);
+  void addPointLoad(int rod, int vertex, const Eigen::Vector3d& force);
+  // Moment about `axis` on the rod's last edge (potential -M * rotation angle, unwrapped).
+  void addEndMoment(int rod, const Eigen::Vector3d& axis, double moment);
+
+  // ---- energy ----
+  // Total energy at unknowns z with the current reference frames and bolt edges; +inf where z is
+  // outside the domain (a bolt past its notch or edge, an edge flipped against its reference).
+  double energy(const Eigen::VectorXd& z) const;
+  // Internal energy (rods + constraints) and external potential separately, at z.
+  void energyParts(const Eigen::VectorXd& z, double& internal, double& external) const;
+  // Energy, gradient (size dofCount) and Hessian triplets (lower triangle, row >= col) at z, on
+  // `threads` threads.
+  double derivatives(const Eigen::VectorXd& z, Eigen::VectorXd& gradient,
+                     std::vector<Eigen::Triplet<double>>& hessian, int threads = 1) const;
+  // Largest step fraction in (0, 1] that keeps every sliding bolt strictly inside its edge range.
+  double maxStep(const Eigen::VectorXd& z, const Eigen::VectorXd& direction) const;
+  // Accepts z as the new state: transports reference frames in time, moves bolts that left their
+  // edge to the neighbouring edge (reprojection, Section 2.5). Returns the number of bolt sides
+  // that changed edge.
+  int accept(const Eigen::VectorXd& z);
+
+  // A characteristic force (N) for convergence tests: largest EI_weak / L^2 over rods, weight
+  // of the heaviest rod and largest point load.
+  double forceScale() const { return forceScale_; }
+
+ private:
+  struct RodData {
+    int edges = 0;
+    double h = 0.0;  // rest edge length
+    double length = 0.0;
+    double thickness = 0.0;
+    double linearDensity = 0.0;  // kg/m
+    RodStiffness stiffness;
+    int firstVertexDof = 0;
+    int firstThetaDof = 0;
+  };
+  struct BoltSide {
+    RodPoint point;
+    int betaDof = -1;  // -1: plain hole, the bolt stays where it was drilled
+    double notchMin = 0.0, notchMax = 0.0;
+  };
+  struct Bolt {
+    BoltSide lower, upper;  // rod in layer 0, rod in layer 1
+    double offset = 0.0;    // (t_lower + t_upper)/2
+    double positionWeight = 0.0, angleWeight = 0.0;
+  };
+  struct AnchorData {
+    RodPoint point;
+    Eigen::Vector3d target, targetNormal;
+    double positionWeight = 0.0, angleWeight = 0.0;
+  };
+  struct PointLoad {
+    int dof;
+    Eigen::Vector3d force;
+  };
+  struct EndMoment {
+    int rod;
+    Eigen::Vector3d axis;
+    double moment;
+    Eigen::Vector3d direction;  // in-plane direction of the last edge at the last accepted state
+    double angle = 0.0;         // its unwrapped angle
+  };
+
+  double beta(const Eigen::VectorXd& z, const BoltSide& side) const {
+    return side.betaDof >= 0 ? z[side.betaDof] : side.point.beta;
+  }
+  SliderParameters sliderParameters(const BoltSide& side) const;
+  template <class Visitor>
+  void forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int part, int parts) const;
+  bool edgesValid(const Eigen::VectorXd& z) const;
+
+  ModelOptions options_;
+  std::vector<RodData> rods_;
+  std::vector<Bolt> bolts_;
+  std::vector<AnchorData> anchors_;
+  std::vector<PointLoad> pointLoads_;
+  std::vector<EndMoment> endMoments_;
+  std::vector<EdgeReference> references_;  // per edge, indexed like theta dofs minus thetaBase_
+  std::vector<int> edgeReferenceBase_;     // per rod
+  Eigen::VectorXd state_;
+  Eigen::VectorXd constantGradient_;       // gravity and point loads (linear potentials)
+  std::vector<bool> fixed_;
+  int dofCount_ = 0;
+  double forceScale_ = 0.0;
+};
+
+}  // namespace egg::rods

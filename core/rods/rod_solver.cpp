@@ -1,0 +1,172 @@
+#include "core/rods/rod_solver.hpp"
+
+#include "core/errors.hpp"
+
+#include <Eigen/SparseCholesky>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace egg::rods {
+
+namespace {
+template <class... Args>
+std::string format(const char* pattern, Args... args) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof(buffer), pattern, args...);
+  return buffer;
+}
+}  // namespace
+
+void SolverOptions::validate() const {
+  if (maxIterations < 1) throw InvalidInput("SolverOptions.maxIterations must be >= 1");
+  if (!(timeLimit_s > 0.0)) throw InvalidInput("SolverOptions.timeLimit_s must be > 0");
+  if (!(tolerance > 0.0 && tolerance < 1.0)) throw InvalidInput("SolverOptions.tolerance must be in (0, 1)");
+  if (threads < 1) throw InvalidInput("SolverOptions.threads must be >= 1");
+}
+
+const char* toString(SolverStatus status) {
+  switch (status) {
+    case SolverStatus::Converged: return "converged";
+    case SolverStatus::IterationLimit: return "iteration_limit";
+    case SolverStatus::TimeLimit: return "time_limit";
+    case SolverStatus::Stalled: return "stalled";
+    case SolverStatus::NonFinite: return "non_finite";
+  }
+  return "unknown";
+}
+
+SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
+  options.validate();
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  auto elapsed = [&]() { return std::chrono::duration<double>(Clock::now() - start).count(); };
+
+  const int n = model.dofCount();
+  std::vector<int> freeIndex(n, -1);
+  int freeCount = 0;
+  for (int i = 0; i < n; ++i) {
+    if (!model.fixed()[i]) freeIndex[i] = freeCount++;
+  }
+
+  SolverResult result;
+  Eigen::VectorXd gradient(n);
+  std::vector<Eigen::Triplet<double>> triplets, freeTriplets;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+  double shift = 0.0;  // relative diagonal shift that last made the Hessian positive definite
+
+  for (int iteration = 0;; ++iteration) {
+    const Eigen::VectorXd z = model.state();
+    const double energy = model.derivatives(z, gradient, triplets, options.threads);
+    Eigen::VectorXd g(freeCount);
+    for (int i = 0; i < n; ++i) {
+      if (freeIndex[i] >= 0) g[freeIndex[i]] = gradient[i];
+    }
+    result.energy = energy;
+    result.gradientNorm = g.norm();
+    result.iterations = iteration;
+    result.seconds = elapsed();
+    if (!std::isfinite(energy) || !g.allFinite()) {
+      result.status = SolverStatus::NonFinite;
+      result.reason = "energy or gradient not finite at the current state";
+      return result;
+    }
+    if (iteration >= options.maxIterations) {
+      result.status = SolverStatus::IterationLimit;
+      result.reason = format("no convergence in %d iterations (decrement %.3g J)", iteration, result.decrement);
+      return result;
+    }
+    if (result.seconds > options.timeLimit_s) {
+      result.status = SolverStatus::TimeLimit;
+      result.reason = format("time limit %.3g s reached after %d iterations", options.timeLimit_s, iteration);
+      return result;
+    }
+
+    freeTriplets.clear();
+    freeTriplets.reserve(triplets.size());
+    Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(freeCount);
+    for (const auto& t : triplets) {
+      const int r = freeIndex[t.row()], c = freeIndex[t.col()];
+      if (r < 0 || c < 0) continue;
+      freeTriplets.emplace_back(r, c, t.value());
+      if (r == c) diagonal[r] += t.value();
+    }
+    Eigen::SparseMatrix<double> hessian(freeCount, freeCount);
+    hessian.setFromTriplets(freeTriplets.begin(), freeTriplets.end());
+    const double largestDiagonal = diagonal.cwiseAbs().maxCoeff();
+    Eigen::VectorXd scale = diagonal.cwiseAbs().cwiseMax(1e-12 * largestDiagonal + 1e-300);
+
+    // Newton direction; shift the diagonal (relative to itself) until the factor is positive
+    // definite. Starting from a tenth of the last shift keeps the number of refactorisations low.
+    Eigen::VectorXd direction;
+    bool factored = false;
+    double trial = shift > 0.0 ? shift * 0.1 : 0.0;
+    if (trial < 1e-10) trial = 0.0;
+    for (int attempt = 0; attempt < 30; ++attempt) {
+      Eigen::SparseMatrix<double> shifted = hessian;
+      if (trial > 0.0) {
+        for (int i = 0; i < freeCount; ++i) shifted.coeffRef(i, i) += trial * scale[i];
+      }
+      solver.compute(shifted);
+      if (solver.info() == Eigen::Success && (solver.vectorD().array() > 0.0).all()) {
+        direction = -solver.solve(g);
+        if (direction.allFinite() && direction.dot(g) < 0.0) {
+          factored = true;
+          break;
+        }
+      }
+      trial = trial == 0.0 ? 1e-8 : trial * 10.0;
+    }
+    shift = trial;
+    if (!factored) {
+      result.status = SolverStatus::Stalled;
+      result.reason = "Hessian could not be made positive definite";
+      return result;
+    }
+    result.decrement = -direction.dot(g);
+
+    double internal = 0.0, external = 0.0;
+    model.energyParts(z, internal, external);
+    const double energyScale = std::abs(internal) + std::abs(external) + 1e-300;
+    if (result.decrement <= options.tolerance * energyScale) {
+      result.status = SolverStatus::Converged;
+      result.converged = true;
+      result.reason = format("Newton decrement %.3g J below %.3g x energy scale %.3g J", result.decrement,
+                                  options.tolerance, energyScale);
+      return result;
+    }
+
+    // Backtracking line search (Armijo), first limited so sliding bolts stay inside their
+    // barriers (fraction to the boundary).
+    Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
+    for (int i = 0; i < n; ++i) {
+      if (freeIndex[i] >= 0) step[i] = direction[freeIndex[i]];
+    }
+    double alpha = model.maxStep(z, step);
+    bool accepted = false;
+    Eigen::VectorXd candidate;
+    for (int tries = 0; tries < 60 && alpha > 1e-14; ++tries) {
+      candidate = z + alpha * step;
+      const double e = model.energy(candidate);
+      if (std::isfinite(e) && e <= energy - 1e-4 * alpha * result.decrement) {
+        accepted = true;
+        break;
+      }
+      alpha *= 0.5;
+    }
+    if (!accepted) {
+      // At round-off level the Armijo test cannot see a decrease any more: that is convergence.
+      const bool roundOff = result.decrement <= 1e-6 * energyScale;
+      result.status = roundOff ? SolverStatus::Converged : SolverStatus::Stalled;
+      result.converged = roundOff;
+      result.reason = format("line search found no decrease (decrement %.3g J, energy scale %.3g J)",
+                                  result.decrement, energyScale);
+      return result;
+    }
+    result.boltEdgeSwitches += model.accept(candidate);
+  }
+}
+
+}  // namespace egg::rods

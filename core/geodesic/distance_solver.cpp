@@ -1,0 +1,128 @@
+// DistanceSolver: the per-mesh tables plus single, batch and one-off queries of the exact window
+// propagation (window_propagation.cpp explains the algorithm).
+#include "core/geodesic/distance_solver.hpp"
+
+#include "core/errors.hpp"
+#include "core/geodesic/window_propagation.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <string>
+
+namespace egg::geodesic {
+
+namespace {
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+}  // namespace
+
+void DistanceSolverOptions::validate() const {
+  if (!(saddleAngleTolerance >= 0.0) || !(saddleAngleTolerance < 0.1)) {
+    throw InvalidInput("DistanceSolverOptions.saddleAngleTolerance must be in [0, 0.1) radians");
+  }
+  if (!(minWindowWidthRelative >= 0.0) || !(minWindowWidthRelative < 1e-3)) {
+    throw InvalidInput("DistanceSolverOptions.minWindowWidthRelative must be in [0, 1e-3)");
+  }
+  if (threads < 0) throw InvalidInput("DistanceSolverOptions.threads must be >= 0 (0 = all cores)");
+}
+
+DistanceSolver::DistanceSolver(const TriMesh& mesh, const DistanceSolverOptions& options) : options_(options) {
+  options_.validate();
+  const auto start = std::chrono::steady_clock::now();
+  tables_ = std::make_unique<detail::MeshTables>(detail::buildTables(mesh, options_));
+  precomputeSeconds_ = secondsSince(start);
+}
+
+DistanceSolver::~DistanceSolver() = default;
+DistanceSolver::DistanceSolver(DistanceSolver&&) noexcept = default;
+DistanceSolver& DistanceSolver::operator=(DistanceSolver&&) noexcept = default;
+
+namespace {
+DistanceField fieldFrom(const detail::Propagation& state, double seconds) {
+  DistanceField field;
+  field.vertexDistances = state.vertexDistance;
+  field.targetDistances = state.targetDistance;
+  field.windowsCreated = static_cast<long>(state.windows.size());
+  field.seconds = seconds;
+  return field;
+}
+}  // namespace
+
+DistanceField DistanceSolver::distances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const {
+  const auto start = std::chrono::steady_clock::now();
+  detail::Propagation state;
+  detail::propagate(*tables_, options_, source, targets, state);
+  return fieldFrom(state, secondsSince(start));
+}
+
+DistanceField DistanceSolver::distancesFromVertex(int vertex, const std::vector<SurfacePoint>& targets) const {
+  if (vertex < 0 || vertex >= tables_->vertexCount) {
+    throw InvalidInput("geodesic: source vertex " + std::to_string(vertex) + " is out of range");
+  }
+  for (int k = tables_->outgoingStart[vertex]; k < tables_->outgoingStart[vertex + 1]; ++k) {
+    const int h = tables_->outgoing[k];
+    const int f = tables_->face[h];
+    if (f < 0) continue;
+    SurfacePoint p;
+    p.face = f;
+    for (int i = 0; i < 3; ++i) p.barycentric[i] = (tables_->faceVerts[f][i] == vertex) ? 1.0 : 0.0;
+    return distances(p, targets);
+  }
+  throw InvalidInput("geodesic: source vertex " + std::to_string(vertex) + " belongs to no face");
+}
+
+std::vector<DistanceField> DistanceSolver::distances(const std::vector<SurfacePoint>& sources,
+                                                     const std::vector<SurfacePoint>& targets) const {
+  std::vector<DistanceField> fields(sources.size());
+  tbb::enumerable_thread_specific<detail::Propagation> scratch;
+  auto body = [&](const tbb::blocked_range<size_t>& range) {
+    auto& state = scratch.local();
+    for (size_t i = range.begin(); i < range.end(); ++i) {
+      const auto start = std::chrono::steady_clock::now();
+      detail::propagate(*tables_, options_, sources[i], targets, state);
+      fields[i] = fieldFrom(state, secondsSince(start));
+    }
+  };
+  // One source per task: each field depends only on its source, never on the scheduling.
+  const tbb::blocked_range<size_t> all(0, sources.size(), 1);
+  if (options_.threads > 0) {
+    tbb::task_arena arena(options_.threads);
+    arena.execute([&] { tbb::parallel_for(all, body); });
+  } else {
+    tbb::parallel_for(all, body);
+  }
+  return fields;
+}
+
+double DistanceSolver::distance(const SurfacePoint& from, const SurfacePoint& to) const {
+  return distances(from, {to}).targetDistances[0];
+}
+
+GeodesicPath DistanceSolver::path(const SurfacePoint& from, const SurfacePoint& to) const {
+  detail::Propagation state;
+  detail::propagate(*tables_, options_, from, {to}, state);
+  return detail::tracePath(*tables_, state, 0, from, to);
+}
+
+int DistanceSolver::vertexCount() const { return tables_->vertexCount; }
+int DistanceSolver::faceCount() const { return tables_->faceCount; }
+double DistanceSolver::meanEdgeLength() const { return tables_->meanEdgeLength; }
+bool DistanceSolver::isPseudoSource(int vertex) const {
+  if (vertex < 0 || vertex >= tables_->vertexCount) {
+    throw InvalidInput("geodesic: vertex " + std::to_string(vertex) + " is out of range");
+  }
+  return tables_->pseudoSource[vertex] != 0;
+}
+double DistanceSolver::precomputeSeconds() const { return precomputeSeconds_; }
+const DistanceSolverOptions& DistanceSolver::options() const { return options_; }
+
+DistanceField geodesicDistances(const TriMesh& mesh, const SurfacePoint& source,
+                                const std::vector<SurfacePoint>& targets, const DistanceSolverOptions& options) {
+  return DistanceSolver(mesh, options).distances(source, targets);
+}
+
+}  // namespace egg::geodesic

@@ -1,0 +1,235 @@
+// Backtracing shortest paths through the windows of an exact propagation, and the small surface
+// point helpers (vertex points, closest point on the surface).
+//
+// A window's rays are straight in the unfolding, so the path from a target back to the source is:
+// the ray from the target to the window's source image, crossing the window's edge; then the same
+// ray continued through the parent window's face (same image, earlier edge), and so on until the
+// window born at a (pseudo-)source. At a pseudo-source vertex the path bends and continues with
+// whatever gave that vertex its distance. Section 4.5.2 avoids tracing for intersections; the
+// members themselves and the tests still need the polyline.
+#include "core/errors.hpp"
+#include "core/geodesic/window_propagation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace egg::geodesic {
+
+namespace detail {
+namespace {
+
+SurfacePoint edgePoint(const MeshTables& t, int h, double x) {
+  const int f = t.face[h];
+  const double L = t.length[h];
+  const double s = std::clamp(x / L, 0.0, 1.0);
+  SurfacePoint p;
+  p.face = f;
+  for (int i = 0; i < 3; ++i) {
+    if (t.faceVerts[f][i] == t.fromVertex[h]) p.barycentric[i] = 1.0 - s;
+    if (t.faceVerts[f][i] == t.toVertex[h]) p.barycentric[i] = s;
+  }
+  return p;
+}
+
+SurfacePoint vertexPointFromTables(const MeshTables& t, int v) {
+  for (int k = t.outgoingStart[v]; k < t.outgoingStart[v + 1]; ++k) {
+    const int h = t.outgoing[k];
+    if (t.face[h] < 0) continue;
+    SurfacePoint p;
+    p.face = t.face[h];
+    for (int i = 0; i < 3; ++i) p.barycentric[i] = (t.faceVerts[p.face][i] == v) ? 1.0 : 0.0;
+    return p;
+  }
+  throw InvalidInput("geodesic: vertex " + std::to_string(v) + " belongs to no face");
+}
+
+class Tracer {
+ public:
+  Tracer(const MeshTables& t, const Propagation& s) : t_(t), s_(s) {}
+
+  std::vector<SurfacePoint> reversed;  // from the target back towards the source
+  std::vector<int> bends;
+
+  void fromVertex(int v) {
+    // Each step moves to a strictly closer predecessor; the guard only protects against a
+    // corrupted state turning into an endless loop.
+    for (int guard = 0; guard <= t_.vertexCount; ++guard) {
+      reversed.push_back(vertexPointFromTables(t_, v));
+      bends.push_back(v);
+      const Predecessor pred = s_.vertexPredecessor[v];
+      if (pred.kind == Predecessor::Vertex) {
+        v = pred.index;
+        continue;
+      }
+      if (pred.kind == Predecessor::ThroughWindow) {
+        const int h = s_.windows[pred.index].halfedge;
+        fromWindow(pred.index, t_.oppositeX[h], t_.oppositeY[h]);
+      }
+      return;  // Source (or None for an unreachable vertex)
+    }
+    throw SolverFailure("geodesic: path backtracing did not reach the source");
+  }
+
+  // (qx, qy): the current path point in the frame of window `wi`'s halfedge (inside its face).
+  void fromWindow(int wi, double qx, double qy) {
+    for (;;) {
+      const Window& w = s_.windows[wi];
+      const int h = w.halfedge;
+      const double L = t_.length[h];
+      double x = qx;
+      if (qy > 1e-12 * L) x = w.sx + (qx - w.sx) * (-w.sy) / (qy - w.sy);
+      x = std::clamp(x, std::max(0.0, w.b0), std::min(L, w.b1));
+      if (qy > 1e-12 * L) reversed.push_back(edgePoint(t_, h, x));
+      if (w.parent < 0) {
+        if (w.pseudoSource >= 0) fromVertex(w.pseudoSource);
+        return;
+      }
+      const Window& p = s_.windows[w.parent];
+      const int hp = p.halfedge;
+      const int tw = t_.twin(h);
+      const double u = (L - x) / L;  // fraction along tw from its from-vertex
+      const double bx = t_.length[hp], cx = t_.oppositeX[hp], cy = t_.oppositeY[hp];
+      if (tw == t_.next[hp]) {  // B -> C
+        qx = bx + u * (cx - bx);
+        qy = u * cy;
+      } else {  // C -> A
+        qx = cx - u * cx;
+        qy = cy - u * cy;
+      }
+      wi = w.parent;
+    }
+  }
+
+ private:
+  const MeshTables& t_;
+  const Propagation& s_;
+};
+
+}  // namespace
+
+GeodesicPath tracePath(const MeshTables& t, const Propagation& s, int targetIndex, const SurfacePoint& source,
+                       const SurfacePoint& target) {
+  GeodesicPath path;
+  if (!(s.targetDistance[targetIndex] < kInfinity)) {
+    path.length = kInfinity;
+    return path;
+  }
+  Tracer tracer(t, s);
+  tracer.reversed.push_back(target);
+  const Predecessor pred = s.targetPredecessor[targetIndex];
+  if (pred.kind == Predecessor::Vertex) {
+    tracer.fromVertex(pred.index);
+  } else if (pred.kind == Predecessor::ThroughWindow) {
+    const Window& w = s.windows[pred.index];
+    const int f = t.face[w.halfedge];
+    const int h = w.halfedge;
+    const Eigen::Vector3d& wt = s.targetWeights[targetIndex];
+    double qx = 0, qy = 0;
+    for (int i = 0; i < 3; ++i) {
+      const int v = t.faceVerts[f][i];
+      if (v == t.toVertex[h]) qx += wt[i] * t.length[h];
+      if (v == t.oppositeVertex[h]) {
+        qx += wt[i] * t.oppositeX[h];
+        qy += wt[i] * t.oppositeY[h];
+      }
+    }
+    tracer.fromWindow(pred.index, qx, qy);
+  }
+  tracer.reversed.push_back(source);
+  // Source first; drop repeated points (a vertex source is also the end of the vertex chain).
+  std::reverse(tracer.reversed.begin(), tracer.reversed.end());
+  const double tiny = 1e-12 * std::max(1.0, t.meanEdgeLength);
+  for (const auto& p : tracer.reversed) {
+    const auto& fv = t.faceVerts[p.face];
+    const Eigen::Vector3d x =
+        p.barycentric[0] * t.positions[fv[0]] + p.barycentric[1] * t.positions[fv[1]] + p.barycentric[2] * t.positions[fv[2]];
+    if (!path.positions.empty() && (x - path.positions.back()).norm() <= tiny) {
+      if (&p == &tracer.reversed.back()) path.points.back() = p;  // keep the exact target
+      continue;
+    }
+    if (!path.positions.empty()) path.length += (x - path.positions.back()).norm();
+    path.points.push_back(p);
+    path.positions.push_back(x);
+  }
+  for (auto it = tracer.bends.rbegin(); it != tracer.bends.rend(); ++it) {
+    if (*it != s.sourceVertex) path.bendVertices.push_back(*it);
+  }
+  return path;
+}
+
+}  // namespace detail
+
+SurfacePoint vertexPoint(const TriMesh& mesh, int vertex) {
+  if (vertex < 0 || vertex >= static_cast<int>(mesh.n_vertices())) {
+    throw InvalidInput("geodesic: vertex " + std::to_string(vertex) + " is out of range");
+  }
+  for (auto fh : mesh.vf_range(TriMesh::VertexHandle(vertex))) {
+    SurfacePoint p;
+    p.face = fh.idx();
+    const auto ids = faceVertices(mesh, p.face);
+    for (int i = 0; i < 3; ++i) p.barycentric[i] = (ids[i] == vertex) ? 1.0 : 0.0;
+    return p;
+  }
+  throw InvalidInput("geodesic: vertex " + std::to_string(vertex) + " belongs to no face");
+}
+
+namespace {
+
+// Closest point of triangle (a, b, c) to p, as barycentric weights (Ericson, Real-Time Collision
+// Detection, 5.1.5).
+Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                  const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return {1 - v, v, 0};
+  }
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return {1 - w, 0, w};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - w, w};
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return {1 - v - w, v, w};
+}
+
+}  // namespace
+
+SurfacePoint snapToSurface(const TriMesh& mesh, const Eigen::Vector3d& point) {
+  if (mesh.n_faces() == 0) throw InvalidInput("geodesic: cannot snap a point to a mesh without faces");
+  if (!point.allFinite()) throw InvalidInput("geodesic: cannot snap a non-finite point to the surface");
+  SurfacePoint best;
+  double bestDistance = detail::kInfinity;
+  for (auto fh : mesh.faces()) {
+    const auto ids = faceVertices(mesh, fh.idx());
+    const Eigen::Vector3d a = toEigen(mesh.point(TriMesh::VertexHandle(ids[0])));
+    const Eigen::Vector3d b = toEigen(mesh.point(TriMesh::VertexHandle(ids[1])));
+    const Eigen::Vector3d c = toEigen(mesh.point(TriMesh::VertexHandle(ids[2])));
+    const Eigen::Vector3d w = closestOnTriangle(point, a, b, c);
+    const double d = (w[0] * a + w[1] * b + w[2] * c - point).squaredNorm();
+    if (d < bestDistance) {
+      bestDistance = d;
+      best.face = fh.idx();
+      best.barycentric = w;
+    }
+  }
+  return best;
+}
+
+}  // namespace egg::geodesic

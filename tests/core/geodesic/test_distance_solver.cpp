@@ -1,0 +1,267 @@
+// Known answers for the exact geodesic engine: planar domains (Euclidean distance, also around a
+// reflex corner), an N-gon prism (unrolls exactly), a sphere (great circles), symmetry,
+// disconnected parts, batch determinism and target points.
+#include "core/geodesic/distance_solver.hpp"
+
+#include "core/errors.hpp"
+#include "tests/core/geodesic/geodesic_test_meshes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace egg::geodesic {
+namespace {
+
+using testing::facePoint;
+using testing::flat;
+using testing::gridMesh;
+
+double relativeError(double value, double expected) {
+  return std::abs(value - expected) / std::max(expected, 1e-300);
+}
+
+Eigen::Vector3d vertexPosition(const TriMesh& mesh, int v) { return toEigen(mesh.point(TriMesh::VertexHandle(v))); }
+
+TEST(DistanceSolver, PlaneFromVertexEdgeAndFaceIsEuclidean) {
+  // A jittered flat rectangle is convex, so geodesic distance = Euclidean distance.
+  const TriMesh mesh = gridMesh(14, 11, 1.4, 1.1, flat, 0.35);
+  const DistanceSolver solver(mesh);
+  const std::vector<SurfacePoint> sources = {vertexPoint(mesh, 0), vertexPoint(mesh, 80),
+                                             facePoint(37, 0.5, 0.5, 0.0), facePoint(120, 0.2, 0.3, 0.5),
+                                             facePoint(3, 0.7, 0.3, 0.0)};
+  for (const auto& source : sources) {
+    const Eigen::Vector3d p = position(mesh, source);
+    const auto field = solver.distances(source);
+    for (auto vh : mesh.vertices()) {
+      const double expected = (vertexPosition(mesh, vh.idx()) - p).norm();
+      EXPECT_NEAR(field.vertexDistances[vh.idx()], expected, 1e-12 * (1.0 + expected)) << "vertex " << vh.idx();
+    }
+  }
+}
+
+TEST(DistanceSolver, TargetsInsideFacesAndOnEdgesAreEuclideanOnAPlane) {
+  const TriMesh mesh = gridMesh(10, 10, 1.0, 1.0, flat, 0.3);
+  const DistanceSolver solver(mesh);
+  const SurfacePoint source = facePoint(57, 0.1, 0.6, 0.3);
+  std::vector<SurfacePoint> targets;
+  for (int f = 0; f < static_cast<int>(mesh.n_faces()); f += 7) {
+    targets.push_back(facePoint(f, 0.2, 0.5, 0.3));
+    targets.push_back(facePoint(f, 0.0, 0.25, 0.75));  // on an edge
+    targets.push_back(facePoint(f, 1.0, 0.0, 0.0));    // at a vertex
+  }
+  const auto field = solver.distances(source, targets);
+  ASSERT_EQ(field.targetDistances.size(), targets.size());
+  for (size_t i = 0; i < targets.size(); ++i) {
+    const double expected = (position(mesh, targets[i]) - position(mesh, source)).norm();
+    EXPECT_NEAR(field.targetDistances[i], expected, 1e-12) << "target " << i;
+  }
+}
+
+TEST(DistanceSolver, ShortestPathBendsAroundAReflexBoundaryCorner) {
+  // An L-shaped flat domain: [0,2]x[0,2] minus [1,2]x[1,2]. From a point on the lower boundary to
+  // the upper arm the path bends at the reflex corner (1,1), a boundary pseudo-source.
+  TriangleSoup soup;
+  const int n = 8;  // cells per unit
+  auto inside = [](double x, double y) { return !(x > 1.0 + 1e-12 && y > 1.0 + 1e-12); };
+  std::vector<int> index((2 * n + 1) * (2 * n + 1), -1);
+  for (int j = 0; j <= 2 * n; ++j) {
+    for (int i = 0; i <= 2 * n; ++i) {
+      const double x = double(i) / n, y = double(j) / n;
+      if (!inside(x, y)) continue;
+      index[j * (2 * n + 1) + i] = static_cast<int>(soup.vertices.size());
+      soup.vertices.emplace_back(x, y, 0.0);
+    }
+  }
+  for (int j = 0; j < 2 * n; ++j) {
+    for (int i = 0; i < 2 * n; ++i) {
+      const int a = index[j * (2 * n + 1) + i], b = index[j * (2 * n + 1) + i + 1];
+      const int c = index[(j + 1) * (2 * n + 1) + i + 1], d = index[(j + 1) * (2 * n + 1) + i];
+      if (a < 0 || b < 0 || c < 0 || d < 0) continue;
+      soup.triangles.push_back({a, b, c});
+      soup.triangles.push_back({a, c, d});
+    }
+  }
+  const TriMesh mesh = meshFromSoup(soup);
+  const DistanceSolver solver(mesh);
+  const SurfacePoint source = snapToSurface(mesh, Eigen::Vector3d(1.8, 0.0, 0.0));  // boundary source
+  const Eigen::Vector3d s = position(mesh, source);
+  const Eigen::Vector3d corner(1.0, 1.0, 0.0);
+  const auto field = solver.distances(source);
+  for (auto vh : mesh.vertices()) {
+    const Eigen::Vector3d q = vertexPosition(mesh, vh.idx());
+    // Visible from s unless q is in the upper arm beyond the line from s through the corner.
+    const bool hidden = q.y() > 1.0 && (q - s).x() * (corner - s).y() - (q - s).y() * (corner - s).x() > 1e-12;
+    const double expected = hidden ? (corner - s).norm() + (q - corner).norm() : (q - s).norm();
+    EXPECT_NEAR(field.vertexDistances[vh.idx()], expected, 1e-12) << "vertex at " << q.transpose();
+  }
+}
+
+// Unrolled distance on the lateral surface of a regular N-gon prism: the strip is periodic with
+// period N * side, so take the nearest image.
+double prismDistance(int sides, double radius, const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+  const double side = 2.0 * radius * std::sin(std::numbers::pi / sides);
+  auto unroll = [&](const Eigen::Vector3d& x) {
+    double phi = std::atan2(x.y(), x.x());
+    if (phi < 0) phi += 2.0 * std::numbers::pi;
+    const double sector = 2.0 * std::numbers::pi / sides;
+    const int k = std::min(sides - 1, static_cast<int>(std::floor(phi / sector + 1e-12)));
+    const Eigen::Vector3d a(radius * std::cos(k * sector), radius * std::sin(k * sector), 0.0);
+    const Eigen::Vector3d b(radius * std::cos((k + 1) * sector), radius * std::sin((k + 1) * sector), 0.0);
+    const Eigen::Vector3d planar(x.x(), x.y(), 0.0);
+    const double along = (planar - a).norm();
+    (void)b;
+    return Eigen::Vector2d(k * side + along, x.z());
+  };
+  const Eigen::Vector2d up = unroll(p), uq = unroll(q);
+  double best = std::numeric_limits<double>::infinity();
+  for (int wrap = -1; wrap <= 1; ++wrap) {
+    best = std::min(best, (uq + Eigen::Vector2d(wrap * sides * side, 0.0) - up).norm());
+  }
+  return best;
+}
+
+TEST(DistanceSolver, PrismUnrollsExactly) {
+  const int sides = 7;
+  const double radius = 1.0;
+  const TriMesh mesh = testing::prismMesh(sides, radius, 1.3, 9);
+  const DistanceSolver solver(mesh);
+  const std::vector<SurfacePoint> sources = {vertexPoint(mesh, 0),                // bottom boundary vertex
+                                             vertexPoint(mesh, 3 * sides + 2),    // interior vertex
+                                             facePoint(20, 0.3, 0.3, 0.4),        // inside a face
+                                             facePoint(31, 0.5, 0.5, 0.0),        // on an edge
+                                             snapToSurface(mesh, {0.9, 0.2, 0.0})};  // on the boundary
+  for (const auto& source : sources) {
+    const Eigen::Vector3d p = position(mesh, source);
+    const auto field = solver.distances(source);
+    for (auto vh : mesh.vertices()) {
+      const double expected = prismDistance(sides, radius, p, vertexPosition(mesh, vh.idx()));
+      if (expected < 1e-9) continue;
+      EXPECT_LT(relativeError(field.vertexDistances[vh.idx()], expected), 1e-9)
+          << "vertex " << vh.idx() << " from source face " << source.face;
+    }
+  }
+}
+
+TEST(DistanceSolver, SphereApproachesGreatCircles) {
+  // The polyhedral distance converges to the great-circle distance 2R asin(|p-q|/2R) at O(h^2).
+  const double radius = 2.0;
+  double previousError = std::numeric_limits<double>::infinity();
+  for (int rings : {16, 32}) {
+    const TriMesh mesh = testing::sphereMesh(radius, rings, 2 * rings);
+    const DistanceSolver solver(mesh);
+    const auto field = solver.distancesFromVertex(0);  // north pole
+    double maxError = 0.0;
+    for (auto vh : mesh.vertices()) {
+      const Eigen::Vector3d q = vertexPosition(mesh, vh.idx());
+      const double chord = (q - Eigen::Vector3d(0, 0, radius)).norm();
+      const double expected = 2.0 * radius * std::asin(std::min(1.0, chord / (2.0 * radius)));
+      if (expected < 0.5) continue;
+      maxError = std::max(maxError, relativeError(field.vertexDistances[vh.idx()], expected));
+    }
+    EXPECT_LT(maxError, 0.05 * 256.0 / (rings * rings));
+    EXPECT_LT(maxError, previousError / 3.0);
+    previousError = maxError;
+  }
+}
+
+TEST(DistanceSolver, DistancesAreSymmetric) {
+  const TriMesh mesh = gridMesh(16, 16, 1.0, 1.0, testing::bump(0.5, 0.5, 0.3, 0.25), 0.3);
+  const DistanceSolver solver(mesh);
+  const std::vector<SurfacePoint> points = {facePoint(5, 0.2, 0.3, 0.5), facePoint(200, 0.6, 0.4, 0.0),
+                                            vertexPoint(mesh, 150), facePoint(480, 0.1, 0.1, 0.8),
+                                            snapToSurface(mesh, {1.0, 0.37, 0.0})};
+  std::vector<std::vector<double>> d(points.size());
+  for (size_t i = 0; i < points.size(); ++i) d[i] = solver.distances(points[i], points).targetDistances;
+  for (size_t i = 0; i < points.size(); ++i) {
+    EXPECT_NEAR(d[i][i], 0.0, 1e-14);
+    for (size_t j = i + 1; j < points.size(); ++j) {
+      EXPECT_GT(d[i][j], 0.0);
+      EXPECT_LT(relativeError(d[i][j], d[j][i]), 1e-9) << i << " " << j;
+    }
+  }
+}
+
+TEST(DistanceSolver, DisconnectedPartsAreInfinitelyFar) {
+  TriangleSoup soup = soupFromMesh(gridMesh(4, 4, 1.0, 1.0, flat));
+  const TriangleSoup other = soupFromMesh(gridMesh(3, 3, 1.0, 1.0, flat));
+  const int offset = static_cast<int>(soup.vertices.size());
+  for (const auto& v : other.vertices) soup.vertices.push_back(v + Eigen::Vector3d(5.0, 0.0, 0.0));
+  for (const auto& t : other.triangles) soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  const TriMesh mesh = meshFromSoup(soup);
+  const DistanceSolver solver(mesh);
+  const int farFace = static_cast<int>(mesh.n_faces()) - 1;
+  const auto field = solver.distances(vertexPoint(mesh, 0), {facePoint(farFace, 0.3, 0.3, 0.4)});
+  for (int v = 0; v < offset; ++v) EXPECT_TRUE(std::isfinite(field.vertexDistances[v]));
+  for (int v = offset; v < static_cast<int>(mesh.n_vertices()); ++v) {
+    EXPECT_EQ(field.vertexDistances[v], std::numeric_limits<double>::infinity());
+  }
+  EXPECT_EQ(field.targetDistances[0], std::numeric_limits<double>::infinity());
+}
+
+TEST(DistanceSolver, BatchIsBitIdenticalForAnyThreadCount) {
+  const TriMesh mesh = gridMesh(14, 14, 1.0, 1.0, testing::hypar(0.5, 0.5, 0.8), 0.3);
+  std::vector<SurfacePoint> sources;
+  for (int f = 0; f < static_cast<int>(mesh.n_faces()); f += 23) sources.push_back(facePoint(f, 0.2, 0.3, 0.5));
+  const std::vector<SurfacePoint> targets = {facePoint(11, 0.3, 0.3, 0.4), facePoint(301, 0.0, 0.5, 0.5)};
+  DistanceSolverOptions one;
+  one.threads = 1;
+  DistanceSolverOptions two;
+  two.threads = 2;
+  const auto a = DistanceSolver(mesh, one).distances(sources, targets);
+  const auto b = DistanceSolver(mesh, two).distances(sources, targets);
+  const DistanceSolver single(mesh);
+  ASSERT_EQ(a.size(), sources.size());
+  for (size_t i = 0; i < sources.size(); ++i) {
+    EXPECT_EQ(a[i].vertexDistances, b[i].vertexDistances);
+    EXPECT_EQ(a[i].targetDistances, b[i].targetDistances);
+    EXPECT_EQ(a[i].vertexDistances, single.distances(sources[i], targets).vertexDistances);
+  }
+}
+
+TEST(DistanceSolver, EdgeTargetIsTheSameFromBothFaces) {
+  const TriMesh mesh = gridMesh(12, 12, 1.0, 1.0, testing::bump(0.4, 0.6, 0.4, 0.2), 0.25);
+  const DistanceSolver solver(mesh);
+  // A point on an interior edge, expressed in each of its two faces.
+  const auto eh = mesh.edge_handle(100);
+  ASSERT_FALSE(mesh.is_boundary(eh));
+  const auto h0 = mesh.halfedge_handle(eh, 0), h1 = mesh.halfedge_handle(eh, 1);
+  auto onEdge = [&](TriMesh::HalfedgeHandle h) {
+    const int f = mesh.face_handle(h).idx();
+    const auto ids = faceVertices(mesh, f);
+    SurfacePoint p;
+    p.face = f;
+    for (int i = 0; i < 3; ++i) {
+      if (ids[i] == mesh.from_vertex_handle(h0).idx()) p.barycentric[i] = 0.3;
+      if (ids[i] == mesh.to_vertex_handle(h0).idx()) p.barycentric[i] = 0.7;
+    }
+    return p;
+  };
+  const SurfacePoint a = onEdge(h0), b = onEdge(h1);
+  ASSERT_LT((position(mesh, a) - position(mesh, b)).norm(), 1e-15);
+  for (const auto& source : {vertexPoint(mesh, 3), facePoint(250, 0.3, 0.3, 0.4)}) {
+    const auto field = solver.distances(source, {a, b});
+    EXPECT_NEAR(field.targetDistances[0], field.targetDistances[1], 1e-12);
+  }
+  // As a source, too.
+  const auto fa = solver.distances(a), fb = solver.distances(b);
+  for (size_t v = 0; v < fa.vertexDistances.size(); ++v) EXPECT_NEAR(fa.vertexDistances[v], fb.vertexDistances[v], 1e-12);
+}
+
+TEST(DistanceSolver, RejectsBadInput) {
+  const TriMesh mesh = gridMesh(3, 3, 1.0, 1.0, flat);
+  DistanceSolverOptions options;
+  options.threads = -1;
+  EXPECT_THROW(DistanceSolver(mesh, options), InvalidInput);
+  const DistanceSolver solver(mesh);
+  EXPECT_THROW(solver.distances(facePoint(999, 1, 0, 0)), InvalidInput);
+  EXPECT_THROW(solver.distances(facePoint(0, -1, 0, 0)), InvalidInput);
+  EXPECT_THROW(solver.distances(facePoint(0, 1, 0, 0), {facePoint(-1, 1, 0, 0)}), InvalidInput);
+  EXPECT_THROW(solver.distancesFromVertex(1000), InvalidInput);
+  EXPECT_THROW(DistanceSolver(TriMesh{}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace egg::geodesic

@@ -1,0 +1,239 @@
+#include "core/io/mesh_io.hpp"
+
+#include "core/errors.hpp"
+#include "core/mesh/validate.hpp"
+
+#include <assimp/Exporter.hpp>
+#include <assimp/Importer.hpp>
+#include <assimp/scene.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+
+namespace egg {
+namespace {
+namespace fs = std::filesystem;
+
+// A curved open surface z = 0.3 sin(x) cos(y) on a jittered grid: no coordinate is a "round" number.
+TriangleSoup wavySurface(int n = 6) {
+  TriangleSoup soup;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.1, 0.1);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = 2.0 * i / n + ((i > 0 && i < n) ? jitter(rng) / n : 0.0);
+      const double y = 1.5 * j / n + ((j > 0 && j < n) ? jitter(rng) / n : 0.0);
+      soup.vertices.push_back({x + 10.0, y - 3.0, 0.3 * std::sin(x) * std::cos(y) + 1.0});
+    }
+  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      soup.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      soup.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return soup;
+}
+
+class TempDir {
+ public:
+  TempDir() {
+    path_ = fs::temp_directory_path() / ("egg_test_io_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++));
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+  std::vector<std::string> files() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(path_)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+ private:
+  fs::path path_;
+  static inline int counter_ = 0;
+};
+
+void writeText(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+Eigen::Vector3d areaVector(const TriangleSoup& soup) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const auto& t : soup.triangles)
+    sum += 0.5 * (soup.vertices[t[1]] - soup.vertices[t[0]]).cross(soup.vertices[t[2]] - soup.vertices[t[0]]);
+  return sum;
+}
+
+// Every original vertex is found again (float precision: files store 32-bit floats), counts equal
+// after merging duplicates, and the orientation (area vector) survives.
+void expectSameSurface(const TriangleSoup& original, const TriangleSoup& readBack, const std::string& label) {
+  MeshRepairDiagnostics diagnostics;
+  const TriangleSoup merged = soupFromMesh(prepareMesh(readBack, {}, diagnostics));
+  EXPECT_EQ(merged.vertices.size(), original.vertices.size()) << label;
+  EXPECT_EQ(merged.triangles.size(), original.triangles.size()) << label;
+  double worst = 0.0;
+  for (const auto& p : original.vertices) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& q : merged.vertices) best = std::min(best, (p - q).norm());
+    worst = std::max(worst, best);
+  }
+  EXPECT_LT(worst, 2e-6) << label;  // |p| ~ 10 m, float spacing ~1e-6 m
+  EXPECT_LT((areaVector(merged) - areaVector(original)).norm(), 1e-5) << label;
+}
+
+TEST(MeshIo, RoundTripThroughEveryExportFormat) {
+  const TriangleSoup original = wavySurface();
+  for (const std::string ext : {".obj", ".ply", ".stl", ".gltf", ".glb"})
+    for (bool binary : {true, false}) {
+      TempDir dir;
+      const fs::path file = dir / ("surface" + ext);
+      MeshExportOptions options;
+      options.binary = binary;
+      writeMeshFile(file, original, options);
+      const TriangleSoup back = readMeshFile(file);
+      expectSameSurface(original, back, ext + (binary ? " binary" : " ascii"));
+      // Nothing but the file (and the glTF buffer) is left: no temporary, no material library.
+      const std::vector<std::string> expected =
+          ext == ".gltf" ? std::vector<std::string>{"surface.bin", "surface.gltf"} : std::vector<std::string>{"surface" + ext};
+      EXPECT_EQ(dir.files(), expected) << ext;
+    }
+}
+
+TEST(MeshIo, StlComesBackWithDuplicatesThatRepairMerges) {
+  const TriangleSoup original = wavySurface(4);
+  TempDir dir;
+  writeMeshFile(dir / "s.stl", original);
+  const TriangleSoup raw = readMeshFile(dir / "s.stl");
+  EXPECT_EQ(raw.vertices.size(), 3 * original.triangles.size());  // STL has no shared vertices
+  MeshRepairDiagnostics diagnostics;
+  const TriMesh mesh = prepareMesh(raw, {}, diagnostics);
+  EXPECT_EQ(mesh.n_vertices(), original.vertices.size());
+  EXPECT_EQ(diagnostics.merged_vertices, static_cast<int>(raw.vertices.size() - original.vertices.size()));
+}
+
+TEST(MeshIo, ScaleToMetresAndExportScale) {
+  const TriangleSoup original = wavySurface(3);
+  TempDir dir;
+  MeshExportOptions millimetres;
+  millimetres.scale_from_m = 1000.0;
+  writeMeshFile(dir / "mm.obj", original, millimetres);
+  const TriangleSoup inFileUnits = readMeshFile(dir / "mm.obj");
+  EXPECT_NEAR(inFileUnits.vertices[0].x(), 1000.0 * original.vertices[0].x(), 1e-3);
+  MeshImportOptions toMetres;
+  toMetres.scale_to_m = 0.001;
+  expectSameSurface(original, readMeshFile(dir / "mm.obj", toMetres), "mm");
+}
+
+TEST(MeshIo, OffQuadIsTriangulated) {
+  TempDir dir;
+  writeText(dir / "quad.off", "OFF\n4 1 0\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n4 0 1 2 3\n");
+  const TriangleSoup soup = readMeshFile(dir / "quad.off");
+  EXPECT_EQ(soup.triangles.size(), 2u);
+  EXPECT_NEAR(areaVector(soup).z(), 2.0, 1e-12);
+}
+
+TEST(MeshIo, GltfNodeTransformsAndInstancesAreApplied) {
+  // One triangle (0,0,0) (1,0,0) (0,1,0), instanced by two nodes: the second translated by
+  // (5, 0, 0) and scaled by 2, under a root node translated by (0, 0, 3).
+  TempDir dir;
+  writeText(dir / "nodes.gltf", R"({
+    "asset": {"version": "2.0"},
+    "scene": 0,
+    "scenes": [{"nodes": [0]}],
+    "nodes": [{"translation": [0, 0, 3], "children": [1, 2]},
+              {"mesh": 0},
+              {"mesh": 0, "translation": [5, 0, 0], "scale": [2, 2, 2]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [1, 1, 0]}]
+  })");
+  const TriangleSoup soup = readMeshFile(dir / "nodes.gltf");
+  ASSERT_EQ(soup.triangles.size(), 2u);
+  std::vector<Eigen::Vector3d> expected = {{0, 0, 3}, {1, 0, 3}, {0, 1, 3}, {5, 0, 3}, {7, 0, 3}, {5, 2, 3}};
+  for (const auto& e : expected) {
+    double best = 1e9;
+    for (const auto& p : soup.vertices) best = std::min(best, (p - e).norm());
+    EXPECT_LT(best, 1e-6) << e.transpose();
+  }
+}
+
+TEST(MeshIo, FbxWrittenByAssimpIsRead) {
+  // eggshell does not write FBX, so let assimp's own exporter make one from our scene.
+  TempDir dir;
+  const TriangleSoup original = wavySurface(3);
+  writeMeshFile(dir / "s.glb", original);
+  const fs::path fbx = dir / "s.fbx";
+  {
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile((dir / "s.glb").string(), 0);
+    ASSERT_NE(scene, nullptr);
+    Assimp::Exporter exporter;
+    ASSERT_EQ(exporter.Export(scene, "fbxa", fbx.string()), aiReturn_SUCCESS) << exporter.GetErrorString();
+  }
+  const TriangleSoup back = readMeshFile(fbx);
+  EXPECT_EQ(back.triangles.size(), original.triangles.size());
+  expectSameSurface(original, back, "fbx");
+}
+
+void expectIoErrorNaming(const fs::path& path, const std::string& reason) {
+  try {
+    readMeshFile(path);
+    ADD_FAILURE() << "no IoError for " << path;
+  } catch (const IoError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(reason), std::string::npos) << message;
+  }
+}
+
+TEST(MeshIo, BadFilesAreIoErrorsNamingTheFile) {
+  TempDir dir;
+  expectIoErrorNaming(dir / "missing.obj", "does not exist");
+  expectIoErrorNaming(dir / "", "directory");
+  std::string garbage(4096, '\0');
+  std::mt19937 rng(1);
+  for (auto& c : garbage) c = static_cast<char>(rng() & 0xff);
+  for (const std::string ext : {".obj", ".stl", ".ply", ".glb", ".fbx", ".off", ".xyz"}) {
+    writeText(dir / ("garbage" + ext), garbage);
+    expectIoErrorNaming(dir / ("garbage" + ext), "");
+  }
+  writeText(dir / "empty.obj", "");
+  expectIoErrorNaming(dir / "empty.obj", "");
+  writeText(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n");
+  expectIoErrorNaming(dir / "points.obj", "");
+  writeText(dir / "lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n");
+  expectIoErrorNaming(dir / "lines.obj", "");
+}
+
+TEST(MeshIo, WriteErrorsNameTheFileAndLeaveNothing) {
+  TempDir dir;
+  const TriangleSoup soup = wavySurface(2);
+  EXPECT_THROW(writeMeshFile(dir / "s.xyz", soup), IoError);
+  EXPECT_THROW(writeMeshFile(dir / "no_such_dir" / "s.obj", soup), IoError);
+  EXPECT_THROW(writeMeshFile(dir / "empty.obj", TriangleSoup{}), IoError);
+  try {
+    writeMeshFile(dir / "s.xyz", soup);
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("s.xyz"), std::string::npos);
+  }
+  EXPECT_TRUE(dir.files().empty());
+  MeshImportOptions bad;
+  bad.scale_to_m = 0.0;
+  EXPECT_THROW(readMeshFile(dir / "s.obj", bad), InvalidInput);
+}
+
+TEST(MeshIo, ExtensionListsContainTheRequiredFormats) {
+  const auto in = importableExtensions();
+  for (const std::string ext : {".obj", ".stl", ".ply", ".off", ".gltf", ".glb", ".fbx"})
+    EXPECT_NE(std::find(in.begin(), in.end(), ext), in.end()) << ext;
+  EXPECT_EQ(exportableExtensions().size(), 5u);
+}
+
+}  // namespace
+}  // namespace egg

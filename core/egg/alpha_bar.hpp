@@ -1,0 +1,75 @@
+#pragma once
+// Problem 2.3 (Section 2.4.3): the feasible range [alpha_bar_min, alpha_bar_max] of the planar
+// angle for which both cladding functions exist, are bijective and have slopes inside
+// (k_min, k_max), and the inequality (e - e_bar)(f - f_bar) < 0 holds. Solved with NLopt SLSQP and
+// numerical gradients in alpha_bar, seeded by a scan of the convex range (criterion iv).
+#include "core/egg/cladding.hpp"
+#include "core/egg/distance_map.hpp"
+#include "core/egg/planar_quad.hpp"
+
+#include <string>
+#include <vector>
+
+namespace egg {
+
+enum class AlphaBarChoice {
+  Min,       // alpha_bar_min: the compact planar layout the thesis uses by default
+  Max,       // alpha_bar_max
+  Unrolled,  // alpha_bar = alpha, the surface angle at c0 (the unrolled grid of a developable patch)
+  Given      // a value in radians
+};
+
+struct AlphaBarOptions {
+  double slopeMin = 0.1;              // k_min, lower slope bound of the cladding functions
+  double slopeMax = 10.0;             // k_max, upper slope bound
+  AlphaBarChoice choice = AlphaBarChoice::Min;  // which alpha_bar the grid is built at
+  double givenAlphaBar = 0.0;         // radians, used when choice == Given
+  int scanSamples = 48;               // samples of the convex range that seed SLSQP
+  int maxEvaluations = 200;           // SLSQP evaluation budget per bound
+  double tolerance = 1e-8;            // radians, accuracy of alpha_bar_min / alpha_bar_max
+  CladdingOptions cladding;           // intersection tolerances
+  void validate() const;
+};
+
+// Parses the scene's grid.alpha_bar: "min" | "max" | "unrolled" | a number (radians).
+// Throws InvalidInput naming the value otherwise.
+void parseAlphaBarChoice(const std::string& text, AlphaBarOptions& options);
+
+// Everything about one candidate alpha_bar.
+struct AlphaBarEvaluation {
+  double alphaBar = 0.0;
+  bool closable = false;          // the planar quad exists and is convex
+  double diagonalProduct = 0.0;   // (e - e_bar)(f - f_bar) / scale^2, must be < 0
+  double violationU = 0.0;        // slopeViolation of F_u, must be < 0
+  double violationV = 0.0;        // slopeViolation of F_v, must be < 0
+  bool bijective = false;         // both cladding functions bijective (criterion iii)
+  bool feasible = false;          // all constraints of Problem 2.3 strictly met
+};
+AlphaBarEvaluation evaluateAlphaBar(const PatchDistanceMaps& maps, double alphaBar, const AlphaBarOptions& options);
+
+struct AlphaBarResult {
+  double alphaBar = 0.0;             // the chosen angle, radians
+  bool rangeFound = false;           // a feasible alpha_bar exists
+  double alphaMin = 0.0;             // alpha_bar_min (valid if rangeFound)
+  double alphaMax = 0.0;             // alpha_bar_max (valid if rangeFound)
+  // The feasible set itself: it need not be one interval. A patch of positive curvature is
+  // typically feasible only away from its own angle alpha (the maps barely meet there), so the
+  // set is [alpha_min, a] U [b, alpha_max]. Outer ends by SLSQP, inner ends by bisection.
+  std::vector<AngleInterval> feasibleIntervals;
+  AngleInterval convexRange;         // angles giving a closable convex planar quad
+  PlanarQuad quad;                   // planar patch at alphaBar
+  CladdingFunction claddingU, claddingV;
+  double slopeMin = 0.0, slopeMax = 0.0;  // extreme segment slopes of F_u, F_v at alphaBar (thesis form)
+  bool degenerate = false;           // the maps coincide at alphaBar (developable at its unrolled angle)
+  int evaluations = 0;               // cladding evaluations spent
+  int sqpIterations = 0;             // SLSQP objective evaluations over both bounds
+  std::string status;                // how the bounds were settled
+  double seconds = 0.0;
+};
+
+// Solves Problem 2.3 and builds the planar quad and cladding functions at the chosen angle.
+// Throws InfeasiblePatch when no feasible alpha_bar exists (choice min/max) or when the requested
+// angle gives no bijective cladding function (choice unrolled/given); InvalidInput on bad input.
+AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOptions& options = {});
+
+}  // namespace egg

@@ -1,0 +1,144 @@
+#include "apps/commands/report.hpp"
+
+#include "core/errors.hpp"
+
+#include <fstream>
+#include <random>
+#include <system_error>
+#include <unistd.h>
+
+namespace egg::app {
+
+using nlohmann::json;
+
+const std::vector<std::string>& pipelineStages() {
+  static const std::vector<std::string> stages{"surface",     "patching", "egg_solve",  "propagation",
+                                               "grid",        "simulation", "fabrication"};
+  return stages;
+}
+
+RunReport::RunReport(json scene) {
+  document_["scene"] = std::move(scene);
+  document_["units"] = {{"length", "m"}, {"angle", "rad"}, {"time", "s"}, {"cut_files", "mm"}};
+  document_["stages"] = json::object();
+  document_["warnings"] = json::array();
+}
+
+void RunReport::stageRan(const std::string& stage, double seconds) {
+  document_["stages"][stage] = {{"ran", true}, {"seconds", seconds}};
+}
+
+void RunReport::stageSkipped(const std::string& stage, const std::string& reason) {
+  document_["stages"][stage] = {{"ran", false}, {"seconds", 0.0}, {"skipped_reason", reason}};
+}
+
+json RunReport::finish(double totalSeconds) const {
+  json out = document_;
+  for (const auto& stage : pipelineStages()) {
+    if (!out["stages"].contains(stage)) {
+      out["stages"][stage] = {{"ran", false}, {"seconds", 0.0}, {"skipped_reason", "not implemented"}};
+    }
+  }
+  // A section whose stage did not run carries the stage's verdict, so a reader of one section
+  // never has to cross-reference `stages` to learn why it is empty.
+  auto sectionOf = [&](const std::string& key, const std::string& stage) {
+    if (!out.contains(key) || out[key].is_null()) {
+      const json& s = out["stages"][stage];
+      out[key] = {{"ran", false}, {"skipped_reason", s.value("skipped_reason", "did not run")}};
+    }
+  };
+  if (!out.contains("patches") || out["patches"].is_null()) out["patches"] = json::array();
+  sectionOf("surface", "surface");
+  sectionOf("coverage", "patching");
+  sectionOf("propagation", "propagation");
+  sectionOf("simulation", "simulation");
+  sectionOf("fabrication", "fabrication");
+  out["timings"] = {{"total_s", totalSeconds}};
+  json stageSeconds = json::object();
+  for (const auto& stage : pipelineStages()) stageSeconds[stage + "_s"] = out["stages"][stage]["seconds"];
+  out["timings"]["stages"] = stageSeconds;
+  return out;
+}
+
+namespace {
+
+std::string randomSuffix() {
+  std::random_device rd;
+  std::uniform_int_distribution<unsigned> digit(0, 35);
+  std::string s;
+  for (int i = 0; i < 8; ++i) {
+    const unsigned d = digit(rd);
+    s.push_back(static_cast<char>(d < 10 ? '0' + d : 'a' + d - 10));
+  }
+  return s;
+}
+
+}  // namespace
+
+void writeFileAtomically(const std::filesystem::path& path, const std::string& text) {
+  namespace fs = std::filesystem;
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  const fs::path temp = dir / ("." + path.filename().string() + ".tmp-" + randomSuffix());
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) throw IoError(path.string() + ": cannot create file (" + temp.string() + ")");
+    out << text;
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(temp, ignored);
+      throw IoError(path.string() + ": write failed (disk full?)");
+    }
+  }
+  std::error_code ec;
+  fs::rename(temp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    throw IoError(path.string() + ": cannot move finished file into place: " + ec.message());
+  }
+}
+
+StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::move(target)) {
+  namespace fs = std::filesystem;
+  if (target_.empty()) throw InvalidInput("output folder: empty path");
+  target_ = fs::absolute(target_).lexically_normal();
+  if (target_.filename().empty()) target_ = target_.parent_path();
+  const fs::path parent = target_.parent_path();
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) throw IoError(parent.string() + ": cannot create folder: " + ec.message());
+  if (fs::exists(target_) && !fs::is_directory(target_)) {
+    throw InvalidInput(target_.string() + ": exists and is not a folder");
+  }
+  staging_ = parent / ("." + target_.filename().string() + ".staging-" + randomSuffix());
+  fs::create_directory(staging_, ec);
+  if (ec) throw IoError(staging_.string() + ": cannot create staging folder: " + ec.message());
+}
+
+StagedDirectory::~StagedDirectory() {
+  if (!committed_) {
+    std::error_code ignored;
+    std::filesystem::remove_all(staging_, ignored);
+  }
+}
+
+void StagedDirectory::commit() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path previous;
+  if (fs::exists(target_)) {
+    previous = target_.parent_path() / ("." + target_.filename().string() + ".previous-" + randomSuffix());
+    fs::rename(target_, previous, ec);
+    if (ec) throw IoError(target_.string() + ": cannot replace the earlier results: " + ec.message());
+  }
+  fs::rename(staging_, target_, ec);
+  if (ec) {
+    if (!previous.empty()) fs::rename(previous, target_, ec);  // put the old results back
+    throw IoError(target_.string() + ": cannot move the results into place: " + ec.message());
+  }
+  committed_ = true;
+  if (!previous.empty()) fs::remove_all(previous, ec);
+}
+
+}  // namespace egg::app

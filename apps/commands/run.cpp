@@ -1,0 +1,53 @@
+#include "apps/commands/commands.hpp"
+#include "apps/commands/pipeline.hpp"
+
+#include <fmt/core.h>
+
+#include <iostream>
+#include <memory>
+#include <unistd.h>
+
+namespace egg::app {
+
+void registerRunCommand(CLI::App& parent, Action& action) {
+  struct Args {
+    std::string scene = "samples/great_court.json";
+    std::string out;
+    bool json = false;
+    bool quiet = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = parent.add_subcommand(
+      "run", "Run the whole pipeline on a scene file and write report.json and the requested outputs.");
+  cmd->add_option("scene", args->scene, "Scene file (default: samples/great_court.json)");
+  cmd->add_option("--out,-o", args->out, "Run folder (default: out/<scene name>); replaced whole when the run completes");
+  cmd->add_flag("--json", args->json, "Print the report as JSON on stdout");
+  cmd->add_flag("--quiet,-q", args->quiet, "No progress on stderr");
+  cmd->callback([args, &action] {
+    action = [args]() {
+      const Scene scene = loadScene(args->scene);
+      PipelineOptions options;
+      options.out_dir = args->out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args->out);
+      const bool terminal = isatty(STDERR_FILENO) && !args->quiet;
+      if (terminal) {
+        options.progress = [](const std::string& stage, double fraction) {
+          const int width = 30;
+          const int filled = static_cast<int>(fraction * width + 0.5);
+          std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
+                    << fmt::format("{:<12}", stage) << std::flush;
+          if (fraction >= 1.0) std::cerr << "\n";
+        };
+      }
+      const PipelineResult result = runPipeline(scene, options);
+      if (args->json) {
+        std::cout << result.report.dump(2) << "\n";
+      } else {
+        std::cout << fmt::format("egg run: {} done in {:.2f} s; results in {}\n", scene.name, result.seconds,
+                                 result.out_dir.string());
+      }
+      return kExitOk;
+    };
+  });
+}
+
+}  // namespace egg::app

@@ -1,0 +1,343 @@
+#include "apps/commands/scene.hpp"
+
+#include "core/errors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace egg::app {
+namespace {
+
+using nlohmann::json;
+
+// Reads one JSON object, remembering its dotted path for messages and which keys were consumed,
+// so that anything left over is reported as an unknown key.
+class Section {
+ public:
+  Section(const json& node, std::string path, std::string origin)
+      : node_(node), path_(std::move(path)), origin_(std::move(origin)) {
+    if (!node_.is_object()) fail("", "must be an object");
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw InvalidInput(origin_ + ": " + dotted(key) + (dotted(key).empty() ? "" : ": ") + what);
+  }
+
+  std::string dotted(const std::string& key) const {
+    if (path_.empty()) return key;
+    return key.empty() ? path_ : path_ + "." + key;
+  }
+
+  bool has(const std::string& key) {
+    known_.insert(key);
+    return node_.contains(key);
+  }
+
+  const json& raw(const std::string& key) {
+    known_.insert(key);
+    return node_.at(key);
+  }
+
+  double number(const std::string& key, double fallback, double lo, double hi) {
+    if (!has(key)) return fallback;
+    const json& v = node_.at(key);
+    if (!v.is_number()) fail(key, "must be a number, got " + v.dump());
+    const double x = v.get<double>();
+    if (!std::isfinite(x) || x < lo || x > hi) {
+      std::ostringstream msg;
+      msg << "must lie in [" << lo << ", " << hi << "], got " << x;
+      fail(key, msg.str());
+    }
+    return x;
+  }
+
+  double positive(const std::string& key, double fallback, double hi = 1e9) {
+    const double x = number(key, fallback, 0.0, hi);
+    if (x <= 0.0) fail(key, "must be positive");
+    return x;
+  }
+
+  int integer(const std::string& key, int fallback, int lo, int hi) {
+    if (!has(key)) return fallback;
+    const json& v = node_.at(key);
+    if (!v.is_number_integer()) fail(key, "must be an integer, got " + v.dump());
+    const long long x = v.get<long long>();
+    if (x < lo || x > hi) fail(key, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(x));
+    return static_cast<int>(x);
+  }
+
+  bool boolean(const std::string& key, bool fallback) {
+    if (!has(key)) return fallback;
+    const json& v = node_.at(key);
+    if (!v.is_boolean()) fail(key, "must be true or false, got " + v.dump());
+    return v.get<bool>();
+  }
+
+  std::string text(const std::string& key, const std::string& fallback) {
+    if (!has(key)) return fallback;
+    const json& v = node_.at(key);
+    if (!v.is_string()) fail(key, "must be a string, got " + v.dump());
+    return v.get<std::string>();
+  }
+
+  std::array<double, 2> pair(const std::string& key, std::array<double, 2> fallback, double lo, double hi) {
+    if (!has(key)) return fallback;
+    const json& v = node_.at(key);
+    if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
+      fail(key, "must be an array of two numbers, got " + v.dump());
+    }
+    std::array<double, 2> out{v[0].get<double>(), v[1].get<double>()};
+    for (double x : out) {
+      if (!std::isfinite(x) || x < lo || x > hi) fail(key, "values must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    }
+    return out;
+  }
+
+  Section child(const std::string& key) {
+    known_.insert(key);
+    static const json empty = json::object();
+    return Section(node_.contains(key) ? node_.at(key) : empty, dotted(key), origin_);
+  }
+
+  // Call after reading: every key present must have been asked for.
+  void rejectUnknownKeys() const {
+    for (auto it = node_.begin(); it != node_.end(); ++it) {
+      if (!known_.count(it.key())) {
+        std::string allowed;
+        for (const auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
+        fail(it.key(), "unknown key (allowed here: " + allowed + ")");
+      }
+    }
+  }
+
+ private:
+  const json& node_;
+  std::string path_;
+  std::string origin_;
+  std::set<std::string> known_;
+};
+
+Eigen::Vector3d point3(const json& v, const Section& where, const std::string& key) {
+  if (!v.is_array() || v.size() != 3) where.fail(key, "a corner must be [x, y, z], got " + v.dump());
+  Eigen::Vector3d p;
+  for (int i = 0; i < 3; ++i) {
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) where.fail(key, "corner coordinates must be finite numbers, got " + v.dump());
+    p[i] = v[i].get<double>();
+  }
+  return p;
+}
+
+void readSurface(Section s, Scene& scene) {
+  SurfaceSpec& out = scene.surface;
+  const bool hasSample = s.has("sample");
+  const bool hasFile = s.has("file");
+  if (hasSample == hasFile) s.fail("", "give exactly one of \"sample\" or \"file\"");
+  out.sample = s.text("sample", "");
+  const std::string file = s.text("file", "");
+  if (hasFile) {
+    if (file.empty()) s.fail("file", "must not be empty");
+    std::filesystem::path p(file);
+    out.file = p.is_absolute() ? p : scene.path.parent_path() / p;
+  }
+  out.edge_length_m = s.positive("edge_length_m", out.edge_length_m, 1e4);
+  out.scale_to_m = s.positive("scale_to_m", out.scale_to_m, 1e6);
+  out.keep_largest_component = s.boolean("keep_largest_component", out.keep_largest_component);
+  if (s.has("params")) {
+    const json& params = s.raw("params");
+    if (!params.is_object()) s.fail("params", "must be an object of numbers");
+    for (auto it = params.begin(); it != params.end(); ++it) {
+      const json& v = it.value();
+      if (v.is_boolean()) {
+        out.params[it.key()] = v.get<bool>() ? 1.0 : 0.0;
+      } else if (v.is_number() && std::isfinite(v.get<double>())) {
+        out.params[it.key()] = v.get<double>();
+      } else {
+        s.fail("params." + it.key(), "must be a number or a boolean, got " + v.dump());
+      }
+    }
+  }
+  if (hasFile && !out.params.empty()) s.fail("params", "only applies to a sample, not to a mesh file");
+  s.rejectUnknownKeys();
+}
+
+void readPatching(Section s, PatchingSpec& out) {
+  out.workflow = s.integer("workflow", out.workflow, 1, 2);
+  out.eta_max = s.number("eta_max", out.eta_max, 1.0, 2.0);
+  if (out.eta_max <= 1.0) s.fail("eta_max", "must be greater than 1 (a ratio of geodesic lengths)");
+  out.slope_bounds = s.pair("slope_bounds", out.slope_bounds, 1e-6, 1e6);
+  if (out.slope_bounds[0] >= 1.0 || out.slope_bounds[1] <= 1.0) {
+    s.fail("slope_bounds", "must be [k_min, k_max] with k_min < 1 < k_max (Problem 2.3)");
+  }
+  out.max_patch_size_m = s.positive("max_patch_size_m", out.max_patch_size_m, 1e5);
+  if (s.has("patches")) {
+    const json& patches = s.raw("patches");
+    if (!patches.is_array()) s.fail("patches", "must be an array of patches, each four corners [x, y, z]");
+    for (size_t i = 0; i < patches.size(); ++i) {
+      const std::string key = "patches[" + std::to_string(i) + "]";
+      if (!patches[i].is_array() || patches[i].size() != 4) s.fail(key, "a patch must have exactly four corners");
+      std::array<Eigen::Vector3d, 4> corners;
+      for (int c = 0; c < 4; ++c) corners[c] = point3(patches[i][c], s, key);
+      out.patches.push_back(corners);
+    }
+  }
+  s.rejectUnknownKeys();
+}
+
+void readGrid(Section s, GridSpec& out) {
+  if (s.has("members_per_family")) {
+    const json& v = s.raw("members_per_family");
+    if (v.is_string() && v.get<std::string>() == "auto") {
+      out.members_per_family.reset();
+    } else if (v.is_number_integer() && v.get<long long>() >= 2 && v.get<long long>() <= 10000) {
+      out.members_per_family = static_cast<int>(v.get<long long>());
+    } else {
+      s.fail("members_per_family", "must be \"auto\" or an integer in [2, 10000], got " + v.dump());
+    }
+  }
+  out.map_resolution = s.integer("map_resolution", out.map_resolution, 8, 2000);
+  if (s.has("alpha_bar")) {
+    const json& v = s.raw("alpha_bar");
+    if (v.is_string()) {
+      const std::string mode = v.get<std::string>();
+      if (mode != "min" && mode != "max" && mode != "unrolled") {
+        s.fail("alpha_bar", "must be \"min\", \"max\", \"unrolled\" or an angle in radians, got \"" + mode + "\"");
+      }
+      out.alpha_bar = mode;
+    } else if (v.is_number()) {
+      const double a = v.get<double>();
+      if (!(a > 0.0 && a < M_PI)) s.fail("alpha_bar", "an angle must lie in (0, pi) radians");
+      out.alpha_bar = "value";
+      out.alpha_bar_rad = a;
+    } else {
+      s.fail("alpha_bar", "must be a string or a number, got " + v.dump());
+    }
+  }
+  s.rejectUnknownKeys();
+}
+
+void readLamella(Section s, LamellaSpec& out) {
+  out.width_m = s.positive("width_m", out.width_m, 10.0);
+  out.thickness_m = s.positive("thickness_m", out.thickness_m, 10.0);
+  out.material = s.text("material", out.material);
+  if (out.material.empty()) s.fail("material", "must not be empty");
+  if (out.thickness_m > out.width_m) s.fail("thickness_m", "must not exceed width_m (a lamella bends about its weak axis)");
+  s.rejectUnknownKeys();
+}
+
+void readSimulation(Section s, SimulationSpec& out) {
+  out.enabled = s.boolean("enabled", out.enabled);
+  out.gravity = s.boolean("gravity", out.gravity);
+  out.friction_mu = s.number("friction_mu", out.friction_mu, 0.0, 2.0);
+  out.notches = s.boolean("notches", out.notches);
+  s.rejectUnknownKeys();
+}
+
+void readFabrication(Section s, FabricationSpec& out) {
+  out.enabled = s.boolean("enabled", out.enabled);
+  out.sheet_mm = s.pair("sheet_mm", out.sheet_mm, 1.0, 1e5);
+  out.bolt_diameter_mm = s.positive("bolt_diameter_mm", out.bolt_diameter_mm, 1000.0);
+  s.rejectUnknownKeys();
+}
+
+const std::vector<std::string>& knownOutputs() {
+  static const std::vector<std::string> names{"report", "cut_files", "stickers", "supports", "previews"};
+  return names;
+}
+
+}  // namespace
+
+bool Scene::wants(const std::string& output) const {
+  return std::find(outputs.begin(), outputs.end(), output) != outputs.end();
+}
+
+Scene parseScene(const json& document, const std::filesystem::path& origin) {
+  Scene scene;
+  scene.path = origin;
+  Section top(document, "", origin.string());
+  scene.name = top.text("name", origin.stem().string());
+  if (!top.has("surface")) top.fail("surface", "is required ({\"sample\": ...} or {\"file\": ...})");
+  readSurface(top.child("surface"), scene);
+  readPatching(top.child("patching"), scene.patching);
+  readGrid(top.child("grid"), scene.grid);
+  readLamella(top.child("lamella"), scene.lamella);
+  readSimulation(top.child("simulation"), scene.simulation);
+  readFabrication(top.child("fabrication"), scene.fabrication);
+  if (top.has("outputs")) {
+    const json& v = top.raw("outputs");
+    if (!v.is_array()) top.fail("outputs", "must be an array of names");
+    scene.outputs.clear();
+    for (const auto& item : v) {
+      const auto& names = knownOutputs();
+      if (!item.is_string() || std::find(names.begin(), names.end(), item.get<std::string>()) == names.end()) {
+        top.fail("outputs", "unknown output " + item.dump() + " (known: report, cut_files, stickers, supports, previews)");
+      }
+      scene.outputs.push_back(item.get<std::string>());
+    }
+  }
+  top.rejectUnknownKeys();
+  return scene;
+}
+
+Scene loadScene(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw IoError(path.string() + ": cannot open scene file");
+  json document;
+  try {
+    document = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw InvalidInput(path.string() + ": not valid JSON: " + e.what());
+  }
+  return parseScene(document, path);
+}
+
+json sceneToJson(const Scene& scene) {
+  json surface;
+  if (!scene.surface.sample.empty()) {
+    surface["sample"] = scene.surface.sample;
+    surface["params"] = scene.surface.params;
+    surface["edge_length_m"] = scene.surface.edge_length_m;
+  } else {
+    surface["file"] = scene.surface.file.string();
+    surface["scale_to_m"] = scene.surface.scale_to_m;
+  }
+  json patches = json::array();
+  for (const auto& quad : scene.patching.patches) {
+    json corners = json::array();
+    for (const auto& c : quad) corners.push_back({c.x(), c.y(), c.z()});
+    patches.push_back(corners);
+  }
+  json grid{{"map_resolution", scene.grid.map_resolution}};
+  grid["members_per_family"] = scene.grid.members_per_family ? json(*scene.grid.members_per_family) : json("auto");
+  grid["alpha_bar"] = scene.grid.alpha_bar == "value" ? json(scene.grid.alpha_bar_rad) : json(scene.grid.alpha_bar);
+  return {
+      {"name", scene.name},
+      {"path", scene.path.string()},
+      {"surface", surface},
+      {"patching",
+       {{"workflow", scene.patching.workflow},
+        {"eta_max", scene.patching.eta_max},
+        {"slope_bounds", scene.patching.slope_bounds},
+        {"max_patch_size_m", scene.patching.max_patch_size_m},
+        {"patches", patches}}},
+      {"grid", grid},
+      {"lamella",
+       {{"width_m", scene.lamella.width_m},
+        {"thickness_m", scene.lamella.thickness_m},
+        {"material", scene.lamella.material}}},
+      {"simulation",
+       {{"enabled", scene.simulation.enabled},
+        {"gravity", scene.simulation.gravity},
+        {"friction_mu", scene.simulation.friction_mu},
+        {"notches", scene.simulation.notches}}},
+      {"fabrication",
+       {{"enabled", scene.fabrication.enabled},
+        {"sheet_mm", scene.fabrication.sheet_mm},
+        {"bolt_diameter_mm", scene.fabrication.bolt_diameter_mm}}},
+      {"outputs", scene.outputs},
+  };
+}
+
+}  // namespace egg::app

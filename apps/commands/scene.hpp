@@ -1,0 +1,83 @@
+#pragma once
+// The scene file read by `egg run` (DESIGN.md "Scene file"). Every key but `surface` has a
+// default; an unknown key is an error so that a typo never passes silently.
+#include <Eigen/Core>
+#include <array>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace egg::app {
+
+struct SurfaceSpec {
+  std::string sample;                        // a procedural sample name, or empty when `file` is set
+  std::map<std::string, double> params;      // sample parameters (see `egg surface --list`)
+  double edge_length_m = 1.0;                // target triangle edge length of a generated sample
+  std::filesystem::path file;                // a mesh file (resolved against the scene's folder)
+  double scale_to_m = 1.0;                   // multiply file coordinates by this to get metres
+  bool keep_largest_component = false;       // drop smaller components with a warning instead of failing
+};
+
+struct PatchingSpec {
+  int workflow = 2;                          // Workflow 1 or 2 of Section 3.4.3
+  double eta_max = 1.0015;                   // uniqueness threshold of Section 2.3.3 / 3.4.1
+  std::array<double, 2> slope_bounds{0.1, 10.0};  // k_min, k_max of Problem 2.3
+  double max_patch_size_m = 40.0;            // largest patch diagonal Workflow 2 may propose
+  std::vector<std::array<Eigen::Vector3d, 4>> patches;  // a given layout (corners snapped to the surface)
+};
+
+struct GridSpec {
+  std::optional<int> members_per_family;     // empty = "auto" (Section 2.4.4)
+  int map_resolution = 100;                  // samples per boundary of the distance maps
+  std::string alpha_bar = "min";             // "min" | "max" | "unrolled" | "value"
+  double alpha_bar_rad = 0.0;                // used when alpha_bar == "value"
+};
+
+struct LamellaSpec {
+  double width_m = 0.25;                     // section width w (strong axis)
+  double thickness_m = 0.04;                 // section thickness t (weak axis)
+  std::string material = "poplar_plywood";   // a material of fabrication's table
+};
+
+struct SimulationSpec {
+  bool enabled = true;
+  bool gravity = true;                       // self-weight from the material density (Section 3.5.2)
+  double friction_mu = 0.1;                  // pseudo-friction coefficient of E_p (Section 2.5)
+  bool notches = true;                       // simulate with notches (RMS1) as well as without (RMS2)
+};
+
+struct FabricationSpec {
+  bool enabled = true;
+  std::array<double, 2> sheet_mm{2500.0, 1250.0};  // stock sheet size for nesting
+  double bolt_diameter_mm = 8.0;
+};
+
+struct Scene {
+  std::filesystem::path path;                // where it was read from (for messages, relative files)
+  std::string name;
+  SurfaceSpec surface;
+  PatchingSpec patching;
+  GridSpec grid;
+  LamellaSpec lamella;
+  SimulationSpec simulation;
+  FabricationSpec fabrication;
+  std::vector<std::string> outputs{"report", "cut_files", "stickers", "supports", "previews"};
+
+  bool wants(const std::string& output) const;
+};
+
+// Reads and validates a scene file. Throws IoError (missing/unreadable file) or InvalidInput
+// naming the file and the field ("scene.json: grid.alpha_bar: ...").
+Scene loadScene(const std::filesystem::path& path);
+
+// Same from an already parsed document; `origin` names it in messages and anchors relative paths.
+Scene parseScene(const nlohmann::json& document, const std::filesystem::path& origin);
+
+// The scene back as JSON (what the report echoes under "scene").
+nlohmann::json sceneToJson(const Scene& scene);
+
+}  // namespace egg::app

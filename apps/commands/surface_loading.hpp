@@ -1,0 +1,36 @@
+#pragma once
+// Turning what the user names into a validated surface mesh: a procedural sample, a mesh file
+// (through assimp), or a scene file's `surface` section. Shared by every subcommand that takes
+// a SURFACE argument (DESIGN.md "The egg command").
+#include "apps/commands/scene.hpp"
+#include "core/mesh/mesh.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace egg::app {
+
+struct LoadedSurface {
+  TriMesh mesh;
+  std::string description;            // "sample great_court, edge 1 m" or the file path
+  std::vector<std::string> warnings;  // repairs made (merged vertices, dropped components)
+  double seconds = 0.0;
+};
+
+// Loads and validates the surface a scene describes. Throws InvalidInput / IoError naming the
+// sample, file or element at fault.
+LoadedSurface loadSurface(const SurfaceSpec& spec);
+
+// SURFACE argument of the CLI: a sample name, a mesh file, or a scene file (*.json: its surface).
+// `edgeLengthM` overrides the edge length of a sample (default: the sample's own default).
+LoadedSurface loadSurfaceArgumentDetailed(const std::string& argument,
+                                          std::optional<double> edgeLengthM = std::nullopt);
+
+// Convenience for commands that only need the mesh.
+TriMesh loadSurfaceArgument(const std::string& argument);
+
+// The default edge length for a sample when none is given (metres).
+double defaultSampleEdgeLength(const std::string& sample);
+
+}  // namespace egg::app

@@ -1,0 +1,138 @@
+#include "apps/commands/scene.hpp"
+
+#include "core/errors.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace egg::app {
+namespace {
+
+using nlohmann::json;
+
+Scene parse(const std::string& text) { return parseScene(json::parse(text), "/scenes/test.json"); }
+
+std::string errorOf(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const InvalidInput& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scene, DefaultsFillEverythingButTheSurface) {
+  const Scene s = parse(R"({"surface": {"sample": "bump"}})");
+  EXPECT_EQ(s.name, "test");
+  EXPECT_EQ(s.surface.sample, "bump");
+  EXPECT_DOUBLE_EQ(s.patching.eta_max, 1.0015);
+  EXPECT_DOUBLE_EQ(s.patching.slope_bounds[0], 0.1);
+  EXPECT_DOUBLE_EQ(s.patching.slope_bounds[1], 10.0);
+  EXPECT_EQ(s.grid.map_resolution, 100);
+  EXPECT_EQ(s.grid.alpha_bar, "min");
+  EXPECT_FALSE(s.grid.members_per_family.has_value());
+  EXPECT_DOUBLE_EQ(s.lamella.width_m, 0.25);
+  EXPECT_DOUBLE_EQ(s.simulation.friction_mu, 0.1);
+  EXPECT_TRUE(s.wants("cut_files"));
+}
+
+TEST(Scene, ReadsEveryDocumentedKey) {
+  const Scene s = parse(R"({
+    "name": "court",
+    "surface": {"sample": "great_court", "params": {"holes": true, "height": 2.5}, "edge_length_m": 0.5},
+    "patching": {"workflow": 1, "eta_max": 1.002, "slope_bounds": [0.2, 5], "max_patch_size_m": 30,
+                 "patches": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]},
+    "grid": {"members_per_family": 12, "map_resolution": 64, "alpha_bar": 1.2},
+    "lamella": {"width_m": 0.5, "thickness_m": 0.05, "material": "birch_plywood"},
+    "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false},
+    "fabrication": {"enabled": false, "sheet_mm": [3000, 1500], "bolt_diameter_mm": 10},
+    "outputs": ["report"]})");
+  EXPECT_EQ(s.name, "court");
+  EXPECT_DOUBLE_EQ(s.surface.params.at("holes"), 1.0);
+  EXPECT_DOUBLE_EQ(s.surface.edge_length_m, 0.5);
+  EXPECT_EQ(s.patching.workflow, 1);
+  ASSERT_EQ(s.patching.patches.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.patching.patches[0][2].y(), 1.0);
+  EXPECT_EQ(*s.grid.members_per_family, 12);
+  EXPECT_EQ(s.grid.alpha_bar, "value");
+  EXPECT_DOUBLE_EQ(s.grid.alpha_bar_rad, 1.2);
+  EXPECT_EQ(s.lamella.material, "birch_plywood");
+  EXPECT_FALSE(s.simulation.enabled);
+  EXPECT_DOUBLE_EQ(s.fabrication.sheet_mm[1], 1500.0);
+  EXPECT_FALSE(s.wants("cut_files"));
+  // And it survives a round trip through the report echo.
+  const Scene back = parseScene([&] {
+    json j = sceneToJson(s);
+    j.erase("path");
+    return j;
+  }(), "/scenes/test.json");
+  EXPECT_EQ(back.grid.alpha_bar_rad, 1.2);
+  EXPECT_EQ(back.patching.patches.size(), 1u);
+}
+
+TEST(Scene, UnknownKeysAreErrorsNamingTheField) {
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "grid": {"aplha_bar": "min"}})").find("grid.aplha_bar"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "colour": 1})").find("colour"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump", "edge": 1}})").find("surface.edge"), std::string::npos);
+}
+
+TEST(Scene, BadValuesAreErrorsNamingTheFieldAndFile) {
+  const std::string e1 = errorOf(R"({"surface": {"sample": "bump"}, "lamella": {"width_m": -1}})");
+  EXPECT_NE(e1.find("lamella.width_m"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("test.json"), std::string::npos) << e1;
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "grid": {"alpha_bar": "smallest"}})").find("grid.alpha_bar"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "grid": {"alpha_bar": 4.0}})").find("grid.alpha_bar"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"eta_max": 0.9}})").find("patching.eta_max"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"slope_bounds": [2, 10]}})").find("slope_bounds"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"patches": [[[0,0,0],[1,0,0],[1,1,0]]]}})")
+                .find("patches[0]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "outputs": ["report", "pdf"]})").find("pdf"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "simulation": {"gravity": "yes"}})").find("simulation.gravity"),
+            std::string::npos);
+}
+
+TEST(Scene, SurfaceNeedsExactlyOneSource) {
+  EXPECT_NE(errorOf(R"({"grid": {}})").find("surface"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {}})").find("surface"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump", "file": "x.obj"}})").find("exactly one"), std::string::npos);
+}
+
+TEST(Scene, RelativeMeshFilesResolveAgainstTheSceneFolder) {
+  const Scene s = parse(R"({"surface": {"file": "meshes/roof.obj", "scale_to_m": 0.001}})");
+  EXPECT_EQ(s.surface.file, std::filesystem::path("/scenes/meshes/roof.obj"));
+  EXPECT_DOUBLE_EQ(s.surface.scale_to_m, 0.001);
+}
+
+TEST(Scene, BrokenJsonAndMissingFilesAreReported) {
+  const auto dir = std::filesystem::temp_directory_path() / "egg_scene_test";
+  std::filesystem::create_directories(dir);
+  const auto broken = dir / "broken.json";
+  std::ofstream(broken) << "{\"surface\": {\"sample\": \"bump\",}";
+  try {
+    loadScene(broken);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.json"), std::string::npos);
+  }
+  EXPECT_THROW(loadScene(dir / "missing.json"), IoError);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Scene, ShippedScenesParse) {
+  for (const char* name : {"great_court.json", "lilium.json", "yas.json"}) {
+    const auto path = std::filesystem::path(EGG_SOURCE_DIR) / "samples" / name;
+    if (!std::filesystem::exists(path)) continue;  // the scene files arrive with the samples
+    EXPECT_NO_THROW(loadScene(path)) << path;
+  }
+}
+
+}  // namespace
+}  // namespace egg::app

@@ -1,0 +1,132 @@
+// Drives the `egg` program through runCli, as a user would from the shell: exit codes,
+// messages, and the promise that bad input leaves no partial output folder.
+#include "apps/commands/commands.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace egg::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int code;
+  std::string out;
+  std::string err;
+};
+
+Outcome runEgg(std::vector<std::string> args) {
+  args.insert(args.begin(), "egg");
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  testing::internal::CaptureStdout();
+  testing::internal::CaptureStderr();
+  const int code = runCli(static_cast<int>(argv.size()), argv.data());
+  Outcome o{code, testing::internal::GetCapturedStdout(), testing::internal::GetCapturedStderr()};
+  return o;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root = fs::temp_directory_path() / ("egg_cli_test_" + std::to_string(::getpid()));
+    fs::remove_all(root);
+    fs::create_directories(root);
+  }
+  void TearDown() override { fs::remove_all(root); }
+  fs::path write(const std::string& name, const std::string& text) {
+    std::ofstream(root / name) << text;
+    return root / name;
+  }
+  fs::path root;
+};
+
+TEST_F(Cli, HelpAndVersionExitZero) {
+  EXPECT_EQ(runEgg({"--help"}).code, kExitOk);
+  EXPECT_EQ(runEgg({"run", "--help"}).code, kExitOk);
+  EXPECT_EQ(runEgg({"--version"}).code, kExitOk);
+}
+
+TEST_F(Cli, UnknownSubcommandOrOptionIsBadInput) {
+  EXPECT_EQ(runEgg({"frobnicate"}).code, kExitBadInput);
+  EXPECT_EQ(runEgg({"surface", "plane", "--no-such-flag"}).code, kExitBadInput);
+}
+
+TEST_F(Cli, MissingSceneIsBadInputAndWritesNothing) {
+  const auto o = runEgg({"run", (root / "nope.json").string(), "--out", (root / "out").string(), "--quiet"});
+  EXPECT_EQ(o.code, kExitBadInput);
+  EXPECT_NE(o.err.find("nope.json"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(root / "out"));
+}
+
+TEST_F(Cli, BrokenSceneIsBadInputNamingTheFieldAndWritesNothing) {
+  const auto scene = write("typo.json", R"({"surface": {"sample": "plane"}, "grid": {"alpha": "min"}})");
+  const auto o = runEgg({"run", scene.string(), "--out", (root / "out").string(), "--quiet"});
+  EXPECT_EQ(o.code, kExitBadInput);
+  EXPECT_NE(o.err.find("grid.alpha"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(root / "out"));
+}
+
+TEST_F(Cli, BadMeshFileIsBadInputNamingTheFile) {
+  write("garbage.obj", "this is not a mesh\n");
+  const auto scene = write("bad_mesh.json", R"({"surface": {"file": "garbage.obj"}})");
+  const auto o = runEgg({"run", scene.string(), "--out", (root / "out").string(), "--quiet"});
+  EXPECT_EQ(o.code, kExitBadInput);
+  EXPECT_NE(o.err.find("garbage.obj"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(root / "out"));
+}
+
+TEST_F(Cli, UnknownSampleIsBadInput) {
+  const auto o = runEgg({"surface", "no_such_sample", "--stats"});
+  EXPECT_EQ(o.code, kExitBadInput);
+  EXPECT_NE(o.err.find("no_such_sample"), std::string::npos) << o.err;
+}
+
+TEST_F(Cli, SurfaceStatsOfAPlaneAreExact) {
+  const auto o = runEgg({"surface", "plane", "--stats", "--json", "--edge-length", "1.0"});
+  ASSERT_EQ(o.code, kExitOk) << o.err;
+  const auto stats = nlohmann::json::parse(o.out);
+  const auto& defaults = stats["bbox_m"];
+  EXPECT_NEAR(stats["area_m2"].get<double>(), defaults[0].get<double>() * defaults[1].get<double>(), 1e-9);
+  EXPECT_NEAR(defaults[2].get<double>(), 0.0, 1e-12);
+  EXPECT_TRUE(stats["validation"]["ok"].get<bool>());
+  EXPECT_EQ(stats["components"], 1);
+}
+
+TEST_F(Cli, SurfaceExportRoundTripsThroughAFile) {
+  const auto path = root / "plane.obj";
+  ASSERT_EQ(runEgg({"surface", "plane", "--edge-length", "2.0", "--export", path.string()}).code, kExitOk);
+  const auto a = nlohmann::json::parse(runEgg({"surface", "plane", "--edge-length", "2.0", "--stats", "--json"}).out);
+  const auto b = nlohmann::json::parse(runEgg({"surface", path.string(), "--stats", "--json"}).out);
+  EXPECT_EQ(a["faces"], b["faces"]);
+  EXPECT_EQ(a["vertices"], b["vertices"]);
+  EXPECT_NEAR(a["area_m2"].get<double>(), b["area_m2"].get<double>(), 1e-6);
+}
+
+TEST_F(Cli, RunWritesACompleteReport) {
+  const auto scene = write("small.json", R"({"name": "small", "surface": {"sample": "plane", "edge_length_m": 2.0},
+                                             "simulation": {"enabled": false}, "outputs": ["report"]})");
+  const auto out = root / "run";
+  const auto o = runEgg({"run", scene.string(), "--out", out.string(), "--quiet"});
+  ASSERT_EQ(o.code, kExitOk) << o.err;
+  std::ifstream in(out / "report.json");
+  ASSERT_TRUE(in.good());
+  const auto report = nlohmann::json::parse(in);
+  for (const char* key : {"scene", "units", "surface", "stages", "patches", "coverage", "propagation", "simulation",
+                          "fabrication", "timings"}) {
+    EXPECT_TRUE(report.contains(key)) << key;
+  }
+  EXPECT_EQ(report["scene"]["name"], "small");
+  EXPECT_TRUE(report["stages"]["surface"]["ran"].get<bool>());
+  EXPECT_GT(report["surface"]["faces"].get<int>(), 0);
+  EXPECT_FALSE(report["simulation"]["ran"].get<bool>());
+}
+
+}  // namespace
+}  // namespace egg::app

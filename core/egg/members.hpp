@@ -1,0 +1,51 @@
+#pragma once
+// Grid members (Section 2.4.4): where to place the members of one family along its cladding
+// function. A member is a pair (x1, x2 = F(x1)); the two boundary members (0,0) and (1,1) are
+// always present. Automatic placement follows the thesis' heuristic:
+//   1. members at the extrema of C(s), the member length along the cladding curve (locally
+//      longest/shortest geodesics capture the large features), then at the extrema of the
+//      curvature of C (finer features), prioritised by |C''| when they crowd;
+//   2. no two members closer than the minimum spacing d+/d- that lamellas of width w need where
+//      they meet the boundaries at angles beta (start side) and gamma (end side);
+//   3. gaps wider than the target spacing are filled, and the filled members are evened out
+//      (least squares on neighbour distances, which spaces them equally inside each gap).
+// A fixed count instead spaces the members equally along the cladding curve.
+#include "core/egg/cladding.hpp"
+#include "core/egg/planar_quad.hpp"
+
+#include <vector>
+
+namespace egg {
+
+struct MemberOptions {
+  int count = 0;                  // members per family including both boundary members; 0 = automatic
+  double lamellaWidthM = 0.05;    // w, lamella width (metres)
+  double spacingFactor = 8.0;     // automatic: target spacing between members = factor * w
+  double featureFraction = 0.1;   // curvature extrema with |C''| below this fraction of the largest are ignored
+  void validate() const;          // throws InvalidInput naming the field
+};
+
+enum class MemberOrigin { Boundary, LengthExtremum, CurvatureExtremum, Filled, Even };
+
+struct FamilyMembers {
+  Family family = Family::U;
+  std::vector<double> x1;            // start-side parameters, increasing, x1[0] = 0, x1.back() = 1
+  std::vector<double> x2;            // end-side parameters F(x1)
+  std::vector<double> lengths;       // member lengths from the cladding function (metres)
+  std::vector<MemberOrigin> origin;  // why each member is there
+};
+
+// sideLengths: spatial lengths of the family's start and end sides (metres), which the boundary
+// parameters run along at constant speed. Throws InfeasiblePatch when the cladding function is
+// not bijective, InvalidInput when a fixed count is too dense for the lamella width.
+FamilyMembers placeMembers(const CladdingFunction& cladding, const PlanarQuad& quad, double startSideLength,
+                           double endSideLength, const MemberOptions& options = {});
+
+// Minimum distance (metres, along a side) a lamella of width w needs where it crosses that side
+// at angle theta: w / sin(theta) (its footprint on the side), split half to each neighbour.
+double lamellaFootprint(double width, double angle);
+
+// The angles (beta, gamma) between a planar member and the start and end sides, in (0, pi/2].
+std::array<double, 2> boundaryAngles(const PlanarQuad& quad, Family family, double x1, double x2);
+
+}  // namespace egg

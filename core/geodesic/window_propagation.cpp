@@ -141,10 +141,13 @@ inline double rayCrossing(double sx, double sy, double px, double py) {
   return sx + (px - sx) * (-sy) / (py - sy);
 }
 
+// Plain sqrt: std::hypot's overflow guards cost more than the rest of the inner loop.
+inline double planarLength(double dx, double dy) { return std::sqrt(dx * dx + dy * dy); }
+
 inline double windowMinDistance(const Window& w) {
   if (w.sx >= w.b0 && w.sx <= w.b1) return w.sigma - w.sy;
-  const double d0 = std::hypot(w.b0 - w.sx, w.sy);
-  const double d1 = std::hypot(w.b1 - w.sx, w.sy);
+  const double d0 = planarLength(w.b0 - w.sx, w.sy);
+  const double d1 = planarLength(w.b1 - w.sx, w.sy);
   return w.sigma + std::min(d0, d1);
 }
 
@@ -181,6 +184,8 @@ class Propagator {
     s_.vertexDistance.assign(t_.vertexCount, kInfinity);
     s_.vertexPredecessor.assign(t_.vertexCount, Predecessor{});
     s_.fired.assign(t_.vertexCount, 0);
+    s_.splitDistance.assign(t_.halfedgeCount, kInfinity);
+    s_.splitCrossing.assign(t_.halfedgeCount, 0.0);
     s_.windows.clear();
     s_.queue.clear();
     if (static_cast<int>(s_.faceFirstTarget.size()) != t_.faceCount) s_.faceFirstTarget.assign(t_.faceCount, -1);
@@ -344,15 +349,71 @@ class Propagator {
     }
   }
 
-  // A pseudo-source with its final distance emits windows onto the edges opposite it.
+  // A pseudo-source with its final distance emits windows onto the edges opposite it, but only
+  // into the directions where a shortest path can continue: a path through v is locally shortest
+  // only if it leaves at least pi of surface angle on each side (Mitchell-Mount-Papadimitriou,
+  // Lemma 3.4; Xin-Wang's pseudo-source cone). On a saddle with angle sum 2 pi + e that is a
+  // wedge of width e opposite the incoming direction; on a boundary vertex, the directions at
+  // least pi away from the incoming one on the surface side.
   void fire(int v) {
     s_.fired[v] = 1;
     const double dv = s_.vertexDistance[v];
     for (int k = t_.outgoingStart[v]; k < t_.outgoingStart[v + 1]; ++k) {
       const int hout = t_.outgoing[k];
       relaxVertex(t_.toVertex[hout], dv + t_.length[hout], {Predecessor::Vertex, v});
-      if (t_.face[hout] < 0) continue;
-      const int ho = t_.next[hout];  // edge opposite v in this face; v is its opposite vertex
+    }
+    // The faces around v in counter-clockwise order (h -> twin(prev(h))), starting after the
+    // boundary for a boundary vertex.
+    fan_.clear();
+    int start = -1;
+    for (int k = t_.outgoingStart[v]; k < t_.outgoingStart[v + 1]; ++k) {
+      const int h = t_.outgoing[k];
+      if (t_.face[h] < 0) continue;
+      if (start < 0) start = h;
+      if (t_.face[t_.twin(h)] < 0) {
+        start = h;
+        break;
+      }
+    }
+    if (start < 0) return;
+    for (int h = start;;) {
+      fan_.push_back(h);
+      const int nextOut = t_.twin(t_.prev[h]);
+      if (t_.face[nextOut] < 0 || nextOut == start) break;
+      h = nextOut;
+      if (static_cast<int>(fan_.size()) > t_.outgoingStart[v + 1] - t_.outgoingStart[v]) break;  // non-manifold guard
+    }
+    const bool boundary = t_.boundaryVertex[v] != 0;
+    double backAngle = -1.0;
+    if (v != s_.sourceVertex) backAngle = incomingAngle(v);
+    double cumulative = 0.0;
+    const double total = t_.angleSum[v];
+    const double tol = 1e-7;
+    for (int h : fan_) {
+      const double corner = std::atan2(t_.oppositeY[h], t_.oppositeX[h]);
+      const double a0 = cumulative, a1 = cumulative + corner;
+      cumulative = a1;
+      if (backAngle >= 0.0) {
+        bool allowed;
+        if (boundary) {
+          allowed = a0 <= backAngle - std::numbers::pi + tol || a1 >= backAngle + std::numbers::pi - tol;
+        } else {
+          // Relative angles, taken modulo the angle sum, must lie in [pi, total - pi].
+          double r0 = a0 - backAngle, r1 = a1 - backAngle;
+          if (r1 < 0.0) {
+            r0 += total;
+            r1 += total;
+          }
+          const double lo = std::numbers::pi - tol, hi = total - std::numbers::pi + tol;
+          if (r0 < 0.0) {
+            allowed = (r1 >= lo) || (r0 + total <= hi);
+          } else {
+            allowed = r0 <= hi && r1 >= lo;
+          }
+        }
+        if (!allowed) continue;
+      }
+      const int ho = t_.next[h];  // edge opposite v in this face; v is its opposite vertex
       const int tw = t_.twin(ho);
       if (t_.face[tw] < 0) continue;
       Window win;
@@ -367,6 +428,48 @@ class Propagator {
     }
   }
 
+  // The angle (measured counter-clockwise around v from the start of fan_) of the direction back
+  // along the shortest path that reached v; -1 if unknown (then every direction is allowed).
+  double incomingAngle(int v) const {
+    const Predecessor pred = s_.vertexPredecessor[v];
+    Eigen::Vector3d back;
+    if (pred.kind == Predecessor::ThroughWindow) {
+      const Window& w = s_.windows[pred.index];
+      const int h = w.halfedge;
+      const double L = t_.length[h];
+      const double xc = std::clamp(rayCrossing(w.sx, w.sy, t_.oppositeX[h], t_.oppositeY[h]), 0.0, L);
+      back = t_.positions[t_.fromVertex[h]] + (xc / L) * (t_.positions[t_.toVertex[h]] - t_.positions[t_.fromVertex[h]]);
+    } else if (pred.kind == Predecessor::Vertex) {
+      back = t_.positions[pred.index];
+    } else if (pred.kind == Predecessor::Source) {
+      back = s_.sourcePosition;
+    } else {
+      return -1.0;
+    }
+    const Eigen::Vector3d p = t_.positions[v];
+    const Eigen::Vector3d dir = back - p;
+    if (dir.squaredNorm() == 0.0) return -1.0;
+    // Find the face of the fan containing the back direction: the one whose corner angle equals
+    // the sum of the angles to its two edges (up to rounding); take the best match.
+    double cumulative = 0.0, best = -1.0, bestMismatch = kInfinity;
+    for (int h : fan_) {
+      const Eigen::Vector3d ex = t_.positions[t_.toVertex[h]] - p;
+      const Eigen::Vector3d ey = t_.positions[t_.toVertex[t_.next[h]]] - p;
+      const double corner = std::atan2(t_.oppositeY[h], t_.oppositeX[h]);
+      const double ax = std::atan2(ex.cross(dir).norm(), ex.dot(dir));
+      const double ay = std::atan2(ey.cross(dir).norm(), ey.dot(dir));
+      const double mismatch = std::abs(ax + ay - corner);
+      if (mismatch < bestMismatch) {
+        bestMismatch = mismatch;
+        best = cumulative + std::min(ax, corner);
+      }
+      cumulative += corner;
+    }
+    return bestMismatch < 1e-6 ? best : -1.0;
+  }
+
+  std::vector<int> fan_;
+
   // Trims the parts of `w` dominated by the paths through the endpoints of its edge, and discards
   // it if the opposite vertices dominate it entirely. Returns false if nothing is left.
   bool prune(Window& w) const {
@@ -377,9 +480,9 @@ class Propagator {
     // Endpoint A at (0,0): f(x) = sigma + |s - x| - dA - x is non-increasing in x.
     if (dA < kInfinity) {
       const double k = dA - w.sigma;
-      const double f1 = std::hypot(w.b1 - w.sx, w.sy) - k - w.b1;
+      const double f1 = planarLength(w.b1 - w.sx, w.sy) - k - w.b1;
       if (f1 > 0.0) return false;
-      const double f0 = std::hypot(w.b0 - w.sx, w.sy) - k - w.b0;
+      const double f0 = planarLength(w.b0 - w.sx, w.sy) - k - w.b0;
       if (f0 > 0.0) {
         const double denom = 2.0 * (k + w.sx);
         if (denom > 0.0) {
@@ -391,9 +494,9 @@ class Propagator {
     // Endpoint B at (L,0): g(x) = sigma + |s - x| - dB - (L - x) is non-decreasing in x.
     if (dB < kInfinity) {
       const double k = dB - w.sigma;
-      const double g0 = std::hypot(w.b0 - w.sx, w.sy) - k - (L - w.b0);
+      const double g0 = planarLength(w.b0 - w.sx, w.sy) - k - (L - w.b0);
       if (g0 > 0.0) return false;
-      const double g1 = std::hypot(w.b1 - w.sx, w.sy) - k - (L - w.b1);
+      const double g1 = planarLength(w.b1 - w.sx, w.sy) - k - (L - w.b1);
       if (g1 > 0.0) {
         const double mx = L - w.sx;
         const double denom = 2.0 * (k + mx);
@@ -410,8 +513,8 @@ class Propagator {
     const double ahead = s_.vertexDistance[t_.oppositeVertex[h]];
     if (ahead < kInfinity && ahead > w.sigma) {
       const double cx = t_.oppositeX[h], cy = t_.oppositeY[h];
-      if (ahead + std::hypot(cx - w.b0, cy) < w.sigma + std::hypot(w.b0 - w.sx, w.sy) &&
-          ahead + std::hypot(cx - w.b1, cy) < w.sigma + std::hypot(w.b1 - w.sx, w.sy)) {
+      if (ahead + planarLength(cx - w.b0, cy) < w.sigma + planarLength(w.b0 - w.sx, w.sy) &&
+          ahead + planarLength(cx - w.b1, cy) < w.sigma + planarLength(w.b1 - w.sx, w.sy)) {
         return false;
       }
     }
@@ -421,8 +524,8 @@ class Propagator {
       if (behind < kInfinity && behind > w.sigma) {
         // In this frame the vertex behind is the twin's opposite vertex mirrored: (L - x, -y).
         const double cx = L - t_.oppositeX[tw], cy = -t_.oppositeY[tw];
-        if (behind + std::hypot(cx - w.b0, cy) < w.sigma + std::hypot(w.b0 - w.sx, w.sy) &&
-            behind + std::hypot(cx - w.b1, cy) < w.sigma + std::hypot(w.b1 - w.sx, w.sy)) {
+        if (behind + planarLength(cx - w.b0, cy) < w.sigma + planarLength(w.b0 - w.sx, w.sy) &&
+            behind + planarLength(cx - w.b1, cy) < w.sigma + planarLength(w.b1 - w.sx, w.sy)) {
           return false;
         }
       }
@@ -449,8 +552,23 @@ class Propagator {
     const double slack = 1e-9 * L;
     // Where the ray through the opposite vertex crosses the edge.
     const double xc = rayCrossing(w.sx, w.sy, cx, cy);
+    bool leftChild = xc > w.b0, rightChild = xc < w.b1;
     if (xc >= w.b0 - slack && xc <= w.b1 + slack) {
-      relaxVertex(c, w.sigma + std::hypot(cx - w.sx, cy - w.sy), {Predecessor::ThroughWindow, index});
+      const double dc = w.sigma + planarLength(cx - w.sx, cy - w.sy);
+      if (dc > s_.splitDistance[h] * (1.0 + 1e-10)) {
+        // One angle, one split (Chen & Han 1990): a shorter path to C already enters this face
+        // through this edge at splitCrossing. It and this window's ray to C bound a region; this
+        // window's rays on that path's side must cross it and are beaten there, so only the
+        // child on the far side can carry shortest paths.
+        if (s_.splitCrossing[h] < xc) leftChild = false;
+        else rightChild = false;
+      } else {
+        if (dc < s_.splitDistance[h]) {
+          s_.splitDistance[h] = dc;
+          s_.splitCrossing[h] = xc;
+        }
+        relaxVertex(c, dc, {Predecessor::ThroughWindow, index});
+      }
     }
     // Targets inside the face the window enters.
     for (int i = s_.faceFirstTarget[f]; i >= 0; i = s_.nextTarget[i]) {
@@ -458,7 +576,7 @@ class Propagator {
       frameCoordinates(f, h, s_.targetWeights[i], qx, qy);
       const double xq = rayCrossing(w.sx, w.sy, qx, qy);
       if (xq >= w.b0 - slack && xq <= w.b1 + slack) {
-        const double d = w.sigma + std::hypot(qx - w.sx, qy - w.sy);
+        const double d = w.sigma + planarLength(qx - w.sx, qy - w.sy);
         if (d < s_.targetDistance[i]) {
           s_.targetDistance[i] = d;
           s_.targetPredecessor[i] = {Predecessor::ThroughWindow, index};
@@ -466,7 +584,7 @@ class Propagator {
       }
     }
     // Child on edge A-C (rays left of the opposite vertex), on the halfedge A->C of the next face.
-    if (xc > w.b0) {
+    if (leftChild) {
       const int hca = t_.prev[h];
       const int child = t_.twin(hca);
       if (t_.face[child] >= 0) {
@@ -495,7 +613,7 @@ class Propagator {
       }
     }
     // Child on edge C-B (rays right of the opposite vertex), on the halfedge C->B of the next face.
-    if (xc < w.b1) {
+    if (rightChild) {
       const int hbc = t_.next[h];
       const int child = t_.twin(hbc);
       if (t_.face[child] >= 0) {

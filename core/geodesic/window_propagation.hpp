@@ -64,6 +64,10 @@ struct Propagation {
   std::vector<double> vertexDistance;
   std::vector<Predecessor> vertexPredecessor;
   std::vector<char> fired;
+  // Per halfedge: the shortest distance to its face's opposite vertex offered by a window on this
+  // halfedge so far, and where that ray crossed the edge (Chen-Han "one angle, one split").
+  std::vector<double> splitDistance;
+  std::vector<double> splitCrossing;
   std::vector<Window> windows;
   struct QueueEntry {
     double key;

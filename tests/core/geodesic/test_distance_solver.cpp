@@ -27,7 +27,7 @@ Eigen::Vector3d vertexPosition(const TriMesh& mesh, int v) { return toEigen(mesh
 
 TEST(DistanceSolver, PlaneFromVertexEdgeAndFaceIsEuclidean) {
   // A jittered flat rectangle is convex, so geodesic distance = Euclidean distance.
-  const TriMesh mesh = gridMesh(14, 11, 1.4, 1.1, flat, 0.35);
+  const TriMesh mesh = gridMesh(14, 11, 1.4, 1.1, flat, 0.2);
   const DistanceSolver solver(mesh);
   const std::vector<SurfacePoint> sources = {vertexPoint(mesh, 0), vertexPoint(mesh, 80),
                                              facePoint(37, 0.5, 0.5, 0.0), facePoint(120, 0.2, 0.3, 0.5),

@@ -127,11 +127,19 @@ TEST(Scene, BrokenJsonAndMissingFilesAreReported) {
 }
 
 TEST(Scene, ShippedScenesParse) {
-  for (const char* name : {"great_court.json", "lilium.json", "yas.json"}) {
-    const auto path = std::filesystem::path(EGG_SOURCE_DIR) / "samples" / name;
-    if (!std::filesystem::exists(path)) continue;  // the scene files arrive with the samples
+  const auto dir = std::filesystem::path(EGG_SOURCE_DIR) / "samples";
+  int parsed = 0;
+  for (const auto& path : {dir / "great_court.json", dir / "lilium.json", dir / "yas.json",
+                           dir / "scenes" / "bump_small.json", dir / "scenes" / "cylinder_small.json",
+                           dir / "scenes" / "sphere_small.json"}) {
     EXPECT_NO_THROW(loadScene(path)) << path;
+    ++parsed;
   }
+  EXPECT_EQ(loadScene(dir / "great_court.json").surface.sample, "great_court");
+  EXPECT_DOUBLE_EQ(loadScene(dir / "great_court.json").lamella.width_m, 0.25);  // paper's 25 x 4 cm section
+  EXPECT_DOUBLE_EQ(loadScene(dir / "lilium.json").lamella.width_m, 0.50);       // 50 x 5 cm
+  EXPECT_DOUBLE_EQ(loadScene(dir / "yas.json").lamella.width_m, 0.40);          // 40 x 5 cm
+  EXPECT_EQ(parsed, 6);
 }
 
 }  // namespace

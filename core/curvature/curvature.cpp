@@ -1,0 +1,233 @@
+#include "core/curvature/curvature.hpp"
+
+#include "core/errors.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace egg {
+namespace {
+
+struct Corner {
+  std::array<int, 3> v;
+  std::array<Eigen::Vector3d, 3> p;
+  std::array<double, 3> angle;  // interior angle at corner k
+  double area;
+};
+
+Corner corner(const TriMesh& mesh, int face) {
+  Corner c;
+  c.v = faceVertices(mesh, face);
+  for (int k = 0; k < 3; ++k) c.p[k] = toEigen(mesh.point(TriMesh::VertexHandle(c.v[k])));
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d a = c.p[(k + 1) % 3] - c.p[k];
+    const Eigen::Vector3d b = c.p[(k + 2) % 3] - c.p[k];
+    c.angle[k] = std::atan2(a.cross(b).norm(), a.dot(b));
+  }
+  c.area = 0.5 * (c.p[1] - c.p[0]).cross(c.p[2] - c.p[0]).norm();
+  return c;
+}
+
+// Vertices within `rings` edges of `v` (v included, first).
+void gatherRings(const TriMesh& mesh, int v, int rings, std::vector<int>& stamp, int stampValue, std::vector<int>& out) {
+  out.clear();
+  out.push_back(v);
+  stamp[v] = stampValue;
+  size_t begin = 0;
+  for (int r = 0; r < rings; ++r) {
+    const size_t end = out.size();
+    for (size_t i = begin; i < end; ++i)
+      for (auto w : mesh.vv_range(TriMesh::VertexHandle(out[i])))
+        if (stamp[w.idx()] != stampValue) {
+          stamp[w.idx()] = stampValue;
+          out.push_back(w.idx());
+        }
+    begin = end;
+    if (begin == out.size()) break;
+  }
+}
+
+struct PrincipalFit {
+  double kappaMax = 0.0, kappaMin = 0.0;
+  Eigen::Vector3d directionMax = Eigen::Vector3d::Zero(), directionMin = Eigen::Vector3d::Zero();
+  bool ok = false;
+};
+
+// Number of monomials x^i y^j with 1 <= i + j <= degree.
+int monomialCount(int degree) { return (degree + 1) * (degree + 2) / 2 - 1; }
+
+// Fits the height field z = sum c_ij x^i y^j (1 <= i + j <= degree) in the frame (t1, t2, n) at p
+// and returns the principal curvatures of that surface at the origin. The linear terms absorb a
+// tilted vertex normal; degree 3-4 terms absorb the bias that higher-order shape (and one-sided
+// neighbourhoods at the boundary) would otherwise put into the second-order coefficients.
+PrincipalFit fitPrincipal(const TriMesh& mesh, const Eigen::Vector3d& p, const Eigen::Vector3d& n,
+                          const std::vector<int>& neighbourhood, int degree) {
+  PrincipalFit fit;
+  Eigen::Vector3d t1 = n.unitOrthogonal();
+  Eigen::Vector3d t2 = n.cross(t1);
+  const int count = static_cast<int>(neighbourhood.size()) - 1;  // without the vertex itself
+  while (degree > 2 && count < monomialCount(degree) + 2) --degree;
+  const int unknowns = monomialCount(degree);
+  if (count < unknowns) return fit;
+  double scale = 0.0;
+  for (int i = 1; i <= count; ++i)
+    scale = std::max(scale, (toEigen(mesh.point(TriMesh::VertexHandle(neighbourhood[i]))) - p).norm());
+  if (!(scale > 0.0)) return fit;
+  // Scaled coordinates (x/s, y/s, z/s) for conditioning. Column order: x, y, x^2, xy, y^2, then
+  // the higher degrees.
+  Eigen::MatrixXd A(count, unknowns);
+  Eigen::VectorXd rhs(count);
+  for (int i = 1; i <= count; ++i) {
+    const Eigen::Vector3d q = (toEigen(mesh.point(TriMesh::VertexHandle(neighbourhood[i]))) - p) / scale;
+    const double x = q.dot(t1), y = q.dot(t2);
+    int column = 0;
+    for (int d = 1; d <= degree; ++d)
+      for (int j = 0; j <= d; ++j) A(i - 1, column++) = std::pow(x, d - j) * std::pow(y, j);
+    rhs(i - 1) = q.dot(n);
+  }
+  const Eigen::VectorXd coef = A.colPivHouseholderQr().solve(rhs);
+  if (!coef.allFinite()) return fit;
+  // Back to metres: z = s g(x/s, y/s), so second derivatives divide by s, first ones do not.
+  const double fx = coef(0), fy = coef(1);
+  const double fxx = 2.0 * coef(2) / scale, fxy = coef(3) / scale, fyy = 2.0 * coef(4) / scale;
+  const double w = std::sqrt(1.0 + fx * fx + fy * fy);
+  Eigen::Matrix2d first;
+  first << 1.0 + fx * fx, fx * fy, fx * fy, 1.0 + fy * fy;
+  // Second fundamental form w.r.t. the normal on the side of n; negated so that bending away from
+  // the normal counts positive (see the header's sign convention).
+  Eigen::Matrix2d second;
+  second << -fxx / w, -fxy / w, -fxy / w, -fyy / w;
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> solver(second, first);
+  if (solver.info() != Eigen::Success) return fit;
+  const Eigen::Vector3d xu = t1 + fx * n, xv = t2 + fy * n;  // tangent basis of the fitted surface
+  auto toWorld = [&](const Eigen::Vector2d& a) { return Eigen::Vector3d((a(0) * xu + a(1) * xv).normalized()); };
+  fit.kappaMin = solver.eigenvalues()(0);
+  fit.kappaMax = solver.eigenvalues()(1);
+  fit.directionMin = toWorld(solver.eigenvectors().col(0));
+  fit.directionMax = toWorld(solver.eigenvectors().col(1));
+  fit.ok = true;
+  return fit;
+}
+
+}  // namespace
+
+void CurvatureOptions::validate() const {
+  if (fit_rings < 1 || fit_rings > 5)
+    throw InvalidInput("CurvatureOptions.fit_rings must be in [1, 5], got " + std::to_string(fit_rings));
+  if (fit_degree < 2 || fit_degree > 4)
+    throw InvalidInput("CurvatureOptions.fit_degree must be 2, 3 or 4, got " + std::to_string(fit_degree));
+  if (min_fit_points < 5 || min_fit_points > 500)
+    throw InvalidInput("CurvatureOptions.min_fit_points must be in [5, 500], got " + std::to_string(min_fit_points));
+}
+
+Eigen::VectorXd angleDefects(const TriMesh& mesh) {
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(mesh.n_vertices());
+  for (auto fh : mesh.faces()) {
+    const Corner c = corner(mesh, fh.idx());
+    for (int k = 0; k < 3; ++k) sum(c.v[k]) += c.angle[k];
+  }
+  Eigen::VectorXd defect(mesh.n_vertices());
+  for (auto vh : mesh.vertices())
+    defect(vh.idx()) = (mesh.is_boundary(vh) ? std::numbers::pi : 2.0 * std::numbers::pi) - sum(vh.idx());
+  return defect;
+}
+
+Eigen::VectorXd mixedVoronoiAreas(const TriMesh& mesh) {
+  Eigen::VectorXd area = Eigen::VectorXd::Zero(mesh.n_vertices());
+  for (auto fh : mesh.faces()) {
+    const Corner c = corner(mesh, fh.idx());
+    int obtuse = -1;
+    for (int k = 0; k < 3; ++k)
+      if (c.angle[k] > 0.5 * std::numbers::pi) obtuse = k;
+    if (obtuse >= 0) {
+      // The circumcentre lies outside: Voronoi regions would overlap neighbours (Meyer Fig. 4).
+      for (int k = 0; k < 3; ++k) area(c.v[k]) += (k == obtuse ? 0.5 : 0.25) * c.area;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const int q = (k + 1) % 3, r = (k + 2) % 3;
+      const double cotQ = 1.0 / std::tan(c.angle[q]), cotR = 1.0 / std::tan(c.angle[r]);
+      area(c.v[k]) += ((c.p[r] - c.p[k]).squaredNorm() * cotQ + (c.p[q] - c.p[k]).squaredNorm() * cotR) / 8.0;
+    }
+  }
+  return area;
+}
+
+std::vector<Eigen::Vector3d> vertexNormals(const TriMesh& mesh) {
+  std::vector<Eigen::Vector3d> normals(mesh.n_vertices(), Eigen::Vector3d::Zero());
+  for (auto fh : mesh.faces()) {
+    const Corner c = corner(mesh, fh.idx());
+    const Eigen::Vector3d faceNormal = (c.p[1] - c.p[0]).cross(c.p[2] - c.p[0]);
+    const double length = faceNormal.norm();
+    if (!(length > 0.0)) continue;
+    for (int k = 0; k < 3; ++k) normals[c.v[k]] += c.angle[k] * faceNormal / length;
+  }
+  for (auto& n : normals) {
+    const double length = n.norm();
+    n = length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::UnitZ();
+  }
+  return normals;
+}
+
+double injectivityRadiusBound(double gaussianMax) {
+  if (!(gaussianMax > 0.0)) return std::numeric_limits<double>::infinity();
+  return std::numbers::pi / std::sqrt(gaussianMax);
+}
+
+CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& options) {
+  options.validate();
+  if (mesh.n_vertices() == 0 || mesh.n_faces() == 0) throw InvalidInput("computeCurvature: the mesh is empty");
+  const auto start = std::chrono::steady_clock::now();
+  const int n = static_cast<int>(mesh.n_vertices());
+  CurvatureField field;
+  field.mixed_area = mixedVoronoiAreas(mesh);
+  field.normals = vertexNormals(mesh);
+  const Eigen::VectorXd defect = angleDefects(mesh);
+  field.gaussian.resize(n);
+  field.gaussian_fit.resize(n);
+  field.mean.resize(n);
+  field.kappa_max.resize(n);
+  field.kappa_min.resize(n);
+  field.direction_max.assign(n, Eigen::Vector3d::Zero());
+  field.direction_min.assign(n, Eigen::Vector3d::Zero());
+  field.on_boundary.assign(n, 0);
+
+  std::vector<int> stamp(n, -1), neighbourhood;
+  for (int v = 0; v < n; ++v) {
+    const auto vh = TriMesh::VertexHandle(v);
+    field.on_boundary[v] = mesh.is_boundary(vh) ? 1 : 0;
+    const Eigen::Vector3d p = toEigen(mesh.point(vh));
+    PrincipalFit fit;
+    for (int rings = options.fit_rings; rings <= options.fit_rings + 2; ++rings) {
+      gatherRings(mesh, v, rings, stamp, v * 8 + rings, neighbourhood);
+      const int wanted = std::max(options.min_fit_points, 2 * monomialCount(options.fit_degree));
+      if (static_cast<int>(neighbourhood.size()) - 1 < wanted && rings < options.fit_rings + 2) continue;
+      fit = fitPrincipal(mesh, p, field.normals[v], neighbourhood, options.fit_degree);
+      break;
+    }
+    // stamp values v*8+rings are unique per (v, rings) since rings < 8.
+    field.kappa_max(v) = fit.kappaMax;
+    field.kappa_min(v) = fit.kappaMin;
+    field.direction_max[v] = fit.directionMax;
+    field.direction_min[v] = fit.directionMin;
+    field.mean(v) = 0.5 * (fit.kappaMax + fit.kappaMin);
+    field.gaussian_fit(v) = fit.kappaMax * fit.kappaMin;
+    const bool defectUsable = !field.on_boundary[v] && field.mixed_area(v) > 0.0;
+    field.gaussian(v) = defectUsable ? defect(v) / field.mixed_area(v) : field.gaussian_fit(v);
+  }
+  field.vertex_gaussian_max = 0;
+  field.vertex_gaussian_min = 0;
+  for (int v = 1; v < n; ++v) {
+    if (field.gaussian(v) > field.gaussian(field.vertex_gaussian_max)) field.vertex_gaussian_max = v;
+    if (field.gaussian(v) < field.gaussian(field.vertex_gaussian_min)) field.vertex_gaussian_min = v;
+  }
+  field.gaussian_max = field.gaussian(field.vertex_gaussian_max);
+  field.gaussian_min = field.gaussian(field.vertex_gaussian_min);
+  field.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return field;
+}
+
+}  // namespace egg

@@ -1,0 +1,72 @@
+#pragma once
+// Discrete curvature of a triangle mesh. Gaussian curvature K feeds the uniqueness check of
+// shortest geodesics, ir(p) >= pi / sqrt(K_max) (thesis Eq. 2.1 / 3.1, Section 2.3.3 and 3.4.1):
+// patches whose members are shorter than that bound have unique shortest geodesics, and the peaks
+// of K are where the eta check of Section 2.3.3 starts.
+//
+// K at interior vertices is the angle defect over the mixed Voronoi area (Meyer, Desbrun, Schroeder
+// and Barr 2003): exact in the integrated sense (Gauss-Bonnet), pointwise accurate on good meshes.
+// The principal curvatures and directions come from a least-squares height-field fit over a 2-ring
+// (a cubic by default, with linear terms so a tilted vertex normal does not bias it); the fit also supplies K
+// at boundary vertices, where the angle defect measures the boundary's turning, not K.
+//
+// Sign convention: principal and mean curvature are positive where the surface bends away from the
+// vertex normal (normals follow the face orientation; a sphere with outward normals has kappa = 1/R).
+#include "core/mesh/mesh.hpp"
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace egg {
+
+struct CurvatureOptions {
+  // Rings of neighbours used by the principal-curvature fit.
+  int fit_rings = 2;
+  // Degree of the fitted height field (2 = quadric; 3-4 remove the O(h^2) bias of a quadric fit
+  // and the O(h) bias at boundaries; lowered automatically where too few points are available).
+  int fit_degree = 4;
+  // Grow the fit neighbourhood (up to fit_rings + 2 rings) until it holds this many vertices;
+  // boundary and corner vertices have few neighbours.
+  int min_fit_points = 12;
+
+  void validate() const;  // throws InvalidInput naming the field
+};
+
+struct CurvatureField {
+  Eigen::VectorXd gaussian;      // K [1/m^2]: angle defect / mixed area inside, fit on the boundary
+  Eigen::VectorXd gaussian_fit;  // kappa_max * kappa_min of the fit at every vertex [1/m^2]
+  Eigen::VectorXd mean;          // H = (kappa_max + kappa_min) / 2 [1/m]
+  Eigen::VectorXd kappa_max;     // larger principal curvature [1/m]
+  Eigen::VectorXd kappa_min;     // smaller principal curvature [1/m]
+  std::vector<Eigen::Vector3d> direction_max;  // unit tangent direction of kappa_max
+  std::vector<Eigen::Vector3d> direction_min;  // unit tangent direction of kappa_min
+  std::vector<Eigen::Vector3d> normals;        // unit vertex normals (angle-weighted)
+  Eigen::VectorXd mixed_area;    // mixed Voronoi area per vertex [m^2]
+  std::vector<char> on_boundary; // 1 for boundary vertices
+  // Summary of `gaussian`.
+  double gaussian_max = 0.0;
+  double gaussian_min = 0.0;
+  int vertex_gaussian_max = -1;
+  int vertex_gaussian_min = -1;
+  double seconds = 0.0;
+};
+
+// All curvature quantities of every vertex. Throws InvalidInput on an empty mesh.
+CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& options = {});
+
+// 2 pi minus the sum of the angles at an interior vertex, pi minus the sum at a boundary vertex
+// (the latter is the boundary's geodesic turning; Gauss-Bonnet: sum of all = 2 pi chi).
+Eigen::VectorXd angleDefects(const TriMesh& mesh);
+
+// Mixed Voronoi areas (Meyer et al. 2003, Fig. 4): Voronoi region inside non-obtuse triangles,
+// half / quarter of the triangle at / next to an obtuse angle. They tile the surface exactly.
+Eigen::VectorXd mixedVoronoiAreas(const TriMesh& mesh);
+
+// Angle-weighted unit vertex normals (oriented like the faces).
+std::vector<Eigen::Vector3d> vertexNormals(const TriMesh& mesh);
+
+// Lower bound of the injectivity radius, pi / sqrt(K_max) (thesis Eq. 2.1); +infinity when
+// K_max <= 0 (no conjugate points, shortest geodesics are unique at any length).
+double injectivityRadiusBound(double gaussianMax);
+
+}  // namespace egg

@@ -1,0 +1,97 @@
+#include "core/curvature/curvature_peaks.hpp"
+
+#include "core/curvature/curvature.hpp"
+#include "core/errors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace egg {
+namespace {
+
+// Vertices within Euclidean distance `radius` of v, reached through vertices that are themselves
+// within the radius (a graph walk, so the far side of a thin fold is not included).
+void ball(const TriMesh& mesh, int v, double radius, std::vector<int>& stamp, std::vector<int>& out) {
+  out.clear();
+  out.push_back(v);
+  stamp[v] = v;
+  const Eigen::Vector3d centre = toEigen(mesh.point(TriMesh::VertexHandle(v)));
+  const double r2 = radius * radius;
+  for (size_t i = 0; i < out.size(); ++i)
+    for (auto w : mesh.vv_range(TriMesh::VertexHandle(out[i]))) {
+      if (stamp[w.idx()] == v) continue;
+      stamp[w.idx()] = v;
+      if ((toEigen(mesh.point(w)) - centre).squaredNorm() <= r2) out.push_back(w.idx());
+    }
+}
+
+}  // namespace
+
+void PeakOptions::validate() const {
+  auto fail = [](const std::string& field, double value, const std::string& rule) {
+    std::ostringstream s;
+    s << "PeakOptions." << field << " " << rule << ", got " << value;
+    throw InvalidInput(s.str());
+  };
+  if (!std::isfinite(min_gaussian)) fail("min_gaussian", min_gaussian, "must be finite");
+  if (!(smoothing_radius_m >= 0.0 && std::isfinite(smoothing_radius_m)))
+    fail("smoothing_radius_m", smoothing_radius_m, "must be >= 0 (0 = automatic)");
+  if (!(separation_m >= 0.0 && std::isfinite(separation_m))) fail("separation_m", separation_m, "must be >= 0 (0 = automatic)");
+}
+
+Eigen::VectorXd averageOverBall(const TriMesh& mesh, const Eigen::VectorXd& field, const Eigen::VectorXd& vertexArea,
+                                double radiusM) {
+  const int n = static_cast<int>(mesh.n_vertices());
+  if (field.size() != n || vertexArea.size() != n)
+    throw InvalidInput("averageOverBall: field and area must have one value per vertex (" + std::to_string(n) + ")");
+  Eigen::VectorXd averaged(n);
+  std::vector<int> stamp(n, -1), members;
+  for (int v = 0; v < n; ++v) {
+    ball(mesh, v, radiusM, stamp, members);
+    double weighted = 0.0, area = 0.0;
+    for (int w : members) weighted += vertexArea(w) * field(w), area += vertexArea(w);
+    averaged(v) = area > 0.0 ? weighted / area : field(v);
+  }
+  return averaged;
+}
+
+std::vector<CurvaturePeak> findGaussianPeaks(const TriMesh& mesh, const Eigen::VectorXd& gaussian,
+                                             const Eigen::VectorXd& vertexArea, const PeakOptions& options) {
+  options.validate();
+  const int n = static_cast<int>(mesh.n_vertices());
+  if (gaussian.size() != n)
+    throw InvalidInput("findGaussianPeaks: gaussian has " + std::to_string(gaussian.size()) + " values for " +
+                       std::to_string(n) + " vertices");
+  if (n == 0) return {};
+  const double radius = options.smoothing_radius_m > 0.0 ? options.smoothing_radius_m : 2.0 * meanEdgeLength(mesh);
+  const double separation = options.separation_m > 0.0 ? options.separation_m : radius;
+  const Eigen::VectorXd averaged = averageOverBall(mesh, gaussian, vertexArea, radius);
+
+  std::vector<CurvaturePeak> peaks;
+  std::vector<int> stamp(n, -1), members;
+  for (int v = 0; v < n; ++v) {
+    if (!(averaged(v) > options.min_gaussian)) continue;
+    const auto vh = TriMesh::VertexHandle(v);
+    const bool boundary = mesh.is_boundary(vh);
+    if (boundary && !options.include_boundary) continue;
+    ball(mesh, v, separation, stamp, members);
+    // Strict maximum, ties broken by the lower index, so a plateau yields exactly one peak.
+    const bool isMax = std::all_of(members.begin(), members.end(), [&](int w) {
+      return w == v || averaged(w) < averaged(v) || (averaged(w) == averaged(v) && w > v);
+    });
+    if (!isMax) continue;
+    CurvaturePeak peak;
+    peak.vertex = v;
+    peak.position = toEigen(mesh.point(vh));
+    peak.gaussian = averaged(v);
+    peak.gaussian_vertex = gaussian(v);
+    peak.injectivity_bound_m = injectivityRadiusBound(averaged(v));
+    peak.on_boundary = boundary;
+    peaks.push_back(peak);
+  }
+  std::sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) { return a.gaussian > b.gaussian; });
+  return peaks;
+}
+
+}  // namespace egg

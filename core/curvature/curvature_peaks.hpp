@@ -1,0 +1,45 @@
+#pragma once
+// Peaks of Gaussian curvature: where the eta check of Section 2.3.3 / 3.4.1 starts ("evaluating
+// [Eq. 2.1] at local peaks of Gaussian curvature K_max serves as a quick check"). The discrete K
+// of a real mesh is noisy from vertex to vertex, so peaks are searched on an area-weighted average
+// of K over a ball of a few edge lengths: every bump gives one peak, mesh noise gives none.
+#include "core/mesh/mesh.hpp"
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace egg {
+
+struct PeakOptions {
+  // Only peaks whose averaged K exceeds this are reported [1/m^2].
+  double min_gaussian = 0.0;
+  // Radius of the averaging ball [m]; 0 = twice the mean edge length.
+  double smoothing_radius_m = 0.0;
+  // A peak is the largest averaged K within this radius [m]; 0 = the smoothing radius.
+  double separation_m = 0.0;
+  // Report peaks on the boundary too (a peak on the boundary is harmless for one patch, Section
+  // 2.3.3, but matters when the surface is split).
+  bool include_boundary = true;
+
+  void validate() const;  // throws InvalidInput naming the field
+};
+
+struct CurvaturePeak {
+  int vertex = -1;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  double gaussian = 0.0;          // averaged K at the peak [1/m^2]
+  double gaussian_vertex = 0.0;   // K of the vertex itself [1/m^2]
+  double injectivity_bound_m = 0.0;  // pi / sqrt(gaussian), Eq. 2.1
+  bool on_boundary = false;
+};
+
+// Area-weighted average of a per-vertex field over the vertices within Euclidean distance
+// `radiusM` reachable through such vertices (so the two sides of a thin fold do not mix).
+Eigen::VectorXd averageOverBall(const TriMesh& mesh, const Eigen::VectorXd& field, const Eigen::VectorXd& vertexArea,
+                                double radiusM);
+
+// Local maxima of the averaged `gaussian` field, strongest first.
+std::vector<CurvaturePeak> findGaussianPeaks(const TriMesh& mesh, const Eigen::VectorXd& gaussian,
+                                             const Eigen::VectorXd& vertexArea, const PeakOptions& options = {});
+
+}  // namespace egg

@@ -1,0 +1,411 @@
+// Cutting a geodesic quad out of the surface (Section 2.3.2): insert the corners as vertices, trace
+// the four shortest geodesics, insert their polylines into the mesh (split edges where they cross,
+// re-triangulate the faces they cut), and keep the faces the quad encloses.
+#include "core/egg/patch.hpp"
+
+#include "core/errors.hpp"
+#include "core/geodesic/distance_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace egg {
+
+void PatchOptions::validate() const {
+  if (!(angleMargin >= 0.0 && angleMargin < 1.0)) throw InvalidInput("patch.angle_margin must lie in [0, 1) rad");
+  if (!(straightBoundaryTolerance >= 0.0)) throw InvalidInput("patch.straight_boundary_tolerance must be >= 0");
+  if (!(mergeFraction >= 0.0 && mergeFraction < 0.1)) throw InvalidInput("patch.merge_fraction must lie in [0, 0.1)");
+}
+
+namespace {
+
+using EdgeKey = std::pair<int, int>;
+EdgeKey edgeKey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
+
+std::string format(const Eigen::Vector3d& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
+// Replaces every triangle holding edge (x, y) by two triangles through the new vertex n.
+void splitEdge(TriangleSoup& soup, int x, int y, int n) {
+  const size_t count = soup.triangles.size();
+  for (size_t f = 0; f < count; ++f) {
+    auto t = soup.triangles[f];
+    for (int i = 0; i < 3; ++i) {
+      const int a = t[i], b = t[(i + 1) % 3], c = t[(i + 2) % 3];
+      if (edgeKey(a, b) != edgeKey(x, y)) continue;
+      soup.triangles[f] = {a, n, c};
+      soup.triangles.push_back({n, b, c});
+      break;
+    }
+  }
+}
+
+// Makes a corner a mesh vertex (split face or edge, or reuse a vertex it coincides with).
+int insertCorner(TriangleSoup& soup, const TriMesh& mesh, const SurfacePoint& point, double merge) {
+  const auto ids = faceVertices(mesh, point.face);
+  const Eigen::Vector3d& w = point.barycentric;
+  int largest = 0, smallest = 0;
+  for (int i = 1; i < 3; ++i) {
+    if (w[i] > w[largest]) largest = i;
+    if (w[i] < w[smallest]) smallest = i;
+  }
+  if (w[largest] >= 1.0 - merge) return ids[largest];
+  const int n = static_cast<int>(soup.vertices.size());
+  if (w[smallest] <= merge) {
+    const int a = ids[(smallest + 1) % 3], b = ids[(smallest + 2) % 3];
+    const double wa = w[(smallest + 1) % 3], wb = w[(smallest + 2) % 3];
+    soup.vertices.push_back((wa * soup.vertices[a] + wb * soup.vertices[b]) / (wa + wb));
+    splitEdge(soup, a, b, n);
+    return n;
+  }
+  soup.vertices.push_back(w[0] * soup.vertices[ids[0]] + w[1] * soup.vertices[ids[1]] + w[2] * soup.vertices[ids[2]]);
+  // Faces of `mesh` are the soup's triangles in order (meshFromSoup), possibly rotated.
+  const auto old = soup.triangles[point.face];
+  soup.triangles[point.face] = {old[0], old[1], n};
+  soup.triangles.push_back({old[1], old[2], n});
+  soup.triangles.push_back({old[2], old[0], n});
+  return n;
+}
+
+double angleAt(const Eigen::Vector3d& at, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d u = a - at, v = b - at;
+  return std::atan2(u.cross(v).norm(), u.dot(v));
+}
+
+double vertexAngleSum(const TriMesh& mesh, TriMesh::VertexHandle v) {
+  double sum = 0.0;
+  const Eigen::Vector3d p = toEigen(mesh.point(v));
+  for (auto heh : mesh.voh_range(v)) {
+    if (mesh.is_boundary(heh)) continue;
+    const auto next = mesh.next_halfedge_handle(heh);
+    sum += angleAt(p, toEigen(mesh.point(mesh.to_vertex_handle(heh))), toEigen(mesh.point(mesh.to_vertex_handle(next))));
+  }
+  return sum;
+}
+
+// A point of a traced boundary: a mesh vertex or a point on an edge.
+struct PathNode {
+  int vertex = -1;       // set for a vertex, else the id of the inserted vertex
+  int a = -1, b = -1;    // edge (a < b) for an edge point
+  double t = 0.0;        // position from a to b
+  bool onEdge() const { return a >= 0; }
+};
+
+}  // namespace
+
+Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& requested, const PatchOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  options.validate();
+  if (surface.n_faces() == 0) throw InvalidInput("patch: the surface has no faces");
+  Patch patch;
+  const double merge = options.mergeFraction;
+  const double maxOffset = options.maxCornerOffsetM > 0.0
+                               ? options.maxCornerOffsetM
+                               : std::max(2.0 * meanEdgeLength(surface), 0.01 * boundingBox(surface).size().norm());
+
+  // 1. Corners onto the surface, as vertices.
+  TriangleSoup soup = soupFromMesh(surface);
+  TriMesh work = surface;
+  std::array<int, 4> cornerIds{};
+  for (int k = 0; k < 4; ++k) {
+    if (!requested[k].allFinite()) throw InvalidInput("patch corner " + std::to_string(k) + " is not a finite point");
+    const SurfacePoint snapped = geodesic::snapToSurface(work, requested[k]);
+    patch.cornerOffsets[k] = (position(work, snapped) - requested[k]).norm();
+    if (patch.cornerOffsets[k] > maxOffset)
+      throw InvalidInput("patch corner " + std::to_string(k) + " " + format(requested[k]) + " lies " +
+                         std::to_string(patch.cornerOffsets[k]) + " m off the surface (more than " +
+                         std::to_string(maxOffset) + " m)");
+    cornerIds[k] = insertCorner(soup, work, snapped, merge);
+    work = meshFromSoup(soup);
+    for (int j = 0; j < k; ++j)
+      if (cornerIds[j] == cornerIds[k])
+        throw InvalidInput("patch corners " + std::to_string(j) + " and " + std::to_string(k) + " coincide");
+  }
+
+  // 2. The four shortest geodesics.
+  const geodesic::DistanceSolver solver(work);
+  std::array<std::vector<PathNode>, 4> paths;
+  std::map<EdgeKey, std::vector<std::pair<double, int>>> edgePoints;  // inserted vertices per edge
+  for (int k = 0; k < 4; ++k) {
+    const auto path = solver.path(geodesic::vertexPoint(work, cornerIds[k]), geodesic::vertexPoint(work, cornerIds[(k + 1) % 4]));
+    if (!std::isfinite(path.length) || path.points.size() < 2)
+      throw InfeasiblePatch("boundary " + std::to_string(k) + ": corners " + std::to_string(k) + " and " +
+                            std::to_string((k + 1) % 4) + " are not connected on the surface");
+    for (int v : path.bendVertices) {
+      const auto vh = TriMesh::VertexHandle(v);
+      if (!work.is_boundary(vh) || v == cornerIds[k] || v == cornerIds[(k + 1) % 4]) continue;
+      if (vertexAngleSum(work, vh) > M_PI + options.straightBoundaryTolerance)
+        throw InfeasiblePatch("boundary " + std::to_string(k) + " wraps around the surface boundary or a hole at " +
+                              format(toEigen(work.point(vh))) + ": it is not a geodesic there");
+    }
+    for (const SurfacePoint& sp : path.points) {
+      const auto ids = faceVertices(work, sp.face);
+      const Eigen::Vector3d& w = sp.barycentric;
+      int largest = 0, smallest = 0;
+      for (int i = 1; i < 3; ++i) {
+        if (w[i] > w[largest]) largest = i;
+        if (w[i] < w[smallest]) smallest = i;
+      }
+      PathNode node;
+      if (w[largest] >= 1.0 - merge) {
+        node.vertex = ids[largest];
+      } else if (w[smallest] <= 1e-9) {
+        int a = ids[(smallest + 1) % 3], b = ids[(smallest + 2) % 3];
+        double wa = w[(smallest + 1) % 3], wb = w[(smallest + 2) % 3];
+        if (a > b) std::swap(a, b), std::swap(wa, wb);
+        node.a = a, node.b = b, node.t = wb / (wa + wb);
+        auto& list = edgePoints[{a, b}];
+        for (const auto& [t, id] : list)
+          if (std::abs(t - node.t) <= merge) node.vertex = id;
+        if (node.vertex < 0) {
+          node.vertex = static_cast<int>(soup.vertices.size());
+          soup.vertices.push_back((1 - node.t) * soup.vertices[a] + node.t * soup.vertices[b]);
+          list.emplace_back(node.t, node.vertex);
+        }
+      } else {
+        throw SolverFailure("patch: boundary " + std::to_string(k) + " has a point inside a face");
+      }
+      if (paths[k].empty() || paths[k].back().vertex != node.vertex) paths[k].push_back(node);
+    }
+  }
+  for (auto& [key, list] : edgePoints) std::sort(list.begin(), list.end());
+
+  // 3. Boundaries may share only their common corners.
+  std::map<int, int> owner;
+  for (int k = 0; k < 4; ++k)
+    for (const auto& node : paths[k]) {
+      const bool corner = node.vertex == cornerIds[k] || node.vertex == cornerIds[(k + 1) % 4];
+      if (corner) continue;
+      auto [it, inserted] = owner.emplace(node.vertex, k);
+      if (!inserted && it->second != k)
+        throw InfeasiblePatch("boundaries " + std::to_string(it->second) + " and " + std::to_string(k) + " cross at " +
+                              format(soup.vertices[node.vertex]));
+    }
+  for (int k = 0; k < 4; ++k)
+    for (const auto& node : paths[k])
+      for (int c = 0; c < 4; ++c)
+        if (node.vertex == cornerIds[c] && c != k && c != (k + 1) % 4)
+          throw InfeasiblePatch("boundary " + std::to_string(k) + " runs through corner " + std::to_string(c) +
+                                " (collinear or crossing corners)");
+
+  // 4. Re-triangulate every face the boundaries cut. Steps of a path either run along an edge of
+  //    `work` or cut straight across one face (a geodesic is straight inside a face).
+  const auto facesOf = [&](const PathNode& n) {
+    std::set<int> faces;
+    if (n.onEdge()) {
+      for (auto fh : work.vf_range(TriMesh::VertexHandle(n.a)))
+        for (auto v : work.fv_range(fh))
+          if (v.idx() == n.b) faces.insert(fh.idx());
+    } else {
+      for (auto fh : work.vf_range(TriMesh::VertexHandle(n.vertex))) faces.insert(fh.idx());
+    }
+    return faces;
+  };
+  std::set<EdgeKey> constrained;
+  std::map<int, std::vector<EdgeKey>> chords;  // face of `work` -> chords across it
+  std::array<std::vector<int>, 4> chains;
+  for (int k = 0; k < 4; ++k) {
+    chains[k].push_back(paths[k].front().vertex);
+    for (size_t s = 1; s < paths[k].size(); ++s) {
+      const PathNode &p = paths[k][s - 1], &q = paths[k][s];
+      const auto fp = facesOf(p), fq = facesOf(q);
+      std::vector<int> common;
+      std::set_intersection(fp.begin(), fp.end(), fq.begin(), fq.end(), std::back_inserter(common));
+      if (common.empty()) throw SolverFailure("patch: a step of boundary " + std::to_string(k) + " leaves its face");
+      chains[k].push_back(q.vertex);
+      constrained.insert(edgeKey(p.vertex, q.vertex));
+      if (common.size() == 1) {
+        // Unless both ends are on one edge of that face, the step is a chord of the face.
+        const auto ids = faceVertices(work, common[0]);
+        bool alongEdge = false;
+        for (int i = 0; i < 3 && !alongEdge; ++i) {
+          const EdgeKey e = edgeKey(ids[i], ids[(i + 1) % 3]);
+          const auto onThisEdge = [&](const PathNode& n) {
+            return n.onEdge() ? EdgeKey(n.a, n.b) == e : (n.vertex == e.first || n.vertex == e.second);
+          };
+          alongEdge = onThisEdge(p) && onThisEdge(q);
+        }
+        if (!alongEdge) chords[common[0]].push_back(edgeKey(p.vertex, q.vertex));
+      }
+    }
+  }
+
+  TriangleSoup cut;
+  cut.vertices = soup.vertices;
+  for (auto fh : work.faces()) {
+    const auto ids = faceVertices(work, fh.idx());
+    std::vector<int> polygon;
+    for (int i = 0; i < 3; ++i) {
+      const int a = ids[i], b = ids[(i + 1) % 3];
+      polygon.push_back(a);
+      const auto it = edgePoints.find(edgeKey(a, b));
+      if (it == edgePoints.end()) continue;
+      std::vector<int> along;
+      for (const auto& [t, id] : it->second) along.push_back(id);
+      if (a > b) std::reverse(along.begin(), along.end());
+      polygon.insert(polygon.end(), along.begin(), along.end());
+    }
+    std::vector<std::vector<int>> pieces{polygon};
+    if (const auto it = chords.find(fh.idx()); it != chords.end())
+      for (const auto& [x, y] : it->second) {
+        bool split = false;
+        for (size_t p = 0; p < pieces.size() && !split; ++p) {
+          auto& piece = pieces[p];
+          const auto ix = std::find(piece.begin(), piece.end(), x), iy = std::find(piece.begin(), piece.end(), y);
+          if (ix == piece.end() || iy == piece.end()) continue;
+          size_t i = ix - piece.begin(), j = iy - piece.begin();
+          if (i > j) std::swap(i, j);
+          std::vector<int> first(piece.begin() + i, piece.begin() + j + 1);
+          std::vector<int> second(piece.begin() + j, piece.end());
+          second.insert(second.end(), piece.begin(), piece.begin() + i + 1);
+          piece = first;
+          pieces.push_back(second);
+          split = true;
+        }
+        if (!split)
+          throw InfeasiblePatch("two boundaries cross inside a face near " + format(soup.vertices[x]));
+      }
+    // Each piece is convex (a triangle cut by straight chords); clip ears of positive area.
+    const Eigen::Vector3d normal = (soup.vertices[ids[1]] - soup.vertices[ids[0]])
+                                       .cross(soup.vertices[ids[2]] - soup.vertices[ids[0]]);
+    for (auto piece : pieces) {
+      while (piece.size() > 3) {
+        size_t best = piece.size();
+        double bestArea = 0.0;
+        for (size_t i = 0; i < piece.size(); ++i) {
+          const auto& a = soup.vertices[piece[(i + piece.size() - 1) % piece.size()]];
+          const auto& b = soup.vertices[piece[i]];
+          const auto& c = soup.vertices[piece[(i + 1) % piece.size()]];
+          const double area = (b - a).cross(c - a).dot(normal) / ((b - a).norm() * (c - a).norm() + 1e-300);
+          if (area > bestArea) bestArea = area, best = i;
+        }
+        if (best == piece.size()) break;  // only collinear points left: nothing to triangulate
+        const size_t n = piece.size();
+        cut.triangles.push_back({piece[(best + n - 1) % n], piece[best], piece[(best + 1) % n]});
+        piece.erase(piece.begin() + best);
+      }
+      if (piece.size() == 3) {
+        const auto& a = soup.vertices[piece[0]];
+        if ((soup.vertices[piece[1]] - a).cross(soup.vertices[piece[2]] - a).dot(normal) > 0.0)
+          cut.triangles.push_back({piece[0], piece[1], piece[2]});
+      }
+    }
+  }
+  // Drop vertices no triangle uses (none expected) by rebuilding through meshFromSoup later.
+  const TriMesh split = meshFromSoup(cut);
+
+  // 5. Flood fill the faces without crossing a boundary; keep the region the quad encloses.
+  std::vector<int> component(split.n_faces(), -1);
+  std::vector<double> componentArea;
+  std::vector<char> componentTouchesSurfaceBoundary;
+  for (auto seed : split.faces()) {
+    if (component[seed.idx()] >= 0) continue;
+    const int id = static_cast<int>(componentArea.size());
+    componentArea.push_back(0.0);
+    componentTouchesSurfaceBoundary.push_back(0);
+    std::vector<int> stack{seed.idx()};
+    component[seed.idx()] = id;
+    while (!stack.empty()) {
+      const auto fh = TriMesh::FaceHandle(stack.back());
+      stack.pop_back();
+      const auto ids = faceVertices(split, fh.idx());
+      componentArea[id] += 0.5 * (cut.vertices[ids[1]] - cut.vertices[ids[0]]).cross(cut.vertices[ids[2]] - cut.vertices[ids[0]]).norm();
+      for (auto heh : split.fh_range(fh)) {
+        const int a = split.from_vertex_handle(heh).idx(), b = split.to_vertex_handle(heh).idx();
+        if (constrained.count(edgeKey(a, b))) continue;
+        const auto opposite = split.opposite_face_handle(heh);
+        if (!opposite.is_valid()) {
+          componentTouchesSurfaceBoundary[id] = 1;
+          continue;
+        }
+        if (component[opposite.idx()] < 0) component[opposite.idx()] = id, stack.push_back(opposite.idx());
+      }
+    }
+  }
+  // The regions left and right of the first step of side 0.
+  int left = -1, right = -1;
+  for (auto heh : split.voh_range(TriMesh::VertexHandle(chains[0][0]))) {
+    if (split.to_vertex_handle(heh).idx() != chains[0][1]) continue;
+    if (!split.is_boundary(heh)) left = component[split.face_handle(heh).idx()];
+    const auto opp = split.opposite_halfedge_handle(heh);
+    if (!split.is_boundary(opp)) right = component[split.face_handle(opp).idx()];
+  }
+  if (left == right)
+    throw InfeasiblePatch("the four boundaries do not enclose a region: they cross or leave the surface");
+  const auto encloses = [&](int c) { return c >= 0 && !componentTouchesSurfaceBoundary[c]; };
+  int inside = -1;
+  if (encloses(left) && encloses(right)) inside = componentArea[left] <= componentArea[right] ? left : right;
+  else if (encloses(left)) inside = left;
+  else if (encloses(right)) inside = right;
+  else
+    throw InfeasiblePatch("the region inside the four boundaries contains part of the surface boundary or a hole");
+
+  // 6. The patch mesh, with the boundary chains renumbered.
+  TriangleSoup out;
+  std::vector<int> renumber(cut.vertices.size(), -1);
+  for (auto fh : split.faces()) {
+    if (component[fh.idx()] != inside) continue;
+    std::array<int, 3> t{};
+    const auto ids = faceVertices(split, fh.idx());
+    for (int i = 0; i < 3; ++i) {
+      if (renumber[ids[i]] < 0) renumber[ids[i]] = static_cast<int>(out.vertices.size()), out.vertices.push_back(cut.vertices[ids[i]]);
+      t[i] = renumber[ids[i]];
+    }
+    out.triangles.push_back(t);
+  }
+  patch.mesh = meshFromSoup(out);
+  patch.area = componentArea[inside];
+  for (int k = 0; k < 4; ++k) {
+    patch.cornerVertices[k] = renumber[cornerIds[k]];
+    patch.corners[k] = cut.vertices[cornerIds[k]];
+    double s = 0.0;
+    for (size_t i = 0; i < chains[k].size(); ++i) {
+      const int v = renumber[chains[k][i]];
+      if (v < 0) throw SolverFailure("patch: boundary " + std::to_string(k) + " lost a vertex while cutting");
+      if (i > 0) s += (cut.vertices[chains[k][i]] - cut.vertices[chains[k][i - 1]]).norm();
+      patch.sides[k].push_back(v);
+      patch.sideArcLength[k].push_back(s);
+    }
+    patch.sideLengths[k] = s;
+  }
+  // 7. Criterion (iv): every inner angle below pi.
+  for (int k = 0; k < 4; ++k) {
+    patch.innerAngles[k] = vertexAngleSum(patch.mesh, TriMesh::VertexHandle(patch.cornerVertices[k]));
+    if (patch.innerAngles[k] >= M_PI - options.angleMargin)
+      throw InfeasiblePatch("inner angle at corner " + std::to_string(k) + " is " + std::to_string(patch.innerAngles[k]) +
+                            " rad, not below pi: the patch is not convex (criterion iv)");
+  }
+  patch.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return patch;
+}
+
+SurfacePoint sidePoint(const Patch& patch, int side, double arcLength) {
+  const auto& s = patch.sideArcLength[side];
+  const auto& chain = patch.sides[side];
+  arcLength = std::clamp(arcLength, 0.0, s.back());
+  size_t hi = std::upper_bound(s.begin(), s.end(), arcLength) - s.begin();
+  hi = std::clamp<size_t>(hi, 1, s.size() - 1);
+  const size_t lo = hi - 1;
+  const double span = s[hi] - s[lo];
+  const double t = span > 0 ? (arcLength - s[lo]) / span : 0.0;
+  const int a = chain[lo], b = chain[hi];
+  for (auto heh : patch.mesh.voh_range(TriMesh::VertexHandle(a))) {
+    if (patch.mesh.to_vertex_handle(heh).idx() != b) continue;
+    auto h = patch.mesh.is_boundary(heh) ? patch.mesh.opposite_halfedge_handle(heh) : heh;
+    SurfacePoint point;
+    point.face = patch.mesh.face_handle(h).idx();
+    const auto ids = faceVertices(patch.mesh, point.face);
+    for (int i = 0; i < 3; ++i) point.barycentric[i] = ids[i] == a ? 1.0 - t : ids[i] == b ? t : 0.0;
+    return point;
+  }
+  throw SolverFailure("patch: side " + std::to_string(side) + " has no edge between consecutive vertices");
+}
+
+}  // namespace egg

@@ -1,0 +1,98 @@
+#include "core/egg/patch.hpp"
+
+#include "core/errors.hpp"
+#include "samples/generators/samples.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+namespace egg {
+namespace {
+
+const TriMesh& planeMesh() {
+  static const TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.7);
+  return mesh;
+}
+
+void expectBoundaryIsTheQuad(const Patch& patch) {
+  // Every boundary vertex of the patch mesh lies on one of the four side chains and vice versa.
+  std::set<int> chain;
+  for (const auto& side : patch.sides) chain.insert(side.begin(), side.end());
+  std::set<int> boundary;
+  for (auto vh : patch.mesh.vertices())
+    if (patch.mesh.is_boundary(vh)) boundary.insert(vh.idx());
+  EXPECT_EQ(chain, boundary);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(patch.sides[k].front(), patch.cornerVertices[k]);
+    EXPECT_EQ(patch.sides[k].back(), patch.cornerVertices[(k + 1) % 4]);
+  }
+}
+
+TEST(Patch, PlaneSquareHasExactSidesAnglesAndArea) {
+  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {3.2, -3, 0}, {3, 3.1, 0}, {-3, 3, 0}};
+  const Patch patch = makePatch(planeMesh(), corners);
+  expectBoundaryIsTheQuad(patch);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(patch.sideLengths[k], (corners[(k + 1) % 4] - corners[k]).norm(), 1e-9) << k;
+    EXPECT_NEAR(patch.cornerOffsets[k], 0.0, 1e-12);
+  }
+  // Shoelace area and planar angles of the quad.
+  double area = 0.0;
+  for (int k = 0; k < 4; ++k) area += 0.5 * (corners[k].x() * corners[(k + 1) % 4].y() - corners[(k + 1) % 4].x() * corners[k].y());
+  EXPECT_NEAR(patch.area, area, 1e-9);
+  double angleSum = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector3d a = corners[(k + 1) % 4] - corners[k], b = corners[(k + 3) % 4] - corners[k];
+    EXPECT_NEAR(patch.innerAngles[k], std::acos(a.normalized().dot(b.normalized())), 1e-9) << k;
+    angleSum += patch.innerAngles[k];
+  }
+  EXPECT_NEAR(angleSum, 2 * M_PI, 1e-9);
+}
+
+TEST(Patch, ClockwiseCornersGiveTheSameRegion) {
+  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {-3, 3, 0}, {3, 3, 0}, {3, -3, 0}};
+  const Patch patch = makePatch(planeMesh(), corners);
+  expectBoundaryIsTheQuad(patch);
+  EXPECT_NEAR(patch.area, 36.0, 1e-9);
+}
+
+TEST(Patch, SidePointsRunAtConstantSpeed) {
+  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
+  const Patch patch = makePatch(planeMesh(), corners);
+  for (double s : {0.0, 1.3, 4.7, 6.0}) {
+    const Eigen::Vector3d p = position(patch.mesh, sidePoint(patch, 1, s));
+    EXPECT_NEAR((p - Eigen::Vector3d(3, -3 + s, 0)).norm(), 0.0, 1e-9) << s;
+  }
+}
+
+TEST(Patch, BadCornersAreRejectedWithAReason) {
+  const auto& mesh = planeMesh();
+  // Off the surface.
+  EXPECT_THROW(makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {40, 40, 0}}), InvalidInput);
+  // Collinear: corner 1 lies on the segment c0 c2.
+  EXPECT_THROW(makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {0, 0, 0}, {3, 3, 0}, {-3, 3, 0}}), InfeasiblePatch);
+  // Concave (a dart): the inner angle at corner 1 exceeds pi.
+  EXPECT_THROW(makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {0, -1, 0}, {3, -3, 0}, {0, 3, 0}}), InfeasiblePatch);
+  // Bow tie: boundaries 0 and 2 cross.
+  EXPECT_THROW(makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, 3, 0}, {3, -3, 0}, {-3, 3, 0}}), InfeasiblePatch);
+  // Repeated corner.
+  EXPECT_THROW(makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {-3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}), InvalidInput);
+  try {
+    makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {0, -1, 0}, {3, -3, 0}, {0, 3, 0}});
+  } catch (const InfeasiblePatch& e) {
+    EXPECT_NE(std::string(e.what()).find("corner 1"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Patch, WholeSurfaceWithStraightBoundaryIsAccepted) {
+  // Corners at the rectangle's corners: the sides run along the straight surface boundary.
+  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-5, -5, 0), {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}};
+  const Patch patch = makePatch(planeMesh(), corners);
+  EXPECT_NEAR(patch.area, 100.0, 1e-9);
+  expectBoundaryIsTheQuad(patch);
+}
+
+}  // namespace
+}  // namespace egg

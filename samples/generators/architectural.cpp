@@ -126,17 +126,20 @@ std::vector<SampleEntry> architecturalSamples() {
       {{"great_court",
         "British Museum Great Court roof (C. J. K. Williams' closed form), 73.25 x 97.15 m with the "
         "Reading Room hole of radius 22.245 m; heights 19.71-27.60 m",
+        {},
         {}},
        greatCourt},
       {{"lilium",
         "Tip of the Lilium Tower: P(theta, t) = (r rho cos(theta + Phi t), r rho sin(theta + Phi t), 37 t), "
         "48 x 48 x 37 m, tip at t = 1",
+        {},
         {}},
        liliumTower},
       {{"yas",
         "Yas Hotel canopy over the quartic footprint (x/109)^4 + (y/70)^4 <= 1, 218 x 140 x 47 m; "
         "holes = 1 cuts 20 x 12 m ellipses at the towers (-55, -15) and (55, 15)",
-        {{"holes", 0.0}}},
+        {{"holes", 0.0}},
+        {{"holes", "1 cuts the two 20 x 12 m tower ellipses, 0 keeps them closed as the paper did (switch)"}}},
        yasCanopy},
   };
 }

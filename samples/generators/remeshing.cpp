@@ -10,6 +10,11 @@
 namespace egg::samples::detail {
 namespace {
 
+// Domain position as a vertex property; initialised, so OpenMesh's resize copies no garbage.
+struct DomainPosition {
+  Vec2 value = Vec2::Zero();
+};
+
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 class DomainRemesher {
@@ -22,7 +27,7 @@ class DomainRemesher {
     double extent = 0.0;
     for (size_t i = 0; i < input.domain.size(); ++i) {
       const auto v = mesh_.add_vertex(toOpenMesh(spec.position(input.domain[i])));
-      mesh_.property(uv_, v) = input.domain[i];
+      mesh_.property(uv_, v).value = input.domain[i];
       mesh_.property(locked_, v) = input.locked[i];
       handles.push_back(v);
       extent = std::max(extent, input.domain[i].cwiseAbs().maxCoeff());
@@ -70,13 +75,13 @@ class DomainRemesher {
   using EH = TriMesh::EdgeHandle;
   using HH = TriMesh::HalfedgeHandle;
 
-  Vec2 uv(VH v) const { return mesh_.property(uv_, v); }
+  Vec2 uv(VH v) const { return mesh_.property(uv_, v).value; }
   Vec3 point(VH v) const { return toEigen(mesh_.point(v)); }
   bool locked(VH v) const { return mesh_.property(locked_, v); }
   bool inDomain(const Vec2& u) const { return !spec_.inDomain || spec_.inDomain(u); }
 
   void place(VH v, const Vec2& u) {
-    mesh_.property(uv_, v) = u;
+    mesh_.property(uv_, v).value = u;
     mesh_.point(v) = toOpenMesh(spec_.position(u));
   }
 
@@ -114,7 +119,7 @@ class DomainRemesher {
         const Vec2 mid = 0.5 * (uv(mesh_.from_vertex_handle(h)) + uv(mesh_.to_vertex_handle(h)));
         if (!inDomain(mid)) continue;
         const VH v = mesh_.split(e, toOpenMesh(spec_.position(mid)));
-        mesh_.property(uv_, v) = mid;
+        mesh_.property(uv_, v).value = mid;
         mesh_.property(locked_, v) = false;
       }
     }
@@ -220,7 +225,7 @@ class DomainRemesher {
   double target_;
   double minArea2_ = 0.0;
   TriMesh mesh_;
-  OpenMesh::VPropHandleT<Vec2> uv_;
+  OpenMesh::VPropHandleT<DomainPosition> uv_;
   OpenMesh::VPropHandleT<bool> locked_;
 };
 

@@ -16,6 +16,7 @@ struct SampleInfo {
   std::string name;
   std::string description;
   Params defaults;  // every accepted parameter with its default value
+  std::map<std::string, std::string> parameterHelp;  // per parameter: meaning and unit, one line
 };
 
 // All samples, in a stable order.

@@ -4,6 +4,7 @@
 #include "samples/generators/catalog.hpp"
 
 #include <cmath>
+#include <map>
 #include <numbers>
 
 namespace egg::samples::detail {
@@ -155,41 +156,62 @@ SurfaceSpec hyperboloid(const Params& p) {
 
 std::vector<SampleEntry> testSurfaceSamples() {
   const Params extent{{"length", 10.0}, {"width", 10.0}};
-  auto with = [&extent](Params extra) {
-    extra.insert(extent.begin(), extent.end());
-    return extra;
+  const std::map<std::string, std::string> extentHelp{{"length", "footprint extent along x (m)"},
+                                                     {"width", "footprint extent along y (m)"}};
+  auto with = [](Params a, const Params& b) {
+    a.insert(b.begin(), b.end());
+    return a;
   };
+  auto withHelp = [](std::map<std::string, std::string> a, const std::map<std::string, std::string>& b) {
+    a.insert(b.begin(), b.end());
+    return a;
+  };
+  const std::string arc = "opening angle of the arc (rad, below 2 pi)";
   return {
-      {{"plane", "Flat rectangle z = 0, length (x) by width (y) metres, centred at the origin", extent}, plane},
+      {{"plane", "Flat rectangle z = 0, length (x) by width (y) metres, centred at the origin", extent, extentHelp},
+       plane},
       {{"sphere",
         "Sphere cap around the north pole of the sphere |p| = radius centred at the origin, over the "
         "footprint disc of radius extent (extent = radius: hemisphere)",
-        {{"radius", 10.0}, {"extent", 8.0}}},
+        {{"radius", 10.0}, {"extent", 8.0}},
+        {{"radius", "sphere radius R (m)"}, {"extent", "footprint radius of the cap (m), in (0, R]"}}},
        sphere},
       {{"cylinder",
         "Cylinder vault y^2 + z^2 = radius^2, axis x, x in [-length/2, length/2], arc angle (rad) centred "
         "on the top",
-        {{"radius", 5.0}, {"length", 10.0}, {"angle", kPi}}},
+        {{"radius", 5.0}, {"length", 10.0}, {"angle", kPi}},
+        {{"radius", "cylinder radius (m)"}, {"length", "extent along the axis x (m)"}, {"angle", arc}}},
        cylinder},
       {{"cone",
         "Cone x^2 + y^2 = (radius (1 - z/height))^2, apex (0, 0, height), from the base z = 0 up to the "
         "circle of top_radius (0 keeps the apex), arc angle (rad) centred on +x",
-        {{"radius", 5.0}, {"height", 5.0}, {"top_radius", 1.0}, {"angle", kPi}}},
+        {{"radius", 5.0}, {"height", 5.0}, {"top_radius", 1.0}, {"angle", kPi}},
+        {{"radius", "base radius at z = 0 (m)"},
+         {"height", "apex height (m)"},
+         {"top_radius", "radius where the frustum is cut (m), in [0, radius); 0 keeps the apex"},
+         {"angle", arc}}},
        cone},
-      {{"hypar", "Hyperbolic paraboloid z = c x y over length (x) by width (y) metres, centred", with({{"c", 0.1}})},
+      {{"hypar", "Hyperbolic paraboloid z = c x y over length (x) by width (y) metres, centred",
+        with({{"c", 0.1}}, extent), withHelp({{"c", "twist c of z = c x y (1/m)"}}, extentHelp)},
        hypar},
       {{"hyperboloid",
         "One-sheeted hyperboloid (x^2 + y^2)/radius^2 - z^2/c^2 = 1, |z| <= height/2, arc angle (rad) "
         "centred on +x",
-        {{"radius", 3.0}, {"c", 4.0}, {"height", 6.0}, {"angle", kPi}}},
+        {{"radius", 3.0}, {"c", 4.0}, {"height", 6.0}, {"angle", kPi}},
+        {{"radius", "waist radius a at z = 0 (m)"},
+         {"c", "axial semi-axis c (m): the asymptotic cone has slope a / c"},
+         {"height", "extent along the axis z (m), centred on the waist"},
+         {"angle", arc}}},
        hyperboloid},
       {{"bump", "Gaussian bump z = height exp(-(x^2 + y^2) / (2 sigma^2)) over length (x) by width (y), centred",
-        with({{"height", 2.0}, {"sigma", 2.0}})},
+        with({{"height", 2.0}, {"sigma", 2.0}}, extent),
+        withHelp({{"height", "peak height (m)"}, {"sigma", "standard deviation of the Gaussian (m)"}}, extentHelp)},
        bump},
       {{"waves",
         "Egg-crate waves z = amplitude sin(2 pi x / wavelength) sin(2 pi y / wavelength) over length (x) by "
         "width (y), centred",
-        with({{"amplitude", 0.5}, {"wavelength", 5.0}})},
+        with({{"amplitude", 0.5}, {"wavelength", 5.0}}, extent),
+        withHelp({{"amplitude", "wave amplitude (m)"}, {"wavelength", "wavelength in x and y (m)"}}, extentHelp)},
        waves},
   };
 }

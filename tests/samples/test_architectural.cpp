@@ -22,7 +22,7 @@ TriMesh::VertexHandle vertexAt(const TriMesh& mesh, double x, double y) {
     const auto& p = mesh.point(v);
     if (std::abs(p[0] - x) < 1e-9 && std::abs(p[1] - y) < 1e-9) return v;
   }
-  return {};
+  return TriMesh::VertexHandle();
 }
 
 // Sum of angles around an interior vertex subtracted from 2 pi (discrete Gaussian curvature).
@@ -103,7 +103,9 @@ TEST_F(GreatCourtMesh, ReadingRoomHoleIsABoundaryLoopOfRadiusA) {
       visited[g.idx()] = 1;
       const auto& p = mesh_->point(mesh_->to_vertex_handle(g));
       onCircle = onCircle && std::abs(std::hypot(p[0], p[1]) - great_court::a) < 1e-9;
-      if (onCircle) EXPECT_NEAR(p[2], great_court::hc, 1e-9);
+      if (onCircle) {
+        EXPECT_NEAR(p[2], great_court::hc, 1e-9);
+      }
       ++count;
       g = mesh_->next_halfedge_handle(g);
     } while (g != h);

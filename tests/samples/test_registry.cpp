@@ -34,6 +34,9 @@ TEST(SamplesRegistry, ListsEverySampleWithItsParameters) {
     EXPECT_EQ(samples[i].name, expected[i]);
     EXPECT_FALSE(samples[i].description.empty());
     EXPECT_TRUE(isSample(expected[i]));
+    // Every parameter is documented, and only parameters are.
+    ASSERT_EQ(samples[i].parameterHelp.size(), samples[i].defaults.size());
+    for (const auto& [key, value] : samples[i].defaults) EXPECT_EQ(samples[i].parameterHelp.count(key), 1u) << key;
   }
   EXPECT_FALSE(isSample("roof.obj"));
   EXPECT_FALSE(isSample(""));

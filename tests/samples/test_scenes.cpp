@@ -1,0 +1,97 @@
+// The scene files shipped in samples/: only DESIGN.md "Scene file" keys (the parser rejects any
+// other), a known sample with accepted parameters, the lamella sections of Table 3.3, and test
+// scenes small enough for fast pipeline tests.
+#include "samples/generators/samples.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+namespace egg::samples {
+namespace {
+
+using nlohmann::json;
+const std::filesystem::path kSamples = std::filesystem::path(EGG_SOURCE_DIR) / "samples";
+
+json readScene(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  EXPECT_TRUE(in.good()) << path;
+  return json::parse(in);
+}
+
+void expectOnlyKeys(const json& object, const std::set<std::string>& allowed, const std::string& where) {
+  ASSERT_TRUE(object.is_object()) << where;
+  for (auto it = object.begin(); it != object.end(); ++it) {
+    EXPECT_TRUE(allowed.count(it.key())) << where << "." << it.key() << " is not a scene key";
+  }
+}
+
+// DESIGN.md "Scene file".
+void expectDesignKeys(const json& scene) {
+  expectOnlyKeys(scene, {"name", "surface", "patching", "grid", "lamella", "simulation", "fabrication", "outputs"}, "");
+  expectOnlyKeys(scene["surface"], {"sample", "params", "edge_length_m"}, "surface");
+  expectOnlyKeys(scene["patching"], {"workflow", "eta_max", "slope_bounds", "max_patch_size_m"}, "patching");
+  expectOnlyKeys(scene["grid"], {"members_per_family", "map_resolution", "alpha_bar"}, "grid");
+  expectOnlyKeys(scene["lamella"], {"width_m", "thickness_m", "material"}, "lamella");
+  expectOnlyKeys(scene["simulation"], {"enabled", "gravity", "friction_mu", "notches"}, "simulation");
+  expectOnlyKeys(scene["fabrication"], {"enabled", "sheet_mm", "bolt_diameter_mm"}, "fabrication");
+  for (const auto& output : scene["outputs"]) {
+    EXPECT_TRUE(std::set<std::string>({"report", "cut_files", "stickers", "supports", "previews"})
+                    .count(output.get<std::string>()));
+  }
+  // Section 3.5.2: a lamella thinner than a fifth of its width behaves like a geodesic strip.
+  EXPECT_LE(scene["lamella"]["thickness_m"].get<double>(), scene["lamella"]["width_m"].get<double>() / 5 + 1e-12);
+}
+
+TriMesh generateScene(const json& scene) {
+  Params params;
+  for (auto it = scene["surface"]["params"].begin(); it != scene["surface"]["params"].end(); ++it) {
+    params[it.key()] = it.value().get<double>();
+  }
+  return generateSample(scene["surface"]["sample"].get<std::string>(), params,
+                        scene["surface"]["edge_length_m"].get<double>());
+}
+
+TEST(SceneFiles, ArchitecturalScenesUseThePapersSections) {
+  // Table 3.3: w x t = 25 x 4, 50 x 5, 40 x 5 cm; Table 3.2: poplar plywood.
+  const std::map<std::string, std::pair<double, double>> sections{
+      {"great_court", {0.25, 0.04}}, {"lilium", {0.50, 0.05}}, {"yas", {0.40, 0.05}}};
+  for (const auto& [name, section] : sections) {
+    SCOPED_TRACE(name);
+    const json scene = readScene(kSamples / (name + ".json"));
+    expectDesignKeys(scene);
+    EXPECT_EQ(scene["name"], name);
+    EXPECT_EQ(scene["surface"]["sample"], name);
+    EXPECT_EQ(scene["lamella"]["width_m"].get<double>(), section.first);
+    EXPECT_EQ(scene["lamella"]["thickness_m"].get<double>(), section.second);
+    EXPECT_EQ(scene["lamella"]["material"], "poplar_plywood");
+    EXPECT_EQ(scene["patching"]["eta_max"].get<double>(), 1.0015);  // Algorithm 1 / 2
+    const TriMesh mesh = generateScene(scene);
+    EXPECT_GT(mesh.n_vertices(), 4000u);
+    EXPECT_LT(mesh.n_vertices(), 20000u);
+  }
+  // The default scene of `egg run`.
+  EXPECT_EQ(readScene(kSamples / "great_court.json")["surface"]["edge_length_m"].get<double>(), 1.0);
+}
+
+TEST(SceneFiles, TestScenesAreSmall) {
+  int scenes = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kSamples / "scenes")) {
+    if (entry.path().extension() != ".json") continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    ++scenes;
+    const json scene = readScene(entry.path());
+    expectDesignKeys(scene);
+    const TriMesh mesh = generateScene(scene);
+    EXPECT_GE(mesh.n_vertices(), 200u);
+    EXPECT_LE(mesh.n_vertices(), 2500u);
+  }
+  EXPECT_GE(scenes, 3);
+}
+
+}  // namespace
+}  // namespace egg::samples

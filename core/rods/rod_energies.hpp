@@ -71,13 +71,10 @@ inline S stretchingEnergy(const V3<S>& x0, const V3<S>& x1, double stiffness, do
 // Bending and twisting at the interior vertex x1 between edges (x0,x1) and (x1,x2), with the
 // vertex's Voronoi rest length l = (h0 + h1)/2. Straight rest state: zero rest curvature/twist.
 template <class S>
-inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, const S& theta0, const S& theta1,
-                         const EdgeReference& reference0, const EdgeReference& reference1,
+inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, const Frame<S>& f0, const Frame<S>& f1,
                          const RodStiffness& stiffness, double voronoiLength) {
   using std::atan2;
   const V3<S> e0 = x1 - x0, e1 = x2 - x1;
-  const Frame<S> f0 = materialFrame(e0, theta0, reference0);
-  const Frame<S> f1 = materialFrame(e1, theta1, reference1);
   const S denominator = norm(e0) * norm(e1) + dot(e0, e1);
   const V3<S> curvatureBinormal = (2.0 / denominator) * cross(e0, e1);
   const S weak0 = dot(curvatureBinormal, f0.side), weak1 = dot(curvatureBinormal, f1.side);
@@ -90,32 +87,52 @@ inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, cons
   return bending + (0.5 * stiffness.twisting / voronoiLength) * (twist * twist);
 }
 
+template <class S>
+inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, const S& theta0, const S& theta1,
+                         const EdgeReference& reference0, const EdgeReference& reference1,
+                         const RodStiffness& stiffness, double voronoiLength) {
+  return bendTwistEnergy(x0, x1, x2, materialFrame(x1 - x0, theta0, reference0), materialFrame(x2 - x1, theta1, reference1),
+                         stiffness, voronoiLength);
+}
+
 // E_q (Section 2.5) for one bolt: the lower rod g at q_g = (1-b_g) x0 + b_g x1 on its edge, the
 // upper rod h likewise; the upper centreline sits `offset` (= (t_g + t_h)/2) along each rod's
 // material normal, and the normals agree (rotation about the common normal stays free). The
 // angle term uses |m_g - m_h|^2 = 4 sin^2(angle/2), smooth where the angle itself is not.
 template <class S>
-inline S connectionEnergy(const V3<S>& g0, const V3<S>& g1, const S& thetaG, const S& betaG,
-                          const EdgeReference& referenceG, const V3<S>& h0, const V3<S>& h1, const S& thetaH,
-                          const S& betaH, const EdgeReference& referenceH, double offset, double positionWeight,
+inline S connectionEnergy(const V3<S>& g0, const V3<S>& g1, const V3<S>& mg, const S& betaG, const V3<S>& h0,
+                          const V3<S>& h1, const V3<S>& mh, const S& betaH, double offset, double positionWeight,
                           double angleWeight) {
   const V3<S> qg = (1.0 - betaG) * g0 + betaG * g1;
   const V3<S> qh = (1.0 - betaH) * h0 + betaH * h1;
-  const V3<S> mg = materialFrame(g1 - g0, thetaG, referenceG).normal;
-  const V3<S> mh = materialFrame(h1 - h0, thetaH, referenceH).normal;
   const V3<S> fromG = qg - qh + offset * mg;
   const V3<S> fromH = qh - qg - offset * mh;
   return positionWeight * (squaredNorm(fromG) + squaredNorm(fromH)) + angleWeight * squaredNorm(mg - mh);
 }
 
+template <class S>
+inline S connectionEnergy(const V3<S>& g0, const V3<S>& g1, const S& thetaG, const S& betaG,
+                          const EdgeReference& referenceG, const V3<S>& h0, const V3<S>& h1, const S& thetaH,
+                          const S& betaH, const EdgeReference& referenceH, double offset, double positionWeight,
+                          double angleWeight) {
+  return connectionEnergy(g0, g1, materialFrame(g1 - g0, thetaG, referenceG).normal, betaG, h0, h1,
+                          materialFrame(h1 - h0, thetaH, referenceH).normal, betaH, offset, positionWeight, angleWeight);
+}
+
 // E_a (Section 2.5): a rod point held at `target` with its material normal along `targetNormal`.
+template <class S>
+inline S anchorEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& m, double beta, const Eigen::Vector3d& target,
+                      const Eigen::Vector3d& targetNormal, double positionWeight, double angleWeight) {
+  const V3<S> q = (1.0 - beta) * x0 + beta * x1;
+  return positionWeight * squaredNorm(q - constant<S>(target)) + angleWeight * squaredNorm(m - constant<S>(targetNormal));
+}
+
 template <class S>
 inline S anchorEnergy(const V3<S>& x0, const V3<S>& x1, const S& theta, double beta, const EdgeReference& reference,
                       const Eigen::Vector3d& target, const Eigen::Vector3d& targetNormal, double positionWeight,
                       double angleWeight) {
-  const V3<S> q = (1.0 - beta) * x0 + beta * x1;
-  const V3<S> m = materialFrame(x1 - x0, theta, reference).normal;
-  return positionWeight * squaredNorm(q - constant<S>(target)) + angleWeight * squaredNorm(m - constant<S>(targetNormal));
+  return anchorEnergy(x0, x1, materialFrame(x1 - x0, theta, reference).normal, beta, target, targetNormal,
+                      positionWeight, angleWeight);
 }
 
 // One side of a sliding bolt, at barycentric beta on the edge starting at rest arc length

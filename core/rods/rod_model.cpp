@@ -8,6 +8,8 @@
 #include <limits>
 #include <string>
 #include <thread>
+#include <tuple>
+#include <type_traits>
 
 namespace egg::rods {
 
@@ -233,7 +235,7 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
   }
 
   fixed_.assign(dofCount_, false);
-  constantGradient_ = Eigen::VectorXd::Zero(dofCount_);
+  baseConstantGradient_ = Eigen::VectorXd::Zero(dofCount_);
   double heaviest = 0.0, stiffest = 0.0;
   for (int r = 0; r < rodCount(); ++r) {
     const RodData& data = rods_[r];
@@ -242,10 +244,11 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
     if (!options.gravity) continue;
     for (int i = 0; i <= data.edges; ++i) {
       const double mass = data.linearDensity * data.h * ((i == 0 || i == data.edges) ? 0.5 : 1.0);
-      constantGradient_[vertexDof(r, i) + 2] += mass * options.gravity_m_s2;
+      baseConstantGradient_[vertexDof(r, i) + 2] += mass * options.gravity_m_s2;
     }
   }
   forceScale_ = std::max(stiffest, options.gravity ? heaviest : 0.0);
+  constantGradient_ = baseConstantGradient_;
 }
 
 // ---------------------------------------------------------------- accessors, loads
@@ -299,8 +302,14 @@ void RodModel::setVertex(int rod, int vertex, const Eigen::Vector3d& p) {
 
 void RodModel::addPointLoad(int rod, int vertex, const Eigen::Vector3d& force) {
   pointLoads_.push_back({vertexDof(rod, vertex), force});
-  constantGradient_.segment<3>(vertexDof(rod, vertex)) -= force;
+  baseConstantGradient_.segment<3>(vertexDof(rod, vertex)) -= force;
+  constantGradient_ = loadFactor_ * baseConstantGradient_;
   forceScale_ = std::max(forceScale_, force.norm());
+}
+
+void RodModel::setLoadFactor(double factor) {
+  loadFactor_ = factor;
+  constantGradient_ = factor * baseConstantGradient_;
 }
 
 void RodModel::addEndMoment(int rod, const Eigen::Vector3d& axis, double moment) {
@@ -332,20 +341,61 @@ SliderParameters RodModel::sliderParameters(const BoltSide& side) const {
   return p;
 }
 
+std::vector<RodModel::EdgeFrameDerivatives> RodModel::frameDerivatives(const Eigen::VectorXd& z, int threads) const {
+  std::vector<EdgeFrameDerivatives> frames(references_.size());
+  auto work = [&](int part) {
+    for (int r = 0; r < rodCount(); ++r) {
+      for (int j = 0; j < rods_[r].edges; ++j) {
+        const int index = edgeReferenceBase_[r] + j;
+        if (index % threads != part) continue;
+        using D = HyperDual<4>;
+        const Eigen::Vector3d e = z.segment<3>(vertexDof(r, j + 1)) - z.segment<3>(vertexDof(r, j));
+        const V3<D> edge{D::variable(e.x(), 0), D::variable(e.y(), 1), D::variable(e.z(), 2)};
+        frames[index].frame = materialFrame(edge, D::variable(z[thetaDof(r, j)], 3), references_[index]);
+      }
+    }
+  };
+  if (threads <= 1) {
+    work(0);
+  } else {
+    std::vector<std::thread> workers;
+    for (int t = 0; t < threads; ++t) workers.emplace_back(work, t);
+    for (auto& w : workers) w.join();
+  }
+  return frames;
+}
+
 template <class Visitor>
-void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int part, int parts) const {
+void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int part, int parts,
+                              const std::vector<EdgeFrameDerivatives>* frames) const {
   long counter = 0;
   auto mine = [&]() { return (counter++ % parts) == part; };
+  // Material frame of edge `edge` of rod `rod` over the stencil's variables v, whose local
+  // indices start, end, theta hold the edge's two vertices and its angle.
+  auto frameOf = [&](const auto& v, int rod, int edge, int start, int end, int theta) {
+    using S = std::decay_t<decltype(v[0])>;
+    const int index = edgeReferenceBase_[rod] + edge;
+    if constexpr (std::is_same_v<S, double>) {
+      return materialFrame(v3(v, end) - v3(v, start), v[theta], references_[index]);
+    } else {
+      constexpr int N = static_cast<int>(std::tuple_size_v<std::decay_t<decltype(v)>>);
+      const Frame<HyperDual<4>>& f = (*frames)[index].frame;
+      auto lift = [&](const V3<HyperDual<4>>& a) {
+        return V3<S>{liftEdgeQuantity<N>(a.x, start, end, theta), liftEdgeQuantity<N>(a.y, start, end, theta),
+                     liftEdgeQuantity<N>(a.z, start, end, theta)};
+      };
+      return Frame<S>{lift(f.tangent), lift(f.normal), lift(f.side)};
+    }
+  };
   for (int r = 0; r < rodCount(); ++r) {
     const RodData& data = rods_[r];
-    const int refBase = edgeReferenceBase_[r];
     for (int j = 0; j < data.edges; ++j) {
       if (!mine()) continue;
       std::array<int, 6> dofs;
       std::array<double, 6> values;
       for (int k = 0; k < 6; ++k) dofs[k] = vertexDof(r, j) + k;
       for (int k = 0; k < 6; ++k) values[k] = z[dofs[k]];
-      const double stiffness = data.stiffness.stretching, h = data.h;
+      const double stiffness = stiffFactor_ * data.stiffness.stretching, h = data.h;
       visit(dofs, values, [&](const auto& v) { return stretchingEnergy(v3(v, 0), v3(v, 3), stiffness, h); });
     }
     for (int i = 1; i < data.edges; ++i) {
@@ -356,10 +406,9 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
       dofs[9] = thetaDof(r, i - 1);
       dofs[10] = thetaDof(r, i);
       for (int k = 0; k < 11; ++k) values[k] = z[dofs[k]];
-      const EdgeReference& r0 = references_[refBase + i - 1];
-      const EdgeReference& r1 = references_[refBase + i];
       visit(dofs, values, [&](const auto& v) {
-        return bendTwistEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v[9], v[10], r0, r1, data.stiffness, data.h);
+        return bendTwistEnergy(v3(v, 0), v3(v, 3), v3(v, 6), frameOf(v, r, i - 1, 0, 3, 9), frameOf(v, r, i, 3, 6, 10),
+                               data.stiffness, data.h);
       });
     }
   }
@@ -376,11 +425,11 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
       values[k + 7] = beta(z, *s);
       k += 8;
     }
-    const EdgeReference& rg = references_[edgeReferenceBase_[b.lower.point.rod] + b.lower.point.edge];
-    const EdgeReference& rh = references_[edgeReferenceBase_[b.upper.point.rod] + b.upper.point.edge];
     visit(dofs, values, [&](const auto& v) {
-      return connectionEnergy(v3(v, 0), v3(v, 3), v[6], v[7], rg, v3(v, 8), v3(v, 11), v[14], v[15], rh, b.offset,
-                              b.positionWeight, b.angleWeight);
+      const auto mg = frameOf(v, b.lower.point.rod, b.lower.point.edge, 0, 3, 6).normal;
+      const auto mh = frameOf(v, b.upper.point.rod, b.upper.point.edge, 8, 11, 14).normal;
+      return connectionEnergy(v3(v, 0), v3(v, 3), mg, v[7], v3(v, 8), v3(v, 11), mh, v[15], b.offset,
+                              stiffFactor_ * b.positionWeight, b.angleWeight);
     });
   }
   for (const Bolt& b : bolts_) {
@@ -398,10 +447,10 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
     for (int c = 0; c < 6; ++c) dofs[c] = vertexDof(a.point.rod, a.point.edge) + c;
     dofs[6] = thetaDof(a.point.rod, a.point.edge);
     for (int c = 0; c < 7; ++c) values[c] = z[dofs[c]];
-    const EdgeReference& ref = references_[edgeReferenceBase_[a.point.rod] + a.point.edge];
     visit(dofs, values, [&](const auto& v) {
-      return anchorEnergy(v3(v, 0), v3(v, 3), v[6], a.point.beta, ref, a.target, a.targetNormal, a.positionWeight,
-                          a.angleWeight);
+      const auto m = frameOf(v, a.point.rod, a.point.edge, 0, 3, 6).normal;
+      return anchorEnergy(v3(v, 0), v3(v, 3), m, a.point.beta, a.target, a.targetNormal,
+                          stiffFactor_ * a.positionWeight, a.angleWeight);
     });
   }
   for (const EndMoment& m : endMoments_) {
@@ -412,7 +461,7 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
     for (int c = 0; c < 6; ++c) dofs[c] = vertexDof(m.rod, n - 1) + c;
     for (int c = 0; c < 6; ++c) values[c] = z[dofs[c]];
     visit(dofs, values, [&](const auto& v) {
-      return endMomentPotential(v3(v, 0), v3(v, 3), m.axis, m.moment, m.direction, m.angle);
+      return endMomentPotential(v3(v, 0), v3(v, 3), m.axis, loadFactor_ * m.moment, m.direction, m.angle);
     });
   }
 }
@@ -445,12 +494,12 @@ void RodModel::energyParts(const Eigen::VectorXd& z, double& internal, double& e
   }
   double moments = 0.0;
   EnergySum sum;
-  forEachStencil(z, sum, 0, 1);
+  forEachStencil(z, sum, 0, 1, nullptr);
   for (const EndMoment& m : endMoments_) {
     const int n = rods_[m.rod].edges;
     const V3<double> x0 = constant<double>(z.segment<3>(vertexDof(m.rod, n - 1)));
     const V3<double> x1 = constant<double>(z.segment<3>(vertexDof(m.rod, n)));
-    moments += endMomentPotential(x0, x1, m.axis, m.moment, m.direction, m.angle);
+    moments += endMomentPotential(x0, x1, m.axis, loadFactor_ * m.moment, m.direction, m.angle);
   }
   internal = sum.total - moments;
   external = moments + constantGradient_.dot(z);
@@ -468,12 +517,13 @@ double RodModel::derivatives(const Eigen::VectorXd& z, Eigen::VectorXd& gradient
   threads = std::max(1, threads);
   std::vector<DerivativeSum> sums(threads);
   for (auto& s : sums) s.gradient = Eigen::VectorXd::Zero(dofCount_);
+  const std::vector<EdgeFrameDerivatives> frames = frameDerivatives(z, threads);
   if (threads == 1) {
-    forEachStencil(z, sums[0], 0, 1);
+    forEachStencil(z, sums[0], 0, 1, &frames);
   } else {
     std::vector<std::thread> workers;
     for (int t = 0; t < threads; ++t) {
-      workers.emplace_back([&, t]() { forEachStencil(z, sums[t], t, threads); });
+      workers.emplace_back([&, t]() { forEachStencil(z, sums[t], t, threads, &frames); });
     }
     for (auto& w : workers) w.join();
   }

@@ -71,6 +71,13 @@ class RodModel {
   void addPointLoad(int rod, int vertex, const Eigen::Vector3d& force);
   // Moment about `axis` on the rod's last edge (potential -M * rotation angle, unwrapped).
   void addEndMoment(int rod, const Eigen::Vector3d& axis, double moment);
+  // Multiplies gravity, point loads and end moments (load stepping for large deformations).
+  void setLoadFactor(double factor);
+  double loadFactor() const { return loadFactor_; }
+  // Multiplies the stiff terms (stretching, bolt and anchor position penalties) by `factor` <= 1:
+  // the solver's continuation path (rod_solver.cpp) starts soft and ends at 1.
+  void setStiffTermsFactor(double factor) { stiffFactor_ = factor; }
+  double stiffTermsFactor() const { return stiffFactor_; }
 
   // ---- energy ----
   // Total energy at unknowns z with the current reference frames and bolt edges; +inf where z is
@@ -135,8 +142,14 @@ class RodModel {
     return side.betaDof >= 0 ? z[side.betaDof] : side.point.beta;
   }
   SliderParameters sliderParameters(const BoltSide& side) const;
+  // Material frame of every edge differentiated w.r.t. (edge vector, theta), for the Hessian pass.
+  struct EdgeFrameDerivatives {
+    Frame<HyperDual<4>> frame;
+  };
+  std::vector<EdgeFrameDerivatives> frameDerivatives(const Eigen::VectorXd& z, int threads) const;
   template <class Visitor>
-  void forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int part, int parts) const;
+  void forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int part, int parts,
+                      const std::vector<EdgeFrameDerivatives>* frames) const;
   bool edgesValid(const Eigen::VectorXd& z) const;
 
   ModelOptions options_;
@@ -148,7 +161,10 @@ class RodModel {
   std::vector<EdgeReference> references_;  // per edge, indexed like theta dofs minus thetaBase_
   std::vector<int> edgeReferenceBase_;     // per rod
   Eigen::VectorXd state_;
-  Eigen::VectorXd constantGradient_;       // gravity and point loads (linear potentials)
+  Eigen::VectorXd baseConstantGradient_;   // gravity and point loads (linear potentials) at load factor 1
+  Eigen::VectorXd constantGradient_;       // the same times loadFactor_
+  double loadFactor_ = 1.0;
+  double stiffFactor_ = 1.0;
   std::vector<bool> fixed_;
   int dofCount_ = 0;
   double forceScale_ = 0.0;

@@ -4,6 +4,7 @@
 
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -38,10 +39,12 @@ const char* toString(SolverStatus status) {
   return "unknown";
 }
 
-SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
-  options.validate();
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Newton with line search on the model as it is (one stage of the continuation).
+SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_point start, int iterationsBefore) {
   auto elapsed = [&]() { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
   const int n = model.dofCount();
@@ -66,21 +69,21 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
     }
     result.energy = energy;
     result.gradientNorm = g.norm();
-    result.iterations = iteration;
+    result.iterations = iterationsBefore + iteration;
     result.seconds = elapsed();
     if (!std::isfinite(energy) || !g.allFinite()) {
       result.status = SolverStatus::NonFinite;
       result.reason = "energy or gradient not finite at the current state";
       return result;
     }
-    if (iteration >= options.maxIterations) {
+    if (result.iterations >= options.maxIterations) {
       result.status = SolverStatus::IterationLimit;
-      result.reason = format("no convergence in %d iterations (decrement %.3g J)", iteration, result.decrement);
+      result.reason = format("no convergence in %d iterations (decrement %.3g J)", result.iterations, result.decrement);
       return result;
     }
     if (result.seconds > options.timeLimit_s) {
       result.status = SolverStatus::TimeLimit;
-      result.reason = format("time limit %.3g s reached after %d iterations", options.timeLimit_s, iteration);
+      result.reason = format("time limit %.3g s reached after %d iterations", options.timeLimit_s, result.iterations);
       return result;
     }
 
@@ -167,6 +170,37 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
     }
     result.boltEdgeSwitches += model.accept(candidate);
   }
+}
+
+}  // namespace
+
+SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
+  options.validate();
+  const auto start = Clock::now();
+  const double finalFactor = model.stiffTermsFactor();
+  int iterations = 0, switches = 0;
+  if (options.stiffnessContinuation) {
+    SolverOptions stage = options;
+    stage.tolerance = std::max(options.tolerance, 1e-6);  // warm starts only: no need to be exact
+    for (double factor : {1e-4, 1e-3, 1e-2, 1e-1}) {
+      model.setStiffTermsFactor(factor * finalFactor);
+      const SolverResult r = newton(model, stage, start, iterations);
+      iterations = r.iterations;
+      switches += r.boltEdgeSwitches;
+      if (r.status == SolverStatus::TimeLimit || r.status == SolverStatus::NonFinite ||
+          iterations >= options.maxIterations) {
+        model.setStiffTermsFactor(finalFactor);
+        SolverResult out = r;
+        out.converged = false;
+        out.reason = "during stiffness continuation: " + r.reason;
+        return out;
+      }
+    }
+    model.setStiffTermsFactor(finalFactor);
+  }
+  SolverResult result = newton(model, options, start, iterations);
+  result.boltEdgeSwitches += switches;
+  return result;
 }
 
 }  // namespace egg::rods

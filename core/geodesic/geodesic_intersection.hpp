@@ -19,8 +19,8 @@ struct GeodesicIntersectionOptions {
   // refined point is at most this (metres). <= 0: automatic, 0.5 * (mean edge length)^2 /
   // min(d(A,B), d(C,D)) * 4, the largest excess a vertex within one edge of both geodesics has.
   double maxExcess = 0.0;
-  // Rings of neighbours used by the paraboloid fit (1 = the vertex ring of the thesis; 2 steadier
-  // on irregular meshes).
+  // Rings of neighbours of the first paraboloid fit (1 = the vertex ring of the thesis). If that
+  // fit is not convex or its minimum leaves the rings, it is widened by one ring, at most twice.
   int fitRings = 1;
 
   void validate() const;  // throws InvalidInput naming the field

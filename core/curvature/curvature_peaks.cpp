@@ -49,8 +49,15 @@ Eigen::VectorXd averageOverBall(const TriMesh& mesh, const Eigen::VectorXd& fiel
   std::vector<int> stamp(n, -1), members;
   for (int v = 0; v < n; ++v) {
     ball(mesh, v, radiusM, stamp, members);
+    // Smooth compact kernel (1 - d^2/r^2)^2: a plain box average jumps whenever a vertex enters or
+    // leaves the ball, which on a regular grid moves the maximum off the apex.
+    const Eigen::Vector3d centre = toEigen(mesh.point(TriMesh::VertexHandle(v)));
     double weighted = 0.0, area = 0.0;
-    for (int w : members) weighted += vertexArea(w) * field(w), area += vertexArea(w);
+    for (int w : members) {
+      const double q = (toEigen(mesh.point(TriMesh::VertexHandle(w))) - centre).squaredNorm() / (radiusM * radiusM);
+      const double weight = vertexArea(w) * (1.0 - q) * (1.0 - q);
+      weighted += weight * field(w), area += weight;
+    }
     averaged(v) = area > 0.0 ? weighted / area : field(v);
   }
   return averaged;
@@ -69,7 +76,7 @@ std::vector<CurvaturePeak> findGaussianPeaks(const TriMesh& mesh, const Eigen::V
   const Eigen::VectorXd averaged = averageOverBall(mesh, gaussian, vertexArea, radius);
 
   std::vector<CurvaturePeak> peaks;
-  std::vector<int> stamp(n, -1), members;
+  std::vector<int> stamp(n, -1), stampNearby(n, -1), members;
   for (int v = 0; v < n; ++v) {
     if (!(averaged(v) > options.min_gaussian)) continue;
     const auto vh = TriMesh::VertexHandle(v);
@@ -84,13 +91,16 @@ std::vector<CurvaturePeak> findGaussianPeaks(const TriMesh& mesh, const Eigen::V
     CurvaturePeak peak;
     peak.vertex = v;
     peak.position = toEigen(mesh.point(vh));
-    peak.gaussian = averaged(v);
+    peak.gaussian_averaged = averaged(v);
     peak.gaussian_vertex = gaussian(v);
-    peak.injectivity_bound_m = injectivityRadiusBound(averaged(v));
+    ball(mesh, v, radius, stampNearby, members);
+    peak.gaussian_max_nearby = gaussian(v);
+    for (int w : members) peak.gaussian_max_nearby = std::max(peak.gaussian_max_nearby, gaussian(w));
+    peak.injectivity_bound_m = injectivityRadiusBound(peak.gaussian_max_nearby);
     peak.on_boundary = boundary;
     peaks.push_back(peak);
   }
-  std::sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) { return a.gaussian > b.gaussian; });
+  std::sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) { return a.gaussian_averaged > b.gaussian_averaged; });
   return peaks;
 }
 

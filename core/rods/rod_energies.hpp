@@ -140,8 +140,7 @@ inline S anchorEnergy(const V3<S>& x0, const V3<S>& x1, const S& theta, double b
 // iteration) and E_n (notch limits, a barrier (log(d)/10)^2 in the rest distance d, in edge
 // lengths, to a notch end closer than one edge). The thesis activates E_n only on the edge that
 // holds the notch end; "closer than one edge length" is the same barrier made independent of
-// where the vertices fall. Both are multiplied by `unit` (J) to be independent of the rod's
-// size. Returns +inf outside the feasible range (the line search backs off).
+// where the vertices fall. Both are multiplied by `unit` (J; see RodModel::sliderParameters). Returns +inf outside the feasible range (the line search backs off).
 struct SliderParameters {
   double edgeStart = 0.0;   // rest arc length of the current edge's first vertex, m
   double edgeLength = 0.0;  // rest edge length h, m

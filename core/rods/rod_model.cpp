@@ -241,6 +241,7 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
     const RodData& data = rods_[r];
     heaviest = std::max(heaviest, data.linearDensity * data.length * options.gravity_m_s2);
     stiffest = std::max(stiffest, data.stiffness.bendingWeak / (data.length * data.length));
+    energyUnit_ = std::max(energyUnit_, data.stiffness.bendingWeak / data.length);
     if (!options.gravity) continue;
     for (int i = 0; i <= data.edges; ++i) {
       const double mass = data.linearDensity * data.h * ((i == 0 || i == data.edges) ? 0.5 : 1.0);
@@ -336,8 +337,11 @@ SliderParameters RodModel::sliderParameters(const BoltSide& side) const {
   p.notchMax = side.notchMax;
   p.mu = options_.frictionMu;
   p.epsilon = options_.frictionEpsilon;
-  // Energy unit EI_weak / L: friction then means the same for a desktop model and a roof.
-  p.unit = r.stiffness.bendingWeak / r.length;
+  // The thesis gives E_p and E_n without units. Their barrier at every vertex, ~8.5 mu^2 high,
+  // must be climbed over half an edge, so a bolt passes a vertex when the sliding force exceeds
+  // ~17 mu^2 unit / h. With unit = EI_weak h / L^2 that threshold is 17 mu^2 EI/L^2 (mu = 0.1:
+  // a sixth of the rod's Euler load), independent of the model's size and of the discretisation.
+  p.unit = r.stiffness.bendingWeak * r.h / (r.length * r.length);
   return p;
 }
 

@@ -99,6 +99,9 @@ class RodModel {
   // A characteristic force (N) for convergence tests: largest EI_weak / L^2 over rods, weight
   // of the heaviest rod and largest point load.
   double forceScale() const { return forceScale_; }
+  // A characteristic energy (J): largest EI_weak / L over rods. Floors the solver's relative
+  // tolerance where the equilibrium energy itself is zero (a rod resting on its anchors).
+  double energyUnit() const { return energyUnit_; }
 
  private:
   struct RodData {
@@ -168,6 +171,7 @@ class RodModel {
   std::vector<bool> fixed_;
   int dofCount_ = 0;
   double forceScale_ = 0.0;
+  double energyUnit_ = 0.0;
 };
 
 }  // namespace egg::rods

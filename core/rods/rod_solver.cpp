@@ -132,7 +132,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
 
     double internal = 0.0, external = 0.0;
     model.energyParts(z, internal, external);
-    const double energyScale = std::abs(internal) + std::abs(external) + 1e-300;
+    const double energyScale = std::abs(internal) + std::abs(external) + model.energyUnit();
     if (result.decrement <= options.tolerance * energyScale) {
       result.status = SolverStatus::Converged;
       result.converged = true;

@@ -1,0 +1,191 @@
+// The assembled grid energy: exact gradient/Hessian of the whole model (bolts, sliding, notches,
+// anchors, gravity) against finite differences; sliding bolts settle where the sliding force
+// vanishes; notch limits hold bolts in their slots; anchors place rods on their supports.
+#include "core/rods/rod_model.hpp"
+#include "core/rods/rod_solver.hpp"
+
+#include "core/errors.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/SparseCore>
+#include <cmath>
+#include <random>
+
+namespace egg::rods {
+namespace {
+
+Rod straight(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int layer) {
+  Rod rod;
+  rod.length_m = (to - from).norm();
+  rod.section = {0.02, 0.002};
+  rod.material = {10.0e9, 3.8e9, 600.0};
+  rod.layer = layer;
+  rod.guess = {from, to};
+  rod.guessNormals = {Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ()};
+  return rod;
+}
+
+// Rod 0 along x from the origin (layer 0), rod 1 along y through x = crossing (layer 1), one bolt
+// at the crossing drilled at sA along rod 0.
+RodNetwork crossing(double sA, double crossingX, Notch notchA) {
+  RodNetwork network;
+  network.rods.push_back(straight({0, 0, 0}, {1, 0, 0}, 0));
+  network.rods.push_back(straight({crossingX, -0.5, 0}, {crossingX, 0.5, 0}, 1));
+  Connection c;
+  c.rodA = 0;
+  c.sA_m = sA;
+  c.rodB = 1;
+  c.sB_m = 0.5;
+  c.notchA = notchA;
+  network.connections.push_back(c);
+  return network;
+}
+
+ModelOptions edges(int n) {
+  ModelOptions options;
+  options.minEdgesPerRod = n;
+  options.maxEdgesPerRod = n;
+  return options;
+}
+
+TEST(RodModel, WholeModelDerivativesMatchFiniteDifferences) {
+  RodNetwork network = crossing(0.45, 0.5, Notch{0.2, 0.3});
+  network.connections[0].notchB = Notch{0.1, 0.1};
+  network.connections[0].sB_m = 0.57;  // mid-edge: the random perturbation keeps beta inside (-eps, 1 + eps)
+  Anchor anchor;
+  anchor.rod = 0;
+  anchor.s_m = 0.1;
+  anchor.position = {0.1, 0.01, 0.02};
+  anchor.normal = Eigen::Vector3d(0.1, 0, 1).normalized();
+  network.anchors.push_back(anchor);
+  ModelOptions options = edges(6);
+  options.gravity = true;
+  RodModel model(network, options);
+  ASSERT_EQ(model.slidingSideCount(), 2);
+  model.addEndMoment(1, Eigen::Vector3d::UnitX(), 0.3);
+  model.addPointLoad(0, 6, Eigen::Vector3d(0.1, 0.2, -0.3));
+
+  // A perturbed state (reference frames stay those of the unperturbed one, as within a step).
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> noise(-0.01, 0.01);
+  Eigen::VectorXd z = model.state();
+  for (int i = 0; i < z.size(); ++i) z[i] += noise(rng);
+  const int n = model.dofCount();
+  Eigen::VectorXd gradient;
+  std::vector<Eigen::Triplet<double>> triplets;
+  const double energy = model.derivatives(z, gradient, triplets, 2);
+  EXPECT_NEAR(energy, model.energy(z), 1e-10 * std::abs(energy));
+  Eigen::SparseMatrix<double> lower(n, n);
+  lower.setFromTriplets(triplets.begin(), triplets.end());
+  const Eigen::MatrixXd hessian = Eigen::MatrixXd(lower).selfadjointView<Eigen::Lower>();
+
+  const double gradientScale = gradient.cwiseAbs().maxCoeff();
+  const double hessianScale = hessian.cwiseAbs().maxCoeff();
+  for (int i = 0; i < n; ++i) {
+    const double step = 1e-6;
+    Eigen::VectorXd plus = z, minus = z;
+    plus[i] += step;
+    minus[i] -= step;
+    const double fd = (model.energy(plus) - model.energy(minus)) / (2.0 * step);
+    EXPECT_NEAR(gradient[i], fd, 1e-5 * gradientScale) << "dof " << i;
+    Eigen::VectorXd gp, gm;
+    model.derivatives(plus, gp, triplets);
+    model.derivatives(minus, gm, triplets);
+    const Eigen::VectorXd column = (gp - gm) / (2.0 * step);
+    for (int j = 0; j < n; ++j) {
+      // Round-off in the differenced gradient (entries up to EA/h) limits the attainable accuracy.
+      EXPECT_NEAR(hessian(j, i), column[j], 1e-8 * hessianScale + 1e-5 * std::abs(hessian(j, i))) << j << "," << i;
+    }
+  }
+}
+
+// Rod 1 held fixed; rod 0 pinned at the origin. The bolt was drilled at s = 0.5 on rod 0 but rod 1
+// crosses at x = 0.3: with a notch reaching 0.3 the bolt slides there, where rod 0 is straight and
+// the sliding force is zero.
+struct SlidingCase {
+  RodModel model;
+  explicit SlidingCase(Notch notch, bool notches = true, double mu = 0.1)
+      : model(crossing(0.5, 0.3, notch), [&] {
+          ModelOptions o = edges(20);
+          o.notches = notches;
+          o.frictionMu = mu;
+          return o;
+        }()) {
+    for (int i = 0; i < model.vertexCount(1); ++i) model.fixVertex(1, i);
+    for (int j = 0; j + 1 < model.vertexCount(1); ++j) model.fixTwist(1, j);
+    model.fixVertex(0, 0);
+  }
+};
+
+TEST(RodModel, SlidingBoltSettlesWhereTheSlidingForceVanishes) {
+  for (double mu : {0.1, 0.01}) {
+    SlidingCase c(Notch{0.3, 0.1}, true, mu);
+    const SolverResult result = minimiseEnergy(c.model, SolverOptions{});
+    ASSERT_TRUE(result.converged) << result.reason;
+    EXPECT_GE(result.boltEdgeSwitches, 3);  // from s = 0.5 to 0.3 over edges of 0.05
+    EXPECT_NEAR(c.model.boltPosition(0, 0), 0.3, 1e-3) << "mu " << mu;
+    // Rod 0 ends up straight along x (its far end at x = 1), one thickness below rod 1.
+    EXPECT_NEAR(c.model.vertex(0, 20).x(), 1.0, 1e-3);
+    EXPECT_NEAR(c.model.vertex(0, 10).z(), -0.001, 5e-4);  // friction leaves a little compression
+  }
+}
+
+TEST(RodModel, NotchLimitHoldsTheBoltInItsSlot) {
+  SlidingCase c(Notch{0.1, 0.1});  // slot [0.4, 0.6]: cannot reach 0.3
+  const SolverResult result = minimiseEnergy(c.model, SolverOptions{});
+  ASSERT_TRUE(result.converged) << result.reason;
+  const double s = c.model.boltPosition(0, 0);
+  EXPECT_GT(s, 0.4);
+  EXPECT_LT(s, 0.41);
+}
+
+TEST(RodModel, PlainHoleKeepsTheBoltWhereItWasDrilled) {
+  SlidingCase c(Notch{0.3, 0.1}, /*notches=*/false);
+  EXPECT_EQ(c.model.slidingSideCount(), 0);
+  const SolverResult result = minimiseEnergy(c.model, SolverOptions{});
+  ASSERT_TRUE(result.converged) << result.reason;
+  EXPECT_DOUBLE_EQ(c.model.boltPosition(0, 0), 0.5);
+  // The bolt point of rod 0 (s = 0.5) sits under the crossing at x = 0.3: rod 0 buckled.
+  const Eigen::Vector3d bolt = c.model.vertex(0, 10);
+  EXPECT_NEAR(bolt.x(), 0.3, 1e-3);
+  EXPECT_NEAR(bolt.y(), 0.0, 1e-3);
+}
+
+TEST(RodModel, AnchorsPlaceTheRodHalfAThicknessOffTheSurface) {
+  RodNetwork network;
+  network.rods.push_back(straight({0, 0, 0}, {1, 0.2, 0}, 1));  // guess off the anchors
+  network.rods[0].length_m = 1.0;
+  for (double s : {0.0, 1.0}) {
+    Anchor a;
+    a.rod = 0;
+    a.s_m = s;
+    a.position = {s, 0, 0};
+    a.normal = Eigen::Vector3d::UnitZ();
+    network.anchors.push_back(a);
+  }
+  RodModel model(network, edges(10));
+  const SolverResult result = minimiseEnergy(model, SolverOptions{});
+  ASSERT_TRUE(result.converged) << result.reason;
+  for (int i = 0; i <= 10; ++i) {
+    const Eigen::Vector3d p = model.vertex(0, i);
+    EXPECT_NEAR(p.x(), i / 10.0, 1e-6);
+    EXPECT_NEAR(p.y(), 0.0, 1e-6);
+    EXPECT_NEAR(p.z(), 0.001, 1e-6);  // layer 1: t/2 above the surface
+  }
+  EXPECT_NEAR(model.edgeNormal(0, 4).z(), 1.0, 1e-9);
+}
+
+TEST(RodModel, InvalidInputNamesTheField) {
+  RodNetwork network = crossing(0.5, 0.3, Notch{0.6, 0.0});  // notch runs past the rod start
+  EXPECT_THROW(RodModel(network, ModelOptions{}), InvalidInput);
+  network = crossing(0.5, 0.3, Notch{});
+  network.rods[1].layer = 0;
+  EXPECT_THROW(RodModel(network, ModelOptions{}), InvalidInput);
+  ModelOptions bad;
+  bad.frictionEpsilon = 0.0;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+}
+
+}  // namespace
+}  // namespace egg::rods

@@ -135,27 +135,6 @@ Eigen::VectorXd angleDefects(const TriMesh& mesh) {
   return defect;
 }
 
-Eigen::VectorXd mixedVoronoiAreas(const TriMesh& mesh) {
-  Eigen::VectorXd area = Eigen::VectorXd::Zero(mesh.n_vertices());
-  for (auto fh : mesh.faces()) {
-    const Corner c = corner(mesh, fh.idx());
-    int obtuse = -1;
-    for (int k = 0; k < 3; ++k)
-      if (c.angle[k] > 0.5 * std::numbers::pi) obtuse = k;
-    if (obtuse >= 0) {
-      // The circumcentre lies outside: Voronoi regions would overlap neighbours (Meyer Fig. 4).
-      for (int k = 0; k < 3; ++k) area(c.v[k]) += (k == obtuse ? 0.5 : 0.25) * c.area;
-      continue;
-    }
-    for (int k = 0; k < 3; ++k) {
-      const int q = (k + 1) % 3, r = (k + 2) % 3;
-      const double cotQ = 1.0 / std::tan(c.angle[q]), cotR = 1.0 / std::tan(c.angle[r]);
-      area(c.v[k]) += ((c.p[r] - c.p[k]).squaredNorm() * cotQ + (c.p[q] - c.p[k]).squaredNorm() * cotR) / 8.0;
-    }
-  }
-  return area;
-}
-
 std::vector<Eigen::Vector3d> vertexNormals(const TriMesh& mesh) {
   std::vector<Eigen::Vector3d> normals(mesh.n_vertices(), Eigen::Vector3d::Zero());
   for (auto fh : mesh.faces()) {

@@ -12,6 +12,7 @@
 //
 // Sign convention: principal and mean curvature are positive where the surface bends away from the
 // vertex normal (normals follow the face orientation; a sphere with outward normals has kappa = 1/R).
+#include "core/mesh/laplacian.hpp"  // mixedVoronoiAreas
 #include "core/mesh/mesh.hpp"
 
 #include <Eigen/Dense>
@@ -57,10 +58,6 @@ CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& opt
 // 2 pi minus the sum of the angles at an interior vertex, pi minus the sum at a boundary vertex
 // (the latter is the boundary's geodesic turning; Gauss-Bonnet: sum of all = 2 pi chi).
 Eigen::VectorXd angleDefects(const TriMesh& mesh);
-
-// Mixed Voronoi areas (Meyer et al. 2003, Fig. 4): Voronoi region inside non-obtuse triangles,
-// half / quarter of the triangle at / next to an obtuse angle. They tile the surface exactly.
-Eigen::VectorXd mixedVoronoiAreas(const TriMesh& mesh);
 
 // Angle-weighted unit vertex normals (oriented like the faces).
 std::vector<Eigen::Vector3d> vertexNormals(const TriMesh& mesh);

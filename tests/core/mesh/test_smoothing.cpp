@@ -1,0 +1,150 @@
+#include "core/mesh/smoothing.hpp"
+
+#include "core/errors.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+namespace egg {
+namespace {
+
+// (2n+1) x (n+1) grid on [0, 2] x [0, 1]; interior vertices jittered in the plane by `jitter`
+// cells and lifted by uniform noise of amplitude `noise`.
+TriMesh noisyPlane(int n, double jitter, double noise, unsigned seed = 11) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  TriangleSoup soup;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= 2 * n; ++i) {
+      const bool inside = i > 0 && i < 2 * n && j > 0 && j < n;
+      soup.vertices.push_back({(i + (inside ? jitter * u(rng) : 0.0)) / n, (j + (inside ? jitter * u(rng) : 0.0)) / n,
+                               inside ? noise * u(rng) : 0.0});
+    }
+  auto id = [n](int i, int j) { return j * (2 * n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < 2 * n; ++i) {
+      soup.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      soup.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return meshFromSoup(soup);
+}
+
+TriMesh icosphere(double radius, int levels) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  TriangleSoup soup;
+  soup.vertices = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  soup.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                    {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (auto& v : soup.vertices) v.normalize();
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<int, int>, int> midpoint;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      auto it = midpoint.find(key);
+      if (it != midpoint.end()) return it->second;
+      soup.vertices.push_back((soup.vertices[a] + soup.vertices[b]).normalized());
+      return midpoint[key] = static_cast<int>(soup.vertices.size()) - 1;
+    };
+    std::vector<std::array<int, 3>> finer;
+    for (const auto& tri : soup.triangles) {
+      const int ab = mid(tri[0], tri[1]), bc = mid(tri[1], tri[2]), ca = mid(tri[2], tri[0]);
+      finer.push_back({tri[0], ab, ca});
+      finer.push_back({tri[1], bc, ab});
+      finer.push_back({tri[2], ca, bc});
+      finer.push_back({ab, bc, ca});
+    }
+    soup.triangles = std::move(finer);
+  }
+  for (auto& v : soup.vertices) v *= radius;
+  return meshFromSoup(soup);
+}
+
+double rmsHeight(const TriMesh& mesh) {
+  double sum = 0.0;
+  for (auto vh : mesh.vertices()) sum += mesh.point(vh)[2] * mesh.point(vh)[2];
+  return std::sqrt(sum / mesh.n_vertices());
+}
+
+TEST(Smoothing, FlatIrregularMeshIsAFixedPointOfCotanButNotUniformFlow) {
+  // Cotangent weights reproduce linear functions, so a planar mesh does not move at all, however
+  // irregular; the umbrella operator slides its vertices within the plane.
+  const TriMesh mesh = noisyPlane(8, 0.3, 0.0);
+  SmoothingOptions options;
+  options.strength = 5.0;
+  const SmoothingResult cotan = smoothMeshStep(mesh, options);
+  EXPECT_LT(cotan.max_displacement_m, 1e-12);
+  options.weights = LaplacianWeights::Uniform;
+  const SmoothingResult uniform = smoothMeshStep(mesh, options);
+  EXPECT_GT(uniform.max_displacement_m, 0.01 / 8.0);
+  for (auto vh : uniform.mesh.vertices()) EXPECT_NEAR(uniform.mesh.point(vh)[2], 0.0, 1e-14);
+}
+
+TEST(Smoothing, NoisyPlaneReturnsTowardsThePlaneWithTheBoundaryFixed) {
+  const TriMesh mesh = noisyPlane(10, 0.2, 0.02);
+  const double before = rmsHeight(mesh);
+  TriMesh current = mesh;
+  std::vector<double> rms;
+  double lastMax = std::numeric_limits<double>::infinity();
+  for (int step = 0; step < 4; ++step) {
+    const SmoothingResult result = smoothMeshStep(current, {});
+    EXPECT_LT(result.max_displacement_m, lastMax);  // the flow slows down as the noise goes
+    EXPECT_GT(result.mean_displacement_m, 0.0);
+    EXPECT_LE(result.mean_displacement_m, result.max_displacement_m);
+    lastMax = result.max_displacement_m;
+    current = result.mesh;
+    rms.push_back(rmsHeight(current));
+  }
+  EXPECT_LT(rms[0], 0.5 * before);
+  EXPECT_LT(rms[3], 0.1 * before);
+  for (auto vh : mesh.vertices())
+    if (mesh.is_boundary(vh)) EXPECT_EQ(current.point(vh), mesh.point(vh));  // bit for bit
+}
+
+TEST(Smoothing, SphereShrinksLikeBackwardEulerMeanCurvatureFlow) {
+  // For a sphere L X = M (2 / R) n with L and M of the current mesh, and L is linear in the
+  // positions, so (M + t L) X' = M X has the solution X' = X / (1 + 2 t / R^2): a sphere of radius
+  // R' = R / (1 + 2 t / R^2) (the linearised backward-Euler step of dR/dt = -2 / R).
+  const double radius = 2.0;
+  const TriMesh mesh = icosphere(radius, 3);
+  SmoothingOptions options;
+  options.strength = 0.05 * radius * radius / std::pow(meanEdgeLength(mesh), 2);  // t = 0.05 R^2
+  const SmoothingResult result = smoothMeshStep(mesh, options);
+  EXPECT_NEAR(result.time_step_m2, 0.05 * radius * radius, 1e-12);
+  const double expected = radius / (1.0 + 2.0 * result.time_step_m2 / (radius * radius));
+  double worst = 0.0;
+  for (auto vh : result.mesh.vertices())
+    worst = std::max(worst, std::abs(toEigen(result.mesh.point(vh)).norm() / expected - 1.0));
+  std::cout << "sphere R' expected " << expected << ", worst relative deviation " << worst << "\n";
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_EQ(result.fixed_vertices, 0);  // closed: nothing on a boundary
+}
+
+TEST(Smoothing, ExtraFixedVerticesStay) {
+  const TriMesh mesh = noisyPlane(6, 0.2, 0.05);
+  SmoothingOptions options;
+  options.fixed_vertices = {20, 30};
+  const SmoothingResult result = smoothMeshStep(mesh, options);
+  EXPECT_EQ(result.mesh.point(TriMesh::VertexHandle(20)), mesh.point(TriMesh::VertexHandle(20)));
+  EXPECT_EQ(result.mesh.point(TriMesh::VertexHandle(30)), mesh.point(TriMesh::VertexHandle(30)));
+  EXPECT_NE(result.mesh.point(TriMesh::VertexHandle(21)), mesh.point(TriMesh::VertexHandle(21)));
+  EXPECT_EQ(result.fixed_vertices, 2 * 13 + 2 * 5 + 2);
+}
+
+TEST(Smoothing, BadInputIsRejected) {
+  const TriMesh mesh = noisyPlane(3, 0.0, 0.0);
+  SmoothingOptions options;
+  options.strength = 0.0;
+  EXPECT_THROW(smoothMeshStep(mesh, options), InvalidInput);
+  options.strength = 1.0;
+  options.fixed_vertices = {1000};
+  EXPECT_THROW(smoothMeshStep(mesh, options), InvalidInput);
+  EXPECT_THROW(smoothMeshStep(TriMesh{}, {}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace egg

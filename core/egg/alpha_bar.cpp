@@ -18,6 +18,7 @@ void AlphaBarOptions::validate() const {
   if (!(slopeMax > slopeMin)) throw InvalidInput("grid.slope_bounds[1] (k_max) must exceed k_min");
   if (choice == AlphaBarChoice::Given && !(givenAlphaBar > 0.0 && givenAlphaBar < M_PI))
     throw InvalidInput("grid.alpha_bar must lie in (0, pi) radians");
+  if (!(minPlanarAngle >= 0.0 && minPlanarAngle < M_PI / 4)) throw InvalidInput("grid.min_planar_angle must lie in [0, pi/4)");
   if (scanSamples < 3) throw InvalidInput("alpha_bar scan_samples must be >= 3");
   if (maxEvaluations < 1) throw InvalidInput("alpha_bar max_evaluations must be >= 1");
   if (!(tolerance > 0.0)) throw InvalidInput("alpha_bar tolerance must be > 0");
@@ -57,7 +58,7 @@ struct Evaluator {
     ++count;
     AlphaBarEvaluation e;
     e.alphaBar = alphaBar;
-    const auto quad = planarQuad(maps.sides, alphaBar);
+    const auto quad = planarQuad(maps.sides, alphaBar, options.minPlanarAngle);
     if (!quad) {
       e.diagonalProduct = e.violationU = e.violationV = 1.0;
       return e;
@@ -171,9 +172,10 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
   AlphaBarResult result;
   Evaluator evaluate{maps, options, meanSide(maps)};
 
-  const auto range = convexAlphaRange(maps.sides);
+  const auto range = convexAlphaRange(maps.sides, 1e-9, options.minPlanarAngle);
   if (!range)
-    throw InfeasiblePatch("no convex planar quad has the side lengths of this patch (criterion iv)");
+    throw InfeasiblePatch("no convex planar quad with inner angles above " + std::to_string(options.minPlanarAngle) +
+                          " rad has the side lengths of this patch (criterion iv)");
   result.convexRange = *range;
 
   // Coarse scan of the convex range: seeds for SLSQP and bracketing infeasible neighbours.
@@ -248,7 +250,7 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
   if (!chosen.bijective)
     throw InfeasiblePatch("alpha_bar = " + std::to_string(result.alphaBar) +
                           " rad gives a cladding function that is not bijective (criterion iii)");
-  result.quad = *planarQuad(maps.sides, result.alphaBar);
+  result.quad = *planarQuad(maps.sides, result.alphaBar, options.minPlanarAngle);
   result.degenerate = result.claddingU.degenerate && result.claddingV.degenerate;
   result.slopeMin = std::numeric_limits<double>::infinity();
   result.slopeMax = -std::numeric_limits<double>::infinity();

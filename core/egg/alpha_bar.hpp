@@ -24,6 +24,10 @@ struct AlphaBarOptions {
   double slopeMax = 10.0;             // k_max, upper slope bound
   AlphaBarChoice choice = AlphaBarChoice::Min;  // which alpha_bar the grid is built at
   double givenAlphaBar = 0.0;         // radians, used when choice == Given
+  // Smallest inner angle of the planar quad (radians). Convexity alone (criterion iv) would let
+  // the quad fold flat, where the lamellas of the planar grid lie on top of each other; this
+  // keeps the flat grid buildable. 0 = convexity only.
+  double minPlanarAngle = 0.15;
   int scanSamples = 48;               // samples of the convex range that seed SLSQP
   int maxEvaluations = 200;           // SLSQP evaluation budget per bound
   double tolerance = 1e-8;            // radians, accuracy of alpha_bar_min / alpha_bar_max

@@ -21,7 +21,7 @@ std::array<double, 4> innerAngles(const std::array<Eigen::Vector2d, 4>& c) {
   return angles;
 }
 
-std::optional<PlanarQuad> planarQuad(const QuadSides& sides, double alphaBar) {
+std::optional<PlanarQuad> planarQuad(const QuadSides& sides, double alphaBar, double minAngle) {
   if (!(alphaBar > 0.0 && alphaBar < M_PI)) return std::nullopt;
   PlanarQuad quad;
   quad.alphaBar = alphaBar;
@@ -41,18 +41,18 @@ std::optional<PlanarQuad> planarQuad(const QuadSides& sides, double alphaBar) {
   if (cross2(along, quad.corners[0] - c1) > 0.0) normal = -normal;
   quad.corners[2] = c1 + x * along + h * normal;
   for (double angle : innerAngles(quad.corners))
-    if (!(angle > 0.0 && angle < M_PI)) return std::nullopt;
+    if (!(angle > minAngle && angle < M_PI - minAngle)) return std::nullopt;
   return quad;
 }
 
-std::optional<AngleInterval> convexAlphaRange(const QuadSides& sides, double margin) {
+std::optional<AngleInterval> convexAlphaRange(const QuadSides& sides, double margin, double minAngle) {
   // The closable convex configurations of a four-bar linkage form one interval of the input
   // angle; scan for it and sharpen both ends by bisection.
   constexpr int kSamples = 2048;
   int bestStart = -1, bestLength = 0, runStart = -1;
   std::vector<bool> valid(kSamples + 1);
   for (int i = 0; i <= kSamples; ++i) {
-    valid[i] = planarQuad(sides, M_PI * i / kSamples).has_value();
+    valid[i] = planarQuad(sides, M_PI * i / kSamples, minAngle).has_value();
     if (valid[i] && runStart < 0) runStart = i;
     if ((!valid[i] || i == kSamples) && runStart >= 0) {
       const int end = valid[i] ? i + 1 : i;
@@ -64,7 +64,7 @@ std::optional<AngleInterval> convexAlphaRange(const QuadSides& sides, double mar
   auto sharpen = [&](double inside, double outside) {
     for (int it = 0; it < 60; ++it) {
       const double mid = 0.5 * (inside + outside);
-      (planarQuad(sides, mid) ? inside : outside) = mid;
+      (planarQuad(sides, mid, minAngle) ? inside : outside) = mid;
     }
     return inside;
   };

@@ -36,6 +36,15 @@ TEST(PlanarQuad, RhombusCollapsesAtBothEnds) {
   EXPECT_NEAR(range->hi, M_PI, 1e-5);
 }
 
+TEST(PlanarQuad, MinimumAngleNarrowsTheRange) {
+  // A parallelogram's inner angles are alpha_bar and pi - alpha_bar.
+  const auto range = convexAlphaRange({1.5, 1.0, 1.5, 1.0}, 0.0, 0.2);
+  ASSERT_TRUE(range);
+  EXPECT_NEAR(range->lo, 0.2, 1e-9);
+  EXPECT_NEAR(range->hi, M_PI - 0.2, 1e-9);
+  EXPECT_FALSE(planarQuad({1.5, 1.0, 1.5, 1.0}, 0.19, 0.2));
+}
+
 TEST(PlanarQuad, ConvexRangeEndsWhereAnAngleReachesPi) {
   const QuadSides sides{2.0, 1.2, 1.6, 1.0};
   const auto range = convexAlphaRange(sides, 1e-9);

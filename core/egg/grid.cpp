@@ -1,0 +1,263 @@
+#include "core/egg/grid.hpp"
+
+#include "core/egg/patch_maps.hpp"
+#include "core/errors.hpp"
+#include "core/geodesic/geodesic_intersection.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+namespace egg {
+
+void GridOptions::validate() const {
+  if (!(lengthTolerance > 0.0)) throw InvalidInput("grid.length_tolerance must be > 0");
+  if (bracketSamples < 3) throw InvalidInput("grid.bracket_samples must be >= 3");
+  if (maxSecantSteps < 1) throw InvalidInput("grid.max_secant_steps must be >= 1");
+  if (!(anchorCurvatureFraction >= 0.0 && anchorCurvatureFraction <= 1.0))
+    throw InvalidInput("grid.anchor_curvature_fraction must lie in [0, 1]");
+}
+
+bool intersectSegments(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1, const Eigen::Vector2d& b0,
+                       const Eigen::Vector2d& b1, double& t, double& s, double slack) {
+  const Eigen::Vector2d r = a1 - a0, q = b1 - b0, w = b0 - a0;
+  const double denom = r.x() * q.y() - r.y() * q.x();
+  if (std::abs(denom) <= 1e-300) return false;
+  t = (w.x() * q.y() - w.y() * q.x()) / denom;
+  s = (w.x() * r.y() - w.y() * r.x()) / denom;
+  return t >= -slack && t <= 1 + slack && s >= -slack && s <= 1 + slack;
+}
+
+namespace {
+
+double polylineLength(const std::vector<Eigen::Vector3d>& line) {
+  double length = 0.0;
+  for (size_t k = 1; k < line.size(); ++k) length += (line[k] - line[k - 1]).norm();
+  return length;
+}
+
+std::vector<Eigen::Vector3d> sidePolyline(const Patch& patch, int side, bool reversed) {
+  std::vector<Eigen::Vector3d> line;
+  for (int v : patch.sides[side]) line.push_back(toEigen(patch.mesh.point(TriMesh::VertexHandle(v))));
+  if (reversed) std::reverse(line.begin(), line.end());
+  return line;
+}
+
+// Criterion (i) for one inner member: move x2 until the geodesic from start(x1) to end(x2) is as
+// long as the planar segment. The cladding function's x2 is exact only up to the interpolation of
+// the distance maps; here the exact geodesic distance is matched.
+void matchMember(const Patch& patch, const geodesic::DistanceSolver& solver, const PlanarQuad& quad, GridMember& m,
+                 const GridOptions& options, std::atomic<int>& propagations) {
+  const SurfacePoint start = familyBoundaryPoint(patch, m.family, false, m.x1);
+  const auto endPoint = [&](double x2) { return familyBoundaryPoint(patch, m.family, true, x2); };
+  const auto mismatch = [&](double x2, double distance) { return distance - planarDistance(quad, m.family, m.x1, x2); };
+  const double guess = m.x2;
+  const int count = options.bracketSamples;
+  const double halfWidth = 0.05;
+  std::vector<double> xs{guess};
+  std::vector<SurfacePoint> targets{endPoint(guess)};
+  for (int k = 0; k < count; ++k) {
+    const double x = std::clamp(guess - halfWidth + 2 * halfWidth * k / (count - 1), 0.0, 1.0);
+    xs.push_back(x);
+    targets.push_back(endPoint(x));
+  }
+  const auto field = solver.distances(start, targets);
+  ++propagations;
+  const double scale = planarDistance(quad, m.family, m.x1, guess);
+  const double tolerance = options.lengthTolerance * scale;
+  double bestX = guess, bestG = mismatch(guess, field.targetDistances[0]);
+  if (std::abs(bestG) > tolerance) {
+    // Bracket nearest the guess.
+    int bracket = -1;
+    for (int k = 1; k < count; ++k) {
+      const double ga = mismatch(xs[k], field.targetDistances[k]), gb = mismatch(xs[k + 1], field.targetDistances[k + 1]);
+      if ((ga <= 0) != (gb <= 0) && (bracket < 0 || std::abs(xs[k] - guess) < std::abs(xs[bracket] - guess))) bracket = k;
+      if (std::abs(ga) < std::abs(bestG)) bestG = ga, bestX = xs[k];
+    }
+    if (bracket >= 0) {
+      double a = xs[bracket], b = xs[bracket + 1];
+      double ga = mismatch(a, field.targetDistances[bracket]), gb = mismatch(b, field.targetDistances[bracket + 1]);
+      int side = 0;
+      for (int step = 0; step < options.maxSecantSteps; ++step) {  // Illinois regula falsi
+        const double x = b - gb * (b - a) / (gb - ga);
+        const double g = mismatch(x, solver.distance(start, endPoint(x)));
+        ++propagations;
+        if (std::abs(g) < std::abs(bestG)) bestG = g, bestX = x;
+        if (std::abs(g) <= tolerance) break;
+        if ((g <= 0) == (gb <= 0)) {
+          b = x, gb = g;
+          if (side == -1) ga *= 0.5;
+          side = -1;
+        } else {
+          a = x, ga = g;
+          if (side == 1) gb *= 0.5;
+          side = 1;
+        }
+      }
+    }
+  }
+  m.x2 = bestX;
+  const auto path = solver.path(start, endPoint(m.x2));
+  ++propagations;
+  if (!std::isfinite(path.length) || path.positions.size() < 2)
+    throw SolverFailure("grid: member " + std::to_string(m.index) + " could not be traced inside the patch");
+  m.spatial = path.positions;
+}
+
+// Curvature maxima along a side (resampled, three-point circles), as arc lengths from its start.
+std::vector<double> boundaryCurvatureMaxima(const std::vector<Eigen::Vector3d>& line, double fraction) {
+  const double total = polylineLength(line);
+  constexpr int samples = 65;
+  std::vector<Eigen::Vector3d> points;
+  size_t seg = 1;
+  double before = 0.0;
+  for (int k = 0; k < samples; ++k) {
+    const double s = total * k / (samples - 1);
+    while (seg + 1 < line.size() && before + (line[seg] - line[seg - 1]).norm() < s) before += (line[seg] - line[seg - 1]).norm(), ++seg;
+    const double length = (line[seg] - line[seg - 1]).norm();
+    const double t = length > 0 ? std::clamp((s - before) / length, 0.0, 1.0) : 0.0;
+    points.push_back(line[seg - 1] + t * (line[seg] - line[seg - 1]));
+  }
+  std::vector<double> curvature(samples, 0.0);
+  for (int k = 1; k + 1 < samples; ++k) {
+    const Eigen::Vector3d a = points[k - 1], b = points[k], c = points[k + 1];
+    const double area2 = (b - a).cross(c - a).norm();
+    const double denom = (b - a).norm() * (c - b).norm() * (c - a).norm();
+    curvature[k] = denom > 0 ? 2.0 * area2 / denom : 0.0;
+  }
+  std::vector<double> smooth(curvature);
+  for (int k = 2; k + 2 < samples; ++k)
+    smooth[k] = (curvature[k - 2] + 2 * curvature[k - 1] + 3 * curvature[k] + 2 * curvature[k + 1] + curvature[k + 2]) / 9.0;
+  const double largest = *std::max_element(smooth.begin() + 3, smooth.end() - 3);
+  std::vector<double> maxima;
+  if (largest <= 1e-12) return maxima;  // a straight side: nothing to anchor
+  for (int k = 6; k + 6 < samples; ++k)
+    if (smooth[k] > smooth[k - 1] && smooth[k] >= smooth[k + 1] && smooth[k] >= fraction * largest)
+      maxima.push_back(total * k / (samples - 1));
+  return maxima;
+}
+
+}  // namespace
+
+EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, const PlanarQuad& quad,
+                  const FamilyMembers& u, const FamilyMembers& v, const GridOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  options.validate();
+  if (u.x1.size() < 2 || v.x1.size() < 2) throw InvalidInput("grid: each family needs at least its two boundary members");
+  EggGrid grid;
+  grid.quad = quad;
+  std::atomic<int> propagations{0};
+  for (const FamilyMembers* family : {&u, &v}) {
+    auto& members = family->family == Family::U ? grid.u : grid.v;
+    const int count = static_cast<int>(family->x1.size());
+    members.resize(count);
+    for (int i = 0; i < count; ++i) {
+      GridMember& m = members[i];
+      m.family = family->family;
+      m.index = i;
+      m.boundary = i == 0 || i == count - 1;
+      m.x1 = m.boundary ? (i == 0 ? 0.0 : 1.0) : family->x1[i];
+      m.x2 = m.boundary ? m.x1 : family->x2[i];
+    }
+    // Boundary members are the sides themselves (u: c0c1 and c3c2; v: c0c3 and c1c2).
+    const bool isU = family->family == Family::U;
+    members.front().spatial = isU ? sidePolyline(patch, 0, false) : sidePolyline(patch, 3, true);
+    members.back().spatial = isU ? sidePolyline(patch, 2, true) : sidePolyline(patch, 1, false);
+    tbb::parallel_for(1, count - 1, [&](int i) { matchMember(patch, solver, quad, members[i], options, propagations); });
+    for (auto& m : members) {
+      const auto ends = planarMember(quad, m.family, m.x1, m.x2);
+      m.planarStart = ends[0];
+      m.planarEnd = ends[1];
+      m.planarLength = (ends[1] - ends[0]).norm();
+      m.spatialLength = polylineLength(m.spatial);
+      grid.maxLengthMismatch = std::max(grid.maxLengthMismatch, std::abs(m.spatialLength - m.planarLength) / m.planarLength);
+    }
+  }
+  grid.propagations = propagations;
+
+  // Connections: every u member meets every v member once.
+  const int nu = static_cast<int>(grid.u.size()), nv = static_cast<int>(grid.v.size());
+  grid.connections.resize(static_cast<size_t>(nu) * nv);
+  tbb::parallel_for(0, nu, [&](int i) {
+    const GridMember& mu = grid.u[i];
+    for (int j = 0; j < nv; ++j) {
+      const GridMember& mv = grid.v[j];
+      GridConnection& c = grid.connections[static_cast<size_t>(i) * nv + j];
+      c.memberU = i, c.memberV = j;
+      c.onBoundary = mu.boundary || mv.boundary;
+      double t = 0, s = 0;
+      if (!intersectSegments(mu.planarStart, mu.planarEnd, mv.planarStart, mv.planarEnd, t, s, 1e-6))
+        throw SolverFailure("grid: planar members u" + std::to_string(i) + " and v" + std::to_string(j) + " do not cross");
+      t = std::clamp(t, 0.0, 1.0), s = std::clamp(s, 0.0, 1.0);
+      c.planar = mu.planarStart + t * (mu.planarEnd - mu.planarStart);
+      c.sBarU = t * mu.planarLength;
+      c.sBarV = s * mv.planarLength;
+      if (c.onBoundary) {
+        // Boundary correspondence (criterion ii): the connection sits at the inner member's end,
+        // at the same boundary parameter on the surface and in the plane.
+        if (mu.boundary && mv.boundary) {
+          c.sU = i == 0 ? (j == 0 ? 0.0 : mu.spatialLength) : (j == 0 ? 0.0 : mu.spatialLength);
+          c.sV = j == 0 ? (i == 0 ? 0.0 : mv.spatialLength) : (i == 0 ? 0.0 : mv.spatialLength);
+          c.spatial = i == 0 ? (j == 0 ? mu.spatial.front() : mu.spatial.back()) : (j == 0 ? mu.spatial.front() : mu.spatial.back());
+        } else if (mu.boundary) {  // v member ends on side c0c1 (i = 0) or c3c2
+          c.sV = i == 0 ? 0.0 : mv.spatialLength;
+          c.sU = (i == 0 ? mv.x1 : mv.x2) * mu.spatialLength;
+          c.spatial = i == 0 ? mv.spatial.front() : mv.spatial.back();
+        } else {  // u member ends on side c0c3 (j = 0) or c1c2
+          c.sU = j == 0 ? 0.0 : mu.spatialLength;
+          c.sV = (j == 0 ? mu.x1 : mu.x2) * mv.spatialLength;
+          c.spatial = j == 0 ? mu.spatial.front() : mu.spatial.back();
+        }
+        // Boundary members carry no notches; the inner member's end is exact by construction.
+        c.notchU = mu.boundary ? 0.0 : c.sU - c.sBarU;
+        c.notchV = mv.boundary ? 0.0 : c.sV - c.sBarV;
+        continue;
+      }
+      const auto crossing = geodesic::intersectPolylines(mu.spatial, mv.spatial, 1e-9 * mu.spatialLength);
+      if (!crossing.found)
+        throw SolverFailure("grid: geodesic members u" + std::to_string(i) + " and v" + std::to_string(j) + " do not cross");
+      c.spatial = crossing.position;
+      c.sU = crossing.arcLengthFirst;
+      c.sV = crossing.arcLengthSecond;
+      c.notchU = c.sU - c.sBarU;
+      c.notchV = c.sV - c.sBarV;
+    }
+  });
+  for (const auto& c : grid.connections) grid.maxNotch = std::max({grid.maxNotch, std::abs(c.notchU), std::abs(c.notchV)});
+
+  // Anchors (2.4.6): the corners, and the boundary connections nearest to curvature maxima of the
+  // boundary geodesics.
+  std::set<int> anchored;
+  const auto addAnchor = [&](int i, int j, const std::string& reason) {
+    const int index = i * nv + j;
+    if (anchored.insert(index).second) grid.anchors.push_back({index, reason});
+  };
+  addAnchor(0, 0, "corner");
+  addAnchor(0, nv - 1, "corner");
+  addAnchor(nu - 1, nv - 1, "corner");
+  addAnchor(nu - 1, 0, "corner");
+  for (int side = 0; side < 4; ++side) {
+    const auto line = sidePolyline(patch, side, false);
+    for (double s : boundaryCurvatureMaxima(line, options.anchorCurvatureFraction)) {
+      int bestI = -1, bestJ = -1;
+      double bestGap = 1e300;
+      const auto consider = [&](int i, int j, double along) {
+        if (std::abs(along - s) < bestGap) bestGap = std::abs(along - s), bestI = i, bestJ = j;
+      };
+      const double length = patch.sideLengths[side];
+      if (side == 0) for (int j = 1; j + 1 < nv; ++j) consider(0, j, grid.at(0, j).sU);
+      if (side == 1) for (int i = 1; i + 1 < nu; ++i) consider(i, nv - 1, grid.at(i, nv - 1).sV);
+      if (side == 2) for (int j = 1; j + 1 < nv; ++j) consider(nu - 1, j, length - grid.at(nu - 1, j).sU);
+      if (side == 3) for (int i = 1; i + 1 < nu; ++i) consider(i, 0, length - grid.at(i, 0).sV);
+      if (bestI >= 0) addAnchor(bestI, bestJ, "boundary curvature extremum");
+    }
+  }
+  grid.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return grid;
+}
+
+}  // namespace egg

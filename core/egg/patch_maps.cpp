@@ -1,0 +1,63 @@
+#include "core/egg/patch_maps.hpp"
+
+#include "core/errors.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace egg {
+
+void DistanceMapOptions::validate() const {
+  if (resolution < 3 || resolution > 2000) throw InvalidInput("grid.map_resolution must lie in [3, 2000]");
+}
+
+namespace {
+// Family sides as (patch side, reversed): u runs c0->c3 (side 3 backwards) to c1->c2 (side 1);
+// v runs c0->c1 (side 0) to c3->c2 (side 2 backwards).
+std::pair<int, bool> familySide(Family family, bool end) {
+  if (family == Family::U) return end ? std::pair{1, false} : std::pair{3, true};
+  return end ? std::pair{2, true} : std::pair{0, false};
+}
+}  // namespace
+
+double familySideLength(const Patch& patch, Family family, bool end) {
+  return patch.sideLengths[familySide(family, end).first];
+}
+
+SurfacePoint familyBoundaryPoint(const Patch& patch, Family family, bool end, double x) {
+  const auto [side, reversed] = familySide(family, end);
+  const double length = patch.sideLengths[side];
+  x = std::clamp(x, 0.0, 1.0);
+  return sidePoint(patch, side, (reversed ? 1.0 - x : x) * length);
+}
+
+PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::DistanceSolver& solver,
+                                      const DistanceMapOptions& options) {
+  options.validate();
+  const int n = options.resolution;
+  PatchDistanceMaps maps;
+  maps.sides = patch.sideLengths;
+  maps.alphaSpatial = patch.innerAngles[0];
+  for (Family family : {Family::U, Family::V}) {
+    std::vector<SurfacePoint> sources, targets;
+    for (int i = 0; i < n; ++i) {
+      const double x = static_cast<double>(i) / (n - 1);
+      sources.push_back(familyBoundaryPoint(patch, family, false, x));
+      targets.push_back(familyBoundaryPoint(patch, family, true, x));
+    }
+    const auto fields = solver.distances(sources, targets);
+    DistanceMap map(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double d = fields[i].targetDistances[j];
+        if (!std::isfinite(d)) throw SolverFailure("distance map: a boundary point is unreachable inside the patch");
+        map.at(i, j) = d;
+      }
+    (family == Family::U ? maps.u : maps.v) = std::move(map);
+  }
+  maps.diagonalE = maps.u.at(0, n - 1);  // c0 to c2
+  maps.diagonalF = maps.u.at(n - 1, 0);  // c3 to c1
+  return maps;
+}
+
+}  // namespace egg

@@ -1,0 +1,70 @@
+#include "core/egg/solve_patch.hpp"
+
+#include "core/errors.hpp"
+
+#include <chrono>
+#include <sstream>
+
+namespace egg {
+
+void EggOptions::validate() const {
+  patch.validate();
+  uniqueness.validate();
+  maps.validate();
+  alphaBar.validate();
+  members.validate();
+  grid.validate();
+}
+
+namespace {
+double since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+}  // namespace
+
+EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& corners, const EggOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  options.validate();
+  EggResult result;
+
+  auto t = std::chrono::steady_clock::now();
+  result.patch = makePatch(surface, corners, options.patch);
+  result.seconds.patch = since(t);
+
+  t = std::chrono::steady_clock::now();
+  auto solver = std::make_unique<geodesic::DistanceSolver>(result.patch.mesh);
+  result.uniqueness = checkUniqueness(result.patch, *solver, options.uniqueness);
+  if (!result.uniqueness.passed) {
+    std::ostringstream message;
+    message << "shortest geodesics are not unique on this patch: eta_u = " << result.uniqueness.etaU
+            << ", eta_v = " << result.uniqueness.etaV << " > eta_max = " << options.uniqueness.etaMax
+            << " (K_max = " << result.uniqueness.gaussianMax << " 1/m^2, injectivity bound "
+            << result.uniqueness.injectivityBoundM << " m < longest geodesic " << result.uniqueness.longestGeodesicM
+            << " m)";
+    throw InfeasiblePatch(message.str());
+  }
+  result.seconds.uniqueness = since(t);
+
+  t = std::chrono::steady_clock::now();
+  result.maps = computeDistanceMaps(result.patch, *solver, options.maps);
+  result.seconds.distanceMaps = since(t);
+
+  t = std::chrono::steady_clock::now();
+  result.alphaBar = solveAlphaBar(result.maps, options.alphaBar);
+  result.seconds.sqp = since(t);
+
+  t = std::chrono::steady_clock::now();
+  result.membersU = placeMembers(result.alphaBar.claddingU, result.alphaBar.quad, familySideLength(result.patch, Family::U, false),
+                                 familySideLength(result.patch, Family::U, true), options.members);
+  result.membersV = placeMembers(result.alphaBar.claddingV, result.alphaBar.quad, familySideLength(result.patch, Family::V, false),
+                                 familySideLength(result.patch, Family::V, true), options.members);
+  result.seconds.members = since(t);
+
+  t = std::chrono::steady_clock::now();
+  result.grid = buildGrid(result.patch, *solver, result.alphaBar.quad, result.membersU, result.membersV, options.grid);
+  result.seconds.tracing = since(t);
+  result.seconds.total = since(started);
+  return result;
+}
+
+}  // namespace egg

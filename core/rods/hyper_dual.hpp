@@ -12,6 +12,8 @@
 
 namespace egg::rods {
 
+// Only the lower triangle of h (i >= j) is computed and meaningful: every operation acts on the
+// Hessian entrywise, so the lower triangle is closed under them. Read entries through hessian().
 template <int N>
 struct HyperDual {
   using Vec = Eigen::Matrix<double, N, 1>;
@@ -19,6 +21,7 @@ struct HyperDual {
   double v = 0.0;
   Vec g = Vec::Zero();
   Mat h = Mat::Zero();
+  double hessian(int i, int j) const { return i >= j ? h(i, j) : h(j, i); }
 
   HyperDual() = default;
   HyperDual(double value) : v(value) {}  // NOLINT: constants promote implicitly
@@ -35,8 +38,11 @@ template <int N>
 inline HyperDual<N> chain(const HyperDual<N>& a, double f, double d1, double d2) {
   HyperDual<N> r;
   r.v = f;
-  r.g = d1 * a.g;
-  r.h = d1 * a.h + d2 * (a.g * a.g.transpose());
+  for (int i = 0; i < N; ++i) r.g[i] = d1 * a.g[i];
+  for (int j = 0; j < N; ++j) {
+    const double gj = d2 * a.g[j];
+    for (int i = j; i < N; ++i) r.h(i, j) = d1 * a.h(i, j) + gj * a.g[i];
+  }
   return r;
 }
 
@@ -66,11 +72,14 @@ inline HyperDual<N> operator-(const HyperDual<N>& a) {
 }
 template <int N>
 inline HyperDual<N> operator*(const HyperDual<N>& a, const HyperDual<N>& b) {
+  // Written as plain loops: one pass over the Hessian instead of Eigen temporaries per term.
   HyperDual<N> r;
   r.v = a.v * b.v;
-  r.g = a.v * b.g + b.v * a.g;
-  const typename HyperDual<N>::Mat cross = a.g * b.g.transpose();
-  r.h = a.v * b.h + b.v * a.h + cross + cross.transpose();
+  for (int i = 0; i < N; ++i) r.g[i] = a.v * b.g[i] + b.v * a.g[i];
+  for (int j = 0; j < N; ++j) {
+    const double aj = a.g[j], bj = b.g[j];
+    for (int i = j; i < N; ++i) r.h(i, j) = a.v * b.h(i, j) + b.v * a.h(i, j) + a.g[i] * bj + b.g[i] * aj;
+  }
   return r;
 }
 template <int N>
@@ -135,10 +144,14 @@ inline HyperDual<N> atan2(const HyperDual<N>& y, const HyperDual<N>& x) {
   const double fyy = -2.0 * x.v * y.v / r4, fxx = 2.0 * x.v * y.v / r4, fxy = (y.v * y.v - x.v * x.v) / r4;
   HyperDual<N> r;
   r.v = std::atan2(y.v, x.v);
-  r.g = fy * y.g + fx * x.g;
-  const typename HyperDual<N>::Mat mixed = y.g * x.g.transpose();
-  r.h = fy * y.h + fx * x.h + fyy * (y.g * y.g.transpose()) + fxx * (x.g * x.g.transpose()) +
-        fxy * (mixed + mixed.transpose());
+  for (int i = 0; i < N; ++i) r.g[i] = fy * y.g[i] + fx * x.g[i];
+  for (int j = 0; j < N; ++j) {
+    const double yj = y.g[j], xj = x.g[j];
+    for (int i = j; i < N; ++i) {
+      r.h(i, j) = fy * y.h(i, j) + fx * x.h(i, j) + fyy * y.g[i] * yj + fxx * x.g[i] * xj +
+                  fxy * (y.g[i] * xj + x.g[i] * yj);
+    }
+  }
   return r;
 }
 
@@ -167,7 +180,10 @@ inline HyperDual<N> liftEdgeQuantity(const HyperDual<4>& a, int start, int end, 
     for (int i = 0; i < count[p]; ++i) {
       r.g[index[p][i]] += sign[p][i] * a.g[p];
       for (int q = 0; q < 4; ++q) {
-        for (int j = 0; j < count[q]; ++j) r.h(index[p][i], index[q][j]) += sign[p][i] * sign[q][j] * a.h(p, q);
+        for (int j = 0; j < count[q]; ++j) {
+          const int row = index[p][i], col = index[q][j];
+          if (row >= col) r.h(row, col) += sign[p][i] * sign[q][j] * a.hessian(p, q);
+        }
       }
     }
   }

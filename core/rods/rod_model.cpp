@@ -57,7 +57,7 @@ struct DerivativeSum {
       gradient[dofs[i]] += result.g[i];
       for (size_t j = 0; j < N; ++j) {
         if (dofs[j] < 0 || dofs[j] > dofs[i]) continue;
-        const double value = result.h(i, j);
+        const double value = result.hessian(static_cast<int>(i), static_cast<int>(j));
         if (value != 0.0) triplets.emplace_back(dofs[i], dofs[j], value);
       }
     }
@@ -130,6 +130,7 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
     data.length = rod.length_m;
     data.h = rod.length_m / data.edges;
     data.thickness = rod.section.thickness_m;
+    data.layer = rod.layer;
     data.linearDensity = rod.material.density_kg_m3 * rod.section.width_m * rod.section.thickness_m;
     data.stiffness = stiffnessOf(rod);
     data.firstVertexDof = dof;
@@ -167,6 +168,7 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
     };
     BoltSide sideA = makeSide(c.rodA, c.sA_m, c.notchA);
     BoltSide sideB = makeSide(c.rodB, c.sB_m, c.notchB);
+    bolt.aIsLower = aLower;
     bolt.lower = aLower ? sideA : sideB;
     bolt.upper = aLower ? sideB : sideA;
     const RodData& ra = rods_[c.rodA];
@@ -276,8 +278,13 @@ Eigen::Vector3d RodModel::vertexNormal(int rod, int vertex) const {
 
 double RodModel::boltPosition(int connection, int side) const {
   const Bolt& b = bolts_[connection];
-  const BoltSide& s = side == 0 ? b.lower : b.upper;
+  const BoltSide& s = (side == 0) == b.aIsLower ? b.lower : b.upper;
   return (s.point.edge + beta(state_, s)) * rods_[s.point.rod].h;
+}
+
+Eigen::Vector3d RodModel::contactPoint(int rod, int vertex) const {
+  const double side = rods_[rod].layer == 0 ? -0.5 : 0.5;
+  return this->vertex(rod, vertex) - side * rods_[rod].thickness * vertexNormal(rod, vertex);
 }
 
 int RodModel::slidingSideCount() const {

@@ -59,8 +59,11 @@ class RodModel {
   // Material normal (m1) of an edge, and averaged at a vertex.
   Eigen::Vector3d edgeNormal(int rod, int edge) const;
   Eigen::Vector3d vertexNormal(int rod, int vertex) const;
-  // Current arc-length (rest) position of each side of each bolt: [connection][0 = a, 1 = b].
+  // Current rest arc length (m) of a bolt along rod a (side 0) or rod b (side 1) of its connection.
   double boltPosition(int connection, int side) const;
+  // The point of a vertex's lamella face that touches the other layer: the centreline moved half
+  // a thickness back towards the design surface. It lies on the surface when the grid fits.
+  Eigen::Vector3d contactPoint(int rod, int vertex) const;
   int boltCount() const { return static_cast<int>(bolts_.size()); }
   int slidingSideCount() const;
 
@@ -109,6 +112,7 @@ class RodModel {
     double h = 0.0;  // rest edge length
     double length = 0.0;
     double thickness = 0.0;
+    int layer = 0;
     double linearDensity = 0.0;  // kg/m
     RodStiffness stiffness;
     int firstVertexDof = 0;
@@ -121,6 +125,7 @@ class RodModel {
   };
   struct Bolt {
     BoltSide lower, upper;  // rod in layer 0, rod in layer 1
+    bool aIsLower = true;   // the connection's rod a is the lower one
     double offset = 0.0;    // (t_lower + t_upper)/2
     double positionWeight = 0.0, angleWeight = 0.0;
   };

@@ -1,0 +1,86 @@
+#include "core/rods/simulation.hpp"
+
+#include "core/errors.hpp"
+
+#include <chrono>
+
+namespace egg::rods {
+
+void SimulationOptions::validate() const {
+  model.validate();
+  solver.validate();
+  if (gravitySteps < 1) throw InvalidInput("SimulationOptions.gravitySteps must be >= 1");
+  if (!(scaleFactor > 0.0)) throw InvalidInput("SimulationOptions.scaleFactor must be > 0");
+}
+
+SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* surface, const SimulationOptions& options) {
+  options.validate();
+  const auto start = std::chrono::steady_clock::now();
+  RodModel model(network, options.model);
+  SimulationRun run;
+  run.notches = options.model.notches;
+
+  // Self-weight is applied in steps after a weightless solve: a large or soft grid may sag far
+  // from the deployed guess (Section 3.5.2), and Newton is reliable only from nearby states.
+  const int steps = options.model.gravity ? options.gravitySteps : 0;
+  SolverOptions solverOptions = options.solver;
+  int iterations = 0, switches = 0;
+  for (int step = 0; step <= steps; ++step) {
+    model.setLoadFactor(steps == 0 ? 1.0 : static_cast<double>(step) / steps);
+    const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    solverOptions.timeLimit_s = std::max(1e-3, options.solver.timeLimit_s - spent);
+    solverOptions.maxIterations = std::max(1, options.solver.maxIterations - iterations);
+    run.solver = minimiseEnergy(model, solverOptions);
+    iterations = run.solver.iterations += iterations;
+    switches = run.solver.boltEdgeSwitches += switches;
+    if (!run.solver.converged) {
+      if (step < steps) {
+        run.solver.reason = "at load step " + std::to_string(step) + " of " + std::to_string(steps) + ": " +
+                            run.solver.reason;
+      }
+      break;
+    }
+  }
+  run.solver.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.unknowns = model.dofCount();
+
+  std::vector<Eigen::Vector3d> contact;
+  for (int r = 0; r < model.rodCount(); ++r) {
+    run.centrelines.push_back(model.centreline(r));
+    std::vector<Eigen::Vector3d> normals;
+    for (int i = 0; i < model.vertexCount(r); ++i) {
+      normals.push_back(model.vertexNormal(r, i));
+      contact.push_back(model.contactPoint(r, i));
+    }
+    run.normals.push_back(std::move(normals));
+    run.vertices += model.vertexCount(r);
+  }
+  for (int c = 0; c < model.boltCount(); ++c) {
+    run.boltPositions_m.push_back({model.boltPosition(c, 0), model.boltPosition(c, 1)});
+  }
+  if (surface) run.deviation = measureDeviation(contact, *surface, options.scaleFactor);
+  return run;
+}
+
+SimulationResult simulateGrid(const RodNetwork& network, const TriMesh& surface, const SimulationOptions& options) {
+  options.validate();
+  const auto start = std::chrono::steady_clock::now();
+  const SurfaceDistance distance(surface);
+  SimulationResult result;
+  result.deployed = simulateRods(network, &distance, options);
+  result.converged = result.deployed.solver.converged;
+  if (!result.converged) result.reason = "deployed run: " + result.deployed.solver.reason;
+  if (options.compareWithoutNotches && options.model.notches) {
+    SimulationOptions plain = options;
+    plain.model.notches = false;
+    result.withoutNotches = simulateRods(network, &distance, plain);
+    if (!result.withoutNotches->solver.converged) {
+      if (result.converged) result.reason = "run without notches: " + result.withoutNotches->solver.reason;
+      result.converged = false;
+    }
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace egg::rods

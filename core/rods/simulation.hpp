@@ -1,0 +1,52 @@
+#pragma once
+// The simulation stage (Section 2.5, errors of 2.6.2 and 3.5.2): deploys a RodNetwork to its
+// elastic equilibrium and measures how far it lies from the design surface, with notches (RMS2)
+// and, for comparison, with plain holes (RMS1).
+#include "core/rods/rod_model.hpp"
+#include "core/rods/rod_network.hpp"
+#include "core/rods/rod_solver.hpp"
+#include "core/rods/surface_distance.hpp"
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace egg::rods {
+
+struct SimulationOptions {
+  ModelOptions model;                  // discretisation, notches, gravity, friction, penalty weights
+  SolverOptions solver;                // Newton limits and tolerance
+  int gravitySteps = 2;                // load steps for self-weight (first a weightless solve)
+  double scaleFactor = 1.0;            // f of the NRMSE (Section 3.5.2)
+  bool compareWithoutNotches = false;  // also run with plain holes (RMS1 of Section 2.6.2)
+  void validate() const;               // throws InvalidInput naming the field
+};
+
+// One deployed state and its error.
+struct SimulationRun {
+  SolverResult solver;
+  bool notches = true;
+  int vertices = 0;                                       // centreline vertices, all rods
+  int unknowns = 0;                                       // Newton unknowns
+  std::vector<std::vector<Eigen::Vector3d>> centrelines;  // per rod, vertices (m)
+  std::vector<std::vector<Eigen::Vector3d>> normals;      // per rod vertex, lamella normal
+  std::vector<std::array<double, 2>> boltPositions_m;     // per connection: s along rod a, rod b
+  std::optional<DeviationStats> deviation;                // contact points vs surface (when given)
+};
+
+struct SimulationResult {
+  SimulationRun deployed;                      // with notches as options.model.notches says
+  std::optional<SimulationRun> withoutNotches; // plain holes (when compareWithoutNotches)
+  bool converged = false;                      // every run converged
+  std::string reason;                          // first non-convergence reason, if any
+  double seconds = 0.0;
+};
+
+// One run; `surface` may be null (no error measure).
+SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* surface, const SimulationOptions& options);
+
+// The stage: the deployed grid with notches and, if asked, without; errors against `surface`.
+SimulationResult simulateGrid(const RodNetwork& network, const TriMesh& surface, const SimulationOptions& options);
+
+}  // namespace egg::rods

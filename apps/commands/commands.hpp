@@ -20,6 +20,8 @@ void registerSurfaceCommand(CLI::App& parent, Action& action);  // surface.cpp
 void registerRunCommand(CLI::App& parent, Action& action);      // run.cpp
 // `egg bench <kind>`: bench is a group; each benchmark registers under it.
 // (Helpers add their register functions here, one line each, and one call in cli.cpp.)
+void registerGeodesicCommand(CLI::App& parent, Action& action);  // geodesic_commands.cpp (egg geodesic)
+void registerGeodesicBench(CLI::App& bench, Action& action);     // geodesic_commands.cpp (egg bench geodesic)
 
 // Runs the program; returns the process exit code.
 int runCli(int argc, char** argv);

@@ -14,17 +14,6 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-nlohmann::json surfaceSection(const TriMesh& mesh, const std::string& description) {
-  const BoundingBox box = boundingBox(mesh);
-  return {{"description", description},
-          {"vertices", mesh.n_vertices()},
-          {"faces", mesh.n_faces()},
-          {"bbox_m", {box.size().x(), box.size().y(), box.size().z()}},
-          {"bbox_min_m", {box.min.x(), box.min.y(), box.min.z()}},
-          {"area_m2", surfaceArea(mesh)},
-          {"mean_edge_m", meanEdgeLength(mesh)}};
-}
-
 }  // namespace
 
 PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
@@ -38,8 +27,8 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   progress("surface", 0.0);
   const auto surfaceStart = Clock::now();
   LoadedSurface surface = loadSurface(scene.surface);
+  report.section("surface") = surfaceSummary(surface);
   report.stageRan("surface", secondsSince(surfaceStart));
-  report.section("surface") = surfaceSection(surface.mesh, surface.description);
   for (const auto& w : surface.warnings) report.warn("surface: " + w);
 
   // Nothing has been written so far: input errors above leave no trace. From here on, files go

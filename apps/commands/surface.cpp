@@ -3,7 +3,6 @@
 
 #include "core/errors.hpp"
 #include "core/io/mesh_io.hpp"
-#include "core/mesh/validate.hpp"
 #include "samples/generators/samples.hpp"
 
 #include <fmt/core.h>
@@ -14,30 +13,6 @@
 
 namespace egg::app {
 namespace {
-
-nlohmann::json surfaceStats(const LoadedSurface& surface) {
-  const TriMesh& mesh = surface.mesh;
-  const BoundingBox box = boundingBox(mesh);
-  const MeshCheckResult check = checkMesh(soupFromMesh(mesh));
-  nlohmann::json issues = nlohmann::json::array();
-  for (const auto& issue : check.issues) issues.push_back(issue.message);
-  return {
-      {"source", surface.description},
-      {"vertices", mesh.n_vertices()},
-      {"faces", mesh.n_faces()},
-      {"bbox_min_m", {box.min.x(), box.min.y(), box.min.z()}},
-      {"bbox_max_m", {box.max.x(), box.max.y(), box.max.z()}},
-      {"bbox_m", {box.size().x(), box.size().y(), box.size().z()}},
-      {"area_m2", surfaceArea(mesh)},
-      {"mean_edge_m", meanEdgeLength(mesh)},
-      {"min_angle_rad", check.min_angle_rad},
-      {"boundary_edges", check.boundary_edges},
-      {"components", check.components},
-      {"validation", {{"ok", check.acceptable()}, {"issues", issues}}},
-      {"warnings", surface.warnings},
-      {"seconds", surface.seconds},
-  };
-}
 
 void printStats(const nlohmann::json& s) {
   std::cout << fmt::format("surface   {}\n", s["source"].get<std::string>());
@@ -53,8 +28,10 @@ void printStats(const nlohmann::json& s) {
                            s["mean_edge_m"].get<double>(), s["min_angle_rad"].get<double>() * 180.0 / M_PI);
   if (s.contains("gaussian_curvature")) {
     const auto& k = s["gaussian_curvature"];
-    std::cout << fmt::format("K         {:.6g} .. {:.6g} 1/m2 (interior vertices)\n", k["min_per_m2"].get<double>(),
-                             k["max_per_m2"].get<double>());
+    std::cout << fmt::format("K         {:.6g} .. {:.6g} 1/m2; injectivity bound pi/sqrt(K_max) = {} m\n",
+                             k["min_per_m2"].get<double>(), k["max_per_m2"].get<double>(),
+                             k["injectivity_bound_m"].is_null() ? std::string("inf")
+                                                                : fmt::format("{:.3f}", k["injectivity_bound_m"].get<double>()));
   }
   std::cout << fmt::format("boundary  {} edges, {} component(s)\n", s["boundary_edges"].get<int>(),
                            s["components"].get<int>());
@@ -110,7 +87,7 @@ void registerSurfaceCommand(CLI::App& parent, Action& action) {
           args->surface, args->edgeLength > 0.0 ? std::optional<double>(args->edgeLength) : std::nullopt);
       if (!args->exportPath.empty()) writeMeshFile(args->exportPath, surface.mesh);
       if (args->stats || args->exportPath.empty()) {
-        const nlohmann::json stats = surfaceStats(surface);
+        const nlohmann::json stats = surfaceSummary(surface);
         if (args->json) {
           std::cout << stats.dump(2) << "\n";
         } else {

@@ -1,5 +1,6 @@
 #include "apps/commands/surface_loading.hpp"
 
+#include "core/curvature/curvature.hpp"
 #include "core/errors.hpp"
 #include "core/io/mesh_io.hpp"
 #include "core/mesh/validate.hpp"
@@ -76,6 +77,36 @@ LoadedSurface loadSurfaceArgumentDetailed(const std::string& argument, std::opti
     throw IoError(argument + ": no such file, and not a sample name (samples: " + names + ")");
   }
   return fromFile(argument, 1.0, false);
+}
+
+nlohmann::json surfaceSummary(const LoadedSurface& surface) {
+  const TriMesh& mesh = surface.mesh;
+  const BoundingBox box = boundingBox(mesh);
+  const MeshCheckResult check = checkMesh(soupFromMesh(mesh));
+  nlohmann::json issues = nlohmann::json::array();
+  for (const auto& issue : check.issues) issues.push_back(issue.message);
+  const CurvatureField curvature = computeCurvature(mesh);
+  const double bound = injectivityRadiusBound(curvature.gaussian_max);
+  return {
+      {"source", surface.description},
+      {"vertices", mesh.n_vertices()},
+      {"faces", mesh.n_faces()},
+      {"bbox_min_m", {box.min.x(), box.min.y(), box.min.z()}},
+      {"bbox_max_m", {box.max.x(), box.max.y(), box.max.z()}},
+      {"bbox_m", {box.size().x(), box.size().y(), box.size().z()}},
+      {"area_m2", surfaceArea(mesh)},
+      {"mean_edge_m", meanEdgeLength(mesh)},
+      {"min_angle_rad", check.min_angle_rad},
+      {"boundary_edges", check.boundary_edges},
+      {"components", check.components},
+      {"gaussian_curvature",
+       {{"min_per_m2", curvature.gaussian_min},
+        {"max_per_m2", curvature.gaussian_max},
+        {"injectivity_bound_m", std::isfinite(bound) ? nlohmann::json(bound) : nlohmann::json(nullptr)}}},
+      {"validation", {{"ok", check.acceptable()}, {"issues", issues}}},
+      {"warnings", surface.warnings},
+      {"seconds", surface.seconds},
+  };
 }
 
 TriMesh loadSurfaceArgument(const std::string& argument) { return loadSurfaceArgumentDetailed(argument).mesh; }

@@ -5,6 +5,9 @@
 #include "apps/commands/scene.hpp"
 #include "core/mesh/mesh.hpp"
 
+#include <nlohmann/json.hpp>
+
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +32,11 @@ LoadedSurface loadSurfaceArgumentDetailed(const std::string& argument,
 
 // Convenience for commands that only need the mesh.
 TriMesh loadSurfaceArgument(const std::string& argument);
+
+// Statistics of a loaded surface (vertices, faces, bounding box, area, edge lengths, Gaussian
+// curvature range with the injectivity bound of Eq. 2.1, validation). Used by `egg surface
+// --stats` and by report.json's "surface" section.
+nlohmann::json surfaceSummary(const LoadedSurface& surface);
 
 // The default edge length for a sample when none is given (metres).
 double defaultSampleEdgeLength(const std::string& sample);

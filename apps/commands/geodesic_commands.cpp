@@ -1,0 +1,256 @@
+// `egg geodesic SURFACE --source x,y,z --out F.csv` and `egg bench geodesic`.
+#include "apps/commands/commands.hpp"
+#include "apps/commands/surface_loading.hpp"
+
+#include "core/errors.hpp"
+#include "core/geodesic/distance_solver.hpp"
+#include "core/geodesic/exact_reference.hpp"
+#include "samples/generators/samples.hpp"
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace egg::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+Eigen::Vector3d parsePoint(const std::string& text) {
+  std::stringstream in(text);
+  std::string item;
+  std::vector<double> values;
+  while (std::getline(in, item, ',')) {
+    try {
+      size_t used = 0;
+      values.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw InvalidInput("--source: '" + text + "' is not x,y,z (metres)");
+    }
+  }
+  if (values.size() != 3) throw InvalidInput("--source: '" + text + "' is not x,y,z (metres)");
+  return {values[0], values[1], values[2]};
+}
+
+struct GeodesicArgs {
+  std::string surface;
+  std::string source;
+  std::string out;
+  bool json = false;
+};
+
+int runGeodesic(const GeodesicArgs& args) {
+  const TriMesh mesh = loadSurfaceArgument(args.surface);
+  const Eigen::Vector3d requested = parsePoint(args.source);
+  const geodesic::DistanceSolver solver(mesh);
+  const SurfacePoint source = geodesic::snapToSurface(mesh, requested);
+  const Eigen::Vector3d snapped = position(mesh, source);
+  const auto field = solver.distances(source);
+  {
+    std::ofstream file(args.out);
+    if (!file) throw IoError("cannot write " + args.out);
+    file << "x,y,z,distance\n";
+    for (auto vh : mesh.vertices()) {
+      const auto& p = mesh.point(vh);
+      const double d = field.vertexDistances[vh.idx()];
+      file << fmt::format("{:.17g},{:.17g},{:.17g},{}\n", p[0], p[1], p[2],
+                          std::isfinite(d) ? fmt::format("{:.17g}", d) : std::string("inf"));
+    }
+    if (!file) throw IoError("cannot write " + args.out);
+  }
+  double maxDistance = 0.0;
+  int unreachable = 0;
+  for (double d : field.vertexDistances) {
+    if (std::isfinite(d)) maxDistance = std::max(maxDistance, d);
+    else ++unreachable;
+  }
+  nlohmann::json summary = {{"vertices", mesh.n_vertices()},
+                            {"source_requested_m", {requested.x(), requested.y(), requested.z()}},
+                            {"source_snapped_m", {snapped.x(), snapped.y(), snapped.z()}},
+                            {"snap_distance_m", (snapped - requested).norm()},
+                            {"max_distance_m", maxDistance},
+                            {"unreachable_vertices", unreachable},
+                            {"windows", field.windowsCreated},
+                            {"precompute_seconds", solver.precomputeSeconds()},
+                            {"seconds", field.seconds},
+                            {"out", args.out}};
+  if (args.json) {
+    std::cout << summary.dump(2) << "\n";
+  } else {
+    std::cout << fmt::format("source    ({:.6g}, {:.6g}, {:.6g}) snapped to the surface ({:.3g} m away)\n",
+                             snapped.x(), snapped.y(), snapped.z(), (snapped - requested).norm());
+    std::cout << fmt::format("distances {} vertices, max {:.6g} m, {} unreachable\n", mesh.n_vertices(), maxDistance,
+                             unreachable);
+    std::cout << fmt::format("time      {:.3f} s (+ {:.3f} s precomputation)\nwritten   {}\n", field.seconds,
+                             solver.precomputeSeconds(), args.out);
+  }
+  return kExitOk;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Benchmark: ours vs CGAL exact on the `bump` sample at several sizes.
+
+struct BenchArgs {
+  std::vector<int> sizes = {1000, 4000, 16000};
+  int sources = 200;
+  int threads = 2;
+  int timedSources = 8;
+  std::vector<int> cgalSources = {3, 2, 1};
+  std::string csv;
+  bool json = false;
+};
+
+double peakRssMb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux reports kilobytes
+}
+
+// A bump patch with about `vertices` vertices (edge length from the area, corrected once).
+TriMesh bumpWithVertices(int vertices) {
+  samples::Params params;
+  for (const auto& info : samples::listSamples()) {
+    if (info.name == "bump") params = info.defaults;
+  }
+  const double area = params.count("length") && params.count("width") ? params["length"] * params["width"] : 100.0;
+  double edge = std::sqrt(2.0 * area / (std::sqrt(3.0) * vertices));
+  TriMesh mesh = samples::generateSample("bump", {}, edge);
+  const double ratio = double(mesh.n_vertices()) / vertices;
+  if (ratio < 0.85 || ratio > 1.15) {
+    edge *= std::sqrt(ratio);
+    mesh = samples::generateSample("bump", {}, edge);
+  }
+  return mesh;
+}
+
+// Surface points along the side x = xmin (or xmax) of the patch, evenly in y.
+std::vector<SurfacePoint> sidePoints(const TriMesh& mesh, int count, bool maxSide) {
+  const BoundingBox box = boundingBox(mesh);
+  std::vector<SurfacePoint> points;
+  for (int i = 0; i < count; ++i) {
+    const double y = box.min.y() + (i + 0.5) / count * box.size().y();
+    const double x = maxSide ? box.max.x() : box.min.x();
+    points.push_back(geodesic::snapToSurface(mesh, Eigen::Vector3d(x, y, box.max.z() + 1.0)));
+  }
+  return points;
+}
+
+// CGAL misplaces sources lying exactly on an edge (tests/core/geodesic/test_exact_reference.cpp),
+// so the comparison uses a source 1e-10 (barycentric) inside the face, for both engines.
+SurfacePoint intoFace(SurfacePoint p) {
+  for (int i = 0; i < 3; ++i) p.barycentric[i] = std::max(p.barycentric[i], 1e-10);
+  p.barycentric /= p.barycentric.sum();
+  return p;
+}
+
+int runBench(const BenchArgs& args) {
+  nlohmann::json rows = nlohmann::json::array();
+  std::cout << fmt::format("{:>7} {:>10} {:>10} {:>9} {:>11} {:>10} {:>12} {:>11} {:>9}\n", "verts", "ours ms/src",
+                           "cgal ms/src", "speedup", "max rel err", "precomp s",
+                           fmt::format("map{} s", args.sources), fmt::format("{}thr", args.threads), "RSS MB");
+  for (size_t k = 0; k < args.sizes.size(); ++k) {
+    const TriMesh mesh = bumpWithVertices(args.sizes[k]);
+    geodesic::DistanceSolverOptions options;
+    options.threads = args.threads;
+    const geodesic::DistanceSolver solver(mesh, options);
+    const auto sources = sidePoints(mesh, args.sources, false);
+    const auto targets = sidePoints(mesh, args.sources, true);
+    // Ours, single source at a time on one thread.
+    const int timed = std::min<int>(args.timedSources, static_cast<int>(sources.size()));
+    double oursSeconds = 0.0;
+    for (int i = 0; i < timed; ++i) oursSeconds += solver.distances(sources[i * sources.size() / timed]).seconds;
+    const double oursMs = 1e3 * oursSeconds / std::max(1, timed);
+    // The distance map: all sources, all targets, `threads` threads.
+    const auto start = Clock::now();
+    const auto map = solver.distances(sources, targets);
+    const double mapSeconds = secondsSince(start);
+    // CGAL exact on a few sources, and our error against it.
+    const int cgalCount = k < args.cgalSources.size() ? args.cgalSources[k] : 0;
+    double cgalSeconds = 0.0, maxError = 0.0;
+    const double nearLimit = 2.0 * solver.meanEdgeLength();
+    for (int i = 0; i < cgalCount; ++i) {
+      const SurfacePoint s = intoFace(sources[(2 * i + 1) * sources.size() / (2 * cgalCount)]);
+      const auto t0 = Clock::now();
+      const auto exact = geodesic::referenceDistances(mesh, s);
+      cgalSeconds += secondsSince(t0);
+      const auto ours = solver.distances(s).vertexDistances;
+      for (size_t v = 0; v < exact.size(); ++v) {
+        if (exact[v] > nearLimit && std::isfinite(exact[v])) {
+          maxError = std::max(maxError, std::abs(ours[v] - exact[v]) / exact[v]);
+        }
+      }
+    }
+    const double cgalMs = cgalCount > 0 ? 1e3 * cgalSeconds / cgalCount : NAN;
+    const double speedup = cgalMs / oursMs;
+    const double rss = peakRssMb();
+    (void)map;
+    std::cout << fmt::format("{:>7} {:>10.2f} {:>10.1f} {:>8.1f}x {:>11.2e} {:>10.4f} {:>12.3f} {:>11} {:>9.0f}\n",
+                             mesh.n_vertices(), oursMs, cgalMs, speedup, cgalCount > 0 ? maxError : NAN,
+                             solver.precomputeSeconds(), mapSeconds, args.threads, rss);
+    std::cout.flush();
+    rows.push_back({{"vertices", mesh.n_vertices()},
+                    {"ours_ms_per_source", oursMs},
+                    {"cgal_ms_per_source", cgalCount > 0 ? nlohmann::json(cgalMs) : nlohmann::json(nullptr)},
+                    {"speedup", cgalCount > 0 ? nlohmann::json(speedup) : nlohmann::json(nullptr)},
+                    {"max_relative_error_vs_cgal", cgalCount > 0 ? nlohmann::json(maxError) : nlohmann::json(nullptr)},
+                    {"precompute_seconds", solver.precomputeSeconds()},
+                    {"map_sources", args.sources},
+                    {"map_seconds", mapSeconds},
+                    {"threads", args.threads},
+                    {"peak_rss_mb", rss}});
+  }
+  if (!args.csv.empty()) {
+    std::ofstream file(args.csv);
+    if (!file) throw IoError("cannot write " + args.csv);
+    file << "vertices,ours_ms_per_source,cgal_ms_per_source,speedup,max_relative_error_vs_cgal,precompute_seconds,"
+            "map_sources,map_seconds,threads,peak_rss_mb\n";
+    for (const auto& r : rows) {
+      auto num = [](const nlohmann::json& j) { return j.is_null() ? std::string("") : fmt::format("{}", j.get<double>()); };
+      file << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", r["vertices"].get<size_t>(), num(r["ours_ms_per_source"]),
+                          num(r["cgal_ms_per_source"]), num(r["speedup"]), num(r["max_relative_error_vs_cgal"]),
+                          num(r["precompute_seconds"]), r["map_sources"].get<int>(), num(r["map_seconds"]),
+                          r["threads"].get<int>(), num(r["peak_rss_mb"]));
+    }
+  }
+  if (args.json) std::cout << rows.dump(2) << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+void registerGeodesicCommand(CLI::App& parent, Action& action) {
+  auto args = std::make_shared<GeodesicArgs>();
+  auto* cmd = parent.add_subcommand(
+      "geodesic", "Exact geodesic distances from a point on SURFACE to every vertex, written as x,y,z,distance CSV");
+  cmd->add_option("SURFACE", args->surface, "sample name, mesh file, or scene file (its surface)")->required();
+  cmd->add_option("--source", args->source, "source point x,y,z in metres (snapped to the surface)")->required();
+  cmd->add_option("--out", args->out, "output CSV (x,y,z,distance per vertex; inf if unreachable)")->required();
+  cmd->add_flag("--json", args->json, "print the summary as JSON");
+  cmd->callback([args, &action] { action = [args] { return runGeodesic(*args); }; });
+}
+
+void registerGeodesicBench(CLI::App& bench, Action& action) {
+  auto args = std::make_shared<BenchArgs>();
+  auto* cmd = bench.add_subcommand(
+      "geodesic", "Exact geodesic engine vs CGAL Surface_mesh_shortest_path on the bump sample: ms per source, "
+                  "speed-up, max error, distance-map wall time, precomputation, peak RSS");
+  cmd->add_option("--sizes", args->sizes, "approximate vertex counts of the bump patches")->delimiter(',');
+  cmd->add_option("--sources", args->sources, "sources (and targets) of the timed distance map");
+  cmd->add_option("--threads", args->threads, "threads of the distance map")->check(CLI::PositiveNumber);
+  cmd->add_option("--timed-sources", args->timedSources, "single-thread sources timed for ms per source");
+  cmd->add_option("--cgal-sources", args->cgalSources, "CGAL sources per size (0 skips CGAL)")->delimiter(',');
+  cmd->add_option("--csv", args->csv, "also write the table as CSV");
+  cmd->add_flag("--json", args->json, "also print the table as JSON");
+  cmd->callback([args, &action] { action = [args] { return runBench(*args); }; });
+}
+
+}  // namespace egg::app

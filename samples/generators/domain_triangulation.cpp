@@ -3,6 +3,8 @@
 // field get a finer footprint mesh; the remesher then equalises edges in 3D.
 #include "samples/generators/domain_triangulation.hpp"
 
+#include "core/errors.hpp"
+
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_mesh_face_base_2.h>
 #include <CGAL/Delaunay_mesh_vertex_base_2.h>
@@ -13,6 +15,7 @@
 
 #include <map>
 #include <queue>
+#include <string>
 
 namespace egg::samples::detail {
 namespace {
@@ -144,7 +147,8 @@ void markDomain(Cdt& cdt) {
 
 DomainTriangulation triangulateDomain(const std::vector<std::vector<Vec2>>& polygons,
                                       const std::vector<Vec2>& requiredPoints,
-                                      const std::function<Vec3(const Vec2&)>& lift, double maxEdge3d) {
+                                      const std::function<Vec3(const Vec2&)>& lift, double maxEdge3d,
+                                      double aspectBound, std::size_t maxVertices) {
   Cdt cdt;
   int index = 0;
   for (const auto& polygon : polygons) {
@@ -163,10 +167,17 @@ DomainTriangulation triangulateDomain(const std::vector<std::vector<Vec2>>& poly
   }
   markDomain(cdt);
 
-  LiftedSizeCriteria criteria(0.125, maxEdge3d, &lift);
+  LiftedSizeCriteria criteria(aspectBound, maxEdge3d, &lift);
   CGAL::Delaunay_mesher_2<Cdt, LiftedSizeCriteria> mesher(cdt, criteria);
   mesher.init(true);
-  mesher.refine_mesh();
+  // refine_mesh() step by step, so a hopeless domain fails fast instead of exhausting memory.
+  for (std::size_t step = 0; !mesher.is_refinement_done(); ++step) {
+    mesher.try_one_step_refine_mesh();
+    if (step % 1024 == 0 && cdt.number_of_vertices() > maxVertices) {
+      throw InvalidInput("Delaunay refinement of the parameter domain exceeded " + std::to_string(maxVertices) +
+                         " vertices (the domain is far thinner than the edge length)");
+    }
+  }
 
   DomainTriangulation result;
   std::map<Cdt::Vertex_handle, int> outputIndex;

@@ -100,7 +100,23 @@ TriMesh generateSample(const std::string& name, const Params& params, double edg
     throw InvalidInput(message.str());
   }
   const detail::SurfaceSpec spec = entry.build(detail::completeParams(entry.info, params));
+  // A long thin surface can have few triangles but millions of boundary samples: check first.
+  const double boundaryEdges = detail::boundaryLength(spec) / edgeLengthM;
+  if (boundaryEdges > detail::kMaxTriangles) {
+    std::ostringstream message;
+    message << "sample '" << name << "': edge_length_m " << edgeLengthM << " would put about "
+            << std::llround(boundaryEdges) << " edges on the boundary (limit 5 million); use a longer edge";
+    throw InvalidInput(message.str());
+  }
   const double area = detail::estimateArea(spec);
+  // area / perimeter is half the width of a strip, R/2 of a disc: a surface a small fraction of an
+  // edge wide cannot hold near-equilateral triangles of that edge (refinement would never end).
+  if (area < 0.05 * edgeLengthM * detail::boundaryLength(spec)) {
+    std::ostringstream message;
+    message << "sample '" << name << "': the surface is far thinner than edge_length_m " << edgeLengthM
+            << " (area " << area << " m^2 for a boundary of " << detail::boundaryLength(spec) << " m)";
+    throw InvalidInput(message.str());
+  }
   const double triangles = area / (std::sqrt(3.0) / 4.0 * edgeLengthM * edgeLengthM);
   if (triangles > detail::kMaxTriangles) {
     std::ostringstream message;
@@ -109,7 +125,13 @@ TriMesh generateSample(const std::string& name, const Params& params, double edg
             << " m^2 (limit 5 million); use a longer edge";
     throw InvalidInput(message.str());
   }
-  return meshFromSoup(detail::meshSurface(spec, edgeLengthM));
+  try {
+    return meshFromSoup(detail::meshSurface(spec, edgeLengthM, triangles));
+  } catch (const InvalidInput& error) {
+    std::ostringstream message;
+    message << "sample '" << name << "' at edge_length_m " << edgeLengthM << ": " << error.what();
+    throw InvalidInput(message.str());
+  }
 }
 
 }  // namespace egg::samples

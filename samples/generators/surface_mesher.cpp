@@ -8,6 +8,7 @@
 #include "samples/generators/remeshing.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <unordered_map>
 
@@ -52,31 +53,65 @@ std::vector<bool> boundaryVertices(const DomainTriangulation& domain) {
 
 }  // namespace
 
-double estimateArea(const SurfaceSpec& spec) {
+double boundaryLength(const SurfaceSpec& spec) {
   double perimeter = 0.0;
   for (const BoundaryLoop& loop : spec.boundary) {
     for (const DomainCurve& curve : loop) perimeter += curveLength3d(spec, curve, 256);
   }
-  const double spacing = perimeter / 96.0;
-  const auto loops = sampleBoundary(spec, spacing);
-  const DomainTriangulation coarse =
-      triangulateDomain(polygonsOf(loops), {}, spec.position, 1.5 * spacing);
+  return perimeter;
+}
+
+double estimateArea(const SurfaceSpec& spec) {
+  // Midpoint rule on a grid over the domain's bounding box, inside by polygon parity: no
+  // triangulation, so even a sliver of a domain costs the same few milliseconds.
+  const auto loops = sampleBoundary(spec, boundaryLength(spec) / 512.0);
+  const auto polygons = polygonsOf(loops);
+  Eigen::AlignedBox2d box;
+  for (const auto& polygon : polygons) {
+    for (const Vec2& p : polygon) box.extend(p);
+  }
+  constexpr int kCells = 256;
+  const Vec2 cell = box.sizes() / kCells;
+  const double step = 1e-4 * cell.minCoeff();
   double area = 0.0;
-  for (const auto& t : coarse.triangles) {
-    const Vec3 a = spec.position(coarse.points[t[0]]);
-    const Vec3 b = spec.position(coarse.points[t[1]]);
-    const Vec3 c = spec.position(coarse.points[t[2]]);
-    area += 0.5 * (b - a).cross(c - a).norm();
+  std::vector<double> crossings;
+  for (int j = 0; j < kCells; ++j) {
+    // Scanline: the row's crossings with every polygon edge, paired, are the inside intervals.
+    const double y = box.min().y() + (j + 0.5) * cell.y();
+    crossings.clear();
+    for (const auto& polygon : polygons) {
+      for (size_t a = 0, b = polygon.size() - 1; a < polygon.size(); b = a++) {
+        const Vec2& p = polygon[a];
+        const Vec2& q = polygon[b];
+        if ((p.y() > y) != (q.y() > y)) crossings.push_back(p.x() + (y - p.y()) * (q.x() - p.x()) / (q.y() - p.y()));
+      }
+    }
+    std::sort(crossings.begin(), crossings.end());
+    for (size_t k = 0; k + 1 < crossings.size(); k += 2) {
+      const int first = std::max(0, int(std::ceil((crossings[k] - box.min().x()) / cell.x() - 0.5)));
+      const int last = std::min(kCells - 1, int(std::floor((crossings[k + 1] - box.min().x()) / cell.x() - 0.5)));
+      for (int i = first; i <= last; ++i) {
+        const Vec2 u(box.min().x() + (i + 0.5) * cell.x(), y);
+        const Vec3 du = (spec.position(u + Vec2(step, 0)) - spec.position(u - Vec2(step, 0))) / (2 * step);
+        const Vec3 dv = (spec.position(u + Vec2(0, step)) - spec.position(u - Vec2(0, step))) / (2 * step);
+        area += du.cross(dv).norm() * cell.x() * cell.y();
+      }
+    }
   }
   return area;
 }
 
-TriangleSoup meshSurface(const SurfaceSpec& spec, double edgeLength) {
+TriangleSoup meshSurface(const SurfaceSpec& spec, double edgeLength, double expectedTriangles) {
   const auto loops = sampleBoundary(spec, edgeLength);  // boundary edges = request
+  std::size_t boundaryPoints = 0;
+  for (const auto& loop : loops) boundaryPoints += loop.points.size();
+  // Refinement at 1.2 h makes fewer vertices than the final mesh (about half the triangles);
+  // ten times that means the angle bound is fighting a domain thinner than the edge length.
+  const auto maxVertices = std::size_t(10.0 * expectedTriangles) + 10 * boundaryPoints + 10'000;
   // Refinement bound a little above the target: the remesher splits what is longer than 4/3 of
   // it anyway, and a looser bound leaves fewer tiny edges to collapse.
   const DomainTriangulation domain =
-      triangulateDomain(polygonsOf(loops), spec.requiredPoints, spec.position, 1.2 * edgeLength);
+      triangulateDomain(polygonsOf(loops), spec.requiredPoints, spec.position, 1.2 * edgeLength, 0.125, maxVertices);
 
   DomainMesh input;
   input.domain = domain.points;

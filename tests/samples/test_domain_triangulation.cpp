@@ -1,5 +1,7 @@
 #include "samples/generators/domain_triangulation.hpp"
 
+#include "core/errors.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -38,9 +40,8 @@ TEST(DomainTriangulation, CoversTheDomainWithoutTheHole) {
     const int input = result.inputIndex[i];
     if (input < 0) continue;
     ++inputs;
-    if (input == 8) EXPECT_EQ(result.points[i], Vec2(3.0, 3.3));
-    if (input < 4) EXPECT_EQ(result.points[i], kSquareWithHole[0][input]);
-    if (input >= 4 && input < 8) EXPECT_EQ(result.points[i], kSquareWithHole[1][input - 4]);
+    const Vec2 expected = input == 8 ? Vec2(3.0, 3.3) : input < 4 ? kSquareWithHole[0][input] : kSquareWithHole[1][input - 4];
+    EXPECT_EQ(result.points[i], expected);
   }
   EXPECT_EQ(inputs, 9);
 }
@@ -56,6 +57,13 @@ TEST(DomainTriangulation, SizeIsMeasuredOnTheLiftedSurface) {
       EXPECT_LE(length, 0.8 * (1 + 1e-9));
     }
   }
+}
+
+TEST(DomainTriangulation, GivesUpOnAHopelessDomain) {
+  // 1000 x 0.001: angle-bounded refinement needs ~10^6 points; a budget of 5000 stops it.
+  const auto lift = [](const Vec2& u) { return Vec3(u.x(), u.y(), 0.0); };
+  const std::vector<Vec2> sliver{{0, 0}, {1000, 0}, {1000, 0.001}, {0, 0.001}};
+  EXPECT_THROW(triangulateDomain({sliver}, {}, lift, 1.0, 0.125, 5000), InvalidInput);
 }
 
 }  // namespace

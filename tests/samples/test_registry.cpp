@@ -71,6 +71,13 @@ TEST(SamplesRegistry, RejectsNonPositiveOrAbsurdEdgeLength) {
   }
   // 5 550 m^2 at 1 cm edges would be over 10^8 triangles.
   expectInvalid([] { generateSample("great_court", {}, 0.01); }, {"great_court", "edge_length_m", "triangles"});
+  // 2 000 km of boundary at 0.1 m: few triangles' worth of area, but 4 * 10^7 boundary edges.
+  expectInvalid([] { generateSample("plane", {{"length", 2e6}, {"width", 1e-6}}, 0.1); },
+                {"plane", "edge_length_m", "boundary"});
+  // 1 km by 1 micrometre at 1 m edges: a fine area and boundary, but near-equilateral triangles
+  // would need ~10^9 of them; the refinement gives up early instead of exhausting memory.
+  expectInvalid([] { generateSample("plane", {{"length", 1000.0}, {"width", 1e-6}}, 1.0); },
+                {"plane", "edge_length_m", "thinner"});
 }
 
 // Sizes per sample: fast, yet a few hundred to a few thousand vertices each.

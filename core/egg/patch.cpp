@@ -386,6 +386,12 @@ Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& re
   return patch;
 }
 
+void refreshPatchGeometry(Patch& patch) {
+  for (int k = 0; k < 4; ++k)
+    patch.innerAngles[k] = vertexAngleSum(patch.mesh, TriMesh::VertexHandle(patch.cornerVertices[k]));
+  patch.area = surfaceArea(patch.mesh);
+}
+
 SurfacePoint sidePoint(const Patch& patch, int side, double arcLength) {
   const auto& s = patch.sideArcLength[side];
   const auto& chain = patch.sides[side];

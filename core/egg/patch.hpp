@@ -44,6 +44,9 @@ struct Patch {
 // Builds the patch. Corners are taken in order around the quad.
 Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& corners, const PatchOptions& options = {});
 
+// Recomputes inner angles and area after the patch mesh moved (smoothing keeps the boundary).
+void refreshPatchGeometry(Patch& patch);
+
 // The point at arc length `s` along side k (clamped), as a surface point of the patch mesh lying
 // on the boundary edge there, and its position.
 SurfacePoint sidePoint(const Patch& patch, int side, double arcLength);

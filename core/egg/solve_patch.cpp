@@ -1,6 +1,7 @@
 #include "core/egg/solve_patch.hpp"
 
 #include "core/errors.hpp"
+#include "core/mesh/smoothing.hpp"
 
 #include <chrono>
 #include <sstream>
@@ -34,13 +35,38 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   t = std::chrono::steady_clock::now();
   auto solver = std::make_unique<geodesic::DistanceSolver>(result.patch.mesh);
   result.uniqueness = checkUniqueness(result.patch, *solver, options.uniqueness);
+  if (!result.uniqueness.passed && options.uniqueness.smooth) {
+    // Section 2.3.3: cotangent-Laplacian smoothing of the patch (boundary held, it is the traced
+    // quad) repeated until eta <= eta_max. Only when the check fails.
+    std::vector<Eigen::Vector3d> original;
+    for (auto vh : result.patch.mesh.vertices()) original.push_back(toEigen(result.patch.mesh.point(vh)));
+    SmoothingOptions smoothing;
+    smoothing.fix_boundary = true;
+    int rounds = 0;
+    UniquenessReport report = result.uniqueness;
+    while (!report.passed && rounds < options.uniqueness.maxSmoothingRounds) {
+      result.patch.mesh = smoothMeshStep(result.patch.mesh, smoothing).mesh;
+      ++rounds;
+      solver = std::make_unique<geodesic::DistanceSolver>(result.patch.mesh);
+      report = checkUniqueness(result.patch, *solver, options.uniqueness);
+    }
+    report.smoothingRounds = rounds;
+    for (auto vh : result.patch.mesh.vertices())
+      report.smoothingDisplacementM =
+          std::max(report.smoothingDisplacementM, (toEigen(result.patch.mesh.point(vh)) - original[vh.idx()]).norm());
+    report.seconds += result.uniqueness.seconds;
+    report.checksBeforeSmoothing = result.uniqueness.checks;
+    report.etaBeforeSmoothing = std::max(result.uniqueness.etaU, result.uniqueness.etaV);
+    result.uniqueness = report;
+    refreshPatchGeometry(result.patch);
+  }
   if (!result.uniqueness.passed) {
     std::ostringstream message;
     message << "shortest geodesics are not unique on this patch: eta_u = " << result.uniqueness.etaU
             << ", eta_v = " << result.uniqueness.etaV << " > eta_max = " << options.uniqueness.etaMax
             << " (K_max = " << result.uniqueness.gaussianMax << " 1/m^2, injectivity bound "
             << result.uniqueness.injectivityBoundM << " m < longest geodesic " << result.uniqueness.longestGeodesicM
-            << " m)";
+            << " m; smoothing rounds " << result.uniqueness.smoothingRounds << ")";
     throw InfeasiblePatch(message.str());
   }
   result.seconds.uniqueness = since(t);

@@ -40,6 +40,8 @@ struct UniquenessReport {
   std::vector<EtaCheck> checks;   // one per family and peak (empty when skipped)
   double etaU = 1.0, etaV = 1.0;  // worst eta per family
   bool passed = false;            // bound holds or eta <= eta_max for both families
+  std::vector<EtaCheck> checksBeforeSmoothing;  // the failing checks that triggered smoothing
+  double etaBeforeSmoothing = 1.0;              // worst eta before smoothing
   int smoothingRounds = 0;        // rounds applied by solveEgg (0 = not needed / not done)
   double smoothingDisplacementM = 0.0;  // largest vertex displacement caused by smoothing
   double seconds = 0.0;

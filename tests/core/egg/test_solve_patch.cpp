@@ -117,3 +117,47 @@ TEST(SolvePatch, SpherePatchHasFeasibleRangeSlopesInBoundsAndNotches) {
 
 }  // namespace
 }  // namespace egg
+
+namespace egg {
+namespace {
+
+const std::array<Eigen::Vector3d, 4> kBumpCorners{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
+
+TriMesh bumpMesh(double height) {
+  return samples::generateSample("bump", {{"height", height}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+}
+
+TEST(SolvePatch, BumpPatchNeedsNoSmoothingAndHasNotches) {
+  const EggOptions options = fastOptions();
+  const EggResult r = solveEgg(bumpMesh(1.0), kBumpCorners, options);
+  EXPECT_EQ(r.uniqueness.smoothingRounds, 0);  // skipped: eta already below eta_max
+  EXPECT_LE(std::max(r.uniqueness.etaU, r.uniqueness.etaV), options.uniqueness.etaMax);
+  ASSERT_TRUE(r.alphaBar.rangeFound);
+  EXPECT_GE(r.alphaBar.slopeMin, options.alphaBar.slopeMin - 1e-5);
+  EXPECT_LE(r.alphaBar.slopeMax, options.alphaBar.slopeMax + 1e-4);
+  expectGridCriteria(r);
+  EXPECT_GT(r.grid.maxNotch, 1e-3);
+  // Symmetric bump, symmetric quad: the corner angles agree, and more than the four corners are anchored
+  // only if the boundary curves; every anchor is a boundary connection.
+  for (int k = 1; k < 4; ++k) EXPECT_NEAR(r.patch.innerAngles[k], r.patch.innerAngles[0], 0.02);
+  EXPECT_GE(r.grid.anchors.size(), 4u);
+  for (const auto& a : r.grid.anchors) EXPECT_TRUE(r.grid.connections[a.connection].onBoundary);
+}
+
+TEST(SolvePatch, TallBumpFailsEtaAndPassesAfterSmoothing) {
+  EggOptions options = fastOptions();
+  options.uniqueness.smooth = false;
+  const TriMesh mesh = bumpMesh(2.0);
+  EXPECT_THROW(solveEgg(mesh, kBumpCorners, options), InfeasiblePatch);
+  options.uniqueness.smooth = true;
+  const EggResult r = solveEgg(mesh, kBumpCorners, options);
+  EXPECT_GT(r.uniqueness.etaBeforeSmoothing, options.uniqueness.etaMax);
+  EXPECT_GT(r.uniqueness.smoothingRounds, 0);
+  EXPECT_LE(std::max(r.uniqueness.etaU, r.uniqueness.etaV), options.uniqueness.etaMax);
+  EXPECT_GT(r.uniqueness.smoothingDisplacementM, 0.0);
+  EXPECT_LT(r.uniqueness.injectivityBoundM, r.uniqueness.longestGeodesicM);
+  expectGridCriteria(r);
+}
+
+}  // namespace
+}  // namespace egg

@@ -119,6 +119,8 @@ void CurvatureOptions::validate() const {
     throw InvalidInput("CurvatureOptions.fit_rings must be in [1, 5], got " + std::to_string(fit_rings));
   if (fit_degree < 2 || fit_degree > 4)
     throw InvalidInput("CurvatureOptions.fit_degree must be 2, 3 or 4, got " + std::to_string(fit_degree));
+  if (boundary_fit_degree < 2 || boundary_fit_degree > 4)
+    throw InvalidInput("CurvatureOptions.boundary_fit_degree must be 2, 3 or 4, got " + std::to_string(boundary_fit_degree));
   if (min_fit_points < 5 || min_fit_points > 500)
     throw InvalidInput("CurvatureOptions.min_fit_points must be in [5, 500], got " + std::to_string(min_fit_points));
 }
@@ -166,7 +168,7 @@ CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& opt
   field.normals = vertexNormals(mesh);
   const Eigen::VectorXd defect = angleDefects(mesh);
   field.gaussian.resize(n);
-  field.gaussian_fit.resize(n);
+  field.gaussian_angle_defect.resize(n);
   field.mean.resize(n);
   field.kappa_max.resize(n);
   field.kappa_min.resize(n);
@@ -180,11 +182,14 @@ CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& opt
     field.on_boundary[v] = mesh.is_boundary(vh) ? 1 : 0;
     const Eigen::Vector3d p = toEigen(mesh.point(vh));
     PrincipalFit fit;
+    // A one-sided neighbourhood makes a high-degree fit extrapolate wildly at the vertex (a
+    // corner of the great_court roof gave K = -0.38 / m^2 with degree 4); a quadric is stable there.
+    const int degree = field.on_boundary[v] ? std::min(options.fit_degree, options.boundary_fit_degree) : options.fit_degree;
     for (int rings = options.fit_rings; rings <= options.fit_rings + 2; ++rings) {
       gatherRings(mesh, v, rings, stamp, v * 8 + rings, neighbourhood);
-      const int wanted = std::max(options.min_fit_points, 2 * monomialCount(options.fit_degree));
+      const int wanted = std::max(options.min_fit_points, 2 * monomialCount(degree));
       if (static_cast<int>(neighbourhood.size()) - 1 < wanted && rings < options.fit_rings + 2) continue;
-      fit = fitPrincipal(mesh, p, field.normals[v], neighbourhood, options.fit_degree);
+      fit = fitPrincipal(mesh, p, field.normals[v], neighbourhood, degree);
       break;
     }
     // stamp values v*8+rings are unique per (v, rings) since rings < 8.
@@ -193,9 +198,9 @@ CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& opt
     field.direction_max[v] = fit.directionMax;
     field.direction_min[v] = fit.directionMin;
     field.mean(v) = 0.5 * (fit.kappaMax + fit.kappaMin);
-    field.gaussian_fit(v) = fit.kappaMax * fit.kappaMin;
+    field.gaussian(v) = fit.kappaMax * fit.kappaMin;
     const bool defectUsable = !field.on_boundary[v] && field.mixed_area(v) > 0.0;
-    field.gaussian(v) = defectUsable ? defect(v) / field.mixed_area(v) : field.gaussian_fit(v);
+    field.gaussian_angle_defect(v) = defectUsable ? defect(v) / field.mixed_area(v) : field.gaussian(v);
   }
   field.vertex_gaussian_max = 0;
   field.vertex_gaussian_min = 0;

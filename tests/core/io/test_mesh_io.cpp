@@ -2,6 +2,7 @@
 
 #include "core/errors.hpp"
 #include "core/mesh/validate.hpp"
+#include "samples/generators/samples.hpp"
 
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <fstream>
 #include <random>
+#include <unistd.h>
 
 namespace egg {
 namespace {
@@ -179,6 +181,29 @@ TEST(MeshIo, FbxWrittenByAssimpIsRead) {
   const TriangleSoup back = readMeshFile(fbx);
   EXPECT_EQ(back.triangles.size(), original.triangles.size());
   expectSameSurface(original, back, "fbx");
+}
+
+TEST(MeshIo, SamplesWithHolesSurviveStlAndGlbRoundTrips) {
+  // great_court has the Reading Room hole and coordinates up to ~50 m: float storage costs
+  // ~4e-6 m, and prepareMesh must rebuild exactly the same surface from the STL soup.
+  const TriMesh mesh = samples::generateSample("great_court", {}, 4.0);
+  const TriangleSoup original = soupFromMesh(mesh);
+  TempDir dir;
+  for (const std::string name : {"court.stl", "court.glb", "court.obj"}) {
+    writeMeshFile(dir / name, mesh);
+    const TriangleSoup back = readMeshFile(dir / name);
+    MeshRepairDiagnostics diagnostics;
+    const TriMesh rebuilt = prepareMesh(back, {}, diagnostics);
+    EXPECT_EQ(rebuilt.n_vertices(), mesh.n_vertices()) << name;
+    EXPECT_EQ(rebuilt.n_faces(), mesh.n_faces()) << name;
+    EXPECT_NEAR(surfaceArea(rebuilt), surfaceArea(mesh), 1e-6 * surfaceArea(mesh)) << name;
+    // Same boundary structure: the outer rectangle and the hole.
+    int boundaryEdges = 0, originalBoundaryEdges = 0;
+    for (auto eh : rebuilt.edges()) boundaryEdges += rebuilt.is_boundary(eh);
+    for (auto eh : mesh.edges()) originalBoundaryEdges += mesh.is_boundary(eh);
+    EXPECT_EQ(boundaryEdges, originalBoundaryEdges) << name;
+  }
+  EXPECT_GT(original.triangles.size(), 100u);
 }
 
 void expectIoErrorNaming(const fs::path& path, const std::string& reason) {

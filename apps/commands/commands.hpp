@@ -22,6 +22,8 @@ void registerRunCommand(CLI::App& parent, Action& action);      // run.cpp
 // (Helpers add their register functions here, one line each, and one call in cli.cpp.)
 void registerGeodesicCommand(CLI::App& parent, Action& action);  // geodesic_commands.cpp (egg geodesic)
 void registerGeodesicBench(CLI::App& bench, Action& action);     // geodesic_commands.cpp (egg bench geodesic)
+void registerSimBench(CLI::App& bench, Action& action);          // sim_commands.cpp (egg bench sim)
+void registerStressCommand(CLI::App& parent, Action& action);    // sim_commands.cpp (egg stress)
 
 // Runs the program; returns the process exit code.
 int runCli(int argc, char** argv);

@@ -117,8 +117,11 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
   for (auto vh : mesh.vertices()) {
     const int v = vh.idx();
     t.boundaryVertex[v] = mesh.is_boundary(vh) ? 1 : 0;
-    t.pseudoSource[v] =
-        (t.boundaryVertex[v] || t.angleSum[v] > 2.0 * std::numbers::pi + options.saddleAngleTolerance) ? 1 : 0;
+    // A shortest path can only pass through a vertex that leaves at least pi of surface angle on
+    // each side: interior saddles (angle sum > 2 pi) and reflex boundary vertices (> pi). Convex
+    // and straight boundary vertices never bend a shortest path.
+    const double flatAngle = t.boundaryVertex[v] ? std::numbers::pi : 2.0 * std::numbers::pi;
+    t.pseudoSource[v] = t.angleSum[v] > flatAngle + options.saddleAngleTolerance ? 1 : 0;
   }
   return t;
 }
@@ -437,7 +440,7 @@ class Propagator {
       const Window& w = s_.windows[pred.index];
       const int h = w.halfedge;
       const double L = t_.length[h];
-      const double xc = std::clamp(rayCrossing(w.sx, w.sy, t_.oppositeX[h], t_.oppositeY[h]), 0.0, L);
+      const double xc = std::clamp(rayCrossing(w.sx, w.sy, t_.oppositeX[h], t_.oppositeY[h]), w.b0, w.b1);
       back = t_.positions[t_.fromVertex[h]] + (xc / L) * (t_.positions[t_.toVertex[h]] - t_.positions[t_.fromVertex[h]]);
     } else if (pred.kind == Predecessor::Vertex) {
       back = t_.positions[pred.index];
@@ -569,18 +572,30 @@ class Propagator {
         }
         relaxVertex(c, dc, {Predecessor::ThroughWindow, index});
       }
+    } else {
+      // C lies just outside the window: the path bent over the window's end is still a valid
+      // upper bound. It is what closes the shadow of a near-flat saddle that is not treated as a
+      // pseudo-source (DistanceSolverOptions::saddleAngleTolerance): there the bend angle is at
+      // most the saddle's excess e and the bent path is longer by a factor of at most 1 + e^2/8.
+      const double end = xc < w.b0 ? w.b0 : w.b1;
+      relaxVertex(c, w.sigma + planarLength(end - w.sx, w.sy) + planarLength(cx - end, cy),
+                  {Predecessor::ThroughWindow, index});
     }
     // Targets inside the face the window enters.
     for (int i = s_.faceFirstTarget[f]; i >= 0; i = s_.nextTarget[i]) {
       double qx, qy;
       frameCoordinates(f, h, s_.targetWeights[i], qx, qy);
       const double xq = rayCrossing(w.sx, w.sy, qx, qy);
+      double d;
       if (xq >= w.b0 - slack && xq <= w.b1 + slack) {
-        const double d = w.sigma + planarLength(qx - w.sx, qy - w.sy);
-        if (d < s_.targetDistance[i]) {
-          s_.targetDistance[i] = d;
-          s_.targetPredecessor[i] = {Predecessor::ThroughWindow, index};
-        }
+        d = w.sigma + planarLength(qx - w.sx, qy - w.sy);
+      } else {
+        const double end = xq < w.b0 ? w.b0 : w.b1;  // bent over the window's end (upper bound)
+        d = w.sigma + planarLength(end - w.sx, w.sy) + planarLength(qx - end, qy);
+      }
+      if (d < s_.targetDistance[i]) {
+        s_.targetDistance[i] = d;
+        s_.targetPredecessor[i] = {Predecessor::ThroughWindow, index};
       }
     }
     // Child on edge A-C (rays left of the opposite vertex), on the halfedge A->C of the next face.

@@ -29,7 +29,7 @@ struct MeshTables {
   std::vector<std::array<int, 3>> faceHalfedge;
   // Outgoing halfedges of each vertex (CSR), boundary halfedges included.
   std::vector<int> outgoingStart, outgoing;
-  std::vector<char> pseudoSource;  // saddle or boundary vertex
+  std::vector<char> pseudoSource;  // saddle or reflex boundary vertex
   std::vector<char> boundaryVertex;
   std::vector<double> angleSum;
   double meanEdgeLength = 0.0;

@@ -101,6 +101,19 @@ TEST(ExactReference, MatchesCgalOnASphere) {
                     "sphere");
 }
 
+TEST(ExactReference, ExactModeAgreesWithCgalToRounding) {
+  // With saddleAngleTolerance = 0 every saddle is a pseudo-source: the exact polyhedral distance.
+  const TriMesh mesh = testing::gridMesh(20, 20, 1.0, 1.0, testing::bump(0.4, 0.6, 0.3, 0.2), 0.25, 3);
+  DistanceSolverOptions exact;
+  exact.saddleAngleTolerance = 0.0;
+  const DistanceSolver solver(mesh, exact);
+  for (const SurfacePoint& source : {vertexPoint(mesh, 200), facePoint(300, 0.2, 0.3, 0.5)}) {
+    const auto ours = solver.distances(source).vertexDistances;
+    const auto cgal = referenceDistances(mesh, source);
+    for (size_t v = 0; v < ours.size(); ++v) EXPECT_NEAR(ours[v], cgal[v], 1e-12 * (1.0 + cgal[v])) << v;
+  }
+}
+
 TEST(ExactReference, CgalIsWrongForSourcesOnEdgesButOursIsNot) {
   // Documents why the comparisons above nudge edge sources for CGAL: on a convex flat square the
   // distance from a boundary point is Euclidean; CGAL misses it by percents, we by rounding.

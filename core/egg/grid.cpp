@@ -47,6 +47,40 @@ std::vector<Eigen::Vector3d> sidePolyline(const Patch& patch, int side, bool rev
   return line;
 }
 
+Eigen::Vector3d faceNormal(const TriMesh& mesh, int face) {
+  const auto ids = faceVertices(mesh, face);
+  const Eigen::Vector3d a = toEigen(mesh.point(TriMesh::VertexHandle(ids[0])));
+  const Eigen::Vector3d b = toEigen(mesh.point(TriMesh::VertexHandle(ids[1])));
+  const Eigen::Vector3d c = toEigen(mesh.point(TriMesh::VertexHandle(ids[2])));
+  return (b - a).cross(c - a).normalized();
+}
+
+// Area-weighted vertex normal (the faces around a boundary vertex are all inside the patch).
+Eigen::Vector3d vertexNormal(const TriMesh& mesh, int vertex) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (auto fh : mesh.vf_range(TriMesh::VertexHandle(vertex))) {
+    const auto ids = faceVertices(mesh, fh.idx());
+    const Eigen::Vector3d a = toEigen(mesh.point(TriMesh::VertexHandle(ids[0])));
+    sum += (toEigen(mesh.point(TriMesh::VertexHandle(ids[1]))) - a).cross(toEigen(mesh.point(TriMesh::VertexHandle(ids[2]))) - a);
+  }
+  return sum.normalized();
+}
+
+std::vector<Eigen::Vector3d> sideNormals(const Patch& patch, int side, bool reversed) {
+  std::vector<Eigen::Vector3d> normals;
+  for (int v : patch.sides[side]) normals.push_back(vertexNormal(patch.mesh, v));
+  if (reversed) std::reverse(normals.begin(), normals.end());
+  return normals;
+}
+
+// Normal at the polyline point nearest to `p`.
+Eigen::Vector3d nearestNormal(const GridMember& m, const Eigen::Vector3d& p) {
+  size_t best = 0;
+  for (size_t k = 1; k < m.spatial.size(); ++k)
+    if ((m.spatial[k] - p).squaredNorm() < (m.spatial[best] - p).squaredNorm()) best = k;
+  return m.normals[best];
+}
+
 // Criterion (i) for one inner member: move x2 until the geodesic from start(x1) to end(x2) is as
 // long as the planar segment. The cladding function's x2 is exact only up to the interpolation of
 // the distance maps; here the exact geodesic distance is matched.
@@ -106,6 +140,8 @@ void matchMember(const Patch& patch, const geodesic::DistanceSolver& solver, con
   if (!std::isfinite(path.length) || path.positions.size() < 2)
     throw SolverFailure("grid: member " + std::to_string(m.index) + " could not be traced inside the patch");
   m.spatial = path.positions;
+  m.normals.clear();
+  for (const auto& point : path.points) m.normals.push_back(faceNormal(patch.mesh, point.face));
 }
 
 // Curvature maxima along a side (resampled, three-point circles), as arc lengths from its start.
@@ -167,6 +203,8 @@ EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, co
     const bool isU = family->family == Family::U;
     members.front().spatial = isU ? sidePolyline(patch, 0, false) : sidePolyline(patch, 3, true);
     members.back().spatial = isU ? sidePolyline(patch, 2, true) : sidePolyline(patch, 1, false);
+    members.front().normals = isU ? sideNormals(patch, 0, false) : sideNormals(patch, 3, true);
+    members.back().normals = isU ? sideNormals(patch, 2, true) : sideNormals(patch, 1, false);
     tbb::parallel_for(1, count - 1, [&](int i) { matchMember(patch, solver, quad, members[i], options, propagations); });
     for (auto& m : members) {
       const auto ends = planarMember(quad, m.family, m.x1, m.x2);
@@ -227,6 +265,7 @@ EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, co
       c.notchV = c.sV - c.sBarV;
     }
   });
+  for (auto& c : grid.connections) c.normal = nearestNormal(grid.u[c.memberU], c.spatial);
   for (const auto& c : grid.connections) grid.maxNotch = std::max({grid.maxNotch, std::abs(c.notchU), std::abs(c.notchV)});
 
   // Anchors (2.4.6): the corners, and the boundary connections nearest to curvature maxima of the

@@ -31,6 +31,7 @@ struct GridMember {
   bool boundary = false;                  // a patch side: carries no notches
   double x1 = 0.0, x2 = 0.0;              // boundary parameters
   std::vector<Eigen::Vector3d> spatial;   // polyline on the surface, start side to end side
+  std::vector<Eigen::Vector3d> normals;   // unit surface normal at each polyline point (mesh orientation)
   Eigen::Vector2d planarStart = Eigen::Vector2d::Zero(), planarEnd = Eigen::Vector2d::Zero();
   double spatialLength = 0.0;             // metres
   double planarLength = 0.0;              // metres
@@ -39,6 +40,7 @@ struct GridMember {
 struct GridConnection {
   int memberU = 0, memberV = 0;           // indices into EggGrid::u and EggGrid::v
   Eigen::Vector3d spatial = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit surface normal at the connection
   Eigen::Vector2d planar = Eigen::Vector2d::Zero();
   double sU = 0.0, sBarU = 0.0;           // arc length along the u member: surface, plane
   double sV = 0.0, sBarV = 0.0;           // same along the v member

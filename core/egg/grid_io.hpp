@@ -1,0 +1,21 @@
+#pragma once
+// Per-patch outputs (issue 4 / DESIGN.md): grid JSON (members, connections, notches, anchors,
+// planar and spatial coordinates), OBJ of the spatial grid, SVG preview of the planar grid.
+// Every writer writes a temporary file next to the target and renames it, so a reader never sees
+// a half-written file; failures throw IoError naming the file.
+#include "core/egg/solve_patch.hpp"
+
+#include <string>
+
+namespace egg {
+
+// The grid JSON document as text (metres and radians; keys carry their unit).
+std::string gridJson(const EggResult& result, int patchId = 0);
+
+void writeGridJson(const EggResult& result, const std::string& path, int patchId = 0);
+void writeGridObj(const EggGrid& grid, const std::string& path);
+// Planar grid preview: u members blue, v members orange, notches as thick strokes along the
+// member (length |l|, towards the sliding direction), anchors as red squares.
+void writePlanarSvg(const EggGrid& grid, const std::string& path);
+
+}  // namespace egg

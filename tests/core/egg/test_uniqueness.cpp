@@ -1,0 +1,56 @@
+#include "core/egg/uniqueness.hpp"
+
+#include "samples/generators/samples.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace egg {
+namespace {
+
+TEST(Uniqueness, FlatPatchHasNoBoundAndPasses) {
+  const TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.8);
+  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
+  const geodesic::DistanceSolver solver(patch.mesh);
+  const auto report = checkUniqueness(patch, solver);
+  EXPECT_TRUE(report.passed);
+  EXPECT_TRUE(report.boundHolds);
+  EXPECT_TRUE(std::isinf(report.injectivityBoundM));
+  EXPECT_TRUE(report.checks.empty());
+  EXPECT_NEAR(report.longestGeodesicM, 6 * std::sqrt(2.0), 1e-9);  // the diagonal
+}
+
+TEST(Uniqueness, SphereCapBoundIsPiR) {
+  // K = 1/R^2 on a sphere: the bound pi R = 31.4 m exceeds every geodesic of a 7 m patch.
+  const TriMesh mesh = samples::generateSample("sphere", {{"radius", 10.0}, {"extent", 6.0}}, 0.6);
+  std::array<Eigen::Vector3d, 4> corners;
+  const double xy[4][2] = {{-3, -3}, {3, -3}, {3, 3}, {-3, 3}};
+  for (int k = 0; k < 4; ++k) corners[k] = {xy[k][0], xy[k][1], std::sqrt(100.0 - 18.0)};
+  const Patch patch = makePatch(mesh, corners);
+  const geodesic::DistanceSolver solver(patch.mesh);
+  const auto report = checkUniqueness(patch, solver);
+  EXPECT_NEAR(report.gaussianMax, 0.01, 0.003);
+  EXPECT_NEAR(report.injectivityBoundM, M_PI * 10.0, 0.15 * M_PI * 10.0);
+  EXPECT_TRUE(report.boundHolds);
+  EXPECT_TRUE(report.passed);
+}
+
+TEST(Uniqueness, TallBumpHasLargeEta) {
+  // A Gaussian bump of height 3 and width 1.2 inside a 6 m patch: the shortest geodesics avoid the
+  // peak, eta far above the thesis' 1.0015, in both families (the bump is symmetric).
+  const TriMesh mesh =
+      samples::generateSample("bump", {{"height", 3.0}, {"sigma", 1.2}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
+  const geodesic::DistanceSolver solver(patch.mesh);
+  const auto report = checkUniqueness(patch, solver);
+  EXPECT_FALSE(report.boundHolds);
+  EXPECT_FALSE(report.passed);
+  EXPECT_GT(report.etaU, 1.05);
+  EXPECT_NEAR(report.etaU, report.etaV, 0.01);
+  ASSERT_FALSE(report.checks.empty());
+  EXPECT_LT(report.checks[0].peak.head<2>().norm(), 0.5);  // the peak is at the centre
+}
+
+}  // namespace
+}  // namespace egg

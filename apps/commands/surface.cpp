@@ -67,7 +67,7 @@ void registerSurfaceCommand(CLI::App& parent, Action& action) {
       if (args->list) {
         nlohmann::json list = nlohmann::json::array();
         for (const auto& info : samples::listSamples()) {
-          list.push_back({{"name", info.name}, {"description", info.description}, {"params", info.defaults},
+          list.push_back({{"name", info.name}, {"description", info.description}, {"params", info.defaults}, {"params_help", info.parameterHelp},
                           {"default_edge_length_m", defaultSampleEdgeLength(info.name)}});
         }
         if (args->json) {
@@ -76,7 +76,9 @@ void registerSurfaceCommand(CLI::App& parent, Action& action) {
           for (const auto& s : list) {
             std::cout << s["name"].get<std::string>() << " — " << s["description"].get<std::string>() << "\n";
             for (auto it = s["params"].begin(); it != s["params"].end(); ++it) {
-              std::cout << "    " << it.key() << " = " << it.value().dump() << "\n";
+              const auto& help = s["params_help"];
+              std::cout << "    " << it.key() << " = " << it.value().dump()
+                        << (help.contains(it.key()) ? "  (" + help[it.key()].get<std::string>() + ")" : "") << "\n";
             }
           }
         }

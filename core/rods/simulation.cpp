@@ -31,6 +31,8 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     solverOptions.timeLimit_s = std::max(1e-3, options.solver.timeLimit_s - spent);
     solverOptions.maxIterations = std::max(1, options.solver.maxIterations - iterations);
     run.solver = minimiseEnergy(model, solverOptions);
+    // Later load steps start next to an equilibrium: no need to soften the stiff terms again.
+    solverOptions.stiffnessContinuation = false;
     iterations = run.solver.iterations += iterations;
     switches = run.solver.boltEdgeSwitches += switches;
     if (!run.solver.converged) {

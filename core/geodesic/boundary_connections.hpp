@@ -4,10 +4,11 @@
 // On a surface with a non-convex boundary the shortest connection between two boundary points
 // may hug the boundary: it is then not a geodesic (non-zero geodesic curvature) and cannot be a
 // lamella. Criterion (4.3): the surface distance equals the distance along the boundary. On the
-// mesh this is Eq. (4.6), D - B < eps, evaluated on a distance map D between boundary samples.
+// mesh this is Eq. (4.6), |D - B| < eps, evaluated on a distance map D between boundary samples.
 // The non-convex segments are the index ranges [t1, t2] of pairs that fulfil it; connections
-// that run partly along such a segment are found with Eq. (4.4)-(4.5): d(p_x,p_y) - d(p_Theta,p_y)
-// constant in y.
+// that run partly along such a segment (Eq. 4.4-4.5) are those passing through one of the
+// segment's inward-bending boundary vertices t: d(x,t) + d(t,y) = d(x,y) (see the .cpp for why
+// this replaces the derivative test on exact distances).
 #include "core/mesh/mesh.hpp"
 
 #include <Eigen/Dense>
@@ -19,11 +20,11 @@ namespace egg::geodesic {
 std::vector<std::vector<int>> boundaryLoops(const TriMesh& mesh);
 
 struct BoundaryConnectionOptions {
-  // Eq. (4.6) tolerance: D - B below this is "along the boundary" (metres). <= 0: automatic,
-  // 1e-9 times the loop length (distances are exact, so only rounding is tolerated).
+  // Eq. (4.6) tolerance: D - B below this is "along the boundary", and d(x,t) + d(t,y) - d(x,y)
+  // below it is "through t" (metres). <= 0: automatic, 1e-9 times the loop length (distances are
+  // exact up to rounding; raise it to 1e-6 x loop length when the engine's near-flat-saddle
+  // approximation is on, see DistanceSolverOptions::saddleAngleTolerance).
   double tolerance = 0.0;
-  // Eq. (4.5) tolerance on the discrete derivative of d_g along y, relative to the sample spacing.
-  double derivativeTolerance = 1e-6;
 
   void validate() const;  // throws InvalidInput naming the field
 };
@@ -35,15 +36,29 @@ struct BoundaryConnections {
   // Non-convex boundary segments as inclusive sample index ranges [first, last] along the loop.
   std::vector<std::pair<int, int>> nonConvexSegments;
   // invalid(x, y): the shortest connection from x to y runs at least partly along a non-convex
-  // segment (Eq. 4.4-4.5, grown from the segments), so it is not a geodesic.
+  // segment or touches it (Eq. 4.4-4.5), so it is not a geodesic. Symmetric.
   Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> invalid;
 };
 
 // distanceMap(x, y) = surface distance between boundary samples x and y of one closed loop, in loop
 // order; arcLength[x] = cumulative boundary length at sample x (arcLength[0] = 0); loopLength =
-// total length of the closed loop. Throws InvalidInput on size mismatches.
+// total length of the closed loop. bendsInward[x] != 0 where the boundary turns towards the
+// surface at sample x (a reflex turn, see boundaryBendsInward): a connection along the boundary
+// counts only if it bends inwards somewhere, since along a straight stretch it is a geodesic (a
+// patch side is one). Throws InvalidInput on size mismatches.
+BoundaryConnections findBoundaryConnections(const Eigen::MatrixXd& distanceMap,
+                                            const std::vector<double>& arcLength, double loopLength,
+                                            const std::vector<char>& bendsInward,
+                                            const BoundaryConnectionOptions& options = {});
+
+// The thesis' criterion without geometry: every sample may bend (Eq. 4.6 as printed).
 BoundaryConnections findBoundaryConnections(const Eigen::MatrixXd& distanceMap,
                                             const std::vector<double>& arcLength, double loopLength,
                                             const BoundaryConnectionOptions& options = {});
+
+// For boundary vertices (e.g. a loop of boundaryLoops): 1 where the surface angle at the vertex
+// exceeds pi + tolerance (radians), i.e. the boundary turns towards the surface there.
+std::vector<char> boundaryBendsInward(const TriMesh& mesh, const std::vector<int>& loopVertices,
+                                      double tolerance = 1e-9);
 
 }  // namespace egg::geodesic

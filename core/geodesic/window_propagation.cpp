@@ -189,6 +189,8 @@ class Propagator {
     s_.fired.assign(t_.vertexCount, 0);
     s_.splitDistance.assign(t_.halfedgeCount, kInfinity);
     s_.splitCrossing.assign(t_.halfedgeCount, 0.0);
+    s_.firstOnHalfedge.assign(t_.halfedgeCount, -1);
+    s_.nextOnHalfedge.clear();
     s_.windows.clear();
     s_.queue.clear();
     if (static_cast<int>(s_.faceFirstTarget.size()) != t_.faceCount) s_.faceFirstTarget.assign(t_.faceCount, -1);
@@ -536,10 +538,78 @@ class Propagator {
     return true;
   }
 
+  // Trims `w` where an earlier window `o` on the same halfedge is strictly shorter (the
+  // Mitchell-Mount-Papadimitriou overlap rule, applied one way). g(x) = (o.sigma + |o.s - x|) -
+  // (w.sigma + |w.s - x|) changes sign at most twice on the edge; the roots come from squaring
+  // |o.s - x| - |w.s - x| = w.sigma - o.sigma twice (a quadratic), spurious ones are dropped.
+  // Returns false if nothing of w is left.
+  static bool trimAgainst(Window& w, const Window& o) {
+    const double lo = std::max(w.b0, o.b0), hi = std::min(w.b1, o.b1);
+    if (!(hi > lo)) return true;
+    auto g = [&](double x) {
+      return (o.sigma + planarLength(x - o.sx, o.sy)) - (w.sigma + planarLength(x - w.sx, w.sy));
+    };
+    double cuts[4];
+    int count = 0;
+    cuts[count++] = lo;
+    {
+      const double k = w.sigma - o.sigma;
+      const double a = 2.0 * (w.sx - o.sx);
+      const double c = o.sx * o.sx + o.sy * o.sy - w.sx * w.sx - w.sy * w.sy - k * k;
+      const double qa = a * a - 4.0 * k * k;
+      const double qb = 2.0 * a * c + 8.0 * k * k * w.sx;
+      const double qc = c * c - 4.0 * k * k * (w.sx * w.sx + w.sy * w.sy);
+      double roots[2];
+      int nroots = 0;
+      if (std::abs(qa) > 1e-300) {
+        const double disc = qb * qb - 4.0 * qa * qc;
+        if (disc >= 0.0) {
+          const double sq = std::sqrt(disc);
+          roots[nroots++] = (-qb - sq) / (2.0 * qa);
+          roots[nroots++] = (-qb + sq) / (2.0 * qa);
+        }
+      } else if (std::abs(qb) > 1e-300) {
+        roots[nroots++] = -qc / qb;
+      }
+      if (nroots == 2 && roots[0] > roots[1]) std::swap(roots[0], roots[1]);
+      for (int i = 0; i < nroots; ++i) {
+        if (roots[i] > lo && roots[i] < hi) cuts[count++] = roots[i];
+      }
+    }
+    cuts[count++] = hi;
+    // Sign of g on each piece, from its midpoint; a piece where o is shorter is cut off if it
+    // touches an end of w (a middle piece would split w in two, so it stays).
+    double newB0 = w.b0, newB1 = w.b1;
+    bool allDominated = true;
+    for (int i = 0; i + 1 < count; ++i) {
+      const bool dominated = g(0.5 * (cuts[i] + cuts[i + 1])) < 0.0;
+      allDominated = allDominated && dominated;
+    }
+    if (allDominated && lo <= w.b0 && hi >= w.b1) return false;
+    for (int i = 0; i + 1 < count; ++i) {
+      if (!(g(0.5 * (cuts[i] + cuts[i + 1])) < 0.0)) break;
+      if (cuts[i] <= newB0) newB0 = std::max(newB0, cuts[i + 1]);
+    }
+    for (int i = count - 2; i >= 0; --i) {
+      if (!(g(0.5 * (cuts[i] + cuts[i + 1])) < 0.0)) break;
+      if (cuts[i + 1] >= newB1) newB1 = std::min(newB1, cuts[i]);
+    }
+    w.b0 = newB0;
+    w.b1 = newB1;
+    return w.b1 > w.b0;
+  }
+
   void addWindow(Window& w) {
     if (!prune(w)) return;
+    const double L = t_.length[w.halfedge];
+    for (int o = s_.firstOnHalfedge[w.halfedge]; o >= 0; o = s_.nextOnHalfedge[o]) {
+      if (!trimAgainst(w, s_.windows[o]) || w.b1 - w.b0 <= o_.minWindowWidthRelative * L) return;
+    }
     s_.windows.push_back(w);
-    push(windowMinDistance(w), static_cast<int>(s_.windows.size()) - 1);
+    const int index = static_cast<int>(s_.windows.size()) - 1;
+    s_.nextOnHalfedge.push_back(s_.firstOnHalfedge[w.halfedge]);
+    s_.firstOnHalfedge[w.halfedge] = index;
+    push(windowMinDistance(w), index);
   }
 
   void propagateWindow(int index) {

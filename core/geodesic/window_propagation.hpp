@@ -68,6 +68,9 @@ struct Propagation {
   // halfedge so far, and where that ray crossed the edge (Chen-Han "one angle, one split").
   std::vector<double> splitDistance;
   std::vector<double> splitCrossing;
+  // Windows on each halfedge as singly linked lists (for trimming a new window against them).
+  std::vector<int> firstOnHalfedge;
+  std::vector<int> nextOnHalfedge;
   std::vector<Window> windows;
   struct QueueEntry {
     double key;

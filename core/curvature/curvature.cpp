@@ -83,9 +83,11 @@ PrincipalFit fitPrincipal(const TriMesh& mesh, const Eigen::Vector3d& p, const E
   for (int i = 1; i <= count; ++i) {
     const Eigen::Vector3d q = (toEigen(mesh.point(TriMesh::VertexHandle(neighbourhood[i]))) - p) / scale;
     const double x = q.dot(t1), y = q.dot(t2);
+    double xPower[5] = {1.0, x, x * x, x * x * x, x * x * x * x};
+    double yPower[5] = {1.0, y, y * y, y * y * y, y * y * y * y};
     int column = 0;
     for (int d = 1; d <= degree; ++d)
-      for (int j = 0; j <= d; ++j) A(i - 1, column++) = std::pow(x, d - j) * std::pow(y, j);
+      for (int j = 0; j <= d; ++j) A(i - 1, column++) = xPower[d - j] * yPower[j];
     rhs(i - 1) = q.dot(n);
   }
   const Eigen::VectorXd coef = A.colPivHouseholderQr().solve(rhs);

@@ -3,7 +3,9 @@
 #include "core/errors.hpp"
 #include "core/mesh/laplacian.hpp"
 
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -14,6 +16,11 @@ void SmoothingOptions::validate() const {
   if (!(std::isfinite(strength) && strength > 0.0)) {
     std::ostringstream s;
     s << "SmoothingOptions.strength must be a positive number, got " << strength;
+    throw InvalidInput(s.str());
+  }
+  if (!(cg_tolerance > 0.0 && cg_tolerance < 1e-2)) {
+    std::ostringstream s;
+    s << "SmoothingOptions.cg_tolerance must be in (0, 0.01), got " << cg_tolerance;
     throw InvalidInput(s.str());
   }
 }
@@ -74,12 +81,33 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
   Eigen::SparseMatrix<double> A(freeCount, freeCount);
   A.setFromTriplets(entries.begin(), entries.end());
 
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
-  if (solver.info() != Eigen::Success)
-    throw SolverFailure("smoothMeshStep: the implicit fairing system could not be factorised (degenerate faces?)");
-  const Eigen::MatrixXd solved = solver.solve(rhs);
-  if (solver.info() != Eigen::Success || !solved.allFinite())
-    throw SolverFailure("smoothMeshStep: the implicit fairing solve failed");
+  constexpr int kCholeskyLimit = 100000;  // beyond this, fill-in makes the simplicial factorisation slow
+  result.used_cholesky = options.solver == FairingSolver::Cholesky ||
+                         (options.solver == FairingSolver::Auto && freeCount <= kCholeskyLimit);
+  Eigen::MatrixXd solved(freeCount, 3);
+  if (result.used_cholesky) {
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+    if (solver.info() != Eigen::Success)
+      throw SolverFailure("smoothMeshStep: the implicit fairing system could not be factorised (degenerate faces?)");
+    solved = solver.solve(rhs);
+    if (solver.info() != Eigen::Success) throw SolverFailure("smoothMeshStep: the implicit fairing solve failed");
+  } else {
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver(A);
+    solver.setTolerance(options.cg_tolerance);
+    solver.setMaxIterations(std::max(1000, freeCount / 10));
+    for (int axis = 0; axis < 3; ++axis) {
+      Eigen::VectorXd guess(freeCount);
+      for (int v = 0; v < n; ++v)
+        if (!fixed[v]) guess(freeIndex[v]) = X(v, axis);
+      solved.col(axis) = solver.solveWithGuess(rhs.col(axis), guess);
+      if (solver.info() != Eigen::Success)
+        throw SolverFailure("smoothMeshStep: conjugate gradients did not converge (" + std::to_string(solver.iterations()) +
+                            " iterations, relative residual " + std::to_string(solver.error()) + ")");
+      result.iterations = std::max(result.iterations, static_cast<int>(solver.iterations()));
+      result.residual = std::max(result.residual, solver.error());
+    }
+  }
+  if (!solved.allFinite()) throw SolverFailure("smoothMeshStep: the implicit fairing solve produced non-finite positions");
 
   double sum = 0.0;
   for (int v = 0; v < n; ++v) {

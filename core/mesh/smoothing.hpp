@@ -17,6 +17,13 @@ enum class LaplacianWeights {
   Uniform,    // umbrella operator, for comparison only: drifts vertices tangentially
 };
 
+enum class FairingSolver {
+  Auto,               // Cholesky up to 100 000 free vertices, conjugate gradients beyond
+  Cholesky,           // sparse LDL^T (Eigen SimplicialLDLT): exact, fast for patch-sized meshes
+  ConjugateGradient,  // Jacobi-preconditioned CG, warm-started at the current positions: the
+                      // system is well conditioned for moderate strengths, so it scales linearly
+};
+
 struct SmoothingOptions {
   // Time step t of one step, in units of the squared mean edge length (dimensionless). About
   // strength / 4 of the way to the neighbours' average per step on a regular mesh.
@@ -27,6 +34,10 @@ struct SmoothingOptions {
   bool fix_boundary = true;
   // Further vertices to keep fixed (e.g. patch corners), by index.
   std::vector<int> fixed_vertices;
+  // Linear solver of the implicit step.
+  FairingSolver solver = FairingSolver::Auto;
+  // Relative residual at which conjugate gradients stop.
+  double cg_tolerance = 1e-12;
 
   void validate() const;  // throws InvalidInput naming the field
 };
@@ -37,6 +48,9 @@ struct SmoothingResult {
   double mean_displacement_m = 0.0;  // mean over all vertices (fixed ones count as 0)
   int fixed_vertices = 0;            // vertices held in place
   double time_step_m2 = 0.0;         // t in metres squared
+  bool used_cholesky = true;         // which solver ran
+  int iterations = 0;                // conjugate-gradient iterations (largest of x, y, z; 0 for Cholesky)
+  double residual = 0.0;             // relative residual of the solve (CG estimate; 0 for Cholesky)
   double seconds = 0.0;
 };
 

@@ -67,30 +67,36 @@ int mergeDuplicateVertices(TriangleSoup& soup, double toleranceM, std::vector<in
       }
     }
   } else {
-    // Hash grid with cells of the tolerance: a partner lies in one of the 27 surrounding cells.
+    // Hash grid with cells of twice the tolerance: along each axis a partner within the tolerance
+    // lies in the vertex's own cell or in the neighbour towards the nearer cell face, so 8 cells
+    // are searched, not 27.
     std::unordered_map<CellKey, std::vector<int>, CellHash> grid;  // cell -> indices into `kept`
+    grid.reserve(n);
+    const double cellSize = 2.0 * toleranceM;
     const double tol2 = toleranceM * toleranceM;
     for (int i = 0; i < n; ++i) {
       const auto& p = soup.vertices[i];
-      const Eigen::Vector3d cell = (p / toleranceM).array().floor();
+      const Eigen::Vector3d scaled = p / cellSize;
+      const Eigen::Vector3d cell = scaled.array().floor();
       if (!p.allFinite() || cell.cwiseAbs().maxCoeff() > 1e15) {
         addNew(i);
         continue;
       }
       const CellKey key{static_cast<std::int64_t>(cell.x()), static_cast<std::int64_t>(cell.y()),
                         static_cast<std::int64_t>(cell.z())};
+      const Eigen::Vector3d fraction = scaled - cell;
+      const int step[3] = {fraction.x() < 0.5 ? -1 : 1, fraction.y() < 0.5 ? -1 : 1, fraction.z() < 0.5 ? -1 : 1};
       int match = -1;
-      for (int dx = -1; dx <= 1 && match < 0; ++dx)
-        for (int dy = -1; dy <= 1 && match < 0; ++dy)
-          for (int dz = -1; dz <= 1 && match < 0; ++dz) {
-            auto it = grid.find({key.x + dx, key.y + dy, key.z + dz});
-            if (it == grid.end()) continue;
-            for (int k : it->second)
-              if ((kept[k] - p).squaredNorm() <= tol2) {
-                match = k;
-                break;
-              }
+      for (int corner = 0; corner < 8 && match < 0; ++corner) {
+        auto it = grid.find({key.x + ((corner & 1) ? step[0] : 0), key.y + ((corner & 2) ? step[1] : 0),
+                             key.z + ((corner & 4) ? step[2] : 0)});
+        if (it == grid.end()) continue;
+        for (int k : it->second)
+          if ((kept[k] - p).squaredNorm() <= tol2) {
+            match = k;
+            break;
           }
+      }
       if (match >= 0) {
         newIndex[i] = match;
       } else {

@@ -313,25 +313,31 @@ std::uint64_t undirectedKey(int a, int b) {
 
 void Checker::checkEdgesAndOrientation() {
   struct Use {
+    std::uint64_t key;
     int triangle;
     int from, to;
   };
-  std::unordered_map<std::uint64_t, std::vector<Use>> edges;
-  edges.reserve(3 * w_.soup.triangles.size());
+  // Sorting half-edge uses by undirected key groups each edge's triangles (and orders messages).
+  std::vector<Use> all;
+  all.reserve(3 * w_.soup.triangles.size());
   for (size_t t = 0; t < w_.soup.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) {
       const int a = w_.soup.triangles[t][k], b = w_.soup.triangles[t][(k + 1) % 3];
-      edges[undirectedKey(a, b)].push_back({static_cast<int>(t), a, b});
+      all.push_back({undirectedKey(a, b), static_cast<int>(t), a, b});
     }
-  std::vector<std::pair<std::uint64_t, const std::vector<Use>*>> sorted;  // deterministic messages
-  for (const auto& [key, uses] : edges) sorted.push_back({key, &uses});
-  std::sort(sorted.begin(), sorted.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::sort(all.begin(), all.end(), [](const Use& x, const Use& y) {
+    return x.key < y.key || (x.key == y.key && x.triangle < y.triangle);
+  });
 
   std::vector<std::string> nonManifold, conflicts;
   int nonManifoldCount = 0, conflictCount = 0;
   r_.boundary_edges = 0;
-  for (const auto& [key, usesPtr] : sorted) {
-    const auto& uses = *usesPtr;
+  std::vector<Use> uses;
+  for (size_t begin = 0; begin < all.size();) {
+    size_t end = begin;
+    while (end < all.size() && all[end].key == all[begin].key) ++end;
+    uses.assign(all.begin() + begin, all.begin() + end);
+    begin = end;
     if (uses.size() == 1) ++r_.boundary_edges;
     if (uses.size() > 2 && ++nonManifoldCount <= o_.max_named_elements) {
       std::string s = edgeName(uses[0].from, uses[0].to) + " is shared by " + std::to_string(uses.size()) + " triangles (";
@@ -375,6 +381,7 @@ void Checker::checkVertexFans() {
   std::vector<std::string> named;
   int bad = 0;
   std::vector<int> parent;
+  std::vector<std::pair<int, int>> firstWithVertex;
   for (int v = 0; v < n; ++v) {
     const auto& tris = incident[v];
     if (tris.size() < 2) continue;
@@ -384,13 +391,15 @@ void Checker::checkVertexFans() {
       while (parent[i] != i) i = parent[i] = parent[parent[i]];
       return i;
     };
-    // Join triangles that share another vertex (i.e. share an edge at v).
-    std::unordered_map<int, int> firstWithVertex;
+    // Join triangles that share another vertex (i.e. share an edge at v). Valences are small, so
+    // a linear scan beats a hash map.
+    firstWithVertex.clear();
     for (size_t i = 0; i < tris.size(); ++i)
       for (int u : w_.soup.triangles[tris[i]]) {
         if (u == v) continue;
-        auto [it, inserted] = firstWithVertex.emplace(u, static_cast<int>(i));
-        if (!inserted) parent[root(static_cast<int>(i))] = root(it->second);
+        auto it = std::find_if(firstWithVertex.begin(), firstWithVertex.end(), [u](const auto& e) { return e.first == u; });
+        if (it == firstWithVertex.end()) firstWithVertex.push_back({u, static_cast<int>(i)});
+        else parent[root(static_cast<int>(i))] = root(it->second);
       }
     int fans = 0;
     for (size_t i = 0; i < tris.size(); ++i)

@@ -61,7 +61,9 @@ TEST(Laplacian, LinearFunctionsAreHarmonicAndDirichletEnergyIsArea) {
   const Eigen::VectorXd x = coordinate(mesh, 0), y = coordinate(mesh, 1);
   const Eigen::VectorXd Lx = L * x;
   for (auto vh : mesh.vertices())
-    if (!mesh.is_boundary(vh)) EXPECT_NEAR(Lx(vh.idx()), 0.0, 1e-12);
+    if (!mesh.is_boundary(vh)) {
+      EXPECT_NEAR(Lx(vh.idx()), 0.0, 1e-12);
+    }
   EXPECT_NEAR(x.dot(L * x), 2.0, 1e-12);
   EXPECT_NEAR(y.dot(L * y), 2.0, 1e-12);
   EXPECT_NEAR(x.dot(L * y), 0.0, 1e-12);

@@ -101,8 +101,11 @@ TEST(Smoothing, NoisyPlaneReturnsTowardsThePlaneWithTheBoundaryFixed) {
   }
   EXPECT_LT(rms[0], 0.5 * before);
   EXPECT_LT(rms[3], 0.1 * before);
-  for (auto vh : mesh.vertices())
-    if (mesh.is_boundary(vh)) EXPECT_EQ(current.point(vh), mesh.point(vh));  // bit for bit
+  for (auto vh : mesh.vertices()) {
+    if (mesh.is_boundary(vh)) {
+      EXPECT_EQ(current.point(vh), mesh.point(vh));  // bit for bit
+    }
+  }
 }
 
 TEST(Smoothing, SphereShrinksLikeBackwardEulerMeanCurvatureFlow) {
@@ -122,6 +125,26 @@ TEST(Smoothing, SphereShrinksLikeBackwardEulerMeanCurvatureFlow) {
   std::cout << "sphere R' expected " << expected << ", worst relative deviation " << worst << "\n";
   EXPECT_LT(worst, 1e-3);
   EXPECT_EQ(result.fixed_vertices, 0);  // closed: nothing on a boundary
+}
+
+TEST(Smoothing, ConjugateGradientsAgreeWithCholesky) {
+  const TriMesh mesh = noisyPlane(12, 0.25, 0.03);
+  for (double strength : {0.3, 3.0, 30.0}) {
+    SmoothingOptions options;
+    options.strength = strength;
+    options.solver = FairingSolver::Cholesky;
+    const SmoothingResult direct = smoothMeshStep(mesh, options);
+    options.solver = FairingSolver::ConjugateGradient;
+    const SmoothingResult iterative = smoothMeshStep(mesh, options);
+    EXPECT_TRUE(direct.used_cholesky);
+    EXPECT_FALSE(iterative.used_cholesky);
+    EXPECT_GT(iterative.iterations, 0);
+    double worst = 0.0;
+    for (auto vh : mesh.vertices())
+      worst = std::max(worst, (toEigen(direct.mesh.point(vh)) - toEigen(iterative.mesh.point(vh))).norm());
+    EXPECT_LT(worst, 1e-9) << "strength " << strength;
+    EXPECT_NEAR(direct.max_displacement_m, iterative.max_displacement_m, 1e-9);
+  }
 }
 
 TEST(Smoothing, ExtraFixedVerticesStay) {

@@ -123,4 +123,27 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
   return result;
 }
 
+SmoothingLoopResult smoothUntil(const TriMesh& mesh, const std::function<bool(const TriMesh&)>& done, int maxSteps,
+                                const SmoothingOptions& options) {
+  options.validate();
+  if (maxSteps < 0) throw InvalidInput("smoothUntil: maxSteps must be >= 0, got " + std::to_string(maxSteps));
+  const auto start = std::chrono::steady_clock::now();
+  SmoothingLoopResult loop;
+  loop.mesh = mesh;
+  loop.satisfied = done(loop.mesh);
+  while (!loop.satisfied && loop.steps < maxSteps) {
+    SmoothingResult step = smoothMeshStep(loop.mesh, options);
+    loop.mesh = std::move(step.mesh);
+    loop.max_displacement_m.push_back(step.max_displacement_m);
+    loop.mean_displacement_m.push_back(step.mean_displacement_m);
+    ++loop.steps;
+    loop.satisfied = done(loop.mesh);
+  }
+  for (auto vh : mesh.vertices())
+    loop.total_max_displacement_m =
+        std::max(loop.total_max_displacement_m, (toEigen(loop.mesh.point(vh)) - toEigen(mesh.point(vh))).norm());
+  loop.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return loop;
+}
+
 }  // namespace egg

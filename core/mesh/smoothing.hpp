@@ -8,6 +8,7 @@
 // stays put), unlike uniform weights, which also slide vertices tangentially.
 #include "core/mesh/mesh.hpp"
 
+#include <functional>
 #include <vector>
 
 namespace egg {
@@ -57,5 +58,21 @@ struct SmoothingResult {
 // One implicit fairing step. Throws InvalidInput for bad options or an empty mesh, SolverFailure if
 // the (symmetric positive definite) system cannot be factorised.
 SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& options = {});
+
+struct SmoothingLoopResult {
+  TriMesh mesh;                              // the mesh after the last step (the input if none ran)
+  int steps = 0;                             // steps taken
+  bool satisfied = false;                    // `done` returned true (possibly before any step)
+  std::vector<double> max_displacement_m;    // per step
+  std::vector<double> mean_displacement_m;   // per step
+  double total_max_displacement_m = 0.0;     // largest distance of any vertex from its start
+  double seconds = 0.0;
+};
+
+// Section 2.3.3's loop: checks `done` on the input, then alternates one smoothMeshStep and a check,
+// at most `maxSteps` times (e.g. done = "eta <= eta_max" with eta recomputed on the new mesh).
+// Not satisfied after maxSteps is reported, not thrown: the caller decides (split the patch).
+SmoothingLoopResult smoothUntil(const TriMesh& mesh, const std::function<bool(const TriMesh&)>& done, int maxSteps,
+                                const SmoothingOptions& options = {});
 
 }  // namespace egg

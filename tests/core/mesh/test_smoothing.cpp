@@ -158,6 +158,32 @@ TEST(Smoothing, ExtraFixedVerticesStay) {
   EXPECT_EQ(result.fixed_vertices, 2 * 13 + 2 * 5 + 2);
 }
 
+TEST(Smoothing, LoopStopsWhenTheCriterionHolds) {
+  const TriMesh mesh = noisyPlane(10, 0.2, 0.02);
+  const double target = 0.1 * rmsHeight(mesh);
+  int checks = 0;
+  const auto flatEnough = [&](const TriMesh& m) {
+    ++checks;
+    return rmsHeight(m) <= target;
+  };
+  const SmoothingLoopResult loop = smoothUntil(mesh, flatEnough, 20);
+  EXPECT_TRUE(loop.satisfied);
+  EXPECT_GE(loop.steps, 2);
+  EXPECT_LT(loop.steps, 20);
+  EXPECT_EQ(checks, loop.steps + 1);  // the input is checked too
+  EXPECT_LE(rmsHeight(loop.mesh), target);
+  EXPECT_EQ(static_cast<int>(loop.max_displacement_m.size()), loop.steps);
+  // Already satisfied: nothing runs, the mesh is returned unchanged.
+  const SmoothingLoopResult none = smoothUntil(mesh, [](const TriMesh&) { return true; }, 5);
+  EXPECT_EQ(none.steps, 0);
+  EXPECT_EQ(none.total_max_displacement_m, 0.0);
+  // Never satisfied: stops at the step limit and says so.
+  const SmoothingLoopResult capped = smoothUntil(mesh, [](const TriMesh&) { return false; }, 3);
+  EXPECT_FALSE(capped.satisfied);
+  EXPECT_EQ(capped.steps, 3);
+  EXPECT_GT(capped.total_max_displacement_m, 0.0);
+}
+
 TEST(Smoothing, BadInputIsRejected) {
   const TriMesh mesh = noisyPlane(3, 0.0, 0.0);
   SmoothingOptions options;

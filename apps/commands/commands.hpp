@@ -23,6 +23,7 @@ void registerRunCommand(CLI::App& parent, Action& action);      // run.cpp
 void registerGeodesicCommand(CLI::App& parent, Action& action);  // geodesic_commands.cpp (egg geodesic)
 void registerGeodesicBench(CLI::App& bench, Action& action);     // geodesic_commands.cpp (egg bench geodesic)
 void registerSimBench(CLI::App& bench, Action& action);          // sim_commands.cpp (egg bench sim)
+void registerGridBench(CLI::App& bench, Action& action);         // grid_commands.cpp (egg bench grid)
 void registerStressCommand(CLI::App& parent, Action& action);    // sim_commands.cpp (egg stress)
 
 // Runs the program; returns the process exit code.

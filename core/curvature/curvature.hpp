@@ -13,6 +13,11 @@
 // and directions and K = kappa_max kappa_min within 0.1 % on the same meshes, so it is the
 // default `gaussian`, the one whose maximum feeds Eq. 2.1.
 //
+// Noise: vertex noise of amplitude e on edges of length h perturbs curvature by about e / h^2.
+// Measured on the sphere sample (R = 10 m, h = 1 m) with normal noise of 0.01 h: mean K error 14 %
+// with the defaults, 6 % with fit_rings = 3 and fit_degree = 2 (the angle defect: 36 %). Scanned or
+// noisy meshes should be smoothed first (core/mesh/smoothing.hpp) or fitted over wider rings.
+//
 // Sign convention: principal and mean curvature are positive where the surface bends away from the
 // vertex normal (normals follow the face orientation; a sphere with outward normals has kappa = 1/R).
 #include "core/mesh/laplacian.hpp"  // mixedVoronoiAreas

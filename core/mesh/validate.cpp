@@ -40,6 +40,12 @@ struct WorkingSoup {
   }
 };
 
+std::string formatNumber(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
 std::string formatPoint(const Eigen::Vector3d& p) {
   std::ostringstream s;
   s.precision(9);
@@ -295,7 +301,7 @@ void Checker::checkFaceShapes() {
   }
   if (degenerateCount > 0)
     add(MeshIssueKind::DegenerateFaces, degenerateCount, Severity::Error,
-        std::to_string(degenerateCount) + " zero-area triangle(s) (area below " + std::to_string(o_.degenerate_area_relative) +
+        std::to_string(degenerateCount) + " zero-area triangle(s) (area below " + formatNumber(o_.degenerate_area_relative) +
             " x mean edge length squared): " + list(degenerate, degenerateCount));
   if (sliverCount > 0) {
     std::ostringstream s;
@@ -482,13 +488,13 @@ std::string toString(MeshIssueKind kind) {
 void MeshCheckOptions::validate() const {
   if (!(merge_tolerance_relative >= 0.0 && merge_tolerance_relative < 0.01))
     throw InvalidInput("MeshCheckOptions.merge_tolerance_relative must be in [0, 0.01), got " +
-                       std::to_string(merge_tolerance_relative));
+                       formatNumber(merge_tolerance_relative));
   if (!(degenerate_area_relative >= 0.0 && degenerate_area_relative < 0.1))
     throw InvalidInput("MeshCheckOptions.degenerate_area_relative must be in [0, 0.1), got " +
-                       std::to_string(degenerate_area_relative));
+                       formatNumber(degenerate_area_relative));
   if (!(sliver_min_angle_rad >= 0.0 && sliver_min_angle_rad < std::numbers::pi / 3.0))
     throw InvalidInput("MeshCheckOptions.sliver_min_angle_rad must be in [0, pi/3), got " +
-                       std::to_string(sliver_min_angle_rad));
+                       formatNumber(sliver_min_angle_rad));
   if (max_named_elements < 1)
     throw InvalidInput("MeshCheckOptions.max_named_elements must be at least 1, got " + std::to_string(max_named_elements));
 }

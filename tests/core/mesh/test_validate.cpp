@@ -83,6 +83,7 @@ TEST(Validate, ZeroAreaTriangleIsNamed) {
   ASSERT_NE(issue, nullptr) << result.summary();
   EXPECT_EQ(issue->count, 1);
   EXPECT_TRUE(contains(issue->message, "triangle 8 (vertices 9, 10, 11)")) << issue->message;
+  EXPECT_TRUE(contains(issue->message, "area below 1e-12 x mean edge length squared")) << issue->message;
 }
 
 TEST(Validate, SliversReportCountAndWorst) {

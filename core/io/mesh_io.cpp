@@ -165,6 +165,17 @@ TriangleSoup readMeshFile(const fs::path& path, const MeshImportOptions& options
   return soup;
 }
 
+TriMesh loadMeshFile(const fs::path& path, const MeshImportOptions& importOptions, const MeshCheckOptions& checkOptions,
+                     MeshRepairDiagnostics& diagnostics) {
+  checkOptions.validate();
+  TriangleSoup soup = readMeshFile(path, importOptions);
+  try {
+    return prepareMesh(std::move(soup), checkOptions, diagnostics);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput("mesh " + quoted(path) + ": " + e.what());
+  }
+}
+
 void writeMeshFile(const fs::path& path, const TriangleSoup& soup, const MeshExportOptions& options) {
   options.validate();
   const std::string ext = lowerExtension(path);

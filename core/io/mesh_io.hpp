@@ -7,6 +7,7 @@
 // FBX: we do not ask assimp to convert units (AI_CONFIG_FBX_CONVERT_TO_M stays off), so coordinates
 // arrive in the file's unit; pass scale_to_m for it (0.01 for the common centimetres).
 #include "core/mesh/mesh.hpp"
+#include "core/mesh/validate.hpp"
 
 #include <filesystem>
 #include <string>
@@ -26,6 +27,11 @@ struct MeshImportOptions {
 // triangulated; points and lines are ignored. Throws IoError naming the file and the reason when
 // the file is missing, unreadable, or holds no triangles.
 TriangleSoup readMeshFile(const std::filesystem::path& path, const MeshImportOptions& options = {});
+
+// readMeshFile then prepareMesh: the validated, repaired surface of a file. An invalid mesh is an
+// InvalidInput whose message starts with the file name and goes on to name the element.
+TriMesh loadMeshFile(const std::filesystem::path& path, const MeshImportOptions& importOptions,
+                     const MeshCheckOptions& checkOptions, MeshRepairDiagnostics& diagnostics);
 
 struct MeshExportOptions {
   // Factor from metres to file units (1000 writes millimetres).

@@ -253,6 +253,27 @@ TEST(MeshIo, WriteErrorsNameTheFileAndLeaveNothing) {
   EXPECT_THROW(readMeshFile(dir / "s.obj", bad), InvalidInput);
 }
 
+TEST(MeshIo, LoadMeshFileRepairsOrNamesFileAndElement) {
+  TempDir dir;
+  const TriangleSoup original = wavySurface(3);
+  writeMeshFile(dir / "ok.stl", original);
+  MeshRepairDiagnostics diagnostics;
+  const TriMesh mesh = loadMeshFile(dir / "ok.stl", {}, {}, diagnostics);
+  EXPECT_EQ(mesh.n_vertices(), original.vertices.size());
+  EXPECT_GT(diagnostics.merged_vertices, 0);
+  // A fin on an edge: three triangles share edge (1, 2) of this OBJ (1-based indices in the file).
+  writeText(dir / "fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 1 1 1\nf 1 2 3\nf 2 4 3\nf 2 3 5\n");
+  try {
+    loadMeshFile(dir / "fin.obj", {}, {}, diagnostics);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find((dir / "fin.obj").string()), std::string::npos) << message;
+    EXPECT_NE(message.find("non-manifold edge"), std::string::npos) << message;
+    EXPECT_NE(message.find("shared by 3 triangles (0, 1, 2)"), std::string::npos) << message;
+  }
+}
+
 TEST(MeshIo, ExtensionListsContainTheRequiredFormats) {
   const auto in = importableExtensions();
   for (const std::string ext : {".obj", ".stl", ".ply", ".off", ".gltf", ".glb", ".fbx"})

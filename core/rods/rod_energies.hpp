@@ -70,11 +70,13 @@ inline S stretchingEnergy(const V3<S>& x0, const V3<S>& x1, double stiffness, do
 
 // Bending and twisting at the interior vertex x1 between edges (x0,x1) and (x1,x2), with the
 // vertex's Voronoi rest length l = (h0 + h1)/2. Straight rest state: zero rest curvature/twist.
+// The same from the two edge vectors e0 = x1 - x0, e1 = x2 - x1 (the energy depends on the
+// vertices only through them; the Hessian pass differentiates with respect to 8 instead of 11
+// variables).
 template <class S>
-inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, const Frame<S>& f0, const Frame<S>& f1,
-                         const RodStiffness& stiffness, double voronoiLength) {
+inline S bendTwistEnergyOfEdges(const V3<S>& e0, const V3<S>& e1, const Frame<S>& f0, const Frame<S>& f1,
+                                const RodStiffness& stiffness, double voronoiLength) {
   using std::atan2;
-  const V3<S> e0 = x1 - x0, e1 = x2 - x1;
   const S denominator = norm(e0) * norm(e1) + dot(e0, e1);
   const V3<S> curvatureBinormal = (2.0 / denominator) * cross(e0, e1);
   const S weak0 = dot(curvatureBinormal, f0.side), weak1 = dot(curvatureBinormal, f1.side);
@@ -85,6 +87,12 @@ inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, cons
   const V3<S> carried = parallelTransport(f0.tangent, f1.tangent, f0.normal);
   const S twist = atan2(dot(cross(carried, f1.normal), f1.tangent), dot(carried, f1.normal));
   return bending + (0.5 * stiffness.twisting / voronoiLength) * (twist * twist);
+}
+
+template <class S>
+inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, const Frame<S>& f0, const Frame<S>& f1,
+                         const RodStiffness& stiffness, double voronoiLength) {
+  return bendTwistEnergyOfEdges(x1 - x0, x2 - x1, f0, f1, stiffness, voronoiLength);
 }
 
 template <class S>

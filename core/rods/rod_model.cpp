@@ -36,6 +36,12 @@ struct EnergySum {
   void operator()(const std::array<int, N>& /*dofs*/, const std::array<double, N>& values, const F& f) {
     total += f(values);
   }
+  // A stencil whose variables are linear combinations of unknowns (edge vectors).
+  template <size_t N, class F>
+  void mapped(const std::array<std::array<std::pair<int, double>, 2>, N>& /*map*/, const std::array<double, N>& values,
+              const F& f) {
+    total += f(values);
+  }
 };
 
 // Accumulates energy, gradient and Hessian triplets of stencils (exact, by HyperDual).
@@ -57,8 +63,34 @@ struct DerivativeSum {
       gradient[dofs[i]] += result.g[i];
       for (size_t j = 0; j < N; ++j) {
         if (dofs[j] < 0 || dofs[j] > dofs[i]) continue;
-        const double value = result.hessian(static_cast<int>(i), static_cast<int>(j));
-        if (value != 0.0) triplets.emplace_back(dofs[i], dofs[j], value);
+        // Zeros are kept: the sparsity pattern then depends only on which edges hold the bolts,
+        // and the solver can reuse its symbolic factorisation.
+        triplets.emplace_back(dofs[i], dofs[j], result.hessian(static_cast<int>(i), static_cast<int>(j)));
+      }
+    }
+  }
+  // Variable k of the stencil is sum_m map[k][m].second * unknown[map[k][m].first] (dof -1: none).
+  template <size_t N, class F>
+  void mapped(const std::array<std::array<std::pair<int, double>, 2>, N>& map, const std::array<double, N>& values,
+              const F& f) {
+    using D = HyperDual<static_cast<int>(N)>;
+    std::array<D, N> variables;
+    for (size_t i = 0; i < N; ++i) variables[i] = D::variable(values[i], static_cast<int>(i));
+    const D result = f(variables);
+    total += result.v;
+    for (size_t k = 0; k < N; ++k) {
+      for (const auto& [dof, sign] : map[k]) {
+        if (dof >= 0) gradient[dof] += sign * result.g[k];
+      }
+      for (size_t l = 0; l < N; ++l) {
+        const double value = result.hessian(static_cast<int>(k), static_cast<int>(l));
+        for (const auto& [dofK, signK] : map[k]) {
+          if (dofK < 0) continue;
+          for (const auto& [dofL, signL] : map[l]) {
+            if (dofL < 0 || dofL > dofK) continue;
+            triplets.emplace_back(dofK, dofL, signK * signL * value);
+          }
+        }
       }
     }
   }
@@ -398,6 +430,22 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
       return Frame<S>{lift(f.tangent), lift(f.normal), lift(f.side)};
     }
   };
+  // The same for a stencil whose variables at edgeIndex.. are the edge vector itself.
+  auto frameOfEdge = [&](const auto& v, int rod, int edge, int edgeIndex, int theta) {
+    using S = std::decay_t<decltype(v[0])>;
+    const int index = edgeReferenceBase_[rod] + edge;
+    if constexpr (std::is_same_v<S, double>) {
+      return materialFrame(v3(v, edgeIndex), v[theta], references_[index]);
+    } else {
+      constexpr int N = static_cast<int>(std::tuple_size_v<std::decay_t<decltype(v)>>);
+      const Frame<HyperDual<4>>& f = (*frames)[index].frame;
+      const int at[4] = {edgeIndex, edgeIndex + 1, edgeIndex + 2, theta};
+      auto lift = [&](const V3<HyperDual<4>>& a) {
+        return V3<S>{embed<N>(a.x, at), embed<N>(a.y, at), embed<N>(a.z, at)};
+      };
+      return Frame<S>{lift(f.tangent), lift(f.normal), lift(f.side)};
+    }
+  };
   for (int r = 0; r < rodCount(); ++r) {
     const RodData& data = rods_[r];
     for (int j = 0; j < data.edges; ++j) {
@@ -411,15 +459,22 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
     }
     for (int i = 1; i < data.edges; ++i) {
       if (!mine()) continue;
-      std::array<int, 11> dofs;
-      std::array<double, 11> values;
-      for (int k = 0; k < 9; ++k) dofs[k] = vertexDof(r, i - 1) + k;
-      dofs[9] = thetaDof(r, i - 1);
-      dofs[10] = thetaDof(r, i);
-      for (int k = 0; k < 11; ++k) values[k] = z[dofs[k]];
-      visit(dofs, values, [&](const auto& v) {
-        return bendTwistEnergy(v3(v, 0), v3(v, 3), v3(v, 6), frameOf(v, r, i - 1, 0, 3, 9), frameOf(v, r, i, 3, 6, 10),
-                               data.stiffness, data.h);
+      // Variables: e0 = x_i - x_{i-1}, e1 = x_{i+1} - x_i, theta_{i-1}, theta_i.
+      std::array<std::array<std::pair<int, double>, 2>, 8> map;
+      std::array<double, 8> values;
+      for (int k = 0; k < 3; ++k) {
+        map[k] = {std::pair{vertexDof(r, i) + k, 1.0}, std::pair{vertexDof(r, i - 1) + k, -1.0}};
+        map[3 + k] = {std::pair{vertexDof(r, i + 1) + k, 1.0}, std::pair{vertexDof(r, i) + k, -1.0}};
+        values[k] = z[vertexDof(r, i) + k] - z[vertexDof(r, i - 1) + k];
+        values[3 + k] = z[vertexDof(r, i + 1) + k] - z[vertexDof(r, i) + k];
+      }
+      map[6] = {std::pair{thetaDof(r, i - 1), 1.0}, std::pair{-1, 0.0}};
+      map[7] = {std::pair{thetaDof(r, i), 1.0}, std::pair{-1, 0.0}};
+      values[6] = z[thetaDof(r, i - 1)];
+      values[7] = z[thetaDof(r, i)];
+      visit.mapped(map, values, [&](const auto& v) {
+        return bendTwistEnergyOfEdges(v3(v, 0), v3(v, 3), frameOfEdge(v, r, i - 1, 0, 6), frameOfEdge(v, r, i, 3, 7),
+                                      data.stiffness, data.h);
       });
     }
   }

@@ -26,6 +26,9 @@ void SolverOptions::validate() const {
   if (!(timeLimit_s > 0.0)) throw InvalidInput("SolverOptions.timeLimit_s must be > 0");
   if (!(tolerance > 0.0 && tolerance < 1.0)) throw InvalidInput("SolverOptions.tolerance must be in (0, 1)");
   if (threads < 1) throw InvalidInput("SolverOptions.threads must be >= 1");
+  if (!(continuationStart > 0.0 && continuationStart <= 1.0)) {
+    throw InvalidInput("SolverOptions.continuationStart must be in (0, 1]");
+  }
 }
 
 const char* toString(SolverStatus status) {
@@ -59,6 +62,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
   std::vector<Eigen::Triplet<double>> triplets, freeTriplets;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
   double shift = 0.0;  // relative diagonal shift that last made the Hessian positive definite
+  std::vector<int> patternOuter, patternInner;
 
   for (int iteration = 0;; ++iteration) {
     const Eigen::VectorXd z = model.state();
@@ -112,7 +116,19 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       if (trial > 0.0) {
         for (int i = 0; i < freeCount; ++i) shifted.coeffRef(i, i) += trial * scale[i];
       }
-      solver.compute(shifted);
+      shifted.makeCompressed();
+      // The pattern changes only when a bolt moves to another edge: reuse the ordering and
+      // symbolic factorisation otherwise.
+      const bool samePattern =
+          static_cast<long>(patternInner.size()) == shifted.nonZeros() &&
+          std::equal(patternOuter.begin(), patternOuter.end(), shifted.outerIndexPtr()) &&
+          std::equal(patternInner.begin(), patternInner.end(), shifted.innerIndexPtr());
+      if (!samePattern) {
+        solver.analyzePattern(shifted);
+        patternOuter.assign(shifted.outerIndexPtr(), shifted.outerIndexPtr() + shifted.outerSize() + 1);
+        patternInner.assign(shifted.innerIndexPtr(), shifted.innerIndexPtr() + shifted.nonZeros());
+      }
+      solver.factorize(shifted);
       if (solver.info() == Eigen::Success && (solver.vectorD().array() > 0.0).all()) {
         direction = -solver.solve(g);
         if (direction.allFinite() && direction.dot(g) < 0.0) {
@@ -182,7 +198,7 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
   if (options.stiffnessContinuation) {
     SolverOptions stage = options;
     stage.tolerance = std::max(options.tolerance, 1e-6);  // warm starts only: no need to be exact
-    for (double factor : {1e-4, 1e-3, 1e-2, 1e-1}) {
+    for (double factor = options.continuationStart; factor < 0.99; factor *= 10.0) {
       model.setStiffTermsFactor(factor * finalFactor);
       const SolverResult r = newton(model, stage, start, iterations);
       iterations = r.iterations;

@@ -21,6 +21,7 @@ struct SolverOptions {
   // terms (stretching, position penalties) softened by 1e-4, 1e-3, ... and then at full stiffness
   // reaches the same equilibrium in ~10-20 iterations.
   bool stiffnessContinuation = true;
+  double continuationStart = 1e-4;  // first softening factor; factors grow tenfold up to 1
   void validate() const;      // throws InvalidInput naming the field
 };
 

@@ -18,6 +18,7 @@ void AlphaBarOptions::validate() const {
   if (!(slopeMax > slopeMin)) throw InvalidInput("grid.slope_bounds[1] (k_max) must exceed k_min");
   if (choice == AlphaBarChoice::Given && !(givenAlphaBar > 0.0 && givenAlphaBar < M_PI))
     throw InvalidInput("grid.alpha_bar must lie in (0, pi) radians");
+  if (!(unrolledTolerance >= 0.0)) throw InvalidInput("alpha_bar unrolled_tolerance must be >= 0");
   if (!(minPlanarAngle >= 0.0 && minPlanarAngle < M_PI / 4)) throw InvalidInput("grid.min_planar_angle must lie in [0, pi/4)");
   if (scanSamples < 3) throw InvalidInput("alpha_bar scan_samples must be >= 3");
   if (maxEvaluations < 1) throw InvalidInput("alpha_bar max_evaluations must be >= 1");
@@ -240,7 +241,14 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
   if (result.rangeFound) status << "; alpha_min by " << howMin << ", alpha_max by " << howMax;
   else status << "; no feasible range";
 
-  const auto chosen = evaluate(result.alphaBar, &result.claddingU, &result.claddingV);
+  auto chosen = evaluate(result.alphaBar, &result.claddingU, &result.claddingV);
+  if (options.choice == AlphaBarChoice::Unrolled && chosen.closable && !chosen.bijective) {
+    AlphaBarOptions loose = options;
+    loose.cladding.degenerateTolerance = std::max(options.cladding.degenerateTolerance, options.unrolledTolerance);
+    Evaluator nearDevelopable{maps, loose, meanSide(maps)};
+    chosen = nearDevelopable(result.alphaBar, &result.claddingU, &result.claddingV);
+    if (result.claddingU.degenerate && result.claddingV.degenerate) status << " (near-developable: maps agree within tolerance)";
+  }
   if (!chosen.closable) {
     std::ostringstream message;
     message << "alpha_bar = " << result.alphaBar << " rad gives no convex planar quad (convex range [" << range->lo

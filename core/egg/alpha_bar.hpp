@@ -28,6 +28,10 @@ struct AlphaBarOptions {
   // the quad fold flat, where the lamellas of the planar grid lie on top of each other; this
   // keeps the flat grid buildable. 0 = convexity only.
   double minPlanarAngle = 0.15;
+  // choice == Unrolled on a surface that is developable only up to its triangulation (a meshed
+  // cylinder is not exactly flat): when the intersection at alpha is not bijective but the maps
+  // agree within this fraction of the mean side length everywhere, the identity pairing is used.
+  double unrolledTolerance = 2e-3;
   int scanSamples = 48;               // samples of the convex range that seed SLSQP
   int maxEvaluations = 200;           // SLSQP evaluation budget per bound
   double tolerance = 1e-8;            // radians, accuracy of alpha_bar_min / alpha_bar_max

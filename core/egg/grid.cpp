@@ -99,6 +99,11 @@ void matchMember(const Patch& patch, const geodesic::DistanceSolver& solver, con
     xs.push_back(x);
     targets.push_back(endPoint(x));
   }
+  // Coarse samples of the whole side as well: on a nearly developable patch the mismatch is tiny
+  // everywhere and its root may lie outside the window around the guess.
+  std::vector<double> coarse;
+  for (int k = 0; k < count; ++k) coarse.push_back(static_cast<double>(k) / (count - 1));
+  for (double x : coarse) targets.push_back(endPoint(x));
   const auto field = solver.distances(start, targets);
   ++propagations;
   const double scale = planarDistance(quad, m.family, m.x1, guess);
@@ -112,9 +117,22 @@ void matchMember(const Patch& patch, const geodesic::DistanceSolver& solver, con
       if ((ga <= 0) != (gb <= 0) && (bracket < 0 || std::abs(xs[k] - guess) < std::abs(xs[bracket] - guess))) bracket = k;
       if (std::abs(ga) < std::abs(bestG)) bestG = ga, bestX = xs[k];
     }
+    double a = 0, b = 0, ga = 0, gb = 0;
     if (bracket >= 0) {
-      double a = xs[bracket], b = xs[bracket + 1];
-      double ga = mismatch(a, field.targetDistances[bracket]), gb = mismatch(b, field.targetDistances[bracket + 1]);
+      a = xs[bracket], b = xs[bracket + 1];
+      ga = mismatch(a, field.targetDistances[bracket]), gb = mismatch(b, field.targetDistances[bracket + 1]);
+    } else {
+      const size_t offset = xs.size();
+      for (int k = 0; k + 1 < count; ++k) {
+        const double g0 = mismatch(coarse[k], field.targetDistances[offset + k]);
+        const double g1 = mismatch(coarse[k + 1], field.targetDistances[offset + k + 1]);
+        if ((g0 <= 0) == (g1 <= 0)) continue;
+        const double middle = 0.5 * (coarse[k] + coarse[k + 1]);
+        if (bracket < 0 || std::abs(middle - guess) < std::abs(0.5 * (a + b) - guess))
+          bracket = k, a = coarse[k], b = coarse[k + 1], ga = g0, gb = g1;
+      }
+    }
+    if (bracket >= 0) {
       int side = 0;
       for (int step = 0; step < options.maxSecantSteps; ++step) {  // Illinois regula falsi
         const double x = b - gb * (b - a) / (gb - ga);

@@ -154,60 +154,75 @@ SurfacePoint intoFace(SurfacePoint p) {
 
 int runBench(const BenchArgs& args) {
   nlohmann::json rows = nlohmann::json::array();
-  std::cout << fmt::format("{:>7} {:>10} {:>10} {:>9} {:>11} {:>10} {:>12} {:>11} {:>9}\n", "verts", "ours ms/src",
-                           "cgal ms/src", "speedup", "max rel err", "precomp s",
-                           fmt::format("map{} s", args.sources), fmt::format("{}thr", args.threads), "RSS MB");
-  for (size_t k = 0; k < args.sizes.size(); ++k) {
-    const TriMesh mesh = bumpWithVertices(args.sizes[k]);
+  // Phase 1: our engine at every size (so the peak RSS reported is ours, before CGAL runs).
+  struct Case {
+    TriMesh mesh;
+    std::vector<SurfacePoint> sources;
+    double oursMs = 0.0, mapSeconds = 0.0, precompute = 0.0, rss = 0.0, meanEdge = 0.0;
+  };
+  std::vector<Case> cases;
+  for (int size : args.sizes) {
+    Case c;
+    c.mesh = bumpWithVertices(size);
     geodesic::DistanceSolverOptions options;
     options.threads = args.threads;
-    const geodesic::DistanceSolver solver(mesh, options);
-    const auto sources = sidePoints(mesh, args.sources, false);
-    const auto targets = sidePoints(mesh, args.sources, true);
-    // Ours, single source at a time on one thread.
-    const int timed = std::min<int>(args.timedSources, static_cast<int>(sources.size()));
+    const geodesic::DistanceSolver solver(c.mesh, options);
+    c.precompute = solver.precomputeSeconds();
+    c.meanEdge = solver.meanEdgeLength();
+    c.sources = sidePoints(c.mesh, args.sources, false);
+    const auto targets = sidePoints(c.mesh, args.sources, true);
+    // Single sources, one thread.
+    const int timed = std::min<int>(args.timedSources, static_cast<int>(c.sources.size()));
     double oursSeconds = 0.0;
-    for (int i = 0; i < timed; ++i) oursSeconds += solver.distances(sources[i * sources.size() / timed]).seconds;
-    const double oursMs = 1e3 * oursSeconds / std::max(1, timed);
-    // The distance map: all sources, all targets, `threads` threads.
+    for (int i = 0; i < timed; ++i) oursSeconds += solver.distances(c.sources[i * c.sources.size() / timed]).seconds;
+    c.oursMs = 1e3 * oursSeconds / std::max(1, timed);
+    // The distance map: all sources to all targets on the opposite side, `threads` threads.
     const auto start = Clock::now();
-    const auto map = solver.distances(sources, targets);
-    const double mapSeconds = secondsSince(start);
-    // CGAL exact on a few sources, and our error against it.
+    const auto map = solver.distances(c.sources, targets);
+    c.mapSeconds = secondsSince(start);
+    c.rss = peakRssMb();
+    cases.push_back(std::move(c));
+  }
+  // Phase 2: CGAL exact on a few sources per size, and our error against it.
+  std::cout << fmt::format("{:>7} {:>11} {:>11} {:>8} {:>11} {:>9} {:>10} {:>7} {:>11}\n", "verts", "ours ms/src",
+                           "cgal ms/src", "speedup", "max rel err", "precomp s",
+                           fmt::format("map{} s", args.sources), "threads", "ours RSS MB");
+  for (size_t k = 0; k < cases.size(); ++k) {
+    const Case& c = cases[k];
+    const geodesic::DistanceSolver solver(c.mesh);
     const int cgalCount = k < args.cgalSources.size() ? args.cgalSources[k] : 0;
     double cgalSeconds = 0.0, maxError = 0.0;
-    const double nearLimit = 2.0 * solver.meanEdgeLength();
     for (int i = 0; i < cgalCount; ++i) {
-      const SurfacePoint s = intoFace(sources[(2 * i + 1) * sources.size() / (2 * cgalCount)]);
+      const SurfacePoint s = intoFace(c.sources[(2 * i + 1) * c.sources.size() / (2 * cgalCount)]);
       const auto t0 = Clock::now();
-      const auto exact = geodesic::referenceDistances(mesh, s);
+      const auto exact = geodesic::referenceDistances(c.mesh, s);
       cgalSeconds += secondsSince(t0);
       const auto ours = solver.distances(s).vertexDistances;
       for (size_t v = 0; v < exact.size(); ++v) {
-        if (exact[v] > nearLimit && std::isfinite(exact[v])) {
+        if (exact[v] > 2.0 * c.meanEdge && std::isfinite(exact[v])) {
           maxError = std::max(maxError, std::abs(ours[v] - exact[v]) / exact[v]);
         }
       }
     }
     const double cgalMs = cgalCount > 0 ? 1e3 * cgalSeconds / cgalCount : NAN;
-    const double speedup = cgalMs / oursMs;
-    const double rss = peakRssMb();
-    (void)map;
-    std::cout << fmt::format("{:>7} {:>10.2f} {:>10.1f} {:>8.1f}x {:>11.2e} {:>10.4f} {:>12.3f} {:>11} {:>9.0f}\n",
-                             mesh.n_vertices(), oursMs, cgalMs, speedup, cgalCount > 0 ? maxError : NAN,
-                             solver.precomputeSeconds(), mapSeconds, args.threads, rss);
+    const double speedup = cgalMs / c.oursMs;
+    std::cout << fmt::format("{:>7} {:>11.2f} {:>11.1f} {:>7.1f}x {:>11.2e} {:>9.4f} {:>10.3f} {:>7} {:>11.0f}\n",
+                             c.mesh.n_vertices(), c.oursMs, cgalMs, speedup, cgalCount > 0 ? maxError : NAN,
+                             c.precompute, c.mapSeconds, args.threads, c.rss);
     std::cout.flush();
-    rows.push_back({{"vertices", mesh.n_vertices()},
-                    {"ours_ms_per_source", oursMs},
-                    {"cgal_ms_per_source", cgalCount > 0 ? nlohmann::json(cgalMs) : nlohmann::json(nullptr)},
-                    {"speedup", cgalCount > 0 ? nlohmann::json(speedup) : nlohmann::json(nullptr)},
-                    {"max_relative_error_vs_cgal", cgalCount > 0 ? nlohmann::json(maxError) : nlohmann::json(nullptr)},
-                    {"precompute_seconds", solver.precomputeSeconds()},
+    auto orNull = [&](double x) { return cgalCount > 0 ? nlohmann::json(x) : nlohmann::json(nullptr); };
+    rows.push_back({{"vertices", c.mesh.n_vertices()},
+                    {"ours_ms_per_source", c.oursMs},
+                    {"cgal_ms_per_source", orNull(cgalMs)},
+                    {"speedup", orNull(speedup)},
+                    {"max_relative_error_vs_cgal", orNull(maxError)},
+                    {"precompute_seconds", c.precompute},
                     {"map_sources", args.sources},
-                    {"map_seconds", mapSeconds},
+                    {"map_seconds", c.mapSeconds},
                     {"threads", args.threads},
-                    {"peak_rss_mb", rss}});
+                    {"peak_rss_mb", c.rss}});
   }
+  std::cout << fmt::format("peak RSS with CGAL: {:.0f} MB\n", peakRssMb());
   if (!args.csv.empty()) {
     std::ofstream file(args.csv);
     if (!file) throw IoError("cannot write " + args.csv);

@@ -19,6 +19,14 @@ int runCli(int argc, char** argv) {
   Action action;
   registerRunCommand(app, action);
   registerSurfaceCommand(app, action);
+  registerGeodesicCommand(app, action);
+  registerStressCommand(app, action);
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Benchmarks: error against run time, with a reference measured in the same run (CSV + table).");
+  bench->require_subcommand(1);
+  registerGeodesicBench(*bench, action);
+  registerGridBench(*bench, action);
+  registerSimBench(*bench, action);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,357 @@
+// The energy of the discretised grid (RodModel, Section 2.5): the stencils of every term, their
+// double evaluation for line searches and their exact derivatives (HyperDual) for Newton.
+#include "core/rods/rod_model.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <thread>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+
+namespace egg::rods {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Local variables of a stencil as 3-vectors.
+template <class A>
+auto v3(const A& v, int i) {
+  using S = std::decay_t<decltype(v[0])>;
+  return V3<S>{v[i], v[i + 1], v[i + 2]};
+}
+
+// Sums energies of stencils (double evaluation).
+struct EnergySum {
+  double total = 0.0;
+  template <size_t N, class F>
+  void operator()(const std::array<int, N>& /*dofs*/, const std::array<double, N>& values, const F& f) {
+    total += f(values);
+  }
+  // A stencil whose variables are linear combinations of unknowns (edge vectors).
+  template <size_t N, class F>
+  void mapped(const std::array<std::array<std::pair<int, double>, 2>, N>& /*map*/, const std::array<double, N>& values,
+              const F& f) {
+    total += f(values);
+  }
+};
+
+// Accumulates energy, gradient and Hessian triplets of stencils (exact, by HyperDual).
+struct DerivativeSum {
+  double total = 0.0;
+  Eigen::VectorXd gradient;
+  std::vector<Eigen::Triplet<double>> triplets;
+  template <size_t N, class F>
+  void operator()(const std::array<int, N>& dofs, const std::array<double, N>& values, const F& f) {
+    using D = HyperDual<static_cast<int>(N)>;
+    std::array<D, N> variables;
+    for (size_t i = 0; i < N; ++i) {
+      variables[i] = dofs[i] >= 0 ? D::variable(values[i], static_cast<int>(i)) : D(values[i]);
+    }
+    const D result = f(variables);
+    total += result.v;
+    for (size_t i = 0; i < N; ++i) {
+      if (dofs[i] < 0) continue;
+      gradient[dofs[i]] += result.g[i];
+      for (size_t j = 0; j < N; ++j) {
+        if (dofs[j] < 0 || dofs[j] > dofs[i]) continue;
+        // Zeros are kept: the sparsity pattern then depends only on which edges hold the bolts,
+        // and the solver can reuse its symbolic factorisation.
+        triplets.emplace_back(dofs[i], dofs[j], result.hessian(static_cast<int>(i), static_cast<int>(j)));
+      }
+    }
+  }
+  // Variable k of the stencil is sum_m map[k][m].second * unknown[map[k][m].first] (dof -1: none).
+  template <size_t N, class F>
+  void mapped(const std::array<std::array<std::pair<int, double>, 2>, N>& map, const std::array<double, N>& values,
+              const F& f) {
+    using D = HyperDual<static_cast<int>(N)>;
+    std::array<D, N> variables;
+    for (size_t i = 0; i < N; ++i) variables[i] = D::variable(values[i], static_cast<int>(i));
+    const D result = f(variables);
+    total += result.v;
+    for (size_t k = 0; k < N; ++k) {
+      for (const auto& [dof, sign] : map[k]) {
+        if (dof >= 0) gradient[dof] += sign * result.g[k];
+      }
+      for (size_t l = 0; l < N; ++l) {
+        const double value = result.hessian(static_cast<int>(k), static_cast<int>(l));
+        for (const auto& [dofK, signK] : map[k]) {
+          if (dofK < 0) continue;
+          for (const auto& [dofL, signL] : map[l]) {
+            if (dofL < 0 || dofL > dofK) continue;
+            triplets.emplace_back(dofK, dofL, signK * signL * value);
+          }
+        }
+      }
+    }
+  }
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------- energy
+
+SliderParameters RodModel::sliderParameters(const BoltSide& side) const {
+  const RodData& r = rods_[side.point.rod];
+  SliderParameters p;
+  p.edgeStart = side.point.edge * r.h;
+  p.edgeLength = r.h;
+  p.notchMin = side.notchMin;
+  p.notchMax = side.notchMax;
+  p.mu = options_.frictionMu;
+  p.epsilon = options_.frictionEpsilon;
+  // The thesis gives E_p and E_n without units. Their barrier at every vertex, ~8.5 mu^2 high,
+  // must be climbed over half an edge, so a bolt passes a vertex when the sliding force exceeds
+  // ~17 mu^2 unit / h. With unit = EI_weak h / L^2 that threshold is 17 mu^2 EI/L^2 (mu = 0.1:
+  // a sixth of the rod's Euler load), independent of the model's size and of the discretisation.
+  p.unit = r.stiffness.bendingWeak * r.h / (r.length * r.length);
+  return p;
+}
+
+std::vector<RodModel::EdgeFrameDerivatives> RodModel::frameDerivatives(const Eigen::VectorXd& z, int threads) const {
+  std::vector<EdgeFrameDerivatives> frames(references_.size());
+  auto work = [&](int part) {
+    for (int r = 0; r < rodCount(); ++r) {
+      for (int j = 0; j < rods_[r].edges; ++j) {
+        const int index = edgeReferenceBase_[r] + j;
+        if (index % threads != part) continue;
+        using D = HyperDual<4>;
+        const Eigen::Vector3d e = z.segment<3>(vertexDof(r, j + 1)) - z.segment<3>(vertexDof(r, j));
+        const V3<D> edge{D::variable(e.x(), 0), D::variable(e.y(), 1), D::variable(e.z(), 2)};
+        frames[index].frame = materialFrame(edge, D::variable(z[thetaDof(r, j)], 3), references_[index]);
+      }
+    }
+  };
+  if (threads <= 1) {
+    work(0);
+  } else {
+    std::vector<std::thread> workers;
+    for (int t = 0; t < threads; ++t) workers.emplace_back(work, t);
+    for (auto& w : workers) w.join();
+  }
+  return frames;
+}
+
+template <class Visitor>
+void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int part, int parts,
+                              const std::vector<EdgeFrameDerivatives>* frames) const {
+  long counter = 0;
+  auto mine = [&]() { return (counter++ % parts) == part; };
+  // Material frame of edge `edge` of rod `rod` over the stencil's variables v, whose local
+  // indices start, end, theta hold the edge's two vertices and its angle.
+  auto frameOf = [&](const auto& v, int rod, int edge, int start, int end, int theta) {
+    using S = std::decay_t<decltype(v[0])>;
+    const int index = edgeReferenceBase_[rod] + edge;
+    if constexpr (std::is_same_v<S, double>) {
+      return materialFrame(v3(v, end) - v3(v, start), v[theta], references_[index]);
+    } else {
+      constexpr int N = static_cast<int>(std::tuple_size_v<std::decay_t<decltype(v)>>);
+      const Frame<HyperDual<4>>& f = (*frames)[index].frame;
+      auto lift = [&](const V3<HyperDual<4>>& a) {
+        return V3<S>{liftEdgeQuantity<N>(a.x, start, end, theta), liftEdgeQuantity<N>(a.y, start, end, theta),
+                     liftEdgeQuantity<N>(a.z, start, end, theta)};
+      };
+      return Frame<S>{lift(f.tangent), lift(f.normal), lift(f.side)};
+    }
+  };
+  // The same for a stencil whose variables at edgeIndex.. are the edge vector itself.
+  auto frameOfEdge = [&](const auto& v, int rod, int edge, int edgeIndex, int theta) {
+    using S = std::decay_t<decltype(v[0])>;
+    const int index = edgeReferenceBase_[rod] + edge;
+    if constexpr (std::is_same_v<S, double>) {
+      return materialFrame(v3(v, edgeIndex), v[theta], references_[index]);
+    } else {
+      constexpr int N = static_cast<int>(std::tuple_size_v<std::decay_t<decltype(v)>>);
+      const Frame<HyperDual<4>>& f = (*frames)[index].frame;
+      const int at[4] = {edgeIndex, edgeIndex + 1, edgeIndex + 2, theta};
+      auto lift = [&](const V3<HyperDual<4>>& a) {
+        return V3<S>{embed<N>(a.x, at), embed<N>(a.y, at), embed<N>(a.z, at)};
+      };
+      return Frame<S>{lift(f.tangent), lift(f.normal), lift(f.side)};
+    }
+  };
+  for (int r = 0; r < rodCount(); ++r) {
+    const RodData& data = rods_[r];
+    for (int j = 0; j < data.edges; ++j) {
+      if (!mine()) continue;
+      std::array<int, 6> dofs;
+      std::array<double, 6> values;
+      for (int k = 0; k < 6; ++k) dofs[k] = vertexDof(r, j) + k;
+      for (int k = 0; k < 6; ++k) values[k] = z[dofs[k]];
+      const double stiffness = stiffFactor_ * data.stiffness.stretching, h = data.h;
+      visit(dofs, values, [&](const auto& v) { return stretchingEnergy(v3(v, 0), v3(v, 3), stiffness, h); });
+    }
+    for (int i = 1; i < data.edges; ++i) {
+      if (!mine()) continue;
+      // Variables: e0 = x_i - x_{i-1}, e1 = x_{i+1} - x_i, theta_{i-1}, theta_i.
+      std::array<std::array<std::pair<int, double>, 2>, 8> map;
+      std::array<double, 8> values;
+      for (int k = 0; k < 3; ++k) {
+        map[k] = {std::pair{vertexDof(r, i) + k, 1.0}, std::pair{vertexDof(r, i - 1) + k, -1.0}};
+        map[3 + k] = {std::pair{vertexDof(r, i + 1) + k, 1.0}, std::pair{vertexDof(r, i) + k, -1.0}};
+        values[k] = z[vertexDof(r, i) + k] - z[vertexDof(r, i - 1) + k];
+        values[3 + k] = z[vertexDof(r, i + 1) + k] - z[vertexDof(r, i) + k];
+      }
+      map[6] = {std::pair{thetaDof(r, i - 1), 1.0}, std::pair{-1, 0.0}};
+      map[7] = {std::pair{thetaDof(r, i), 1.0}, std::pair{-1, 0.0}};
+      values[6] = z[thetaDof(r, i - 1)];
+      values[7] = z[thetaDof(r, i)];
+      visit.mapped(map, values, [&](const auto& v) {
+        return bendTwistEnergyOfEdges(v3(v, 0), v3(v, 3), frameOfEdge(v, r, i - 1, 0, 6), frameOfEdge(v, r, i, 3, 7),
+                                      data.stiffness, data.h);
+      });
+    }
+  }
+  for (const Bolt& b : bolts_) {
+    if (!mine()) continue;
+    std::array<int, 16> dofs;
+    std::array<double, 16> values;
+    int k = 0;
+    for (const BoltSide* s : {&b.lower, &b.upper}) {
+      for (int c = 0; c < 6; ++c) dofs[k + c] = vertexDof(s->point.rod, s->point.edge) + c;
+      dofs[k + 6] = thetaDof(s->point.rod, s->point.edge);
+      dofs[k + 7] = s->betaDof;
+      for (int c = 0; c < 7; ++c) values[k + c] = z[dofs[k + c]];
+      values[k + 7] = beta(z, *s);
+      k += 8;
+    }
+    visit(dofs, values, [&](const auto& v) {
+      const auto mg = frameOf(v, b.lower.point.rod, b.lower.point.edge, 0, 3, 6).normal;
+      const auto mh = frameOf(v, b.upper.point.rod, b.upper.point.edge, 8, 11, 14).normal;
+      return connectionEnergy(v3(v, 0), v3(v, 3), mg, v[7], v3(v, 8), v3(v, 11), mh, v[15], b.offset,
+                              stiffFactor_ * b.positionWeight, b.angleWeight);
+    });
+  }
+  for (const Bolt& b : bolts_) {
+    for (const BoltSide* s : {&b.lower, &b.upper}) {
+      if (s->betaDof < 0 || !mine()) continue;
+      const SliderParameters p = sliderParameters(*s);
+      visit(std::array<int, 1>{s->betaDof}, std::array<double, 1>{z[s->betaDof]},
+            [&](const auto& v) { return sliderEnergy(v[0], p); });
+    }
+  }
+  for (const AnchorData& a : anchors_) {
+    if (!mine()) continue;
+    std::array<int, 7> dofs;
+    std::array<double, 7> values;
+    for (int c = 0; c < 6; ++c) dofs[c] = vertexDof(a.point.rod, a.point.edge) + c;
+    dofs[6] = thetaDof(a.point.rod, a.point.edge);
+    for (int c = 0; c < 7; ++c) values[c] = z[dofs[c]];
+    visit(dofs, values, [&](const auto& v) {
+      const auto m = frameOf(v, a.point.rod, a.point.edge, 0, 3, 6).normal;
+      return anchorEnergy(v3(v, 0), v3(v, 3), m, a.point.beta, a.target, a.targetNormal,
+                          stiffFactor_ * a.positionWeight, a.angleWeight);
+    });
+  }
+  for (const EndMoment& m : endMoments_) {
+    if (!mine()) continue;
+    const int n = rods_[m.rod].edges;
+    std::array<int, 6> dofs;
+    std::array<double, 6> values;
+    for (int c = 0; c < 6; ++c) dofs[c] = vertexDof(m.rod, n - 1) + c;
+    for (int c = 0; c < 6; ++c) values[c] = z[dofs[c]];
+    visit(dofs, values, [&](const auto& v) {
+      return endMomentPotential(v3(v, 0), v3(v, 3), m.axis, loadFactor_ * m.moment, m.direction, m.angle);
+    });
+  }
+}
+
+bool RodModel::edgesValid(const Eigen::VectorXd& z) const {
+  if (!z.allFinite()) return false;
+  for (int r = 0; r < rodCount(); ++r) {
+    const RodData& data = rods_[r];
+    Eigen::Vector3d previous = Eigen::Vector3d::Zero();
+    for (int j = 0; j < data.edges; ++j) {
+      const Eigen::Vector3d e = z.segment<3>(vertexDof(r, j + 1)) - z.segment<3>(vertexDof(r, j));
+      const double length = e.norm();
+      if (!(length > 1e-6 * data.h)) return false;
+      const Eigen::Vector3d t = e / length;
+      // The time-parallel transport is singular for a reversed edge; a step that turns an edge
+      // by more than 120 degrees is rejected and the line search backs off.
+      if (t.dot(references_[edgeReferenceBase_[r] + j].tangent) < -0.5) return false;
+      if (j > 0 && t.dot(previous) < -0.99) return false;  // folded back: curvature binormal blows up
+      previous = t;
+    }
+  }
+  return true;
+}
+
+void RodModel::energyParts(const Eigen::VectorXd& z, double& internal, double& external) const {
+  if (!edgesValid(z)) {
+    internal = kInfinity;
+    external = 0.0;
+    return;
+  }
+  double moments = 0.0;
+  EnergySum sum;
+  forEachStencil(z, sum, 0, 1, nullptr);
+  for (const EndMoment& m : endMoments_) {
+    const int n = rods_[m.rod].edges;
+    const V3<double> x0 = constant<double>(z.segment<3>(vertexDof(m.rod, n - 1)));
+    const V3<double> x1 = constant<double>(z.segment<3>(vertexDof(m.rod, n)));
+    moments += endMomentPotential(x0, x1, m.axis, loadFactor_ * m.moment, m.direction, m.angle);
+  }
+  internal = sum.total - moments;
+  external = moments + constantGradient_.dot(z);
+}
+
+double RodModel::energy(const Eigen::VectorXd& z) const {
+  double internal = 0.0, external = 0.0;
+  energyParts(z, internal, external);
+  const double e = internal + external;
+  return std::isnan(e) ? kInfinity : e;
+}
+
+double RodModel::derivatives(const Eigen::VectorXd& z, Eigen::VectorXd& gradient,
+                             std::vector<Eigen::Triplet<double>>& hessian, int threads) const {
+  threads = std::max(1, threads);
+  std::vector<DerivativeSum> sums(threads);
+  for (auto& s : sums) s.gradient = Eigen::VectorXd::Zero(dofCount_);
+  const std::vector<EdgeFrameDerivatives> frames = frameDerivatives(z, threads);
+  if (threads == 1) {
+    forEachStencil(z, sums[0], 0, 1, &frames);
+  } else {
+    std::vector<std::thread> workers;
+    for (int t = 0; t < threads; ++t) {
+      workers.emplace_back([&, t]() { forEachStencil(z, sums[t], t, threads, &frames); });
+    }
+    for (auto& w : workers) w.join();
+  }
+  gradient = constantGradient_;
+  hessian.clear();
+  size_t total = 0;
+  for (auto& s : sums) total += s.triplets.size();
+  hessian.reserve(total);
+  double e = constantGradient_.dot(z);
+  for (auto& s : sums) {
+    gradient += s.gradient;
+    hessian.insert(hessian.end(), s.triplets.begin(), s.triplets.end());
+    e += s.total;
+  }
+  return e;
+}
+
+double RodModel::maxStep(const Eigen::VectorXd& z, const Eigen::VectorXd& direction) const {
+  double alpha = 1.0;
+  const double eps = options_.frictionEpsilon;
+  for (const Bolt& b : bolts_) {
+    for (const BoltSide* s : {&b.lower, &b.upper}) {
+      if (s->betaDof < 0) continue;
+      const double beta0 = z[s->betaDof], d = direction[s->betaDof];
+      const double h = rods_[s->point.rod].h;
+      const double start = s->point.edge * h;
+      // Stay 1 % short of the barrier walls.
+      const double high = std::min(1.0 + eps, (s->notchMax - start) / h);
+      const double low = std::max(-eps, (s->notchMin - start) / h);
+      if (d > 0.0) alpha = std::min(alpha, 0.99 * (high - beta0) / d);
+      if (d < 0.0) alpha = std::min(alpha, 0.99 * (low - beta0) / d);
+    }
+  }
+  return std::max(alpha, 0.0);
+}
+
+}  // namespace egg::rods

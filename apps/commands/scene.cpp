@@ -1,6 +1,7 @@
 #include "apps/commands/scene.hpp"
 
 #include "core/errors.hpp"
+#include "core/materials/materials.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -222,7 +223,11 @@ void readLamella(Section s, LamellaSpec& out) {
   out.width_m = s.positive("width_m", out.width_m, 10.0);
   out.thickness_m = s.positive("thickness_m", out.thickness_m, 10.0);
   out.material = s.text("material", out.material);
-  if (out.material.empty()) s.fail("material", "must not be empty");
+  try {
+    materialByName(out.material);
+  } catch (const InvalidInput& e) {
+    s.fail("material", e.what());
+  }
   if (out.thickness_m > out.width_m) s.fail("thickness_m", "must not exceed width_m (a lamella bends about its weak axis)");
   s.rejectUnknownKeys();
 }

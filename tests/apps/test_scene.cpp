@@ -94,6 +94,8 @@ TEST(Scene, BadValuesAreErrorsNamingTheFieldAndFile) {
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"patches": [[[0,0,0],[1,0,0],[1,1,0]]]}})")
                 .find("patches[0]"),
             std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "lamella": {"material": "balsa"}})").find("lamella.material"),
+            std::string::npos);
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "outputs": ["report", "pdf"]})").find("pdf"), std::string::npos);
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "simulation": {"gravity": "yes"}})").find("simulation.gravity"),
             std::string::npos);

@@ -1,0 +1,25 @@
+#pragma once
+// Lamella materials: stiffness and weight drive the deployed shape (Section 3.5.2: the specific
+// modulus lambda = E / rho decides how far a scaled-up grid sags), so the simulation and the
+// stress check read them from one table.
+#include <string>
+#include <vector>
+
+namespace egg {
+
+struct MaterialProperties {
+  std::string name;               // scene key (lamella.material)
+  std::string description;
+  double youngs_modulus_pa = 0;   // E along the lamella
+  double shear_modulus_pa = 0;    // G, for the torsion stiffness G J
+  double density_kg_m3 = 0;       // rho, for self-weight
+  std::string source;             // where the numbers come from
+};
+
+// Every known material, in a stable order.
+const std::vector<MaterialProperties>& materialCatalog();
+
+// The material called `name`. Throws InvalidInput naming it and listing the known ones.
+const MaterialProperties& materialByName(const std::string& name);
+
+}  // namespace egg

@@ -35,7 +35,7 @@ int runGridBench(const GridBenchArgs& args) {
   nlohmann::json rows = nlohmann::json::array();
   for (int size : args.sizes) {
     if (size < 50) throw InvalidInput("egg bench grid: --sizes must be at least 50 vertices");
-    const double patchArea = 36.0 * 0.78;  // calibrated: the bump and the 8 x 8 m sample border add vertices
+    const double patchArea = 50.0;  // calibrated on the bump sample: 6 x 6 m patch, ~requested vertices
     const double edge = std::sqrt(patchArea / (0.866 * size));
     const TriMesh mesh = samples::generateSample(
         "bump", {{"height", args.height}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, edge);

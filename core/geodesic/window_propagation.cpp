@@ -645,8 +645,8 @@ class Propagator {
     } else {
       // C lies just outside the window: the path bent over the window's end is still a valid
       // upper bound. It is what closes the shadow of a near-flat saddle that is not treated as a
-      // pseudo-source (DistanceSolverOptions::saddleAngleTolerance): there the bend angle is at
-      // most the saddle's excess e and the bent path is longer by a factor of at most 1 + e^2/8.
+      // pseudo-source (DistanceSolverOptions::saddleAngleTolerance): the shadow of a saddle with
+      // excess e is a wedge of angle e, so the bent detour is at most about e times the distance.
       const double end = xc < w.b0 ? w.b0 : w.b1;
       relaxVertex(c, w.sigma + planarLength(end - w.sx, w.sy) + planarLength(cx - end, cy),
                   {Predecessor::ThroughWindow, index});

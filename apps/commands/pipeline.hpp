@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace egg::app {
 
@@ -21,6 +22,7 @@ struct PipelineResult {
   nlohmann::json report;                   // what report.json holds
   std::filesystem::path out_dir;           // absolute path of the written run folder
   double seconds = 0.0;
+  std::vector<std::string> failures;       // patches the EGG criteria rejected (exit code 1)
 };
 
 // Runs the scene. Input errors (InvalidInput, IoError) are thrown before anything is written;

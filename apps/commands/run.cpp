@@ -45,7 +45,8 @@ void registerRunCommand(CLI::App& parent, Action& action) {
         std::cout << fmt::format("egg run: {} done in {:.2f} s; results in {}\n", scene.name, result.seconds,
                                  result.out_dir.string());
       }
-      return kExitOk;
+      for (const auto& failure : result.failures) std::cerr << "egg run: " << failure << "\n";
+      return result.failures.empty() ? kExitOk : kExitFailure;
     };
   });
 }

@@ -1,0 +1,224 @@
+#include "apps/commands/patch_stage.hpp"
+
+#include "apps/commands/grid_to_rods.hpp"
+#include "apps/commands/report.hpp"
+#include "core/egg/grid_io.hpp"
+#include "core/errors.hpp"
+#include "core/materials/materials.hpp"
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace egg::app {
+
+using nlohmann::json;
+
+EggOptions eggOptionsFromScene(const Scene& scene) {
+  EggOptions options;
+  options.uniqueness.etaMax = scene.patching.eta_max;
+  options.maps.resolution = scene.grid.map_resolution;
+  options.alphaBar.slopeMin = scene.patching.slope_bounds[0];
+  options.alphaBar.slopeMax = scene.patching.slope_bounds[1];
+  if (scene.grid.alpha_bar == "value") {
+    options.alphaBar.choice = AlphaBarChoice::Given;
+    options.alphaBar.givenAlphaBar = scene.grid.alpha_bar_rad;
+  } else {
+    parseAlphaBarChoice(scene.grid.alpha_bar, options.alphaBar);
+  }
+  options.members.count = scene.grid.members_per_family.value_or(0);
+  options.members.lamellaWidthM = scene.lamella.width_m;
+  return options;
+}
+
+std::vector<SolvedPatch> solvePatches(const TriMesh& surface, const Scene& scene) {
+  const EggOptions options = eggOptionsFromScene(scene);
+  std::vector<SolvedPatch> out;
+  for (size_t i = 0; i < scene.patching.patches.size(); ++i) {
+    SolvedPatch patch;
+    patch.id = static_cast<int>(i);
+    patch.corners = scene.patching.patches[i];
+    try {
+      patch.egg = solveEgg(surface, patch.corners, options);
+    } catch (const InfeasiblePatch& e) {
+      patch.failure = std::string("infeasible: ") + e.what();
+    } catch (const SolverFailure& e) {
+      patch.failure = std::string("solver failure: ") + e.what();
+    } catch (const InvalidInput& e) {
+      // A corner off the surface or a concave quad is the scene's fault: name the patch.
+      throw InvalidInput(scene.path.string() + ": patching.patches[" + std::to_string(i) + "]: " + e.what());
+    }
+    out.push_back(std::move(patch));
+  }
+  return out;
+}
+
+namespace {
+
+double patchDiagonal(const EggResult& egg) { return boundingBox(egg.patch.mesh).size().norm(); }
+
+rods::SimulationOptions simulationOptions(const Scene& scene, const EggResult& egg) {
+  rods::SimulationOptions options;
+  options.model.notches = scene.simulation.notches;
+  options.model.gravity = scene.simulation.gravity;
+  options.model.frictionMu = scene.simulation.friction_mu;
+  // RMS1 (plain holes) beside RMS2 (notches), Section 2.6.2; only meaningful with notches.
+  options.compareWithoutNotches = scene.simulation.notches;
+  // NRMSE of Section 3.5.2 divides by a scale; we use the patch's bounding-box diagonal so that
+  // the figure compares patches and scenes of any size.
+  options.scaleFactor = patchDiagonal(egg);
+  return options;
+}
+
+}  // namespace
+
+void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene) {
+  GridToRodsOptions convert;
+  convert.section.width_m = scene.lamella.width_m;
+  convert.section.thickness_m = scene.lamella.thickness_m;
+  convert.material = materialByName(scene.lamella.material);
+  convert.notches = true;  // the simulation switches notches off itself for the comparison run
+  for (auto& patch : patches) {
+    if (!patch.egg) continue;
+    const rods::RodNetwork network = rodNetworkFromGrid(patch.egg->grid, convert);
+    patch.simulation = rods::simulateGrid(network, surface, simulationOptions(scene, *patch.egg));
+  }
+}
+
+json patchEntry(const SolvedPatch& patch) {
+  json corners = json::array();
+  for (const auto& c : patch.corners) corners.push_back({c.x(), c.y(), c.z()});
+  json entry{{"id", patch.id}, {"corners", corners}, {"feasible", patch.egg.has_value()}};
+  if (!patch.egg) {
+    entry["reason"] = patch.failure;
+    return entry;
+  }
+  const EggResult& r = *patch.egg;
+  // A notch shorter than 0.1 mm is a plain hole in practice (below any cutting tolerance).
+  constexpr double kNotchThresholdM = 1e-4;
+  int notches = 0;
+  for (const auto& c : r.grid.connections) {
+    notches += std::abs(c.notchU) > kNotchThresholdM;
+    notches += std::abs(c.notchV) > kNotchThresholdM;
+  }
+  entry.update({
+      {"area_m2", r.patch.area},
+      {"vertices", r.patch.mesh.n_vertices()},
+      {"side_lengths_m", r.patch.sideLengths},
+      {"inner_angles_rad", r.patch.innerAngles},
+      {"eta_u", r.uniqueness.etaU},
+      {"eta_v", r.uniqueness.etaV},
+      {"injectivity_bound_m", std::isfinite(r.uniqueness.injectivityBoundM) ? json(r.uniqueness.injectivityBoundM) : json(nullptr)},
+      {"smoothing_rounds", r.uniqueness.smoothingRounds},
+      {"smoothing_displacement_m", r.uniqueness.smoothingDisplacementM},
+      {"alpha_bar_rad", r.alphaBar.alphaBar},
+      {"alpha_bar_range_rad", {r.alphaBar.alphaMin, r.alphaBar.alphaMax}},
+      {"slope_min", r.alphaBar.slopeMin},
+      {"slope_max", r.alphaBar.slopeMax},
+      {"members_u", r.grid.u.size()},
+      {"members_v", r.grid.v.size()},
+      {"connections", r.grid.connections.size()},
+      {"anchors", r.grid.anchors.size()},
+      {"notches", notches},
+      {"max_notch_m", r.grid.maxNotch},
+      {"max_length_mismatch", r.grid.maxLengthMismatch},
+      {"seconds",
+       {{"patch_s", r.seconds.patch},
+        {"uniqueness_s", r.seconds.uniqueness},
+        {"distance_maps_s", r.seconds.distanceMaps},
+        {"sqp_s", r.seconds.sqp},
+        {"members_s", r.seconds.members},
+        {"tracing_s", r.seconds.tracing},
+        {"total_s", r.seconds.total}}},
+  });
+  return entry;
+}
+
+json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& scene) {
+  // Errors over all patches pooled by point count, so a big patch weighs as much as its points.
+  double sumSquares = 0.0, sumSquaresPlain = 0.0, maxError = 0.0, nrmseWorst = 0.0;
+  long points = 0, pointsPlain = 0;
+  int iterations = 0;
+  bool converged = true;
+  std::string reason;
+  json perPatch = json::array();
+  for (const auto& patch : patches) {
+    if (!patch.simulation) continue;
+    const auto& sim = *patch.simulation;
+    converged = converged && sim.converged;
+    if (!sim.converged && reason.empty()) reason = fmt::format("patch {}: {}", patch.id, sim.reason);
+    iterations += sim.deployed.solver.iterations;
+    json entry{{"patch", patch.id},
+               {"converged", sim.converged},
+               {"iterations", sim.deployed.solver.iterations},
+               {"status", rods::toString(sim.deployed.solver.status)},
+               {"energy_j", sim.deployed.solver.energy},
+               {"gradient_norm", sim.deployed.solver.gradientNorm},
+               {"seconds", sim.seconds}};
+    if (sim.deployed.deviation) {
+      const auto& d = *sim.deployed.deviation;
+      sumSquares += d.rmse_m * d.rmse_m * d.points;
+      points += d.points;
+      maxError = std::max(maxError, d.max_m);
+      nrmseWorst = std::max(nrmseWorst, d.nrmse);
+      entry.update({{"rmse_m", d.rmse_m}, {"max_error_m", d.max_m}, {"nrmse", d.nrmse}});
+    }
+    if (sim.withoutNotches && sim.withoutNotches->deviation) {
+      const auto& d = *sim.withoutNotches->deviation;
+      sumSquaresPlain += d.rmse_m * d.rmse_m * d.points;
+      pointsPlain += d.points;
+      entry["rmse_no_notches_m"] = d.rmse_m;
+    }
+    perPatch.push_back(entry);
+  }
+  json section{{"ran", true},
+               {"converged", converged},
+               {"rmse_m", points ? json(std::sqrt(sumSquares / points)) : json(nullptr)},
+               {"max_error_m", points ? json(maxError) : json(nullptr)},
+               {"nrmse", points ? json(nrmseWorst) : json(nullptr)},
+               {"nrmse_normalised_by", "patch bounding-box diagonal (worst patch)"},
+               {"rmse_no_notches_m", pointsPlain ? json(std::sqrt(sumSquaresPlain / pointsPlain)) : json(nullptr)},
+               {"gravity", scene.simulation.gravity},
+               {"notches", scene.simulation.notches},
+               {"friction_mu", scene.simulation.friction_mu},
+               {"iterations", iterations},
+               {"patches", perPatch}};
+  if (!converged) section["reason"] = reason;
+  return section;
+}
+
+namespace {
+
+std::string polylinesObj(const std::vector<std::vector<Eigen::Vector3d>>& lines, const std::string& comment) {
+  std::ostringstream out;
+  out.precision(10);
+  out << "# " << comment << "\n";
+  int next = 1;
+  for (const auto& line : lines) {
+    for (const auto& p : line) out << "v " << p.x() << " " << p.y() << " " << p.z() << "\n";
+    out << "l";
+    for (size_t k = 0; k < line.size(); ++k) out << " " << next + static_cast<int>(k);
+    out << "\n";
+    next += static_cast<int>(line.size());
+  }
+  return out.str();
+}
+
+}  // namespace
+
+void writePatchFiles(const SolvedPatch& patch, const std::filesystem::path& dir, const Scene& scene) {
+  if (!patch.egg) return;
+  std::filesystem::create_directories(dir);
+  writeGridJson(*patch.egg, (dir / "grid.json").string(), patch.id);
+  if (!scene.wants("previews")) return;
+  writeGridObj(patch.egg->grid, (dir / "grid.obj").string());
+  writePlanarSvg(patch.egg->grid, (dir / "planar.svg").string());
+  if (patch.simulation) {
+    writeFileAtomically(dir / "deployed.obj",
+                        polylinesObj(patch.simulation->deployed.centrelines,
+                                     fmt::format("eggshell patch {}: deployed lamella centrelines (m)", patch.id)));
+  }
+}
+
+}  // namespace egg::app

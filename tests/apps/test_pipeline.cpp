@@ -1,0 +1,90 @@
+// `egg run` end to end on a small bump patch: surface -> EGG solve -> grid -> simulation, with the
+// report's invariants checked against each other and against the thesis' criteria.
+#include "apps/commands/pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace egg::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+Scene bumpPatchScene() {
+  return parseScene(nlohmann::json::parse(R"({
+    "name": "bump_patch",
+    "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1, "sigma": 1.5}, "edge_length_m": 0.5},
+    "patching": {"patches": [[[-3,-3,0],[3,-3,0],[3,3,0],[-3,3,0]]]},
+    "grid": {"map_resolution": 30, "members_per_family": 5},
+    "lamella": {"width_m": 0.1, "thickness_m": 0.01},
+    "simulation": {"gravity": false},
+    "outputs": ["report", "previews"]})"),
+                    "/virtual/bump_patch.json");
+}
+
+TEST(Pipeline, SlowBumpPatchRunsEndToEnd) {
+  const fs::path out = fs::temp_directory_path() / ("egg_pipeline_test_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  PipelineOptions options;
+  options.out_dir = out;
+  const PipelineResult result = runPipeline(bumpPatchScene(), options);
+  const auto& report = result.report;
+  EXPECT_TRUE(result.failures.empty());
+
+  ASSERT_EQ(report["patches"].size(), 1u);
+  const auto& patch = report["patches"][0];
+  EXPECT_TRUE(patch["feasible"].get<bool>());
+  EXPECT_EQ(patch["members_u"], 5);
+  EXPECT_EQ(patch["members_v"], 5);
+  // Criterion (i): planar and spatial member lengths agree.
+  EXPECT_LT(patch["max_length_mismatch"].get<double>(), 1e-9);
+  // A bump is not developable: notches appear (Section 2.4.5) but stay a fraction of the patch.
+  EXPECT_GT(patch["max_notch_m"].get<double>(), 1e-4);
+  EXPECT_LT(patch["max_notch_m"].get<double>(), 1.0);
+  const auto range = patch["alpha_bar_range_rad"];
+  EXPECT_LE(range[0].get<double>(), patch["alpha_bar_rad"].get<double>());
+  EXPECT_GE(range[1].get<double>(), patch["alpha_bar_rad"].get<double>());
+  EXPECT_GT(patch["slope_min"].get<double>(), 0.1);
+  EXPECT_LT(patch["slope_max"].get<double>(), 10.0);
+
+  // Coverage is the patch area over the surface area.
+  EXPECT_NEAR(report["coverage"]["covered_area_m2"].get<double>(), patch["area_m2"].get<double>(), 1e-12);
+  EXPECT_NEAR(report["coverage"]["fraction"].get<double>(),
+              patch["area_m2"].get<double>() / report["surface"]["area_m2"].get<double>(), 1e-12);
+  EXPECT_GT(patch["area_m2"].get<double>(), 36.0);  // the 6 x 6 m footprint, lifted by the bump
+
+  const auto& sim = report["simulation"];
+  ASSERT_TRUE(sim["ran"].get<bool>());
+  EXPECT_TRUE(sim["converged"].get<bool>()) << sim.dump(1);
+  // The deployed grid lies near the design surface: RMSE a small fraction of the 6 m span.
+  EXPECT_GT(sim["rmse_m"].get<double>(), 0.0);
+  EXPECT_LT(sim["rmse_m"].get<double>(), 0.1);
+  EXPECT_GE(sim["max_error_m"].get<double>(), sim["rmse_m"].get<double>());
+  EXPECT_FALSE(report["stages"]["propagation"]["ran"].get<bool>());
+  EXPECT_TRUE(report["stages"]["grid"]["ran"].get<bool>());
+
+  for (const char* file : {"report.json", "patch_000/grid.json", "patch_000/grid.obj", "patch_000/planar.svg",
+                           "patch_000/deployed.obj"}) {
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+  }
+  fs::remove_all(out);
+}
+
+TEST(Pipeline, InfeasiblePatchIsReportedNotFatal) {
+  Scene scene = bumpPatchScene();
+  // Slope bounds so tight that no alpha_bar satisfies Problem 2.3 on a bump.
+  scene.patching.slope_bounds = {0.999, 1.001};
+  const fs::path out = fs::temp_directory_path() / ("egg_pipeline_infeasible_" + std::to_string(::getpid()));
+  PipelineOptions options;
+  options.out_dir = out;
+  const PipelineResult result = runPipeline(scene, options);
+  ASSERT_EQ(result.failures.size(), 1u);
+  EXPECT_FALSE(result.report["patches"][0]["feasible"].get<bool>());
+  EXPECT_FALSE(result.report["simulation"]["ran"].get<bool>());
+  EXPECT_TRUE(fs::exists(out / "report.json"));  // the report still explains what happened
+  fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace egg::app

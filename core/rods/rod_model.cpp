@@ -171,7 +171,33 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
     edgeReferenceBase_[r] = base;
     base += rods_[r].edges;
   }
-  for (const Bolt& b : bolts_) {
+  // A sliding bolt starts where the two guess curves actually cross within its notch: the guess
+  // is the deployed (geodesic) state while the drilled position is the planar one, and the two
+  // differ by up to the notch length (Section 2.4.5). Two alternating passes suffice.
+  auto pointPosition = [&](const RodPoint& p) {
+    return ((1.0 - p.beta) * vertex(p.rod, p.edge) + p.beta * vertex(p.rod, p.edge + 1)).eval();
+  };
+  for (Bolt& b : bolts_) {
+    for (int pass = 0; pass < 2; ++pass) {
+      for (auto [side, other] : {std::pair{&b.lower, &b.upper}, std::pair{&b.upper, &b.lower}}) {
+        if (side->betaDof < 0) continue;
+        const Eigen::Vector3d target = pointPosition(other->point);
+        const double margin = 0.01 * (side->notchMax - side->notchMin);
+        const double from = side->notchMin + margin, to = side->notchMax - margin;
+        double best = (side->point.edge + side->point.beta) * rods_[side->point.rod].h;
+        double bestDistance = (pointPosition(side->point) - target).norm();
+        constexpr int samples = 64;
+        for (int k = 0; k <= samples; ++k) {
+          const double arc = from + (to - from) * k / samples;
+          const double distance = (pointPosition(pointAt(side->point.rod, arc)) - target).norm();
+          if (distance < bestDistance) {
+            bestDistance = distance;
+            best = arc;
+          }
+        }
+        side->point = pointAt(side->point.rod, best);
+      }
+    }
     for (const BoltSide* s : {&b.lower, &b.upper}) {
       if (s->betaDof >= 0) state_[s->betaDof] = s->point.beta;
     }

@@ -47,19 +47,22 @@ ModelOptions edges(int n) {
   return options;
 }
 
-// Rod 1 held fixed; rod 0 pinned at the origin. The bolt was drilled at s = 0.5 on rod 0 but rod 1
-// crosses at x = 0.3: with a notch reaching 0.3 the bolt slides there, where rod 0 is straight and
-// the sliding force is zero.
+// The guesses cross at s = 0.5 on rod 0, where the bolt was drilled and where it starts; then
+// rod 1 is moved to x = 0.3 and held fixed, rod 0 pinned at the origin. With a notch reaching
+// s = 0.3 the bolt slides there, where rod 0 is straight and the sliding force is zero.
 struct SlidingCase {
   RodModel model;
   explicit SlidingCase(Notch notch, bool notches = true, double mu = 0.1)
-      : model(crossing(0.5, 0.3, notch), [&] {
+      : model(crossing(0.5, 0.5, notch), [&] {
           ModelOptions o = edges(20);
           o.notches = notches;
           o.frictionMu = mu;
           return o;
         }()) {
-    for (int i = 0; i < model.vertexCount(1); ++i) model.fixVertex(1, i);
+    for (int i = 0; i < model.vertexCount(1); ++i) {
+      model.setVertex(1, i, model.vertex(1, i) - Eigen::Vector3d(0.2, 0, 0));
+      model.fixVertex(1, i);
+    }
     for (int j = 0; j + 1 < model.vertexCount(1); ++j) model.fixTwist(1, j);
     model.fixVertex(0, 0);
   }

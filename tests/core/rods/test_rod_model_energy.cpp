@@ -46,9 +46,11 @@ ModelOptions edges(int n) {
 }
 
 TEST(RodModelEnergy, WholeModelDerivativesMatchFiniteDifferences) {
-  RodNetwork network = crossing(0.45, 0.5, Notch{0.2, 0.3});
-  network.connections[0].notchB = Notch{0.1, 0.1};
-  network.connections[0].sB_m = 0.57;  // mid-edge: the random perturbation keeps beta inside (-eps, 1 + eps)
+  // Bolts start where the guesses cross, clamped into their notches: both mid-edge here, so the
+  // random perturbation keeps beta inside (-eps, 1 + eps).
+  RodNetwork network = crossing(0.45, 0.42, Notch{0.2, 0.3});
+  network.connections[0].notchB = Notch{0.0, 0.1};
+  network.connections[0].sB_m = 0.57;
   Anchor anchor;
   anchor.rod = 0;
   anchor.s_m = 0.1;

@@ -118,6 +118,7 @@ void matchMember(const Patch& patch, const geodesic::DistanceSolver& solver, con
       if (std::abs(ga) < std::abs(bestG)) bestG = ga, bestX = xs[k];
     }
     double a = 0, b = 0, ga = 0, gb = 0;
+    const bool inWindow = bracket >= 0;
     if (bracket >= 0) {
       a = xs[bracket], b = xs[bracket + 1];
       ga = mismatch(a, field.targetDistances[bracket]), gb = mismatch(b, field.targetDistances[bracket + 1]);
@@ -130,6 +131,42 @@ void matchMember(const Patch& patch, const geodesic::DistanceSolver& solver, con
         const double middle = 0.5 * (coarse[k] + coarse[k + 1]);
         if (bracket < 0 || std::abs(middle - guess) < std::abs(0.5 * (a + b) - guess))
           bracket = k, a = coarse[k], b = coarse[k + 1], ga = g0, gb = g1;
+      }
+    }
+    if (bracket >= 0 && inWindow) {
+      // Fast path: inverse cubic interpolation through four window samples around the root is
+      // accurate to O(h^4); tracing the member there also measures it, so when the length already
+      // matches, no further propagation is spent.
+      const int first = std::clamp(bracket - 1, 1, count - 3);
+      std::array<double, 4> gx{}, xx{};
+      bool monotone = true;
+      for (int q = 0; q < 4; ++q) {
+        xx[q] = xs[first + q];
+        gx[q] = mismatch(xx[q], field.targetDistances[first + q]);
+        if (q > 0 && !((gx[q] - gx[q - 1]) * (gx[1] - gx[0]) > 0.0)) monotone = false;
+      }
+      if (monotone) {
+        double x = 0.0;
+        for (int q = 0; q < 4; ++q) {
+          double weight = 1.0;
+          for (int r = 0; r < 4; ++r)
+            if (r != q) weight *= (0.0 - gx[r]) / (gx[q] - gx[r]);
+          x += weight * xx[q];
+        }
+        if (x > a && x < b) {
+          auto path = solver.path(start, endPoint(x));
+          ++propagations;
+          const double g = std::isfinite(path.length) ? mismatch(x, path.length) : 1e300;
+          if (std::abs(g) <= tolerance && path.positions.size() >= 2) {
+            m.x2 = x;
+            m.spatial = path.positions;
+            m.normals.clear();
+            for (const auto& point : path.points) m.normals.push_back(faceNormal(patch.mesh, point.face));
+            return;
+          }
+          if (std::abs(g) < std::abs(bestG)) bestG = g, bestX = x;
+          if ((g <= 0) == (gb <= 0)) b = x, gb = g; else a = x, ga = g;
+        }
       }
     }
     if (bracket >= 0) {

@@ -17,7 +17,7 @@ namespace egg {
 struct GridOptions {
   // Criterion (i): the end parameter x2 of an inner member is refined until the geodesic and the
   // planar segment differ in length by at most this fraction of the member length.
-  double lengthTolerance = 1e-11;
+  double lengthTolerance = 1e-10;  // 10x tighter than the 1e-9 the tests demand
   int bracketSamples = 25;        // samples of x2 around the cladding function's guess
   int maxSecantSteps = 12;        // refinement steps after bracketing
   // Anchors (2.4.6): boundary curvature maxima at least this fraction of the side's largest.

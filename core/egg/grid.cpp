@@ -22,6 +22,12 @@ void GridOptions::validate() const {
     throw InvalidInput("grid.anchor_curvature_fraction must lie in [0, 1]");
 }
 
+int countNotches(const EggGrid& grid, double minimumM) {
+  int count = 0;
+  for (const auto& c : grid.connections) count += (std::abs(c.notchU) > minimumM) + (std::abs(c.notchV) > minimumM);
+  return count;
+}
+
 bool intersectSegments(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1, const Eigen::Vector2d& b0,
                        const Eigen::Vector2d& b1, double& t, double& s, double slack) {
   const Eigen::Vector2d r = a1 - a0, q = b1 - b0, w = b0 - a0;

@@ -70,6 +70,10 @@ struct EggGrid {
 EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, const PlanarQuad& quad,
                   const FamilyMembers& u, const FamilyMembers& v, const GridOptions& options = {});
 
+// Notches to cut: member-connection pairs whose |l| exceeds `minimumM` (each connection can hold
+// one notch in each of its two members). Feeds report.json patches[].notches.
+int countNotches(const EggGrid& grid, double minimumM = 1e-4);
+
 // Intersection of two planar segments as parameters (t along the first, s along the second);
 // false if they are parallel or miss each other (beyond `slack` in parameter units).
 bool intersectSegments(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1, const Eigen::Vector2d& b0,

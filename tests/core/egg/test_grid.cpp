@@ -42,6 +42,18 @@ TEST(Grid, PlanePatchGridIsExactAndNotchFree) {
       EXPECT_NEAR((m.spatial.back() - m.spatial.front()).norm(), m.spatialLength, 1e-9);  // straight
     }
   EXPECT_EQ(r.grid.anchors.size(), 4u);  // straight sides: only the corners
+  EXPECT_EQ(countNotches(r.grid), 0);
+}
+
+TEST(Grid, CountNotchesCountsBothMembersAboveTheThreshold) {
+  EggGrid grid;
+  grid.connections.resize(3);
+  grid.connections[0].notchU = 0.01;
+  grid.connections[0].notchV = -0.02;
+  grid.connections[1].notchU = 5e-5;
+  grid.connections[2].notchV = -0.2;
+  EXPECT_EQ(countNotches(grid, 1e-4), 3);
+  EXPECT_EQ(countNotches(grid, 0.05), 1);
 }
 
 }  // namespace

@@ -50,4 +50,45 @@ struct RuledCylinder {
   }
 };
 
+// A cone frustum triangulated along its rulings: every cell lies in the plane of two rulings
+// through the apex, so the polyhedral surface unrolls exactly onto a planar annular sector.
+struct RuledCone {
+  double halfAngle = 0.5;  // angle between axis (z) and rulings
+  double angle = 2.5;      // angular span around the axis (radians)
+  double rInner = 3.0, rOuter = 9.0;  // distances from the apex along the rulings
+  int segments = 40, rows = 30;
+  Eigen::Vector3d ruling(int k) const {
+    const double phi = -0.5 * angle + angle * k / segments;
+    return {std::sin(halfAngle) * std::cos(phi), std::sin(halfAngle) * std::sin(phi), -std::cos(halfAngle)};
+  }
+  double cellAngle() const { return std::acos(std::clamp(ruling(0).dot(ruling(1)), -1.0, 1.0)); }
+  TriMesh mesh() const {
+    TriangleSoup soup;
+    for (int j = 0; j <= rows; ++j)
+      for (int k = 0; k <= segments; ++k) soup.vertices.push_back((rInner + (rOuter - rInner) * j / rows) * ruling(k));
+    const auto id = [&](int k, int j) { return j * (segments + 1) + k; };
+    for (int j = 0; j < rows; ++j)
+      for (int k = 0; k < segments; ++k) {
+        soup.triangles.push_back({id(k, j), id(k, j + 1), id(k + 1, j + 1)});
+        soup.triangles.push_back({id(k, j), id(k + 1, j + 1), id(k + 1, j)});
+      }
+    return meshFromSoup(soup);
+  }
+  // Unrolled polar coordinates (rho from the apex, psi from the first ruling) -> 3D and back.
+  Eigen::Vector3d fromUnrolled(double rho, double psi) const {
+    const int k = std::clamp(static_cast<int>(psi / cellAngle()), 0, segments - 1);
+    const double t = psi - k * cellAngle();
+    const Eigen::Vector3d d = ruling(k), n = (ruling(k + 1) - ruling(k).dot(ruling(k + 1)) * ruling(k)).normalized();
+    return rho * (std::cos(t) * d + std::sin(t) * n);
+  }
+  Eigen::Vector2d toUnrolled(const Eigen::Vector3d& q) const {
+    const double rho = q.norm();
+    const double phi = std::atan2(q.y(), q.x()) + 0.5 * angle;
+    const int k = std::clamp(static_cast<int>(phi / (angle / segments)), 0, segments - 1);
+    const Eigen::Vector3d d = ruling(k), n = (ruling(k + 1) - ruling(k).dot(ruling(k + 1)) * ruling(k)).normalized();
+    const double psi = k * cellAngle() + std::atan2(q.dot(n), q.dot(d));
+    return rho * Eigen::Vector2d(std::cos(psi), std::sin(psi));
+  }
+};
+
 }  // namespace egg::testing

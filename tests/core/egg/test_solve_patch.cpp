@@ -165,6 +165,36 @@ TEST(SolvePatch, TallBumpFailsEtaAndPassesAfterSmoothing) {
 namespace egg {
 namespace {
 
+TEST(SolvePatch, DevelopableConeAtUnrolledAngleGivesTheUnrolledGrid) {
+  const testing::RuledCone cone;
+  // Corners in the unrolled sector (rho, psi), mapped onto the cone.
+  const double polar[4][2] = {{4.0, 0.15}, {4.2, 1.05}, {8.2, 1.0}, {7.8, 0.2}};
+  std::array<Eigen::Vector3d, 4> corners;
+  for (int k = 0; k < 4; ++k) corners[k] = cone.fromUnrolled(polar[k][0], polar[k][1]);
+  EggOptions options = fastOptions();
+  parseAlphaBarChoice("unrolled", options.alphaBar);
+  const EggResult r = solveEgg(cone.mesh(), corners, options);
+  EXPECT_TRUE(r.alphaBar.degenerate);
+  expectGridCriteria(r);
+  for (const auto& c : r.grid.connections) {
+    EXPECT_LE(std::abs(c.notchU), 1e-4 * r.grid.u[c.memberU].planarLength);
+    EXPECT_LE(std::abs(c.notchV), 1e-4 * r.grid.v[c.memberV].planarLength);
+  }
+  // The planar grid is the unrolled grid (rigidly moved: c0 to the origin, c1 onto +x; the
+  // unrolled sector may be mirrored relative to the planar quad's counter-clockwise orientation).
+  const Eigen::Vector2d o = cone.toUnrolled(r.patch.corners[0]);
+  const Eigen::Vector2d axis = (cone.toUnrolled(r.patch.corners[1]) - o).normalized();
+  Eigen::Matrix2d rotation;
+  rotation << axis.x(), axis.y(), -axis.y(), axis.x();
+  double worst = 0.0, worstMirrored = 0.0;
+  for (const auto& c : r.grid.connections) {
+    const Eigen::Vector2d p = rotation * (cone.toUnrolled(c.spatial) - o);
+    worst = std::max(worst, (p - c.planar).norm());
+    worstMirrored = std::max(worstMirrored, (Eigen::Vector2d(p.x(), -p.y()) - c.planar).norm());
+  }
+  EXPECT_LT(std::min(worst, worstMirrored), 1e-6);
+}
+
 TEST(SolvePatch, MeshedCylinderAtUnrolledAngleIsNearlyNotchFree) {
   // The sample cylinder is triangulated freely, so its polyhedral metric is flat only up to the
   // discretisation (maps differ by ~1e-4 of the side): the identity pairing is used, and notches

@@ -29,6 +29,7 @@ EggOptions eggOptionsFromScene(const Scene& scene) {
   }
   options.members.count = scene.grid.members_per_family.value_or(0);
   options.members.lamellaWidthM = scene.lamella.width_m;
+  options.alphaBar.minPlanarAngle = scene.grid.min_planar_angle_rad;
   return options;
 }
 
@@ -95,13 +96,6 @@ json patchEntry(const SolvedPatch& patch) {
     return entry;
   }
   const EggResult& r = *patch.egg;
-  // A notch shorter than 0.1 mm is a plain hole in practice (below any cutting tolerance).
-  constexpr double kNotchThresholdM = 1e-4;
-  int notches = 0;
-  for (const auto& c : r.grid.connections) {
-    notches += std::abs(c.notchU) > kNotchThresholdM;
-    notches += std::abs(c.notchV) > kNotchThresholdM;
-  }
   entry.update({
       {"area_m2", r.patch.area},
       {"vertices", r.patch.mesh.n_vertices()},
@@ -120,7 +114,7 @@ json patchEntry(const SolvedPatch& patch) {
       {"members_v", r.grid.v.size()},
       {"connections", r.grid.connections.size()},
       {"anchors", r.grid.anchors.size()},
-      {"notches", notches},
+      {"notches", countNotches(r.grid)},  // slots longer than 0.1 mm (shorter is a plain hole)
       {"max_notch_m", r.grid.maxNotch},
       {"max_length_mismatch", r.grid.maxLengthMismatch},
       {"seconds",

@@ -199,6 +199,7 @@ void readGrid(Section s, GridSpec& out) {
     }
   }
   out.map_resolution = s.integer("map_resolution", out.map_resolution, 8, 2000);
+  out.min_planar_angle_rad = s.number("min_planar_angle_rad", out.min_planar_angle_rad, 0.0, 1.0);
   if (s.has("alpha_bar")) {
     const json& v = s.raw("alpha_bar");
     if (v.is_string()) {
@@ -314,7 +315,7 @@ json sceneToJson(const Scene& scene) {
     for (const auto& c : quad) corners.push_back({c.x(), c.y(), c.z()});
     patches.push_back(corners);
   }
-  json grid{{"map_resolution", scene.grid.map_resolution}};
+  json grid{{"map_resolution", scene.grid.map_resolution}, {"min_planar_angle_rad", scene.grid.min_planar_angle_rad}};
   grid["members_per_family"] = scene.grid.members_per_family ? json(*scene.grid.members_per_family) : json("auto");
   grid["alpha_bar"] = scene.grid.alpha_bar == "value" ? json(scene.grid.alpha_bar_rad) : json(scene.grid.alpha_bar);
   return {

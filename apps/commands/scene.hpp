@@ -35,6 +35,9 @@ struct GridSpec {
   int map_resolution = 100;                  // samples per boundary of the distance maps
   std::string alpha_bar = "min";             // "min" | "max" | "unrolled" | "value"
   double alpha_bar_rad = 0.0;                // used when alpha_bar == "value"
+  // Smallest inner angle of the planar quad: convexity alone (criterion iv) lets the quad fold
+  // flat, with the cut lamellas lying on top of each other; this keeps the flat grid buildable.
+  double min_planar_angle_rad = 0.15;
 };
 
 struct LamellaSpec {

@@ -44,7 +44,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
     "surface": {"sample": "great_court", "params": {"holes": true, "height": 2.5}, "edge_length_m": 0.5},
     "patching": {"workflow": 1, "eta_max": 1.002, "slope_bounds": [0.2, 5], "max_patch_size_m": 30,
                  "patches": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]},
-    "grid": {"members_per_family": 12, "map_resolution": 64, "alpha_bar": 1.2},
+    "grid": {"members_per_family": 12, "map_resolution": 64, "alpha_bar": 1.2, "min_planar_angle_rad": 0.3},
     "lamella": {"width_m": 0.5, "thickness_m": 0.05, "material": "birch_plywood"},
     "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false},
     "fabrication": {"enabled": false, "sheet_mm": [3000, 1500], "bolt_diameter_mm": 10},
@@ -58,6 +58,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_EQ(*s.grid.members_per_family, 12);
   EXPECT_EQ(s.grid.alpha_bar, "value");
   EXPECT_DOUBLE_EQ(s.grid.alpha_bar_rad, 1.2);
+  EXPECT_DOUBLE_EQ(s.grid.min_planar_angle_rad, 0.3);
   EXPECT_EQ(s.lamella.material, "birch_plywood");
   EXPECT_FALSE(s.simulation.enabled);
   EXPECT_DOUBLE_EQ(s.fabrication.sheet_mm[1], 1500.0);

@@ -154,11 +154,11 @@ SurfacePoint intoFace(SurfacePoint p) {
 
 int runBench(const BenchArgs& args) {
   nlohmann::json rows = nlohmann::json::array();
-  // Phase 1: our engine at every size (so the peak RSS reported is ours, before CGAL runs).
+  // Phase 1: the distance maps at every size, so the peak RSS reported is ours (before CGAL).
   struct Case {
     TriMesh mesh;
     std::vector<SurfacePoint> sources;
-    double oursMs = 0.0, mapSeconds = 0.0, precompute = 0.0, rss = 0.0, meanEdge = 0.0;
+    double mapSeconds = 0.0, precompute = 0.0, rss = 0.0;
   };
   std::vector<Case> cases;
   for (int size : args.sizes) {
@@ -168,22 +168,16 @@ int runBench(const BenchArgs& args) {
     options.threads = args.threads;
     const geodesic::DistanceSolver solver(c.mesh, options);
     c.precompute = solver.precomputeSeconds();
-    c.meanEdge = solver.meanEdgeLength();
     c.sources = sidePoints(c.mesh, args.sources, false);
     const auto targets = sidePoints(c.mesh, args.sources, true);
-    // Single sources, one thread.
-    const int timed = std::min<int>(args.timedSources, static_cast<int>(c.sources.size()));
-    double oursSeconds = 0.0;
-    for (int i = 0; i < timed; ++i) oursSeconds += solver.distances(c.sources[i * c.sources.size() / timed]).seconds;
-    c.oursMs = 1e3 * oursSeconds / std::max(1, timed);
-    // The distance map: all sources to all targets on the opposite side, `threads` threads.
     const auto start = Clock::now();
-    const auto map = solver.distances(c.sources, targets);
+    const auto map = solver.distances(c.sources, targets);  // all sources to the opposite side
     c.mapSeconds = secondsSince(start);
     c.rss = peakRssMb();
     cases.push_back(std::move(c));
   }
-  // Phase 2: CGAL exact on a few sources per size, and our error against it.
+  // Phase 2: ms per source, ours and CGAL's, interleaved source by source so that a change in
+  // machine load hits both; and our error against CGAL on the same sources.
   std::cout << fmt::format("{:>7} {:>11} {:>11} {:>8} {:>11} {:>9} {:>10} {:>7} {:>11}\n", "verts", "ours ms/src",
                            "cgal ms/src", "speedup", "max rel err", "precomp s",
                            fmt::format("map{} s", args.sources), "threads", "ours RSS MB");
@@ -191,28 +185,32 @@ int runBench(const BenchArgs& args) {
     const Case& c = cases[k];
     const geodesic::DistanceSolver solver(c.mesh);
     const int cgalCount = k < args.cgalSources.size() ? args.cgalSources[k] : 0;
-    double cgalSeconds = 0.0, maxError = 0.0;
-    for (int i = 0; i < cgalCount; ++i) {
-      const SurfacePoint s = intoFace(c.sources[(2 * i + 1) * c.sources.size() / (2 * cgalCount)]);
+    const int count = std::max(cgalCount, std::min<int>(args.timedSources, static_cast<int>(c.sources.size())));
+    double oursSeconds = 0.0, cgalSeconds = 0.0, maxError = 0.0;
+    for (int i = 0; i < count; ++i) {
+      const SurfacePoint s = intoFace(c.sources[(2 * i + 1) * c.sources.size() / (2 * count)]);
+      const auto ours = solver.distances(s);
+      oursSeconds += ours.seconds;
+      if (i >= cgalCount) continue;
       const auto t0 = Clock::now();
       const auto exact = geodesic::referenceDistances(c.mesh, s);
       cgalSeconds += secondsSince(t0);
-      const auto ours = solver.distances(s).vertexDistances;
       for (size_t v = 0; v < exact.size(); ++v) {
-        if (exact[v] > 2.0 * c.meanEdge && std::isfinite(exact[v])) {
-          maxError = std::max(maxError, std::abs(ours[v] - exact[v]) / exact[v]);
+        if (exact[v] > 2.0 * solver.meanEdgeLength() && std::isfinite(exact[v])) {
+          maxError = std::max(maxError, std::abs(ours.vertexDistances[v] - exact[v]) / exact[v]);
         }
       }
     }
+    const double oursMs = 1e3 * oursSeconds / std::max(1, count);
     const double cgalMs = cgalCount > 0 ? 1e3 * cgalSeconds / cgalCount : NAN;
-    const double speedup = cgalMs / c.oursMs;
+    const double speedup = cgalMs / oursMs;
     std::cout << fmt::format("{:>7} {:>11.2f} {:>11.1f} {:>7.1f}x {:>11.2e} {:>9.4f} {:>10.3f} {:>7} {:>11.0f}\n",
-                             c.mesh.n_vertices(), c.oursMs, cgalMs, speedup, cgalCount > 0 ? maxError : NAN,
+                             c.mesh.n_vertices(), oursMs, cgalMs, speedup, cgalCount > 0 ? maxError : NAN,
                              c.precompute, c.mapSeconds, args.threads, c.rss);
     std::cout.flush();
     auto orNull = [&](double x) { return cgalCount > 0 ? nlohmann::json(x) : nlohmann::json(nullptr); };
     rows.push_back({{"vertices", c.mesh.n_vertices()},
-                    {"ours_ms_per_source", c.oursMs},
+                    {"ours_ms_per_source", oursMs},
                     {"cgal_ms_per_source", orNull(cgalMs)},
                     {"speedup", orNull(speedup)},
                     {"max_relative_error_vs_cgal", orNull(maxError)},

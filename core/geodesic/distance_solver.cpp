@@ -5,7 +5,6 @@
 #include "core/errors.hpp"
 #include "core/geodesic/window_propagation.hpp"
 
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -42,6 +41,14 @@ DistanceSolver::DistanceSolver(DistanceSolver&&) noexcept = default;
 DistanceSolver& DistanceSolver::operator=(DistanceSolver&&) noexcept = default;
 
 namespace {
+// Scratch space reused by every query on a thread (single and batch calls alike): the window
+// arrays of a 16k-vertex mesh are tens of MB, and faulting them in anew costs as much as the
+// propagation itself. One per thread also bounds the memory: (threads) x (largest propagation).
+detail::Propagation& threadScratch() {
+  thread_local detail::Propagation state;
+  return state;
+}
+
 DistanceField fieldFrom(const detail::Propagation& state, double seconds) {
   DistanceField field;
   field.vertexDistances = state.vertexDistance;
@@ -54,9 +61,7 @@ DistanceField fieldFrom(const detail::Propagation& state, double seconds) {
 
 DistanceField DistanceSolver::distances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const {
   const auto start = std::chrono::steady_clock::now();
-  // Scratch reused across calls on this thread: the window arrays of a 16k-vertex mesh are tens
-  // of MB, and faulting them in anew costs as much as the propagation itself.
-  thread_local detail::Propagation state;
+  detail::Propagation& state = threadScratch();
   detail::propagate(*tables_, options_, source, targets, state);
   return fieldFrom(state, secondsSince(start));
 }
@@ -80,9 +85,8 @@ DistanceField DistanceSolver::distancesFromVertex(int vertex, const std::vector<
 std::vector<DistanceField> DistanceSolver::distances(const std::vector<SurfacePoint>& sources,
                                                      const std::vector<SurfacePoint>& targets) const {
   std::vector<DistanceField> fields(sources.size());
-  tbb::enumerable_thread_specific<detail::Propagation> scratch;
   auto body = [&](const tbb::blocked_range<size_t>& range) {
-    auto& state = scratch.local();
+    auto& state = threadScratch();
     for (size_t i = range.begin(); i < range.end(); ++i) {
       const auto start = std::chrono::steady_clock::now();
       detail::propagate(*tables_, options_, sources[i], targets, state);

@@ -160,7 +160,13 @@ class Propagator {
 
   void run(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) {
     reset(targets);
-    seed(source);
+    try {
+      seed(source);
+    } catch (...) {
+      // The scratch may be reused (thread_local): leave its per-face target buckets clean.
+      for (int f : s_.targetFace) s_.faceFirstTarget[f] = -1;
+      throw;
+    }
     while (!s_.queue.empty()) {
       std::pop_heap(s_.queue.begin(), s_.queue.end(), std::greater<>());
       const auto entry = s_.queue.back();

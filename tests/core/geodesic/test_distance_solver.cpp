@@ -260,6 +260,12 @@ TEST(DistanceSolver, RejectsBadInput) {
   EXPECT_THROW(solver.distances(facePoint(0, -1, 0, 0)), InvalidInput);
   EXPECT_THROW(solver.distances(facePoint(0, 1, 0, 0), {facePoint(-1, 1, 0, 0)}), InvalidInput);
   EXPECT_THROW(solver.distancesFromVertex(1000), InvalidInput);
+  // A failed query leaves no trace in the reused scratch space.
+  const SurfacePoint target = facePoint(5, 0.2, 0.3, 0.5);
+  EXPECT_THROW(solver.distances(facePoint(999, 1, 0, 0), {target}), InvalidInput);
+  const auto field = solver.distances(facePoint(0, 1, 0, 0), {facePoint(9, 0.3, 0.3, 0.4)});
+  EXPECT_NEAR(field.targetDistances[0],
+              (position(mesh, facePoint(9, 0.3, 0.3, 0.4)) - position(mesh, facePoint(0, 1, 0, 0))).norm(), 1e-12);
   EXPECT_THROW(DistanceSolver(TriMesh{}), InvalidInput);
 }
 

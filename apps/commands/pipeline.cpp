@@ -28,10 +28,21 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   RunReport report(sceneToJson(scene));
   PipelineResult result;
 
+  // Files go to a staging folder that replaces the run folder only when the run completes; an
+  // exception on the way (bad input included) removes it, so nothing half-written is left. It is
+  // made first so that an unusable --out fails before minutes of work.
+  StagedDirectory out(options.out_dir);
+
   // Surface (Section 4.4.1): everything downstream measures on this mesh.
   progress("surface", 0.0);
   const auto surfaceStart = Clock::now();
-  LoadedSurface surface = loadSurface(scene.surface);
+  LoadedSurface surface = [&] {
+    try {
+      return loadSurface(scene.surface);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(scene.path.string() + ": surface: " + e.what());
+    }
+  }();
   report.section("surface") = surfaceSummary(surface);
   report.stageRan("surface", secondsSince(surfaceStart));
   for (const auto& w : surface.warnings) report.warn("surface: " + w);
@@ -86,10 +97,7 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     report.section("simulation") = simulationSection(patches, scene);
   }
 
-  // Nothing has been written so far: input errors above leave no trace. From here on, files go
-  // to a staging folder that replaces the run folder only when the run completes.
   progress("writing", 0.9);
-  StagedDirectory out(options.out_dir);
   for (const auto& p : patches) writePatchFiles(p, out.staging() / fmt::format("patch_{:03d}", p.id), scene);
   result.seconds = secondsSince(start);
   result.report = report.finish(result.seconds);

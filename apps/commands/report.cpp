@@ -1,6 +1,7 @@
 #include "apps/commands/report.hpp"
 
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 
 #include <fstream>
 #include <random>
@@ -60,45 +61,6 @@ json RunReport::finish(double totalSeconds) const {
   return out;
 }
 
-namespace {
-
-std::string randomSuffix() {
-  std::random_device rd;
-  std::uniform_int_distribution<unsigned> digit(0, 35);
-  std::string s;
-  for (int i = 0; i < 8; ++i) {
-    const unsigned d = digit(rd);
-    s.push_back(static_cast<char>(d < 10 ? '0' + d : 'a' + d - 10));
-  }
-  return s;
-}
-
-}  // namespace
-
-void writeFileAtomically(const std::filesystem::path& path, const std::string& text) {
-  namespace fs = std::filesystem;
-  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  const fs::path temp = dir / ("." + path.filename().string() + ".tmp-" + randomSuffix());
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw IoError(path.string() + ": cannot create file (" + temp.string() + ")");
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(temp, ignored);
-      throw IoError(path.string() + ": write failed (disk full?)");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw IoError(path.string() + ": cannot move finished file into place: " + ec.message());
-  }
-}
-
 StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::move(target)) {
   namespace fs = std::filesystem;
   if (target_.empty()) throw InvalidInput("output folder: empty path");
@@ -108,12 +70,17 @@ StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::mo
   std::error_code ec;
   fs::create_directories(parent, ec);
   if (ec) throw IoError(parent.string() + ": cannot create folder: " + ec.message());
-  if (fs::exists(target_) && !fs::is_directory(target_)) {
-    throw InvalidInput(target_.string() + ": exists and is not a folder");
+  if (fs::exists(target_)) {
+    if (!fs::is_directory(target_)) throw InvalidInput(target_.string() + ": exists and is not a folder");
+    if (!fs::is_empty(target_) && !fs::exists(target_ / kRunMarker)) {
+      throw InvalidInput(target_.string() + ": exists and is not an eggshell run folder (no " + kRunMarker +
+                         "); refusing to replace it — choose another --out");
+    }
   }
-  staging_ = parent / ("." + target_.filename().string() + ".staging-" + randomSuffix());
+  staging_ = parent / ("." + target_.filename().string() + ".staging-" + temporarySuffix());
   fs::create_directory(staging_, ec);
   if (ec) throw IoError(staging_.string() + ": cannot create staging folder: " + ec.message());
+  writeFileAtomically(staging_ / kRunMarker, "eggshell run folder: replaced whole by the next egg run\n");
 }
 
 StagedDirectory::~StagedDirectory() {
@@ -128,7 +95,7 @@ void StagedDirectory::commit() {
   std::error_code ec;
   fs::path previous;
   if (fs::exists(target_)) {
-    previous = target_.parent_path() / ("." + target_.filename().string() + ".previous-" + randomSuffix());
+    previous = target_.parent_path() / ("." + target_.filename().string() + ".previous-" + temporarySuffix());
     fs::rename(target_, previous, ec);
     if (ec) throw IoError(target_.string() + ": cannot replace the earlier results: " + ec.message());
   }

@@ -1,6 +1,8 @@
 #pragma once
 // report.json of `egg run` (DESIGN.md "Report"). Every top-level key is always present; a stage
 // that did not run says "ran": false and why. Units are in the keys (`_m`, `_m2`, `_rad`, `seconds`).
+#include "core/io/atomic_file.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -34,13 +36,13 @@ class RunReport {
   nlohmann::json document_;
 };
 
-// Writes `text` to `path` through a temporary file in the same folder and a rename, so a crash
-// or a full disk never leaves a half-written file behind. Throws IoError naming the path.
-void writeFileAtomically(const std::filesystem::path& path, const std::string& text);
-
 // An output folder that appears whole or not at all: files are written into a hidden sibling
 // staging folder, and commit() swaps it in place of the target (replacing an earlier run).
 // If commit() is never called (an exception), the staging folder is removed.
+// An existing target is replaced only if it is empty or an earlier eggshell run folder (it holds
+// the marker file kRunMarker): `egg run -o ~` must never delete someone's home.
+constexpr const char* kRunMarker = ".eggshell-run";
+
 class StagedDirectory {
  public:
   explicit StagedDirectory(std::filesystem::path target);

@@ -199,7 +199,7 @@ void readGrid(Section s, GridSpec& out) {
     }
   }
   out.map_resolution = s.integer("map_resolution", out.map_resolution, 8, 2000);
-  out.min_planar_angle_rad = s.number("min_planar_angle_rad", out.min_planar_angle_rad, 0.0, 1.0);
+  out.min_planar_angle_rad = s.number("min_planar_angle_rad", out.min_planar_angle_rad, 0.0, 0.78);
   if (s.has("alpha_bar")) {
     const json& v = s.raw("alpha_bar");
     if (v.is_string()) {
@@ -264,6 +264,11 @@ Scene parseScene(const json& document, const std::filesystem::path& origin) {
   scene.path = origin;
   Section top(document, "", origin.string());
   scene.name = top.text("name", origin.stem().string());
+  // The name becomes the default run folder out/<name>: it must be a plain folder name, never a
+  // path that climbs out of out/ or names out/ itself.
+  if (scene.name.empty() || scene.name.front() == '.' || scene.name.find_first_of("/\\") != std::string::npos) {
+    top.fail("name", "must be a plain name (no '/', '\\', not starting with '.'), got \"" + scene.name + "\"");
+  }
   if (!top.has("surface")) top.fail("surface", "is required ({\"sample\": ...} or {\"file\": ...})");
   readSurface(top.child("surface"), scene);
   readPatching(top.child("patching"), scene.patching);

@@ -1,6 +1,7 @@
 #include "core/egg/grid_io.hpp"
 
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -16,21 +17,6 @@ using nlohmann::json;
 
 json vec(const Eigen::Vector3d& p) { return json::array({p.x(), p.y(), p.z()}); }
 json vec(const Eigen::Vector2d& p) { return json::array({p.x(), p.y()}); }
-
-void writeAtomically(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw IoError("cannot write " + temporary);
-    out << text;
-    out.flush();
-    if (!out) throw IoError("failed writing " + temporary);
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw IoError("cannot move " + temporary + " to " + path);
-  }
-}
 
 const char* originName(MemberOrigin origin) {
   switch (origin) {
@@ -123,7 +109,7 @@ std::string gridJson(const EggResult& r, int patchId) {
 }
 
 void writeGridJson(const EggResult& result, const std::string& path, int patchId) {
-  writeAtomically(path, gridJson(result, patchId));
+  writeFileAtomically(path, gridJson(result, patchId));
 }
 
 void writeGridObj(const EggGrid& grid, const std::string& path) {
@@ -140,7 +126,7 @@ void writeGridObj(const EggGrid& grid, const std::string& path) {
       out << "\n";
       next += static_cast<int>(m.spatial.size());
     }
-  writeAtomically(path, out.str());
+  writeFileAtomically(path, out.str());
 }
 
 void writePlanarSvg(const EggGrid& grid, const std::string& path) {
@@ -179,7 +165,7 @@ void writePlanarSvg(const EggGrid& grid, const std::string& path) {
     out << "<rect x=\"" << p.x() - 6 << "\" y=\"" << p.y() - 6 << "\" width=\"12\" height=\"12\" fill=\"none\" stroke=\"red\" stroke-width=\"2\"/>\n";
   }
   out << "</svg>\n";
-  writeAtomically(path, out.str());
+  writeFileAtomically(path, out.str());
 }
 
 }  // namespace egg

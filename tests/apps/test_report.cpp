@@ -51,14 +51,6 @@ TEST(RunReport, HasEveryRequiredKeyAndExplainsStagesThatDidNotRun) {
   EXPECT_EQ(doc["surface"]["vertices"], 4);
 }
 
-TEST_F(TempDir, AtomicWriteLeavesOnlyTheFinishedFile) {
-  writeFileAtomically(root / "a.txt", "first");
-  writeFileAtomically(root / "a.txt", "second");
-  EXPECT_EQ(readAll(root / "a.txt"), "second");
-  EXPECT_EQ(std::distance(fs::directory_iterator(root), fs::directory_iterator()), 1);
-  EXPECT_THROW(writeFileAtomically(root / "no" / "such" / "dir" / "a.txt", "x"), IoError);
-}
-
 TEST_F(TempDir, StagedDirectoryAppearsOnlyOnCommitAndReplacesTheOldRun) {
   const fs::path out = root / "run";
   {
@@ -87,6 +79,22 @@ TEST_F(TempDir, StagedDirectoryAppearsOnlyOnCommitAndReplacesTheOldRun) {
     ++entries;
   }
   EXPECT_EQ(entries, 1) << "no staging folder left behind";
+}
+
+TEST_F(TempDir, RefusesToReplaceAFolderThatIsNotARunFolder) {
+  const fs::path precious = root / "precious";
+  fs::create_directories(precious);
+  writeFileAtomically(precious / "thesis.tex", "years of work");
+  EXPECT_THROW(StagedDirectory staged(precious), InvalidInput);
+  EXPECT_EQ(readAll(precious / "thesis.tex"), "years of work");
+  // An empty folder and an earlier run folder are fine.
+  fs::create_directories(root / "empty");
+  EXPECT_NO_THROW({
+    StagedDirectory staged(root / "empty");
+    staged.commit();
+  });
+  EXPECT_TRUE(fs::exists(root / "empty" / kRunMarker));
+  EXPECT_NO_THROW(StagedDirectory again(root / "empty"));
 }
 
 }  // namespace

@@ -102,6 +102,14 @@ TEST(Scene, BadValuesAreErrorsNamingTheFieldAndFile) {
             std::string::npos);
 }
 
+TEST(Scene, NameMustNotEscapeTheOutputFolder) {
+  for (const char* name : {"..", ".", "", "../x", "a/b", ".hidden", "a\\\\b"}) {
+    const std::string text = std::string(R"({"surface": {"sample": "bump"}, "name": ")") + name + "\"}";
+    EXPECT_NE(errorOf(text).find("name"), std::string::npos) << name;
+  }
+  EXPECT_EQ(parse(R"({"surface": {"sample": "bump"}, "name": "court_v2"})").name, "court_v2");
+}
+
 TEST(Scene, SurfaceNeedsExactlyOneSource) {
   EXPECT_NE(errorOf(R"({"grid": {}})").find("surface"), std::string::npos);
   EXPECT_NE(errorOf(R"({"surface": {}})").find("surface"), std::string::npos);

@@ -4,6 +4,7 @@
 
 #include "core/egg/solve_patch.hpp"
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 #include "samples/generators/samples.hpp"
 
 #include <fmt/core.h>
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <memory>
 #include <vector>
 
@@ -66,8 +68,7 @@ int runGridBench(const GridBenchArgs& args) {
                     {"smoothing_rounds", r.uniqueness.smoothingRounds}});
   }
   if (!args.csv.empty()) {
-    std::ofstream file(args.csv);
-    if (!file) throw IoError("cannot write " + args.csv);
+    std::ostringstream file;
     file << "vertices,t_patch_s,t_uniqueness_s,t_distance_maps_s,t_sqp_s,t_members_s,t_tracing_s,t_grid_s,members_u,"
             "members_v,max_notch_m\n";
     for (const auto& r : rows)
@@ -75,6 +76,7 @@ int runGridBench(const GridBenchArgs& args) {
                           r["t_uniqueness_s"].get<double>(), r["t_distance_maps_s"].get<double>(), r["t_sqp_s"].get<double>(),
                           r["t_members_s"].get<double>(), r["t_tracing_s"].get<double>(), r["t_grid_s"].get<double>(),
                           r["members_u"].get<size_t>(), r["members_v"].get<size_t>(), r["max_notch_m"].get<double>());
+    writeFileAtomically(args.csv, file.str());
   }
   if (args.json) std::cout << rows.dump(2) << "\n";
   return kExitOk;

@@ -35,6 +35,11 @@ EggOptions eggOptionsFromScene(const Scene& scene) {
 
 std::vector<SolvedPatch> solvePatches(const TriMesh& surface, const Scene& scene) {
   const EggOptions options = eggOptionsFromScene(scene);
+  try {
+    options.validate();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(scene.path.string() + ": " + e.what());
+  }
   std::vector<SolvedPatch> out;
   for (size_t i = 0; i < scene.patching.patches.size(); ++i) {
     SolvedPatch patch;
@@ -47,7 +52,8 @@ std::vector<SolvedPatch> solvePatches(const TriMesh& surface, const Scene& scene
     } catch (const SolverFailure& e) {
       patch.failure = std::string("solver failure: ") + e.what();
     } catch (const InvalidInput& e) {
-      // A corner off the surface or a concave quad is the scene's fault: name the patch.
+      // The options were checked above, so what is left is the quad itself: a corner off the
+      // surface, coinciding or collinear corners, a concave quad. Name the patch in the scene.
       throw InvalidInput(scene.path.string() + ": patching.patches[" + std::to_string(i) + "]: " + e.what());
     }
     out.push_back(std::move(patch));
@@ -82,8 +88,13 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
   convert.notches = true;  // the simulation switches notches off itself for the comparison run
   for (auto& patch : patches) {
     if (!patch.egg) continue;
-    const rods::RodNetwork network = rodNetworkFromGrid(patch.egg->grid, convert);
-    patch.simulation = rods::simulateGrid(network, surface, simulationOptions(scene, *patch.egg));
+    // One patch's failure must not discard the others' results: record it and go on.
+    try {
+      const rods::RodNetwork network = rodNetworkFromGrid(patch.egg->grid, convert);
+      patch.simulation = rods::simulateGrid(network, surface, simulationOptions(scene, *patch.egg));
+    } catch (const Error& e) {
+      patch.simulationFailure = e.what();
+    }
   }
 }
 
@@ -116,7 +127,7 @@ json patchEntry(const SolvedPatch& patch) {
       {"anchors", r.grid.anchors.size()},
       {"notches", countNotches(r.grid)},  // slots longer than 0.1 mm (shorter is a plain hole)
       {"max_notch_m", r.grid.maxNotch},
-      {"max_length_mismatch", r.grid.maxLengthMismatch},
+      {"max_length_mismatch_relative", r.grid.maxLengthMismatch},
       {"seconds",
        {{"patch_s", r.seconds.patch},
         {"uniqueness_s", r.seconds.uniqueness},
@@ -138,6 +149,12 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
   std::string reason;
   json perPatch = json::array();
   for (const auto& patch : patches) {
+    if (!patch.simulationFailure.empty()) {
+      converged = false;
+      if (reason.empty()) reason = fmt::format("patch {}: {}", patch.id, patch.simulationFailure);
+      perPatch.push_back({{"patch", patch.id}, {"converged", false}, {"failure", patch.simulationFailure}});
+      continue;
+    }
     if (!patch.simulation) continue;
     const auto& sim = *patch.simulation;
     converged = converged && sim.converged;
@@ -148,7 +165,7 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
                {"iterations", sim.deployed.solver.iterations},
                {"status", rods::toString(sim.deployed.solver.status)},
                {"energy_j", sim.deployed.solver.energy},
-               {"gradient_norm", sim.deployed.solver.gradientNorm},
+               {"gradient_norm_n_nm", sim.deployed.solver.gradientNorm},  // over positions (N) and twists (N m)
                {"seconds", sim.seconds}};
     if (sim.deployed.deviation) {
       const auto& d = *sim.deployed.deviation;

@@ -20,6 +20,7 @@ struct SolvedPatch {
   std::optional<EggResult> egg;  // empty when the patch is infeasible
   std::string failure;           // why not (InfeasiblePatch / SolverFailure message)
   std::optional<rods::SimulationResult> simulation;
+  std::string simulationFailure;  // why the simulation could not run (an error, not non-convergence)
 };
 
 // The EGG solver's options as the scene sets them (eta_max, slope bounds, map resolution,

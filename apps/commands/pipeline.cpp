@@ -95,6 +95,11 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     simulatePatches(patches, surface.mesh, scene);
     report.stageRan("simulation", secondsSince(simStart));
     report.section("simulation") = simulationSection(patches, scene);
+    // A deployment that did not reach equilibrium is a failure of the run (exit 1), whose report
+    // still carries every figure.
+    if (!report.section("simulation")["converged"].get<bool>()) {
+      result.failures.push_back("simulation: " + report.section("simulation").value("reason", std::string("did not converge")));
+    }
   }
 
   progress("writing", 0.9);

@@ -16,7 +16,7 @@ namespace egg::app {
 struct SurfaceSpec {
   std::string sample;                        // a procedural sample name, or empty when `file` is set
   std::map<std::string, double> params;      // sample parameters (see `egg surface --list`)
-  double edge_length_m = 1.0;                // target triangle edge length of a generated sample
+  double edge_length_m = 1.0;                // target triangle edge length (default: defaultSampleEdgeLength)
   std::filesystem::path file;                // a mesh file (resolved against the scene's folder)
   double scale_to_m = 1.0;                   // multiply file coordinates by this to get metres
   bool keep_largest_component = false;       // drop smaller components with a warning instead of failing
@@ -72,6 +72,9 @@ struct Scene {
 
   bool wants(const std::string& output) const;
 };
+
+// The edge length a sample is meshed at when the scene or command line gives none (metres).
+double defaultSampleEdgeLength(const std::string& sample);
 
 // Reads and validates a scene file. Throws IoError (missing/unreadable file) or InvalidInput
 // naming the file and the field ("scene.json: grid.alpha_bar: ...").

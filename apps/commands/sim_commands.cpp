@@ -7,12 +7,14 @@
 #include "core/rods/stress_cases.hpp"
 
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <memory>
 
 namespace egg::app {
@@ -67,8 +69,7 @@ int runSimBench(const SimBenchArgs& args) {
     }
   }
   if (!args.csv.empty()) {
-    std::ofstream file(args.csv);
-    if (!file) throw IoError("cannot write " + args.csv);
+    std::ostringstream file;
     file << "spacing_m,vertices,unknowns,bolts,tolerance,iterations,seconds,converged,rmse_m,max_error_m\n";
     for (const auto& r : rows) {
       file << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", r["spacing_m"].get<double>(), r["vertices"].get<int>(),
@@ -76,6 +77,7 @@ int runSimBench(const SimBenchArgs& args) {
                           r["iterations"].get<int>(), r["seconds"].get<double>(), r["converged"].get<bool>() ? 1 : 0,
                           r["rmse_m"].get<double>(), r["max_error_m"].get<double>());
     }
+    writeFileAtomically(args.csv, file.str());
   }
   if (args.json) std::cout << rows.dump(2) << "\n";
   return kExitOk;

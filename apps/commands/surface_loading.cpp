@@ -49,14 +49,6 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
-double defaultSampleEdgeLength(const std::string& sample) {
-  // The architectural scenes are tens of metres across; the test surfaces a few metres. These
-  // give meshes of a few thousand to ~15k vertices, enough for the 0.15 % eta test (Section 2.3.3).
-  if (sample == "great_court" || sample == "lilium") return 1.0;
-  if (sample == "yas") return 2.0;
-  return 0.25;
-}
-
 LoadedSurface loadSurface(const SurfaceSpec& spec) {
   if (!spec.sample.empty()) return fromSample(spec.sample, spec.params, spec.edge_length_m);
   return fromFile(spec.file, spec.scale_to_m, spec.keep_largest_component);

@@ -38,7 +38,5 @@ TriMesh loadSurfaceArgument(const std::string& argument);
 // --stats` and by report.json's "surface" section.
 nlohmann::json surfaceSummary(const LoadedSurface& surface);
 
-// The default edge length for a sample when none is given (metres).
-double defaultSampleEdgeLength(const std::string& sample);
 
 }  // namespace egg::app

@@ -202,6 +202,9 @@ CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& opt
     field.mean(v) = 0.5 * (fit.kappaMax + fit.kappaMin);
     field.gaussian(v) = fit.kappaMax * fit.kappaMin;
     const bool defectUsable = !field.on_boundary[v] && field.mixed_area(v) > 0.0;
+    // A failed fit (too few neighbours, a singular system) must not read as K = 0: that would
+    // lower K_max and loosen the injectivity bound of Eq. 2.1. Fall back to the angle defect.
+    if (!fit.ok && defectUsable) field.gaussian(v) = defect(v) / field.mixed_area(v);
     field.gaussian_angle_defect(v) = defectUsable ? defect(v) / field.mixed_area(v) : field.gaussian(v);
   }
   field.vertex_gaussian_max = 0;

@@ -14,12 +14,12 @@
 namespace egg {
 
 void AlphaBarOptions::validate() const {
-  if (!(slopeMin > 0.0)) throw InvalidInput("grid.slope_bounds[0] (k_min) must be > 0");
-  if (!(slopeMax > slopeMin)) throw InvalidInput("grid.slope_bounds[1] (k_max) must exceed k_min");
+  if (!(slopeMin > 0.0)) throw InvalidInput("patching.slope_bounds[0] (k_min) must be > 0");
+  if (!(slopeMax > slopeMin)) throw InvalidInput("patching.slope_bounds[1] (k_max) must exceed k_min");
   if (choice == AlphaBarChoice::Given && !(givenAlphaBar > 0.0 && givenAlphaBar < M_PI))
     throw InvalidInput("grid.alpha_bar must lie in (0, pi) radians");
   if (!(unrolledTolerance >= 0.0)) throw InvalidInput("alpha_bar unrolled_tolerance must be >= 0");
-  if (!(minPlanarAngle >= 0.0 && minPlanarAngle < M_PI / 4)) throw InvalidInput("grid.min_planar_angle must lie in [0, pi/4)");
+  if (!(minPlanarAngle >= 0.0 && minPlanarAngle < M_PI / 4)) throw InvalidInput("grid.min_planar_angle_rad must lie in [0, pi/4)");
   if (scanSamples < 3) throw InvalidInput("alpha_bar scan_samples must be >= 3");
   if (maxEvaluations < 1) throw InvalidInput("alpha_bar max_evaluations must be >= 1");
   if (!(tolerance > 0.0)) throw InvalidInput("alpha_bar tolerance must be > 0");

@@ -4,6 +4,8 @@
 #include "core/mesh/smoothing.hpp"
 
 #include <chrono>
+#include <cmath>
+#include <string>
 #include <sstream>
 
 namespace egg {
@@ -59,6 +61,13 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
     report.etaBeforeSmoothing = std::max(result.uniqueness.etaU, result.uniqueness.etaV);
     result.uniqueness = report;
     refreshPatchGeometry(result.patch);
+    // Smoothing moves the interior next to the corners, so criterion (iv) is checked again.
+    for (int k = 0; k < 4; ++k) {
+      if (result.patch.innerAngles[k] >= M_PI - options.patch.angleMargin) {
+        throw InfeasiblePatch("after smoothing, the inner angle at corner " + std::to_string(k) + " is " +
+                              std::to_string(result.patch.innerAngles[k]) + " rad, not below pi (criterion iv)");
+      }
+    }
   }
   if (!result.uniqueness.passed) {
     std::ostringstream message;

@@ -36,10 +36,10 @@ EggGrid smallGrid() {
       c.sBarU = j * 1.0;
       c.sBarV = i * 1.0;
       c.onBoundary = i == 0 || j == 0;
-      if (!c.onBoundary) {
-        c.notchU = 0.03;   // slides towards the end of the u member
-        c.notchV = -0.02;  // towards the start of the v member
-      }
+      // Notch lengths everywhere, even on the boundary: the converter must drop those (boundary
+      // members carry no notches, Section 2.4.5).
+      c.notchU = 0.03;   // slides towards the end of the u member
+      c.notchV = -0.02;  // towards the start of the v member
       grid.connections.push_back(c);
     }
   }
@@ -78,7 +78,8 @@ TEST(GridToRods, NotchSignGivesTheSlidingDirection) {
   EXPECT_DOUBLE_EQ(inner.notchB.before_m, 0.02);
   EXPECT_DOUBLE_EQ(inner.notchB.after_m, 0.0);
   for (int k = 0; k < 3; ++k) {  // boundary connections: plain holes
-    EXPECT_DOUBLE_EQ(network.connections[k].notchA.after_m + network.connections[k].notchA.before_m, 0.0);
+    const auto& c = network.connections[k];
+    EXPECT_DOUBLE_EQ(c.notchA.after_m + c.notchA.before_m + c.notchB.after_m + c.notchB.before_m, 0.0) << k;
   }
 }
 

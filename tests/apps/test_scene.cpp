@@ -27,6 +27,8 @@ TEST(Scene, DefaultsFillEverythingButTheSurface) {
   const Scene s = parse(R"({"surface": {"sample": "bump"}})");
   EXPECT_EQ(s.name, "test");
   EXPECT_EQ(s.surface.sample, "bump");
+  EXPECT_DOUBLE_EQ(s.surface.edge_length_m, defaultSampleEdgeLength("bump"));  // sized to the sample, not 1 m
+  EXPECT_LT(defaultSampleEdgeLength("bump"), 0.5);
   EXPECT_DOUBLE_EQ(s.patching.eta_max, 1.0015);
   EXPECT_DOUBLE_EQ(s.patching.slope_bounds[0], 0.1);
   EXPECT_DOUBLE_EQ(s.patching.slope_bounds[1], 10.0);

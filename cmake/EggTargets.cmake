@@ -26,6 +26,6 @@ function(egg_add_test_dir dir)
   add_executable(${name} ${sources})
   target_link_libraries(${name} PRIVATE ${ARGN} egg_build_options GTest::gtest GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE EGG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-  # Tests whose name starts with Slow get the label "slow"; CI still runs them.
+  # Slow tests carry "Slow" in their name (filter with ctest -R / -E Slow); CI runs them all.
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900)
 endfunction()

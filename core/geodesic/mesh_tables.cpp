@@ -1,0 +1,103 @@
+// The flat per-mesh tables of the window propagation (window_propagation.hpp): halfedge arrays,
+// unfolded triangle frames, angle sums and which vertices are pseudo-sources.
+#include "core/errors.hpp"
+#include "core/geodesic/window_propagation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace egg::geodesic::detail {
+
+MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options) {
+  MeshTables t;
+  t.vertexCount = static_cast<int>(mesh.n_vertices());
+  t.faceCount = static_cast<int>(mesh.n_faces());
+  t.halfedgeCount = static_cast<int>(mesh.n_halfedges());
+  if (t.vertexCount == 0 || t.faceCount == 0) throw InvalidInput("geodesic: the mesh has no faces");
+  t.positions.resize(t.vertexCount);
+  for (auto vh : mesh.vertices()) t.positions[vh.idx()] = toEigen(mesh.point(vh));
+  const int nh = t.halfedgeCount;
+  t.fromVertex.assign(nh, -1);
+  t.toVertex.assign(nh, -1);
+  t.face.assign(nh, -1);
+  t.next.assign(nh, -1);
+  t.prev.assign(nh, -1);
+  t.length.assign(nh, 0.0);
+  t.oppositeX.assign(nh, 0.0);
+  t.oppositeY.assign(nh, 0.0);
+  t.oppositeVertex.assign(nh, -1);
+  double edgeSum = 0.0;
+  for (auto hh : mesh.halfedges()) {
+    const int h = hh.idx();
+    t.fromVertex[h] = mesh.from_vertex_handle(hh).idx();
+    t.toVertex[h] = mesh.to_vertex_handle(hh).idx();
+    t.face[h] = mesh.face_handle(hh).is_valid() ? mesh.face_handle(hh).idx() : -1;
+    t.next[h] = mesh.next_halfedge_handle(hh).idx();
+    t.prev[h] = mesh.prev_halfedge_handle(hh).idx();
+    t.length[h] = (t.positions[t.toVertex[h]] - t.positions[t.fromVertex[h]]).norm();
+    if ((h & 1) == 0) edgeSum += t.length[h];
+  }
+  t.meanEdgeLength = edgeSum / std::max<size_t>(1, mesh.n_edges());
+  t.angleSum.assign(t.vertexCount, 0.0);
+  for (int h = 0; h < nh; ++h) {
+    if (t.face[h] < 0) continue;
+    const int c = t.toVertex[t.next[h]];
+    t.oppositeVertex[h] = c;
+    const double L = t.length[h];
+    const double la = t.length[t.prev[h]];  // |C A|
+    const double lb = t.length[t.next[h]];  // |B C|
+    if (!(L > 0.0) || !(la > 0.0) || !(lb > 0.0)) {
+      throw InvalidInput("geodesic: face " + std::to_string(t.face[h]) + " has a zero-length edge");
+    }
+    const double x = (L * L + la * la - lb * lb) / (2.0 * L);
+    const double y2 = la * la - x * x;
+    // Heron-stable height from the cross product in 3D (the law of cosines loses digits on slivers).
+    const Eigen::Vector3d a = t.positions[t.fromVertex[h]];
+    const double twiceArea = (t.positions[t.toVertex[h]] - a).cross(t.positions[c] - a).norm();
+    const double y = twiceArea / L;
+    if (!(y > 0.0) || y2 < -1e-6 * la * la) {
+      throw InvalidInput("geodesic: face " + std::to_string(t.face[h]) + " is degenerate (zero area)");
+    }
+    t.oppositeX[h] = x;
+    t.oppositeY[h] = y;
+    // Interior angle at the from-vertex, accumulated into its angle sum.
+    t.angleSum[t.fromVertex[h]] += std::atan2(y, x);
+  }
+  t.faceVerts.resize(t.faceCount);
+  t.faceHalfedge.resize(t.faceCount);
+  for (auto fh : mesh.faces()) {
+    const int f = fh.idx();
+    t.faceVerts[f] = faceVertices(mesh, f);
+    for (int i = 0; i < 3; ++i) t.faceHalfedge[f][i] = -1;
+    for (auto hh : mesh.fh_range(fh)) {
+      const int h = hh.idx();
+      for (int i = 0; i < 3; ++i) {
+        if (t.faceVerts[f][i] == t.fromVertex[h]) t.faceHalfedge[f][i] = h;
+      }
+    }
+  }
+  t.outgoingStart.assign(t.vertexCount + 1, 0);
+  for (int h = 0; h < nh; ++h) ++t.outgoingStart[t.fromVertex[h] + 1];
+  for (int v = 0; v < t.vertexCount; ++v) t.outgoingStart[v + 1] += t.outgoingStart[v];
+  t.outgoing.assign(nh, -1);
+  {
+    std::vector<int> fill(t.outgoingStart.begin(), t.outgoingStart.end() - 1);
+    for (int h = 0; h < nh; ++h) t.outgoing[fill[t.fromVertex[h]]++] = h;
+  }
+  t.boundaryVertex.assign(t.vertexCount, 0);
+  t.pseudoSource.assign(t.vertexCount, 0);
+  for (auto vh : mesh.vertices()) {
+    const int v = vh.idx();
+    t.boundaryVertex[v] = mesh.is_boundary(vh) ? 1 : 0;
+    // A shortest path can only pass through a vertex that leaves at least pi of surface angle on
+    // each side: interior saddles (angle sum > 2 pi) and reflex boundary vertices (> pi). Convex
+    // and straight boundary vertices never bend a shortest path.
+    const double flatAngle = t.boundaryVertex[v] ? std::numbers::pi : 2.0 * std::numbers::pi;
+    t.pseudoSource[v] = t.angleSum[v] > flatAngle + options.saddleAngleTolerance ? 1 : 0;
+  }
+  return t;
+}
+
+}  // namespace egg::geodesic::detail

@@ -3,6 +3,7 @@
 #include "apps/commands/surface_loading.hpp"
 
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 #include "core/geodesic/distance_solver.hpp"
 #include "core/geodesic/exact_reference.hpp"
 #include "samples/generators/samples.hpp"
@@ -56,8 +57,7 @@ int runGeodesic(const GeodesicArgs& args) {
   const Eigen::Vector3d snapped = position(mesh, source);
   const auto field = solver.distances(source);
   {
-    std::ofstream file(args.out);
-    if (!file) throw IoError("cannot write " + args.out);
+    std::ostringstream file;
     file << "x,y,z,distance\n";
     for (auto vh : mesh.vertices()) {
       const auto& p = mesh.point(vh);
@@ -65,7 +65,7 @@ int runGeodesic(const GeodesicArgs& args) {
       file << fmt::format("{:.17g},{:.17g},{:.17g},{}\n", p[0], p[1], p[2],
                           std::isfinite(d) ? fmt::format("{:.17g}", d) : std::string("inf"));
     }
-    if (!file) throw IoError("cannot write " + args.out);
+    writeFileAtomically(args.out, file.str());
   }
   double maxDistance = 0.0;
   int unreachable = 0;
@@ -222,8 +222,7 @@ int runBench(const BenchArgs& args) {
   }
   std::cout << fmt::format("peak RSS with CGAL: {:.0f} MB\n", peakRssMb());
   if (!args.csv.empty()) {
-    std::ofstream file(args.csv);
-    if (!file) throw IoError("cannot write " + args.csv);
+    std::ostringstream file;
     file << "vertices,ours_ms_per_source,cgal_ms_per_source,speedup,max_relative_error_vs_cgal,precompute_seconds,"
             "map_sources,map_seconds,threads,peak_rss_mb\n";
     for (const auto& r : rows) {
@@ -233,6 +232,7 @@ int runBench(const BenchArgs& args) {
                           num(r["precompute_seconds"]), r["map_sources"].get<int>(), num(r["map_seconds"]),
                           r["threads"].get<int>(), num(r["peak_rss_mb"]));
     }
+    writeFileAtomically(args.csv, file.str());
   }
   if (args.json) std::cout << rows.dump(2) << "\n";
   return kExitOk;

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -126,6 +128,42 @@ TEST_F(Cli, RunWritesACompleteReport) {
   EXPECT_TRUE(report["stages"]["surface"]["ran"].get<bool>());
   EXPECT_GT(report["surface"]["faces"].get<int>(), 0);
   EXPECT_FALSE(report["simulation"]["ran"].get<bool>());
+}
+
+}  // namespace
+}  // namespace egg::app
+
+namespace egg::app {
+namespace {
+
+// On a flat convex sheet the geodesic distance is the straight-line distance: `egg geodesic`
+// must write exactly that for every vertex.
+TEST_F(Cli, GeodesicCommandWritesEuclideanDistancesOnAPlane) {
+  const auto csv = root / "d.csv";
+  const auto o = runEgg({"geodesic", "plane", "--source", "0.3,-0.2,0", "--out", csv.string()});
+  ASSERT_EQ(o.code, kExitOk) << o.err;
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "x,y,z,distance");
+  int rows = 0;
+  double worst = 0.0;
+  while (std::getline(in, line)) {
+    double x, y, z, d;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &x, &y, &z, &d), 4) << line;
+    worst = std::max(worst, std::abs(d - std::hypot(x - 0.3, y + 0.2, z)));
+    ++rows;
+  }
+  EXPECT_GT(rows, 100);
+  EXPECT_LT(worst, 1e-9);
+}
+
+TEST_F(Cli, GeodesicCommandRejectsABadSourceWithoutWriting) {
+  const auto csv = root / "d.csv";
+  const auto o = runEgg({"geodesic", "plane", "--source", "1,2", "--out", csv.string()});
+  EXPECT_EQ(o.code, kExitBadInput);
+  EXPECT_NE(o.err.find("--source"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(csv));
 }
 
 }  // namespace

@@ -144,7 +144,7 @@ TEST(Scene, ShippedScenesParse) {
   int parsed = 0;
   for (const auto& path : {dir / "great_court.json", dir / "lilium.json", dir / "yas.json",
                            dir / "scenes" / "bump_small.json", dir / "scenes" / "cylinder_small.json",
-                           dir / "scenes" / "sphere_small.json"}) {
+                           dir / "scenes" / "sphere_small.json", dir / "scenes" / "bump_patch.json"}) {
     EXPECT_NO_THROW(loadScene(path)) << path;
     ++parsed;
   }
@@ -152,7 +152,8 @@ TEST(Scene, ShippedScenesParse) {
   EXPECT_DOUBLE_EQ(loadScene(dir / "great_court.json").lamella.width_m, 0.25);  // paper's 25 x 4 cm section
   EXPECT_DOUBLE_EQ(loadScene(dir / "lilium.json").lamella.width_m, 0.50);       // 50 x 5 cm
   EXPECT_DOUBLE_EQ(loadScene(dir / "yas.json").lamella.width_m, 0.40);          // 40 x 5 cm
-  EXPECT_EQ(parsed, 6);
+  EXPECT_EQ(parsed, 7);
+  EXPECT_EQ(loadScene(dir / "scenes" / "bump_patch.json").patching.patches.size(), 1u);
 }
 
 }  // namespace

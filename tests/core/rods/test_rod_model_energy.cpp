@@ -2,6 +2,8 @@
 // sides, notches, anchors, gravity, point load, end moment) against finite differences.
 #include "core/rods/rod_model.hpp"
 
+#include "tests/core/rods/rod_test_networks.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCore>
@@ -11,39 +13,9 @@
 namespace egg::rods {
 namespace {
 
-Rod straight(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int layer) {
-  Rod rod;
-  rod.length_m = (to - from).norm();
-  rod.section = {0.02, 0.002};
-  rod.material = {10.0e9, 3.8e9, 600.0};
-  rod.layer = layer;
-  rod.guess = {from, to};
-  rod.guessNormals = {Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ()};
-  return rod;
-}
-
-// Rod 0 along x from the origin (layer 0), rod 1 along y through x = crossing (layer 1), one bolt
-// at the crossing drilled at sA along rod 0.
-RodNetwork crossing(double sA, double crossingX, Notch notchA) {
-  RodNetwork network;
-  network.rods.push_back(straight({0, 0, 0}, {1, 0, 0}, 0));
-  network.rods.push_back(straight({crossingX, -0.5, 0}, {crossingX, 0.5, 0}, 1));
-  Connection c;
-  c.rodA = 0;
-  c.sA_m = sA;
-  c.rodB = 1;
-  c.sB_m = 0.5;
-  c.notchA = notchA;
-  network.connections.push_back(c);
-  return network;
-}
-
-ModelOptions edges(int n) {
-  ModelOptions options;
-  options.minEdgesPerRod = n;
-  options.maxEdgesPerRod = n;
-  return options;
-}
+using testing::crossing;
+using testing::edges;
+using testing::straight;
 
 TEST(RodModelEnergy, WholeModelDerivativesMatchFiniteDifferences) {
   // Bolts start where the guesses cross, clamped into their notches: both mid-edge here, so the

@@ -2,6 +2,8 @@
 // tables), pinned elastica, a rod rolled into a circle by an end moment, and self-weight.
 #include "core/rods/rod_solver.hpp"
 
+#include "tests/core/rods/rod_test_networks.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,12 +35,7 @@ RodNetwork withShearModulus(RodNetwork network, double g) {
   return network;
 }
 
-ModelOptions edges(int n) {
-  ModelOptions options;
-  options.minEdgesPerRod = n;
-  options.maxEdgesPerRod = n;
-  return options;
-}
+using testing::edges;
 
 SolverOptions tight() {
   SolverOptions options;

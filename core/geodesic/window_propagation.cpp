@@ -398,32 +398,38 @@ class Propagator {
     const double L = t_.length[h];
     const double dA = s_.vertexDistance[t_.fromVertex[h]];
     const double dB = s_.vertexDistance[t_.toVertex[h]];
+    // |s - b0| and |s - b1|, recomputed only when an end moves: every test below needs them and
+    // the square roots were the bulk of this function.
+    double r0 = planarLength(w.b0 - w.sx, w.sy);
+    double r1 = planarLength(w.b1 - w.sx, w.sy);
     // Endpoint A at (0,0): f(x) = sigma + |s - x| - dA - x is non-increasing in x.
     if (dA < kInfinity) {
       const double k = dA - w.sigma;
-      const double f1 = planarLength(w.b1 - w.sx, w.sy) - k - w.b1;
+      const double f1 = r1 - k - w.b1;
       if (f1 > 0.0) return false;
-      const double f0 = planarLength(w.b0 - w.sx, w.sy) - k - w.b0;
+      const double f0 = r0 - k - w.b0;
       if (f0 > 0.0) {
         const double denom = 2.0 * (k + w.sx);
         if (denom > 0.0) {
           const double root = (w.sx * w.sx + w.sy * w.sy - k * k) / denom;
           w.b0 = std::clamp(root, w.b0, w.b1);
+          r0 = planarLength(w.b0 - w.sx, w.sy);
         }
       }
     }
     // Endpoint B at (L,0): g(x) = sigma + |s - x| - dB - (L - x) is non-decreasing in x.
     if (dB < kInfinity) {
       const double k = dB - w.sigma;
-      const double g0 = planarLength(w.b0 - w.sx, w.sy) - k - (L - w.b0);
+      const double g0 = r0 - k - (L - w.b0);
       if (g0 > 0.0) return false;
-      const double g1 = planarLength(w.b1 - w.sx, w.sy) - k - (L - w.b1);
+      const double g1 = r1 - k - (L - w.b1);
       if (g1 > 0.0) {
         const double mx = L - w.sx;
         const double denom = 2.0 * (k + mx);
         if (denom > 0.0) {
           const double root = L - (mx * mx + w.sy * w.sy - k * k) / denom;
           w.b1 = std::clamp(root, w.b0, w.b1);
+          r1 = planarLength(w.b1 - w.sx, w.sy);
         }
       }
     }
@@ -434,8 +440,8 @@ class Propagator {
     const double ahead = s_.vertexDistance[t_.oppositeVertex[h]];
     if (ahead < kInfinity && ahead > w.sigma) {
       const double cx = t_.oppositeX[h], cy = t_.oppositeY[h];
-      if (ahead + planarLength(cx - w.b0, cy) < w.sigma + planarLength(w.b0 - w.sx, w.sy) &&
-          ahead + planarLength(cx - w.b1, cy) < w.sigma + planarLength(w.b1 - w.sx, w.sy)) {
+      if (ahead + planarLength(cx - w.b0, cy) < w.sigma + r0 &&
+          ahead + planarLength(cx - w.b1, cy) < w.sigma + r1) {
         return false;
       }
     }
@@ -445,8 +451,8 @@ class Propagator {
       if (behind < kInfinity && behind > w.sigma) {
         // In this frame the vertex behind is the twin's opposite vertex mirrored: (L - x, -y).
         const double cx = L - t_.oppositeX[tw], cy = -t_.oppositeY[tw];
-        if (behind + planarLength(cx - w.b0, cy) < w.sigma + planarLength(w.b0 - w.sx, w.sy) &&
-            behind + planarLength(cx - w.b1, cy) < w.sigma + planarLength(w.b1 - w.sx, w.sy)) {
+        if (behind + planarLength(cx - w.b0, cy) < w.sigma + r0 &&
+            behind + planarLength(cx - w.b1, cy) < w.sigma + r1) {
           return false;
         }
       }
@@ -496,18 +502,19 @@ class Propagator {
     // Sign of g on each piece, from its midpoint; a piece where o is shorter is cut off if it
     // touches an end of w (a middle piece would split w in two, so it stays).
     double newB0 = w.b0, newB1 = w.b1;
+    bool dominated[3];  // per piece, evaluated once (two square roots each)
     bool allDominated = true;
     for (int i = 0; i + 1 < count; ++i) {
-      const bool dominated = g(0.5 * (cuts[i] + cuts[i + 1])) < 0.0;
-      allDominated = allDominated && dominated;
+      dominated[i] = g(0.5 * (cuts[i] + cuts[i + 1])) < 0.0;
+      allDominated = allDominated && dominated[i];
     }
     if (allDominated && lo <= w.b0 && hi >= w.b1) return false;
     for (int i = 0; i + 1 < count; ++i) {
-      if (!(g(0.5 * (cuts[i] + cuts[i + 1])) < 0.0)) break;
+      if (!dominated[i]) break;
       if (cuts[i] <= newB0) newB0 = std::max(newB0, cuts[i + 1]);
     }
     for (int i = count - 2; i >= 0; --i) {
-      if (!(g(0.5 * (cuts[i] + cuts[i + 1])) < 0.0)) break;
+      if (!dominated[i]) break;
       if (cuts[i + 1] >= newB1) newB1 = std::min(newB1, cuts[i]);
     }
     w.b0 = newB0;

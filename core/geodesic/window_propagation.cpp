@@ -33,6 +33,9 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace egg::geodesic::detail {
 
@@ -56,6 +59,21 @@ inline double rayCrossing(double sx, double sy, double px, double py) {
 
 // Plain sqrt: std::hypot's overflow guards cost more than the rest of the inner loop.
 inline double planarLength(double dx, double dy) { return std::sqrt(dx * dx + dy * dy); }
+
+// Two planar lengths at once. With SSE2 one sqrtpd does both (IEEE square roots are correctly
+// rounded, so the values are bit-identical to planarLength's); the scalar calls cannot be paired by
+// the compiler because std::sqrt may set errno.
+inline void planarLengths(double dx0, double dy0, double dx1, double dy1, double& l0, double& l1) {
+#if defined(__SSE2__)
+  const __m128d dx = _mm_set_pd(dx1, dx0), dy = _mm_set_pd(dy1, dy0);
+  const __m128d r = _mm_sqrt_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)));
+  l0 = _mm_cvtsd_f64(r);
+  l1 = _mm_cvtsd_f64(_mm_unpackhi_pd(r, r));
+#else
+  l0 = planarLength(dx0, dy0);
+  l1 = planarLength(dx1, dy1);
+#endif
+}
 
 inline double windowMinDistance(const Window& w) {
   if (w.sx >= w.b0 && w.sx <= w.b1) return w.sigma - w.sy;
@@ -400,8 +418,8 @@ class Propagator {
     const double dB = s_.vertexDistance[t_.toVertex[h]];
     // |s - b0| and |s - b1|, recomputed only when an end moves: every test below needs them and
     // the square roots were the bulk of this function.
-    double r0 = planarLength(w.b0 - w.sx, w.sy);
-    double r1 = planarLength(w.b1 - w.sx, w.sy);
+    double r0, r1;
+    planarLengths(w.b0 - w.sx, w.sy, w.b1 - w.sx, w.sy, r0, r1);
     // Endpoint A at (0,0): f(x) = sigma + |s - x| - dA - x is non-increasing in x.
     if (dA < kInfinity) {
       const double k = dA - w.sigma;
@@ -440,8 +458,9 @@ class Propagator {
     const double ahead = s_.vertexDistance[t_.oppositeVertex[h]];
     if (ahead < kInfinity && ahead > w.sigma) {
       const double cx = t_.oppositeX[h], cy = t_.oppositeY[h];
-      if (ahead + planarLength(cx - w.b0, cy) < w.sigma + r0 &&
-          ahead + planarLength(cx - w.b1, cy) < w.sigma + r1) {
+      double c0, c1;
+      planarLengths(cx - w.b0, cy, cx - w.b1, cy, c0, c1);
+      if (ahead + c0 < w.sigma + r0 && ahead + c1 < w.sigma + r1) {
         return false;
       }
     }
@@ -451,8 +470,9 @@ class Propagator {
       if (behind < kInfinity && behind > w.sigma) {
         // In this frame the vertex behind is the twin's opposite vertex mirrored: (L - x, -y).
         const double cx = L - t_.oppositeX[tw], cy = -t_.oppositeY[tw];
-        if (behind + planarLength(cx - w.b0, cy) < w.sigma + r0 &&
-            behind + planarLength(cx - w.b1, cy) < w.sigma + r1) {
+        double c0, c1;
+        planarLengths(cx - w.b0, cy, cx - w.b1, cy, c0, c1);
+        if (behind + c0 < w.sigma + r0 && behind + c1 < w.sigma + r1) {
           return false;
         }
       }
@@ -469,7 +489,9 @@ class Propagator {
     const double lo = std::max(w.b0, o.b0), hi = std::min(w.b1, o.b1);
     if (!(hi > lo)) return true;
     auto g = [&](double x) {
-      return (o.sigma + planarLength(x - o.sx, o.sy)) - (w.sigma + planarLength(x - w.sx, w.sy));
+      double lengthO, lengthW;
+      planarLengths(x - o.sx, o.sy, x - w.sx, w.sy, lengthO, lengthW);
+      return (o.sigma + lengthO) - (w.sigma + lengthW);
     };
     double cuts[4];
     int count = 0;

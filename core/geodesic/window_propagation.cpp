@@ -75,10 +75,11 @@ inline void planarLengths(double dx0, double dy0, double dx1, double dy1, double
 #endif
 }
 
+
 inline double windowMinDistance(const Window& w) {
   if (w.sx >= w.b0 && w.sx <= w.b1) return w.sigma - w.sy;
-  const double d0 = planarLength(w.b0 - w.sx, w.sy);
-  const double d1 = planarLength(w.b1 - w.sx, w.sy);
+  double d0, d1;
+  planarLengths(w.b0 - w.sx, w.sy, w.b1 - w.sx, w.sy, d0, d1);
   return w.sigma + std::min(d0, d1);
 }
 

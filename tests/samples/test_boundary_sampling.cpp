@@ -49,7 +49,9 @@ TEST(BoundarySampling, CurveEndsAreSamplesAndSpacingIsMeasuredIn3d) {
   ASSERT_EQ(loops[0].points.size(), 2u + 8u + 2u + 8u);
   int corner = 0;
   for (const auto& sample : loops[0].points) {
-    if (sample.s == 0.0) EXPECT_EQ(sample.domain, corners[corner++]);
+    if (sample.s == 0.0) {
+      EXPECT_EQ(sample.domain, corners[corner++]);
+    }
   }
   EXPECT_EQ(corner, 4);
   EXPECT_NEAR(curveLength3d(spec, square[1], 64), 4.0, 1e-12);

@@ -94,7 +94,9 @@ TEST(AlphaBar, SpherePatchHasAFeasibleRangeWithSlopesInsideBounds) {
   for (const auto& interval : r.feasibleIntervals) {
     EXPECT_TRUE(evaluateAlphaBar(maps, 0.5 * (interval.lo + interval.hi), options).feasible);
     EXPECT_TRUE(evaluateAlphaBar(maps, interval.hi - 1e-6, options).feasible);
-    if (interval.hi < r.convexRange.hi - 1e-6) EXPECT_FALSE(evaluateAlphaBar(maps, interval.hi + 1e-5, options).feasible);
+    if (interval.hi < r.convexRange.hi - 1e-6) {
+      EXPECT_FALSE(evaluateAlphaBar(maps, interval.hi + 1e-5, options).feasible);
+    }
   }
   options.choice = AlphaBarChoice::Max;
   const auto rmax = solveAlphaBar(maps, options);

@@ -18,8 +18,12 @@ void expectGridCriteria(const EggResult& r) {
     for (const auto& m : *family) EXPECT_NEAR(m.spatialLength, m.planarLength, 1e-9 * m.planarLength) << m.index;
   // (ii) boundary correspondence: along boundary members, connections sit at the same arc length.
   for (const auto& c : r.grid.connections) {
-    if (r.grid.u[c.memberU].boundary) EXPECT_NEAR(c.sU, c.sBarU, 1e-9 * r.grid.u[c.memberU].planarLength);
-    if (r.grid.v[c.memberV].boundary) EXPECT_NEAR(c.sV, c.sBarV, 1e-9 * r.grid.v[c.memberV].planarLength);
+    if (r.grid.u[c.memberU].boundary) {
+      EXPECT_NEAR(c.sU, c.sBarU, 1e-9 * r.grid.u[c.memberU].planarLength);
+    }
+    if (r.grid.v[c.memberV].boundary) {
+      EXPECT_NEAR(c.sV, c.sBarV, 1e-9 * r.grid.v[c.memberV].planarLength);
+    }
   }
   // (iii) bijective cladding functions.
   EXPECT_TRUE(r.alphaBar.claddingU.bijective());
@@ -90,8 +94,12 @@ TEST(SolvePatch, DevelopableCylinderAtAlphaMinIsNotchFreeToo) {
   }
   // Boundary members carry none.
   for (const auto& c : r.grid.connections) {
-    if (r.grid.u[c.memberU].boundary) EXPECT_EQ(c.notchU, 0.0);
-    if (r.grid.v[c.memberV].boundary) EXPECT_EQ(c.notchV, 0.0);
+    if (r.grid.u[c.memberU].boundary) {
+      EXPECT_EQ(c.notchU, 0.0);
+    }
+    if (r.grid.v[c.memberV].boundary) {
+      EXPECT_EQ(c.notchV, 0.0);
+    }
   }
 }
 

@@ -71,8 +71,12 @@ TEST(RodSolver, CantileverTipLoadMatchesElasticaTable) {
     ASSERT_TRUE(result.converged) << result.reason;
     const Eigen::Vector3d d = c.tip() - c.root();
     EXPECT_NEAR(-d.z() / c.freeLength, expected, 0.005 * expected) << "alpha " << alpha;
-    if (alpha == 1.0) EXPECT_NEAR(1.0 - d.x() / c.freeLength, 0.05643, 0.005 * 0.05643);
-    if (alpha == 2.0) EXPECT_NEAR(1.0 - d.x() / c.freeLength, 0.16064, 0.005 * 0.16064);
+    if (alpha == 1.0) {
+      EXPECT_NEAR(1.0 - d.x() / c.freeLength, 0.05643, 0.005 * 0.05643);
+    }
+    if (alpha == 2.0) {
+      EXPECT_NEAR(1.0 - d.x() / c.freeLength, 0.16064, 0.005 * 0.16064);
+    }
   }
 }
 

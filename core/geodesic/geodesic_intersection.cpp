@@ -18,36 +18,6 @@ void GeodesicIntersectionOptions::validate() const {
   if (fitRings < 1 || fitRings > 4) throw InvalidInput("GeodesicIntersectionOptions.fitRings must be in [1, 4]");
 }
 
-namespace {
-
-// Closest point of triangle (a, b, c) to p as barycentric weights (Ericson 5.1.5), duplicated
-// from geodesic_path.cpp's snapping to keep both files self-contained.
-Eigen::Vector3d closestBarycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                   const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return {1 - d1 / (d1 - d3), d1 / (d1 - d3), 0};
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return {1 - d2 / (d2 - d6), 0, d2 / (d2 - d6)};
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {0, 1 - w, w};
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  return {1 - (vb + vc) * denom, vb * denom, vc * denom};
-}
-
-}  // namespace
-
 GeodesicIntersection intersectGeodesics(const TriMesh& mesh, const std::vector<double>& dA,
                                         const std::vector<double>& dB, const std::vector<double>& dC,
                                         const std::vector<double>& dD, double lengthAB, double lengthCD,
@@ -157,7 +127,7 @@ GeodesicIntersection intersectGeodesics(const TriMesh& mesh, const std::vector<d
     const Eigen::Vector3d a = toEigen(mesh.point(TriMesh::VertexHandle(ids[0])));
     const Eigen::Vector3d b = toEigen(mesh.point(TriMesh::VertexHandle(ids[1])));
     const Eigen::Vector3d c = toEigen(mesh.point(TriMesh::VertexHandle(ids[2])));
-    const Eigen::Vector3d bc = closestBarycentric(refined, a, b, c);
+    const Eigen::Vector3d bc = closestPointBarycentric(refined, a, b, c);
     const double d = (bc[0] * a + bc[1] * b + bc[2] * c - refined).squaredNorm();
     if (d < bestDistance) {
       bestDistance = d;

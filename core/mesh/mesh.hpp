@@ -50,6 +50,11 @@ TriMesh meshFromSoup(const TriangleSoup& soup);
 // Back to plain arrays (vertex indices are OpenMesh's vertex indices).
 TriangleSoup soupFromMesh(const TriMesh& mesh);
 
+// The point of triangle (a, b, c) closest to p, as barycentric weights of a, b, c (Ericson,
+// Real-Time Collision Detection, 5.1.5). Snapping points to the surface rests on it.
+Eigen::Vector3d closestPointBarycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                        const Eigen::Vector3d& c);
+
 struct BoundingBox {
   Eigen::Vector3d min = Eigen::Vector3d::Constant(0.0);
   Eigen::Vector3d max = Eigen::Vector3d::Constant(0.0);

@@ -59,3 +59,17 @@ TEST(Mesh, ThirdTriangleOnAnEdgeIsRejected) {
 
 }  // namespace
 }  // namespace egg
+
+namespace egg {
+namespace {
+
+TEST(Mesh, ClosestPointBarycentricCoversInteriorEdgesAndCorners) {
+  const Eigen::Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  EXPECT_TRUE(closestPointBarycentric({0.2, 0.3, 5.0}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0.2, 0.3)));  // above the face
+  EXPECT_TRUE(closestPointBarycentric({-1, -1, 0}, a, b, c).isApprox(Eigen::Vector3d(1, 0, 0)));             // corner a
+  EXPECT_TRUE(closestPointBarycentric({0.5, -2, 0}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0.5, 0)));        // edge ab
+  EXPECT_TRUE(closestPointBarycentric({1, 1, 0}, a, b, c).isApprox(Eigen::Vector3d(0, 0.5, 0.5)));           // edge bc
+}
+
+}  // namespace
+}  // namespace egg

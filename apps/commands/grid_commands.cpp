@@ -10,7 +10,10 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -24,17 +27,33 @@ struct GridBenchArgs {
   std::vector<int> sizes{600, 1100, 2000, 3400};  // approximate patch vertex counts
   int resolution = 100;                           // distance map samples per side
   double height = 1.0;                            // bump height (m); the patch is 6 x 6 m
+  int repeats = 3;                                // solves per size; the table shows medians
   std::string csv;
   bool json = false;
 };
 
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// The parts of t_grid in table order; t_grid itself is the wall time of the whole solve.
+constexpr int kParts = 6;
+const char* const kPartNames[kParts] = {"patch", "eta", "maps", "sqp", "members", "trace"};
+std::array<double, kParts> partsOf(const EggTimings& t) {
+  return {t.patch, t.uniqueness, t.distanceMaps, t.sqp, t.members, t.tracing};
+}
+
 int runGridBench(const GridBenchArgs& args) {
   fmt::print("egg bench grid: bump (height {} m, sigma 1.5 m) patch 6 x 6 m, distance maps {} x {}, alpha_bar = min,\n"
-             "lamellas 0.1 m at spacing 0.6 m; times in seconds (wall, all threads)\n",
-             args.height, args.resolution, args.resolution);
+             "lamellas 0.1 m at spacing 0.6 m; wall seconds (all threads), median of {} solves per size;\n"
+             "share = part / t_grid; fields = distance propagations (maps + eta + tracing)\n",
+             args.height, args.resolution, args.resolution, args.repeats);
   fmt::print("{:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>10} {:>18}\n", "vertices", "t_patch",
              "t_eta", "t_maps", "t_sqp", "t_member", "t_trace", "t_grid", "u x v", "fields", "max_notch", "alpha_bar range");
   nlohmann::json rows = nlohmann::json::array();
+  std::vector<std::array<double, kParts>> shares;
   for (int size : args.sizes) {
     if (size < 50) throw InvalidInput("egg bench grid: --sizes must be at least 50 vertices");
     const double patchArea = 50.0;  // calibrated on the bump sample: 6 x 6 m patch, ~requested vertices
@@ -45,37 +64,62 @@ int runGridBench(const GridBenchArgs& args) {
     options.maps.resolution = args.resolution;
     options.members.lamellaWidthM = 0.1;
     options.members.spacingFactor = 6.0;
-    const auto r = solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, options);
-    const auto& t = r.seconds;
-    // Distance fields: 2 n for the maps plus those spent matching member lengths (load-independent).
-    const int fields = 2 * args.resolution + r.grid.propagations;
+    std::array<std::vector<double>, kParts> parts;
+    std::vector<double> totals;
+    std::optional<EggResult> last;
+    for (int run = 0; run < args.repeats; ++run) {
+      last = solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, options);
+      const auto p = partsOf(last->seconds);
+      for (int k = 0; k < kParts; ++k) parts[k].push_back(p[k]);
+      totals.push_back(last->seconds.total);
+    }
+    const EggResult& r = *last;
+    std::array<double, kParts> t{};
+    for (int k = 0; k < kParts; ++k) t[k] = median(parts[k]);
+    const double total = median(totals);
+    std::array<double, kParts> share{};
+    for (int k = 0; k < kParts; ++k) share[k] = total > 0 ? t[k] / total : 0.0;
+    shares.push_back(share);
+    const int fields = r.propagations;  // load-independent work measure
     fmt::print("{:>8} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.4f} {:>8.3f} {:>8.3f} {:>3}x{:<2} {:>6} {:>10.4f} [{:.4f}, {:.4f}]\n",
-               r.patch.mesh.n_vertices(), t.patch, t.uniqueness, t.distanceMaps, t.sqp, t.members, t.tracing, t.total,
-               r.grid.u.size(), r.grid.v.size(), fields, r.grid.maxNotch, r.alphaBar.alphaMin, r.alphaBar.alphaMax);
-    rows.push_back({{"vertices", r.patch.mesh.n_vertices()},
-                    {"t_patch_s", t.patch},
-                    {"t_uniqueness_s", t.uniqueness},
-                    {"t_distance_maps_s", t.distanceMaps},
-                    {"t_sqp_s", t.sqp},
-                    {"t_members_s", t.members},
-                    {"t_tracing_s", t.tracing},
-                    {"t_grid_s", t.total},
-                    {"distance_fields", fields},
-                    {"members_u", r.grid.u.size()},
-                    {"members_v", r.grid.v.size()},
-                    {"max_notch_m", r.grid.maxNotch},
-                    {"alpha_bar_range_rad", {r.alphaBar.alphaMin, r.alphaBar.alphaMax}},
-                    {"smoothing_rounds", r.uniqueness.smoothingRounds}});
+               r.patch.mesh.n_vertices(), t[0], t[1], t[2], t[3], t[4], t[5], total, r.grid.u.size(), r.grid.v.size(),
+               fields, r.grid.maxNotch, r.alphaBar.alphaMin, r.alphaBar.alphaMax);
+    nlohmann::json row{{"vertices", r.patch.mesh.n_vertices()},
+                       {"repeats", args.repeats},
+                       {"t_patch_s", t[0]},
+                       {"t_uniqueness_s", t[1]},
+                       {"t_distance_maps_s", t[2]},
+                       {"t_sqp_s", t[3]},
+                       {"t_members_s", t[4]},
+                       {"t_tracing_s", t[5]},
+                       {"t_grid_s", total},
+                       {"t_grid_runs_s", totals},
+                       {"distance_fields", fields},
+                       {"members_u", r.grid.u.size()},
+                       {"members_v", r.grid.v.size()},
+                       {"max_notch_m", r.grid.maxNotch},
+                       {"alpha_bar_range_rad", {r.alphaBar.alphaMin, r.alphaBar.alphaMax}},
+                       {"smoothing_rounds", r.uniqueness.smoothingRounds}};
+    rows.push_back(row);
+  }
+  fmt::print("share of t_grid:\n{:>8}", "vertices");
+  for (const char* name : kPartNames) fmt::print(" {:>8}", name);
+  fmt::print("\n");
+  for (size_t k = 0; k < shares.size(); ++k) {
+    fmt::print("{:>8}", rows[k]["vertices"].get<size_t>());
+    for (double s : shares[k]) fmt::print(" {:>7.1f}%", 100.0 * s);
+    fmt::print("\n");
   }
   if (!args.csv.empty()) {
     std::ostringstream file;
     file << "vertices,t_patch_s,t_uniqueness_s,t_distance_maps_s,t_sqp_s,t_members_s,t_tracing_s,t_grid_s,members_u,"
-            "members_v,max_notch_m\n";
+            "members_v,max_notch_m,distance_fields\n";
     for (const auto& r : rows)
-      file << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", r["vertices"].get<size_t>(), r["t_patch_s"].get<double>(),
+      file << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", r["vertices"].get<size_t>(), r["t_patch_s"].get<double>(),
                           r["t_uniqueness_s"].get<double>(), r["t_distance_maps_s"].get<double>(), r["t_sqp_s"].get<double>(),
                           r["t_members_s"].get<double>(), r["t_tracing_s"].get<double>(), r["t_grid_s"].get<double>(),
-                          r["members_u"].get<size_t>(), r["members_v"].get<size_t>(), r["max_notch_m"].get<double>());
+                          r["members_u"].get<size_t>(), r["members_v"].get<size_t>(), r["max_notch_m"].get<double>(),
+                          r["distance_fields"].get<int>());
     writeFileAtomically(args.csv, file.str());
   }
   if (args.json) std::cout << rows.dump(2) << "\n";
@@ -91,6 +135,7 @@ void registerGridBench(CLI::App& bench, Action& action) {
                                    "size: wall time of each part");
   cmd->add_option("--sizes", args->sizes, "approximate patch vertex counts")->delimiter(',');
   cmd->add_option("--resolution", args->resolution, "distance map samples per side")->check(CLI::Range(3, 2000));
+  cmd->add_option("--repeats", args->repeats, "solves per size (medians are shown)")->check(CLI::Range(1, 100));
   cmd->add_option("--height", args->height, "bump height in metres")->check(CLI::NonNegativeNumber);
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_flag("--json", args->json, "also print the table as JSON");

@@ -1,5 +1,6 @@
 #include "core/egg/grid.hpp"
 
+#include "core/egg/member_trace.hpp"
 #include "core/egg/patch_maps.hpp"
 #include "core/errors.hpp"
 #include "core/geodesic/geodesic_intersection.hpp"
@@ -18,6 +19,7 @@ void GridOptions::validate() const {
   if (!(lengthTolerance > 0.0)) throw InvalidInput("grid.length_tolerance must be > 0");
   if (bracketSamples < 3) throw InvalidInput("grid.bracket_samples must be >= 3");
   if (maxSecantSteps < 1) throw InvalidInput("grid.max_secant_steps must be >= 1");
+  if (maxStripTraces < 1) throw InvalidInput("grid.max_strip_traces must be >= 1");
   if (!(anchorCurvatureFraction >= 0.0 && anchorCurvatureFraction <= 1.0))
     throw InvalidInput("grid.anchor_curvature_fraction must lie in [0, 1]");
 }
@@ -53,14 +55,6 @@ std::vector<Eigen::Vector3d> sidePolyline(const Patch& patch, int side, bool rev
   return line;
 }
 
-Eigen::Vector3d faceNormal(const TriMesh& mesh, int face) {
-  const auto ids = faceVertices(mesh, face);
-  const Eigen::Vector3d a = toEigen(mesh.point(TriMesh::VertexHandle(ids[0])));
-  const Eigen::Vector3d b = toEigen(mesh.point(TriMesh::VertexHandle(ids[1])));
-  const Eigen::Vector3d c = toEigen(mesh.point(TriMesh::VertexHandle(ids[2])));
-  return (b - a).cross(c - a).normalized();
-}
-
 // Area-weighted vertex normal (the faces around a boundary vertex are all inside the patch).
 Eigen::Vector3d vertexNormal(const TriMesh& mesh, int vertex) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -85,124 +79,6 @@ Eigen::Vector3d nearestNormal(const GridMember& m, const Eigen::Vector3d& p) {
   for (size_t k = 1; k < m.spatial.size(); ++k)
     if ((m.spatial[k] - p).squaredNorm() < (m.spatial[best] - p).squaredNorm()) best = k;
   return m.normals[best];
-}
-
-// Criterion (i) for one inner member: move x2 until the geodesic from start(x1) to end(x2) is as
-// long as the planar segment. The cladding function's x2 is exact only up to the interpolation of
-// the distance maps; here the exact geodesic distance is matched.
-void matchMember(const Patch& patch, const geodesic::DistanceSolver& solver, const PlanarQuad& quad, GridMember& m,
-                 const GridOptions& options, std::atomic<int>& propagations) {
-  const SurfacePoint start = familyBoundaryPoint(patch, m.family, false, m.x1);
-  const auto endPoint = [&](double x2) { return familyBoundaryPoint(patch, m.family, true, x2); };
-  const auto mismatch = [&](double x2, double distance) { return distance - planarDistance(quad, m.family, m.x1, x2); };
-  const double guess = m.x2;
-  const int count = options.bracketSamples;
-  const double halfWidth = 0.05;
-  std::vector<double> xs{guess};
-  std::vector<SurfacePoint> targets{endPoint(guess)};
-  for (int k = 0; k < count; ++k) {
-    const double x = std::clamp(guess - halfWidth + 2 * halfWidth * k / (count - 1), 0.0, 1.0);
-    xs.push_back(x);
-    targets.push_back(endPoint(x));
-  }
-  // Coarse samples of the whole side as well: on a nearly developable patch the mismatch is tiny
-  // everywhere and its root may lie outside the window around the guess.
-  std::vector<double> coarse;
-  for (int k = 0; k < count; ++k) coarse.push_back(static_cast<double>(k) / (count - 1));
-  for (double x : coarse) targets.push_back(endPoint(x));
-  const auto field = solver.distances(start, targets);
-  ++propagations;
-  const double scale = planarDistance(quad, m.family, m.x1, guess);
-  const double tolerance = options.lengthTolerance * scale;
-  double bestX = guess, bestG = mismatch(guess, field.targetDistances[0]);
-  if (std::abs(bestG) > tolerance) {
-    // Bracket nearest the guess.
-    int bracket = -1;
-    for (int k = 1; k < count; ++k) {
-      const double ga = mismatch(xs[k], field.targetDistances[k]), gb = mismatch(xs[k + 1], field.targetDistances[k + 1]);
-      if ((ga <= 0) != (gb <= 0) && (bracket < 0 || std::abs(xs[k] - guess) < std::abs(xs[bracket] - guess))) bracket = k;
-      if (std::abs(ga) < std::abs(bestG)) bestG = ga, bestX = xs[k];
-    }
-    double a = 0, b = 0, ga = 0, gb = 0;
-    const bool inWindow = bracket >= 0;
-    if (bracket >= 0) {
-      a = xs[bracket], b = xs[bracket + 1];
-      ga = mismatch(a, field.targetDistances[bracket]), gb = mismatch(b, field.targetDistances[bracket + 1]);
-    } else {
-      const size_t offset = xs.size();
-      for (int k = 0; k + 1 < count; ++k) {
-        const double g0 = mismatch(coarse[k], field.targetDistances[offset + k]);
-        const double g1 = mismatch(coarse[k + 1], field.targetDistances[offset + k + 1]);
-        if ((g0 <= 0) == (g1 <= 0)) continue;
-        const double middle = 0.5 * (coarse[k] + coarse[k + 1]);
-        if (bracket < 0 || std::abs(middle - guess) < std::abs(0.5 * (a + b) - guess))
-          bracket = k, a = coarse[k], b = coarse[k + 1], ga = g0, gb = g1;
-      }
-    }
-    if (bracket >= 0 && inWindow) {
-      // Fast path: inverse cubic interpolation through four window samples around the root is
-      // accurate to O(h^4); tracing the member there also measures it, so when the length already
-      // matches, no further propagation is spent.
-      const int first = std::clamp(bracket - 1, 1, count - 3);
-      std::array<double, 4> gx{}, xx{};
-      bool monotone = true;
-      for (int q = 0; q < 4; ++q) {
-        xx[q] = xs[first + q];
-        gx[q] = mismatch(xx[q], field.targetDistances[first + q]);
-        if (q > 0 && !((gx[q] - gx[q - 1]) * (gx[1] - gx[0]) > 0.0)) monotone = false;
-      }
-      if (monotone) {
-        double x = 0.0;
-        for (int q = 0; q < 4; ++q) {
-          double weight = 1.0;
-          for (int r = 0; r < 4; ++r)
-            if (r != q) weight *= (0.0 - gx[r]) / (gx[q] - gx[r]);
-          x += weight * xx[q];
-        }
-        if (x > a && x < b) {
-          auto path = solver.path(start, endPoint(x));
-          ++propagations;
-          const double g = std::isfinite(path.length) ? mismatch(x, path.length) : 1e300;
-          if (std::abs(g) <= tolerance && path.positions.size() >= 2) {
-            m.x2 = x;
-            m.spatial = path.positions;
-            m.normals.clear();
-            for (const auto& point : path.points) m.normals.push_back(faceNormal(patch.mesh, point.face));
-            return;
-          }
-          if (std::abs(g) < std::abs(bestG)) bestG = g, bestX = x;
-          if ((g <= 0) == (gb <= 0)) b = x, gb = g; else a = x, ga = g;
-        }
-      }
-    }
-    if (bracket >= 0) {
-      int side = 0;
-      for (int step = 0; step < options.maxSecantSteps; ++step) {  // Illinois regula falsi
-        const double x = b - gb * (b - a) / (gb - ga);
-        const double g = mismatch(x, solver.distance(start, endPoint(x)));
-        ++propagations;
-        if (std::abs(g) < std::abs(bestG)) bestG = g, bestX = x;
-        if (std::abs(g) <= tolerance) break;
-        if ((g <= 0) == (gb <= 0)) {
-          b = x, gb = g;
-          if (side == -1) ga *= 0.5;
-          side = -1;
-        } else {
-          a = x, ga = g;
-          if (side == 1) gb *= 0.5;
-          side = 1;
-        }
-      }
-    }
-  }
-  m.x2 = bestX;
-  const auto path = solver.path(start, endPoint(m.x2));
-  ++propagations;
-  if (!std::isfinite(path.length) || path.positions.size() < 2)
-    throw SolverFailure("grid: member " + std::to_string(m.index) + " could not be traced inside the patch");
-  m.spatial = path.positions;
-  m.normals.clear();
-  for (const auto& point : path.points) m.normals.push_back(faceNormal(patch.mesh, point.face));
 }
 
 // Curvature maxima along a side (resampled, three-point circles), as arc lengths from its start.
@@ -266,8 +142,17 @@ EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, co
     members.back().spatial = isU ? sidePolyline(patch, 2, true) : sidePolyline(patch, 1, false);
     members.front().normals = isU ? sideNormals(patch, 0, false) : sideNormals(patch, 3, true);
     members.back().normals = isU ? sideNormals(patch, 2, true) : sideNormals(patch, 1, false);
-    tbb::parallel_for(1, count - 1, [&](int i) { matchMember(patch, solver, quad, members[i], options, propagations); });
-    for (auto& m : members) {
+  }
+  // Inner members of both families in one parallel loop (one or two propagations each).
+  std::vector<GridMember*> inner;
+  for (auto* members : {&grid.u, &grid.v})
+    for (auto& m : *members)
+      if (!m.boundary) inner.push_back(&m);
+  tbb::parallel_for(0, static_cast<int>(inner.size()), [&](int k) {
+    traceInnerMember(patch, solver, quad, *inner[k], options, propagations);
+  });
+  for (auto* members : {&grid.u, &grid.v})
+    for (auto& m : *members) {
       const auto ends = planarMember(quad, m.family, m.x1, m.x2);
       m.planarStart = ends[0];
       m.planarEnd = ends[1];
@@ -275,7 +160,6 @@ EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, co
       m.spatialLength = polylineLength(m.spatial);
       grid.maxLengthMismatch = std::max(grid.maxLengthMismatch, std::abs(m.spatialLength - m.planarLength) / m.planarLength);
     }
-  }
   grid.propagations = propagations;
 
   // Connections: every u member meets every v member once.

@@ -18,8 +18,9 @@ struct GridOptions {
   // Criterion (i): the end parameter x2 of an inner member is refined until the geodesic and the
   // planar segment differ in length by at most this fraction of the member length.
   double lengthTolerance = 1e-10;  // 10x tighter than the 1e-9 the tests demand
-  int bracketSamples = 25;        // samples of x2 around the cladding function's guess
-  int maxSecantSteps = 12;        // refinement steps after bracketing
+  int maxStripTraces = 4;         // traces of a member solved in their unfolded strip before the fallback
+  int bracketSamples = 25;        // fallback: samples of x2 around the cladding function's guess
+  int maxSecantSteps = 12;        // fallback: refinement steps after bracketing
   // Anchors (2.4.6): boundary curvature maxima at least this fraction of the side's largest.
   double anchorCurvatureFraction = 0.5;
   void validate() const;          // throws InvalidInput naming the field

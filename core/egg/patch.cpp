@@ -382,6 +382,7 @@ Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& re
       throw InfeasiblePatch("inner angle at corner " + std::to_string(k) + " is " + std::to_string(patch.innerAngles[k]) +
                             " rad, not below pi: the patch is not convex (criterion iv)");
   }
+  patch.propagations = 4;
   patch.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return patch;
 }

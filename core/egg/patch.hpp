@@ -38,6 +38,7 @@ struct Patch {
   std::array<double, 4> innerAngles{};          // inner angle at each corner, measured in `mesh` (radians)
   std::array<double, 4> cornerOffsets{};        // how far each requested corner was moved onto the surface
   double area = 0.0;                            // m^2
+  int propagations = 0;                         // geodesic propagations on the surface (one per side)
   double seconds = 0.0;
 };
 

@@ -2,6 +2,8 @@
 
 #include "core/errors.hpp"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -11,14 +13,10 @@ void DistanceMapOptions::validate() const {
   if (resolution < 3 || resolution > 2000) throw InvalidInput("grid.map_resolution must lie in [3, 2000]");
 }
 
-namespace {
-// Family sides as (patch side, reversed): u runs c0->c3 (side 3 backwards) to c1->c2 (side 1);
-// v runs c0->c1 (side 0) to c3->c2 (side 2 backwards).
 std::pair<int, bool> familySide(Family family, bool end) {
   if (family == Family::U) return end ? std::pair{1, false} : std::pair{3, true};
   return end ? std::pair{2, true} : std::pair{0, false};
 }
-}  // namespace
 
 double familySideLength(const Patch& patch, Family family, bool end) {
   return patch.sideLengths[familySide(family, end).first];
@@ -38,7 +36,7 @@ PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::Distan
   PatchDistanceMaps maps;
   maps.sides = patch.sideLengths;
   maps.alphaSpatial = patch.innerAngles[0];
-  for (Family family : {Family::U, Family::V}) {
+  const auto familyMap = [&](Family family) {
     std::vector<SurfacePoint> sources, targets;
     for (int i = 0; i < n; ++i) {
       const double x = static_cast<double>(i) / (n - 1);
@@ -54,7 +52,9 @@ PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::Distan
         map.at(i, j) = d;
       }
     (family == Family::U ? maps.u : maps.v) = std::move(map);
-  }
+  };
+  // Both batches share the thread pool, so the tail of one family overlaps the other.
+  tbb::parallel_invoke([&] { familyMap(Family::U); }, [&] { familyMap(Family::V); });
   maps.diagonalE = maps.u.at(0, n - 1);  // c0 to c2
   maps.diagonalF = maps.u.at(n - 1, 0);  // c3 to c1
   return maps;

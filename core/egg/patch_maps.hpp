@@ -6,6 +6,8 @@
 #include "core/egg/patch.hpp"
 #include "core/geodesic/distance_solver.hpp"
 
+#include <utility>
+
 namespace egg {
 
 struct DistanceMapOptions {
@@ -13,12 +15,19 @@ struct DistanceMapOptions {
   void validate() const; // throws InvalidInput naming the field
 };
 
+// The patch side a family's start side (end = false) or end side runs along, and whether the
+// family's parameter runs against the side's own direction (corner k -> k+1):
+// u runs c0->c3 (side 3 backwards) to c1->c2 (side 1); v runs c0->c1 (side 0) to c3->c2 (side 2 backwards).
+std::pair<int, bool> familySide(Family family, bool end);
+
 // The boundary point at parameter x in [0,1] on the family's start side (end = false) or end side.
 SurfacePoint familyBoundaryPoint(const Patch& patch, Family family, bool end, double x);
 // Spatial length of that side.
 double familySideLength(const Patch& patch, Family family, bool end);
 
-// Both maps plus sides, diagonals and the corner angle alpha, ready for solveAlphaBar.
+// Both maps plus sides, diagonals and the corner angle alpha, ready for solveAlphaBar. One batch
+// call per family (n sources on its start side, targets the n samples of its end side); the two
+// run concurrently.
 PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::DistanceSolver& solver,
                                       const DistanceMapOptions& options = {});
 

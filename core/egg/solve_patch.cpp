@@ -3,6 +3,8 @@
 #include "core/errors.hpp"
 #include "core/mesh/smoothing.hpp"
 
+#include <tbb/parallel_invoke.h>
+
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -34,12 +36,35 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   result.patch = makePatch(surface, corners, options.patch);
   result.seconds.patch = since(t);
 
+  // One solver for the whole solve: its tables serve the eta check, the maps and the tracing.
   t = std::chrono::steady_clock::now();
   auto solver = std::make_unique<geodesic::DistanceSolver>(result.patch.mesh);
-  result.uniqueness = checkUniqueness(result.patch, *solver, options.uniqueness);
+  const PatchPeaks peaks = findPatchPeaks(result.patch, options.uniqueness);
+  result.seconds.uniqueness = since(t);
+
+  // The maps and the eta check's peak fields in one go (Sections 2.4.2, 2.3.3): the maps already
+  // hold the diagonals and every d(p1, opposite side), so the check adds one field per peak, and
+  // none when the injectivity bound holds for sure.
+  t = std::chrono::steady_clock::now();
+  const bool needPeakFields = !peaks.peaks.empty() && !boundCertainlyHolds(result.patch, peaks);
+  std::vector<geodesic::DistanceField> peakFields;
+  tbb::parallel_invoke([&] { result.maps = computeDistanceMaps(result.patch, *solver, options.maps); },
+                       [&] {
+                         if (!needPeakFields) return;
+                         std::vector<SurfacePoint> sources;
+                         for (const auto& p : peaks.peaks) sources.push_back(geodesic::vertexPoint(result.patch.mesh, p.vertex));
+                         peakFields = solver->distances(sources, uniquenessPeakTargets(result.patch, options.maps.resolution));
+                       });
+  result.propagations += 2 * options.maps.resolution + static_cast<int>(peakFields.size());
+  result.seconds.distanceMaps = since(t);
+
+  t = std::chrono::steady_clock::now();
+  result.uniqueness = checkUniqueness(result.patch, peaks, peakFields, result.maps, options.uniqueness);
+  result.uniqueness.propagations = static_cast<int>(peakFields.size());
   if (!result.uniqueness.passed && options.uniqueness.smooth) {
     // Section 2.3.3: cotangent-Laplacian smoothing of the patch (boundary held, it is the traced
-    // quad) repeated until eta <= eta_max. Only when the check fails.
+    // quad) repeated until eta <= eta_max. Only when the check fails; the maps are then redone
+    // on the smoothed patch.
     std::vector<Eigen::Vector3d> original;
     for (auto vh : result.patch.mesh.vertices()) original.push_back(toEigen(result.patch.mesh.point(vh)));
     SmoothingOptions smoothing;
@@ -51,6 +76,7 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
       ++rounds;
       solver = std::make_unique<geodesic::DistanceSolver>(result.patch.mesh);
       report = checkUniqueness(result.patch, *solver, options.uniqueness);
+      result.propagations += report.propagations;
     }
     report.smoothingRounds = rounds;
     for (auto vh : result.patch.mesh.vertices())
@@ -78,11 +104,13 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
             << " m; smoothing rounds " << result.uniqueness.smoothingRounds << ")";
     throw InfeasiblePatch(message.str());
   }
-  result.seconds.uniqueness = since(t);
-
-  t = std::chrono::steady_clock::now();
-  result.maps = computeDistanceMaps(result.patch, *solver, options.maps);
-  result.seconds.distanceMaps = since(t);
+  result.seconds.uniqueness += since(t);
+  if (result.uniqueness.smoothingRounds > 0) {
+    t = std::chrono::steady_clock::now();
+    result.maps = computeDistanceMaps(result.patch, *solver, options.maps);
+    result.propagations += 2 * options.maps.resolution;
+    result.seconds.distanceMaps += since(t);
+  }
 
   t = std::chrono::steady_clock::now();
   result.alphaBar = solveAlphaBar(result.maps, options.alphaBar);
@@ -98,6 +126,7 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   t = std::chrono::steady_clock::now();
   result.grid = buildGrid(result.patch, *solver, result.alphaBar.quad, result.membersU, result.membersV, options.grid);
   result.seconds.tracing = since(t);
+  result.propagations += result.patch.propagations + result.grid.propagations;
   result.seconds.total = since(started);
   return result;
 }

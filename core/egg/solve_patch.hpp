@@ -34,6 +34,7 @@ struct EggResult {
   FamilyMembers membersU, membersV;
   EggGrid grid;
   EggTimings seconds;
+  int propagations = 0;        // distance propagations (fields and paths) over all stages: a load-independent work measure
 };
 
 // Throws InfeasiblePatch (the patching stage splits the patch) or InvalidInput with the reason.

@@ -6,6 +6,8 @@
 // p_max, q1 = the point of the opposite boundary minimising d(p1,p_max) + d(p_max,q) - d(p1,q), and
 //   eta = (d(p1, p_max) + d(p_max, q1)) / d(p1, q1)
 // measures the gap; the patch passes when eta <= eta_max (1.0015 in the thesis).
+#include "core/curvature/curvature_peaks.hpp"
+#include "core/egg/distance_map.hpp"
 #include "core/egg/patch.hpp"
 #include "core/egg/planar_quad.hpp"
 #include "core/geodesic/distance_solver.hpp"
@@ -18,7 +20,7 @@ namespace egg {
 struct UniquenessOptions {
   double etaMax = 1.0015;         // largest acceptable eta (thesis value)
   int maxPeaks = 4;               // strongest interior K peaks checked
-  int sideSamples = 64;           // boundary samples searched for p1 and q1
+  int sideSamples = 64;           // boundary samples searched for p1 and q1 (the maps' grid when maps are given)
   bool smooth = true;             // smooth the patch (cotan Laplacian) until eta <= eta_max
   int maxSmoothingRounds = 30;    // smoothing rounds before giving up
   void validate() const;          // throws InvalidInput naming the field
@@ -44,11 +46,33 @@ struct UniquenessReport {
   double etaBeforeSmoothing = 1.0;              // worst eta before smoothing
   int smoothingRounds = 0;        // rounds applied by solveEgg (0 = not needed / not done)
   double smoothingDisplacementM = 0.0;  // largest vertex displacement caused by smoothing
+  int propagations = 0;           // distance fields computed by the check itself (not those reused from the maps)
   double seconds = 0.0;
 };
 
-// The bound and, where it fails, the eta check on `patch` (no smoothing here).
+// The bound and, where it fails, the eta check on `patch` (no smoothing here). Two batch calls:
+// the diagonals and the peak fields together, then the fields from every p1.
 UniquenessReport checkUniqueness(const Patch& patch, const geodesic::DistanceSolver& solver,
+                                 const UniquenessOptions& options = {});
+
+// The same check when the distance maps of the patch are known (solveEgg): the maps already hold
+// the diagonals and every d(p1, opposite side) on their grid, so only one field per peak is
+// needed, computed by the caller together with the maps (uniquenessPeakTargets).
+struct PatchPeaks {
+  std::vector<CurvaturePeak> peaks;  // interior peaks of positive K, strongest first, at most maxPeaks
+  double gaussianMax = 0.0;          // largest K near them [1/m^2] (0 if none)
+  double seconds = 0.0;              // curvature and peak search
+};
+PatchPeaks findPatchPeaks(const Patch& patch, const UniquenessOptions& options = {});
+// True when even an upper bound of the longest geodesic (the sides, and each diagonal bounded by
+// two sides) lies below pi / sqrt(K_max): the check passes without any distance field.
+bool boundCertainlyHolds(const Patch& patch, const PatchPeaks& peaks);
+// Targets of the peak fields: the start and end sides of u, then of v, n samples each at x = k/(n-1).
+std::vector<SurfacePoint> uniquenessPeakTargets(const Patch& patch, int n);
+// `peakFields[p]` is the field from peaks.peaks[p] to uniquenessPeakTargets(patch, maps.u.n1);
+// ignored (may be empty) when boundCertainlyHolds.
+UniquenessReport checkUniqueness(const Patch& patch, const PatchPeaks& peaks,
+                                 const std::vector<geodesic::DistanceField>& peakFields, const PatchDistanceMaps& maps,
                                  const UniquenessOptions& options = {});
 
 }  // namespace egg

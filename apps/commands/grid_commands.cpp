@@ -99,7 +99,9 @@ int runGridBench(const GridBenchArgs& args) {
                        {"members_v", r.grid.v.size()},
                        {"max_notch_m", r.grid.maxNotch},
                        {"alpha_bar_range_rad", {r.alphaBar.alphaMin, r.alphaBar.alphaMax}},
-                       {"smoothing_rounds", r.uniqueness.smoothingRounds}};
+                       {"smoothing_rounds", r.uniqueness.smoothingRounds},
+                       {"alpha_bar_evaluations", r.alphaBar.evaluations},
+                       {"alpha_bar_status", r.alphaBar.status}};
     rows.push_back(row);
   }
   fmt::print("share of t_grid:\n{:>8}", "vertices");

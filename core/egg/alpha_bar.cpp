@@ -2,8 +2,6 @@
 
 #include "core/errors.hpp"
 
-#include <nlopt.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -66,10 +64,8 @@ struct Evaluator {
     }
     e.closable = true;
     e.diagonalProduct = diagonalProduct(maps, *quad) / (scale * scale);
-    const auto fu = claddingFunction(maps.u, planarDistanceMap(*quad, Family::U, maps.u.n1, maps.u.n2), Family::U,
-                                     scale, options.cladding);
-    const auto fv = claddingFunction(maps.v, planarDistanceMap(*quad, Family::V, maps.v.n1, maps.v.n2), Family::V,
-                                     scale, options.cladding);
+    const auto fu = claddingFunction(maps.u, *quad, Family::U, scale, options.cladding);
+    const auto fv = claddingFunction(maps.v, *quad, Family::V, scale, options.cladding);
     e.violationU = slopeViolation(fu, options.slopeMin, options.slopeMax);
     e.violationV = slopeViolation(fv, options.slopeMin, options.slopeMax);
     e.bijective = fu.bijective() && fv.bijective();
@@ -78,36 +74,111 @@ struct Evaluator {
     if (v) *v = fv;
     return e;
   }
+
+  // One constraint alone (0: diagonal product, 1: slopes of F_u, 2: slopes of F_v), with only the
+  // work it needs: the diagonal product costs no cladding function at all.
+  double constraint(double alphaBar, int which) {
+    ++count;
+    const auto quad = planarQuad(maps.sides, alphaBar, options.minPlanarAngle);
+    if (!quad) return 1.0;
+    if (which == 0) return diagonalProduct(maps, *quad) / (scale * scale);
+    const Family family = which == 1 ? Family::U : Family::V;
+    return slopeViolation(claddingFunction(maps.map(family), *quad, family, scale, options.cladding), options.slopeMin,
+                          options.slopeMax);
+  }
 };
 
-struct SqpContext {
-  Evaluator* evaluate;
-  double lo, hi, step;
-  double sign;  // +1 minimises alpha_bar, -1 maximises it
-  int objectiveCalls = 0;
+// The three constraint functions of Problem 2.3 at one angle, each feasible where negative.
+constexpr int kConstraints = 3;
+using Constraints = std::array<double, kConstraints>;
+const char* const kConstraintNames[kConstraints] = {"(e - e_bar)(f - f_bar)", "slopes of F_u", "slopes of F_v"};
+
+struct Sample {
+  double alpha = 0.0;
+  Constraints g{};
+  bool feasible = false;
 };
 
-double sqpObjective(unsigned, const double* x, double* grad, void* data) {
-  auto* ctx = static_cast<SqpContext*>(data);
-  ++ctx->objectiveCalls;
-  if (grad) grad[0] = ctx->sign;
-  return ctx->sign * x[0];
+Sample sampleAt(Evaluator& evaluate, double alpha) {
+  const auto e = evaluate(alpha);
+  return {alpha, {e.diagonalProduct, e.violationU, e.violationV}, e.feasible};
 }
 
-// The three constraints of Problem 2.3 as g <= 0, with central differences in alpha_bar
-// (one-sided at the ends of the convex range).
-void sqpConstraints(unsigned m, double* result, unsigned, const double* x, double* grad, void* data) {
-  auto* ctx = static_cast<SqpContext*>(data);
-  const auto values = [&](double a) {
-    const auto e = (*ctx->evaluate)(a);
-    return std::array<double, 3>{e.diagonalProduct, e.violationU, e.violationV};
+// Locates the sign change of constraint c between a and b (opposite signs there) to `tolerance`;
+// returns the end of the final bracket on the feasible (negative) side. Regula falsi with the
+// Illinois modification keeps the bracket, so a jump (a topology change of the cladding curve)
+// is located as surely as a smooth root.
+double constraintRoot(Evaluator& evaluate, int c, const Sample& first, const Sample& second, double tolerance) {
+  int kept = 0;
+  double a = first.alpha, b = second.alpha, ga = first.g[c], gb = second.g[c];
+  const bool bNegative = gb < 0.0;
+  while (std::abs(b - a) > tolerance) {
+    double x = b - gb * (b - a) / (gb - ga);
+    const double lo = std::min(a, b), hi = std::max(a, b), width = hi - lo;
+    // Stay well inside the bracket so that it shrinks from both sides.
+    if (!(x > lo + 0.01 * width && x < hi - 0.01 * width)) x = 0.5 * (a + b);
+    const double g = evaluate.constraint(x, c);
+    if ((g < 0.0) == bNegative) {
+      b = x, gb = g;
+      if (kept == -1) ga *= 0.5;
+      kept = -1;
+    } else {
+      a = x, ga = g;
+      if (kept == 1) gb *= 0.5;
+      kept = 1;
+    }
+  }
+  return bNegative ? b : a;
+}
+
+// Adaptive refinement of the scan (Lipschitz branch and bound). Between two samples where some
+// constraint is positive at both ends, a feasible stretch can hide only if every constraint can
+// reach zero inside: with L_c the largest rate of change of g_c seen between neighbouring samples
+// (times a safety factor), g_c >= (g_c(a) + g_c(b)) / 2 - L_c (b - a) / 2 on [a, b]. Intervals whose
+// bound stays positive for some constraint are certified free of feasible angles; the others are
+// halved, most promising first, until certified, narrower than `minWidth`, or out of budget.
+// Returns false when the budget ran out before every interval was certified or resolved.
+bool refineScan(Evaluator& evaluate, std::vector<Sample>& samples, double minWidth, int budget) {
+  Constraints lipschitz{};
+  for (size_t k = 1; k < samples.size(); ++k)
+    for (int c = 0; c < kConstraints; ++c)
+      lipschitz[c] = std::max(lipschitz[c], std::abs(samples[k].g[c] - samples[k - 1].g[c]) /
+                                                (samples[k].alpha - samples[k - 1].alpha));
+  constexpr double kSafety = 2.0;
+  for (double& l : lipschitz) l *= kSafety;
+  // Lower bound of max_c min_[a,b] g_c: negative means a feasible angle may hide in (a, b).
+  const auto bound = [&](const Sample& a, const Sample& b) {
+    double worst = -std::numeric_limits<double>::infinity();
+    for (int c = 0; c < kConstraints; ++c)
+      worst = std::max(worst, 0.5 * (a.g[c] + b.g[c]) - 0.5 * lipschitz[c] * (b.alpha - a.alpha));
+    return worst;
   };
-  const auto g = values(x[0]);
-  for (unsigned k = 0; k < m; ++k) result[k] = g[k];
-  if (!grad) return;
-  const double a = std::max(ctx->lo, x[0] - ctx->step), b = std::min(ctx->hi, x[0] + ctx->step);
-  const auto ga = values(a), gb = values(b);
-  for (unsigned k = 0; k < m; ++k) grad[k] = b > a ? (gb[k] - ga[k]) / (b - a) : 0.0;
+  // Only gaps with no feasible end and no sign change of a constraint that could open a
+  // feasible stretch need refining: sign changes are located exactly afterwards.
+  const auto hidden = [&](const Sample& a, const Sample& b) {
+    if (a.feasible || b.feasible) return false;
+    for (int c = 0; c < kConstraints; ++c)
+      if (a.g[c] > 0.0 && b.g[c] > 0.0) return bound(a, b) < 0.0;  // some constraint positive at both ends
+    return false;  // every constraint is negative at one end or changes sign: handled by root location
+  };
+  bool certified = true;
+  for (int spent = 0;;) {
+    int best = -1;
+    double bestBound = 0.0;
+    for (size_t k = 1; k < samples.size(); ++k) {
+      if (samples[k].alpha - samples[k - 1].alpha <= minWidth || !hidden(samples[k - 1], samples[k])) continue;
+      const double b = bound(samples[k - 1], samples[k]);
+      if (best < 0 || b < bestBound) best = static_cast<int>(k), bestBound = b;
+    }
+    if (best < 0) break;
+    if (spent++ >= budget) {
+      certified = false;
+      break;
+    }
+    const double middle = 0.5 * (samples[best - 1].alpha + samples[best].alpha);
+    samples.insert(samples.begin() + best, sampleAt(evaluate, middle));
+  }
+  return certified;
 }
 
 // Shrinks [feasible, infeasible] onto the feasibility boundary; returns the feasible end.
@@ -119,44 +190,69 @@ double bisectFeasibility(Evaluator& evaluate, double in, double out, double tole
   return in;
 }
 
-// Finds the feasible angle furthest in direction -sign (sign = +1: smallest) starting from the
-// feasible seed. `outside` is a known infeasible angle on that side (or nullopt if the seed is at
-// the end of the convex range). SLSQP does the search; a bisection finishes it if SLSQP stops short
-// of the feasibility boundary or ends slightly infeasible.
-double feasibilityBound(Evaluator& evaluate, const AngleInterval& range, double seed, std::optional<double> outside,
-                        double sign, const AlphaBarOptions& options, int& sqpCalls, std::string& how) {
-  SqpContext ctx{&evaluate, range.lo, range.hi, 1e-6, sign};
-  nlopt::opt opt(nlopt::LD_SLSQP, 1);
-  opt.set_lower_bounds(std::vector<double>{sign > 0 ? range.lo : seed});
-  opt.set_upper_bounds(std::vector<double>{sign > 0 ? seed : range.hi});
-  opt.set_min_objective(sqpObjective, &ctx);
-  opt.add_inequality_mconstraint(sqpConstraints, &ctx, std::vector<double>(3, 0.0));
-  opt.set_xtol_abs(options.tolerance);
-  opt.set_maxeval(options.maxEvaluations);
-  std::vector<double> x{seed};
-  double value = 0.0;
-  try {
-    opt.optimize(x, value);
-  } catch (const std::exception&) {
-    // NLopt reports roundoff/failed line searches by throwing; x still holds its last iterate.
+// The feasible set from the refined samples: each constraint's negative set is bounded by its own
+// sign changes (located separately), and the feasible set is their intersection. A stretch where
+// two constraints' negative sets overlap only slightly is thereby found whatever its width.
+std::vector<AngleInterval> feasibleSet(Evaluator& evaluate, const std::vector<Sample>& samples, double tolerance,
+                                       std::string& active) {
+  // Breakpoints: (angle, constraint, becomes negative there).
+  struct Breakpoint {
+    double alpha;
+    int constraint;
+    bool entering;
+  };
+  std::vector<Breakpoint> breaks;
+  for (size_t k = 1; k < samples.size(); ++k) {
+    const Sample &a = samples[k - 1], &b = samples[k];
+    for (int c = 0; c < kConstraints; ++c) {
+      if ((a.g[c] < 0.0) == (b.g[c] < 0.0)) continue;
+      // The sign change matters only if every other constraint is negative at one end at least.
+      bool relevant = true;
+      for (int o = 0; o < kConstraints; ++o)
+        if (o != c && a.g[o] >= 0.0 && b.g[o] >= 0.0) relevant = false;
+      const bool entering = b.g[c] < 0.0;
+      const double root = relevant ? constraintRoot(evaluate, c, a, b, tolerance) : (entering ? b.alpha : a.alpha);
+      breaks.push_back({root, c, entering});
+    }
   }
-  sqpCalls += ctx.objectiveCalls;
-  double best = seed;
-  const double candidate = std::clamp(x[0], range.lo, range.hi);
-  const bool candidateBeyondSeed = sign * (candidate - seed) <= 0.0;
-  if (candidateBeyondSeed && evaluate(candidate).feasible) {
-    best = candidate;
-  } else if (candidateBeyondSeed && candidate != seed) {
-    outside = outside ? (sign > 0 ? std::max(*outside, candidate) : std::min(*outside, candidate)) : candidate;
+  std::sort(breaks.begin(), breaks.end(), [](const Breakpoint& x, const Breakpoint& y) { return x.alpha < y.alpha; });
+  // Sweep: count constraints negative; the first sample gives the start state.
+  std::array<bool, kConstraints> negative{};
+  for (int c = 0; c < kConstraints; ++c) negative[c] = samples.front().g[c] < 0.0;
+  const auto allNegative = [&] { return negative[0] && negative[1] && negative[2]; };
+  std::vector<AngleInterval> intervals;
+  std::vector<std::array<int, 2>> limits;  // constraint bounding each interval at lo and hi (-1: the convex range)
+  bool open = allNegative();
+  AngleInterval current{samples.front().alpha, samples.front().alpha};
+  int openedBy = -1;
+  for (const auto& b : breaks) {
+    negative[b.constraint] = b.entering;
+    const bool now = allNegative();
+    if (now && !open) current.lo = b.alpha, openedBy = b.constraint;
+    if (!now && open) {
+      current.hi = b.alpha;
+      if (current.hi > current.lo) intervals.push_back(current), limits.push_back({openedBy, b.constraint});
+    }
+    open = now;
   }
-  const double probe = best - sign * options.tolerance;
-  const bool probeOutside = sign > 0 ? probe < range.lo : probe > range.hi;
-  if (probeOutside || !evaluate(probe).feasible || !outside) {
-    how = "slsqp";
-    return best;
+  if (open) {
+    current.hi = samples.back().alpha;
+    intervals.push_back(current), limits.push_back({openedBy, -1});
   }
-  how = "slsqp+bisection";
-  return bisectFeasibility(evaluate, best, *outside, options.tolerance);
+  // Each end is on the feasible side of its own constraint and strictly inside the others; check
+  // it, and where a constraint jumps (a topology change of a cladding curve) settle the end by
+  // bisection on feasibility itself.
+  std::vector<AngleInterval> checked;
+  for (size_t i = 0; i < intervals.size(); ++i) {
+    AngleInterval interval = intervals[i];
+    const double middle = 0.5 * (interval.lo + interval.hi);
+    if (!evaluate(middle).feasible) continue;
+    if (!evaluate(interval.lo).feasible) interval.lo = bisectFeasibility(evaluate, middle, interval.lo, tolerance);
+    if (!evaluate(interval.hi).feasible) interval.hi = bisectFeasibility(evaluate, middle, interval.hi, tolerance);
+    checked.push_back(interval);
+    if (i == 0) active = limits[i][0] < 0 ? "convex range" : kConstraintNames[limits[i][0]];
+  }
+  return checked;
 }
 
 }  // namespace
@@ -179,40 +275,26 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
                           " rad has the side lengths of this patch (criterion iv)");
   result.convexRange = *range;
 
-  // Coarse scan of the convex range: seeds for SLSQP and bracketing infeasible neighbours.
-  const int samples = options.scanSamples;
-  std::vector<double> angles(samples);
-  std::vector<char> feasible(samples);
-  int first = -1, last = -1;
+  // Scan of the convex range, refined where a feasible stretch could hide between samples; then
+  // every constraint's sign changes located on their own, and the feasible set is their
+  // intersection (see feasibleSet). alpha_min / alpha_max are its outer ends.
+  const int samplesCount = options.scanSamples;
+  std::vector<Sample> samples;
   double leastViolation = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < samples; ++k) {
-    angles[k] = range->lo + (range->hi - range->lo) * k / (samples - 1);
-    const auto e = evaluate(angles[k]);
-    feasible[k] = e.feasible;
-    leastViolation = std::min(leastViolation, std::max({e.diagonalProduct, e.violationU, e.violationV}));
-    if (e.feasible) {
-      if (first < 0) first = k;
-      last = k;
-    }
+  for (int k = 0; k < samplesCount; ++k) {
+    samples.push_back(sampleAt(evaluate, range->lo + (range->hi - range->lo) * k / (samplesCount - 1)));
+    leastViolation = std::min(leastViolation, *std::max_element(samples.back().g.begin(), samples.back().g.end()));
   }
-  std::string howMin, howMax;
-  if (first >= 0) {
+  const bool certified = refineScan(evaluate, samples, options.tolerance * 16, options.maxEvaluations);
+  for (const auto& sample : samples)
+    leastViolation = std::min(leastViolation, *std::max_element(sample.g.begin(), sample.g.end()));
+  std::string activeAtMin;
+  result.feasibleIntervals = feasibleSet(evaluate, samples, options.tolerance, activeAtMin);
+  result.scanSamples = static_cast<int>(samples.size());
+  if (!result.feasibleIntervals.empty()) {
     result.rangeFound = true;
-    const auto below = first > 0 ? std::optional<double>(angles[first - 1]) : std::nullopt;
-    const auto above = last < samples - 1 ? std::optional<double>(angles[last + 1]) : std::nullopt;
-    result.alphaMin = feasibilityBound(evaluate, *range, angles[first], below, +1.0, options, result.sqpIterations, howMin);
-    result.alphaMax = feasibilityBound(evaluate, *range, angles[last], above, -1.0, options, result.sqpIterations, howMax);
-    // Runs of feasible scan samples; inner ends sharpened by bisection.
-    for (int k = first; k <= last;) {
-      int end = k;
-      while (end + 1 <= last && feasible[end + 1]) ++end;
-      AngleInterval interval;
-      interval.lo = k == first ? result.alphaMin : bisectFeasibility(evaluate, angles[k], angles[k - 1], options.tolerance);
-      interval.hi = end == last ? result.alphaMax : bisectFeasibility(evaluate, angles[end], angles[end + 1], options.tolerance);
-      result.feasibleIntervals.push_back(interval);
-      k = end + 1;
-      while (k <= last && !feasible[k]) ++k;
-    }
+    result.alphaMin = result.feasibleIntervals.front().lo;
+    result.alphaMax = result.feasibleIntervals.back().hi;
   }
 
   std::ostringstream status;
@@ -238,8 +320,10 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
       status << "given";
       break;
   }
-  if (result.rangeFound) status << "; alpha_min by " << howMin << ", alpha_max by " << howMax;
-  else status << "; no feasible range";
+  status << "; " << result.feasibleIntervals.size() << " feasible interval(s) from " << samples.size()
+         << " samples (" << samples.size() - samplesCount << " added by refinement)";
+  if (result.rangeFound) status << ", alpha_min limited by " << activeAtMin;
+  if (!certified) status << "; refinement budget spent before every gap was cleared";
 
   auto chosen = evaluate(result.alphaBar, &result.claddingU, &result.claddingV);
   if (options.choice == AlphaBarChoice::Unrolled && chosen.closable && !chosen.bijective) {

@@ -1,8 +1,16 @@
 #pragma once
 // Problem 2.3 (Section 2.4.3): the feasible range [alpha_bar_min, alpha_bar_max] of the planar
 // angle for which both cladding functions exist, are bijective and have slopes inside
-// (k_min, k_max), and the inequality (e - e_bar)(f - f_bar) < 0 holds. Solved with NLopt SLSQP and
-// numerical gradients in alpha_bar, seeded by a scan of the convex range (criterion iv).
+// (k_min, k_max), and the inequality (e - e_bar)(f - f_bar) < 0 holds.
+//
+// The problem has one unknown, so the feasible set is found directly rather than by SLSQP from a
+// seed (which only sees the interval its seed lies in): a scan of the convex range (criterion iv),
+// refined where a feasible stretch could hide between samples (a Lipschitz bound with the rates
+// the scan itself shows), then the sign changes of each constraint located on their own to
+// `tolerance`; the feasible set is the intersection of the constraints' negative sets. A feasible
+// interval made by two constraints that overlap only slightly is therefore found whatever its
+// width; one made by a single constraint dipping below zero between two samples is found by the
+// refinement.
 #include "core/egg/cladding.hpp"
 #include "core/egg/distance_map.hpp"
 #include "core/egg/planar_quad.hpp"
@@ -32,8 +40,8 @@ struct AlphaBarOptions {
   // cylinder is not exactly flat): when the intersection at alpha is not bijective but the maps
   // agree within this fraction of the mean side length everywhere, the identity pairing is used.
   double unrolledTolerance = 2e-3;
-  int scanSamples = 48;               // samples of the convex range that seed SLSQP
-  int maxEvaluations = 200;           // SLSQP evaluation budget per bound
+  int scanSamples = 48;               // uniform samples of the convex range before refinement
+  int maxEvaluations = 200;           // budget of refinement samples (each one cladding evaluation)
   double tolerance = 1e-8;            // radians, accuracy of alpha_bar_min / alpha_bar_max
   CladdingOptions cladding;           // intersection tolerances
   void validate() const;
@@ -62,7 +70,7 @@ struct AlphaBarResult {
   double alphaMax = 0.0;             // alpha_bar_max (valid if rangeFound)
   // The feasible set itself: it need not be one interval. A patch of positive curvature is
   // typically feasible only away from its own angle alpha (the maps barely meet there), so the
-  // set is [alpha_min, a] U [b, alpha_max]. Outer ends by SLSQP, inner ends by bisection.
+  // set is [alpha_min, a] U [b, alpha_max]. Every end is located to options.tolerance.
   std::vector<AngleInterval> feasibleIntervals;
   AngleInterval convexRange;         // angles giving a closable convex planar quad
   PlanarQuad quad;                   // planar patch at alphaBar
@@ -70,7 +78,7 @@ struct AlphaBarResult {
   double slopeMin = 0.0, slopeMax = 0.0;  // extreme segment slopes of F_u, F_v at alphaBar (thesis form)
   bool degenerate = false;           // the maps coincide at alphaBar (developable at its unrolled angle)
   int evaluations = 0;               // cladding evaluations spent
-  int sqpIterations = 0;             // SLSQP objective evaluations over both bounds
+  int scanSamples = 0;               // samples of the scan after refinement
   std::string status;                // how the bounds were settled
   double seconds = 0.0;
 };

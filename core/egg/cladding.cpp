@@ -69,30 +69,33 @@ constexpr double kMergeDistance = 1e-9;
 
 }  // namespace
 
-CladdingFunction claddingFunction(const DistanceMap& surface, const DistanceMap& planar, Family family, double scale,
-                                  const CladdingOptions& options) {
-  if (surface.n1 != planar.n1 || surface.n2 != planar.n2 || surface.n1 < 2 || surface.n2 < 2)
-    throw InvalidInput("claddingFunction: surface and planar distance maps must share a grid of at least 2x2");
+namespace {
+
+// The intersection for a planar map given node by node (planarAt(i, j)). Only the nodes next to
+// the zero set are visited: the arcs start at sign changes on the domain boundary and are walked
+// triangle by triangle, so an evaluation costs O(n) rather than O(n^2) (Problem 2.3 evaluates it
+// a few hundred times).
+template <class PlanarAt>
+CladdingFunction intersectMaps(const DistanceMap& surface, const PlanarAt& planarAt, Family family, double scale,
+                               const CladdingOptions& options) {
   const int n1 = surface.n1, n2 = surface.n2;
   CladdingFunction result;
   result.family = family;
 
-  std::vector<double> gap(surface.values.size());
-  double largest = 0.0;
-  for (size_t k = 0; k < gap.size(); ++k) {
-    gap[k] = surface.values[k] - planar.values[k];
-    largest = std::max(largest, std::abs(gap[k]));
-  }
-  if (!std::isfinite(largest)) throw SolverFailure("claddingFunction: distance maps hold non-finite values");
-  // D(0,0) and D(1,1) are side lengths, equal in both maps by construction of the planar quad.
-  gap.front() = 0.0;
-  gap.back() = 0.0;
-  // Round-off zeros (a parallelogram's maps agree exactly on the diagonal) are snapped to zero so
-  // that the sign rule below treats them consistently.
-  for (double& g : gap)
-    if (std::abs(g) <= 1e-12 * scale) g = 0.0;
-
-  if (largest <= options.degenerateTolerance * scale) {
+  const auto rawGap = [&](int i, int j) {
+    const double g = surface.at(i, j) - planarAt(i, j);
+    if (!std::isfinite(g)) throw SolverFailure("claddingFunction: distance maps hold non-finite values");
+    return g;
+  };
+  // Maps that agree everywhere: stop at the first node that tells them apart.
+  bool degenerate = true;
+  for (int i = 0; i < n1 && degenerate; ++i)
+    for (int j = 0; j < n2; ++j)
+      if (std::abs(rawGap(i, j)) > options.degenerateTolerance * scale) {
+        degenerate = false;
+        break;
+      }
+  if (degenerate) {
     // Developable patch at its unrolled angle: every pairing has equal lengths; the identity
     // pairs boundary points at equal parameters and gives the unrolled grid.
     result.degenerate = true;
@@ -106,42 +109,55 @@ CladdingFunction claddingFunction(const DistanceMap& surface, const DistanceMap&
     return result;
   }
 
+  // D(0,0) and D(1,1) are side lengths, equal in both maps by construction of the planar quad.
+  // Round-off zeros (a parallelogram's maps agree exactly on the diagonal) are snapped to zero so
+  // that the sign rule below treats them consistently.
+  const auto gapAt = [&](const std::array<int, 2>& v) {
+    if ((v[0] == 0 && v[1] == 0) || (v[0] == n1 - 1 && v[1] == n2 - 1)) return 0.0;
+    const double g = rawGap(v[0], v[1]);
+    return std::abs(g) <= 1e-12 * scale ? 0.0 : g;
+  };
+
   // Zero set of the piecewise-linear gap; a zero value counts as positive (symbolic perturbation),
   // so every triangle holds zero or one segment and arcs never branch.
   const MapGrid grid(n1, n2);
-  const auto gapAt = [&](const std::array<int, 2>& v) { return gap[static_cast<size_t>(v[0]) * n2 + v[1]]; };
   const auto positive = [&](const std::array<int, 2>& v) { return gapAt(v) >= 0.0; };
-  const int edges = grid.edgeCount();
-  std::vector<char> crosses(edges, 0);
-  std::vector<Eigen::Vector2d> crossing(edges);
-  std::vector<double> crossingLength(edges);
-  for (int e = 0; e < edges; ++e) {
+  const auto crosses = [&](int e) {
     const auto end = grid.ends(e);
-    if (positive(end[0]) == positive(end[1])) continue;
+    return positive(end[0]) != positive(end[1]);
+  };
+  // Where the zero set crosses edge e, and the member length there.
+  const auto crossingOf = [&](int e, double* length) {
+    const auto end = grid.ends(e);
     const double ga = gapAt(end[0]), gb = gapAt(end[1]);
     const double t = ga / (ga - gb);
-    crosses[e] = 1;
     const Eigen::Vector2d a(static_cast<double>(end[0][0]) / (n1 - 1), static_cast<double>(end[0][1]) / (n2 - 1));
     const Eigen::Vector2d b(static_cast<double>(end[1][0]) / (n1 - 1), static_cast<double>(end[1][1]) / (n2 - 1));
-    crossing[e] = a + t * (b - a);
-    const double da = surface.at(end[0][0], end[0][1]), db = surface.at(end[1][0], end[1][1]);
-    crossingLength[e] = da + t * (db - da);
-  }
+    if (length) {
+      const double da = surface.at(end[0][0], end[0][1]), db = surface.at(end[1][0], end[1][1]);
+      *length = da + t * (db - da);
+    }
+    return Eigen::Vector2d(a + t * (b - a));
+  };
   const auto otherCrossingEdge = [&](int triangle, int edge) {
     for (int e : grid.triangleEdges(triangle))
-      if (e != edge && crosses[e]) return e;
+      if (e != edge && crosses(e)) return e;
     return -1;
   };
-  const auto onBoundary = [&](int e) {
-    const auto t = grid.edgeTriangles(e);
-    return t[0] < 0 || t[1] < 0;
-  };
+
+  // Boundary edges in increasing id order: bottom/top rows of horizontal edges, then the left and
+  // right columns of vertical ones (anti-diagonals are interior).
+  std::vector<int> boundaryEdges;
+  for (int i = 0; i + 1 < n1; ++i) boundaryEdges.push_back(grid.hEdge(i, 0)), boundaryEdges.push_back(grid.hEdge(i, n2 - 1));
+  for (int j = 0; j + 1 < n2; ++j) boundaryEdges.push_back(grid.vEdge(0, j));
+  for (int j = 0; j + 1 < n2; ++j) boundaryEdges.push_back(grid.vEdge(n1 - 1, j));
+  std::sort(boundaryEdges.begin(), boundaryEdges.end());
 
   // Arcs start and end on the domain boundary; closed loops inside are irrelevant here.
   std::vector<std::vector<int>> arcs;
-  std::vector<char> used(edges, 0);
-  for (int e = 0; e < edges; ++e) {
-    if (!crosses[e] || used[e] || !onBoundary(e)) continue;
+  std::vector<char> used(grid.edgeCount(), 0);
+  for (int e : boundaryEdges) {
+    if (used[e] || !crosses(e)) continue;
     std::vector<int> arc{e};
     used[e] = 1;
     int current = e;
@@ -163,7 +179,7 @@ CladdingFunction claddingFunction(const DistanceMap& surface, const DistanceMap&
   int chosen = -1;
   bool reversed = false;
   for (size_t a = 0; a < arcs.size() && chosen < 0; ++a) {
-    const Eigen::Vector2d first = crossing[arcs[a].front()], last = crossing[arcs[a].back()];
+    const Eigen::Vector2d first = crossingOf(arcs[a].front(), nullptr), last = crossingOf(arcs[a].back(), nullptr);
     if (near(first, origin) && near(last, far)) chosen = static_cast<int>(a);
     if (near(last, origin) && near(first, far)) chosen = static_cast<int>(a), reversed = true;
   }
@@ -174,7 +190,7 @@ CladdingFunction claddingFunction(const DistanceMap& surface, const DistanceMap&
     double best = std::numeric_limits<double>::infinity();
     for (size_t a = 0; a < arcs.size(); ++a)
       for (bool rev : {false, true}) {
-        const double d = boundaryDistanceFromOrigin(crossing[rev ? arcs[a].back() : arcs[a].front()]);
+        const double d = boundaryDistanceFromOrigin(crossingOf(rev ? arcs[a].back() : arcs[a].front(), nullptr));
         if (d < best) best = d, chosen = static_cast<int>(a), reversed = rev;
       }
   }
@@ -194,17 +210,48 @@ CladdingFunction claddingFunction(const DistanceMap& surface, const DistanceMap&
   } else {
     std::vector<int> arc = arcs[chosen];
     if (reversed) std::reverse(arc.begin(), arc.end());
-    const Eigen::Vector2d start = crossing[arc.front()], end = crossing[arc.back()];
+    const Eigen::Vector2d start = crossingOf(arc.front(), nullptr), end = crossingOf(arc.back(), nullptr);
     if (start.y() > 1e-12 && start.x() > 1e-12) {  // start on the top or right side
       if (start.y() >= 1 - 1e-12) pushCorner(0, 1); else pushCorner(1, 0);
     }
-    for (int e : arc) push(crossing[e], crossingLength[e]);
+    for (int e : arc) {
+      double length = 0.0;
+      const Eigen::Vector2d p = crossingOf(e, &length);
+      push(p, length);
+    }
     if (end.x() < 1 - 1e-12 && end.y() < 1 - 1e-12) {  // end on the bottom or left side
       if (end.y() <= 1e-12) pushCorner(1, 0); else pushCorner(0, 1);
     }
   }
   push(far, surface.at(n1 - 1, n2 - 1));
   return result;
+}
+
+}  // namespace
+
+CladdingFunction claddingFunction(const DistanceMap& surface, const DistanceMap& planar, Family family, double scale,
+                                  const CladdingOptions& options) {
+  if (surface.n1 != planar.n1 || surface.n2 != planar.n2 || surface.n1 < 2 || surface.n2 < 2)
+    throw InvalidInput("claddingFunction: surface and planar distance maps must share a grid of at least 2x2");
+  return intersectMaps(surface, [&](int i, int j) { return planar.at(i, j); }, family, scale, options);
+}
+
+CladdingFunction claddingFunction(const DistanceMap& surface, const PlanarQuad& quad, Family family, double scale,
+                                  const CladdingOptions& options) {
+  if (surface.n1 < 2 || surface.n2 < 2) throw InvalidInput("claddingFunction: the distance map needs at least 2x2 samples");
+  // The closed-form planar map node by node, with the arithmetic of planarDistanceMap.
+  const auto k = familyCorners(family);
+  const auto& c = quad.corners;
+  const Eigen::Vector2d start = c[k[0]], startDir = c[k[1]] - c[k[0]];
+  const Eigen::Vector2d end = c[k[2]], endDir = c[k[3]] - c[k[2]];
+  const int n1 = surface.n1, n2 = surface.n2;
+  return intersectMaps(
+      surface,
+      [&](int i, int j) {
+        const Eigen::Vector2d p = start + (static_cast<double>(i) / (n1 - 1)) * startDir;
+        return (end + (static_cast<double>(j) / (n2 - 1)) * endDir - p).norm();
+      },
+      family, scale, options);
 }
 
 bool CladdingFunction::bijective() const {

@@ -65,6 +65,11 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
     // Interior angle at the from-vertex, accumulated into its angle sum.
     t.angleSum[t.fromVertex[h]] += std::atan2(y, x);
   }
+  t.he.resize(nh);
+  for (int h = 0; h < nh; ++h) {
+    t.he[h] = {t.length[h], t.oppositeX[h], t.oppositeY[h], t.fromVertex[h], t.toVertex[h],
+               t.face[h],   t.next[h],      t.prev[h],      t.oppositeVertex[h]};
+  }
   t.faceVerts.resize(t.faceCount);
   t.faceHalfedge.resize(t.faceCount);
   for (auto fh : mesh.faces()) {

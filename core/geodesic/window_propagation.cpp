@@ -97,9 +97,7 @@ class Propagator {
       throw;
     }
     while (!s_.queue.empty()) {
-      std::pop_heap(s_.queue.begin(), s_.queue.end(), std::greater<>());
-      const auto entry = s_.queue.back();
-      s_.queue.pop_back();
+      const auto entry = s_.queue.pop();
       if (entry.item < 0) {
         const int v = -entry.item - 1;
         if (s_.fired[v] || entry.key != s_.vertexDistance[v]) continue;
@@ -124,10 +122,12 @@ class Propagator {
     s_.fired.assign(t_.vertexCount, 0);
     s_.splitDistance.assign(t_.halfedgeCount, kInfinity);
     s_.splitCrossing.assign(t_.halfedgeCount, 0.0);
-    s_.firstOnHalfedge.assign(t_.halfedgeCount, -1);
-    s_.nextOnHalfedge.clear();
+    s_.firstBlock.assign(t_.halfedgeCount, -1);
+    s_.blocks.clear();
+    s_.windowSpan.clear();
     s_.windows.clear();
-    s_.queue.clear();
+    // Buckets of 1/256 edge: a handful of queued windows each (see bucket_queue.hpp).
+    s_.queue.reset(t_.meanEdgeLength / 256.0);
     if (static_cast<int>(s_.faceFirstTarget.size()) != t_.faceCount) s_.faceFirstTarget.assign(t_.faceCount, -1);
     const int nt = static_cast<int>(targets.size());
     s_.nextTarget.assign(nt, -1);
@@ -163,8 +163,7 @@ class Propagator {
   }
 
   void push(double key, int item) {
-    s_.queue.push_back({key, item});
-    std::push_heap(s_.queue.begin(), s_.queue.end(), std::greater<>());
+    s_.queue.push(key, item);
   }
 
   void relaxVertex(int v, double d, Predecessor pred) {
@@ -177,7 +176,7 @@ class Propagator {
   // Position of barycentric weights (in face circulator order) in the frame of halfedge h of face f.
   void frameCoordinates(int f, int h, const Eigen::Vector3d& w, double& x, double& y) const {
     const auto& fv = t_.faceVerts[f];
-    const int a = t_.fromVertex[h], b = t_.toVertex[h];
+    const int a = t_.he[h].fromVertex, b = t_.he[h].toVertex;
     double wa = 0, wb = 0, wc = 0;
     for (int i = 0; i < 3; ++i) {
       if (fv[i] == a) wa = w[i];
@@ -185,8 +184,8 @@ class Propagator {
       else wc = w[i];
     }
     (void)wa;
-    x = wb * t_.length[h] + wc * t_.oppositeX[h];
-    y = wc * t_.oppositeY[h];
+    x = wb * t_.he[h].length + wc * t_.he[h].oppositeX;
+    y = wc * t_.he[h].oppositeY;
   }
 
   void seed(const SurfacePoint& source) {
@@ -223,7 +222,7 @@ class Propagator {
       for (int i = 0; i < 3; ++i) {
         if (w[i] != 0.0) continue;
         const int h = t_.faceHalfedge[source.face][(i + 1) % 3];  // the edge opposite fv[i]
-        const int other = t_.face[t_.twin(h)];
+        const int other = t_.he[t_.twin(h)].face;
         if (other >= 0) s_.sourceFaces.push_back(other);
       }
     }
@@ -242,21 +241,21 @@ class Propagator {
       }
       for (int k = 0; k < 3; ++k) {
         const int h = t_.faceHalfedge[f][k];
-        const int opposite = t_.oppositeVertex[h];
+        const int opposite = t_.he[h].oppositeVertex;
         double oppositeWeight = 0.0;
         for (int i = 0; i < 3; ++i) {
           if (t_.faceVerts[f][i] == opposite) oppositeWeight = wf[i];
         }
         if (oppositeWeight <= 0.0) continue;  // the point lies on this edge
         const int tw = t_.twin(h);
-        if (t_.face[tw] < 0) continue;
+        if (t_.he[tw].face < 0) continue;
         double x, y;
         frameCoordinates(f, h, wf, x, y);
         Window win;
         win.halfedge = tw;
         win.b0 = 0.0;
-        win.b1 = t_.length[h];
-        win.sx = t_.length[h] - x;
+        win.b1 = t_.he[h].length;
+        win.sx = t_.he[h].length - x;
         win.sy = -y;
         win.sigma = 0.0;
         addWindow(win);
@@ -271,7 +270,7 @@ class Propagator {
     if (s_.sourceVertex >= 0) {
       const int v = s_.sourceVertex;
       for (int k = t_.outgoingStart[v]; k < t_.outgoingStart[v + 1]; ++k) {
-        if (t_.face[t_.outgoing[k]] >= 0) faces.push_back(t_.face[t_.outgoing[k]]);
+        if (t_.he[t_.outgoing[k]].face >= 0) faces.push_back(t_.he[t_.outgoing[k]].face);
       }
     }
     for (int f : faces) {
@@ -300,7 +299,7 @@ class Propagator {
     const double dv = s_.vertexDistance[v];
     for (int k = t_.outgoingStart[v]; k < t_.outgoingStart[v + 1]; ++k) {
       const int hout = t_.outgoing[k];
-      relaxVertex(t_.toVertex[hout], dv + t_.length[hout], {Predecessor::Vertex, v});
+      relaxVertex(t_.he[hout].toVertex, dv + t_.he[hout].length, {Predecessor::Vertex, v});
     }
     // The faces around v in counter-clockwise order (h -> twin(prev(h))), starting after the
     // boundary for a boundary vertex.
@@ -308,9 +307,9 @@ class Propagator {
     int start = -1;
     for (int k = t_.outgoingStart[v]; k < t_.outgoingStart[v + 1]; ++k) {
       const int h = t_.outgoing[k];
-      if (t_.face[h] < 0) continue;
+      if (t_.he[h].face < 0) continue;
       if (start < 0) start = h;
-      if (t_.face[t_.twin(h)] < 0) {
+      if (t_.he[t_.twin(h)].face < 0) {
         start = h;
         break;
       }
@@ -318,8 +317,8 @@ class Propagator {
     if (start < 0) return;
     for (int h = start;;) {
       fan_.push_back(h);
-      const int nextOut = t_.twin(t_.prev[h]);
-      if (t_.face[nextOut] < 0 || nextOut == start) break;
+      const int nextOut = t_.twin(t_.he[h].prev);
+      if (t_.he[nextOut].face < 0 || nextOut == start) break;
       h = nextOut;
       if (static_cast<int>(fan_.size()) > t_.outgoingStart[v + 1] - t_.outgoingStart[v]) break;  // non-manifold guard
     }
@@ -330,7 +329,7 @@ class Propagator {
     const double total = t_.angleSum[v];
     const double tol = 1e-7;
     for (int h : fan_) {
-      const double corner = std::atan2(t_.oppositeY[h], t_.oppositeX[h]);
+      const double corner = std::atan2(t_.he[h].oppositeY, t_.he[h].oppositeX);
       const double a0 = cumulative, a1 = cumulative + corner;
       cumulative = a1;
       if (backAngle >= 0.0) {
@@ -353,16 +352,16 @@ class Propagator {
         }
         if (!allowed) continue;
       }
-      const int ho = t_.next[h];  // edge opposite v in this face; v is its opposite vertex
+      const int ho = t_.he[h].next;  // edge opposite v in this face; v is its opposite vertex
       const int tw = t_.twin(ho);
-      if (t_.face[tw] < 0) continue;
+      if (t_.he[tw].face < 0) continue;
       Window win;
       win.halfedge = tw;
       win.pseudoSource = v;
       win.b0 = 0.0;
-      win.b1 = t_.length[ho];
-      win.sx = t_.length[ho] - t_.oppositeX[ho];
-      win.sy = -t_.oppositeY[ho];
+      win.b1 = t_.he[ho].length;
+      win.sx = t_.he[ho].length - t_.he[ho].oppositeX;
+      win.sy = -t_.he[ho].oppositeY;
       win.sigma = dv;
       addWindow(win);
     }
@@ -376,9 +375,9 @@ class Propagator {
     if (pred.kind == Predecessor::ThroughWindow) {
       const Window& w = s_.windows[pred.index];
       const int h = w.halfedge;
-      const double L = t_.length[h];
-      const double xc = std::clamp(rayCrossing(w.sx, w.sy, t_.oppositeX[h], t_.oppositeY[h]), w.b0, w.b1);
-      back = t_.positions[t_.fromVertex[h]] + (xc / L) * (t_.positions[t_.toVertex[h]] - t_.positions[t_.fromVertex[h]]);
+      const double L = t_.he[h].length;
+      const double xc = std::clamp(rayCrossing(w.sx, w.sy, t_.he[h].oppositeX, t_.he[h].oppositeY), w.b0, w.b1);
+      back = t_.positions[t_.he[h].fromVertex] + (xc / L) * (t_.positions[t_.he[h].toVertex] - t_.positions[t_.he[h].fromVertex]);
     } else if (pred.kind == Predecessor::Vertex) {
       back = t_.positions[pred.index];
     } else if (pred.kind == Predecessor::Source) {
@@ -393,9 +392,9 @@ class Propagator {
     // the sum of the angles to its two edges (up to rounding); take the best match.
     double cumulative = 0.0, best = -1.0, bestMismatch = kInfinity;
     for (int h : fan_) {
-      const Eigen::Vector3d ex = t_.positions[t_.toVertex[h]] - p;
-      const Eigen::Vector3d ey = t_.positions[t_.toVertex[t_.next[h]]] - p;
-      const double corner = std::atan2(t_.oppositeY[h], t_.oppositeX[h]);
+      const Eigen::Vector3d ex = t_.positions[t_.he[h].toVertex] - p;
+      const Eigen::Vector3d ey = t_.positions[t_.he[t_.he[h].next].toVertex] - p;
+      const double corner = std::atan2(t_.he[h].oppositeY, t_.he[h].oppositeX);
       const double ax = std::atan2(ex.cross(dir).norm(), ex.dot(dir));
       const double ay = std::atan2(ey.cross(dir).norm(), ey.dot(dir));
       const double mismatch = std::abs(ax + ay - corner);
@@ -414,9 +413,9 @@ class Propagator {
   // it if the opposite vertices dominate it entirely. Returns false if nothing is left.
   bool prune(Window& w) const {
     const int h = w.halfedge;
-    const double L = t_.length[h];
-    const double dA = s_.vertexDistance[t_.fromVertex[h]];
-    const double dB = s_.vertexDistance[t_.toVertex[h]];
+    const double L = t_.he[h].length;
+    const double dA = s_.vertexDistance[t_.he[h].fromVertex];
+    const double dB = s_.vertexDistance[t_.he[h].toVertex];
     // |s - b0| and |s - b1|, recomputed only when an end moves: every test below needs them and
     // the square roots were the bulk of this function.
     double r0, r1;
@@ -456,9 +455,9 @@ class Propagator {
     // The vertex ahead (opposite in the face the window enters) and the one behind: for
     // d(v) > sigma the set where v's path wins is convex (inside a hyperbola branch), so winning
     // at both ends means winning on the whole interval.
-    const double ahead = s_.vertexDistance[t_.oppositeVertex[h]];
+    const double ahead = s_.vertexDistance[t_.he[h].oppositeVertex];
     if (ahead < kInfinity && ahead > w.sigma) {
-      const double cx = t_.oppositeX[h], cy = t_.oppositeY[h];
+      const double cx = t_.he[h].oppositeX, cy = t_.he[h].oppositeY;
       double c0, c1;
       planarLengths(cx - w.b0, cy, cx - w.b1, cy, c0, c1);
       if (ahead + c0 < w.sigma + r0 && ahead + c1 < w.sigma + r1) {
@@ -466,11 +465,11 @@ class Propagator {
       }
     }
     const int tw = t_.twin(h);
-    if (t_.face[tw] >= 0) {
-      const double behind = s_.vertexDistance[t_.oppositeVertex[tw]];
+    if (t_.he[tw].face >= 0) {
+      const double behind = s_.vertexDistance[t_.he[tw].oppositeVertex];
       if (behind < kInfinity && behind > w.sigma) {
         // In this frame the vertex behind is the twin's opposite vertex mirrored: (L - x, -y).
-        const double cx = L - t_.oppositeX[tw], cy = -t_.oppositeY[tw];
+        const double cx = L - t_.he[tw].oppositeX, cy = -t_.he[tw].oppositeY;
         double c0, c1;
         planarLengths(cx - w.b0, cy, cx - w.b1, cy, c0, c1);
         if (behind + c0 < w.sigma + r0 && behind + c1 < w.sigma + r1) {
@@ -547,27 +546,47 @@ class Propagator {
 
   void addWindow(Window& w) {
     if (!prune(w)) return;
-    const double L = t_.length[w.halfedge];
-    for (int o = s_.firstOnHalfedge[w.halfedge]; o >= 0; o = s_.nextOnHalfedge[o]) {
-      if (!trimAgainst(w, s_.windows[o]) || w.b1 - w.b0 <= o_.minWindowWidthRelative * L) return;
+    const double L = t_.he[w.halfedge].length;
+    int& first = s_.firstBlock[w.halfedge];
+    for (int b = first; b >= 0; b = s_.blocks[b].next) {
+      const auto& block = s_.blocks[b];
+      for (int k = 0; k < block.count; ++k) {
+        const auto& span = block.spans[k];
+        if (!(std::min(w.b1, span.b1) > std::max(w.b0, span.b0))) continue;  // disjoint: nothing to trim
+        if (!trimAgainst(w, s_.windows[span.window]) || w.b1 - w.b0 <= o_.minWindowWidthRelative * L) return;
+      }
     }
     s_.windows.push_back(w);
     const int index = static_cast<int>(s_.windows.size()) - 1;
-    s_.nextOnHalfedge.push_back(s_.firstOnHalfedge[w.halfedge]);
-    s_.firstOnHalfedge[w.halfedge] = index;
+    using SpanBlock = Propagation::SpanBlock;
+    if (first < 0 || s_.blocks[first].count == SpanBlock::kCapacity) {
+      SpanBlock block;
+      block.count = 0;
+      block.next = first;
+      s_.blocks.push_back(block);
+      first = static_cast<int>(s_.blocks.size()) - 1;
+    }
+    SpanBlock& block = s_.blocks[first];
+    block.spans[block.count] = {w.b0, w.b1, index};
+    s_.windowSpan.push_back(first * SpanBlock::kCapacity + block.count);
+    ++block.count;
     push(windowMinDistance(w), index);
   }
 
   void propagateWindow(int index) {
     Window w = s_.windows[index];
     if (!prune(w)) return;  // vertex distances may have dropped since it was queued
-    s_.windows[index].b0 = w.b0;
-    s_.windows[index].b1 = w.b1;
+    if (w.b0 != s_.windows[index].b0 || w.b1 != s_.windows[index].b1) {
+      constexpr int kCapacity = Propagation::SpanBlock::kCapacity;
+      auto& span = s_.blocks[s_.windowSpan[index] / kCapacity].spans[s_.windowSpan[index] % kCapacity];
+      s_.windows[index].b0 = span.b0 = w.b0;
+      s_.windows[index].b1 = span.b1 = w.b1;
+    }
     const int h = w.halfedge;
-    const int f = t_.face[h];
-    const double L = t_.length[h];
-    const double cx = t_.oppositeX[h], cy = t_.oppositeY[h];
-    const int c = t_.oppositeVertex[h];
+    const int f = t_.he[h].face;
+    const double L = t_.he[h].length;
+    const double cx = t_.he[h].oppositeX, cy = t_.he[h].oppositeY;
+    const int c = t_.he[h].oppositeVertex;
     const double slack = 1e-9 * L;
     // Where the ray through the opposite vertex crosses the edge.
     const double xc = rayCrossing(w.sx, w.sy, cx, cy);
@@ -616,10 +635,10 @@ class Propagator {
     }
     // Child on edge A-C (rays left of the opposite vertex), on the halfedge A->C of the next face.
     if (leftChild) {
-      const int hca = t_.prev[h];
+      const int hca = t_.he[h].prev;
       const int child = t_.twin(hca);
-      if (t_.face[child] >= 0) {
-        const double lac = t_.length[hca];
+      if (t_.he[child].face >= 0) {
+        const double lac = t_.he[hca].length;
         const FrameChange frame{0.0, 0.0, cx / lac, cy / lac};
         Window cw;
         cw.halfedge = child;
@@ -645,10 +664,10 @@ class Propagator {
     }
     // Child on edge C-B (rays right of the opposite vertex), on the halfedge C->B of the next face.
     if (rightChild) {
-      const int hbc = t_.next[h];
+      const int hbc = t_.he[h].next;
       const int child = t_.twin(hbc);
-      if (t_.face[child] >= 0) {
-        const double lbc = t_.length[hbc];
+      if (t_.he[child].face >= 0) {
+        const double lbc = t_.he[hbc].length;
         const FrameChange frame{cx, cy, (L - cx) / lbc, -cy / lbc};
         Window cw;
         cw.halfedge = child;

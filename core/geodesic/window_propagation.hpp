@@ -2,6 +2,7 @@
 // Internal: the flat mesh tables and the exact window propagation behind DistanceSolver.
 // Not part of the public API (include distance_solver.hpp instead).
 #include "core/geodesic/distance_solver.hpp"
+#include "core/geodesic/bucket_queue.hpp"
 
 #include <array>
 #include <limits>
@@ -23,6 +24,14 @@ struct MeshTables {
   std::vector<int> fromVertex, toVertex, face, next, prev;
   std::vector<double> length, oppositeX, oppositeY;
   std::vector<int> oppositeVertex;
+  // The same per-halfedge fields once more, as one 48-byte record per halfedge: the propagation
+  // reads most of them for every window, and one record is one or two cache lines where the
+  // separate arrays above cost one line each (they stay for the colder code: paths, seeding).
+  struct Halfedge {
+    double length, oppositeX, oppositeY;
+    int fromVertex, toVertex, face, next, prev, oppositeVertex;
+  };
+  std::vector<Halfedge> he;
   // Per face: its vertices in OpenMesh circulator order (the SurfacePoint barycentric order) and
   // faceHalfedge[f][i] = the halfedge of f leaving faceVerts[f][i].
   std::vector<std::array<int, 3>> faceVerts;
@@ -69,15 +78,25 @@ struct Propagation {
   std::vector<double> splitDistance;
   std::vector<double> splitCrossing;
   // Windows on each halfedge as singly linked lists (for trimming a new window against them).
-  std::vector<int> firstOnHalfedge;
-  std::vector<int> nextOnHalfedge;
-  std::vector<Window> windows;
-  struct QueueEntry {
-    double key;
-    int item;  // >= 0: window index; < 0: vertex event for vertex -item-1
-    bool operator>(const QueueEntry& o) const { return key > o.key || (key == o.key && item > o.item); }
+  // The windows of each halfedge, for trimming a new window against them: their [b0, b1] kept in
+  // blocks of five (128 bytes) chained per halfedge, so the walk over a halfedge's windows - most
+  // of which do not overlap the new one - reads a few contiguous lines. A linked list through the
+  // window array cost a cache miss per window and was a third of all misses.
+  struct SpanBlock {
+    static constexpr int kCapacity = 5;
+    struct Span {
+      double b0, b1;
+      int window;
+    } spans[kCapacity];
+    int count;
+    int next;  // the halfedge's previous (older) block, -1 at the end
   };
-  std::vector<QueueEntry> queue;  // binary heap
+  std::vector<int> firstBlock;      // per halfedge, its newest block; -1 if none
+  std::vector<SpanBlock> blocks;
+  std::vector<int> windowSpan;      // per window: block * kCapacity + slot of its span
+  std::vector<Window> windows;
+  // Items >= 0: window index; < 0: vertex event for vertex -item-1.
+  BucketQueue queue;
   // Targets of this query, bucketed by face.
   std::vector<int> faceFirstTarget;  // -1 if none (reset after each query)
   std::vector<int> nextTarget;

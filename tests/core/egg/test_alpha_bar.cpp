@@ -104,6 +104,50 @@ TEST(AlphaBar, SpherePatchHasAFeasibleRangeWithSlopesInsideBounds) {
   expectSlopesInside(rmax, options);
 }
 
+TEST(AlphaBar, NarrowFeasibleIntervalBetweenScanSamplesIsFound) {
+  // The feasible set is made narrow on purpose, between two samples of the uniform scan: on the
+  // developable trapezoid the smallest slope of the cladding functions grows with alpha_bar (0.78
+  // at the low end of the convex range, 0.96 near the top), so with k_min set to that slope at
+  // a_star the slope constraint holds exactly for alpha_bar > a_star; and with f far above every
+  // planar f_bar, (e - e_bar)(f - f_bar) < 0 holds exactly where e_bar(alpha_bar) > e, i.e. for
+  // alpha_bar < a_star + w when e = e_bar(a_star + w). Feasible set: (a_star, a_star + w) with
+  // w = 0.4 of the scan spacing, so no scan sample is feasible.
+  auto maps = planarPatchMaps(kTrapezoid, 41);
+  AlphaBarOptions options;
+  const auto range = convexAlphaRange(maps.sides, 1e-9, options.minPlanarAngle);
+  ASSERT_TRUE(range);
+  const double spacing = (range->hi - range->lo) / (options.scanSamples - 1);
+  const double aStar = range->lo + 20.3 * spacing, width = 0.4 * spacing;
+  const double scale = 0.25 * (maps.sides[0] + maps.sides[1] + maps.sides[2] + maps.sides[3]);
+  double kStar = 1e300;
+  for (Family family : {Family::U, Family::V}) {
+    const auto f = claddingFunction(maps.map(family), *planarQuad(maps.sides, aStar, options.minPlanarAngle), family, scale);
+    for (double slope : segmentSlopes(f, options.cladding.infiniteSlopeFactor)) kStar = std::min(kStar, slope);
+  }
+  ASSERT_GT(kStar, 0.85);
+  ASSERT_LT(kStar, 0.93);
+  options.slopeMin = kStar;
+  maps.diagonalE = planarDiagonalE(*planarQuad(maps.sides, aStar + width, options.minPlanarAngle));
+  maps.diagonalF = 100.0;
+  // The uniform scan alone (the former method's seeds) sees no feasible angle at all.
+  for (int k = 0; k < options.scanSamples; ++k)
+    EXPECT_FALSE(evaluateAlphaBar(maps, range->lo + k * spacing, options).feasible) << k;
+
+  const auto r = solveAlphaBar(maps, options);
+  ASSERT_TRUE(r.rangeFound) << r.status;
+  ASSERT_EQ(r.feasibleIntervals.size(), 1u) << r.status;
+  // Known ends: a_star (slope bound, located to the solver's tolerance) and a_star + w (closed form).
+  EXPECT_NEAR(r.alphaMin, aStar, 1e-6);
+  EXPECT_NEAR(r.alphaMax, aStar + width, 1e-7);
+  EXPECT_DOUBLE_EQ(r.alphaBar, r.alphaMin);
+  EXPECT_TRUE(evaluateAlphaBar(maps, aStar + 0.5 * width, options).feasible);
+  EXPECT_TRUE(evaluateAlphaBar(maps, r.alphaMin, options).feasible);
+  EXPECT_TRUE(evaluateAlphaBar(maps, r.alphaMax, options).feasible);
+  EXPECT_FALSE(evaluateAlphaBar(maps, aStar - 1e-5, options).feasible);
+  EXPECT_FALSE(evaluateAlphaBar(maps, aStar + width + 1e-5, options).feasible);
+  EXPECT_NE(r.status.find("limited by slopes"), std::string::npos) << r.status;
+}
+
 TEST(AlphaBar, NoFeasibleAngleThrowsInfeasiblePatch) {
   // Both surface diagonals longer than any planar diagonal: (e - e_bar)(f - f_bar) > 0 everywhere.
   auto maps = planarPatchMaps(kTrapezoid, 21);

@@ -19,10 +19,19 @@ class InvalidInput : public Error {
   using Error::Error;
 };
 
-// A file could not be read or written (missing, unreadable, unsupported format, no triangles).
+// A file could not be read (missing, unreadable, unsupported format, no triangles) or an output was
+// asked in an unsupported format: bad input (exit 2). Failures while writing are WriteError.
 class IoError : public Error {
  public:
   using Error::Error;
+};
+
+// An output could not be written (folder missing or not writable, disk full, rename failed). The
+// inputs were fine, so the run failed (exit 1), not the caller (exit 2); writers leave nothing
+// half-written behind (core/io/atomic_file.hpp).
+class WriteError : public IoError {
+ public:
+  using IoError::IoError;
 };
 
 // A numerical solve did not produce a usable answer (no convergence, singular system).

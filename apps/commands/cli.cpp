@@ -41,6 +41,9 @@ int runCli(int argc, char** argv) {
   } catch (const InvalidInput& e) {
     std::cerr << "egg: invalid input: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const WriteError& e) {
+    std::cerr << "egg: cannot write output: " << e.what() << "\n";
+    return kExitFailure;
   } catch (const IoError& e) {
     std::cerr << "egg: " << e.what() << "\n";
     return kExitBadInput;

@@ -69,7 +69,7 @@ StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::mo
   const fs::path parent = target_.parent_path();
   std::error_code ec;
   fs::create_directories(parent, ec);
-  if (ec) throw IoError(parent.string() + ": cannot create folder: " + ec.message());
+  if (ec) throw WriteError(parent.string() + ": cannot create folder: " + ec.message());
   if (fs::exists(target_)) {
     if (!fs::is_directory(target_)) throw InvalidInput(target_.string() + ": exists and is not a folder");
     if (!fs::is_empty(target_) && !fs::exists(target_ / kRunMarker)) {
@@ -79,7 +79,7 @@ StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::mo
   }
   staging_ = parent / ("." + target_.filename().string() + ".staging-" + temporarySuffix());
   fs::create_directory(staging_, ec);
-  if (ec) throw IoError(staging_.string() + ": cannot create staging folder: " + ec.message());
+  if (ec) throw WriteError(staging_.string() + ": cannot create staging folder: " + ec.message());
   writeFileAtomically(staging_ / kRunMarker, "eggshell run folder: replaced whole by the next egg run\n");
 }
 
@@ -97,12 +97,12 @@ void StagedDirectory::commit() {
   if (fs::exists(target_)) {
     previous = target_.parent_path() / ("." + target_.filename().string() + ".previous-" + temporarySuffix());
     fs::rename(target_, previous, ec);
-    if (ec) throw IoError(target_.string() + ": cannot replace the earlier results: " + ec.message());
+    if (ec) throw WriteError(target_.string() + ": cannot replace the earlier results: " + ec.message());
   }
   fs::rename(staging_, target_, ec);
   if (ec) {
     if (!previous.empty()) fs::rename(previous, target_, ec);  // put the old results back
-    throw IoError(target_.string() + ": cannot move the results into place: " + ec.message());
+    throw WriteError(target_.string() + ": cannot move the results into place: " + ec.message());
   }
   committed_ = true;
   if (!previous.empty()) fs::remove_all(previous, ec);

@@ -26,13 +26,13 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& t
   const fs::path temp = dir / ("." + path.filename().string() + ".tmp-" + temporarySuffix());
   {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw IoError(path.string() + ": cannot create file (" + temp.string() + ")");
+    if (!out) throw WriteError(path.string() + ": cannot create file (" + temp.string() + ")");
     out << text;
     out.flush();
     if (!out) {
       std::error_code ignored;
       fs::remove(temp, ignored);
-      throw IoError(path.string() + ": write failed (disk full?)");
+      throw WriteError(path.string() + ": write failed (disk full?)");
     }
   }
   std::error_code ec;
@@ -40,7 +40,7 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& t
   if (ec) {
     std::error_code ignored;
     fs::remove(temp, ignored);
-    throw IoError(path.string() + ": cannot move finished file into place: " + ec.message());
+    throw WriteError(path.string() + ": cannot move finished file into place: " + ec.message());
   }
 }
 

@@ -197,7 +197,7 @@ void writeMeshFile(const fs::path& path, const TriangleSoup& soup, const MeshExp
   const fs::path directory = target.parent_path();
   std::error_code ec;
   if (!fs::is_directory(directory, ec))
-    throw IoError("cannot write mesh " + quoted(path) + ": the directory " + quoted(directory) + " does not exist");
+    throw WriteError("cannot write mesh " + quoted(path) + ": the directory " + quoted(directory) + " does not exist");
 
   // Export into a private directory next to the target, then rename every produced file into
   // place (same file system, so each rename is atomic). glTF's .bin keeps the name the .gltf
@@ -205,7 +205,7 @@ void writeMeshFile(const fs::path& path, const TriangleSoup& soup, const MeshExp
   static std::atomic<int> counter{0};
   const fs::path staging = directory / (".egg-write-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   if (!fs::create_directory(staging, ec))
-    throw IoError("cannot write mesh " + quoted(path) + ": cannot create a temporary directory in " + quoted(directory) +
+    throw WriteError("cannot write mesh " + quoted(path) + ": cannot create a temporary directory in " + quoted(directory) +
                   " (" + ec.message() + ")");
   struct Cleanup {
     fs::path dir;
@@ -220,7 +220,7 @@ void writeMeshFile(const fs::path& path, const TriangleSoup& soup, const MeshExp
   const char* id = options.binary ? format->assimpId : format->assimpIdText;
   if (exporter.Export(scene.get(), id, (staging / target.filename()).string()) != aiReturn_SUCCESS) {
     std::string reason = exporter.GetErrorString();
-    throw IoError("cannot write mesh " + quoted(path) + ": " + (reason.empty() ? "the exporter failed" : reason));
+    throw WriteError("cannot write mesh " + quoted(path) + ": " + (reason.empty() ? "the exporter failed" : reason));
   }
   std::vector<fs::path> produced;
   for (const auto& entry : fs::directory_iterator(staging)) produced.push_back(entry.path());
@@ -228,7 +228,7 @@ void writeMeshFile(const fs::path& path, const TriangleSoup& soup, const MeshExp
   std::stable_partition(produced.begin(), produced.end(), [&](const fs::path& p) { return p.filename() != target.filename(); });
   for (const auto& file : produced) {
     fs::rename(file, directory / file.filename(), ec);
-    if (ec) throw IoError("cannot write mesh " + quoted(path) + ": cannot move " + quoted(file.filename()) +
+    if (ec) throw WriteError("cannot write mesh " + quoted(path) + ": cannot move " + quoted(file.filename()) +
                           " into place (" + ec.message() + ")");
   }
 }

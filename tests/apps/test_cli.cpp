@@ -168,3 +168,23 @@ TEST_F(Cli, GeodesicCommandRejectsABadSourceWithoutWriting) {
 
 }  // namespace
 }  // namespace egg::app
+
+namespace egg::app {
+namespace {
+
+// Inputs fine, output impossible: a failure of the run (exit 1), not bad input (exit 2); the
+// message names the file and nothing is left behind.
+TEST_F(Cli, UnwritableOutputIsAFailureNamingTheFile) {
+  const auto csv = root / "no_such_folder" / "d.csv";
+  const auto o = runEgg({"geodesic", "plane", "--source", "0,0,0", "--out", csv.string()});
+  EXPECT_EQ(o.code, kExitFailure);
+  EXPECT_NE(o.err.find(csv.string()), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(root / "no_such_folder"));
+  const auto obj = root / "missing" / "plane.obj";
+  const auto e = runEgg({"surface", "plane", "--edge-length", "2.0", "--export", obj.string()});
+  EXPECT_EQ(e.code, kExitFailure);
+  EXPECT_NE(e.err.find("plane.obj"), std::string::npos) << e.err;
+}
+
+}  // namespace
+}  // namespace egg::app

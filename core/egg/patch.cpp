@@ -6,6 +6,8 @@
 #include "core/errors.hpp"
 #include "core/geodesic/distance_solver.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -133,8 +135,13 @@ Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& re
   const geodesic::DistanceSolver solver(work);
   std::array<std::vector<PathNode>, 4> paths;
   std::map<EdgeKey, std::vector<std::pair<double, int>>> edgePoints;  // inserted vertices per edge
+  // The four traces are independent propagations: run them concurrently, then insert them in order.
+  std::array<geodesic::GeodesicPath, 4> traced;
+  tbb::parallel_for(0, 4, [&](int k) {
+    traced[k] = solver.path(geodesic::vertexPoint(work, cornerIds[k]), geodesic::vertexPoint(work, cornerIds[(k + 1) % 4]));
+  });
   for (int k = 0; k < 4; ++k) {
-    const auto path = solver.path(geodesic::vertexPoint(work, cornerIds[k]), geodesic::vertexPoint(work, cornerIds[(k + 1) % 4]));
+    const auto& path = traced[k];
     if (!std::isfinite(path.length) || path.points.size() < 2)
       throw InfeasiblePatch("boundary " + std::to_string(k) + ": corners " + std::to_string(k) + " and " +
                             std::to_string((k + 1) % 4) + " are not connected on the surface");

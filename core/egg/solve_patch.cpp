@@ -39,18 +39,19 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   // One solver for the whole solve: its tables serve the eta check, the maps and the tracing.
   t = std::chrono::steady_clock::now();
   auto solver = std::make_unique<geodesic::DistanceSolver>(result.patch.mesh);
-  const PatchPeaks peaks = findPatchPeaks(result.patch, options.uniqueness);
   result.seconds.uniqueness = since(t);
 
-  // The maps and the eta check's peak fields in one go (Sections 2.4.2, 2.3.3): the maps already
-  // hold the diagonals and every d(p1, opposite side), so the check adds one field per peak, and
-  // none when the injectivity bound holds for sure.
+  // The maps and the eta check in one go (Sections 2.4.2, 2.3.3): the maps already hold the
+  // diagonals and every d(p1, opposite side), so the check adds one field per K peak, and none
+  // when the injectivity bound holds for sure. Curvature, peaks and peak fields run alongside the
+  // maps' batches on the same thread pool.
   t = std::chrono::steady_clock::now();
-  const bool needPeakFields = !peaks.peaks.empty() && !boundCertainlyHolds(result.patch, peaks);
+  PatchPeaks peaks;
   std::vector<geodesic::DistanceField> peakFields;
   tbb::parallel_invoke([&] { result.maps = computeDistanceMaps(result.patch, *solver, options.maps); },
                        [&] {
-                         if (!needPeakFields) return;
+                         peaks = findPatchPeaks(result.patch, options.uniqueness);
+                         if (peaks.peaks.empty() || boundCertainlyHolds(result.patch, peaks)) return;
                          std::vector<SurfacePoint> sources;
                          for (const auto& p : peaks.peaks) sources.push_back(geodesic::vertexPoint(result.patch.mesh, p.vertex));
                          peakFields = solver->distances(sources, uniquenessPeakTargets(result.patch, options.maps.resolution));

@@ -81,8 +81,8 @@ class Tracer {
       if (qy > 1e-12 * L) x = w.sx + (qx - w.sx) * (-w.sy) / (qy - w.sy);
       x = std::clamp(x, std::max(0.0, w.b0), std::min(L, w.b1));
       if (qy > 1e-12 * L) reversed.push_back(edgePoint(t_, h, x));
-      if (w.parent < 0) {
-        if (w.pseudoSource >= 0) fromVertex(w.pseudoSource);
+      if (w.isRoot()) {
+        if (w.rootVertex() >= 0) fromVertex(w.rootVertex());
         return;
       }
       const Window& p = s_.windows[w.parent];

@@ -52,14 +52,25 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
 // through which straight rays from the unfolded source image (sx, sy) (sy < 0, i.e. behind the
 // edge) enter face(halfedge). sigma is the geodesic distance from the source to the image (0 for
 // the source itself, d(v) for a pseudo-source vertex v).
+//
+// 48 bytes: ~200k windows of a 4k-vertex field are written once and read back at least once, so
+// their size is memory traffic. The origin is therefore packed into one int.
 struct Window {
   int halfedge = -1;
-  int parent = -1;        // window this one was propagated from; -1 if born at a (pseudo-)source
-  int pseudoSource = -1;  // vertex the rays come from; -1 for the source point itself
+  // >= 0: the window this one was propagated from. Otherwise the window was born at the source
+  // point (kFromSource) or at pseudo-source vertex v (fromVertex(v)).
+  int parent = kFromSource;
   double b0 = 0.0, b1 = 0.0;
   double sx = 0.0, sy = 0.0;
   double sigma = 0.0;
+
+  static constexpr int kFromSource = -1;
+  static int fromVertex(int v) { return -2 - v; }
+  bool isRoot() const { return parent < 0; }
+  // For a root window: the pseudo-source vertex its rays come from, or -1 for the source point.
+  int rootVertex() const { return parent <= -2 ? -2 - parent : -1; }
 };
+static_assert(sizeof(Window) == 48);
 
 // How the best value at a vertex or target was obtained (for backtracing paths).
 struct Predecessor {

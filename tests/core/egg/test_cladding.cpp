@@ -111,6 +111,32 @@ TEST(Cladding, MissingIntersectionIsCompletedAlongTheBoundary) {
   EXPECT_TRUE(outOfBounds);
 }
 
+TEST(Cladding, ClosedFormPlanarMapGivesTheSameCurveAsTheSampledOne) {
+  // Problem 2.3 intersects against the planar map node by node (only where the zero set passes);
+  // the curve must be the one the full sampled map gives, bit for bit, at angles with and
+  // without a corner-to-corner intersection.
+  const auto maps = spherePatchMaps(testing::capCorners(0.5, {0.1, 1.7, 3.3, 4.8}), 5.0, 61);
+  int withArc = 0, withoutArc = 0;
+  for (double shift : {-0.9, -0.6, -0.2, 0.0, 0.3, 0.7}) {
+    const auto quad = planarQuad(maps.sides, maps.alphaSpatial + shift);
+    if (!quad) continue;
+    for (Family family : {Family::U, Family::V}) {
+      const DistanceMap& m = maps.map(family);
+      const auto sampled = claddingFunction(m, planarDistanceMap(*quad, family, m.n1, m.n2), family, 1.0);
+      const auto closed = claddingFunction(m, *quad, family, 1.0);
+      (sampled.connectsCorners ? withArc : withoutArc)++;
+      EXPECT_EQ(closed.connectsCorners, sampled.connectsCorners);
+      ASSERT_EQ(closed.points.size(), sampled.points.size());
+      for (size_t k = 0; k < closed.points.size(); ++k) {
+        EXPECT_EQ(closed.points[k], sampled.points[k]) << k;
+        EXPECT_EQ(closed.lengths[k], sampled.lengths[k]) << k;
+      }
+    }
+  }
+  EXPECT_GT(withArc, 0);
+  EXPECT_GT(withoutArc, 0);
+}
+
 TEST(Cladding, VerticalSegmentGetsTheThesisValue) {
   CladdingFunction f;
   f.points = {{0, 0}, {0, 0.5}, {1, 1}};

@@ -1,5 +1,7 @@
 #include "core/egg/uniqueness.hpp"
 
+#include "core/egg/patch_maps.hpp"
+
 #include "samples/generators/samples.hpp"
 
 #include <gtest/gtest.h>
@@ -50,6 +52,52 @@ TEST(Uniqueness, TallBumpHasLargeEta) {
   EXPECT_NEAR(report.etaU, report.etaV, 0.01);
   ASSERT_FALSE(report.checks.empty());
   EXPECT_LT(report.checks[0].peak.head<2>().norm(), 0.5);  // the peak is at the centre
+}
+
+TEST(Uniqueness, CheckOnTheMapsEqualsTheStandaloneCheck) {
+  // solveEgg reads d(p1, opposite side) and the diagonals from the distance maps and computes
+  // only the peak fields; on the same boundary samples it must give the standalone check's eta,
+  // p1 and q1 (the same distances, measured from the other end where p1 lies on an end side).
+  const TriMesh mesh =
+      samples::generateSample("bump", {{"height", 3.0}, {"sigma", 1.2}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
+  const geodesic::DistanceSolver solver(patch.mesh);
+  UniquenessOptions options;
+  options.sideSamples = 33;
+  const auto standalone = checkUniqueness(patch, solver, options);
+  DistanceMapOptions mapOptions;
+  mapOptions.resolution = options.sideSamples;
+  const auto maps = computeDistanceMaps(patch, solver, mapOptions);
+  const auto peaks = findPatchPeaks(patch, options);
+  ASSERT_FALSE(peaks.peaks.empty());
+  EXPECT_FALSE(boundCertainlyHolds(patch, peaks));
+  std::vector<SurfacePoint> sources;
+  for (const auto& p : peaks.peaks) sources.push_back(geodesic::vertexPoint(patch.mesh, p.vertex));
+  const auto peakFields = solver.distances(sources, uniquenessPeakTargets(patch, mapOptions.resolution));
+  const auto fromMaps = checkUniqueness(patch, peaks, peakFields, maps, options);
+  EXPECT_EQ(fromMaps.passed, standalone.passed);
+  EXPECT_NEAR(fromMaps.longestGeodesicM, standalone.longestGeodesicM, 1e-9);
+  EXPECT_NEAR(fromMaps.etaU, standalone.etaU, 1e-9);
+  EXPECT_NEAR(fromMaps.etaV, standalone.etaV, 1e-9);
+  ASSERT_EQ(fromMaps.checks.size(), standalone.checks.size());
+  for (size_t k = 0; k < fromMaps.checks.size(); ++k) {
+    EXPECT_NEAR((fromMaps.checks[k].p1 - standalone.checks[k].p1).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((fromMaps.checks[k].q1 - standalone.checks[k].q1).norm(), 0.0, 1e-12);
+  }
+  // The standalone check spends 2 + peaks fields, then one per peak and family.
+  EXPECT_EQ(standalone.propagations, 2 + 3 * static_cast<int>(peaks.peaks.size()));
+}
+
+TEST(Uniqueness, BoundCertainlyHoldsWithoutCurvatureAndNotAgainstATightBound) {
+  const TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.8);
+  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
+  PatchPeaks peaks;
+  EXPECT_TRUE(boundCertainlyHolds(patch, peaks));  // K_max = 0: no conjugate points at all
+  // Upper bound of the longest geodesic here: the diagonals bounded by two sides, 12 m.
+  peaks.gaussianMax = std::pow(M_PI / 12.5, 2);  // bound 12.5 m
+  EXPECT_TRUE(boundCertainlyHolds(patch, peaks));
+  peaks.gaussianMax = std::pow(M_PI / 11.5, 2);  // bound 11.5 m < 12 m although the diagonal is 8.5 m
+  EXPECT_FALSE(boundCertainlyHolds(patch, peaks));
 }
 
 }  // namespace

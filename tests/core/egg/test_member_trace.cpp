@@ -1,0 +1,129 @@
+#include "core/egg/member_trace.hpp"
+
+#include "core/egg/patch_maps.hpp"
+#include "samples/generators/samples.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace egg {
+namespace {
+
+GridMember innerMember(Family family, double x1, double guess) {
+  GridMember m;
+  m.family = family;
+  m.index = 1;
+  m.x1 = x1;
+  m.x2 = guess;
+  return m;
+}
+
+// Root of g on [a, b] by bisection (g changes sign there).
+template <class G>
+double bisect(const G& g, double a, double b) {
+  double ga = g(a);
+  for (int k = 0; k < 200 && b - a > 1e-16; ++k) {
+    const double m = 0.5 * (a + b), gm = g(m);
+    if ((gm > 0) == (ga > 0)) a = m, ga = gm; else b = m;
+  }
+  return 0.5 * (a + b);
+}
+
+TEST(MemberTrace, PlaneTrapezoidMatchesTheAnalyticRoot) {
+  // On a plane the geodesic is the straight segment, so the matched x2 solves
+  // |start(x1) - end(x2)| = planar distance(x1, x2) in closed form; the guess is 4 cm off.
+  const TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.8);
+  const std::array<Eigen::Vector3d, 4> c{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {2, 3, 0}, {-2.5, 2.5, 0}};
+  const Patch patch = makePatch(mesh, c);
+  const geodesic::DistanceSolver solver(patch.mesh);
+  const auto quad = *planarQuad(patch.sideLengths, patch.innerAngles[0] - 0.15);
+  const double x1 = 0.37;
+  const auto g = [&](double x2) {
+    const Eigen::Vector3d start = c[0] + x1 * (c[3] - c[0]), end = c[1] + x2 * (c[2] - c[1]);
+    return (end - start).norm() - planarDistance(quad, Family::U, x1, x2);
+  };
+  ASSERT_LT(g(0.0) * g(1.0), 0.0);
+  const double root = bisect(g, 0.0, 1.0);
+  GridMember m = innerMember(Family::U, x1, root + 0.04 / 6.0);
+  std::atomic<int> propagations{0};
+  traceInnerMember(patch, solver, quad, m, GridOptions{}, propagations);
+  EXPECT_NEAR(m.x2, root, 1e-12);
+  EXPECT_LE(propagations.load(), 2);  // the guess's strip, at most one retrace
+  double length = 0.0;
+  for (size_t k = 1; k < m.spatial.size(); ++k) length += (m.spatial[k] - m.spatial[k - 1]).norm();
+  EXPECT_NEAR(length, planarDistance(quad, Family::U, x1, m.x2), 1e-10 * length);
+  // Straight, from start(x1) to end(x2), every normal +z.
+  const Eigen::Vector3d a = c[0] + x1 * (c[3] - c[0]), b = c[1] + m.x2 * (c[2] - c[1]);
+  EXPECT_NEAR((m.spatial.front() - a).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((m.spatial.back() - b).norm(), 0.0, 1e-9);
+  for (const auto& p : m.spatial) EXPECT_NEAR((p - a).cross(b - a).norm() / (b - a).norm(), 0.0, 1e-9);
+  ASSERT_EQ(m.normals.size(), m.spatial.size());
+  for (const auto& n : m.normals) EXPECT_NEAR(std::abs(n.z()), 1.0, 1e-12);
+}
+
+TEST(MemberTrace, FallbackBracketingMatchesTooWhenTheStripIsNotEnough) {
+  // One strip trace only and a guess 1.2 m off: the root lies on another boundary edge, so the
+  // member is matched by bracketing with exact fields instead, to the same root.
+  const TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.8);
+  const std::array<Eigen::Vector3d, 4> c{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {2, 3, 0}, {-2.5, 2.5, 0}};
+  const Patch patch = makePatch(mesh, c);
+  const geodesic::DistanceSolver solver(patch.mesh);
+  const auto quad = *planarQuad(patch.sideLengths, patch.innerAngles[0] - 0.15);
+  const double x1 = 0.37;
+  const auto g = [&](double x2) {
+    const Eigen::Vector3d start = c[0] + x1 * (c[3] - c[0]), end = c[1] + x2 * (c[2] - c[1]);
+    return (end - start).norm() - planarDistance(quad, Family::U, x1, x2);
+  };
+  const double root = bisect(g, 0.0, 1.0);
+  GridMember m = innerMember(Family::U, x1, root - 0.2);
+  GridOptions options;
+  options.maxStripTraces = 1;
+  std::atomic<int> propagations{0};
+  traceInnerMember(patch, solver, quad, m, options, propagations);
+  EXPECT_GT(propagations.load(), 2);
+  EXPECT_NEAR(m.x2, root, 1e-8);
+  double length = 0.0;
+  for (size_t k = 1; k < m.spatial.size(); ++k) length += (m.spatial[k] - m.spatial[k - 1]).norm();
+  EXPECT_NEAR(length, planarDistance(quad, Family::U, x1, m.x2), 1e-10 * length);
+}
+
+TEST(MemberTrace, SphereMemberIsTheShortestGeodesicOfThePlanarLength) {
+  // On a curved patch: the matched member's polyline is as long as its planar segment (criterion
+  // i, to 1e-10) and as long as the exact geodesic distance between its ends, which an
+  // independent propagation measures.
+  const TriMesh mesh = samples::generateSample("sphere", {{"radius", 10.0}, {"extent", 7.0}}, 0.6);
+  std::array<Eigen::Vector3d, 4> corners;
+  const double xy[4][2] = {{-4, -4}, {4.2, -3.8}, {4, 4}, {-3.8, 4.2}};
+  for (int k = 0; k < 4; ++k) corners[k] = {xy[k][0], xy[k][1], std::sqrt(100.0 - xy[k][0] * xy[k][0] - xy[k][1] * xy[k][1])};
+  const Patch patch = makePatch(mesh, corners);
+  const geodesic::DistanceSolver solver(patch.mesh);
+  const auto quad = *planarQuad(patch.sideLengths, patch.innerAngles[0] - 0.6);  // inside the lower feasible interval
+  for (Family family : {Family::U, Family::V}) {
+    const double x1 = 0.41;
+    const SurfacePoint start = familyBoundaryPoint(patch, family, false, x1);
+    // Guess: the sign change of the mismatch on 41 samples of the end side (one field).
+    std::vector<SurfacePoint> ends;
+    for (int k = 0; k <= 40; ++k) ends.push_back(familyBoundaryPoint(patch, family, true, k / 40.0));
+    const auto field = solver.distances(start, ends);
+    double guess = -1.0;
+    for (int k = 0; k < 40 && guess < 0; ++k) {
+      const double g0 = field.targetDistances[k] - planarDistance(quad, family, x1, k / 40.0);
+      const double g1 = field.targetDistances[k + 1] - planarDistance(quad, family, x1, (k + 1) / 40.0);
+      if ((g0 > 0) != (g1 > 0)) guess = (k + 0.5) / 40.0;
+    }
+    ASSERT_GE(guess, 0.0);
+    GridMember m = innerMember(family, x1, guess);
+    std::atomic<int> propagations{0};
+    traceInnerMember(patch, solver, quad, m, GridOptions{}, propagations);
+    double length = 0.0;
+    for (size_t k = 1; k < m.spatial.size(); ++k) length += (m.spatial[k] - m.spatial[k - 1]).norm();
+    EXPECT_NEAR(length, planarDistance(quad, family, x1, m.x2), 1e-10 * length);
+    EXPECT_NEAR(length, solver.distance(start, familyBoundaryPoint(patch, family, true, m.x2)), 1e-9 * length);
+    EXPECT_NEAR((m.spatial.back() - position(patch.mesh, familyBoundaryPoint(patch, family, true, m.x2))).norm(), 0.0, 1e-9);
+    EXPECT_LE(propagations.load(), 4);
+  }
+}
+
+}  // namespace
+}  // namespace egg

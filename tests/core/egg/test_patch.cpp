@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <set>
+#include <string>
 
 namespace egg {
 namespace {
@@ -67,23 +68,33 @@ TEST(Patch, SidePointsRunAtConstantSpeed) {
   }
 }
 
-TEST(Patch, BadCornersAreRejectedWithAReason) {
-  const auto& mesh = planeMesh();
-  // Off the surface.
-  EXPECT_THROW(makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {40, 40, 0}}), InvalidInput);
-  // Collinear: corner 1 lies on the segment c0 c2.
-  EXPECT_THROW(makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {0, 0, 0}, {3, 3, 0}, {-3, 3, 0}}), InfeasiblePatch);
-  // Concave (a dart): the inner angle at corner 1 exceeds pi.
-  EXPECT_THROW(makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {0, -1, 0}, {3, -3, 0}, {0, 3, 0}}), InfeasiblePatch);
-  // Bow tie: boundaries 0 and 2 cross.
-  EXPECT_THROW(makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, 3, 0}, {3, -3, 0}, {-3, 3, 0}}), InfeasiblePatch);
-  // Repeated corner.
-  EXPECT_THROW(makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {-3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}), InvalidInput);
+// The exception type and the reason its message gives.
+template <class Error>
+void expectRejected(const std::array<Eigen::Vector3d, 4>& corners, const std::string& reason) {
   try {
-    makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {0, -1, 0}, {3, -3, 0}, {0, 3, 0}});
-  } catch (const InfeasiblePatch& e) {
-    EXPECT_NE(std::string(e.what()).find("corner 1"), std::string::npos) << e.what();
+    makePatch(planeMesh(), corners);
+    ADD_FAILURE() << "accepted; expected: " << reason;
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "wrong exception type: " << e.what();
   }
+}
+
+TEST(Patch, BadCornersAreRejectedWithAReason) {
+  // Off the surface: how far, and which corner.
+  expectRejected<InvalidInput>({Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {40, 40, 0}}, "corner 3 (40, 40, 0) lies 49.49");
+  // Collinear: corner 1 lies on the segment c0 c2, its inner angle is pi.
+  expectRejected<InfeasiblePatch>({Eigen::Vector3d(-3, -3, 0), {0, 0, 0}, {3, 3, 0}, {-3, 3, 0}},
+                                  "inner angle at corner 1 is 3.14159");
+  // Concave (a dart): the inner angle at corner 1 exceeds pi.
+  expectRejected<InfeasiblePatch>({Eigen::Vector3d(-3, -3, 0), {0, -1, 0}, {3, -3, 0}, {0, 3, 0}},
+                                  "corner 1 is 4.3");
+  expectRejected<InfeasiblePatch>({Eigen::Vector3d(-3, -3, 0), {0, -1, 0}, {3, -3, 0}, {0, 3, 0}}, "criterion iv");
+  // Bow tie: boundaries 0 and 2 cross.
+  expectRejected<InfeasiblePatch>({Eigen::Vector3d(-3, -3, 0), {3, 3, 0}, {3, -3, 0}, {-3, 3, 0}}, "boundaries cross");
+  // Repeated corner.
+  expectRejected<InvalidInput>({Eigen::Vector3d(-3, -3, 0), {-3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, "corners 0 and 1 coincide");
 }
 
 TEST(Patch, WholeSurfaceWithStraightBoundaryIsAccepted) {

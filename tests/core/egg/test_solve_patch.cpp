@@ -152,6 +152,19 @@ TEST(SolvePatch, BumpPatchNeedsNoSmoothingAndHasNotches) {
   for (const auto& a : r.grid.anchors) EXPECT_TRUE(r.grid.connections[a.connection].onBoundary);
 }
 
+TEST(SolvePatch, BadCornersStopTheSolveWithTheirReason) {
+  // The solver passes the patch's reason on and computes nothing else (no crash, no partial grid).
+  const TriMesh mesh = bumpMesh(1.0);
+  try {
+    solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {0, -2, 0}, {3, -3, 0}, {0, 3, 0}}, fastOptions());
+    ADD_FAILURE() << "a concave quad was accepted";
+  } catch (const InfeasiblePatch& e) {
+    EXPECT_NE(std::string(e.what()).find("criterion iv"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {30, 30, 0}}, fastOptions()),
+               InvalidInput);
+}
+
 TEST(SolvePatch, TallBumpFailsEtaAndPassesAfterSmoothing) {
   EggOptions options = fastOptions();
   options.uniqueness.smooth = false;
@@ -201,6 +214,30 @@ TEST(SolvePatch, DevelopableConeAtUnrolledAngleGivesTheUnrolledGrid) {
     worstMirrored = std::max(worstMirrored, (Eigen::Vector2d(p.x(), -p.y()) - c.planar).norm());
   }
   EXPECT_LT(std::min(worst, worstMirrored), 1e-6);
+}
+
+TEST(SolvePatch, DevelopableConeAtAlphaMinIsNotchFreeAndNotTheUnrolledGrid) {
+  // As for the cylinder: at alpha_min the planar quad is not the unrolled patch (another angle at
+  // c0), yet equal-length members of both families meet at equal arc lengths, so the notches the
+  // solver reports vanish to rounding; the planar grid differs from the unrolled one.
+  const testing::RuledCone cone;
+  const double polar[4][2] = {{4.0, 0.15}, {4.2, 1.05}, {8.2, 1.0}, {7.8, 0.2}};
+  std::array<Eigen::Vector3d, 4> corners;
+  for (int k = 0; k < 4; ++k) corners[k] = cone.fromUnrolled(polar[k][0], polar[k][1]);
+  const EggResult r = solveEgg(cone.mesh(), corners, fastOptions());
+  ASSERT_TRUE(r.alphaBar.rangeFound);
+  EXPECT_NEAR(r.alphaBar.alphaBar, r.alphaBar.alphaMin, 0.0);
+  EXPECT_LT(r.alphaBar.alphaBar, r.patch.innerAngles[0] - 0.1);
+  expectGridCriteria(r);
+  EXPECT_GT(r.grid.u.size(), 4u);
+  for (const auto& c : r.grid.connections) {
+    EXPECT_LE(std::abs(c.notchU), 1e-9 * r.grid.u[c.memberU].planarLength);
+    EXPECT_LE(std::abs(c.notchV), 1e-9 * r.grid.v[c.memberV].planarLength);
+  }
+  // Not the unrolled grid: the planar angle at c0 differs from the surface angle.
+  const Eigen::Vector2d d1 = r.alphaBar.quad.corners[1] - r.alphaBar.quad.corners[0];
+  const Eigen::Vector2d d3 = r.alphaBar.quad.corners[3] - r.alphaBar.quad.corners[0];
+  EXPECT_NEAR(std::atan2(d1.x() * d3.y() - d1.y() * d3.x(), d1.dot(d3)), r.alphaBar.alphaMin, 1e-12);
 }
 
 TEST(SolvePatch, MeshedCylinderAtUnrolledAngleIsNearlyNotchFree) {

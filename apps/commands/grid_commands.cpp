@@ -56,8 +56,11 @@ int runGridBench(const GridBenchArgs& args) {
   std::vector<std::array<double, kParts>> shares;
   for (int size : args.sizes) {
     if (size < 50) throw InvalidInput("egg bench grid: --sizes must be at least 50 vertices");
-    const double patchArea = 50.0;  // calibrated on the bump sample: 6 x 6 m patch, ~requested vertices
-    const double edge = std::sqrt(patchArea / (0.866 * size));
+    // Calibrated on the bump sample: a surface meshed for `density` vertices per 50 m^2 gives a
+    // 6 x 6 m patch of about 0.861 density + 141 vertices (the inserted boundary adds the offset).
+    const int density = std::max(50, static_cast<int>(std::lround((size - 141) / 0.861)));
+    const double patchArea = 50.0;
+    const double edge = std::sqrt(patchArea / (0.866 * density));
     const TriMesh mesh = samples::generateSample(
         "bump", {{"height", args.height}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, edge);
     EggOptions options;

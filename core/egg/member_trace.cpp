@@ -62,6 +62,11 @@ std::optional<Support> supportOf(const TriMesh& mesh, const SurfacePoint& p) {
 
 // Faces a support point touches.
 std::vector<int> facesOf(const TriMesh& mesh, const Support& s) {
+  if (s.face == -2) {
+    std::vector<int> faces;
+    for (auto fh : mesh.vf_range(TriMesh::VertexHandle(s.a))) faces.push_back(fh.idx());
+    return faces;
+  }
   if (!s.onEdge) return {s.face};
   std::vector<int> faces;
   const auto h = mesh.find_halfedge(TriMesh::VertexHandle(s.a), TriMesh::VertexHandle(s.b));
@@ -72,6 +77,10 @@ std::vector<int> facesOf(const TriMesh& mesh, const Support& s) {
 }
 
 struct Strip {
+  // A path that bends around a saddle (or reflex boundary) vertex is unfolded from its last bend:
+  // the part before it is kept, and its length is added.
+  int first = 0;                                            // index of the strip's first path point
+  double prefixLength = 0.0;                                // path length up to that point
   std::vector<int> faces;                                  // faces the geodesic runs through, in order
   std::vector<std::array<int, 3>> faceIds;                  // their vertices
   std::vector<std::array<Eigen::Vector2d, 3>> unfolded;     // and their unfolded positions
@@ -94,13 +103,26 @@ Eigen::Vector2d unfoldedVertex(const Strip& strip, size_t face, int vertex) {
 std::optional<Strip> unfoldStrip(const Patch& patch, Family family, const std::vector<SurfacePoint>& points) {
   const TriMesh& mesh = patch.mesh;
   if (points.size() < 2) return std::nullopt;
+  Strip strip;
+  // The last bend: the last point before the end that is a mesh vertex.
+  for (size_t k = 1; k + 1 < points.size(); ++k)
+    if (!supportOf(mesh, points[k])) strip.first = static_cast<int>(k);
+  for (int k = 1; k <= strip.first; ++k) strip.prefixLength += (position(mesh, points[k]) - position(mesh, points[k - 1])).norm();
   std::vector<Support> supports;
-  for (const auto& p : points) {
-    const auto s = supportOf(mesh, p);
+  for (size_t k = strip.first; k < points.size(); ++k) {
+    auto s = supportOf(mesh, points[k]);
+    if (!s && static_cast<int>(k) == strip.first) {  // the bend vertex: every face around it
+      const auto ids = faceVertices(mesh, points[k].face);
+      int corner = 0;
+      for (int i = 1; i < 3; ++i)
+        if (points[k].barycentric[i] > points[k].barycentric[corner]) corner = i;
+      s = Support{};
+      s->a = ids[corner];
+      s->face = -2;  // marks a vertex
+    }
     if (!s) return std::nullopt;
     supports.push_back(*s);
   }
-  Strip strip;
   for (size_t k = 0; k + 1 < supports.size(); ++k) {
     const auto fa = facesOf(mesh, supports[k]), fb = facesOf(mesh, supports[k + 1]);
     std::vector<int> common;
@@ -157,10 +179,12 @@ std::optional<Strip> unfoldStrip(const Patch& patch, Family family, const std::v
     strip.crossings2d.push_back({unfoldedVertex(strip, k, e.a), unfoldedVertex(strip, k, e.b)});
   }
   const Support& s0 = supports.front();
-  if (s0.onEdge) {
+  if (s0.face == -2) {
+    strip.source = unfoldedVertex(strip, 0, s0.a);
+  } else if (s0.onEdge) {
     strip.source = (1 - s0.t) * unfoldedVertex(strip, 0, s0.a) + s0.t * unfoldedVertex(strip, 0, s0.b);
   } else {
-    for (int i = 0; i < 3; ++i) strip.source += points.front().barycentric[i] * unfoldedVertex(strip, 0, faceVertices(mesh, s0.face)[i]);
+    for (int i = 0; i < 3; ++i) strip.source += points[strip.first].barycentric[i] * unfoldedVertex(strip, 0, faceVertices(mesh, s0.face)[i]);
   }
   // The end point's edge on the end side's vertex chain.
   const Support& last = supports.back();
@@ -194,7 +218,9 @@ StripSolution solveInStrip(const Patch& patch, const Strip& strip, const PlanarQ
     return Eigen::Vector2d(strip.endLo + (s - sLo) / (sHi - sLo) * (strip.endHi - strip.endLo));
   };
   // Exact in the strip: geodesic length minus planar length.
-  const auto g = [&](double x2) { return (endAt(x2) - strip.source).norm() - planarDistance(quad, m.family, m.x1, x2); };
+  const auto g = [&](double x2) {
+    return strip.prefixLength + (endAt(x2) - strip.source).norm() - planarDistance(quad, m.family, m.x1, x2);
+  };
   double a = std::min(xOf(sLo), xOf(sHi)), b = std::max(xOf(sLo), xOf(sHi));
   double ga = g(a), gb = g(b);
   StripSolution solution;
@@ -228,8 +254,10 @@ StripSolution solveInStrip(const Patch& patch, const Strip& strip, const PlanarQ
   const Eigen::Vector2d S = strip.source, E = endAt(x);
   const Eigen::Vector2d d = E - S;
   double previous = 0.0;
-  solution.points.push_back(traced.front());
-  solution.positions.push_back(position(patch.mesh, traced.front()));
+  for (int k = 0; k <= strip.first; ++k) {
+    solution.points.push_back(traced[k]);
+    solution.positions.push_back(position(patch.mesh, traced[k]));
+  }
   for (size_t k = 0; k < strip.crossings.size(); ++k) {
     const Eigen::Vector2d A = strip.crossings2d[k][0], B = strip.crossings2d[k][1];
     const Eigen::Vector2d q = B - A, w = A - S;
@@ -240,7 +268,7 @@ StripSolution solveInStrip(const Patch& patch, const Strip& strip, const PlanarQ
     if (!(u > 1e-12 && u < 1 - 1e-12 && lambda > previous && lambda < 1.0)) return solution;
     previous = lambda;
     const Support& e = strip.crossings[k];
-    SurfacePoint p = traced[k + 1];  // same edge, same face: only the position along it changes
+    SurfacePoint p = traced[strip.first + k + 1];  // same edge, same face: only the position along it changes
     const auto ids = faceVertices(patch.mesh, p.face);
     for (int i = 0; i < 3; ++i) p.barycentric[i] = ids[i] == e.a ? 1.0 - u : ids[i] == e.b ? u : 0.0;
     solution.points.push_back(p);
@@ -347,16 +375,19 @@ void traceInnerMember(const Patch& patch, const geodesic::DistanceSolver& solver
     const auto path = solver.path(start, familyBoundaryPoint(patch, m.family, true, x2));
     ++propagations;
     if (!std::isfinite(path.length) || path.positions.size() < 2) break;
-    const auto strip = unfoldStrip(patch, m.family, path.points);
-    if (!strip) {
-      // A path through a vertex: keep it if it already matches, else bracket with fields.
-      if (std::abs(path.length - planarDistance(quad, m.family, m.x1, x2)) <= tolerance) {
-        setPath(patch, m, x2, path.points, path.positions);
-        return;
-      }
-      break;
+    if (std::abs(path.length - planarDistance(quad, m.family, m.x1, x2)) <= tolerance) {
+      setPath(patch, m, x2, path.points, path.positions);  // already matched (a retrace lands here)
+      return;
     }
+    const auto strip = unfoldStrip(patch, m.family, path.points);
+    if (!strip) break;
     const auto solution = solveInStrip(patch, *strip, quad, m, x2, path.points, tolerance);
+    if (solution.matched && strip->first > 0) {
+      // Bent at a vertex: the path to the matched end bends there too unless the end left the
+      // vertex's shadow, which only a new trace can tell; it is exact and usually matches.
+      x2 = solution.x2;
+      continue;
+    }
     if (solution.matched) {
       const double mismatch = polylineLength(solution.positions) - planarDistance(quad, m.family, m.x1, solution.x2);
       if (std::abs(mismatch) <= tolerance) {

@@ -12,7 +12,9 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
+#include <optional>
 #include <iostream>
 #include <sstream>
 #include <memory>
@@ -21,22 +23,52 @@ namespace egg::app {
 namespace {
 
 struct SimBenchArgs {
-  std::vector<double> spacings{1.0, 0.8};
+  std::vector<double> spacings{1.0, 0.8, 0.72};
   std::vector<double> tolerances{1e-4, 1e-6, 1e-8, 1e-10};
   double notchFraction = 0.2;
   bool gravity = false;
   int threads = 2;
+  int repeats = 3;
+  bool reference = true;
   std::string csv;
   bool json = false;
 };
 
+// Runs one simulation `repeats` times (deterministic: the same iterations and result every
+// time) and keeps the last run with the median wall time.
+struct TimedRun {
+  rods::SimulationRun run;
+  double medianSeconds = 0.0, minSeconds = 0.0, maxSeconds = 0.0;
+};
+
+TimedRun timedRun(const rods::RodNetwork& network, const rods::SurfaceDistance& surface,
+                  const rods::SimulationOptions& options, int repeats) {
+  TimedRun timed;
+  std::vector<double> seconds;
+  for (int k = 0; k < repeats; ++k) {
+    timed.run = rods::simulateRods(network, &surface, options);
+    seconds.push_back(timed.run.solver.seconds);
+  }
+  std::sort(seconds.begin(), seconds.end());
+  const size_t m = seconds.size();
+  timed.medianSeconds = m % 2 == 1 ? seconds[m / 2] : 0.5 * (seconds[m / 2 - 1] + seconds[m / 2]);
+  timed.minSeconds = seconds.front();
+  timed.maxSeconds = seconds.back();
+  return timed;
+}
+
 int runSimBench(const SimBenchArgs& args) {
+  if (args.repeats < 1) throw InvalidInput("--repeats must be >= 1");
   nlohmann::json rows = nlohmann::json::array();
   fmt::print("egg bench sim: cylinder vault R 5 m, 8 m long, exact geodesic grid at +-45 deg, lamellas 50 x 5 mm,\n"
-             "supports at every member end, notches +-{:.0f} % of the spacing on inner bolts{}, {} thread(s)\n",
-             100.0 * args.notchFraction, args.gravity ? ", self-weight" : "", args.threads);
-  fmt::print("{:>8} {:>8} {:>8} {:>6} {:>9} {:>6} {:>9} {:>9} {:>11} {:>11}\n", "spacing", "vertices", "unknowns",
-             "bolts", "tolerance", "iters", "seconds", "converged", "rmse_mm", "max_mm");
+             "supports at every member end, notches +-{:.0f} % of the spacing on inner bolts{}, {} thread(s);\n"
+             "seconds = median of {} runs (solver + setup, one simulation){}\n",
+             100.0 * args.notchFraction, args.gravity ? ", self-weight" : "", args.threads, args.repeats,
+             args.reference ? ";\nplain_s = the same grid with plain holes (no sliding, RMS1 run), ratio = seconds / plain_s"
+                            : "");
+  fmt::print("{:>7} {:>8} {:>8} {:>5} {:>9} {:>5} {:>8} {:>15} {:>9} {:>4} {:>9} {:>9} {:>8} {:>5} {:>6}\n", "spacing",
+             "vertices", "unknowns", "bolts", "tolerance", "iters", "seconds", "(min..max)", "grad_norm", "conv",
+             "rmse_mm", "max_mm", "plain_s", "iters", "ratio");
   for (double spacing : args.spacings) {
     rods::CylinderGridParameters parameters;
     parameters.spacing_m = spacing;
@@ -49,33 +81,64 @@ int runSimBench(const SimBenchArgs& args) {
       options.model.gravity = args.gravity;
       options.solver.tolerance = tolerance;
       options.solver.threads = args.threads;
-      const rods::SimulationRun run = rods::simulateRods(grid.network, &surface, options);
+      const TimedRun notched = timedRun(grid.network, surface, options, args.repeats);
+      std::optional<TimedRun> plain;
+      if (args.reference) {
+        rods::SimulationOptions plainOptions = options;
+        plainOptions.model.notches = false;
+        plain = timedRun(grid.network, surface, plainOptions, args.repeats);
+      }
+      const rods::SimulationRun& run = notched.run;
       const double rmse = run.deviation ? run.deviation->rmse_m : 0.0;
       const double maxError = run.deviation ? run.deviation->max_m : 0.0;
-      fmt::print("{:>8.2f} {:>8} {:>8} {:>6} {:>9.0e} {:>6} {:>9.3f} {:>9} {:>11.4f} {:>11.4f}\n", spacing, run.vertices,
-                 run.unknowns, grid.network.connections.size(), tolerance, run.solver.iterations, run.solver.seconds,
-                 run.solver.converged ? "yes" : "no", 1e3 * rmse, 1e3 * maxError);
-      rows.push_back({{"spacing_m", spacing},
-                      {"vertices", run.vertices},
-                      {"unknowns", run.unknowns},
-                      {"bolts", grid.network.connections.size()},
-                      {"tolerance", tolerance},
-                      {"iterations", run.solver.iterations},
-                      {"seconds", run.solver.seconds},
-                      {"converged", run.solver.converged},
-                      {"reason", run.solver.reason},
-                      {"rmse_m", rmse},
-                      {"max_error_m", maxError}});
+      const double ratio = plain ? notched.medianSeconds / plain->medianSeconds : 0.0;
+      fmt::print("{:>7.2f} {:>8} {:>8} {:>5} {:>9.0e} {:>5} {:>8.3f} {:>15} {:>9.2e} {:>4} {:>9.4f} {:>9.4f} {:>8} {:>5} {:>6}\n",
+                 spacing, run.vertices, run.unknowns, grid.network.connections.size(), tolerance,
+                 run.solver.iterations, notched.medianSeconds,
+                 fmt::format("({:.3f}..{:.3f})", notched.minSeconds, notched.maxSeconds), run.solver.gradientNorm,
+                 run.solver.converged ? "yes" : "no", 1e3 * rmse, 1e3 * maxError,
+                 plain ? fmt::format("{:.3f}", plain->medianSeconds) : "-",
+                 plain ? std::to_string(plain->run.solver.iterations) : "-",
+                 plain ? fmt::format("{:.2f}", ratio) : "-");
+      nlohmann::json row{{"spacing_m", spacing},
+                         {"vertices", run.vertices},
+                         {"unknowns", run.unknowns},
+                         {"bolts", grid.network.connections.size()},
+                         {"tolerance", tolerance},
+                         {"iterations", run.solver.iterations},
+                         {"seconds", notched.medianSeconds},
+                         {"seconds_min", notched.minSeconds},
+                         {"seconds_max", notched.maxSeconds},
+                         {"repeats", args.repeats},
+                         {"gradient_norm", run.solver.gradientNorm},
+                         {"converged", run.solver.converged},
+                         {"reason", run.solver.reason},
+                         {"rmse_m", rmse},
+                         {"max_error_m", maxError}};
+      if (plain) {
+        row["plain_seconds"] = plain->medianSeconds;
+        row["plain_iterations"] = plain->run.solver.iterations;
+        row["plain_converged"] = plain->run.solver.converged;
+        row["plain_rmse_m"] = plain->run.deviation ? plain->run.deviation->rmse_m : 0.0;
+        row["ratio_to_plain"] = ratio;
+      }
+      rows.push_back(row);
     }
   }
   if (!args.csv.empty()) {
     std::ostringstream file;
-    file << "spacing_m,vertices,unknowns,bolts,tolerance,iterations,seconds,converged,rmse_m,max_error_m\n";
+    file << "spacing_m,vertices,unknowns,bolts,tolerance,iterations,seconds,seconds_min,seconds_max,gradient_norm,"
+            "converged,rmse_m,max_error_m,plain_seconds,plain_iterations,plain_rmse_m,ratio_to_plain\n";
     for (const auto& r : rows) {
-      file << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", r["spacing_m"].get<double>(), r["vertices"].get<int>(),
-                          r["unknowns"].get<int>(), r["bolts"].get<size_t>(), r["tolerance"].get<double>(),
-                          r["iterations"].get<int>(), r["seconds"].get<double>(), r["converged"].get<bool>() ? 1 : 0,
-                          r["rmse_m"].get<double>(), r["max_error_m"].get<double>());
+      auto number = [&](const char* key) { return r.contains(key) ? fmt::format("{}", r[key].get<double>()) : std::string(); };
+      file << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r["spacing_m"].get<double>(),
+                          r["vertices"].get<int>(), r["unknowns"].get<int>(), r["bolts"].get<size_t>(),
+                          r["tolerance"].get<double>(), r["iterations"].get<int>(), r["seconds"].get<double>(),
+                          r["seconds_min"].get<double>(), r["seconds_max"].get<double>(),
+                          r["gradient_norm"].get<double>(), r["converged"].get<bool>() ? 1 : 0,
+                          r["rmse_m"].get<double>(), r["max_error_m"].get<double>(), number("plain_seconds"),
+                          r.contains("plain_iterations") ? std::to_string(r["plain_iterations"].get<int>()) : "",
+                          number("plain_rmse_m"), number("ratio_to_plain"));
     }
     writeFileAtomically(args.csv, file.str());
   }
@@ -129,14 +192,19 @@ int runStress(const StressArgs& args) {
 void registerSimBench(CLI::App& bench, Action& action) {
   auto args = std::make_shared<SimBenchArgs>();
   auto* cmd = bench.add_subcommand(
-      "sim", "Rod simulation (DER, sliding bolts, notches) on a patch-like grid of ~400-650 vertices: "
-             "Newton iterations, wall time and RMSE to the design surface at several tolerances");
-  cmd->add_option("--spacings", args->spacings, "member spacings in m (1.0 -> ~400 vertices, 0.8 -> ~650)")
+      "sim", "Rod simulation (DER, sliding bolts, notches) on a patch-like grid of ~400-800 vertices: "
+             "Newton iterations, median wall time and RMSE to the design surface at several tolerances, "
+             "against the same grid with plain holes");
+  cmd->add_option("--spacings", args->spacings,
+                  "member spacings in m (1.0 -> 416 vertices, 0.8 -> 640, 0.72 -> 784)")
       ->delimiter(',');
   cmd->add_option("--tolerances", args->tolerances, "relative Newton-decrement tolerances")->delimiter(',');
   cmd->add_option("--notch-fraction", args->notchFraction, "notch length on each side of inner bolts, in spacings");
   cmd->add_flag("--gravity", args->gravity, "add self-weight");
   cmd->add_option("--threads", args->threads, "threads assembling the Hessian")->check(CLI::PositiveNumber);
+  cmd->add_option("--repeats", args->repeats, "runs per row; the table shows the median time")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("!--no-reference", args->reference, "skip the plain-hole reference run of each row");
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_flag("--json", args->json, "also print the table as JSON");
   cmd->callback([args, &action] { action = [args] { return runSimBench(*args); }; });

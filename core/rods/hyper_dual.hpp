@@ -228,6 +228,52 @@ template <class S>
 inline V3<S> cross(const V3<S>& a, const V3<S>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
+// Fused forms for HyperDual: one pass over the Hessian's lower triangle instead of a temporary
+// per product and per sum (the bending stencils spend most of their time in dot and cross).
+template <int N>
+inline HyperDual<N> dot(const V3<HyperDual<N>>& a, const V3<HyperDual<N>>& b) {
+  const HyperDual<N>* as[3] = {&a.x, &a.y, &a.z};
+  const HyperDual<N>* bs[3] = {&b.x, &b.y, &b.z};
+  HyperDual<N> r;
+  r.v = a.x.v * b.x.v + a.y.v * b.y.v + a.z.v * b.z.v;
+  for (int i = 0; i < N; ++i) {
+    r.g[i] = a.x.v * b.x.g[i] + b.x.v * a.x.g[i] + a.y.v * b.y.g[i] + b.y.v * a.y.g[i] + a.z.v * b.z.g[i] +
+             b.z.v * a.z.g[i];
+  }
+  for (int j = 0; j < N; ++j) {
+    for (int i = j; i < N; ++i) {
+      double sum = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const HyperDual<N>& ak = *as[k];
+        const HyperDual<N>& bk = *bs[k];
+        sum += ak.v * bk.h(i, j) + bk.v * ak.h(i, j) + ak.g[i] * bk.g[j] + bk.g[i] * ak.g[j];
+      }
+      r.h(i, j) = sum;
+    }
+  }
+  return r;
+}
+// a * b - c * d in one pass.
+template <int N>
+inline HyperDual<N> productDifference(const HyperDual<N>& a, const HyperDual<N>& b, const HyperDual<N>& c,
+                                      const HyperDual<N>& d) {
+  HyperDual<N> r;
+  r.v = a.v * b.v - c.v * d.v;
+  for (int i = 0; i < N; ++i) r.g[i] = a.v * b.g[i] + b.v * a.g[i] - c.v * d.g[i] - d.v * c.g[i];
+  for (int j = 0; j < N; ++j) {
+    const double aj = a.g[j], bj = b.g[j], cj = c.g[j], dj = d.g[j];
+    for (int i = j; i < N; ++i) {
+      r.h(i, j) = a.v * b.h(i, j) + b.v * a.h(i, j) + a.g[i] * bj + b.g[i] * aj -
+                  (c.v * d.h(i, j) + d.v * c.h(i, j) + c.g[i] * dj + d.g[i] * cj);
+    }
+  }
+  return r;
+}
+template <int N>
+inline V3<HyperDual<N>> cross(const V3<HyperDual<N>>& a, const V3<HyperDual<N>>& b) {
+  return {productDifference(a.y, b.z, a.z, b.y), productDifference(a.z, b.x, a.x, b.z),
+          productDifference(a.x, b.y, a.y, b.x)};
+}
 template <class S>
 inline S squaredNorm(const V3<S>& a) { return dot(a, a); }
 template <class S>

@@ -3,12 +3,15 @@
 #include "core/errors.hpp"
 
 #include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace egg::rods {
 
@@ -38,6 +41,7 @@ const char* toString(SolverStatus status) {
     case SolverStatus::TimeLimit: return "time_limit";
     case SolverStatus::Stalled: return "stalled";
     case SolverStatus::NonFinite: return "non_finite";
+    case SolverStatus::Collapsed: return "collapsed";
   }
   return "unknown";
 }
@@ -45,6 +49,82 @@ const char* toString(SolverStatus status) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The Hessian of the free unknowns as a sparse lower triangle whose pattern changes only when a
+// bolt moves to another edge: the triplets of the model come in the same order every iteration,
+// so each is mapped once to its slot in the matrix and later iterations only add values (no
+// sorting, no symbolic analysis).
+class FreeHessian {
+ public:
+  explicit FreeHessian(std::vector<int> freeIndex, int freeCount)
+      : freeIndex_(std::move(freeIndex)), matrix_(freeCount, freeCount) {}
+
+  // Returns true when the pattern changed (the factorisation needs a new symbolic analysis).
+  bool assemble(const std::vector<Eigen::Triplet<double>>& triplets) {
+    bool same = triplets.size() == rows_.size();
+    for (size_t k = 0; same && k < triplets.size(); ++k) {
+      same = triplets[k].row() == rows_[k] && triplets[k].col() == cols_[k];
+    }
+    if (!same) rebuild(triplets);
+    double* values = matrix_.valuePtr();
+    std::fill(values, values + matrix_.nonZeros(), 0.0);
+    for (size_t k = 0; k < triplets.size(); ++k) {
+      if (slot_[k] >= 0) values[slot_[k]] += triplets[k].value();
+    }
+    base_.assign(values, values + matrix_.nonZeros());
+    return !same;
+  }
+  // Diagonal of the assembled (unshifted) Hessian.
+  Eigen::VectorXd diagonal() const {
+    Eigen::VectorXd d(diagonalSlot_.size());
+    for (size_t i = 0; i < diagonalSlot_.size(); ++i) d[i] = base_[diagonalSlot_[i]];
+    return d;
+  }
+  // The assembled Hessian plus shift * scale on the diagonal.
+  const Eigen::SparseMatrix<double>& shifted(double shift, const Eigen::VectorXd& scale) {
+    double* values = matrix_.valuePtr();
+    std::copy(base_.begin(), base_.end(), values);
+    if (shift > 0.0) {
+      for (size_t i = 0; i < diagonalSlot_.size(); ++i) values[diagonalSlot_[i]] += shift * scale[i];
+    }
+    return matrix_;
+  }
+
+ private:
+  void rebuild(const std::vector<Eigen::Triplet<double>>& triplets) {
+    const int n = static_cast<int>(matrix_.rows());
+    std::vector<Eigen::Triplet<double>> pattern;
+    pattern.reserve(triplets.size() + n);
+    for (const auto& t : triplets) {
+      const int r = freeIndex_[t.row()], c = freeIndex_[t.col()];
+      if (r >= 0 && c >= 0) pattern.emplace_back(std::max(r, c), std::min(r, c), 0.0);
+    }
+    for (int i = 0; i < n; ++i) pattern.emplace_back(i, i, 0.0);  // every diagonal entry exists (shifts)
+    matrix_.setFromTriplets(pattern.begin(), pattern.end());
+    matrix_.makeCompressed();
+    auto slotOf = [&](int r, int c) {
+      const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[c];
+      const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[c + 1];
+      return static_cast<int>(std::lower_bound(begin, end, r) - matrix_.innerIndexPtr());
+    };
+    rows_.resize(triplets.size());
+    cols_.resize(triplets.size());
+    slot_.resize(triplets.size());
+    for (size_t k = 0; k < triplets.size(); ++k) {
+      rows_[k] = triplets[k].row();
+      cols_[k] = triplets[k].col();
+      const int r = freeIndex_[rows_[k]], c = freeIndex_[cols_[k]];
+      slot_[k] = (r >= 0 && c >= 0) ? slotOf(std::max(r, c), std::min(r, c)) : -1;
+    }
+    diagonalSlot_.resize(n);
+    for (int i = 0; i < n; ++i) diagonalSlot_[i] = slotOf(i, i);
+  }
+
+  std::vector<int> freeIndex_;
+  Eigen::SparseMatrix<double> matrix_;
+  std::vector<int> rows_, cols_, slot_, diagonalSlot_;
+  std::vector<double> base_;
+};
 
 // Newton with line search on the model as it is (one stage of the continuation).
 SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_point start, int iterationsBefore) {
@@ -59,10 +139,12 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
 
   SolverResult result;
   Eigen::VectorXd gradient(n);
-  std::vector<Eigen::Triplet<double>> triplets, freeTriplets;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+  std::vector<Eigen::Triplet<double>> triplets;
+  FreeHessian hessian(freeIndex, freeCount);
+  // LLT rather than LDLT: cheaper, and it stops at the first non-positive pivot, which is all the
+  // shift search needs to know.
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
   double shift = 0.0;  // relative diagonal shift that last made the Hessian positive definite
-  std::vector<int> patternOuter, patternInner;
 
   for (int iteration = 0;; ++iteration) {
     const Eigen::VectorXd z = model.state();
@@ -91,61 +173,34 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       return result;
     }
 
-    freeTriplets.clear();
-    freeTriplets.reserve(triplets.size());
-    Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(freeCount);
-    for (const auto& t : triplets) {
-      const int r = freeIndex[t.row()], c = freeIndex[t.col()];
-      if (r < 0 || c < 0) continue;
-      freeTriplets.emplace_back(r, c, t.value());
-      if (r == c) diagonal[r] += t.value();
-    }
-    Eigen::SparseMatrix<double> hessian(freeCount, freeCount);
-    hessian.setFromTriplets(freeTriplets.begin(), freeTriplets.end());
+    if (hessian.assemble(triplets)) solver.analyzePattern(hessian.shifted(0.0, Eigen::VectorXd()));
+    const Eigen::VectorXd diagonal = hessian.diagonal();
     const double largestDiagonal = diagonal.cwiseAbs().maxCoeff();
-    Eigen::VectorXd scale = diagonal.cwiseAbs().cwiseMax(1e-12 * largestDiagonal + 1e-300);
+    const Eigen::VectorXd scale = diagonal.cwiseAbs().cwiseMax(1e-12 * largestDiagonal + 1e-300);
 
     // Newton direction; shift the diagonal (relative to itself) until the factor is positive
-    // definite. Starting from a tenth of the last shift keeps the number of refactorisations low.
+    // definite. Starting from a tenth of the last shift keeps the number of refactorisations low
+    // (measured: ~2 per iteration when starting from zero every time, ~1.3 this way); the shift
+    // returns to zero near a stable equilibrium, where Newton converges quadratically.
     Eigen::VectorXd direction;
     bool factored = false;
-    double trial = shift > 0.0 ? shift * 0.1 : 0.0;
-    if (trial < 1e-10) trial = 0.0;
-    for (int attempt = 0; attempt < 30; ++attempt) {
-      Eigen::SparseMatrix<double> shifted = hessian;
-      if (trial > 0.0) {
-        for (int i = 0; i < freeCount; ++i) shifted.coeffRef(i, i) += trial * scale[i];
+    double trial = shift * 0.1 < 1e-10 ? 0.0 : shift * 0.1;
+    for (int attempt = 0; attempt < 30; ++attempt, trial = trial == 0.0 ? 1e-8 : trial * 10.0) {
+      solver.factorize(hessian.shifted(trial, scale));
+      if (solver.info() != Eigen::Success) continue;
+      direction = -solver.solve(g);
+      if (direction.allFinite() && direction.dot(g) < 0.0) {
+        factored = true;
+        shift = trial;
+        break;
       }
-      shifted.makeCompressed();
-      // The pattern changes only when a bolt moves to another edge: reuse the ordering and
-      // symbolic factorisation otherwise.
-      const bool samePattern =
-          static_cast<long>(patternInner.size()) == shifted.nonZeros() &&
-          std::equal(patternOuter.begin(), patternOuter.end(), shifted.outerIndexPtr()) &&
-          std::equal(patternInner.begin(), patternInner.end(), shifted.innerIndexPtr());
-      if (!samePattern) {
-        solver.analyzePattern(shifted);
-        patternOuter.assign(shifted.outerIndexPtr(), shifted.outerIndexPtr() + shifted.outerSize() + 1);
-        patternInner.assign(shifted.innerIndexPtr(), shifted.innerIndexPtr() + shifted.nonZeros());
-      }
-      solver.factorize(shifted);
-      if (solver.info() == Eigen::Success && (solver.vectorD().array() > 0.0).all()) {
-        direction = -solver.solve(g);
-        if (direction.allFinite() && direction.dot(g) < 0.0) {
-          factored = true;
-          break;
-        }
-      }
-      trial = trial == 0.0 ? 1e-8 : trial * 10.0;
     }
-    shift = trial;
     if (!factored) {
       result.status = SolverStatus::Stalled;
       result.reason = "Hessian could not be made positive definite";
       return result;
     }
     result.decrement = -direction.dot(g);
-
     double internal = 0.0, external = 0.0;
     model.energyParts(z, internal, external);
     const double energyScale = std::abs(internal) + std::abs(external) + model.energyUnit();

@@ -25,7 +25,9 @@ struct SolverOptions {
   void validate() const;      // throws InvalidInput naming the field
 };
 
-enum class SolverStatus { Converged, IterationLimit, TimeLimit, Stalled, NonFinite };
+// Collapsed: set by the simulation stage (simulation.hpp) when a self-weight load step carries the
+// grid far from its weightless equilibrium without settling (Section 3.5.2, Fig. 3.11).
+enum class SolverStatus { Converged, IterationLimit, TimeLimit, Stalled, NonFinite, Collapsed };
 
 const char* toString(SolverStatus status);
 

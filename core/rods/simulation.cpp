@@ -2,14 +2,29 @@
 
 #include "core/errors.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
 
 namespace egg::rods {
+
+namespace {
+template <class... Args>
+std::string format(const char* pattern, Args... args) {
+  char buffer[512];
+  std::snprintf(buffer, sizeof(buffer), pattern, args...);
+  return buffer;
+}
+}  // namespace
 
 void SimulationOptions::validate() const {
   model.validate();
   solver.validate();
   if (gravitySteps < 1) throw InvalidInput("SimulationOptions.gravitySteps must be >= 1");
+  if (!(collapseFraction >= 0.0)) throw InvalidInput("SimulationOptions.collapseFraction must be >= 0");
   if (!(scaleFactor > 0.0)) throw InvalidInput("SimulationOptions.scaleFactor must be > 0");
 }
 
@@ -25,6 +40,16 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   const int steps = options.model.gravity ? options.gravitySteps : 0;
   SolverOptions solverOptions = options.solver;
   int iterations = 0, switches = 0;
+  std::vector<Eigen::Vector3d> weightless;  // vertices at the weightless equilibrium
+  double extent = 0.0;                      // its bounding-box diagonal
+  auto largestDisplacement = [&]() {
+    double largest = 0.0;
+    size_t k = 0;
+    for (int r = 0; r < model.rodCount(); ++r) {
+      for (int i = 0; i < model.vertexCount(r); ++i) largest = std::max(largest, (model.vertex(r, i) - weightless[k++]).norm());
+    }
+    return largest;
+  };
   for (int step = 0; step <= steps; ++step) {
     model.setLoadFactor(steps == 0 ? 1.0 : static_cast<double>(step) / steps);
     const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -35,6 +60,36 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     solverOptions.stiffnessContinuation = false;
     iterations = run.solver.iterations += iterations;
     switches = run.solver.boltEdgeSwitches += switches;
+    if (run.solver.status == SolverStatus::IterationLimit) {
+      run.solver.reason = format("no convergence in %d iterations (decrement %.3g J)", iterations, run.solver.decrement);
+    }
+    // A load step that ran out of iterations or time far from the weightless equilibrium, still
+    // going down: the grid is falling through, not converging slowly.
+    const bool outOfBudget =
+        run.solver.status == SolverStatus::IterationLimit || run.solver.status == SolverStatus::TimeLimit;
+    if (step > 0 && outOfBudget && options.collapseFraction > 0.0) {
+      const double moved = largestDisplacement();
+      if (moved > options.collapseFraction * extent) {
+        run.solver.status = SolverStatus::Collapsed;
+        run.solver.reason = format(
+            "collapses under its own weight: after %d iterations a vertex has moved %.3g m (%.1f %% of the grid's "
+            "extent %.3g m) from the weightless equilibrium and the energy is still decreasing (decrement %.3g J): "
+            "no equilibrium near the design shape (Section 3.5.2, Fig. 3.11)",
+            iterations, moved, 100.0 * moved / extent, extent, run.solver.decrement);
+      }
+    }
+    if (step == 0 && steps > 0) {
+      Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+      Eigen::Vector3d high = -low;
+      for (int r = 0; r < model.rodCount(); ++r) {
+        for (int i = 0; i < model.vertexCount(r); ++i) {
+          weightless.push_back(model.vertex(r, i));
+          low = low.cwiseMin(weightless.back());
+          high = high.cwiseMax(weightless.back());
+        }
+      }
+      extent = (high - low).norm();
+    }
     if (!run.solver.converged) {
       if (step < steps) {
         run.solver.reason = "at load step " + std::to_string(step) + " of " + std::to_string(steps) + ": " +
@@ -43,6 +98,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
       break;
     }
   }
+  if (!weightless.empty()) run.maxSag_m = largestDisplacement();
   run.solver.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.unknowns = model.dofCount();
 

@@ -18,6 +18,12 @@ struct SimulationOptions {
   ModelOptions model;                  // discretisation, notches, gravity, friction, penalty weights
   SolverOptions solver;                // Newton limits and tolerance
   int gravitySteps = 2;                // load steps for self-weight (first a weightless solve)
+  // A self-weight load step that runs out of iterations or time with some vertex farther than
+  // collapseFraction x the grid's extent (bounding-box diagonal) from the weightless equilibrium
+  // is reported as Collapsed rather than as slow: the grid is falling through (Section 3.5.2,
+  // Fig. 3.11). Example: the 8 m vault of `egg bench sim --gravity` (50 x 5 mm strips) with
+  // sliding bolts needs ~760 iterations to reach its collapsed equilibrium 1.7 m down. 0: off.
+  double collapseFraction = 0.05;
   double scaleFactor = 1.0;            // f of the NRMSE (Section 3.5.2)
   bool compareWithoutNotches = false;  // also run with plain holes (RMS1 of Section 2.6.2)
   void validate() const;               // throws InvalidInput naming the field
@@ -33,6 +39,7 @@ struct SimulationRun {
   std::vector<std::vector<Eigen::Vector3d>> normals;      // per rod vertex, lamella normal
   std::vector<std::array<double, 2>> boltPositions_m;     // per connection: s along rod a, rod b
   std::optional<DeviationStats> deviation;                // contact points vs surface (when given)
+  double maxSag_m = 0.0;  // self-weight runs: largest vertex displacement from the weightless equilibrium
 };
 
 struct SimulationResult {

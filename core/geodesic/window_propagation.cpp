@@ -80,7 +80,6 @@ class Propagator {
     s_.splitCrossing.assign(t_.halfedgeCount, 0.0);
     s_.firstBlock.assign(t_.halfedgeCount, -1);
     s_.blocks.clear();
-    s_.windowSpan.clear();
     s_.windows.clear();
     // Buckets of 1/256 edge: a handful of queued windows each (see bucket_queue.hpp).
     s_.queue.reset(t_.meanEdgeLength / 256.0);
@@ -460,20 +459,16 @@ class Propagator {
     }
     SpanBlock& block = s_.blocks[first];
     block.spans[block.count] = {w.b0, w.b1, index};
-    s_.windowSpan.push_back(first * SpanBlock::kCapacity + block.count);
     ++block.count;
     push(windowMinDistance(w), index);
   }
 
   void propagateWindow(int index) {
-    Window w = s_.windows[index];
-    if (!prune(w)) return;  // vertex distances may have dropped since it was queued
-    if (w.b0 != s_.windows[index].b0 || w.b1 != s_.windows[index].b1) {
-      constexpr int kCapacity = Propagation::SpanBlock::kCapacity;
-      auto& span = s_.blocks[s_.windowSpan[index] / kCapacity].spans[s_.windowSpan[index] % kCapacity];
-      s_.windows[index].b0 = span.b0 = w.b0;
-      s_.windows[index].b1 = span.b1 = w.b1;
-    }
+    // No second pruning here: the window was pruned when it was added, and by the time it is
+    // popped its vertices' distances have almost never dropped further (on a 3.6k-vertex bump,
+    // 24 of 183k windows would have died here and 3.6k been trimmed); re-pruning every pop cost
+    // ~10 % of the propagation for that. Pruning only saves work, so the result stays exact.
+    const Window w = s_.windows[index];
     const int h = w.halfedge;
     const int f = t_.he[h].face;
     const double L = t_.he[h].length;

@@ -104,7 +104,6 @@ struct Propagation {
   };
   std::vector<int> firstBlock;      // per halfedge, its newest block; -1 if none
   std::vector<SpanBlock> blocks;
-  std::vector<int> windowSpan;      // per window: block * kCapacity + slot of its span
   std::vector<Window> windows;
   // Items >= 0: window index; < 0: vertex event for vertex -item-1.
   BucketQueue queue;

@@ -48,7 +48,8 @@ std::array<double, kParts> partsOf(const EggTimings& t) {
 int runGridBench(const GridBenchArgs& args) {
   fmt::print("egg bench grid: bump (height {} m, sigma 1.5 m) patch 6 x 6 m, distance maps {} x {}, alpha_bar = min,\n"
              "lamellas 0.1 m at spacing 0.6 m; wall seconds (all threads), median of {} solves per size;\n"
-             "share = part / t_grid; fields = distance propagations (maps + eta + tracing)\n",
+             "t_maps includes the eta check's curvature and peak fields (run alongside the maps), t_eta the check\n"
+             "itself; share = part / t_grid; fields = propagations (patch sides + maps + peaks + tracing)\n",
              args.height, args.resolution, args.resolution, args.repeats);
   fmt::print("{:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>10} {:>18}\n", "vertices", "t_patch",
              "t_eta", "t_maps", "t_sqp", "t_member", "t_trace", "t_grid", "u x v", "fields", "max_notch", "alpha_bar range");

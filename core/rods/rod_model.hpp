@@ -88,6 +88,8 @@ class RodModel {
   double energy(const Eigen::VectorXd& z) const;
   // Internal energy (rods + constraints) and external potential separately, at z.
   void energyParts(const Eigen::VectorXd& z, double& internal, double& external) const;
+  // The external potential alone (gravity, point loads, end moments): cheap, no stencil pass.
+  double externalPotential(const Eigen::VectorXd& z) const;
   // Energy, gradient (size dofCount) and Hessian triplets (lower triangle, row >= col) at z, on
   // `threads` threads.
   double derivatives(const Eigen::VectorXd& z, Eigen::VectorXd& gradient,

@@ -280,6 +280,17 @@ bool RodModel::edgesValid(const Eigen::VectorXd& z) const {
   return true;
 }
 
+double RodModel::externalPotential(const Eigen::VectorXd& z) const {
+  double moments = 0.0;
+  for (const EndMoment& m : endMoments_) {
+    const int n = rods_[m.rod].edges;
+    const V3<double> x0 = constant<double>(z.segment<3>(vertexDof(m.rod, n - 1)));
+    const V3<double> x1 = constant<double>(z.segment<3>(vertexDof(m.rod, n)));
+    moments += endMomentPotential(x0, x1, m.axis, loadFactor_ * m.moment, m.direction, m.angle);
+  }
+  return moments + constantGradient_.dot(z);
+}
+
 void RodModel::energyParts(const Eigen::VectorXd& z, double& internal, double& external) const {
   if (!edgesValid(z)) {
     internal = kInfinity;

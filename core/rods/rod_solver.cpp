@@ -201,8 +201,9 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       return result;
     }
     result.decrement = -direction.dot(g);
-    double internal = 0.0, external = 0.0;
-    model.energyParts(z, internal, external);
+    // The energy scale from the energy just computed: no second pass over the stencils.
+    const double external = model.externalPotential(z);
+    const double internal = energy - external;
     const double energyScale = std::abs(internal) + std::abs(external) + model.energyUnit();
     if (result.decrement <= options.tolerance * energyScale) {
       result.status = SolverStatus::Converged;

@@ -65,10 +65,19 @@ StressOutcome runStressCase(const StressCase& stressCase, double timeLimit_s, in
   StressOutcome outcome;
   outcome.stressCase = stressCase;
   outcome.converged = run.solver.converged;
+  outcome.status = run.solver.status;
   outcome.reason = run.solver.reason;
   outcome.vertices = run.vertices;
   outcome.iterations = run.solver.iterations;
   outcome.seconds = run.solver.seconds;
+  outcome.sag_m = run.maxSag_m;
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
+  for (const auto& v : grid.surface.vertices()) {
+    const auto& p = grid.surface.point(v);
+    low = low.cwiseMin(Eigen::Vector3d(p[0], p[1], p[2]));
+    high = high.cwiseMax(Eigen::Vector3d(p[0], p[1], p[2]));
+  }
+  outcome.extent_m = (high - low).norm();
   for (const auto& line : run.centrelines) {
     for (const auto& p : line) outcome.finite = outcome.finite && p.allFinite();
   }

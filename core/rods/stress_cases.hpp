@@ -25,6 +25,7 @@ struct StressOutcome {
   StressCase stressCase;
   bool converged = false;
   bool finite = true;     // every centreline coordinate finite
+  SolverStatus status = SolverStatus::IterationLimit;  // e.g. collapsed: no equilibrium near the design
   std::string reason;     // the solver's reason (why it stopped)
   int vertices = 0;
   int iterations = 0;
@@ -32,8 +33,12 @@ struct StressOutcome {
   double rmse_m = 0.0;
   double nrmse = 0.0;     // rmse / scale
   double maxError_m = 0.0;
+  double sag_m = 0.0;     // largest displacement from the weightless equilibrium
+  double extent_m = 0.0;  // the design surface's bounding-box diagonal (a sag of several % of it: collapsed)
 };
 
-StressOutcome runStressCase(const StressCase& stressCase, double timeLimit_s = 20.0, int maxIterations = 300);
+// 1000 iterations: thin or heavy vaults that fall through need several hundred Newton
+// iterations to reach their collapsed equilibrium (w:t 100: 636).
+StressOutcome runStressCase(const StressCase& stressCase, double timeLimit_s = 20.0, int maxIterations = 1000);
 
 }  // namespace egg::rods

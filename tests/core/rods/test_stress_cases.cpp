@@ -34,7 +34,7 @@ TEST(StressCases, CoverTheRangesOfTheIssue) {
 TEST(StressCases, ExtremeCornersConvergeOrSayWhyAndStayFinite) {
   for (const StressCase& c : stressCases()) {
     if (c.name.find(',') == std::string::npos && c.name != "base") continue;  // base and the two corners
-    const StressOutcome o = runStressCase(c, /*timeLimit_s=*/8.0, /*maxIterations=*/150);
+    const StressOutcome o = runStressCase(c, /*timeLimit_s=*/8.0, /*maxIterations=*/300);
     EXPECT_TRUE(o.finite) << c.name;
     EXPECT_TRUE(o.converged || !o.reason.empty()) << c.name;
     EXPECT_LT(o.seconds, 30.0) << c.name;  // limits hold: no hang
@@ -42,6 +42,14 @@ TEST(StressCases, ExtremeCornersConvergeOrSayWhyAndStayFinite) {
     if (c.name == "base") {
       EXPECT_TRUE(o.converged) << o.reason;
       EXPECT_LT(o.nrmse, 0.02);  // a 3 m vault of 50 x 5 mm plywood stays within 2 % of its size
+      EXPECT_LT(o.sag_m, 0.01 * o.extent_m);
+    }
+    if (c.name.rfind("soft heavy", 0) == 0) {
+      // A 220 m vault of 0.5 GPa strips 11 cm x 1.1 cm at steel density: its weight per length
+      // is ~10^4 times what a lone strip arch of that size can carry (~14 EI/R^3), and sliding
+      // lets it fall through; after 300 iterations (the weightless deployment alone takes over 150) it is ~46 m down, moving.
+      EXPECT_EQ(o.status, SolverStatus::Collapsed) << o.reason;
+      EXPECT_GT(o.sag_m, 0.05 * o.extent_m);
     }
   }
 }

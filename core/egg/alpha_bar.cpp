@@ -133,50 +133,60 @@ double constraintRoot(Evaluator& evaluate, int c, const Sample& first, const Sam
 
 // Adaptive refinement of the scan (Lipschitz branch and bound). Between two samples where some
 // constraint is positive at both ends, a feasible stretch can hide only if every constraint can
-// reach zero inside: with L_c the largest rate of change of g_c seen between neighbouring samples
-// (times a safety factor), g_c >= (g_c(a) + g_c(b)) / 2 - L_c (b - a) / 2 on [a, b]. Intervals whose
-// bound stays positive for some constraint are certified free of feasible angles; the others are
+// reach zero inside: with L_c a bound on the rate of change of g_c there,
+// g_c >= (g_c(a) + g_c(b)) / 2 - L_c (b - a) / 2 on [a, b]. L_c is estimated from the samples: the
+// larger of 4x the largest rate over the interval and its two neighbours (local, so a smooth
+// minimum just above zero is resolved without refining the whole range) and 1/4 of the largest
+// rate seen anywhere (a floor against a dip in an otherwise flat stretch). Intervals whose bound
+// stays positive for some constraint are certified free of feasible angles; the others are
 // halved, most promising first, until certified, narrower than `minWidth`, or out of budget.
 // Returns false when the budget ran out before every interval was certified or resolved.
 bool refineScan(Evaluator& evaluate, std::vector<Sample>& samples, double minWidth, int budget) {
-  Constraints lipschitz{};
+  constexpr double kLocalSafety = 4.0, kGlobalFloor = 0.25;
+  const auto rate = [&](size_t k, int c) {  // |dg_c / d alpha| over interval k = (k-1, k)
+    return std::abs(samples[k].g[c] - samples[k - 1].g[c]) / (samples[k].alpha - samples[k - 1].alpha);
+  };
+  Constraints global{};
   for (size_t k = 1; k < samples.size(); ++k)
-    for (int c = 0; c < kConstraints; ++c)
-      lipschitz[c] = std::max(lipschitz[c], std::abs(samples[k].g[c] - samples[k - 1].g[c]) /
-                                                (samples[k].alpha - samples[k - 1].alpha));
-  constexpr double kSafety = 2.0;
-  for (double& l : lipschitz) l *= kSafety;
-  // Lower bound of max_c min_[a,b] g_c: negative means a feasible angle may hide in (a, b).
-  const auto bound = [&](const Sample& a, const Sample& b) {
+    for (int c = 0; c < kConstraints; ++c) global[c] = std::max(global[c], rate(k, c));
+  // Lower bound of max_c min_[a,b] g_c over interval k: negative means a feasible angle may hide.
+  const auto bound = [&](size_t k) {
     double worst = -std::numeric_limits<double>::infinity();
-    for (int c = 0; c < kConstraints; ++c)
-      worst = std::max(worst, 0.5 * (a.g[c] + b.g[c]) - 0.5 * lipschitz[c] * (b.alpha - a.alpha));
+    for (int c = 0; c < kConstraints; ++c) {
+      double local = rate(k, c);
+      if (k > 1) local = std::max(local, rate(k - 1, c));
+      if (k + 1 < samples.size()) local = std::max(local, rate(k + 1, c));
+      const double lipschitz = std::max(kLocalSafety * local, kGlobalFloor * global[c]);
+      worst = std::max(worst, 0.5 * (samples[k - 1].g[c] + samples[k].g[c]) -
+                                  0.5 * lipschitz * (samples[k].alpha - samples[k - 1].alpha));
+    }
     return worst;
   };
   // Only gaps with no feasible end and no sign change of a constraint that could open a
   // feasible stretch need refining: sign changes are located exactly afterwards.
-  const auto hidden = [&](const Sample& a, const Sample& b) {
+  const auto hidden = [&](size_t k) {
+    const Sample &a = samples[k - 1], &b = samples[k];
     if (a.feasible || b.feasible) return false;
     for (int c = 0; c < kConstraints; ++c)
-      if (a.g[c] > 0.0 && b.g[c] > 0.0) return bound(a, b) < 0.0;  // some constraint positive at both ends
+      if (a.g[c] > 0.0 && b.g[c] > 0.0) return bound(k) < 0.0;  // some constraint positive at both ends
     return false;  // every constraint is negative at one end or changes sign: handled by root location
   };
   bool certified = true;
   for (int spent = 0;;) {
-    int best = -1;
+    size_t best = 0;
     double bestBound = 0.0;
     for (size_t k = 1; k < samples.size(); ++k) {
-      if (samples[k].alpha - samples[k - 1].alpha <= minWidth || !hidden(samples[k - 1], samples[k])) continue;
-      const double b = bound(samples[k - 1], samples[k]);
-      if (best < 0 || b < bestBound) best = static_cast<int>(k), bestBound = b;
+      if (samples[k].alpha - samples[k - 1].alpha <= minWidth || !hidden(k)) continue;
+      const double b = bound(k);
+      if (best == 0 || b < bestBound) best = k, bestBound = b;
     }
-    if (best < 0) break;
+    if (best == 0) break;
     if (spent++ >= budget) {
       certified = false;
       break;
     }
     const double middle = 0.5 * (samples[best - 1].alpha + samples[best].alpha);
-    samples.insert(samples.begin() + best, sampleAt(evaluate, middle));
+    samples.insert(samples.begin() + static_cast<long>(best), sampleAt(evaluate, middle));
   }
   return certified;
 }
@@ -285,7 +295,10 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
     samples.push_back(sampleAt(evaluate, range->lo + (range->hi - range->lo) * k / (samplesCount - 1)));
     leastViolation = std::min(leastViolation, *std::max_element(samples.back().g.begin(), samples.back().g.end()));
   }
-  const bool certified = refineScan(evaluate, samples, options.tolerance * 16, options.maxEvaluations);
+  // Stretches narrower than 1/256 of the scan spacing (about 2e-4 rad on a typical convex range)
+  // are not searched for: far below any construction tolerance of alpha_bar.
+  const double spacing = (range->hi - range->lo) / (samplesCount - 1);
+  const bool certified = refineScan(evaluate, samples, std::max(options.tolerance, spacing / 256), options.maxEvaluations);
   for (const auto& sample : samples)
     leastViolation = std::min(leastViolation, *std::max_element(sample.g.begin(), sample.g.end()));
   std::string activeAtMin;

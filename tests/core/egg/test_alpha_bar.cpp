@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace egg {
@@ -146,6 +147,46 @@ TEST(AlphaBar, NarrowFeasibleIntervalBetweenScanSamplesIsFound) {
   EXPECT_FALSE(evaluateAlphaBar(maps, aStar - 1e-5, options).feasible);
   EXPECT_FALSE(evaluateAlphaBar(maps, aStar + width + 1e-5, options).feasible);
   EXPECT_NE(r.status.find("limited by slopes"), std::string::npos) << r.status;
+}
+
+TEST(AlphaBar, NarrowDipOfOneConstraintBetweenScanSamplesIsFoundByRefinement) {
+  // One constraint alone dipping below zero between two scan samples: no sign change at the
+  // samples, only the refinement can see it. On a kite (symmetric about c0c2, so F_u = F_v) the
+  // smallest cladding slope has a smooth maximum over alpha_bar (0.9396826 near 1.405 rad); with
+  // k_min 2e-6 below that maximum the slope constraint holds on a window about 0.024 rad wide, less
+  // than half the scan spacing (0.059 rad) and clear of every scan sample.
+  const auto maps = planarPatchMaps({Eigen::Vector2d(0, 0), {2, 0}, {2.6, 2.6}, {0, 2}}, 41);
+  AlphaBarOptions options;
+  const double scale = 0.25 * (maps.sides[0] + maps.sides[1] + maps.sides[2] + maps.sides[3]);
+  double peak = -1.0, peakAngle = 0.0;
+  for (int k = 0; k <= 2000; ++k) {
+    const double a = 1.30 + 0.25 * k / 2000;
+    const auto f = claddingFunction(maps.u, *planarQuad(maps.sides, a, options.minPlanarAngle), Family::U, scale);
+    const auto slopes = segmentSlopes(f, options.cladding.infiniteSlopeFactor);
+    const double smallest = *std::min_element(slopes.begin(), slopes.end());
+    if (smallest > peak) peak = smallest, peakAngle = a;
+  }
+  ASSERT_GT(peakAngle, 1.35);
+  ASSERT_LT(peakAngle, 1.5);
+  options.slopeMin = peak - 2e-6;
+  const auto range = convexAlphaRange(maps.sides, 1e-9, options.minPlanarAngle);
+  const double spacing = (range->hi - range->lo) / (options.scanSamples - 1);
+  for (int k = 0; k < options.scanSamples; ++k)
+    EXPECT_FALSE(evaluateAlphaBar(maps, range->lo + k * spacing, options).feasible) << k;
+  EXPECT_TRUE(evaluateAlphaBar(maps, peakAngle, options).feasible);
+
+  const auto r = solveAlphaBar(maps, options);
+  ASSERT_TRUE(r.rangeFound) << r.status;
+  ASSERT_EQ(r.feasibleIntervals.size(), 1u) << r.status;
+  EXPECT_LT(r.alphaMin, peakAngle);
+  EXPECT_GT(r.alphaMax, peakAngle);
+  EXPECT_LT(r.alphaMax - r.alphaMin, 0.5 * spacing);
+  EXPECT_GT(r.alphaMax - r.alphaMin, 0.01);
+  EXPECT_TRUE(evaluateAlphaBar(maps, r.alphaMin, options).feasible);
+  EXPECT_TRUE(evaluateAlphaBar(maps, r.alphaMax, options).feasible);
+  EXPECT_FALSE(evaluateAlphaBar(maps, r.alphaMin - 1e-5, options).feasible);
+  EXPECT_FALSE(evaluateAlphaBar(maps, r.alphaMax + 1e-5, options).feasible);
+  EXPECT_NE(r.status.find("added by refinement"), std::string::npos);
 }
 
 TEST(AlphaBar, NoFeasibleAngleThrowsInfeasiblePatch) {

@@ -220,7 +220,9 @@ std::string polylinesObj(const std::vector<std::vector<Eigen::Vector3d>>& lines,
 
 void writePatchFiles(const SolvedPatch& patch, const std::filesystem::path& dir, const Scene& scene) {
   if (!patch.egg) return;
-  std::filesystem::create_directories(dir);
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw WriteError(dir.string() + ": cannot create the patch folder: " + ec.message());
   writeGridJson(*patch.egg, (dir / "grid.json").string(), patch.id);
   if (!scene.wants("previews")) return;
   writeGridObj(patch.egg->grid, (dir / "grid.obj").string());

@@ -70,9 +70,13 @@ StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::mo
   std::error_code ec;
   fs::create_directories(parent, ec);
   if (ec) throw WriteError(parent.string() + ": cannot create folder: " + ec.message());
-  if (fs::exists(target_)) {
-    if (!fs::is_directory(target_)) throw InvalidInput(target_.string() + ": exists and is not a folder");
-    if (!fs::is_empty(target_) && !fs::exists(target_ / kRunMarker)) {
+  const bool exists = fs::exists(target_, ec);
+  if (ec) throw WriteError(target_.string() + ": cannot inspect the output folder: " + ec.message());
+  if (exists) {
+    if (!fs::is_directory(target_, ec)) throw InvalidInput(target_.string() + ": exists and is not a folder");
+    const bool empty = fs::is_empty(target_, ec);
+    if (ec) throw WriteError(target_.string() + ": cannot read the output folder: " + ec.message());
+    if (!empty && !fs::exists(target_ / kRunMarker, ec)) {
       throw InvalidInput(target_.string() + ": exists and is not an eggshell run folder (no " + kRunMarker +
                          "); refusing to replace it — choose another --out");
     }
@@ -80,7 +84,14 @@ StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::mo
   staging_ = parent / ("." + target_.filename().string() + ".staging-" + temporarySuffix());
   fs::create_directory(staging_, ec);
   if (ec) throw WriteError(staging_.string() + ": cannot create staging folder: " + ec.message());
-  writeFileAtomically(staging_ / kRunMarker, "eggshell run folder: replaced whole by the next egg run\n");
+  try {
+    writeFileAtomically(staging_ / kRunMarker, "eggshell run folder: replaced whole by the next egg run\n");
+  } catch (...) {
+    // The destructor does not run for a throwing constructor: remove the staging folder here.
+    std::error_code ignored;
+    fs::remove_all(staging_, ignored);
+    throw;
+  }
 }
 
 StagedDirectory::~StagedDirectory() {
@@ -94,15 +105,25 @@ void StagedDirectory::commit() {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::path previous;
-  if (fs::exists(target_)) {
+  const bool exists = fs::exists(target_, ec);
+  if (ec) throw WriteError(target_.string() + ": cannot inspect the output folder: " + ec.message());
+  if (exists) {
     previous = target_.parent_path() / ("." + target_.filename().string() + ".previous-" + temporarySuffix());
     fs::rename(target_, previous, ec);
     if (ec) throw WriteError(target_.string() + ": cannot replace the earlier results: " + ec.message());
   }
   fs::rename(staging_, target_, ec);
   if (ec) {
-    if (!previous.empty()) fs::rename(previous, target_, ec);  // put the old results back
-    throw WriteError(target_.string() + ": cannot move the results into place: " + ec.message());
+    std::string message = target_.string() + ": cannot move the results into place: " + ec.message();
+    if (!previous.empty()) {
+      std::error_code restore;
+      fs::rename(previous, target_, restore);  // put the old results back
+      if (restore) {
+        message += "; the earlier results could not be put back either (" + restore.message() + ") and are in " +
+                   previous.string();
+      }
+    }
+    throw WriteError(message);
   }
   committed_ = true;
   if (!previous.empty()) fs::remove_all(previous, ec);

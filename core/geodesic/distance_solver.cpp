@@ -72,7 +72,7 @@ DistanceField DistanceSolver::distancesFromVertex(int vertex, const std::vector<
   }
   for (int k = tables_->outgoingStart[vertex]; k < tables_->outgoingStart[vertex + 1]; ++k) {
     const int h = tables_->outgoing[k];
-    const int f = tables_->face[h];
+    const int f = tables_->he[h].face;
     if (f < 0) continue;
     SurfacePoint p;
     p.face = f;

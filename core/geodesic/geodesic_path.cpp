@@ -20,14 +20,14 @@ namespace detail {
 namespace {
 
 SurfacePoint edgePoint(const MeshTables& t, int h, double x) {
-  const int f = t.face[h];
-  const double L = t.length[h];
+  const int f = t.he[h].face;
+  const double L = t.he[h].length;
   const double s = std::clamp(x / L, 0.0, 1.0);
   SurfacePoint p;
   p.face = f;
   for (int i = 0; i < 3; ++i) {
-    if (t.faceVerts[f][i] == t.fromVertex[h]) p.barycentric[i] = 1.0 - s;
-    if (t.faceVerts[f][i] == t.toVertex[h]) p.barycentric[i] = s;
+    if (t.faceVerts[f][i] == t.he[h].fromVertex) p.barycentric[i] = 1.0 - s;
+    if (t.faceVerts[f][i] == t.he[h].toVertex) p.barycentric[i] = s;
   }
   return p;
 }
@@ -35,9 +35,9 @@ SurfacePoint edgePoint(const MeshTables& t, int h, double x) {
 SurfacePoint vertexPointFromTables(const MeshTables& t, int v) {
   for (int k = t.outgoingStart[v]; k < t.outgoingStart[v + 1]; ++k) {
     const int h = t.outgoing[k];
-    if (t.face[h] < 0) continue;
+    if (t.he[h].face < 0) continue;
     SurfacePoint p;
-    p.face = t.face[h];
+    p.face = t.he[h].face;
     for (int i = 0; i < 3; ++i) p.barycentric[i] = (t.faceVerts[p.face][i] == v) ? 1.0 : 0.0;
     return p;
   }
@@ -64,7 +64,7 @@ class Tracer {
       }
       if (pred.kind == Predecessor::ThroughWindow) {
         const int h = s_.windows[pred.index].halfedge;
-        fromWindow(pred.index, t_.oppositeX[h], t_.oppositeY[h]);
+        fromWindow(pred.index, t_.he[h].oppositeX, t_.he[h].oppositeY);
       }
       return;  // Source (or None for an unreachable vertex)
     }
@@ -76,7 +76,7 @@ class Tracer {
     for (;;) {
       const Window& w = s_.windows[wi];
       const int h = w.halfedge;
-      const double L = t_.length[h];
+      const double L = t_.he[h].length;
       double x = qx;
       if (qy > 1e-12 * L) x = w.sx + (qx - w.sx) * (-w.sy) / (qy - w.sy);
       x = std::clamp(x, std::max(0.0, w.b0), std::min(L, w.b1));
@@ -89,8 +89,8 @@ class Tracer {
       const int hp = p.halfedge;
       const int tw = t_.twin(h);
       const double u = (L - x) / L;  // fraction along tw from its from-vertex
-      const double bx = t_.length[hp], cx = t_.oppositeX[hp], cy = t_.oppositeY[hp];
-      if (tw == t_.next[hp]) {  // B -> C
+      const double bx = t_.he[hp].length, cx = t_.he[hp].oppositeX, cy = t_.he[hp].oppositeY;
+      if (tw == t_.he[hp].next) {  // B -> C
         qx = bx + u * (cx - bx);
         qy = u * cy;
       } else {  // C -> A
@@ -122,16 +122,16 @@ GeodesicPath tracePath(const MeshTables& t, const Propagation& s, int targetInde
     tracer.fromVertex(pred.index);
   } else if (pred.kind == Predecessor::ThroughWindow) {
     const Window& w = s.windows[pred.index];
-    const int f = t.face[w.halfedge];
+    const int f = t.he[w.halfedge].face;
     const int h = w.halfedge;
     const Eigen::Vector3d& wt = s.targetWeights[targetIndex];
     double qx = 0, qy = 0;
     for (int i = 0; i < 3; ++i) {
       const int v = t.faceVerts[f][i];
-      if (v == t.toVertex[h]) qx += wt[i] * t.length[h];
-      if (v == t.oppositeVertex[h]) {
-        qx += wt[i] * t.oppositeX[h];
-        qy += wt[i] * t.oppositeY[h];
+      if (v == t.he[h].toVertex) qx += wt[i] * t.he[h].length;
+      if (v == t.he[h].oppositeVertex) {
+        qx += wt[i] * t.he[h].oppositeX;
+        qy += wt[i] * t.he[h].oppositeY;
       }
     }
     tracer.fromWindow(pred.index, qx, qy);

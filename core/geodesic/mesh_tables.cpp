@@ -19,56 +19,50 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
   t.positions.resize(t.vertexCount);
   for (auto vh : mesh.vertices()) t.positions[vh.idx()] = toEigen(mesh.point(vh));
   const int nh = t.halfedgeCount;
-  t.fromVertex.assign(nh, -1);
-  t.toVertex.assign(nh, -1);
-  t.face.assign(nh, -1);
-  t.next.assign(nh, -1);
-  t.prev.assign(nh, -1);
-  t.length.assign(nh, 0.0);
-  t.oppositeX.assign(nh, 0.0);
-  t.oppositeY.assign(nh, 0.0);
-  t.oppositeVertex.assign(nh, -1);
+  std::vector<int> fromVertex(nh, -1), toVertex(nh, -1), face(nh, -1), next(nh, -1), prev(nh, -1);
+  std::vector<double> length(nh, 0.0), oppositeX(nh, 0.0), oppositeY(nh, 0.0);
+  std::vector<int> oppositeVertex(nh, -1);
   double edgeSum = 0.0;
   for (auto hh : mesh.halfedges()) {
     const int h = hh.idx();
-    t.fromVertex[h] = mesh.from_vertex_handle(hh).idx();
-    t.toVertex[h] = mesh.to_vertex_handle(hh).idx();
-    t.face[h] = mesh.face_handle(hh).is_valid() ? mesh.face_handle(hh).idx() : -1;
-    t.next[h] = mesh.next_halfedge_handle(hh).idx();
-    t.prev[h] = mesh.prev_halfedge_handle(hh).idx();
-    t.length[h] = (t.positions[t.toVertex[h]] - t.positions[t.fromVertex[h]]).norm();
-    if ((h & 1) == 0) edgeSum += t.length[h];
+    fromVertex[h] = mesh.from_vertex_handle(hh).idx();
+    toVertex[h] = mesh.to_vertex_handle(hh).idx();
+    face[h] = mesh.face_handle(hh).is_valid() ? mesh.face_handle(hh).idx() : -1;
+    next[h] = mesh.next_halfedge_handle(hh).idx();
+    prev[h] = mesh.prev_halfedge_handle(hh).idx();
+    length[h] = (t.positions[toVertex[h]] - t.positions[fromVertex[h]]).norm();
+    if ((h & 1) == 0) edgeSum += length[h];
   }
   t.meanEdgeLength = edgeSum / std::max<size_t>(1, mesh.n_edges());
   t.angleSum.assign(t.vertexCount, 0.0);
   for (int h = 0; h < nh; ++h) {
-    if (t.face[h] < 0) continue;
-    const int c = t.toVertex[t.next[h]];
-    t.oppositeVertex[h] = c;
-    const double L = t.length[h];
-    const double la = t.length[t.prev[h]];  // |C A|
-    const double lb = t.length[t.next[h]];  // |B C|
+    if (face[h] < 0) continue;
+    const int c = toVertex[next[h]];
+    oppositeVertex[h] = c;
+    const double L = length[h];
+    const double la = length[prev[h]];  // |C A|
+    const double lb = length[next[h]];  // |B C|
     if (!(L > 0.0) || !(la > 0.0) || !(lb > 0.0)) {
-      throw InvalidInput("geodesic: face " + std::to_string(t.face[h]) + " has a zero-length edge");
+      throw InvalidInput("geodesic: face " + std::to_string(face[h]) + " has a zero-length edge");
     }
     const double x = (L * L + la * la - lb * lb) / (2.0 * L);
     const double y2 = la * la - x * x;
     // Heron-stable height from the cross product in 3D (the law of cosines loses digits on slivers).
-    const Eigen::Vector3d a = t.positions[t.fromVertex[h]];
-    const double twiceArea = (t.positions[t.toVertex[h]] - a).cross(t.positions[c] - a).norm();
+    const Eigen::Vector3d a = t.positions[fromVertex[h]];
+    const double twiceArea = (t.positions[toVertex[h]] - a).cross(t.positions[c] - a).norm();
     const double y = twiceArea / L;
     if (!(y > 0.0) || y2 < -1e-6 * la * la) {
-      throw InvalidInput("geodesic: face " + std::to_string(t.face[h]) + " is degenerate (zero area)");
+      throw InvalidInput("geodesic: face " + std::to_string(face[h]) + " is degenerate (zero area)");
     }
-    t.oppositeX[h] = x;
-    t.oppositeY[h] = y;
+    oppositeX[h] = x;
+    oppositeY[h] = y;
     // Interior angle at the from-vertex, accumulated into its angle sum.
-    t.angleSum[t.fromVertex[h]] += std::atan2(y, x);
+    t.angleSum[fromVertex[h]] += std::atan2(y, x);
   }
   t.he.resize(nh);
   for (int h = 0; h < nh; ++h) {
-    t.he[h] = {t.length[h], t.oppositeX[h], t.oppositeY[h], t.fromVertex[h], t.toVertex[h],
-               t.face[h],   t.next[h],      t.prev[h],      t.oppositeVertex[h]};
+    t.he[h] = {length[h], oppositeX[h], oppositeY[h], fromVertex[h], toVertex[h],
+               face[h],   next[h],      prev[h],      oppositeVertex[h]};
   }
   t.faceVerts.resize(t.faceCount);
   t.faceHalfedge.resize(t.faceCount);
@@ -79,17 +73,17 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
     for (auto hh : mesh.fh_range(fh)) {
       const int h = hh.idx();
       for (int i = 0; i < 3; ++i) {
-        if (t.faceVerts[f][i] == t.fromVertex[h]) t.faceHalfedge[f][i] = h;
+        if (t.faceVerts[f][i] == fromVertex[h]) t.faceHalfedge[f][i] = h;
       }
     }
   }
   t.outgoingStart.assign(t.vertexCount + 1, 0);
-  for (int h = 0; h < nh; ++h) ++t.outgoingStart[t.fromVertex[h] + 1];
+  for (int h = 0; h < nh; ++h) ++t.outgoingStart[fromVertex[h] + 1];
   for (int v = 0; v < t.vertexCount; ++v) t.outgoingStart[v + 1] += t.outgoingStart[v];
   t.outgoing.assign(nh, -1);
   {
     std::vector<int> fill(t.outgoingStart.begin(), t.outgoingStart.end() - 1);
-    for (int h = 0; h < nh; ++h) t.outgoing[fill[t.fromVertex[h]]++] = h;
+    for (int h = 0; h < nh; ++h) t.outgoing[fill[fromVertex[h]]++] = h;
   }
   t.boundaryVertex.assign(t.vertexCount, 0);
   t.pseudoSource.assign(t.vertexCount, 0);

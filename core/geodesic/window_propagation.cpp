@@ -44,14 +44,17 @@ class Propagator {
   Propagator(const MeshTables& t, const DistanceSolverOptions& o, Propagation& s) : t_(t), o_(o), s_(s) {}
 
   void run(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) {
-    reset(targets);
-    try {
-      seed(source);
-    } catch (...) {
-      // The scratch may be reused (thread_local): leave its per-face target buckets clean.
-      for (int f : s_.targetFace) s_.faceFirstTarget[f] = -1;
-      throw;
-    }
+    reset(targets);  // cleans up after itself if a target is invalid
+    // The scratch is reused by the thread's next query (thread_local): whatever happens below
+    // (bad source, bad_alloc), leave its per-face target buckets clean, or that query would
+    // follow stale target indices.
+    struct CleanTargetBuckets {
+      Propagation& s;
+      ~CleanTargetBuckets() {
+        for (int f : s.targetFace) s.faceFirstTarget[f] = -1;
+      }
+    } clean{s_};
+    seed(source);
     while (!s_.queue.empty()) {
       const auto entry = s_.queue.pop();
       if (entry.item < 0) {
@@ -63,8 +66,6 @@ class Propagator {
       }
     }
     finishTargets();
-    // Leave the per-face buckets clean for the next query on this scratch space.
-    for (int f : s_.targetFace) s_.faceFirstTarget[f] = -1;
   }
 
  private:
@@ -467,7 +468,9 @@ class Propagator {
     // No second pruning here: the window was pruned when it was added, and by the time it is
     // popped its vertices' distances have almost never dropped further (on a 3.6k-vertex bump,
     // 24 of 183k windows would have died here and 3.6k been trimmed); re-pruning every pop cost
-    // ~10 % of the propagation for that. Pruning only saves work, so the result stays exact.
+    // ~10 % of the propagation for that. The result stays exact: an unpruned window is still a
+    // real path, so the distances it offers, the one-split rule it feeds and the trimming of
+    // later windows against it all remain valid - it only costs its own propagation.
     const Window w = s_.windows[index];
     const int h = w.halfedge;
     const int f = t_.he[h].face;

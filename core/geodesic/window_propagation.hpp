@@ -21,12 +21,9 @@ struct MeshTables {
   int faceCount = 0;
   int halfedgeCount = 0;
   std::vector<Eigen::Vector3d> positions;
-  std::vector<int> fromVertex, toVertex, face, next, prev;
-  std::vector<double> length, oppositeX, oppositeY;
-  std::vector<int> oppositeVertex;
-  // The same per-halfedge fields once more, as one 48-byte record per halfedge: the propagation
-  // reads most of them for every window, and one record is one or two cache lines where the
-  // separate arrays above cost one line each (they stay for the colder code: paths, seeding).
+  // Per halfedge, one 48-byte record: the propagation reads most of these fields for every
+  // window, and one record is one or two cache lines where separate arrays cost a line each.
+  // oppositeVertex/oppositeX/oppositeY are -1/0/0 for a boundary halfedge (no face).
   struct Halfedge {
     double length, oppositeX, oppositeY;
     int fromVertex, toVertex, face, next, prev, oppositeVertex;
@@ -88,7 +85,6 @@ struct Propagation {
   // halfedge so far, and where that ray crossed the edge (Chen-Han "one angle, one split").
   std::vector<double> splitDistance;
   std::vector<double> splitCrossing;
-  // Windows on each halfedge as singly linked lists (for trimming a new window against them).
   // The windows of each halfedge, for trimming a new window against them: their [b0, b1] kept in
   // blocks of five (128 bytes) chained per halfedge, so the walk over a halfedge's windows - most
   // of which do not overlap the new one - reads a few contiguous lines. A linked list through the

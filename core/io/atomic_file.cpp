@@ -2,7 +2,9 @@
 
 #include "core/errors.hpp"
 
-#include <fstream>
+#include <unistd.h>
+
+#include <cstdio>
 #include <random>
 #include <system_error>
 
@@ -25,11 +27,15 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& t
   // Same folder as the target: rename is atomic only within one file system.
   const fs::path temp = dir / ("." + path.filename().string() + ".tmp-" + temporarySuffix());
   {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    // C stdio rather than a stream: the close must be checked (NFS and quotas report errors
+    // there) and the data synced before the rename, or a crash could leave an empty file under
+    // the final name.
+    std::FILE* out = std::fopen(temp.c_str(), "wb");
     if (!out) throw WriteError(path.string() + ": cannot create file (" + temp.string() + ")");
-    out << text;
-    out.flush();
-    if (!out) {
+    const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size() && std::fflush(out) == 0 &&
+                         ::fsync(::fileno(out)) == 0;
+    const bool closed = std::fclose(out) == 0;
+    if (!written || !closed) {
       std::error_code ignored;
       fs::remove(temp, ignored);
       throw WriteError(path.string() + ": write failed (disk full?)");

@@ -187,17 +187,19 @@ void writeMeshFile(const fs::path& path, const TriangleSoup& soup, const MeshExp
     for (const auto& f : kExportFormats) known += std::string(known.empty() ? "" : ", ") + f.extension;
     throw IoError("cannot write mesh " + quoted(path) + ": unknown extension '" + ext + "' (use " + known + ")");
   }
-  if (soup.triangles.empty()) throw IoError("cannot write mesh " + quoted(path) + ": the mesh has no triangles");
+  if (soup.triangles.empty()) throw InvalidInput("cannot write mesh " + quoted(path) + ": the mesh has no triangles");
   const int n = static_cast<int>(soup.vertices.size());
   for (const auto& tri : soup.triangles)
     for (int v : tri)
-      if (v < 0 || v >= n) throw IoError("cannot write mesh " + quoted(path) + ": a triangle index is out of range");
+      if (v < 0 || v >= n) throw InvalidInput("cannot write mesh " + quoted(path) + ": a triangle index is out of range");
 
   const fs::path target = fs::absolute(path);
   const fs::path directory = target.parent_path();
   std::error_code ec;
-  if (!fs::is_directory(directory, ec))
-    throw WriteError("cannot write mesh " + quoted(path) + ": the directory " + quoted(directory) + " does not exist");
+  if (!fs::is_directory(directory, ec)) {
+    throw WriteError("cannot write mesh " + quoted(path) + ": the directory " + quoted(directory) +
+                     (ec ? " cannot be read: " + ec.message() : " does not exist"));
+  }
 
   // Export into a private directory next to the target, then rename every produced file into
   // place (same file system, so each rename is atomic). glTF's .bin keeps the name the .gltf

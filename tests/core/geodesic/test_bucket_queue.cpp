@@ -1,10 +1,14 @@
-// The propagation's bucket queue must pop in exactly the (key, item) order of a heap, across bucket
-// boundaries, beyond the calendar's horizon (overflow) and for equal keys.
+// The propagation's bucket queue must pop in exactly the (key, item) order of a heap: across bucket
+// boundaries, beyond the calendar's horizon (overflow), for equal keys, for keys pushed below the
+// front (rounding in the propagation), for crowded buckets (graded meshes) and for +inf.
 #include "core/geodesic/bucket_queue.hpp"
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
 #include <random>
 #include <utility>
 #include <vector>
@@ -13,67 +17,74 @@ namespace egg::geodesic::detail {
 namespace {
 
 using Pair = std::pair<double, int>;
+using Reference = std::priority_queue<Pair, std::vector<Pair>, std::greater<>>;
 
-// Dijkstra-like use: pops interleaved with pushes whose keys are never below the last pop.
-std::vector<Pair> popAllMonotone(BucketQueue& queue, std::vector<Pair> initial, std::mt19937& rng, double spread) {
-  for (const auto& [k, i] : initial) queue.push(k, i);
-  std::vector<Pair> popped;
-  std::uniform_real_distribution<double> step(0.0, spread);
-  int nextItem = 1000000;
-  while (!queue.empty()) {
+// Dijkstra-like use, mirrored into std::priority_queue: every pop is compared with the reference.
+// Each pop pushes two children at or above the popped key, and now and then one just below it.
+// Returns the number of pops.
+int compareWithHeap(double width, double spread, double belowFront, int seed) {
+  std::mt19937 rng(seed);
+  BucketQueue queue;
+  queue.reset(width);
+  Reference reference;
+  auto push = [&](double key, int item) {
+    queue.push(key, item);
+    reference.push({key, item});
+  };
+  std::uniform_real_distribution<double> initial(0.0, 100.0), step(0.0, spread), unit(0.0, 1.0);
+  int item = 0;
+  for (; item < 300; ++item) push(initial(rng), item);
+  push(5.0, item++);
+  push(5.0, item++);  // a tie, broken by the item
+  push(std::numeric_limits<double>::infinity(), item++);
+  int pops = 0;
+  while (!reference.empty()) {
+    EXPECT_FALSE(queue.empty());
     const auto e = queue.pop();
-    popped.push_back({e.key, e.item});
-    if (popped.size() < 3000) {
-      for (int c = 0; c < 2; ++c) queue.push(e.key + step(rng), nextItem++);
+    const Pair expected = reference.top();
+    reference.pop();
+    EXPECT_EQ(e.key, expected.first) << "pop " << pops;
+    EXPECT_EQ(e.item, expected.second) << "pop " << pops;
+    if (e.key != expected.first || e.item != expected.second) return -1;
+    ++pops;
+    if (item < 5000 && std::isfinite(e.key)) {
+      push(e.key + step(rng), item++);
+      push(e.key + step(rng), item++);
+      if (unit(rng) < 0.2) push(e.key - belowFront * unit(rng), item++);
     }
   }
-  return popped;
-}
-
-TEST(BucketQueue, PopsInKeyThenItemOrderAcrossBucketsAndOverflow) {
-  std::mt19937 rng(7);
-  BucketQueue queue;
-  queue.reset(0.01);  // horizon 1024 * 0.01 = 10.24: keys up to 100 start in the overflow
-  std::uniform_real_distribution<double> key(0.0, 100.0);
-  std::vector<Pair> initial;
-  for (int i = 0; i < 500; ++i) initial.push_back({key(rng), i});
-  initial.push_back({initial[3].first, 9999});  // a tie, broken by the item
-  const auto popped = popAllMonotone(queue, initial, rng, 30.0);
-  ASSERT_GT(popped.size(), 3000u);
-  for (size_t i = 1; i < popped.size(); ++i) {
-    ASSERT_LE(popped[i - 1], popped[i]) << "at pop " << i;
-  }
-}
-
-TEST(BucketQueue, SameSequenceAsASortOfAllPushesWithoutInterleaving) {
-  std::mt19937 rng(11);
-  BucketQueue queue;
-  queue.reset(0.5);
-  std::vector<Pair> all;
-  std::uniform_real_distribution<double> key(0.0, 2000.0);
-  for (int i = 0; i < 2000; ++i) all.push_back({i % 7 == 0 ? 3.0 : key(rng), i});  // many equal keys
-  for (const auto& [k, i] : all) queue.push(k, i);
-  std::sort(all.begin(), all.end());
-  for (const auto& expected : all) {
-    ASSERT_FALSE(queue.empty());
-    const auto e = queue.pop();
-    EXPECT_EQ(e.key, expected.first);
-    EXPECT_EQ(e.item, expected.second);
-  }
   EXPECT_TRUE(queue.empty());
+  return pops;
 }
 
-TEST(BucketQueue, KeyJustBelowTheFrontStillPopsNextAndResetEmpties) {
+TEST(BucketQueue, PopsInHeapOrderAcrossBucketsOverflowTiesAndInfinity) {
+  // Width 0.01: horizon 10.24, so the initial keys up to 100 start in the overflow.
+  EXPECT_GE(compareWithHeap(0.01, 30.0, 0.0, 7), 5000);
+}
+
+TEST(BucketQueue, KeysBelowTheFrontStillPopInKeyOrder) {
+  // Keys up to 3 widths below the last pop land in lower buckets than the current one.
+  EXPECT_GE(compareWithHeap(0.01, 0.5, 0.03, 11), 5000);
+}
+
+TEST(BucketQueue, CrowdedBucketsOfAGradedMeshKeepTheOrder) {
+  // Width 10 with keys spread over 0.5: thousands of entries share one bucket.
+  EXPECT_GE(compareWithHeap(10.0, 0.5, 0.001, 13), 5000);
+}
+
+TEST(BucketQueue, PopJustAcrossABucketBoundaryThenPushBelowIt) {
   BucketQueue queue;
   queue.reset(1.0);
-  queue.push(5.5, 1);
+  queue.push(5.0000001, 1);
   queue.push(7.0, 2);
   EXPECT_EQ(queue.pop().item, 1);
-  queue.push(5.4999999999, 3);  // below the last pop (rounding in the propagation)
+  queue.push(4.9999999, 3);  // bucket 4, below the current bucket 5
+  queue.push(6.0, 4);
   EXPECT_EQ(queue.pop().item, 3);
+  EXPECT_EQ(queue.pop().item, 4);
   EXPECT_EQ(queue.pop().item, 2);
   EXPECT_TRUE(queue.empty());
-  queue.push(1.0, 4);
+  queue.push(1.0, 5);
   queue.reset(1.0);
   EXPECT_TRUE(queue.empty());
 }

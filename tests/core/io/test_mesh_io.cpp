@@ -239,9 +239,11 @@ TEST(MeshIo, BadFilesAreIoErrorsNamingTheFile) {
 TEST(MeshIo, WriteErrorsNameTheFileAndLeaveNothing) {
   TempDir dir;
   const TriangleSoup soup = wavySurface(2);
+  // An unsupported format or an empty mesh is the caller's mistake (exit 2); a folder that is not
+  // there is a failure to write (WriteError, exit 1).
   EXPECT_THROW(writeMeshFile(dir / "s.xyz", soup), IoError);
-  EXPECT_THROW(writeMeshFile(dir / "no_such_dir" / "s.obj", soup), IoError);
-  EXPECT_THROW(writeMeshFile(dir / "empty.obj", TriangleSoup{}), IoError);
+  EXPECT_THROW(writeMeshFile(dir / "no_such_dir" / "s.obj", soup), WriteError);
+  EXPECT_THROW(writeMeshFile(dir / "empty.obj", TriangleSoup{}), InvalidInput);
   try {
     writeMeshFile(dir / "s.xyz", soup);
   } catch (const IoError& e) {

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <ctime>
 #include <optional>
 #include <fstream>
 #include <iostream>
@@ -32,6 +33,14 @@ struct GridBenchArgs {
   bool json = false;
 };
 
+// CPU seconds of the whole process (all threads): on a shared machine the wall time of a part
+// depends on the load, the CPU time much less.
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const size_t n = values.size();
@@ -48,11 +57,13 @@ std::array<double, kParts> partsOf(const EggTimings& t) {
 int runGridBench(const GridBenchArgs& args) {
   fmt::print("egg bench grid: bump (height {} m, sigma 1.5 m) patch 6 x 6 m, distance maps {} x {}, alpha_bar = min,\n"
              "lamellas 0.1 m at spacing 0.6 m; wall seconds (all threads), median of {} solves per size;\n"
+             "cpu_grid = CPU seconds of the solve over all threads (load-independent work);\n"
              "t_maps includes the eta check's curvature and peak fields (run alongside the maps), t_eta the check\n"
              "itself; share = part / t_grid; fields = propagations (patch sides + maps + peaks + tracing)\n",
              args.height, args.resolution, args.resolution, args.repeats);
-  fmt::print("{:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>10} {:>18}\n", "vertices", "t_patch",
-             "t_eta", "t_maps", "t_sqp", "t_member", "t_trace", "t_grid", "u x v", "fields", "max_notch", "alpha_bar range");
+  fmt::print("{:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>10} {:>18}\n", "vertices", "t_patch",
+             "t_eta", "t_maps", "t_sqp", "t_member", "t_trace", "t_grid", "cpu_grid", "u x v", "fields", "max_notch",
+             "alpha_bar range");
   nlohmann::json rows = nlohmann::json::array();
   std::vector<std::array<double, kParts>> shares;
   for (int size : args.sizes) {
@@ -69,24 +80,26 @@ int runGridBench(const GridBenchArgs& args) {
     options.members.lamellaWidthM = 0.1;
     options.members.spacingFactor = 6.0;
     std::array<std::vector<double>, kParts> parts;
-    std::vector<double> totals;
+    std::vector<double> totals, cpu;
     std::optional<EggResult> last;
     for (int run = 0; run < args.repeats; ++run) {
+      const double cpuStart = processCpuSeconds();
       last = solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, options);
       const auto p = partsOf(last->seconds);
       for (int k = 0; k < kParts; ++k) parts[k].push_back(p[k]);
       totals.push_back(last->seconds.total);
+      cpu.push_back(processCpuSeconds() - cpuStart);
     }
     const EggResult& r = *last;
     std::array<double, kParts> t{};
     for (int k = 0; k < kParts; ++k) t[k] = median(parts[k]);
-    const double total = median(totals);
+    const double total = median(totals), cpuTotal = median(cpu);
     std::array<double, kParts> share{};
     for (int k = 0; k < kParts; ++k) share[k] = total > 0 ? t[k] / total : 0.0;
     shares.push_back(share);
     const int fields = r.propagations;  // load-independent work measure
-    fmt::print("{:>8} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.4f} {:>8.3f} {:>8.3f} {:>3}x{:<2} {:>6} {:>10.4f} [{:.4f}, {:.4f}]\n",
-               r.patch.mesh.n_vertices(), t[0], t[1], t[2], t[3], t[4], t[5], total, r.grid.u.size(), r.grid.v.size(),
+    fmt::print("{:>8} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.4f} {:>8.3f} {:>8.3f} {:>8.3f} {:>3}x{:<2} {:>6} {:>10.4f} [{:.4f}, {:.4f}]\n",
+               r.patch.mesh.n_vertices(), t[0], t[1], t[2], t[3], t[4], t[5], total, cpuTotal, r.grid.u.size(), r.grid.v.size(),
                fields, r.grid.maxNotch, r.alphaBar.alphaMin, r.alphaBar.alphaMax);
     nlohmann::json row{{"vertices", r.patch.mesh.n_vertices()},
                        {"repeats", args.repeats},
@@ -98,6 +111,8 @@ int runGridBench(const GridBenchArgs& args) {
                        {"t_tracing_s", t[5]},
                        {"t_grid_s", total},
                        {"t_grid_runs_s", totals},
+                       {"cpu_grid_s", cpuTotal},
+                       {"cpu_grid_runs_s", cpu},
                        {"distance_fields", fields},
                        {"members_u", r.grid.u.size()},
                        {"members_v", r.grid.v.size()},

@@ -100,6 +100,7 @@ int runSimBench(const SimBenchArgs& args) {
                  plain ? fmt::format("{:.3f}", plain->medianSeconds) : "-",
                  plain ? std::to_string(plain->run.solver.iterations) : "-",
                  plain ? fmt::format("{:.2f}", ratio) : "-");
+      if (!run.solver.converged) fmt::print("        not converged: {}\n", run.solver.reason);
       nlohmann::json row{{"spacing_m", spacing},
                          {"vertices", run.vertices},
                          {"unknowns", run.unknowns},

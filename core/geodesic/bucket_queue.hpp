@@ -5,8 +5,8 @@
 // Why: a 4k-vertex field pushes and pops ~200k windows, and a heap spent about 300 instructions
 // per pop (30 % of the propagation) sifting through the ~2k-entry wavefront. The keys of the queued
 // windows all lie within a few edge lengths of the front, so buckets of width ~ edge/256 hold a
-// handful of entries each: a push is an append, and only the bucket being emptied is kept as a
-// (small) binary heap. Entries beyond the calendar's horizon wait in an overflow heap. The pop
+// handful of entries each: a push is an append and a pop scans the current bucket; should the
+// current bucket hold more than a few entries, it becomes a binary heap until it is empty. Entries beyond the calendar's horizon wait in an overflow heap. The pop
 // order is exactly (key, item), as a heap's, so every bit of the result is the same. On a graded
 // mesh (edges much shorter than the mean somewhere) a bucket can hold thousands of entries; it
 // then costs what one heap of that size costs, not a linear scan per pop.
@@ -62,6 +62,18 @@ class BucketQueue {
       }
       auto& bucket = buckets_[current_ & kMask];
       if (!bucket.empty()) {
+        --bucketed_;
+        if (!currentIsHeap_ && bucket.size() <= kScanLimit) {
+          // The usual case: a handful of entries, a scan is cheaper than heap upkeep.
+          std::size_t best = 0;
+          for (std::size_t i = 1; i < bucket.size(); ++i) {
+            if (less(bucket[i], bucket[best])) best = i;
+          }
+          const Entry e = bucket[best];
+          bucket[best] = bucket.back();
+          bucket.pop_back();
+          return e;
+        }
         if (!currentIsHeap_) {
           std::make_heap(bucket.begin(), bucket.end(), greater);
           currentIsHeap_ = true;
@@ -69,7 +81,6 @@ class BucketQueue {
         std::pop_heap(bucket.begin(), bucket.end(), greater);
         const Entry e = bucket.back();
         bucket.pop_back();
-        --bucketed_;
         return e;
       }
       advanceTo(current_ + 1);
@@ -80,6 +91,7 @@ class BucketQueue {
   static constexpr std::size_t kBuckets = 1024;  // a power of two
   static constexpr long long kMask = kBuckets - 1;
   static constexpr long long kFar = 1LL << 60;
+  static constexpr std::size_t kScanLimit = 16;  // larger current buckets become heaps
 
   static bool less(const Entry& a, const Entry& b) { return a.key < b.key || (a.key == b.key && a.item < b.item); }
   static bool greater(const Entry& a, const Entry& b) { return less(b, a); }

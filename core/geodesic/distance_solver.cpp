@@ -109,7 +109,8 @@ double DistanceSolver::distance(const SurfacePoint& from, const SurfacePoint& to
 }
 
 GeodesicPath DistanceSolver::path(const SurfacePoint& from, const SurfacePoint& to) const {
-  detail::Propagation state;
+  // The thread's scratch, as for distances(): a fresh state would fault in megabytes per path.
+  detail::Propagation& state = threadScratch();
   detail::propagate(*tables_, options_, from, {to}, state);
   return detail::tracePath(*tables_, state, 0, from, to);
 }

@@ -427,6 +427,9 @@ class Propagator {
     int& first = s_.firstBlock[w.halfedge];
     for (int b = first; b >= 0; b = s_.blocks[b].next) {
       const auto& block = s_.blocks[b];
+      // Windows reach an edge roughly in the order the front sweeps across it, so a block's
+      // windows tend to lie close together and most blocks are skipped whole.
+      if (!(std::min(w.b1, block.hi) > std::max(w.b0, block.lo))) continue;
       for (int k = 0; k < block.count; ++k) {
         const auto& span = block.spans[k];
         if (!(std::min(w.b1, span.b1) > std::max(w.b0, span.b0))) continue;  // disjoint: nothing to trim
@@ -438,6 +441,8 @@ class Propagator {
     using SpanBlock = Propagation::SpanBlock;
     if (first < 0 || s_.blocks[first].count == SpanBlock::kCapacity) {
       SpanBlock block;
+      block.lo = kInfinity;
+      block.hi = -kInfinity;
       block.count = 0;
       block.next = first;
       s_.blocks.push_back(block);
@@ -445,6 +450,8 @@ class Propagator {
     }
     SpanBlock& block = s_.blocks[first];
     block.spans[block.count] = {w.b0, w.b1, index};
+    block.lo = std::min(block.lo, w.b0);
+    block.hi = std::max(block.hi, w.b1);
     ++block.count;
     push(windowMinDistance(w), index);
   }

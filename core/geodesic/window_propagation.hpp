@@ -86,7 +86,7 @@ struct Propagation {
   std::vector<double> splitDistance;
   std::vector<double> splitCrossing;
   // The windows of each halfedge, for trimming a new window against them: their [b0, b1] kept in
-  // blocks of five (128 bytes) chained per halfedge, so the walk over a halfedge's windows - most
+  // blocks of five (144 bytes) chained per halfedge, so the walk over a halfedge's windows - most
   // of which do not overlap the new one - reads a few contiguous lines. A linked list through the
   // window array cost a cache miss per window and was a third of all misses.
   struct SpanBlock {
@@ -95,6 +95,7 @@ struct Propagation {
       double b0, b1;
       int window;
     } spans[kCapacity];
+    double lo, hi;  // the union of the spans: a new window outside it skips the whole block
     int count;
     int next;  // the halfedge's previous (older) block, -1 at the end
   };

@@ -38,7 +38,7 @@ struct StressOutcome {
 };
 
 // 1000 iterations: thin or heavy vaults that fall through need several hundred Newton
-// iterations to reach their collapsed equilibrium (w:t 100: 636).
+// iterations to reach their collapsed equilibrium (w:t 100: 615-636, depending on round-off).
 StressOutcome runStressCase(const StressCase& stressCase, double timeLimit_s = 20.0, int maxIterations = 1000);
 
 }  // namespace egg::rods

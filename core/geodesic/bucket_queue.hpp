@@ -4,7 +4,7 @@
 //
 // Why: a 4k-vertex field pushes and pops ~200k windows, and a heap spent about 300 instructions
 // per pop (30 % of the propagation) sifting through the ~2k-entry wavefront. The keys of the queued
-// windows all lie within a few edge lengths of the front, so buckets of width ~ edge/256 hold a
+// windows all lie within a few edge lengths of the front, so buckets of width ~ edge/1024 hold a
 // handful of entries each: a push is an append and a pop scans the current bucket; should the
 // current bucket hold more than a few entries, it becomes a binary heap until it is empty. Entries beyond the calendar's horizon wait in an overflow heap. The pop
 // order is exactly (key, item), as a heap's, so every bit of the result is the same. On a graded
@@ -88,7 +88,7 @@ class BucketQueue {
   }
 
  private:
-  static constexpr std::size_t kBuckets = 1024;  // a power of two
+  static constexpr std::size_t kBuckets = 4096;  // a power of two
   static constexpr long long kMask = kBuckets - 1;
   static constexpr long long kFar = 1LL << 60;
   static constexpr std::size_t kScanLimit = 16;  // larger current buckets become heaps

@@ -167,6 +167,9 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
                {"energy_j", sim.deployed.solver.energy},
                {"gradient_norm_n_nm", sim.deployed.solver.gradientNorm},  // over positions (N) and twists (N m)
                {"seconds", sim.seconds}};
+    // Under self-weight, how far the grid sagged from its weightless equilibrium (a "collapsed"
+    // status means it fell through: Section 3.5.2, Fig. 3.11).
+    if (scene.simulation.gravity) entry["max_sag_m"] = sim.deployed.maxSag_m;
     if (sim.deployed.deviation) {
       const auto& d = *sim.deployed.deviation;
       sumSquares += d.rmse_m * d.rmse_m * d.points;

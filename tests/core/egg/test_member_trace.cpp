@@ -30,31 +30,45 @@ double bisect(const G& g, double a, double b) {
   return 0.5 * (a + b);
 }
 
-TEST(MemberTrace, PlaneTrapezoidMatchesTheAnalyticRoot) {
-  // On a plane the geodesic is the straight segment, so the matched x2 solves
-  // |start(x1) - end(x2)| = planar distance(x1, x2) in closed form; the guess is 4 cm off.
-  const TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.8);
-  const std::array<Eigen::Vector3d, 4> c{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {2, 3, 0}, {-2.5, 2.5, 0}};
-  const Patch patch = makePatch(mesh, c);
-  const geodesic::DistanceSolver solver(patch.mesh);
-  const auto quad = *planarQuad(patch.sideLengths, patch.innerAngles[0] - 0.15);
-  const double x1 = 0.37;
-  const auto g = [&](double x2) {
+// A trapezoid patch on a plane, a planar quad 0.15 rad off its corner angle, and the member from
+// x1 = 0.37: on a plane the geodesic is the straight segment, so the matched x2 solves
+// |start(x1) - end(x2)| = planar distance(x1, x2), whose root bisection finds in closed form.
+struct PlaneTrapezoid {
+  TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.8);
+  std::array<Eigen::Vector3d, 4> c{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {2, 3, 0}, {-2.5, 2.5, 0}};
+  Patch patch = makePatch(mesh, c);
+  geodesic::DistanceSolver solver{patch.mesh};
+  PlanarQuad quad = *planarQuad(patch.sideLengths, patch.innerAngles[0] - 0.15);
+  double x1 = 0.37;
+
+  double mismatch(double x2) const {
     const Eigen::Vector3d start = c[0] + x1 * (c[3] - c[0]), end = c[1] + x2 * (c[2] - c[1]);
     return (end - start).norm() - planarDistance(quad, Family::U, x1, x2);
-  };
-  ASSERT_LT(g(0.0) * g(1.0), 0.0);
-  const double root = bisect(g, 0.0, 1.0);
-  GridMember m = innerMember(Family::U, x1, root + 0.04 / 6.0);
+  }
+  double root() const {
+    return bisect([this](double x2) { return mismatch(x2); }, 0.0, 1.0);
+  }
+};
+
+double polylineLength(const std::vector<Eigen::Vector3d>& points) {
+  double length = 0.0;
+  for (size_t k = 1; k < points.size(); ++k) length += (points[k] - points[k - 1]).norm();
+  return length;
+}
+
+TEST(MemberTrace, PlaneTrapezoidMatchesTheAnalyticRoot) {
+  const PlaneTrapezoid t;  // the guess below is 4 cm off the root
+  ASSERT_LT(t.mismatch(0.0) * t.mismatch(1.0), 0.0);
+  const double root = t.root();
+  GridMember m = innerMember(Family::U, t.x1, root + 0.04 / 6.0);
   std::atomic<int> propagations{0};
-  traceInnerMember(patch, solver, quad, m, GridOptions{}, propagations);
+  traceInnerMember(t.patch, t.solver, t.quad, m, GridOptions{}, propagations);
   EXPECT_NEAR(m.x2, root, 1e-12);
   EXPECT_LE(propagations.load(), 2);  // the guess's strip, at most one retrace
-  double length = 0.0;
-  for (size_t k = 1; k < m.spatial.size(); ++k) length += (m.spatial[k] - m.spatial[k - 1]).norm();
-  EXPECT_NEAR(length, planarDistance(quad, Family::U, x1, m.x2), 1e-10 * length);
+  const double length = polylineLength(m.spatial);
+  EXPECT_NEAR(length, planarDistance(t.quad, Family::U, t.x1, m.x2), 1e-10 * length);
   // Straight, from start(x1) to end(x2), every normal +z.
-  const Eigen::Vector3d a = c[0] + x1 * (c[3] - c[0]), b = c[1] + m.x2 * (c[2] - c[1]);
+  const Eigen::Vector3d a = t.c[0] + t.x1 * (t.c[3] - t.c[0]), b = t.c[1] + m.x2 * (t.c[2] - t.c[1]);
   EXPECT_NEAR((m.spatial.front() - a).norm(), 0.0, 1e-12);
   EXPECT_NEAR((m.spatial.back() - b).norm(), 0.0, 1e-9);
   for (const auto& p : m.spatial) EXPECT_NEAR((p - a).cross(b - a).norm() / (b - a).norm(), 0.0, 1e-9);
@@ -65,27 +79,17 @@ TEST(MemberTrace, PlaneTrapezoidMatchesTheAnalyticRoot) {
 TEST(MemberTrace, FallbackBracketingMatchesTooWhenTheStripIsNotEnough) {
   // One strip trace only and a guess 1.2 m off: the root lies on another boundary edge, so the
   // member is matched by bracketing with exact fields instead, to the same root.
-  const TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.8);
-  const std::array<Eigen::Vector3d, 4> c{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {2, 3, 0}, {-2.5, 2.5, 0}};
-  const Patch patch = makePatch(mesh, c);
-  const geodesic::DistanceSolver solver(patch.mesh);
-  const auto quad = *planarQuad(patch.sideLengths, patch.innerAngles[0] - 0.15);
-  const double x1 = 0.37;
-  const auto g = [&](double x2) {
-    const Eigen::Vector3d start = c[0] + x1 * (c[3] - c[0]), end = c[1] + x2 * (c[2] - c[1]);
-    return (end - start).norm() - planarDistance(quad, Family::U, x1, x2);
-  };
-  const double root = bisect(g, 0.0, 1.0);
-  GridMember m = innerMember(Family::U, x1, root - 0.2);
+  const PlaneTrapezoid t;
+  const double root = t.root();
+  GridMember m = innerMember(Family::U, t.x1, root - 0.2);
   GridOptions options;
   options.maxStripTraces = 1;
   std::atomic<int> propagations{0};
-  traceInnerMember(patch, solver, quad, m, options, propagations);
+  traceInnerMember(t.patch, t.solver, t.quad, m, options, propagations);
   EXPECT_GT(propagations.load(), 2);
   EXPECT_NEAR(m.x2, root, 1e-8);
-  double length = 0.0;
-  for (size_t k = 1; k < m.spatial.size(); ++k) length += (m.spatial[k] - m.spatial[k - 1]).norm();
-  EXPECT_NEAR(length, planarDistance(quad, Family::U, x1, m.x2), 1e-10 * length);
+  const double length = polylineLength(m.spatial);
+  EXPECT_NEAR(length, planarDistance(t.quad, Family::U, t.x1, m.x2), 1e-10 * length);
 }
 
 TEST(MemberTrace, SphereMemberIsTheShortestGeodesicOfThePlanarLength) {
@@ -116,8 +120,7 @@ TEST(MemberTrace, SphereMemberIsTheShortestGeodesicOfThePlanarLength) {
     GridMember m = innerMember(family, x1, guess);
     std::atomic<int> propagations{0};
     traceInnerMember(patch, solver, quad, m, GridOptions{}, propagations);
-    double length = 0.0;
-    for (size_t k = 1; k < m.spatial.size(); ++k) length += (m.spatial[k] - m.spatial[k - 1]).norm();
+    const double length = polylineLength(m.spatial);
     EXPECT_NEAR(length, planarDistance(quad, family, x1, m.x2), 1e-10 * length);
     EXPECT_NEAR(length, solver.distance(start, familyBoundaryPoint(patch, family, true, m.x2)), 1e-9 * length);
     EXPECT_NEAR((m.spatial.back() - position(patch.mesh, familyBoundaryPoint(patch, family, true, m.x2))).norm(), 0.0, 1e-9);

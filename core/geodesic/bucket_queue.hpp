@@ -39,7 +39,7 @@ class BucketQueue {
   }
   bool empty() const { return bucketed_ == 0 && overflow_.empty(); }
 
-  void push(double key, int item) {
+  [[gnu::always_inline]] inline void push(double key, int item) {
     const long long index = std::max(current_, bucketIndex(key));
     if (index - current_ < static_cast<long long>(kBuckets)) {
       auto& bucket = buckets_[index & kMask];
@@ -98,8 +98,9 @@ class BucketQueue {
 
   // Bucket of `key`, clamped to [0, kFar]: negative keys (never pushed) count as 0, and far keys
   // (+inf included) as kFar, which stays beyond the horizon until the calendar gets there.
+  // (Truncation is floor here, the value being positive: no call to floor per push.)
   long long bucketIndex(double key) const {
-    const double scaled = std::floor(key * inverseWidth_);
+    const double scaled = key * inverseWidth_;
     if (!(scaled > 0.0)) return 0;
     return scaled < static_cast<double>(kFar) ? static_cast<long long>(scaled) : kFar;
   }

@@ -112,6 +112,7 @@ int runSimBench(const SimBenchArgs& args) {
                          {"seconds_max", notched.maxSeconds},
                          {"repeats", args.repeats},
                          {"gradient_norm", run.solver.gradientNorm},
+                         {"energy_J", run.solver.energy},
                          {"converged", run.solver.converged},
                          {"reason", run.solver.reason},
                          {"rmse_m", rmse},

@@ -190,20 +190,6 @@ inline HyperDual<N> liftEdgeQuantity(const HyperDual<4>& a, int start, int end, 
   return r;
 }
 
-// A quantity differentiated with respect to 4 variables placed at local indices index[0..3] of an
-// N-variable stencil.
-template <int N>
-inline HyperDual<N> embed(const HyperDual<4>& a, const int (&index)[4]) {
-  HyperDual<N> r(a.v);
-  for (int p = 0; p < 4; ++p) {
-    r.g[index[p]] = a.g[p];
-    for (int q = 0; q < 4; ++q) {
-      if (index[p] >= index[q]) r.h(index[p], index[q]) = a.hessian(p, q);
-    }
-  }
-  return r;
-}
-
 inline double value(double a) { return a; }
 template <int N>
 inline double value(const HyperDual<N>& a) { return a.v; }

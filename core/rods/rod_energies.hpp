@@ -49,13 +49,17 @@ inline V3<S> parallelTransport(const V3<S>& from, const V3<S>& to, const V3<S>& 
   return c * u + cross(v, u) + (dot(v, u) / (c + 1.0)) * v;
 }
 
+// The material frame of an edge; `director`, when given, receives the time-parallel-transported
+// reference director u (theta = 0), which the closed-form twist derivatives need.
 template <class S>
-inline Frame<S> materialFrame(const V3<S>& edge, const S& theta, const EdgeReference& reference) {
+inline Frame<S> materialFrame(const V3<S>& edge, const S& theta, const EdgeReference& reference,
+                              V3<S>* director = nullptr) {
   using std::cos;
   using std::sin;
   const S length = norm(edge);
   const V3<S> t = (1.0 / length) * edge;
   const V3<S> u = parallelTransport(constant<S>(reference.tangent), t, constant<S>(reference.director));
+  if (director != nullptr) *director = u;
   const V3<S> v = cross(t, u);
   const S c = cos(theta), s = sin(theta);
   return {t, c * u + s * v, c * v - s * u};

@@ -3,6 +3,7 @@
 // edge, one barycentric coordinate per sliding bolt side; the energy E = E_r + E_q + E_a + E_n +
 // E_p (+ gravity and test loads) over that vector of unknowns, with its exact gradient and
 // sparse Hessian (Section 2.5). The solver (rod_solver.hpp) minimises it.
+#include "core/rods/bend_twist_derivatives.hpp"
 #include "core/rods/rod_energies.hpp"
 #include "core/rods/rod_network.hpp"
 
@@ -152,10 +153,8 @@ class RodModel {
     return side.betaDof >= 0 ? z[side.betaDof] : side.point.beta;
   }
   SliderParameters sliderParameters(const BoltSide& side) const;
-  // Material frame of every edge differentiated w.r.t. (edge vector, theta), for the Hessian pass.
-  struct EdgeFrameDerivatives {
-    Frame<HyperDual<4>> frame;
-  };
+  // Material frame of every edge differentiated w.r.t. (edge vector, theta), for the Hessian pass
+  // (EdgeFrameDerivatives: bend_twist_derivatives.hpp).
   std::vector<EdgeFrameDerivatives> frameDerivatives(const Eigen::VectorXd& z, int threads) const;
   template <class Visitor>
   void forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int part, int parts,

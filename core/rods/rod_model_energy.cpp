@@ -38,6 +38,12 @@ struct EnergySum {
               const F& f) {
     total += f(values);
   }
+  // A mapped stencil with closed-form derivatives `d` (not needed for the energy alone).
+  template <size_t N, class F, class D>
+  void mappedClosedForm(const std::array<std::array<std::pair<int, double>, 2>, N>& map,
+                        const std::array<double, N>& values, const F& f, const D& /*d*/) {
+    mapped(map, values, f);
+  }
 };
 
 // Accumulates energy, gradient and Hessian triplets of stencils (exact, by HyperDual).
@@ -73,13 +79,25 @@ struct DerivativeSum {
     std::array<D, N> variables;
     for (size_t i = 0; i < N; ++i) variables[i] = D::variable(values[i], static_cast<int>(i));
     const D result = f(variables);
-    total += result.v;
+    scatter(map, result.v, result.g, [&](int k, int l) { return result.hessian(k, l); });
+  }
+  // The same with the derivatives computed in closed form by d() (energy, gradient, full Hessian).
+  template <size_t N, class F, class D>
+  void mappedClosedForm(const std::array<std::array<std::pair<int, double>, 2>, N>& map,
+                        const std::array<double, N>& /*values*/, const F& /*f*/, const D& d) {
+    const auto result = d();
+    scatter(map, result.energy, result.gradient, [&](int k, int l) { return result.hessian(k, l); });
+  }
+  template <size_t N, class G, class H>
+  void scatter(const std::array<std::array<std::pair<int, double>, 2>, N>& map, double energy, const G& g,
+               const H& hessian) {
+    total += energy;
     for (size_t k = 0; k < N; ++k) {
       for (const auto& [dof, sign] : map[k]) {
-        if (dof >= 0) gradient[dof] += sign * result.g[k];
+        if (dof >= 0) gradient[dof] += sign * g[k];
       }
       for (size_t l = 0; l < N; ++l) {
-        const double value = result.hessian(static_cast<int>(k), static_cast<int>(l));
+        const double value = hessian(static_cast<int>(k), static_cast<int>(l));
         for (const auto& [dofK, signK] : map[k]) {
           if (dofK < 0) continue;
           for (const auto& [dofL, signL] : map[l]) {
@@ -140,17 +158,15 @@ void runParts(int threads, const Work& work) {
 
 }  // namespace
 
-std::vector<RodModel::EdgeFrameDerivatives> RodModel::frameDerivatives(const Eigen::VectorXd& z, int threads) const {
+std::vector<EdgeFrameDerivatives> RodModel::frameDerivatives(const Eigen::VectorXd& z, int threads) const {
   std::vector<EdgeFrameDerivatives> frames(references_.size());
   runParts(threads, [&](int part) {
     for (int r = 0; r < rodCount(); ++r) {
       for (int j = 0; j < rods_[r].edges; ++j) {
         const int index = edgeReferenceBase_[r] + j;
         if (index % kParts != part) continue;
-        using D = HyperDual<4>;
         const Eigen::Vector3d e = z.segment<3>(vertexDof(r, j + 1)) - z.segment<3>(vertexDof(r, j));
-        const V3<D> edge{D::variable(e.x(), 0), D::variable(e.y(), 1), D::variable(e.z(), 2)};
-        frames[index].frame = materialFrame(edge, D::variable(z[thetaDof(r, j)], 3), references_[index]);
+        frames[index] = edgeFrameDerivatives(e, z[thetaDof(r, j)], references_[index]);
       }
     }
   });
@@ -179,21 +195,10 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
       return Frame<S>{lift(f.tangent), lift(f.normal), lift(f.side)};
     }
   };
-  // The same for a stencil whose variables at edgeIndex.. are the edge vector itself.
+  // The same (double evaluation only) for a stencil whose variables at edgeIndex.. are the edge
+  // vector itself.
   auto frameOfEdge = [&](const auto& v, int rod, int edge, int edgeIndex, int theta) {
-    using S = std::decay_t<decltype(v[0])>;
-    const int index = edgeReferenceBase_[rod] + edge;
-    if constexpr (std::is_same_v<S, double>) {
-      return materialFrame(v3(v, edgeIndex), v[theta], references_[index]);
-    } else {
-      constexpr int N = static_cast<int>(std::tuple_size_v<std::decay_t<decltype(v)>>);
-      const Frame<HyperDual<4>>& f = (*frames)[index].frame;
-      const int at[4] = {edgeIndex, edgeIndex + 1, edgeIndex + 2, theta};
-      auto lift = [&](const V3<HyperDual<4>>& a) {
-        return V3<S>{embed<N>(a.x, at), embed<N>(a.y, at), embed<N>(a.z, at)};
-      };
-      return Frame<S>{lift(f.tangent), lift(f.normal), lift(f.side)};
-    }
+    return materialFrame(v3(v, edgeIndex), v[theta], references_[edgeReferenceBase_[rod] + edge]);
   };
   for (int r = 0; r < rodCount(); ++r) {
     const RodData& data = rods_[r];
@@ -221,10 +226,17 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
       map[7] = {std::pair{thetaDof(r, i), 1.0}, std::pair{-1, 0.0}};
       values[6] = z[thetaDof(r, i - 1)];
       values[7] = z[thetaDof(r, i)];
-      visit.mapped(map, values, [&](const auto& v) {
-        return bendTwistEnergyOfEdges(v3(v, 0), v3(v, 3), frameOfEdge(v, r, i - 1, 0, 6), frameOfEdge(v, r, i, 3, 7),
-                                      data.stiffness, data.h);
-      });
+      // Derivatives in closed form (bend_twist_derivatives.hpp) from the precomputed edge frames.
+      visit.mappedClosedForm(
+          map, values,
+          [&](const auto& v) {
+            return bendTwistEnergyOfEdges(v3(v, 0), v3(v, 3), frameOfEdge(v, r, i - 1, 0, 6),
+                                          frameOfEdge(v, r, i, 3, 7), data.stiffness, data.h);
+          },
+          [&]() {
+            const int index = edgeReferenceBase_[r] + i;
+            return bendTwistDerivatives((*frames)[index - 1], (*frames)[index], data.stiffness, data.h);
+          });
     }
   }
   for (const Bolt& b : bolts_) {

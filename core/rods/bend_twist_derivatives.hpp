@@ -1,0 +1,45 @@
+#pragma once
+// Closed-form gradient and Hessian of the bending and twisting energy of one interior vertex
+// (Section 2.5; the energy is bendTwistEnergyOfEdges in rod_energies.hpp) over its 8 variables
+// (e0, e1, theta0, theta1), assembled by the chain rule from per-edge frame derivatives.
+//
+// Bending: with the curvature binormal kb = 2 t0 x t1 / (1 + t0.t1) (= 2 e0 x e1 /
+// (|e0||e1| + e0.e1)) and the four material curvatures w = kb.a (a = m1, m2 of either edge),
+// E_b = sum c w^2, so grad E_b = sum 2 c w grad w and the Hessian is
+// sum 2 c (grad w grad w^T + w Hess w) with Hess w = sum_i (a_i Hess kb_i + kb_i Hess a_i +
+// grad kb_i grad a_i^T + grad a_i grad kb_i^T): kb depends on (e0, e1) only, a on one edge's
+// (e, theta) only.
+// Twisting: the material normal of an edge is its transported director u turned by theta about
+// the tangent, and the space-parallel transport P from t0 to t1 is a rotation, so the signed
+// angle from P m1_0 to m1_1 about t1 is theta1 - theta0 + r(e0, e1) (modulo 2 pi), where r is the
+// same angle between P u0 and u1 (the reference twist). The twist therefore has gradient
+// (grad r, -1, 1) and a Hessian that lives in the (e0, e1) block only.
+// Only kb and r are differentiated with HyperDual<6>; every other product is a small dense
+// operation. The HyperDual<8> evaluation of the same energy stays the reference in the tests.
+#include "core/rods/rod_energies.hpp"
+
+#include <Eigen/Core>
+
+namespace egg::rods {
+
+// Material frame and transported reference director of one edge, differentiated with respect to
+// (edge vector e, material angle theta): 4 variables, in that order.
+struct EdgeFrameDerivatives {
+  Frame<HyperDual<4>> frame;
+  V3<HyperDual<4>> director;  // u (does not depend on theta)
+};
+
+EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta, const EdgeReference& reference);
+
+struct BendTwistDerivatives {
+  double energy = 0.0;
+  Eigen::Matrix<double, 8, 1> gradient;  // over (e0, e1, theta0, theta1)
+  Eigen::Matrix<double, 8, 8> hessian;   // symmetric, both triangles filled
+};
+
+// f0, f1: the frames of the edges before and after the vertex (e0 = x1 - x0, e1 = x2 - x1),
+// from edgeFrameDerivatives.
+BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0, const EdgeFrameDerivatives& f1,
+                                          const RodStiffness& stiffness, double voronoiLength);
+
+}  // namespace egg::rods

@@ -1,0 +1,142 @@
+// The closed-form bending/twisting derivatives against the HyperDual<8> evaluation of the same
+// energy (the reference: exact forward-mode AD of bendTwistEnergyOfEdges) and against finite
+// differences.
+#include "core/rods/bend_twist_derivatives.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <random>
+
+namespace egg::rods {
+namespace {
+
+const RodStiffness kStiffness{2.0e4, 3.0, 70.0, 1.7};
+
+struct Stencil {
+  Eigen::Vector3d e0, e1;
+  double theta0 = 0.0, theta1 = 0.0;
+  EdgeReference r0, r1;
+};
+
+EdgeReference referenceNear(const Eigen::Vector3d& edge, std::mt19937& rng, double spread) {
+  std::normal_distribution<double> noise(0.0, spread);
+  EdgeReference r;
+  r.tangent = (edge.normalized() + Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).normalized();
+  Eigen::Vector3d d(noise(rng), noise(rng), 1.0);
+  d -= d.dot(r.tangent) * r.tangent;
+  r.director = d.normalized();
+  return r;
+}
+
+Stencil randomStencil(std::mt19937& rng, double bend, double thetaSpread) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Stencil s;
+  s.e0 = Eigen::Vector3d(1.0 + 0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng));
+  s.e1 = Eigen::Vector3d(0.8 + 0.3 * u(rng), bend * u(rng), bend * u(rng));
+  s.theta0 = thetaSpread * u(rng);
+  s.theta1 = thetaSpread * u(rng);
+  s.r0 = referenceNear(s.e0, rng, 0.2);
+  s.r1 = referenceNear(s.e1, rng, 0.2);
+  return s;
+}
+
+BendTwistDerivatives closedForm(const Stencil& s, double voronoiLength) {
+  return bendTwistDerivatives(edgeFrameDerivatives(s.e0, s.theta0, s.r0), edgeFrameDerivatives(s.e1, s.theta1, s.r1),
+                              kStiffness, voronoiLength);
+}
+
+// The reference: HyperDual<8> over (e0, e1, theta0, theta1), frames differentiated in place.
+HyperDual<8> automatic(const Stencil& s, double voronoiLength) {
+  using D = HyperDual<8>;
+  const V3<D> e0{D::variable(s.e0.x(), 0), D::variable(s.e0.y(), 1), D::variable(s.e0.z(), 2)};
+  const V3<D> e1{D::variable(s.e1.x(), 3), D::variable(s.e1.y(), 4), D::variable(s.e1.z(), 5)};
+  const D theta0 = D::variable(s.theta0, 6), theta1 = D::variable(s.theta1, 7);
+  return bendTwistEnergyOfEdges(e0, e1, materialFrame(e0, theta0, s.r0), materialFrame(e1, theta1, s.r1), kStiffness,
+                                voronoiLength);
+}
+
+double energyAt(const Stencil& s, double voronoiLength) {
+  const V3<double> e0 = constant<double>(s.e0), e1 = constant<double>(s.e1);
+  return bendTwistEnergyOfEdges(e0, e1, materialFrame(e0, s.theta0, s.r0), materialFrame(e1, s.theta1, s.r1),
+                                kStiffness, voronoiLength);
+}
+
+Stencil moved(const Stencil& s, int variable, double step) {
+  Stencil m = s;
+  if (variable < 3) m.e0[variable] += step;
+  else if (variable < 6) m.e1[variable - 3] += step;
+  else if (variable == 6) m.theta0 += step;
+  else m.theta1 += step;
+  return m;
+}
+
+void expectMatchesAutomatic(const Stencil& s, double voronoiLength) {
+  const BendTwistDerivatives d = closedForm(s, voronoiLength);
+  const HyperDual<8> a = automatic(s, voronoiLength);
+  EXPECT_NEAR(d.energy, a.v, 1e-12 * std::abs(a.v));
+  const double gradientScale = a.g.cwiseAbs().maxCoeff();
+  double hessianScale = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j <= i; ++j) hessianScale = std::max(hessianScale, std::abs(a.hessian(i, j)));
+  }
+  ASSERT_GT(gradientScale, 0.0);
+  ASSERT_GT(hessianScale, 0.0);
+  for (int i = 0; i < 8; ++i) {
+    EXPECT_NEAR(d.gradient[i], a.g[i], 1e-9 * gradientScale) << "gradient " << i;
+    for (int j = 0; j < 8; ++j) {
+      EXPECT_NEAR(d.hessian(i, j), a.hessian(i, j), 1e-9 * hessianScale) << "Hessian " << i << "," << j;
+    }
+  }
+}
+
+TEST(BendTwistDerivatives, MatchHyperDualOnRandomStencils) {
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 40; ++trial) expectMatchesAutomatic(randomStencil(rng, 0.5, 1.0), 0.9);
+}
+
+TEST(BendTwistDerivatives, MatchHyperDualNearlyStraightAndStronglyTwisted) {
+  std::mt19937 rng(23);
+  // Nearly straight (the converged grids) and twists up to ~3 rad (value from atan2 wraps there).
+  for (int trial = 0; trial < 20; ++trial) expectMatchesAutomatic(randomStencil(rng, 1e-3, 1.4), 1.3);
+}
+
+TEST(BendTwistDerivatives, WrappedTwistKeepsTheAtan2Value) {
+  // theta1 - theta0 = 3.5 rad on a straight rod: the twist angle is 3.5 - 2 pi, as in the energy.
+  Stencil s;
+  s.e0 = Eigen::Vector3d(1, 0, 0);
+  s.e1 = Eigen::Vector3d(1, 0, 0);
+  s.r0 = s.r1 = EdgeReference{Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ()};
+  s.theta0 = -1.5;
+  s.theta1 = 2.0;
+  const double twist = 3.5 - 2.0 * M_PI;
+  const BendTwistDerivatives d = closedForm(s, 1.0);
+  EXPECT_NEAR(d.energy, 0.5 * kStiffness.twisting * twist * twist, 1e-12);
+  EXPECT_NEAR(d.gradient[7], kStiffness.twisting * twist, 1e-12);
+  EXPECT_NEAR(d.gradient[6], -kStiffness.twisting * twist, 1e-12);
+  EXPECT_NEAR(d.hessian(7, 7), kStiffness.twisting, 1e-12);
+  EXPECT_NEAR(d.hessian(6, 7), -kStiffness.twisting, 1e-12);
+}
+
+TEST(BendTwistDerivatives, MatchFiniteDifferences) {
+  std::mt19937 rng(29);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Stencil s = randomStencil(rng, 0.4, 0.8);
+    const double l = 1.1;
+    const BendTwistDerivatives d = closedForm(s, l);
+    const double gradientScale = d.gradient.cwiseAbs().maxCoeff();
+    const double hessianScale = d.hessian.cwiseAbs().maxCoeff();
+    EXPECT_NEAR(d.energy, energyAt(s, l), 1e-12 * d.energy);
+    for (int i = 0; i < 8; ++i) {
+      const double step = 1e-6;
+      const Stencil plus = moved(s, i, step), minus = moved(s, i, -step);
+      EXPECT_NEAR(d.gradient[i], (energyAt(plus, l) - energyAt(minus, l)) / (2.0 * step), 1e-6 * gradientScale) << i;
+      const Eigen::Matrix<double, 8, 1> column = (closedForm(plus, l).gradient - closedForm(minus, l).gradient) / (2.0 * step);
+      for (int j = 0; j < 8; ++j) EXPECT_NEAR(d.hessian(j, i), column[j], 1e-6 * hessianScale) << j << "," << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace egg::rods

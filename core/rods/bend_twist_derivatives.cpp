@@ -28,10 +28,46 @@ V3<D6> onEdgeVector(const V3<D4>& a, int offset) {
 
 }  // namespace
 
+// The tangent, transported director u and v = t x u depend on the edge vector only: they are
+// differentiated with 3 variables, and the angle enters in closed form: m1 = cos(theta) u +
+// sin(theta) v, m2 = cos(theta) v - sin(theta) u, so d m1/d theta = m2, d m2/d theta = -m1 and
+// the second derivatives in theta are -m1, -m2 (the same expressions as materialFrame).
 EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta, const EdgeReference& reference) {
-  const V3<D4> e{D4::variable(edge.x(), 0), D4::variable(edge.y(), 1), D4::variable(edge.z(), 2)};
+  using D3 = HyperDual<3>;
+  const V3<D3> e{D3::variable(edge.x(), 0), D3::variable(edge.y(), 1), D3::variable(edge.z(), 2)};
+  const D3 length = norm(e);
+  const V3<D3> t = (1.0 / length) * e;
+  const V3<D3> u = parallelTransport(constant<D3>(reference.tangent), t, constant<D3>(reference.director));
+  const V3<D3> v = cross(t, u);
+  const double c = std::cos(theta), s = std::sin(theta);
+  // An edge-vector-only quantity as a function of (e, theta).
+  auto lift = [](const D3& a) {
+    D4 r(a.v);
+    for (int p = 0; p < 3; ++p) {
+      r.g[p] = a.g[p];
+      for (int q = 0; q <= p; ++q) r.h(p, q) = a.h(p, q);
+    }
+    return r;
+  };
+  // cu * a + cv * b whose theta derivative is du * a + dv * b and second theta derivative
+  // -(cu * a + cv * b) (a rotation by theta).
+  auto turned = [](const D3& a, const D3& b, double cu, double cv, double du, double dv) {
+    D4 r(cu * a.v + cv * b.v);
+    for (int p = 0; p < 3; ++p) {
+      r.g[p] = cu * a.g[p] + cv * b.g[p];
+      for (int q = 0; q <= p; ++q) r.h(p, q) = cu * a.h(p, q) + cv * b.h(p, q);
+      r.h(3, p) = du * a.g[p] + dv * b.g[p];
+    }
+    r.g[3] = du * a.v + dv * b.v;
+    r.h(3, 3) = -r.v;
+    return r;
+  };
   EdgeFrameDerivatives out;
-  out.frame = materialFrame(e, D4::variable(theta, 3), reference, &out.director);
+  out.frame.tangent = {lift(t.x), lift(t.y), lift(t.z)};
+  out.director = {lift(u.x), lift(u.y), lift(u.z)};
+  out.frame.normal = {turned(u.x, v.x, c, s, -s, c), turned(u.y, v.y, c, s, -s, c), turned(u.z, v.z, c, s, -s, c)};
+  out.frame.side = {turned(v.x, u.x, c, -s, -s, -c), turned(v.y, u.y, c, -s, -s, -c),
+                    turned(v.z, u.z, c, -s, -s, -c)};
   return out;
 }
 

@@ -91,6 +91,33 @@ void expectMatchesAutomatic(const Stencil& s, double voronoiLength) {
   }
 }
 
+void expectSame(const HyperDual<4>& a, const HyperDual<4>& b, const char* what) {
+  EXPECT_NEAR(a.v, b.v, 1e-14) << what;
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(a.g[i], b.g[i], 1e-12) << what << " gradient " << i;
+    for (int j = 0; j < 4; ++j) EXPECT_NEAR(a.hessian(i, j), b.hessian(i, j), 1e-12) << what << " " << i << "," << j;
+  }
+}
+
+TEST(BendTwistDerivatives, EdgeFramesMatchHyperDualOfTheMaterialFrame) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Stencil s = randomStencil(rng, 0.5, 3.0);
+    using D = HyperDual<4>;
+    const V3<D> e{D::variable(s.e1.x(), 0), D::variable(s.e1.y(), 1), D::variable(s.e1.z(), 2)};
+    V3<D> director;
+    const Frame<D> reference = materialFrame(e, D::variable(s.theta1, 3), s.r1, &director);
+    const EdgeFrameDerivatives f = edgeFrameDerivatives(s.e1, s.theta1, s.r1);
+    const V3<D>* expected[4] = {&reference.tangent, &reference.normal, &reference.side, &director};
+    const V3<D>* actual[4] = {&f.frame.tangent, &f.frame.normal, &f.frame.side, &f.director};
+    for (int k = 0; k < 4; ++k) {
+      expectSame(actual[k]->x, expected[k]->x, "x");
+      expectSame(actual[k]->y, expected[k]->y, "y");
+      expectSame(actual[k]->z, expected[k]->z, "z");
+    }
+  }
+}
+
 TEST(BendTwistDerivatives, MatchHyperDualOnRandomStencils) {
   std::mt19937 rng(17);
   for (int trial = 0; trial < 40; ++trial) expectMatchesAutomatic(randomStencil(rng, 0.5, 1.0), 0.9);

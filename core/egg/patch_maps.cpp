@@ -1,5 +1,6 @@
 #include "core/egg/patch_maps.hpp"
 
+#include "core/egg/map_refinement.hpp"
 #include "core/errors.hpp"
 
 #include <tbb/parallel_invoke.h>
@@ -11,6 +12,9 @@ namespace egg {
 
 void DistanceMapOptions::validate() const {
   if (resolution < 3 || resolution > 2000) throw InvalidInput("grid.map_resolution must lie in [3, 2000]");
+  if (!(toleranceM >= 0.0) || !std::isfinite(toleranceM))
+    throw InvalidInput("distance map toleranceM must be a finite number of metres >= 0 (0 = exact rows)");
+  if (initialNodes < 2) throw InvalidInput("distance map initialNodes must be >= 2 (both corners of the start side)");
 }
 
 std::pair<int, bool> familySide(Family family, bool end) {
@@ -36,25 +40,34 @@ PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::Distan
   PatchDistanceMaps maps;
   maps.sides = patch.sideLengths;
   maps.alphaSpatial = patch.innerAngles[0];
+  int propagations[2] = {0, 0};
   const auto familyMap = [&](Family family) {
-    std::vector<SurfacePoint> sources, targets;
-    for (int i = 0; i < n; ++i) {
-      const double x = static_cast<double>(i) / (n - 1);
-      sources.push_back(familyBoundaryPoint(patch, family, false, x));
-      targets.push_back(familyBoundaryPoint(patch, family, true, x));
-    }
-    const auto fields = solver.distances(sources, targets);
+    std::vector<SurfacePoint> targets;
+    for (int j = 0; j < n; ++j) targets.push_back(familyBoundaryPoint(patch, family, true, static_cast<double>(j) / (n - 1)));
+    // One batch per call: the initial nodes, then the middles of every interval still under test.
+    const auto exactRows = [&](const std::vector<int>& indices) {
+      std::vector<SurfacePoint> sources;
+      for (int i : indices) sources.push_back(familyBoundaryPoint(patch, family, false, static_cast<double>(i) / (n - 1)));
+      auto fields = solver.distances(sources, targets);
+      std::vector<std::vector<double>> rows;
+      for (auto& field : fields) {
+        for (double d : field.targetDistances)
+          if (!std::isfinite(d)) throw SolverFailure("distance map: a boundary point is unreachable inside the patch");
+        rows.push_back(std::move(field.targetDistances));
+      }
+      return rows;
+    };
+    std::vector<std::vector<double>> rows;
+    const auto stats = refineMapRows(n, n, options.toleranceM, options.initialNodes, exactRows, rows);
+    propagations[family == Family::U ? 0 : 1] = stats.exactRows;
     DistanceMap map(n, n);
     for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) {
-        const double d = fields[i].targetDistances[j];
-        if (!std::isfinite(d)) throw SolverFailure("distance map: a boundary point is unreachable inside the patch");
-        map.at(i, j) = d;
-      }
+      for (int j = 0; j < n; ++j) map.at(i, j) = rows[i][j];
     (family == Family::U ? maps.u : maps.v) = std::move(map);
   };
   // Both batches share the thread pool, so the tail of one family overlaps the other.
   tbb::parallel_invoke([&] { familyMap(Family::U); }, [&] { familyMap(Family::V); });
+  maps.propagations = propagations[0] + propagations[1];
   maps.diagonalE = maps.u.at(0, n - 1);  // c0 to c2
   maps.diagonalF = maps.u.at(n - 1, 0);  // c3 to c1
   return maps;

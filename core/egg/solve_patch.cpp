@@ -56,7 +56,7 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
                          for (const auto& p : peaks.peaks) sources.push_back(geodesic::vertexPoint(result.patch.mesh, p.vertex));
                          peakFields = solver->distances(sources, uniquenessPeakTargets(result.patch, options.maps.resolution));
                        });
-  result.propagations += 2 * options.maps.resolution + static_cast<int>(peakFields.size());
+  result.propagations += result.maps.propagations + static_cast<int>(peakFields.size());
   result.seconds.distanceMaps = since(t);
 
   t = std::chrono::steady_clock::now();
@@ -109,7 +109,7 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   if (result.uniqueness.smoothingRounds > 0) {
     t = std::chrono::steady_clock::now();
     result.maps = computeDistanceMaps(result.patch, *solver, options.maps);
-    result.propagations += 2 * options.maps.resolution;
+    result.propagations += result.maps.propagations;
     result.seconds.distanceMaps += since(t);
   }
 

@@ -29,6 +29,7 @@ struct GridBenchArgs {
   int resolution = 100;                           // distance map samples per side
   double height = 1.0;                            // bump height (m); the patch is 6 x 6 m
   int repeats = 3;                                // solves per size; the table shows medians
+  std::vector<double> mapTolerances;              // error-vs-time table of the adaptive maps (empty = none)
   std::string csv;
   bool json = false;
 };
@@ -54,18 +55,95 @@ std::array<double, kParts> partsOf(const EggTimings& t) {
   return {t.patch, t.uniqueness, t.distanceMaps, t.sqp, t.members, t.tracing};
 }
 
+// Largest change of a family's member positions (metres along the start and end sides) against
+// the reference; NaN when the member count differs.
+double memberShift(const FamilyMembers& a, const FamilyMembers& reference, double startLength, double endLength) {
+  if (a.x1.size() != reference.x1.size()) return std::nan("");
+  double shift = 0.0;
+  for (size_t k = 0; k < a.x1.size(); ++k)
+    shift = std::max({shift, std::abs(a.x1[k] - reference.x1[k]) * startLength, std::abs(a.x2[k] - reference.x2[k]) * endLength});
+  return shift;
+}
+
+double largestDifference(const DistanceMap& a, const DistanceMap& b) {
+  double d = 0.0;
+  for (size_t k = 0; k < a.values.size(); ++k) d = std::max(d, std::abs(a.values[k] - b.values[k]));
+  return d;
+}
+
+// Error against run time of the adaptive distance maps (DistanceMapOptions::toleranceM): per size,
+// the exact maps (tolerance 0, a field at every sample) are the reference of the same run; every
+// tolerance is solved `repeats` times and compared with it.
+nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& mesh, const EggOptions& base) {
+  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
+  std::vector<double> tolerances{0.0};
+  for (double t : args.mapTolerances) if (t > 0.0) tolerances.push_back(t);
+  nlohmann::json rows = nlohmann::json::array();
+  std::optional<EggResult> reference;
+  for (double tolerance : tolerances) {
+    EggOptions options = base;
+    options.maps.toleranceM = tolerance;
+    std::vector<double> maps, totals, cpu;
+    std::optional<EggResult> last;
+    for (int run = 0; run < args.repeats; ++run) {
+      const double cpuStart = processCpuSeconds();
+      last = solveEgg(mesh, corners, options);
+      cpu.push_back(processCpuSeconds() - cpuStart);
+      maps.push_back(last->seconds.distanceMaps);
+      totals.push_back(last->seconds.total);
+    }
+    if (!reference) reference = last;
+    const EggResult& r = *last;
+    const EggResult& e = *reference;
+    const double mapError = std::max(largestDifference(r.maps.u, e.maps.u), largestDifference(r.maps.v, e.maps.v));
+    const Patch& p = r.patch;
+    const double shift = std::max(
+        memberShift(r.membersU, e.membersU, familySideLength(p, Family::U, false), familySideLength(p, Family::U, true)),
+        memberShift(r.membersV, e.membersV, familySideLength(p, Family::V, false), familySideLength(p, Family::V, true)));
+    const bool sameCount = r.membersU.x1.size() == e.membersU.x1.size() && r.membersV.x1.size() == e.membersV.x1.size();
+    nlohmann::json row{{"vertices", p.mesh.n_vertices()},
+                       {"tolerance_m", tolerance},
+                       {"t_distance_maps_s", median(maps)},
+                       {"t_grid_s", median(totals)},
+                       {"cpu_grid_s", median(cpu)},
+                       {"map_fields", r.maps.propagations},
+                       {"max_map_error_m", mapError},
+                       {"alpha_bar_change_rad", std::abs(r.alphaBar.alphaBar - e.alphaBar.alphaBar)},
+                       {"alpha_max_change_rad", std::abs(r.alphaBar.alphaMax - e.alphaBar.alphaMax)},
+                       {"member_counts_equal", sameCount},
+                       {"max_notch_change_m", std::abs(r.grid.maxNotch - e.grid.maxNotch)}};
+    if (sameCount) row["member_shift_m"] = shift;
+    // The bench patch is symmetric about the diagonal c0-c2, which swaps the families: on the
+    // smooth surface D_u = D_v and the members coincide, so what differs is mesh noise.
+    const double uvMap = largestDifference(r.maps.u, r.maps.v);
+    const double uvMember = memberShift(r.membersU, r.membersV, familySideLength(p, Family::U, false), familySideLength(p, Family::U, true));
+    row["uv_map_asymmetry_m"] = uvMap;
+    if (std::isfinite(uvMember)) row["uv_member_asymmetry_m"] = uvMember;
+    fmt::print("{:>8} {:>9.1e} {:>8.3f} {:>8.3f} {:>8.3f} {:>6} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>10.2e} {:>10.2e} {:>10}\n",
+               p.mesh.n_vertices(), tolerance, median(maps), median(totals), median(cpu), r.maps.propagations, mapError,
+               std::abs(r.alphaBar.alphaBar - e.alphaBar.alphaBar), std::abs(r.alphaBar.alphaMax - e.alphaBar.alphaMax),
+               sameCount ? fmt::format("{:.2e}", shift) : std::string("count"), std::abs(r.grid.maxNotch - e.grid.maxNotch), uvMap,
+               std::isfinite(uvMember) ? fmt::format("{:.2e}", uvMember) : std::string("count"));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 int runGridBench(const GridBenchArgs& args) {
-  fmt::print("egg bench grid: bump (height {} m, sigma 1.5 m) patch 6 x 6 m, distance maps {} x {}, alpha_bar = min,\n"
+  fmt::print("egg bench grid: bump (height {} m, sigma 1.5 m) patch 6 x 6 m, distance maps {} x {} (adaptive rows,\n"
+             "tolerance {} m), alpha_bar = min,\n"
              "lamellas 0.1 m at spacing 0.6 m; wall seconds (all threads), median of {} solves per size;\n"
              "cpu_grid = CPU seconds of the solve over all threads (load-independent work);\n"
              "t_maps includes the eta check's curvature and peak fields (run alongside the maps), t_eta the check\n"
              "itself; share = part / t_grid; fields = propagations (patch sides + maps + peaks + tracing)\n",
-             args.height, args.resolution, args.resolution, args.repeats);
+             args.height, args.resolution, args.resolution, DistanceMapOptions{}.toleranceM, args.repeats);
   fmt::print("{:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>10} {:>18}\n", "vertices", "t_patch",
              "t_eta", "t_maps", "t_sqp", "t_member", "t_trace", "t_grid", "cpu_grid", "u x v", "fields", "max_notch",
              "alpha_bar range");
   nlohmann::json rows = nlohmann::json::array();
   std::vector<std::array<double, kParts>> shares;
+  std::vector<TriMesh> meshes;
+  EggOptions baseOptions;
   for (int size : args.sizes) {
     if (size < 50) throw InvalidInput("egg bench grid: --sizes must be at least 50 vertices");
     // Calibrated on the bump sample: a surface meshed for `density` vertices per 50 m^2 gives a
@@ -122,6 +200,22 @@ int runGridBench(const GridBenchArgs& args) {
                        {"alpha_bar_evaluations", r.alphaBar.evaluations},
                        {"alpha_bar_status", r.alphaBar.status}};
     rows.push_back(row);
+    meshes.push_back(mesh);
+    baseOptions = options;
+  }
+  nlohmann::json toleranceRows = nlohmann::json::array();
+  if (!args.mapTolerances.empty()) {
+    fmt::print("distance maps: error against time (adaptive rows, DistanceMapOptions::toleranceM); reference = exact maps\n"
+               "(tolerance 0, {} fields per family) of the same run; t_* medians of {} solves; map_err = max |D - D_exact|\n"
+               "over both maps; d_alpha = |alpha_bar - exact| (alpha_bar_min), d_amax = |alpha_bar_max - exact|; d_member =\n"
+               "largest member end shift along its side (\"count\" if the member count changed); d_notch = change of max notch;\n"
+               "uv_map, uv_member = max |D_u - D_v| and largest u/v member mismatch of that solve: the patch is symmetric\n"
+               "about its diagonal c0-c2, so on the smooth surface both are 0 and the exact row shows the mesh's own noise\n",
+               args.resolution, args.repeats);
+    fmt::print("{:>8} {:>9} {:>8} {:>8} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "vertices", "tol_m", "t_maps",
+               "t_grid", "cpu_grid", "fields", "map_err_m", "d_alpha", "d_amax", "d_member_m", "d_notch_m", "uv_map_m", "uv_member");
+    for (const TriMesh& mesh : meshes)
+      for (auto& row : runMapToleranceTable(args, mesh, baseOptions)) toleranceRows.push_back(row);
   }
   fmt::print("share of t_grid:\n{:>8}", "vertices");
   for (const char* name : kPartNames) fmt::print(" {:>8}", name);
@@ -143,7 +237,7 @@ int runGridBench(const GridBenchArgs& args) {
                           r["distance_fields"].get<int>());
     writeFileAtomically(args.csv, file.str());
   }
-  if (args.json) std::cout << rows.dump(2) << "\n";
+  if (args.json) std::cout << (toleranceRows.empty() ? rows : nlohmann::json{{"sizes", rows}, {"map_tolerance", toleranceRows}}).dump(2) << "\n";
   return kExitOk;
 }
 
@@ -156,6 +250,11 @@ void registerGridBench(CLI::App& bench, Action& action) {
                                    "size: wall time of each part");
   cmd->add_option("--sizes", args->sizes, "approximate patch vertex counts")->delimiter(',');
   cmd->add_option("--resolution", args->resolution, "distance map samples per side")->check(CLI::Range(3, 2000));
+  cmd->add_option("--map-tolerance", args->mapTolerances,
+                  "also tabulate error against time of the adaptive distance maps for these tolerances (metres, "
+                  "comma-separated; the exact maps of the same run are the reference)")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--repeats", args->repeats, "solves per size (medians are shown)")->check(CLI::Range(1, 100));
   cmd->add_option("--height", args->height, "bump height in metres")->check(CLI::NonNegativeNumber);
   cmd->add_option("--csv", args->csv, "also write the table as CSV");

@@ -2,6 +2,8 @@
 // double evaluation for line searches and their exact derivatives (HyperDual) for Newton.
 #include "core/rods/rod_model.hpp"
 
+#include "core/rods/connection_derivatives.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <array>
@@ -38,6 +40,11 @@ struct EnergySum {
               const F& f) {
     total += f(values);
   }
+  // A stencil with closed-form derivatives `d` (not needed for the energy alone).
+  template <size_t N, class F, class D>
+  void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& values, const F& f, const D& /*d*/) {
+    (*this)(dofs, values, f);
+  }
   // A mapped stencil with closed-form derivatives `d` (not needed for the energy alone).
   template <size_t N, class F, class D>
   void mappedClosedForm(const std::array<std::array<std::pair<int, double>, 2>, N>& map,
@@ -59,15 +66,26 @@ struct DerivativeSum {
       variables[i] = dofs[i] >= 0 ? D::variable(values[i], static_cast<int>(i)) : D(values[i]);
     }
     const D result = f(variables);
-    total += result.v;
+    scatter(dofs, result.v, result.g, [&](int i, int j) { return result.hessian(i, j); });
+  }
+  // The same with the derivatives computed in closed form by d() (energy, gradient, full Hessian).
+  template <size_t N, class F, class D>
+  void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& /*values*/, const F& /*f*/,
+                  const D& d) {
+    const auto result = d();
+    scatter(dofs, result.energy, result.gradient, [&](int i, int j) { return result.hessian(i, j); });
+  }
+  template <size_t N, class G, class H>
+  void scatter(const std::array<int, N>& dofs, double energy, const G& g, const H& hessian) {
+    total += energy;
     for (size_t i = 0; i < N; ++i) {
       if (dofs[i] < 0) continue;
-      gradient[dofs[i]] += result.g[i];
+      gradient[dofs[i]] += g[i];
       for (size_t j = 0; j < N; ++j) {
         if (dofs[j] < 0 || dofs[j] > dofs[i]) continue;
         // Zeros are kept: the sparsity pattern then depends only on which edges hold the bolts,
         // and the solver can reuse its symbolic factorisation.
-        triplets.emplace_back(dofs[i], dofs[j], result.hessian(static_cast<int>(i), static_cast<int>(j)));
+        triplets.emplace_back(dofs[i], dofs[j], hessian(static_cast<int>(i), static_cast<int>(j)));
       }
     }
   }
@@ -252,12 +270,22 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
       values[k + 7] = beta(z, *s);
       k += 8;
     }
-    visit(dofs, values, [&](const auto& v) {
-      const auto mg = frameOf(v, b.lower.point.rod, b.lower.point.edge, 0, 3, 6).normal;
-      const auto mh = frameOf(v, b.upper.point.rod, b.upper.point.edge, 8, 11, 14).normal;
-      return connectionEnergy(v3(v, 0), v3(v, 3), mg, v[7], v3(v, 8), v3(v, 11), mh, v[15], b.offset,
-                              stiffFactor_ * b.positionWeight, b.angleWeight);
-    });
+    // Derivatives in closed form (connection_derivatives.hpp) from the precomputed edge frames.
+    visit.closedForm(
+        dofs, values,
+        [&](const auto& v) {
+          const auto mg = frameOf(v, b.lower.point.rod, b.lower.point.edge, 0, 3, 6).normal;
+          const auto mh = frameOf(v, b.upper.point.rod, b.upper.point.edge, 8, 11, 14).normal;
+          return connectionEnergy(v3(v, 0), v3(v, 3), mg, v[7], v3(v, 8), v3(v, 11), mh, v[15], b.offset,
+                                  stiffFactor_ * b.positionWeight, b.angleWeight);
+        },
+        [&]() {
+          auto at = [&](int i) { return Eigen::Vector3d(values[i], values[i + 1], values[i + 2]); };
+          const EdgeFrameDerivatives& fg = (*frames)[edgeReferenceBase_[b.lower.point.rod] + b.lower.point.edge];
+          const EdgeFrameDerivatives& fh = (*frames)[edgeReferenceBase_[b.upper.point.rod] + b.upper.point.edge];
+          return connectionDerivatives(at(0), at(3), fg, values[7], at(8), at(11), fh, values[15], b.offset,
+                                       stiffFactor_ * b.positionWeight, b.angleWeight);
+        });
   }
   for (const Bolt& b : bolts_) {
     for (const BoltSide* s : {&b.lower, &b.upper}) {

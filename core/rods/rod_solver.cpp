@@ -1,8 +1,8 @@
 #include "core/rods/rod_solver.hpp"
 
 #include "core/errors.hpp"
+#include "core/rods/supernodal_cholesky.hpp"
 
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
 #include <algorithm>
@@ -147,8 +147,9 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
   std::vector<Eigen::Triplet<double>> triplets;
   FreeHessian hessian(freeIndex, freeCount);
   // LLT rather than LDLT: cheaper, and it stops at the first non-positive pivot, which is all the
-  // shift search needs to know. Two factorisations: see the shift search below.
-  using Factorisation = Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
+  // shift search needs to know. Supernodal (supernodal_cholesky.hpp). Two factorisations: see the
+  // shift search below.
+  using Factorisation = SupernodalCholesky;
   Factorisation solvers[2];
   bool analysed[2] = {false, false};
   double shift = 0.0;  // relative diagonal shift that last made the Hessian positive definite
@@ -208,8 +209,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
         solver.analyzePattern(hessian.shifted(0.0, scale, which));
         analysed[which] = true;
       }
-      solver.factorize(hessian.shifted(trial, scale, which));
-      if (solver.info() != Eigen::Success) return false;
+      if (!solver.factorize(hessian.shifted(trial, scale, which))) return false;
       out = -solver.solve(g);
       return out.allFinite() && out.dot(g) < 0.0;
     };

@@ -1,0 +1,195 @@
+// Left-looking supernodal sparse Cholesky (see supernodal_cholesky.hpp).
+#include "core/rods/supernodal_cholesky.hpp"
+
+#include "core/errors.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/OrderingMethods>
+
+#include <algorithm>
+
+namespace egg::rods {
+
+void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower) {
+  if (lower.rows() != lower.cols() || !lower.isCompressed()) {
+    throw InvalidInput("SupernodalCholesky: square compressed matrix expected");
+  }
+  n_ = static_cast<int>(lower.rows());
+  // Fill-reducing ordering as in Eigen's SimplicialCholesky.
+  const Eigen::SparseMatrix<double> full = lower.selfadjointView<Eigen::Lower>();
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
+  Eigen::AMDOrdering<int>()(full, inverse);
+  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> permutation = inverse.inverse();
+  newIndex_.assign(permutation.indices().data(), permutation.indices().data() + n_);
+
+  // The permuted lower triangle, column by column.
+  std::vector<std::vector<int>> columnRows(n_);
+  const int* outer = lower.outerIndexPtr();
+  const int* inner = lower.innerIndexPtr();
+  for (int j = 0; j < n_; ++j) {
+    for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      const int a = newIndex_[inner[k]], b = newIndex_[j];
+      columnRows[std::min(a, b)].push_back(std::max(a, b));
+    }
+  }
+  // Structure of every column of L: its own entries and its children's below itself
+  // (elimination tree: the parent is the first row below the diagonal).
+  std::vector<std::vector<int>> pattern(n_);
+  std::vector<std::vector<int>> children(n_);
+  std::vector<int> parent(n_, -1), mark(n_, -1);
+  for (int j = 0; j < n_; ++j) {
+    std::vector<int>& p = pattern[j];
+    mark[j] = j;
+    p.push_back(j);
+    for (int r : columnRows[j]) {
+      if (mark[r] != j) mark[r] = j, p.push_back(r);
+    }
+    for (int c : children[j]) {
+      for (int r : pattern[c]) {
+        if (r > c && mark[r] != j) mark[r] = j, p.push_back(r);
+      }
+    }
+    std::sort(p.begin(), p.end());
+    if (p.size() > 1) {
+      parent[j] = p[1];
+      children[p[1]].push_back(j);
+    }
+  }
+  // Supernodes: j continues the supernode of j - 1 when j is its parent and the structures nest.
+  first_.clear();
+  supernodeOf_.assign(n_, -1);
+  for (int j = 0; j < n_; ++j) {
+    const bool extends = j > 0 && parent[j - 1] == j && pattern[j].size() + 1 == pattern[j - 1].size();
+    if (!extends) first_.push_back(j);
+    supernodeOf_[j] = static_cast<int>(first_.size()) - 1;
+  }
+  first_.push_back(n_);
+  const int count = supernodeCount();
+  rowStart_.assign(count + 1, 0);
+  valueStart_.assign(count + 1, 0);
+  rows_.clear();
+  for (int s = 0; s < count; ++s) {
+    const std::vector<int>& p = pattern[first_[s]];
+    rows_.insert(rows_.end(), p.begin(), p.end());
+    rowStart_[s + 1] = static_cast<int>(rows_.size());
+    const long width = first_[s + 1] - first_[s];
+    valueStart_[s + 1] = valueStart_[s] + width * static_cast<long>(p.size());
+  }
+  values_.assign(valueStart_[count], 0.0);
+  // Where each input entry goes.
+  slot_.assign(lower.nonZeros(), -1);
+  for (int j = 0; j < n_; ++j) {
+    for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      const int a = std::max(newIndex_[inner[k]], newIndex_[j]), b = std::min(newIndex_[inner[k]], newIndex_[j]);
+      const int s = supernodeOf_[b];
+      const int* begin = rows_.data() + rowStart_[s];
+      const int* end = rows_.data() + rowStart_[s + 1];
+      const long localRow = std::lower_bound(begin, end, a) - begin;
+      slot_[k] = valueStart_[s] + (b - first_[s]) * static_cast<long>(end - begin) + localRow;
+    }
+  }
+  head_.assign(count, -1);
+  next_.assign(count, -1);
+  pointer_.assign(count, 0);
+  relative_.assign(n_, 0);
+}
+
+bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
+  if (static_cast<long>(slot_.size()) != lower.nonZeros() || lower.rows() != n_) {
+    throw InvalidInput("SupernodalCholesky: factorize with the analysed pattern");
+  }
+  std::fill(values_.begin(), values_.end(), 0.0);
+  const double* input = lower.valuePtr();
+  for (size_t k = 0; k < slot_.size(); ++k) values_[slot_[k]] += input[k];
+  const int count = supernodeCount();
+  std::fill(head_.begin(), head_.end(), -1);
+  using Block = Eigen::Map<Eigen::MatrixXd>;
+  for (int J = 0; J < count; ++J) {
+    const int f = first_[J], last = first_[J + 1] - 1, w = first_[J + 1] - first_[J];
+    const int* rowsJ = rows_.data() + rowStart_[J];
+    const int m = rowStart_[J + 1] - rowStart_[J];
+    Block block(values_.data() + valueStart_[J], m, w);
+    for (int i = 0; i < m; ++i) relative_[rowsJ[i]] = i;
+    // Updates from every earlier supernode with rows in this one's columns.
+    for (int K = head_[J]; K != -1;) {
+      const int nextK = next_[K];
+      const int* rowsK = rows_.data() + rowStart_[K];
+      const int mK = rowStart_[K + 1] - rowStart_[K], wK = first_[K + 1] - first_[K];
+      const Block LK(values_.data() + valueStart_[K], mK, wK);
+      const int p = pointer_[K];
+      int q = p;
+      while (q < mK && rowsK[q] <= last) ++q;
+      const int r = mK - p, c = q - p;
+      update_.noalias() = LK.block(p, 0, r, wK) * LK.block(p, 0, c, wK).transpose();
+      for (int jj = 0; jj < c; ++jj) {
+        const int column = rowsK[p + jj] - f;
+        for (int ii = jj; ii < r; ++ii) block(relative_[rowsK[p + ii]], column) -= update_(ii, jj);
+      }
+      pointer_[K] = q;
+      if (q < mK) {
+        const int target = supernodeOf_[rowsK[q]];
+        next_[K] = head_[target];
+        head_[target] = K;
+      }
+      K = nextK;
+    }
+    auto diagonal = block.topLeftCorner(w, w);
+    if (Eigen::internal::llt_inplace<double, Eigen::Lower>::blocked(diagonal) >= 0) return false;
+    if (m > w) {
+      auto below = block.bottomRows(m - w);
+      diagonal.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(below);
+      pointer_[J] = w;
+      const int target = supernodeOf_[rowsJ[w]];
+      next_[J] = head_[target];
+      head_[target] = J;
+    }
+  }
+  return true;
+}
+
+Eigen::VectorXd SupernodalCholesky::solve(const Eigen::VectorXd& b) const {
+  Eigen::VectorXd x(n_);
+  for (int i = 0; i < n_; ++i) x[newIndex_[i]] = b[i];
+  const int count = supernodeCount();
+  using Block = Eigen::Map<const Eigen::MatrixXd>;
+  Eigen::VectorXd work;
+  for (int J = 0; J < count; ++J) {
+    const int f = first_[J], w = first_[J + 1] - first_[J];
+    const int* rowsJ = rows_.data() + rowStart_[J];
+    const int m = rowStart_[J + 1] - rowStart_[J];
+    const Block block(values_.data() + valueStart_[J], m, w);
+    auto xJ = x.segment(f, w);
+    block.topLeftCorner(w, w).triangularView<Eigen::Lower>().solveInPlace(xJ);
+    if (m > w) {
+      work.noalias() = block.bottomRows(m - w) * xJ;
+      for (int i = w; i < m; ++i) x[rowsJ[i]] -= work[i - w];
+    }
+  }
+  for (int J = count - 1; J >= 0; --J) {
+    const int f = first_[J], w = first_[J + 1] - first_[J];
+    const int* rowsJ = rows_.data() + rowStart_[J];
+    const int m = rowStart_[J + 1] - rowStart_[J];
+    const Block block(values_.data() + valueStart_[J], m, w);
+    auto xJ = x.segment(f, w);
+    if (m > w) {
+      work.resize(m - w);
+      for (int i = w; i < m; ++i) work[i - w] = x[rowsJ[i]];
+      xJ.noalias() -= block.bottomRows(m - w).transpose() * work;
+    }
+    block.topLeftCorner(w, w).triangularView<Eigen::Lower>().transpose().solveInPlace(xJ);
+  }
+  Eigen::VectorXd out(n_);
+  for (int i = 0; i < n_; ++i) out[i] = x[newIndex_[i]];
+  return out;
+}
+
+long SupernodalCholesky::factorNonZeros() const {
+  long total = 0;
+  for (int s = 0; s < supernodeCount(); ++s) {
+    const long w = first_[s + 1] - first_[s], m = rowStart_[s + 1] - rowStart_[s];
+    total += w * m - w * (w - 1) / 2;
+  }
+  return total;
+}
+
+}  // namespace egg::rods

@@ -7,8 +7,15 @@
 #include <Eigen/OrderingMethods>
 
 #include <algorithm>
+#include <cmath>
 
 namespace egg::rods {
+
+namespace {
+// Supernodes up to this width are handled with plain loops (Eigen's blocked kernels cost more
+// than they save on blocks this small; most supernodes are one rod vertex or angle wide).
+constexpr int kSmall = 8;
+}  // namespace
 
 void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower) {
   if (lower.rows() != lower.cols() || !lower.isCompressed()) {
@@ -120,10 +127,23 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
       int q = p;
       while (q < mK && rowsK[q] <= last) ++q;
       const int r = mK - p, c = q - p;
-      update_.noalias() = LK.block(p, 0, r, wK) * LK.block(p, 0, c, wK).transpose();
-      for (int jj = 0; jj < c; ++jj) {
-        const int column = rowsK[p + jj] - f;
-        for (int ii = jj; ii < r; ++ii) block(relative_[rowsK[p + ii]], column) -= update_(ii, jj);
+      if (wK <= kSmall) {
+        // Narrow source: accumulate each entry directly (no product temporary).
+        const double* base = LK.data();
+        for (int jj = 0; jj < c; ++jj) {
+          double* column = block.data() + static_cast<long>(rowsK[p + jj] - f) * m;
+          for (int ii = jj; ii < r; ++ii) {
+            double sum = 0.0;
+            for (int t = 0; t < wK; ++t) sum += base[static_cast<long>(t) * mK + p + ii] * base[static_cast<long>(t) * mK + p + jj];
+            column[relative_[rowsK[p + ii]]] -= sum;
+          }
+        }
+      } else {
+        update_.noalias() = LK.block(p, 0, r, wK) * LK.block(p, 0, c, wK).transpose();
+        for (int jj = 0; jj < c; ++jj) {
+          const int column = rowsK[p + jj] - f;
+          for (int ii = jj; ii < r; ++ii) block(relative_[rowsK[p + ii]], column) -= update_(ii, jj);
+        }
       }
       pointer_[K] = q;
       if (q < mK) {
@@ -134,10 +154,31 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
       K = nextK;
     }
     auto diagonal = block.topLeftCorner(w, w);
-    if (Eigen::internal::llt_inplace<double, Eigen::Lower>::blocked(diagonal) >= 0) return false;
+    if (w <= kSmall) {
+      // Narrow supernode: column by column, L(:, j) = (A(:, j) - L(:, 0..j-1) L(j, 0..j-1)^T) / L(j, j).
+      double* a = block.data();
+      for (int j = 0; j < w; ++j) {
+        double* column = a + static_cast<long>(j) * m;
+        for (int t = 0; t < j; ++t) {
+          const double* previous = a + static_cast<long>(t) * m;
+          const double factor = previous[j];
+          for (int i = j; i < m; ++i) column[i] -= factor * previous[i];
+        }
+        const double pivot = column[j];
+        if (!(pivot > 0.0)) return false;
+        const double root = std::sqrt(pivot);
+        column[j] = root;
+        const double inverse = 1.0 / root;
+        for (int i = j + 1; i < m; ++i) column[i] *= inverse;
+      }
+    } else {
+      if (Eigen::internal::llt_inplace<double, Eigen::Lower>::blocked(diagonal) >= 0) return false;
+      if (m > w) {
+        auto below = block.bottomRows(m - w);
+        diagonal.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(below);
+      }
+    }
     if (m > w) {
-      auto below = block.bottomRows(m - w);
-      diagonal.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(below);
       pointer_[J] = w;
       const int target = supernodeOf_[rowsJ[w]];
       next_[J] = head_[target];

@@ -3,7 +3,6 @@
 
 #include "core/errors.hpp"
 
-#include <Eigen/Cholesky>
 #include <Eigen/OrderingMethods>
 
 #include <algorithm>
@@ -11,11 +10,6 @@
 
 namespace egg::rods {
 
-namespace {
-// Supernodes up to this width are handled with plain loops (Eigen's blocked kernels cost more
-// than they save on blocks this small; most supernodes are one rod vertex or angle wide).
-constexpr int kSmall = 8;
-}  // namespace
 
 void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower) {
   if (lower.rows() != lower.cols() || !lower.isCompressed()) {
@@ -99,6 +93,8 @@ void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower
   next_.assign(count, -1);
   pointer_.assign(count, 0);
   relative_.assign(n_, 0);
+  localRow_.assign(n_, 0);
+  accumulator_.assign(n_, 0.0);
 }
 
 bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
@@ -126,24 +122,24 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
       const int p = pointer_[K];
       int q = p;
       while (q < mK && rowsK[q] <= last) ++q;
+      // Subtract L_K(rows p.., :) L_K(rows p..q-1, :)^T from this supernode's columns, column
+      // by column with contiguous inner loops (blocks are too small for a blocked product).
       const int r = mK - p, c = q - p;
-      if (wK <= kSmall) {
-        // Narrow source: accumulate each entry directly (no product temporary).
-        const double* base = LK.data();
-        for (int jj = 0; jj < c; ++jj) {
-          double* column = block.data() + static_cast<long>(rowsK[p + jj] - f) * m;
-          for (int ii = jj; ii < r; ++ii) {
-            double sum = 0.0;
-            for (int t = 0; t < wK; ++t) sum += base[static_cast<long>(t) * mK + p + ii] * base[static_cast<long>(t) * mK + p + jj];
-            column[relative_[rowsK[p + ii]]] -= sum;
-          }
+      for (int ii = 0; ii < r; ++ii) localRow_[ii] = relative_[rowsK[p + ii]];
+      for (int jj = 0; jj < c; ++jj) {
+        double* column = block.data() + static_cast<long>(rowsK[p + jj] - f) * m;
+        double* sum = accumulator_.data();
+        {
+          const double* source = LK.data() + p;
+          const double factor = source[jj];
+          for (int ii = jj; ii < r; ++ii) sum[ii] = factor * source[ii];
         }
-      } else {
-        update_.noalias() = LK.block(p, 0, r, wK) * LK.block(p, 0, c, wK).transpose();
-        for (int jj = 0; jj < c; ++jj) {
-          const int column = rowsK[p + jj] - f;
-          for (int ii = jj; ii < r; ++ii) block(relative_[rowsK[p + ii]], column) -= update_(ii, jj);
+        for (int t = 1; t < wK; ++t) {
+          const double* source = LK.data() + static_cast<long>(t) * mK + p;
+          const double factor = source[jj];
+          for (int ii = jj; ii < r; ++ii) sum[ii] += factor * source[ii];
         }
+        for (int ii = jj; ii < r; ++ii) column[localRow_[ii]] -= sum[ii];
       }
       pointer_[K] = q;
       if (q < mK) {
@@ -153,30 +149,21 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
       }
       K = nextK;
     }
-    auto diagonal = block.topLeftCorner(w, w);
-    if (w <= kSmall) {
-      // Narrow supernode: column by column, L(:, j) = (A(:, j) - L(:, 0..j-1) L(j, 0..j-1)^T) / L(j, j).
-      double* a = block.data();
-      for (int j = 0; j < w; ++j) {
-        double* column = a + static_cast<long>(j) * m;
-        for (int t = 0; t < j; ++t) {
-          const double* previous = a + static_cast<long>(t) * m;
-          const double factor = previous[j];
-          for (int i = j; i < m; ++i) column[i] -= factor * previous[i];
-        }
-        const double pivot = column[j];
-        if (!(pivot > 0.0)) return false;
-        const double root = std::sqrt(pivot);
-        column[j] = root;
-        const double inverse = 1.0 / root;
-        for (int i = j + 1; i < m; ++i) column[i] *= inverse;
+    // Column by column: L(:, j) = (A(:, j) - L(:, 0..j-1) L(j, 0..j-1)^T) / L(j, j).
+    double* a = block.data();
+    for (int j = 0; j < w; ++j) {
+      double* column = a + static_cast<long>(j) * m;
+      for (int t = 0; t < j; ++t) {
+        const double* previous = a + static_cast<long>(t) * m;
+        const double factor = previous[j];
+        for (int i = j; i < m; ++i) column[i] -= factor * previous[i];
       }
-    } else {
-      if (Eigen::internal::llt_inplace<double, Eigen::Lower>::blocked(diagonal) >= 0) return false;
-      if (m > w) {
-        auto below = block.bottomRows(m - w);
-        diagonal.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(below);
-      }
+      const double pivot = column[j];
+      if (!(pivot > 0.0)) return false;
+      const double root = std::sqrt(pivot);
+      column[j] = root;
+      const double inverse = 1.0 / root;
+      for (int i = j + 1; i < m; ++i) column[i] *= inverse;
     }
     if (m > w) {
       pointer_[J] = w;

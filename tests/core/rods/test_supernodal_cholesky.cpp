@@ -48,7 +48,7 @@ Eigen::SparseMatrix<double> gridMatrix(int nx, int ny, int block, double diagona
 }
 
 TEST(SupernodalCholesky, SolvesLikeSimplicialLLT) {
-  for (int block : {1, 3, 4, 12}) {  // 12: supernodes wider than the narrow-kernel limit
+  for (int block : {1, 3, 4, 12}) {  // 12: wide supernodes
     const Eigen::SparseMatrix<double> lower = gridMatrix(9, 7, block, 0.5, 5 + block);
     SupernodalCholesky cholesky;
     cholesky.analyzePattern(lower);

@@ -65,6 +65,15 @@ double memberShift(const FamilyMembers& a, const FamilyMembers& reference, doubl
   return shift;
 }
 
+// Largest change of the cladding function x2 = F(x1) against the reference over 201 samples of x1,
+// in metres along the end side; NaN when either is not bijective.
+double claddingShift(const CladdingFunction& a, const CladdingFunction& reference, double endLength) {
+  if (!a.bijective() || !reference.bijective()) return std::nan("");
+  double shift = 0.0;
+  for (int k = 0; k <= 200; ++k) shift = std::max(shift, std::abs(a.evaluate(k / 200.0) - reference.evaluate(k / 200.0)));
+  return shift * endLength;
+}
+
 double largestDifference(const DistanceMap& a, const DistanceMap& b) {
   double d = 0.0;
   for (size_t k = 0; k < a.values.size(); ++k) d = std::max(d, std::abs(a.values[k] - b.values[k]));
@@ -100,6 +109,9 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
     const double shift = std::max(
         memberShift(r.membersU, e.membersU, familySideLength(p, Family::U, false), familySideLength(p, Family::U, true)),
         memberShift(r.membersV, e.membersV, familySideLength(p, Family::V, false), familySideLength(p, Family::V, true)));
+    const double claddingChange =
+        std::max(claddingShift(r.alphaBar.claddingU, e.alphaBar.claddingU, familySideLength(p, Family::U, true)),
+                 claddingShift(r.alphaBar.claddingV, e.alphaBar.claddingV, familySideLength(p, Family::V, true)));
     const bool sameCount = r.membersU.x1.size() == e.membersU.x1.size() && r.membersV.x1.size() == e.membersV.x1.size();
     nlohmann::json row{{"vertices", p.mesh.n_vertices()},
                        {"tolerance_m", tolerance},
@@ -110,6 +122,7 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
                        {"max_map_error_m", mapError},
                        {"alpha_bar_change_rad", std::abs(r.alphaBar.alphaBar - e.alphaBar.alphaBar)},
                        {"alpha_max_change_rad", std::abs(r.alphaBar.alphaMax - e.alphaBar.alphaMax)},
+                       {"cladding_change_m", claddingChange},
                        {"member_counts_equal", sameCount},
                        {"max_notch_change_m", std::abs(r.grid.maxNotch - e.grid.maxNotch)}};
     if (sameCount) row["member_shift_m"] = shift;
@@ -119,10 +132,10 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
     const double uvMember = memberShift(r.membersU, r.membersV, familySideLength(p, Family::U, false), familySideLength(p, Family::U, true));
     row["uv_map_asymmetry_m"] = uvMap;
     if (std::isfinite(uvMember)) row["uv_member_asymmetry_m"] = uvMember;
-    fmt::print("{:>8} {:>9.1e} {:>8.3f} {:>8.3f} {:>8.3f} {:>6} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>10.2e} {:>10.2e} {:>10}\n",
+    fmt::print("{:>8} {:>9.1e} {:>8.3f} {:>8.3f} {:>8.3f} {:>6} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>10.2e} {:>10.2e} {:>10}\n",
                p.mesh.n_vertices(), tolerance, median(maps), median(totals), median(cpu), r.maps.propagations, mapError,
                std::abs(r.alphaBar.alphaBar - e.alphaBar.alphaBar), std::abs(r.alphaBar.alphaMax - e.alphaBar.alphaMax),
-               sameCount ? fmt::format("{:.2e}", shift) : std::string("count"), std::abs(r.grid.maxNotch - e.grid.maxNotch), uvMap,
+               claddingChange, sameCount ? fmt::format("{:.2e}", shift) : std::string("count"), std::abs(r.grid.maxNotch - e.grid.maxNotch), uvMap,
                std::isfinite(uvMember) ? fmt::format("{:.2e}", uvMember) : std::string("count"));
     rows.push_back(row);
   }
@@ -207,13 +220,14 @@ int runGridBench(const GridBenchArgs& args) {
   if (!args.mapTolerances.empty()) {
     fmt::print("distance maps: error against time (adaptive rows, DistanceMapOptions::toleranceM); reference = exact maps\n"
                "(tolerance 0, {} fields per family) of the same run; t_* medians of {} solves; map_err = max |D - D_exact|\n"
-               "over both maps; d_alpha = |alpha_bar - exact| (alpha_bar_min), d_amax = |alpha_bar_max - exact|; d_member =\n"
+               "over both maps; d_alpha = |alpha_bar - exact| (alpha_bar_min), d_amax = |alpha_bar_max - exact|; d_F = largest\n"
+               "change of the cladding functions F_u, F_v (metres along the end side, 201 samples of x1); d_member =\n"
                "largest member end shift along its side (\"count\" if the member count changed); d_notch = change of max notch;\n"
                "uv_map, uv_member = max |D_u - D_v| and largest u/v member mismatch of that solve: the patch is symmetric\n"
                "about its diagonal c0-c2, so on the smooth surface both are 0 and the exact row shows the mesh's own noise\n",
                args.resolution, args.repeats);
-    fmt::print("{:>8} {:>9} {:>8} {:>8} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "vertices", "tol_m", "t_maps",
-               "t_grid", "cpu_grid", "fields", "map_err_m", "d_alpha", "d_amax", "d_member_m", "d_notch_m", "uv_map_m", "uv_member");
+    fmt::print("{:>8} {:>9} {:>8} {:>8} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "vertices", "tol_m", "t_maps",
+               "t_grid", "cpu_grid", "fields", "map_err_m", "d_alpha", "d_amax", "d_F_m", "d_member_m", "d_notch_m", "uv_map_m", "uv_member");
     for (const TriMesh& mesh : meshes)
       for (auto& row : runMapToleranceTable(args, mesh, baseOptions)) toleranceRows.push_back(row);
   }

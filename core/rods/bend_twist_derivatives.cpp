@@ -7,23 +7,58 @@ namespace egg::rods {
 
 namespace {
 
+using D3 = HyperDual<3>;
 using D4 = HyperDual<4>;
 using D6 = HyperDual<6>;
 using Vec8 = Eigen::Matrix<double, 8, 1>;
 using Mat8 = Eigen::Matrix<double, 8, 8>;
 
-// An edge quantity that depends on the edge vector only (tangent, director) as a function of
-// (e0, e1): its edge vector's variables start at `offset` (0 for e0, 3 for e1).
-V3<D6> onEdgeVector(const V3<D4>& a, int offset) {
-  auto lift = [&](const D4& q) {
-    D6 r(q.v);
-    for (int p = 0; p < 3; ++p) {
-      r.g[offset + p] = q.g[p];
-      for (int s = 0; s <= p; ++s) r.h(offset + p, offset + s) = q.h(p, s);
+// a * b for a function a of e0 and b of e1 (3 variables each), over (e0, e1).
+D6 bilinear(const D3& a, const D3& b) {
+  D6 r(a.v * b.v);
+  for (int p = 0; p < 3; ++p) {
+    r.g[p] = b.v * a.g[p];
+    r.g[3 + p] = a.v * b.g[p];
+    for (int q = 0; q <= p; ++q) {
+      r.h(p, q) = b.v * a.h(p, q);
+      r.h(3 + p, 3 + q) = a.v * b.h(p, q);
     }
-    return r;
-  };
-  return {lift(a.x), lift(a.y), lift(a.z)};
+    for (int q = 0; q < 3; ++q) r.h(3 + p, q) = b.g[p] * a.g[q];
+  }
+  return r;
+}
+
+// sum_k sign_k a_k * b_k in one pass (a_k of e0, b_k of e1).
+template <int K>
+D6 bilinearSum(const D3* const (&a)[K], const D3* const (&b)[K], const double (&sign)[K]) {
+  D6 r;
+  for (int k = 0; k < K; ++k) {
+    const D3& x = *a[k];
+    const D3& y = *b[k];
+    const double s = sign[k];
+    r.v += s * x.v * y.v;
+    for (int p = 0; p < 3; ++p) {
+      r.g[p] += s * y.v * x.g[p];
+      r.g[3 + p] += s * x.v * y.g[p];
+      for (int q = 0; q <= p; ++q) {
+        r.h(p, q) += s * y.v * x.h(p, q);
+        r.h(3 + p, 3 + q) += s * x.v * y.h(p, q);
+      }
+      for (int q = 0; q < 3; ++q) r.h(3 + p, q) += s * y.g[p] * x.g[q];
+    }
+  }
+  return r;
+}
+
+D6 bilinearDot(const V3<D3>& a, const V3<D3>& b) {
+  return bilinearSum<3>({&a.x, &a.y, &a.z}, {&b.x, &b.y, &b.z}, {1.0, 1.0, 1.0});
+}
+
+// (a x b)_i for a of e0, b of e1.
+V3<D6> bilinearCross(const V3<D3>& a, const V3<D3>& b) {
+  return {bilinearSum<2>({&a.y, &a.z}, {&b.z, &b.y}, {1.0, -1.0}),
+          bilinearSum<2>({&a.z, &a.x}, {&b.x, &b.z}, {1.0, -1.0}),
+          bilinearSum<2>({&a.x, &a.y}, {&b.y, &b.x}, {1.0, -1.0})};
 }
 
 }  // namespace
@@ -33,7 +68,6 @@ V3<D6> onEdgeVector(const V3<D4>& a, int offset) {
 // sin(theta) v, m2 = cos(theta) v - sin(theta) u, so d m1/d theta = m2, d m2/d theta = -m1 and
 // the second derivatives in theta are -m1, -m2 (the same expressions as materialFrame).
 EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta, const EdgeReference& reference) {
-  using D3 = HyperDual<3>;
   const V3<D3> e{D3::variable(edge.x(), 0), D3::variable(edge.y(), 1), D3::variable(edge.z(), 2)};
   const D3 length = norm(e);
   const V3<D3> t = (1.0 / length) * e;
@@ -64,7 +98,9 @@ EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double th
   };
   EdgeFrameDerivatives out;
   out.frame.tangent = {lift(t.x), lift(t.y), lift(t.z)};
-  out.director = {lift(u.x), lift(u.y), lift(u.z)};
+  out.tangent = t;
+  out.director = u;
+  out.binormal = v;
   out.frame.normal = {turned(u.x, v.x, c, s, -s, c), turned(u.y, v.y, c, s, -s, c), turned(u.z, v.z, c, s, -s, c)};
   out.frame.side = {turned(v.x, u.x, c, -s, -s, -c), turned(v.y, u.y, c, -s, -s, -c),
                     turned(v.z, u.z, c, -s, -s, -c)};
@@ -73,19 +109,20 @@ EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double th
 
 BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0, const EdgeFrameDerivatives& f1,
                                           const RodStiffness& stiffness, double voronoiLength) {
-  // Curvature binormal and reference twist over (e0, e1).
-  const V3<D6> t0 = onEdgeVector(f0.frame.tangent, 0), t1 = onEdgeVector(f1.frame.tangent, 3);
-  const V3<D6> u0 = onEdgeVector(f0.director, 0), u1 = onEdgeVector(f1.director, 3);
-  const D6 c = dot(t0, t1);
-  const V3<D6> v = cross(t0, t1);
+  // Curvature binormal and reference twist over (e0, e1), from bilinear products.
+  const V3<D3>&t0 = f0.tangent, &u0 = f0.director, &w0 = f0.binormal;
+  const V3<D3>&t1 = f1.tangent, &u1 = f1.director, &w1 = f1.binormal;
+  const D6 c = bilinearDot(t0, t1);
   const D6 inverse1c = inverse(c + 1.0);
   const D6 twiceInverse = 2.0 * inverse1c;
+  const V3<D6> v = bilinearCross(t0, t1);
   const V3<D6> kb{twiceInverse * v.x, twiceInverse * v.y, twiceInverse * v.z};
-  // P u0 = c u0 + v x u0 + (v.u0) v / (1 + c), as in parallelTransport.
-  const D6 vu = dot(v, u0) * inverse1c;
-  const V3<D6> vxu = cross(v, u0);
-  const V3<D6> carried{c * u0.x + vxu.x + vu * v.x, c * u0.y + vxu.y + vu * v.y, c * u0.z + vxu.z + vu * v.z};
-  const D6 reference = atan2(dot(cross(carried, u1), t1), dot(carried, u1));
+  const D6 u0u1 = bilinearDot(u0, u1), u0w1 = bilinearDot(u0, w1);
+  const D6 t1u0 = bilinearDot(u0, t1), t0u1 = bilinearDot(t0, u1);
+  const D6 t1w0 = bilinearDot(w0, t1), t0w1 = bilinearDot(t0, w1);
+  const D6 x = productDifference(c, u0u1, t1u0, t0u1) - (t1w0 * t0w1) * inverse1c;
+  const D6 y = productDifference(t1u0, t0w1, c, u0w1) - (t1w0 * t0u1) * inverse1c;
+  const D6 reference = atan2(y, x);
 
   BendTwistDerivatives out;
   Vec8& g = out.gradient;
@@ -145,7 +182,8 @@ BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0, const 
   // its derivatives from the reference twist.
   const V3<double> m0{f0.frame.normal.x.v, f0.frame.normal.y.v, f0.frame.normal.z.v};
   const V3<double> m1{f1.frame.normal.x.v, f1.frame.normal.y.v, f1.frame.normal.z.v};
-  const V3<double> tangent0{t0.x.v, t0.y.v, t0.z.v}, tangent1{t1.x.v, t1.y.v, t1.z.v};
+  const V3<double> tangent0{f0.frame.tangent.x.v, f0.frame.tangent.y.v, f0.frame.tangent.z.v};
+  const V3<double> tangent1{f1.frame.tangent.x.v, f1.frame.tangent.y.v, f1.frame.tangent.z.v};
   const V3<double> carriedNormal = parallelTransport(tangent0, tangent1, m0);
   const double twist = std::atan2(dot(cross(carriedNormal, m1), tangent1), dot(carriedNormal, m1));
   const double k = stiffness.twisting / voronoiLength;

@@ -14,8 +14,15 @@
 // angle from P m1_0 to m1_1 about t1 is theta1 - theta0 + r(e0, e1) (modulo 2 pi), where r is the
 // same angle between P u0 and u1 (the reference twist). The twist therefore has gradient
 // (grad r, -1, 1) and a Hessian that lives in the (e0, e1) block only.
-// Only kb and r are differentiated with HyperDual<6>; every other product is a small dense
-// operation. The HyperDual<8> evaluation of the same energy stays the reference in the tests.
+// With t.u = 0 and |t| = 1 (identities of the functions, not only of their values), kb and r
+// reduce to products of one quantity of e0 and one of e1 (bilinear: cheap exact derivatives):
+// with c = t0.t1, w = t x u,
+//   r = atan2(Y, X), X = c (u0.u1) - (t1.u0)(t0.u1) - (t1.w0)(t0.w1) / (1 + c),
+//                    Y = -c (u0.w1) + (t1.u0)(t0.w1) - (t1.w0)(t0.u1) / (1 + c)
+// (expanding P u0 = c u0 + v x u0 + (v.u0) v / (1 + c), v = t0 x t1, against u1 and t1 x u1).
+// Only those few scalars are differentiated with HyperDual<6>; every other product is a small
+// dense operation. The HyperDual<8> evaluation of the same energy stays the reference in the
+// tests.
 #include "core/rods/rod_energies.hpp"
 
 #include <Eigen/Core>
@@ -26,7 +33,8 @@ namespace egg::rods {
 // (edge vector e, material angle theta): 4 variables, in that order.
 struct EdgeFrameDerivatives {
   Frame<HyperDual<4>> frame;
-  V3<HyperDual<4>> director;  // u (does not depend on theta)
+  // Tangent t, transported reference director u and t x u: functions of the edge vector alone.
+  V3<HyperDual<3>> tangent, director, binormal;
 };
 
 EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta, const EdgeReference& reference);

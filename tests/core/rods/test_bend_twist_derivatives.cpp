@@ -108,12 +108,28 @@ TEST(BendTwistDerivatives, EdgeFramesMatchHyperDualOfTheMaterialFrame) {
     V3<D> director;
     const Frame<D> reference = materialFrame(e, D::variable(s.theta1, 3), s.r1, &director);
     const EdgeFrameDerivatives f = edgeFrameDerivatives(s.e1, s.theta1, s.r1);
-    const V3<D>* expected[4] = {&reference.tangent, &reference.normal, &reference.side, &director};
-    const V3<D>* actual[4] = {&f.frame.tangent, &f.frame.normal, &f.frame.side, &f.director};
-    for (int k = 0; k < 4; ++k) {
+    const V3<D>* expected[3] = {&reference.tangent, &reference.normal, &reference.side};
+    const V3<D>* actual[3] = {&f.frame.tangent, &f.frame.normal, &f.frame.side};
+    for (int k = 0; k < 3; ++k) {
       expectSame(actual[k]->x, expected[k]->x, "x");
       expectSame(actual[k]->y, expected[k]->y, "y");
       expectSame(actual[k]->z, expected[k]->z, "z");
+    }
+    // The edge-vector-only quantities: t, u and t x u (no theta dependence).
+    const V3<D> binormal = cross(reference.tangent, director);
+    const V3<D>* expectedEdge[3] = {&reference.tangent, &director, &binormal};
+    const V3<HyperDual<3>>* actualEdge[3] = {&f.tangent, &f.director, &f.binormal};
+    for (int k = 0; k < 3; ++k) {
+      const HyperDual<4>* e[3] = {&expectedEdge[k]->x, &expectedEdge[k]->y, &expectedEdge[k]->z};
+      const HyperDual<3>* a[3] = {&actualEdge[k]->x, &actualEdge[k]->y, &actualEdge[k]->z};
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(a[c]->v, e[c]->v, 1e-14);
+        EXPECT_NEAR(e[c]->g[3], 0.0, 1e-14);
+        for (int i = 0; i < 3; ++i) {
+          EXPECT_NEAR(a[c]->g[i], e[c]->g[i], 1e-12);
+          for (int j = 0; j < 3; ++j) EXPECT_NEAR(a[c]->hessian(i, j), e[c]->hessian(i, j), 1e-12);
+        }
+      }
     }
   }
 }

@@ -294,38 +294,57 @@ class Propagator {
       const double corner = std::atan2(t_.he[h].oppositeY, t_.he[h].oppositeX);
       const double a0 = cumulative, a1 = cumulative + corner;
       cumulative = a1;
+      // The directions of this face a shortest path may leave v in, as one interval [lo, hi] of fan
+      // angles (the hull of the allowed pieces, so a superset: nothing exact is lost).
+      double lo = a0, hi = a1;
       if (backAngle >= 0.0) {
-        bool allowed;
+        lo = kInfinity;
+        hi = -kInfinity;
+        auto include = [&](double from, double to) {
+          from = std::max(from, a0);
+          to = std::min(to, a1);
+          if (from <= to) {
+            lo = std::min(lo, from);
+            hi = std::max(hi, to);
+          }
+        };
         if (boundary) {
-          allowed = a0 <= backAngle - std::numbers::pi + tol || a1 >= backAngle + std::numbers::pi - tol;
+          include(a0, backAngle - std::numbers::pi + tol);
+          include(backAngle + std::numbers::pi - tol, a1);
         } else {
-          // Relative angles, taken modulo the angle sum, must lie in [pi, total - pi].
-          double r0 = a0 - backAngle, r1 = a1 - backAngle;
-          if (r1 < 0.0) {
-            r0 += total;
-            r1 += total;
-          }
-          const double lo = std::numbers::pi - tol, hi = total - std::numbers::pi + tol;
-          if (r0 < 0.0) {
-            allowed = (r1 >= lo) || (r0 + total <= hi);
-          } else {
-            allowed = r0 <= hi && r1 >= lo;
-          }
+          // Relative angles, taken modulo the angle sum, must lie in [pi, total - pi]: a cone of
+          // width total - 2 pi (the excess) opposite the incoming direction.
+          const double c0 = backAngle + std::numbers::pi - tol, c1 = backAngle + total - std::numbers::pi + tol;
+          for (const double shift : {-total, 0.0, total}) include(c0 + shift, c1 + shift);
         }
-        if (!allowed) continue;
+        if (lo > hi) continue;
       }
       const int ho = t_.he[h].next;  // edge opposite v in this face; v is its opposite vertex
       const int tw = t_.twin(ho);
       if (t_.he[tw].face < 0) continue;
+      // The window covers only where the allowed rays cross the opposite edge. On a near-flat
+      // saddle the cone is a sliver of the face: a full-edge window there is dominated almost
+      // everywhere, yet it is trimmed against and propagated across the whole front - measured on
+      // the 4.5k bump, the full-edge windows cost ~40 % of the propagation.
+      const double length = t_.he[ho].length;
+      const double ox = t_.he[ho].oppositeX, oy = t_.he[ho].oppositeY;  // v in the frame of ho
+      auto crossing = [&](double psi) {  // where the ray turned psi from v->B meets ho (from B)
+        if (psi <= 0.0) return 0.0;
+        if (psi >= corner) return length;
+        const double c = std::cos(psi), s = std::sin(psi);
+        const double dx = s * oy - c * ox, dy = -s * ox - c * oy;
+        if (!(dy < 0.0)) return length;
+        return std::clamp(ox - oy / dy * dx, 0.0, length);
+      };
       Window win;
       win.halfedge = tw;
       win.parent = Window::fromVertex(v);
-      win.b0 = 0.0;
-      win.b1 = t_.he[ho].length;
-      win.sx = t_.he[ho].length - t_.he[ho].oppositeX;
-      win.sy = -t_.he[ho].oppositeY;
+      win.b0 = length - crossing(hi - a0);
+      win.b1 = length - crossing(lo - a0);
+      win.sx = length - ox;
+      win.sy = -oy;
       win.sigma = dv;
-      addWindow(win);
+      if (win.b1 > win.b0) addWindow(win);
     }
   }
 

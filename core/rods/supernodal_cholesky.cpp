@@ -129,12 +129,24 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
       for (int jj = 0; jj < c; ++jj) {
         double* column = block.data() + static_cast<long>(rowsK[p + jj] - f) * m;
         double* sum = accumulator_.data();
-        {
-          const double* source = LK.data() + p;
-          const double factor = source[jj];
-          for (int ii = jj; ii < r; ++ii) sum[ii] = factor * source[ii];
+        // Four source columns per pass: one load and store of the sum for four products.
+        int t = 0;
+        if (wK >= 4) {
+          const double* s0 = LK.data() + p;
+          const double *s1 = s0 + mK, *s2 = s1 + mK, *s3 = s2 + mK;
+          const double f0 = s0[jj], f1 = s1[jj], f2 = s2[jj], f3 = s3[jj];
+          for (int ii = jj; ii < r; ++ii) sum[ii] = f0 * s0[ii] + f1 * s1[ii] + f2 * s2[ii] + f3 * s3[ii];
+          t = 4;
+        } else {
+          for (int ii = jj; ii < r; ++ii) sum[ii] = 0.0;
         }
-        for (int t = 1; t < wK; ++t) {
+        for (; t + 4 <= wK; t += 4) {
+          const double* s0 = LK.data() + static_cast<long>(t) * mK + p;
+          const double *s1 = s0 + mK, *s2 = s1 + mK, *s3 = s2 + mK;
+          const double f0 = s0[jj], f1 = s1[jj], f2 = s2[jj], f3 = s3[jj];
+          for (int ii = jj; ii < r; ++ii) sum[ii] += f0 * s0[ii] + f1 * s1[ii] + f2 * s2[ii] + f3 * s3[ii];
+        }
+        for (; t < wK; ++t) {
           const double* source = LK.data() + static_cast<long>(t) * mK + p;
           const double factor = source[jj];
           for (int ii = jj; ii < r; ++ii) sum[ii] += factor * source[ii];
@@ -153,7 +165,14 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
     double* a = block.data();
     for (int j = 0; j < w; ++j) {
       double* column = a + static_cast<long>(j) * m;
-      for (int t = 0; t < j; ++t) {
+      int t = 0;
+      for (; t + 4 <= j; t += 4) {
+        const double* p0 = a + static_cast<long>(t) * m;
+        const double *p1 = p0 + m, *p2 = p1 + m, *p3 = p2 + m;
+        const double f0 = p0[j], f1 = p1[j], f2 = p2[j], f3 = p3[j];
+        for (int i = j; i < m; ++i) column[i] -= f0 * p0[i] + f1 * p1[i] + f2 * p2[i] + f3 * p3[i];
+      }
+      for (; t < j; ++t) {
         const double* previous = a + static_cast<long>(t) * m;
         const double factor = previous[j];
         for (int i = j; i < m; ++i) column[i] -= factor * previous[i];

@@ -1,4 +1,5 @@
 #include "core/egg/alpha_bar.hpp"
+#include "core/egg/illinois_bracket.hpp"
 
 #include "core/errors.hpp"
 
@@ -109,26 +110,17 @@ Sample sampleAt(Evaluator& evaluate, double alpha) {
 // Illinois modification keeps the bracket, so a jump (a topology change of the cladding curve)
 // is located as surely as a smooth root.
 double constraintRoot(Evaluator& evaluate, int c, const Sample& first, const Sample& second, double tolerance) {
-  int kept = 0;
-  double a = first.alpha, b = second.alpha, ga = first.g[c], gb = second.g[c];
-  const bool bNegative = gb < 0.0;
-  while (std::abs(b - a) > tolerance) {
-    double x = b - gb * (b - a) / (gb - ga);
-    const double lo = std::min(a, b), hi = std::max(a, b), width = hi - lo;
+  IllinoisBracket r{first.alpha, second.alpha, first.g[c], second.g[c]};
+  const bool bNegative = r.gb < 0.0;
+  while (std::abs(r.b - r.a) > tolerance) {
+    double x = r.falsePosition();
+    const double lo = std::min(r.a, r.b), hi = std::max(r.a, r.b), width = hi - lo;
     // Stay well inside the bracket so that it shrinks from both sides.
-    if (!(x > lo + 0.01 * width && x < hi - 0.01 * width)) x = 0.5 * (a + b);
+    if (!(x > lo + 0.01 * width && x < hi - 0.01 * width)) x = 0.5 * (r.a + r.b);
     const double g = evaluate.constraint(x, c);
-    if ((g < 0.0) == bNegative) {
-      b = x, gb = g;
-      if (kept == -1) ga *= 0.5;
-      kept = -1;
-    } else {
-      a = x, ga = g;
-      if (kept == 1) gb *= 0.5;
-      kept = 1;
-    }
+    r.replace(x, g, (g < 0.0) == bNegative);
   }
-  return bNegative ? b : a;
+  return bNegative ? r.b : r.a;
 }
 
 // Adaptive refinement of the scan (Lipschitz branch and bound). Between two samples where some

@@ -1,4 +1,5 @@
 #include "core/egg/member_trace.hpp"
+#include "core/egg/illinois_bracket.hpp"
 
 #include "core/egg/patch_maps.hpp"
 #include "core/errors.hpp"
@@ -232,22 +233,14 @@ StripSolution solveInStrip(const Patch& patch, const Strip& strip, const PlanarQ
     return solution;
   }
   // Bracketed: Illinois regula falsi to the last bits.
+  IllinoisBracket r{a, b, ga, gb};
   double x = a;
-  int sideKept = 0;
   for (int step = 0; step < 200; ++step) {
-    x = gb != ga ? b - gb * (b - a) / (gb - ga) : 0.5 * (a + b);
-    if (!(x > a && x < b)) x = 0.5 * (a + b);
+    x = r.gb != r.ga ? r.falsePosition() : 0.5 * (r.a + r.b);
+    if (!(x > r.a && x < r.b)) x = 0.5 * (r.a + r.b);
     const double gx = g(x);
-    if (std::abs(gx) <= 1e-3 * tolerance || b - a <= 4e-16) break;
-    if ((gx > 0) == (gb > 0)) {
-      b = x, gb = gx;
-      if (sideKept == -1) ga *= 0.5;
-      sideKept = -1;
-    } else {
-      a = x, ga = gx;
-      if (sideKept == 1) gb *= 0.5;
-      sideKept = 1;
-    }
+    if (std::abs(gx) <= 1e-3 * tolerance || r.b - r.a <= 4e-16) break;
+    r.replace(x, gx, (gx > 0) == (r.gb > 0));
   }
   solution.x2 = x;
   // The straight line to the matched end point must cross every strip edge inside it, in order.
@@ -337,22 +330,14 @@ void matchByFields(const Patch& patch, const geodesic::DistanceSolver& solver, c
       }
     }
     if (bracket >= 0) {
-      int side = 0;
-      for (int step = 0; step < options.maxSecantSteps; ++step) {  // Illinois regula falsi
-        const double x = b - gb * (b - a) / (gb - ga);
+      IllinoisBracket r{a, b, ga, gb};
+      for (int step = 0; step < options.maxSecantSteps; ++step) {
+        const double x = r.falsePosition();
         const double g = mismatch(x, solver.distance(start, endPoint(x)));
         ++propagations;
         if (std::abs(g) < std::abs(bestG)) bestG = g, bestX = x;
         if (std::abs(g) <= tolerance) break;
-        if ((g <= 0) == (gb <= 0)) {
-          b = x, gb = g;
-          if (side == -1) ga *= 0.5;
-          side = -1;
-        } else {
-          a = x, ga = g;
-          if (side == 1) gb *= 0.5;
-          side = 1;
-        }
+        r.replace(x, g, (g <= 0) == (r.gb <= 0));
       }
     }
   }

@@ -200,4 +200,34 @@ BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0, const 
   return out;
 }
 
+BendTwistVertexDerivatives onVertices(const BendTwistDerivatives& d) {
+  // Column a of the map: the stencil variables that unknown a enters, with their signs
+  // (x0: -e0; x1: +e0, -e1; x2: +e1; thetas: themselves).
+  int count[11], variable[11][2];
+  double sign[11][2];
+  for (int k = 0; k < 3; ++k) {
+    count[k] = 1, variable[k][0] = k, sign[k][0] = -1.0;
+    count[3 + k] = 2, variable[3 + k][0] = k, sign[3 + k][0] = 1.0, variable[3 + k][1] = 3 + k, sign[3 + k][1] = -1.0;
+    count[6 + k] = 1, variable[6 + k][0] = 3 + k, sign[6 + k][0] = 1.0;
+  }
+  count[9] = 1, variable[9][0] = 6, sign[9][0] = 1.0;
+  count[10] = 1, variable[10][0] = 7, sign[10][0] = 1.0;
+  BendTwistVertexDerivatives out;
+  out.energy = d.energy;
+  for (int a = 0; a < 11; ++a) {
+    double g = 0.0;
+    for (int p = 0; p < count[a]; ++p) g += sign[a][p] * d.gradient[variable[a][p]];
+    out.gradient[a] = g;
+    for (int b = 0; b <= a; ++b) {
+      double h = 0.0;
+      for (int p = 0; p < count[a]; ++p) {
+        for (int q = 0; q < count[b]; ++q) h += sign[a][p] * sign[b][q] * d.hessian(variable[a][p], variable[b][q]);
+      }
+      out.hessian(a, b) = h;
+      out.hessian(b, a) = h;
+    }
+  }
+  return out;
+}
+
 }  // namespace egg::rods

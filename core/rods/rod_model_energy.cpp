@@ -35,22 +35,10 @@ struct EnergySum {
   void operator()(const std::array<int, N>& /*dofs*/, const std::array<double, N>& values, const F& f) {
     total += f(values);
   }
-  // A stencil whose variables are linear combinations of unknowns (edge vectors).
-  template <size_t N, class F>
-  void mapped(const std::array<std::array<std::pair<int, double>, 2>, N>& /*map*/, const std::array<double, N>& values,
-              const F& f) {
-    total += f(values);
-  }
   // A stencil with closed-form derivatives `d` (not needed for the energy alone).
   template <size_t N, class F, class D>
   void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& values, const F& f, const D& /*d*/) {
     (*this)(dofs, values, f);
-  }
-  // A mapped stencil with closed-form derivatives `d` (not needed for the energy alone).
-  template <size_t N, class F, class D>
-  void mappedClosedForm(const std::array<std::array<std::pair<int, double>, 2>, N>& map,
-                        const std::array<double, N>& values, const F& f, const D& /*d*/) {
-    mapped(map, values, f);
   }
 };
 
@@ -87,43 +75,6 @@ struct DerivativeSum {
         // Zeros are kept: the sparsity pattern then depends only on which edges hold the bolts,
         // and the solver can reuse its symbolic factorisation.
         triplets.emplace_back(dofs[i], dofs[j], hessian(static_cast<int>(i), static_cast<int>(j)));
-      }
-    }
-  }
-  // Variable k of the stencil is sum_m map[k][m].second * unknown[map[k][m].first] (dof -1: none).
-  template <size_t N, class F>
-  void mapped(const std::array<std::array<std::pair<int, double>, 2>, N>& map, const std::array<double, N>& values,
-              const F& f) {
-    using D = HyperDual<static_cast<int>(N)>;
-    std::array<D, N> variables;
-    for (size_t i = 0; i < N; ++i) variables[i] = D::variable(values[i], static_cast<int>(i));
-    const D result = f(variables);
-    scatter(map, result.v, result.g, [&](int k, int l) { return result.hessian(k, l); });
-  }
-  // The same with the derivatives computed in closed form by d() (energy, gradient, full Hessian).
-  template <size_t N, class F, class D>
-  void mappedClosedForm(const std::array<std::array<std::pair<int, double>, 2>, N>& map,
-                        const std::array<double, N>& /*values*/, const F& /*f*/, const D& d) {
-    const auto result = d();
-    scatter(map, result.energy, result.gradient, [&](int k, int l) { return result.hessian(k, l); });
-  }
-  template <size_t N, class G, class H>
-  void scatter(const std::array<std::array<std::pair<int, double>, 2>, N>& map, double energy, const G& g,
-               const H& hessian) {
-    total += energy;
-    for (size_t k = 0; k < N; ++k) {
-      for (const auto& [dof, sign] : map[k]) {
-        if (dof >= 0) gradient[dof] += sign * g[k];
-      }
-      for (size_t l = 0; l < N; ++l) {
-        const double value = hessian(static_cast<int>(k), static_cast<int>(l));
-        for (const auto& [dofK, signK] : map[k]) {
-          if (dofK < 0) continue;
-          for (const auto& [dofL, signL] : map[l]) {
-            if (dofL < 0 || dofL > dofK) continue;
-            triplets.emplace_back(dofK, dofL, signK * signL * value);
-          }
-        }
       }
     }
   }
@@ -214,11 +165,6 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
       return Frame<S>{lift(f.tangent), lift(f.normal), lift(f.side)};
     }
   };
-  // The same (double evaluation only) for a stencil whose variables at edgeIndex.. are the edge
-  // vector itself.
-  auto frameOfEdge = [&](const auto& v, int rod, int edge, int edgeIndex, int theta) {
-    return materialFrame(v3(v, edgeIndex), v[theta], references_[edgeReferenceBase_[rod] + edge]);
-  };
   for (int r = 0; r < rodCount(); ++r) {
     const RodData& data = rods_[r];
     for (int j = 0; j < data.edges; ++j) {
@@ -232,29 +178,25 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
     }
     for (int i = 1; i < data.edges; ++i) {
       if (!mine()) continue;
-      // Variables: e0 = x_i - x_{i-1}, e1 = x_{i+1} - x_i, theta_{i-1}, theta_i.
-      std::array<std::array<std::pair<int, double>, 2>, 8> map;
-      std::array<double, 8> values;
-      for (int k = 0; k < 3; ++k) {
-        map[k] = {std::pair{vertexDof(r, i) + k, 1.0}, std::pair{vertexDof(r, i - 1) + k, -1.0}};
-        map[3 + k] = {std::pair{vertexDof(r, i + 1) + k, 1.0}, std::pair{vertexDof(r, i) + k, -1.0}};
-        values[k] = z[vertexDof(r, i) + k] - z[vertexDof(r, i - 1) + k];
-        values[3 + k] = z[vertexDof(r, i + 1) + k] - z[vertexDof(r, i) + k];
-      }
-      map[6] = {std::pair{thetaDof(r, i - 1), 1.0}, std::pair{-1, 0.0}};
-      map[7] = {std::pair{thetaDof(r, i), 1.0}, std::pair{-1, 0.0}};
-      values[6] = z[thetaDof(r, i - 1)];
-      values[7] = z[thetaDof(r, i)];
-      // Derivatives in closed form (bend_twist_derivatives.hpp) from the precomputed edge frames.
-      visit.mappedClosedForm(
-          map, values,
+      // Unknowns x_{i-1}, x_i, x_{i+1} (consecutive dofs), theta_{i-1}, theta_i; the energy depends on
+      // the vertices through e0 = x_i - x_{i-1}, e1 = x_{i+1} - x_i. Derivatives in closed form
+      // (bend_twist_derivatives.hpp) from the precomputed edge frames.
+      std::array<int, 11> dofs;
+      std::array<double, 11> values;
+      for (int k = 0; k < 9; ++k) dofs[k] = vertexDof(r, i - 1) + k;
+      dofs[9] = thetaDof(r, i - 1);
+      dofs[10] = thetaDof(r, i);
+      for (int k = 0; k < 11; ++k) values[k] = z[dofs[k]];
+      const int index = edgeReferenceBase_[r] + i;
+      visit.closedForm(
+          dofs, values,
           [&](const auto& v) {
-            return bendTwistEnergyOfEdges(v3(v, 0), v3(v, 3), frameOfEdge(v, r, i - 1, 0, 6),
-                                          frameOfEdge(v, r, i, 3, 7), data.stiffness, data.h);
+            const auto e0 = v3(v, 3) - v3(v, 0), e1 = v3(v, 6) - v3(v, 3);
+            return bendTwistEnergyOfEdges(e0, e1, materialFrame(e0, v[9], references_[index - 1]),
+                                          materialFrame(e1, v[10], references_[index]), data.stiffness, data.h);
           },
           [&]() {
-            const int index = edgeReferenceBase_[r] + i;
-            return bendTwistDerivatives((*frames)[index - 1], (*frames)[index], data.stiffness, data.h);
+            return onVertices(bendTwistDerivatives((*frames)[index - 1], (*frames)[index], data.stiffness, data.h));
           });
     }
   }

@@ -145,6 +145,33 @@ TEST(BendTwistDerivatives, MatchHyperDualNearlyStraightAndStronglyTwisted) {
   for (int trial = 0; trial < 20; ++trial) expectMatchesAutomatic(randomStencil(rng, 1e-3, 1.4), 1.3);
 }
 
+TEST(BendTwistDerivatives, OnVerticesMatchHyperDualOverTheVertices) {
+  std::mt19937 rng(31);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Stencil s = randomStencil(rng, 0.5, 1.0);
+    const Eigen::Vector3d x0(0.3, -0.2, 0.1), x1 = x0 + s.e0, x2 = x1 + s.e1;
+    using D = HyperDual<11>;
+    std::array<D, 11> v;
+    const double values[11] = {x0.x(), x0.y(), x0.z(), x1.x(), x1.y(), x1.z(), x2.x(), x2.y(), x2.z(), s.theta0, s.theta1};
+    for (int i = 0; i < 11; ++i) v[i] = D::variable(values[i], i);
+    const D reference = bendTwistEnergy(V3<D>{v[0], v[1], v[2]}, V3<D>{v[3], v[4], v[5]}, V3<D>{v[6], v[7], v[8]}, v[9],
+                                        v[10], s.r0, s.r1, kStiffness, 0.9);
+    const BendTwistVertexDerivatives d = onVertices(closedForm(s, 0.9));
+    EXPECT_NEAR(d.energy, reference.v, 1e-12 * std::abs(reference.v));
+    const double gradientScale = reference.g.cwiseAbs().maxCoeff();
+    double hessianScale = 0.0;
+    for (int i = 0; i < 11; ++i) {
+      for (int j = 0; j <= i; ++j) hessianScale = std::max(hessianScale, std::abs(reference.hessian(i, j)));
+    }
+    for (int i = 0; i < 11; ++i) {
+      EXPECT_NEAR(d.gradient[i], reference.g[i], 1e-9 * gradientScale) << "gradient " << i;
+      for (int j = 0; j < 11; ++j) {
+        EXPECT_NEAR(d.hessian(i, j), reference.hessian(i, j), 1e-9 * hessianScale) << "Hessian " << i << "," << j;
+      }
+    }
+  }
+}
+
 TEST(BendTwistDerivatives, WrappedTwistKeepsTheAtan2Value) {
   // theta1 - theta0 = 3.5 rad on a straight rod: the twist angle is 3.5 - 2 pi, as in the energy.
   Stencil s;

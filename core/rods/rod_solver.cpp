@@ -151,7 +151,6 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
   // shift search below.
   using Factorisation = SupernodalCholesky;
   Factorisation solvers[2];
-  bool analysed[2] = {false, false};
   double shift = 0.0;  // relative diagonal shift that last made the Hessian positive definite
 
   for (int iteration = 0;; ++iteration) {
@@ -181,12 +180,15 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       return result;
     }
 
-    // A new pattern needs a new symbolic analysis of each factorisation (done where it is next
-    // used, so the second one runs on the second thread).
-    if (hessian.assemble(triplets)) analysed[0] = analysed[1] = false;
+    const bool newPattern = hessian.assemble(triplets);
     const Eigen::VectorXd diagonal = hessian.diagonal();
     const double largestDiagonal = diagonal.cwiseAbs().maxCoeff();
     const Eigen::VectorXd scale = diagonal.cwiseAbs().cwiseMax(1e-12 * largestDiagonal + 1e-300);
+    // A new pattern needs a new symbolic analysis; the second factorisation copies the first's.
+    if (newPattern) {
+      solvers[0].analyzePattern(hessian.shifted(0.0, scale));
+      if (options.threads >= 2) solvers[1] = solvers[0];
+    }
 
     // Newton direction; shift the diagonal (relative to itself) until the factor is positive
     // definite. Starting from a tenth of the last shift keeps the number of refactorisations low
@@ -207,10 +209,6 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     }
     auto attempt = [&](int which, double trial, Eigen::VectorXd& out) {
       Factorisation& solver = solvers[which];
-      if (!analysed[which]) {
-        solver.analyzePattern(hessian.shifted(0.0, scale, which));
-        analysed[which] = true;
-      }
       if (!solver.factorize(hessian.shifted(trial, scale, which))) return false;
       out = -solver.solve(g);
       return out.allFinite() && out.dot(g) < 0.0;

@@ -80,8 +80,45 @@ TEST(MapRefinement, SmoothRowsMeetTheToleranceWithFewFields) {
   const auto stats = refine(oracle, 1e-5, 9, rows);
   EXPECT_LE(oracle.largestError(rows), 1e-5);
   EXPECT_LT(stats.exactRows, 40);
-  EXPECT_GT(stats.exactRows, 17);  // 1e-7 is not met from 9 nodes: some intervals were refined
+  EXPECT_GT(stats.exactRows, 17);  // 1e-5 is not met from 9 nodes: some intervals were refined
   EXPECT_GT(stats.refinedIntervals, 0);
+  // All 8 first checks miss here, but by less than 32x the tolerance: no switch to every row.
+  EXPECT_EQ(stats.rounds, 2);
+}
+
+TEST(MapRefinement, AKinkAtAFixedX1IsFoundWhereverItLies) {
+  // A kink at the same x1 for every x2 (slope jump 0.2), swept over the side. A single middle
+  // check misses it when it lies near an end of the interval or when the errors cancel at the
+  // middle (k = 0.91036: the check of (87, 99) at 93 passed, rows 88-98 were filled 18x off);
+  // the stencil comparison must catch every position: each row within the tolerance of the
+  // truth (rows computed exactly are the truth), with few exact rows.
+  const double tolerance = 1e-4;
+  int worstRows = 0;
+  double worstRatio = 0.0;
+  for (int t = 0; t <= 1000; ++t) {
+    const double k = t == 1000 ? 0.91036 : 0.05 + 0.9 * t / 999.0;
+    Oracle oracle{100, 3, [k](double x1, double x2) { return 3.0 + x2 + 0.5 * x1 + 0.1 * std::abs(x1 - k); }};
+    std::vector<std::vector<double>> rows;
+    const auto stats = refine(oracle, tolerance, 9, rows);
+    worstRatio = std::max(worstRatio, oracle.largestError(rows) / tolerance);
+    worstRows = std::max(worstRows, stats.exactRows);
+    ASSERT_LE(oracle.largestError(rows), tolerance) << "kink at x1 = " << k;
+  }
+  EXPECT_LT(worstRows, 50);  // 34 measured: the rows next to the kink, not the whole side
+  EXPECT_LE(worstRatio, 1.0);
+}
+
+TEST(MapRefinement, MostFarMissesInTheFirstRoundComputeTheRestInOneBatch) {
+  // Kinks every ~8 samples (|sin| in x1): the first checks miss by far more than 32x the
+  // tolerance, so after the first round the remaining rows come in one batch (3 calls in all)
+  // instead of halving down to adjacent samples round after round.
+  Oracle oracle{100, 10, [](double x1, double x2) { return 2.0 + x2 + 0.05 * std::abs(std::sin(40.0 * x1 + x2)); }};
+  std::vector<std::vector<double>> rows;
+  const auto stats = refine(oracle, 1e-5, 9, rows);
+  EXPECT_EQ(oracle.calls, 3);
+  EXPECT_EQ(stats.rounds, 2);
+  EXPECT_EQ(stats.exactRows, 100);
+  EXPECT_EQ(oracle.largestError(rows), 0.0);
 }
 
 TEST(MapRefinement, AKinkIsRefinedDownToAdjacentSamples) {

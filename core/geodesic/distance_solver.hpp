@@ -31,21 +31,22 @@ struct DistanceSolverOptions {
   // An interior vertex whose angle sum exceeds 2*pi by more than this (radians) is a saddle: a
   // shortest path may bend around it, so it becomes a pseudo-source; likewise a boundary vertex
   // whose angle sum exceeds pi (a reflex corner of the boundary).
-  // Below it (near-flat vertices, mostly remeshing noise) the vertex's shadow is closed by paths
-  // bent over the neighbouring windows' ends instead. A skipped bend of angle e overestimates
-  // distances in its shadow, by at most about e relative (the detour is at most the shadow width)
-  // and in practice far less. Error study (2026-12, max / mean relative error against CGAL for
-  // targets beyond two edges, 2-4 interior sources each; remeshed samples bump, hypar, waves at
-  // ~1k and ~4k vertices, bump at 18k):
-  //   tolerance   worst max    worst mean   windows per source, bump 4.4k
-  //   0 (exact)   5e-15        8e-16        238k
-  //   5e-4        1.8e-6       4e-9         160k
-  //   7e-4        2.4e-6       6e-9         140k   <- default
-  //   1e-3        8.2e-6       6e-9         137k   (waves 4.6k)
-  //   2e-3        5.3e-5       3e-8         137k   (waves 4.6k; the bar is 1e-4)
-  // 7e-4 keeps the worst case 40x below the 1e-4 bar of Sections 2.3.3/3.4.1 (whose test needs
-  // 1.5e-3). Set 0 for the exact polyhedral distance.
-  double saddleAngleTolerance = 7e-4;
+  // Below it the vertex's shadow is closed by paths bent over the neighbouring windows' ends
+  // instead. One skipped bend of angle e costs little, but along a path through a negatively
+  // curved region every vertex is a near-flat saddle, the skipped bends add up, and the error grows
+  // with the number of vertices the path passes (finer meshes skip more). Error study (2026-12,
+  // max relative error against tolerance 0, the exact polyhedral distance):
+  //   tolerance   patch side-to-side maps, steep bump       samples, interior sources
+  //               3.9k vertices     14.9k vertices          (bump/hypar/waves 1k-18k)
+  //   7e-4        1.7e-4 - 2.2e-4   -                       2.4e-6
+  //   5e-4        3.4e-5 - 1.5e-4   -                       1.8e-6
+  //   2e-4        8.9e-6 - 1.7e-5   9.9e-5                  -
+  //   1e-4        8.9e-6            3.0e-5                  -
+  // (maps: bump height 2 m, sigma 1.5 m, 8 x 8 m, 6 x 6 m patch over the top, every row exact;
+  // the test PatchMapsAccuracy.* in tests/core/egg repeats the 3.9k case.) The default keeps the
+  // 1e-4 bar of Sections 2.3.3/3.4.1 with a margin of 3 at 15k vertices; meshes much finer than
+  // that should lower it or use 0. Reflex boundary vertices are always pseudo-sources.
+  double saddleAngleTolerance = 1e-4;
   // Windows narrower than this fraction of their edge length are dropped (numerical slivers that
   // appear when a ray runs exactly through a vertex; the neighbouring windows cover them).
   double minWindowWidthRelative = 1e-11;

@@ -328,6 +328,9 @@ class Propagator {
       // the 4.5k bump, the full-edge windows cost ~40 % of the propagation.
       const double length = t_.he[ho].length;
       const double ox = t_.he[ho].oppositeX, oy = t_.he[ho].oppositeY;  // v in the frame of ho
+      // A needle face (v almost on the opposite edge) maps the whole cone into a sliver about as
+      // wide as the face's height, which the width floor could drop: keep the full edge there.
+      const bool needle = oy < 1e-8 * length;
       auto crossing = [&](double psi) {  // where the ray turned psi from v->B meets ho (from B)
         if (psi <= 0.0) return 0.0;
         if (psi >= corner) return length;
@@ -339,8 +342,8 @@ class Propagator {
       Window win;
       win.halfedge = tw;
       win.parent = Window::fromVertex(v);
-      win.b0 = length - crossing(hi - a0);
-      win.b1 = length - crossing(lo - a0);
+      win.b0 = needle ? 0.0 : length - crossing(hi - a0);
+      win.b1 = needle ? length : length - crossing(lo - a0);
       win.sx = length - ox;
       win.sy = -oy;
       win.sigma = dv;

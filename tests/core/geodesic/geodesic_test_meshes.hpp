@@ -47,6 +47,32 @@ inline TriMesh gridMesh(int nx, int ny, double sizeX, double sizeY, const std::f
   return meshFromSoup(soup);
 }
 
+// The L-shaped domain [0,2]x[0,2] minus (1,2]x(1,2], n cells per unit, z = height(x, y): one
+// reflex boundary corner at (1,1), which shortest paths between the two arms bend around.
+inline TriMesh lShapeMesh(int n, const std::function<double(double, double)>& height) {
+  TriangleSoup soup;
+  auto inside = [](double x, double y) { return !(x > 1.0 + 1e-12 && y > 1.0 + 1e-12); };
+  std::vector<int> index((2 * n + 1) * (2 * n + 1), -1);
+  for (int j = 0; j <= 2 * n; ++j) {
+    for (int i = 0; i <= 2 * n; ++i) {
+      const double x = double(i) / n, y = double(j) / n;
+      if (!inside(x, y)) continue;
+      index[j * (2 * n + 1) + i] = static_cast<int>(soup.vertices.size());
+      soup.vertices.emplace_back(x, y, height(x, y));
+    }
+  }
+  for (int j = 0; j < 2 * n; ++j) {
+    for (int i = 0; i < 2 * n; ++i) {
+      const int a = index[j * (2 * n + 1) + i], b = index[j * (2 * n + 1) + i + 1];
+      const int c = index[(j + 1) * (2 * n + 1) + i + 1], d = index[(j + 1) * (2 * n + 1) + i];
+      if (a < 0 || b < 0 || c < 0 || d < 0) continue;
+      soup.triangles.push_back({a, b, c});
+      soup.triangles.push_back({a, c, d});
+    }
+  }
+  return meshFromSoup(soup);
+}
+
 inline double flat(double, double) { return 0.0; }
 
 // Gaussian bump of height `amplitude` and width `width` centred at (cx, cy).

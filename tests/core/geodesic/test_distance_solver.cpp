@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -61,41 +62,45 @@ TEST(DistanceSolver, TargetsInsideFacesAndOnEdgesAreEuclideanOnAPlane) {
 }
 
 TEST(DistanceSolver, ShortestPathBendsAroundAReflexBoundaryCorner) {
-  // An L-shaped flat domain: [0,2]x[0,2] minus [1,2]x[1,2]. From a point on the lower boundary to
-  // the upper arm the path bends at the reflex corner (1,1), a boundary pseudo-source.
-  TriangleSoup soup;
-  const int n = 8;  // cells per unit
-  auto inside = [](double x, double y) { return !(x > 1.0 + 1e-12 && y > 1.0 + 1e-12); };
-  std::vector<int> index((2 * n + 1) * (2 * n + 1), -1);
-  for (int j = 0; j <= 2 * n; ++j) {
-    for (int i = 0; i <= 2 * n; ++i) {
-      const double x = double(i) / n, y = double(j) / n;
-      if (!inside(x, y)) continue;
-      index[j * (2 * n + 1) + i] = static_cast<int>(soup.vertices.size());
-      soup.vertices.emplace_back(x, y, 0.0);
-    }
-  }
-  for (int j = 0; j < 2 * n; ++j) {
-    for (int i = 0; i < 2 * n; ++i) {
-      const int a = index[j * (2 * n + 1) + i], b = index[j * (2 * n + 1) + i + 1];
-      const int c = index[(j + 1) * (2 * n + 1) + i + 1], d = index[(j + 1) * (2 * n + 1) + i];
-      if (a < 0 || b < 0 || c < 0 || d < 0) continue;
-      soup.triangles.push_back({a, b, c});
-      soup.triangles.push_back({a, c, d});
-    }
-  }
-  const TriMesh mesh = meshFromSoup(soup);
+  // The flat L [0,2]x[0,2] minus (1,2]x(1,2]: between the two arms the path bends at the reflex
+  // corner (1,1), a boundary pseudo-source. From the lower arm it turns left, from the upper arm
+  // right, so both sides of the corner's cone are exercised.
+  const TriMesh mesh = testing::lShapeMesh(8, testing::flat);
   const DistanceSolver solver(mesh);
-  const SurfacePoint source = snapToSurface(mesh, Eigen::Vector3d(1.8, 0.0, 0.0));  // boundary source
-  const Eigen::Vector3d s = position(mesh, source);
   const Eigen::Vector3d corner(1.0, 1.0, 0.0);
-  const auto field = solver.distances(source);
-  for (auto vh : mesh.vertices()) {
-    const Eigen::Vector3d q = vertexPosition(mesh, vh.idx());
-    // Visible from s unless q is in the upper arm beyond the line from s through the corner.
-    const bool hidden = q.y() > 1.0 && (q - s).x() * (corner - s).y() - (q - s).y() * (corner - s).x() > 1e-12;
-    const double expected = hidden ? (corner - s).norm() + (q - corner).norm() : (q - s).norm();
-    EXPECT_NEAR(field.vertexDistances[vh.idx()], expected, 1e-12) << "vertex at " << q.transpose();
+  // Whether the segment s-q passes through the missing square (Liang-Barsky clipping).
+  auto blocked = [](const Eigen::Vector3d& s, const Eigen::Vector3d& q) {
+    double t0 = 0.0, t1 = 1.0;
+    const Eigen::Vector3d d = q - s;
+    for (int axis = 0; axis < 2; ++axis) {
+      for (const double bound : {1.0, 2.0}) {
+        const bool lower = bound == 1.0;  // inside means coordinate > 1 and < 2
+        const double p = lower ? -d[axis] : d[axis], r = lower ? s[axis] - bound : bound - s[axis];
+        if (p == 0.0) {
+          if (r <= 0.0) return false;
+        } else if (p < 0.0) {
+          t0 = std::max(t0, r / p);
+        } else {
+          t1 = std::min(t1, r / p);
+        }
+      }
+    }
+    return t1 - t0 > 1e-9;
+  };
+  for (const Eigen::Vector3d requested : {Eigen::Vector3d(1.8, 0.0, 0.0), Eigen::Vector3d(0.0, 1.8, 0.0)}) {
+    const SurfacePoint source = snapToSurface(mesh, requested);  // on the boundary
+    const Eigen::Vector3d s = position(mesh, source);
+    const auto field = solver.distances(source);
+    int bent = 0;
+    for (auto vh : mesh.vertices()) {
+      const Eigen::Vector3d q = vertexPosition(mesh, vh.idx());
+      const bool hidden = blocked(s, q);
+      bent += hidden;
+      const double expected = hidden ? (corner - s).norm() + (q - corner).norm() : (q - s).norm();
+      EXPECT_NEAR(field.vertexDistances[vh.idx()], expected, 1e-12) << "source " << s.transpose() << ", vertex at "
+                                                                     << q.transpose();
+    }
+    EXPECT_GT(bent, 20) << "source " << s.transpose();  // the test sees paths around the corner
   }
 }
 

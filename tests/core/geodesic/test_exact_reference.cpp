@@ -149,6 +149,27 @@ TEST(ExactReference, ExactModeAgreesWithCgalOnRemeshedSamples) {
   }
 }
 
+TEST(ExactReference, ExactModeAgreesWithCgalAroundAReflexCorner) {
+  // A curved L-shaped patch: paths between the arms bend at the reflex boundary corner (either way
+  // round, from sources in both arms) and at the saddles of the surface.
+  const TriMesh mesh = testing::lShapeMesh(10, testing::hypar(1.0, 1.0, 0.4));
+  DistanceSolverOptions exact;
+  exact.saddleAngleTolerance = 0.0;
+  const DistanceSolver solver(mesh, exact);
+  for (const Eigen::Vector3d requested :
+       {Eigen::Vector3d(1.7, 0.0, 0.0), Eigen::Vector3d(0.0, 1.7, 0.0), Eigen::Vector3d(1.6, 0.4, 0.0),
+        Eigen::Vector3d(0.3, 1.8, 0.0)}) {
+    const SurfacePoint source = snapToSurface(mesh, requested);
+    const auto ours = solver.distances(source).vertexDistances;
+    const bool isVertex = (source.barycentric.array() > 0.0).count() == 1;
+    const auto cgal = referenceDistances(mesh, isVertex ? source : intoFace(source));
+    for (size_t v = 0; v < ours.size(); ++v) {
+      // The CGAL source sits 1e-10 (barycentric) inside the face when ours is on an edge.
+      EXPECT_NEAR(ours[v], cgal[v], 1e-9 * (1.0 + cgal[v])) << "source near " << requested.transpose() << ", vertex " << v;
+    }
+  }
+}
+
 TEST(ExactReference, CgalIsWrongForSourcesOnEdgesButOursIsNot) {
   // Documents why the comparisons above nudge edge sources for CGAL: on a convex flat square the
   // distance from a boundary point is Euclidean; CGAL misses it by percents, we by rounding.

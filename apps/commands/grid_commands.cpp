@@ -29,7 +29,7 @@ struct GridBenchArgs {
   int resolution = 100;                           // distance map samples per side
   double height = 1.0;                            // bump height (m); the patch is 6 x 6 m
   int repeats = 3;                                // solves per size; the table shows medians
-  std::vector<double> mapTolerances;              // error-vs-time table of the adaptive maps (empty = none)
+  std::vector<double> mapTolerances;              // relative tolerances of the adaptive maps' error-vs-time table (empty = none)
   std::string csv;
   bool json = false;
 };
@@ -80,9 +80,9 @@ double largestDifference(const DistanceMap& a, const DistanceMap& b) {
   return d;
 }
 
-// Error against run time of the adaptive distance maps (DistanceMapOptions::toleranceM): per size,
-// the exact maps (tolerance 0, a field at every sample) are the reference of the same run; every
-// tolerance is solved `repeats` times and compared with it.
+// Error against run time of the adaptive distance maps (DistanceMapOptions::toleranceRelative):
+// per size, the exact maps (tolerance 0, a field at every sample) are the reference of the same
+// run; every tolerance is solved `repeats` times and compared with it.
 nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& mesh, const EggOptions& base) {
   const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
   std::vector<double> tolerances{0.0};
@@ -91,7 +91,7 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
   std::optional<EggResult> reference;
   for (double tolerance : tolerances) {
     EggOptions options = base;
-    options.maps.toleranceM = tolerance;
+    options.maps.toleranceRelative = tolerance;
     std::vector<double> maps, totals, cpu;
     std::optional<EggResult> last;
     for (int run = 0; run < args.repeats; ++run) {
@@ -106,6 +106,7 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
     const EggResult& e = *reference;
     const double mapError = std::max(largestDifference(r.maps.u, e.maps.u), largestDifference(r.maps.v, e.maps.v));
     const Patch& p = r.patch;
+    const double shorterSide = *std::min_element(p.sideLengths.begin(), p.sideLengths.end());
     const double shift = std::max(
         memberShift(r.membersU, e.membersU, familySideLength(p, Family::U, false), familySideLength(p, Family::U, true)),
         memberShift(r.membersV, e.membersV, familySideLength(p, Family::V, false), familySideLength(p, Family::V, true)));
@@ -113,13 +114,16 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
         std::max(claddingShift(r.alphaBar.claddingU, e.alphaBar.claddingU, familySideLength(p, Family::U, true)),
                  claddingShift(r.alphaBar.claddingV, e.alphaBar.claddingV, familySideLength(p, Family::V, true)));
     const bool sameCount = r.membersU.x1.size() == e.membersU.x1.size() && r.membersV.x1.size() == e.membersV.x1.size();
+    const double etaChange = std::max(std::abs(r.uniqueness.etaU - e.uniqueness.etaU), std::abs(r.uniqueness.etaV - e.uniqueness.etaV));
     nlohmann::json row{{"vertices", p.mesh.n_vertices()},
-                       {"tolerance_m", tolerance},
+                       {"tolerance_relative", tolerance},
                        {"t_distance_maps_s", median(maps)},
                        {"t_grid_s", median(totals)},
                        {"cpu_grid_s", median(cpu)},
                        {"map_fields", r.maps.propagations},
                        {"max_map_error_m", mapError},
+                       {"max_map_error_relative", mapError / shorterSide},
+                       {"eta_change", etaChange},
                        {"alpha_bar_change_rad", std::abs(r.alphaBar.alphaBar - e.alphaBar.alphaBar)},
                        {"alpha_max_change_rad", std::abs(r.alphaBar.alphaMax - e.alphaBar.alphaMax)},
                        {"cladding_change_m", claddingChange},
@@ -132,8 +136,8 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
     const double uvMember = memberShift(r.membersU, r.membersV, familySideLength(p, Family::U, false), familySideLength(p, Family::U, true));
     row["uv_map_asymmetry_m"] = uvMap;
     if (std::isfinite(uvMember)) row["uv_member_asymmetry_m"] = uvMember;
-    fmt::print("{:>8} {:>9.1e} {:>8.3f} {:>8.3f} {:>8.3f} {:>6} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>10.2e} {:>10.2e} {:>10}\n",
-               p.mesh.n_vertices(), tolerance, median(maps), median(totals), median(cpu), r.maps.propagations, mapError,
+    fmt::print("{:>8} {:>9.1e} {:>8.3f} {:>8.3f} {:>8.3f} {:>6} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>10.2e} {:>10.2e} {:>10}\n",
+               p.mesh.n_vertices(), tolerance, median(maps), median(totals), median(cpu), r.maps.propagations, mapError, etaChange,
                std::abs(r.alphaBar.alphaBar - e.alphaBar.alphaBar), std::abs(r.alphaBar.alphaMax - e.alphaBar.alphaMax),
                claddingChange, sameCount ? fmt::format("{:.2e}", shift) : std::string("count"), std::abs(r.grid.maxNotch - e.grid.maxNotch), uvMap,
                std::isfinite(uvMember) ? fmt::format("{:.2e}", uvMember) : std::string("count"));
@@ -144,12 +148,12 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
 
 int runGridBench(const GridBenchArgs& args) {
   fmt::print("egg bench grid: bump (height {} m, sigma 1.5 m) patch 6 x 6 m, distance maps {} x {} (adaptive rows,\n"
-             "tolerance {} m), alpha_bar = min,\n"
+             "tolerance {} x the shorter side), alpha_bar = min,\n"
              "lamellas 0.1 m at spacing 0.6 m; wall seconds (all threads), median of {} solves per size;\n"
              "cpu_grid = CPU seconds of the solve over all threads (load-independent work);\n"
-             "t_maps includes the eta check's curvature and peak fields (run alongside the maps), t_eta the check\n"
-             "itself; share = part / t_grid; fields = propagations (patch sides + maps + peaks + tracing)\n",
-             args.height, args.resolution, args.resolution, DistanceMapOptions{}.toleranceM, args.repeats);
+             "t_maps includes the eta check's curvature, peak and p1 fields (run alongside the maps), t_eta the\n"
+             "check itself; share = part / t_grid; fields = propagations (patch sides + maps + eta + tracing)\n",
+             args.height, args.resolution, args.resolution, DistanceMapOptions{}.toleranceRelative, args.repeats);
   fmt::print("{:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>10} {:>18}\n", "vertices", "t_patch",
              "t_eta", "t_maps", "t_sqp", "t_member", "t_trace", "t_grid", "cpu_grid", "u x v", "fields", "max_notch",
              "alpha_bar range");
@@ -218,16 +222,17 @@ int runGridBench(const GridBenchArgs& args) {
   }
   nlohmann::json toleranceRows = nlohmann::json::array();
   if (!args.mapTolerances.empty()) {
-    fmt::print("distance maps: error against time (adaptive rows, DistanceMapOptions::toleranceM); reference = exact maps\n"
-               "(tolerance 0, {} fields per family) of the same run; t_* medians of {} solves; map_err = max |D - D_exact|\n"
-               "over both maps; d_alpha = |alpha_bar - exact| (alpha_bar_min), d_amax = |alpha_bar_max - exact|; d_F = largest\n"
+    fmt::print("distance maps: error against time (adaptive rows, tol = DistanceMapOptions::toleranceRelative, times the\n"
+               "family's shorter side); reference = exact maps (tolerance 0, {} fields per family) of the same run; t_* medians\n"
+               "of {} solves; map_err = max |D - D_exact| over both maps; d_eta = largest change of eta_u, eta_v (the check\n"
+               "reads exact p1 fields, so 0 unless smoothing took another path); d_alpha = |alpha_bar - exact| (alpha_bar_min), d_amax = |alpha_bar_max - exact|; d_F = largest\n"
                "change of the cladding functions F_u, F_v (metres along the end side, 201 samples of x1); d_member =\n"
                "largest member end shift along its side (\"count\" if the member count changed); d_notch = change of max notch;\n"
                "uv_map, uv_member = max |D_u - D_v| and largest u/v member mismatch of that solve: the patch is symmetric\n"
                "about its diagonal c0-c2, so on the smooth surface both are 0 and the exact row shows the mesh's own noise\n",
                args.resolution, args.repeats);
-    fmt::print("{:>8} {:>9} {:>8} {:>8} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "vertices", "tol_m", "t_maps",
-               "t_grid", "cpu_grid", "fields", "map_err_m", "d_alpha", "d_amax", "d_F_m", "d_member_m", "d_notch_m", "uv_map_m", "uv_member");
+    fmt::print("{:>8} {:>9} {:>8} {:>8} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "vertices", "tol_rel", "t_maps",
+               "t_grid", "cpu_grid", "fields", "map_err_m", "d_eta", "d_alpha", "d_amax", "d_F_m", "d_member_m", "d_notch_m", "uv_map_m", "uv_member");
     for (const TriMesh& mesh : meshes)
       for (auto& row : runMapToleranceTable(args, mesh, baseOptions)) toleranceRows.push_back(row);
   }
@@ -251,7 +256,8 @@ int runGridBench(const GridBenchArgs& args) {
                           r["distance_fields"].get<int>());
     writeFileAtomically(args.csv, file.str());
   }
-  if (args.json) std::cout << (toleranceRows.empty() ? rows : nlohmann::json{{"sizes", rows}, {"map_tolerance", toleranceRows}}).dump(2) << "\n";
+  // One shape whatever the options: an object; "map_tolerance" is an empty array without --map-tolerance.
+  if (args.json) std::cout << nlohmann::json{{"sizes", rows}, {"map_tolerance", toleranceRows}}.dump(2) << "\n";
   return kExitOk;
 }
 
@@ -265,14 +271,14 @@ void registerGridBench(CLI::App& bench, Action& action) {
   cmd->add_option("--sizes", args->sizes, "approximate patch vertex counts")->delimiter(',');
   cmd->add_option("--resolution", args->resolution, "distance map samples per side")->check(CLI::Range(3, 2000));
   cmd->add_option("--map-tolerance", args->mapTolerances,
-                  "also tabulate error against time of the adaptive distance maps for these tolerances (metres, "
-                  "comma-separated; the exact maps of the same run are the reference)")
+                  "also tabulate error against time of the adaptive distance maps for these tolerances (relative to "
+                  "the family's shorter side, comma-separated; the exact maps of the same run are the reference)")
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--repeats", args->repeats, "solves per size (medians are shown)")->check(CLI::Range(1, 100));
   cmd->add_option("--height", args->height, "bump height in metres")->check(CLI::NonNegativeNumber);
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
-  cmd->add_flag("--json", args->json, "also print the table as JSON");
+  cmd->add_flag("--json", args->json, "also print the tables as JSON: {\"sizes\": [...], \"map_tolerance\": [...]}");
   cmd->callback([args, &action] { action = [args] { return runGridBench(*args); }; });
 }
 

@@ -19,7 +19,7 @@ EggOptions eggOptionsFromScene(const Scene& scene) {
   EggOptions options;
   options.uniqueness.etaMax = scene.patching.eta_max;
   options.maps.resolution = scene.grid.map_resolution;
-  options.maps.toleranceM = scene.grid.map_tolerance_m;
+  options.maps.toleranceRelative = scene.grid.map_tolerance_relative;
   options.alphaBar.slopeMin = scene.patching.slope_bounds[0];
   options.alphaBar.slopeMax = scene.patching.slope_bounds[1];
   if (scene.grid.alpha_bar == "value") {

@@ -199,7 +199,7 @@ void readGrid(Section s, GridSpec& out) {
     }
   }
   out.map_resolution = s.integer("map_resolution", out.map_resolution, 8, 2000);
-  out.map_tolerance_m = s.number("map_tolerance_m", out.map_tolerance_m, 0.0, 1.0);
+  out.map_tolerance_relative = s.number("map_tolerance_relative", out.map_tolerance_relative, 0.0, 0.1);
   out.min_planar_angle_rad = s.number("min_planar_angle_rad", out.min_planar_angle_rad, 0.0, 0.78);
   if (s.has("alpha_bar")) {
     const json& v = s.raw("alpha_bar");
@@ -330,7 +330,7 @@ json sceneToJson(const Scene& scene) {
     patches.push_back(corners);
   }
   json grid{{"map_resolution", scene.grid.map_resolution},
-            {"map_tolerance_m", scene.grid.map_tolerance_m},
+            {"map_tolerance_relative", scene.grid.map_tolerance_relative},
             {"min_planar_angle_rad", scene.grid.min_planar_angle_rad}};
   grid["members_per_family"] = scene.grid.members_per_family ? json(*scene.grid.members_per_family) : json("auto");
   grid["alpha_bar"] = scene.grid.alpha_bar == "value" ? json(scene.grid.alpha_bar_rad) : json(scene.grid.alpha_bar);

@@ -33,9 +33,11 @@ struct PatchingSpec {
 struct GridSpec {
   std::optional<int> members_per_family;     // empty = "auto" (Section 2.4.4)
   int map_resolution = 100;                  // samples per boundary of the distance maps
-  // Adaptive distance-map rows (core/egg/map_refinement.hpp): the largest miss, in metres, allowed
-  // of a row interpolated between exact source fields; 0 = every row exact.
-  double map_tolerance_m = 1e-3;
+  // Adaptive distance-map rows (core/egg/map_refinement.hpp): the largest miss allowed of a row
+  // interpolated between exact source fields, as a fraction of the family's shorter side;
+  // 0 = every row exact. Default = DistanceMapOptions::toleranceRelative (patch_maps.hpp, where
+  // it is justified; test_scene checks that the two agree).
+  double map_tolerance_relative = 1e-4;
   std::string alpha_bar = "min";             // "min" | "max" | "unrolled" | "value"
   double alpha_bar_rad = 0.0;                // used when alpha_bar == "value"
   // Smallest inner angle of the planar quad: convexity alone (criterion iv) lets the quad fold

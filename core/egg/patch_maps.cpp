@@ -12,8 +12,8 @@ namespace egg {
 
 void DistanceMapOptions::validate() const {
   if (resolution < 3 || resolution > 2000) throw InvalidInput("grid.map_resolution must lie in [3, 2000]");
-  if (!(toleranceM >= 0.0) || !std::isfinite(toleranceM))
-    throw InvalidInput("distance map toleranceM must be a finite number of metres >= 0 (0 = exact rows)");
+  if (!(toleranceRelative >= 0.0) || !std::isfinite(toleranceRelative))
+    throw InvalidInput("grid.map_tolerance_relative must be a finite number >= 0 (a fraction of the shorter side; 0 = exact rows)");
   if (initialNodes < 2) throw InvalidInput("distance map initialNodes must be >= 2 (both corners of the start side)");
 }
 
@@ -58,7 +58,9 @@ PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::Distan
       return rows;
     };
     std::vector<std::vector<double>> rows;
-    const auto stats = refineMapRows(n, n, options.toleranceM, options.initialNodes, exactRows, rows);
+    const double tolerance = options.toleranceRelative *
+                             std::min(familySideLength(patch, family, false), familySideLength(patch, family, true));
+    const auto stats = refineMapRows(n, n, tolerance, options.initialNodes, exactRows, rows);
     propagations[family == Family::U ? 0 : 1] = stats.exactRows;
     DistanceMap map(n, n);
     for (int i = 0; i < n; ++i)

@@ -14,13 +14,19 @@ struct DistanceMapOptions {
   int resolution = 100;  // samples per side (the thesis uses ~100 x 100)
   // Adaptive rows (map_refinement.hpp): exact source fields only at some start-side samples, the
   // other rows by cubic interpolation in x1, refined where a check row misses by more than this
-  // (metres). 0 = an exact field at every sample. The exact polyhedral maps are not smooth below
-  // ~1e-4 m (each mesh vertex a geodesic passes puts a tiny kink into D): on the symmetric bench
-  // bump the exact D_u and D_v, equal on the smooth surface, differ by 0.8-1.8e-3 m (3.4k-0.6k
-  // vertices). Refining below that noise buys nothing, so the default sits just under it; the
-  // maps then stay within 4e-4 (3.4k) to 8e-4 m (0.6k) of the exact ones (`egg bench grid
-  // --map-tolerance`).
-  double toleranceM = 1e-3;
+  // times the family's shorter side (relative, so a 0.9 m and a 40 m patch get the same relative
+  // accuracy); 0 = an exact field at every sample. Scene key grid.map_tolerance_relative.
+  // Default 1e-4: the accuracy bar of the geodesic engine (distance_solver.hpp), and below the
+  // noise of the exact polyhedral maps themselves: on the symmetric bench bump the exact D_u and
+  // D_v, equal on the smooth surface, differ by 1.4e-4 (3.4k vertices) to 3.7e-4 (0.6k) of the
+  // side. `egg bench grid --map-tolerance 2e-5,5e-5,1e-4,1.5e-4,3e-4` (6 m bump, 0.6k/1.1k/2.0k/
+  // 3.4k vertices) at 1e-4: 145/78/66/66 of 200 fields, max |D - D_exact| 5.1/7.3/6.4/4.0e-4 m
+  // (up to 1.2e-4 of the side, where a single noisy exact row lies between nodes), cladding
+  // functions within 1.5e-4/4.3e-4/2.1e-4/0.6e-4 m, alpha_bar unchanged. 1.5e-4 saves fields on
+  // the 0.6k mesh only (118); 3e-4 reaches that mesh's noise (1.9e-3 m); 5e-5 costs 200/168/77/83
+  // fields. The bump scaled to a 0.86 m patch: 101 fields, 1.0e-4 of the side. eta reads exact
+  // fields, not the maps (uniqueness.hpp).
+  double toleranceRelative = 1e-4;
   int initialNodes = 9;  // start-side samples with exact fields before refinement (>= 2)
   void validate() const; // throws InvalidInput naming the field
 };
@@ -37,7 +43,7 @@ double familySideLength(const Patch& patch, Family family, bool end);
 
 // Both maps plus sides, diagonals and the corner angle alpha, ready for solveAlphaBar. Per family,
 // batch calls with sources on its start side and the n samples of its end side as targets (all n
-// sources at once when toleranceM = 0, else the rounds of the adaptive refinement); the two
+// sources at once when toleranceRelative = 0, else the rounds of the adaptive refinement); the two
 // families run concurrently.
 PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::DistanceSolver& solver,
                                       const DistanceMapOptions& options = {});

@@ -41,27 +41,27 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   auto solver = std::make_unique<geodesic::DistanceSolver>(result.patch.mesh);
   result.seconds.uniqueness = since(t);
 
-  // The maps and the eta check in one go (Sections 2.4.2, 2.3.3): the maps already hold the
-  // diagonals and every d(p1, opposite side), so the check adds one field per K peak, and none
-  // when the injectivity bound holds for sure. Curvature, peaks and peak fields run alongside the
+  // The maps and the eta check in one go (Sections 2.4.2, 2.3.3, 3.4.1): the maps hold the
+  // diagonals; the check adds one field per K peak and one from each p1 (per peak and family),
+  // exact, since the maps' rows between source fields are interpolated; none when the
+  // injectivity bound holds for sure. Curvature, peaks and these fields run alongside the
   // maps' batches on the same thread pool.
   t = std::chrono::steady_clock::now();
   PatchPeaks peaks;
-  std::vector<geodesic::DistanceField> peakFields;
+  UniquenessFields etaFields;
+  etaFields.samples = options.maps.resolution;
   tbb::parallel_invoke([&] { result.maps = computeDistanceMaps(result.patch, *solver, options.maps); },
                        [&] {
                          peaks = findPatchPeaks(result.patch, options.uniqueness);
                          if (peaks.peaks.empty() || boundCertainlyHolds(result.patch, peaks)) return;
-                         std::vector<SurfacePoint> sources;
-                         for (const auto& p : peaks.peaks) sources.push_back(geodesic::vertexPoint(result.patch.mesh, p.vertex));
-                         peakFields = solver->distances(sources, uniquenessPeakTargets(result.patch, options.maps.resolution));
+                         etaFields = uniquenessFields(result.patch, peaks, *solver, options.maps.resolution);
                        });
-  result.propagations += result.maps.propagations + static_cast<int>(peakFields.size());
+  result.propagations += result.maps.propagations + etaFields.propagations();
   result.seconds.distanceMaps = since(t);
 
   t = std::chrono::steady_clock::now();
-  result.uniqueness = checkUniqueness(result.patch, peaks, peakFields, result.maps, options.uniqueness);
-  result.uniqueness.propagations = static_cast<int>(peakFields.size());
+  result.uniqueness = checkUniqueness(result.patch, peaks, etaFields, result.maps, options.uniqueness);
+  result.uniqueness.propagations = etaFields.propagations();
   if (!result.uniqueness.passed && options.uniqueness.smooth) {
     // Section 2.3.3: cotangent-Laplacian smoothing of the patch (boundary held, it is the traced
     // quad) repeated until eta <= eta_max. Only when the check fails; the maps are then redone
@@ -72,11 +72,15 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
     smoothing.fix_boundary = true;
     int rounds = 0;
     UniquenessReport report = result.uniqueness;
+    // The same boundary samples as the check on the maps, so eta before and after smoothing
+    // compare like with like.
+    UniquenessOptions after = options.uniqueness;
+    after.sideSamples = options.maps.resolution;
     while (!report.passed && rounds < options.uniqueness.maxSmoothingRounds) {
       result.patch.mesh = smoothMeshStep(result.patch.mesh, smoothing).mesh;
       ++rounds;
       solver = std::make_unique<geodesic::DistanceSolver>(result.patch.mesh);
-      report = checkUniqueness(result.patch, *solver, options.uniqueness);
+      report = checkUniqueness(result.patch, *solver, after);
       result.propagations += report.propagations;
     }
     report.smoothingRounds = rounds;

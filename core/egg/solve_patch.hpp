@@ -23,7 +23,7 @@ struct EggOptions {
 };
 
 // Wall times (seconds) of the parts of one solve. distanceMaps includes the eta check's K peaks
-// and peak fields, which run alongside the maps; uniqueness is the solver set-up, the check on
+// and its peak and p1 fields, which run alongside the maps; uniqueness is the solver set-up, the check on
 // the maps and any smoothing (with its own checks); sqp is Problem 2.3; tracing builds the grid.
 struct EggTimings {
   double patch = 0.0, uniqueness = 0.0, distanceMaps = 0.0, sqp = 0.0, members = 0.0, tracing = 0.0, total = 0.0;

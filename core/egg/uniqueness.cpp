@@ -77,6 +77,38 @@ void addCheck(UniquenessReport& report, const EtaCheck& check) {
   report.checks.push_back(check);
 }
 
+// p1 per peak and family (u, then v) from the peak fields (their first 4n targets are
+// uniquenessPeakTargets), and the boundary points the p1 fields start from.
+std::vector<NearestBoundary> nearestBoundaries(const std::vector<const std::vector<double>*>& fromPeaks, int n) {
+  std::vector<NearestBoundary> nearest;
+  for (const auto* d : fromPeaks)
+    for (Family family : {Family::U, Family::V}) nearest.push_back(nearestBoundary(*d, family, n));
+  return nearest;
+}
+std::vector<SurfacePoint> p1Points(const Patch& patch, const std::vector<NearestBoundary>& nearest, int n) {
+  std::vector<SurfacePoint> points;
+  for (size_t k = 0; k < nearest.size(); ++k) {
+    const Family family = k % 2 == 0 ? Family::U : Family::V;
+    points.push_back(familyBoundaryPoint(patch, family, nearest[k].onEnd, static_cast<double>(nearest[k].index) / (n - 1)));
+  }
+  return points;
+}
+
+// One eta check per peak and family from exact fields: d(p_max, .) and d(p1, .) to the targets.
+void addEtaChecks(UniquenessReport& report, const Patch& patch, const PatchPeaks& peaks,
+                  const std::vector<const std::vector<double>*>& fromPeaks, const std::vector<NearestBoundary>& nearest,
+                  const std::vector<geodesic::DistanceField>& fromP1, int n) {
+  size_t q = 0;
+  for (size_t p = 0; p < peaks.peaks.size(); ++p)
+    for (Family family : {Family::U, Family::V}) {
+      const size_t at = q++;
+      const int opposite = sideOffset(family, !nearest[at].onEnd, n);
+      const auto& d = fromP1[at].targetDistances;
+      addCheck(report, etaCheck(patch, family, peaks.peaks[p], *fromPeaks[p], nearest[at], n,
+                                [&](int k) { return d[opposite + k]; }));
+    }
+}
+
 }  // namespace
 
 PatchPeaks findPatchPeaks(const Patch& patch, const UniquenessOptions& options) {
@@ -146,33 +178,35 @@ UniquenessReport checkUniqueness(const Patch& patch, const geodesic::DistanceSol
     return report;
   }
 
-  // Second batch: the fields from every p1 (one per peak and family).
-  std::vector<NearestBoundary> nearest;
-  std::vector<SurfacePoint> p1Sources;
-  for (size_t p = 0; p < peaks.peaks.size(); ++p)
-    for (Family family : {Family::U, Family::V}) {
-      nearest.push_back(nearestBoundary(fields[2 + p].targetDistances, family, n));
-      p1Sources.push_back(targets[sideOffset(family, nearest.back().onEnd, n) + nearest.back().index]);
-    }
-  const auto fromP1 = solver.distances(p1Sources, targets);
-  report.propagations += static_cast<int>(p1Sources.size());
-  size_t q = 0;
-  for (size_t p = 0; p < peaks.peaks.size(); ++p)
-    for (Family family : {Family::U, Family::V}) {
-      const size_t at = q++;
-      const int opposite = sideOffset(family, !nearest[at].onEnd, n);
-      const auto& d = fromP1[at].targetDistances;
-      addCheck(report, etaCheck(patch, family, peaks.peaks[p], fields[2 + p].targetDistances, nearest[at], n,
-                                [&](int k) { return d[opposite + k]; }));
-    }
+  // Second batch: the fields from every p1 (one per peak and family), to the same targets.
+  std::vector<const std::vector<double>*> fromPeaks;
+  for (size_t p = 0; p < peaks.peaks.size(); ++p) fromPeaks.push_back(&fields[2 + p].targetDistances);
+  const auto nearest = nearestBoundaries(fromPeaks, n);
+  const auto fromP1 = solver.distances(p1Points(patch, nearest, n), targets);
+  report.propagations += static_cast<int>(fromP1.size());
+  addEtaChecks(report, patch, peaks, fromPeaks, nearest, fromP1, n);
   report.passed = report.etaU <= options.etaMax && report.etaV <= options.etaMax;
   report.seconds = secondsSince(started);
   return report;
 }
 
-UniquenessReport checkUniqueness(const Patch& patch, const PatchPeaks& peaks,
-                                 const std::vector<geodesic::DistanceField>& peakFields, const PatchDistanceMaps& maps,
-                                 const UniquenessOptions& options) {
+UniquenessFields uniquenessFields(const Patch& patch, const PatchPeaks& peaks, const geodesic::DistanceSolver& solver, int n) {
+  if (n < 3) throw InvalidInput("uniquenessFields: at least 3 samples per side are needed");
+  UniquenessFields fields;
+  fields.samples = n;
+  if (peaks.peaks.empty()) return fields;
+  const auto targets = uniquenessPeakTargets(patch, n);
+  std::vector<SurfacePoint> sources;
+  for (const auto& p : peaks.peaks) sources.push_back(geodesic::vertexPoint(patch.mesh, p.vertex));
+  fields.fromPeaks = solver.distances(sources, targets);
+  std::vector<const std::vector<double>*> fromPeaks;
+  for (const auto& f : fields.fromPeaks) fromPeaks.push_back(&f.targetDistances);
+  fields.fromP1 = solver.distances(p1Points(patch, nearestBoundaries(fromPeaks, n), n), targets);
+  return fields;
+}
+
+UniquenessReport checkUniqueness(const Patch& patch, const PatchPeaks& peaks, const UniquenessFields& fields,
+                                 const PatchDistanceMaps& maps, const UniquenessOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
   UniquenessReport report;
@@ -186,24 +220,18 @@ UniquenessReport checkUniqueness(const Patch& patch, const PatchPeaks& peaks,
     report.seconds = secondsSince(started) + peaks.seconds;
     return report;
   }
-  const int n = maps.u.n1;
-  if (maps.u.n2 != n || maps.v.n1 != n || maps.v.n2 != n)
-    throw InvalidInput("checkUniqueness: the distance maps must be square and of one size");
-  if (peakFields.size() != peaks.peaks.size())
-    throw InvalidInput("checkUniqueness: one peak field per peak is needed when the injectivity bound fails");
-  for (size_t p = 0; p < peaks.peaks.size(); ++p) {
-    const auto& fromPeak = peakFields[p].targetDistances;
-    if (fromPeak.size() != 4 * static_cast<size_t>(n))
-      throw InvalidInput("checkUniqueness: peak fields must target uniquenessPeakTargets(patch, map resolution)");
-    for (Family family : {Family::U, Family::V}) {
-      const DistanceMap& map = maps.map(family);
-      const NearestBoundary p1 = nearestBoundary(fromPeak, family, n);
-      // map.at(i, j) = d(start_i, end_j): a row is the field of a start sample, a column that of an end sample.
-      addCheck(report, etaCheck(patch, family, peaks.peaks[p], fromPeak, p1, n, [&](int k) {
-                 return p1.onEnd ? map.at(k, p1.index) : map.at(p1.index, k);
-               }));
-    }
-  }
+  const int n = fields.samples;
+  if (n != maps.u.n1) throw InvalidInput("checkUniqueness: the fields must target uniquenessPeakTargets(patch, map resolution)");
+  if (fields.fromPeaks.size() != peaks.peaks.size() || fields.fromP1.size() != 2 * peaks.peaks.size())
+    throw InvalidInput("checkUniqueness: one peak field per peak and one p1 field per peak and family are needed "
+                       "when the injectivity bound fails (uniquenessFields)");
+  std::vector<const std::vector<double>*> fromPeaks;
+  for (const auto& f : fields.fromPeaks) fromPeaks.push_back(&f.targetDistances);
+  for (const auto* d : fromPeaks)
+    if (d->size() != 4 * static_cast<size_t>(n)) throw InvalidInput("checkUniqueness: peak fields must target uniquenessPeakTargets(patch, n)");
+  for (const auto& f : fields.fromP1)
+    if (f.targetDistances.size() != 4 * static_cast<size_t>(n)) throw InvalidInput("checkUniqueness: p1 fields must target uniquenessPeakTargets(patch, n)");
+  addEtaChecks(report, patch, peaks, fromPeaks, nearestBoundaries(fromPeaks, n), fields.fromP1, n);
   report.passed = report.etaU <= options.etaMax && report.etaV <= options.etaMax;
   report.seconds = secondsSince(started) + peaks.seconds;
   return report;

@@ -20,7 +20,7 @@ namespace egg {
 struct UniquenessOptions {
   double etaMax = 1.0015;         // largest acceptable eta (thesis value)
   int maxPeaks = 4;               // strongest interior K peaks checked
-  int sideSamples = 64;           // boundary samples searched for p1 and q1 (the maps' grid when maps are given)
+  int sideSamples = 64;           // boundary samples searched for p1 and q1 (solveEgg: the maps' resolution)
   bool smooth = true;             // smooth the patch (cotan Laplacian) until eta <= eta_max
   int maxSmoothingRounds = 30;    // smoothing rounds before giving up
   void validate() const;          // throws InvalidInput naming the field
@@ -55,9 +55,13 @@ struct UniquenessReport {
 UniquenessReport checkUniqueness(const Patch& patch, const geodesic::DistanceSolver& solver,
                                  const UniquenessOptions& options = {});
 
-// The same check when the distance maps of the patch are known (solveEgg): the maps already hold
-// the diagonals and every d(p1, opposite side) on their grid, so only one field per peak is
-// needed, computed by the caller together with the maps (uniquenessPeakTargets).
+// The same check when the distance maps of the patch are known (solveEgg): the maps hold the
+// diagonals (their corner rows are always exact), so the check itself needs no field. The
+// distances d(p1, q) are NOT read from the maps: their rows between exact source fields are
+// interpolated (map_refinement.hpp), off by up to the map tolerance, while eta's margin is
+// 1.5e-3 relative. As in Section 3.4.1 each check gets one exact field from p1, computed by
+// uniquenessFields alongside the maps, so eta does not depend on the map tolerance and equals
+// the standalone check's on the same boundary samples (the check after smoothing).
 struct PatchPeaks {
   std::vector<CurvaturePeak> peaks;  // interior peaks of positive K, strongest first, at most maxPeaks
   double gaussianMax = 0.0;          // largest K near them [1/m^2] (0 if none)
@@ -67,12 +71,20 @@ PatchPeaks findPatchPeaks(const Patch& patch, const UniquenessOptions& options =
 // True when even an upper bound of the longest geodesic (the sides, and each diagonal bounded by
 // two sides) lies below pi / sqrt(K_max): the check passes without any distance field.
 bool boundCertainlyHolds(const Patch& patch, const PatchPeaks& peaks);
-// Targets of the peak fields: the start and end sides of u, then of v, n samples each at x = k/(n-1).
+// Targets of the peak and p1 fields: the start and end sides of u, then of v, n samples each at x = k/(n-1).
 std::vector<SurfacePoint> uniquenessPeakTargets(const Patch& patch, int n);
-// `peakFields[p]` is the field from peaks.peaks[p] to uniquenessPeakTargets(patch, maps.u.n1);
-// ignored (may be empty) when boundCertainlyHolds.
-UniquenessReport checkUniqueness(const Patch& patch, const PatchPeaks& peaks,
-                                 const std::vector<geodesic::DistanceField>& peakFields, const PatchDistanceMaps& maps,
-                                 const UniquenessOptions& options = {});
+// The fields the eta check reads, to uniquenessPeakTargets(patch, n): one batch from the peaks,
+// then one from every p1 (the boundary sample nearest to the peak, per peak and family u, v).
+struct UniquenessFields {
+  int samples = 0;                                  // n
+  std::vector<geodesic::DistanceField> fromPeaks;   // per peak
+  std::vector<geodesic::DistanceField> fromP1;      // per peak: u, then v
+  int propagations() const { return static_cast<int>(fromPeaks.size() + fromP1.size()); }
+};
+UniquenessFields uniquenessFields(const Patch& patch, const PatchPeaks& peaks, const geodesic::DistanceSolver& solver, int n);
+// `fields` from uniquenessFields(patch, peaks, solver, maps.u.n1); ignored (may be empty) when
+// boundCertainlyHolds or when the diagonals of the maps satisfy the bound.
+UniquenessReport checkUniqueness(const Patch& patch, const PatchPeaks& peaks, const UniquenessFields& fields,
+                                 const PatchDistanceMaps& maps, const UniquenessOptions& options = {});
 
 }  // namespace egg

@@ -1,5 +1,6 @@
 #include "apps/commands/scene.hpp"
 
+#include "core/egg/patch_maps.hpp"
 #include "core/errors.hpp"
 
 #include <gtest/gtest.h>
@@ -33,7 +34,7 @@ TEST(Scene, DefaultsFillEverythingButTheSurface) {
   EXPECT_DOUBLE_EQ(s.patching.slope_bounds[0], 0.1);
   EXPECT_DOUBLE_EQ(s.patching.slope_bounds[1], 10.0);
   EXPECT_EQ(s.grid.map_resolution, 100);
-  EXPECT_DOUBLE_EQ(s.grid.map_tolerance_m, 1e-3);
+  EXPECT_DOUBLE_EQ(s.grid.map_tolerance_relative, egg::DistanceMapOptions{}.toleranceRelative);
   EXPECT_EQ(s.grid.alpha_bar, "min");
   EXPECT_FALSE(s.grid.members_per_family.has_value());
   EXPECT_DOUBLE_EQ(s.lamella.width_m, 0.25);
@@ -47,7 +48,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
     "surface": {"sample": "great_court", "params": {"holes": true, "height": 2.5}, "edge_length_m": 0.5},
     "patching": {"workflow": 1, "eta_max": 1.002, "slope_bounds": [0.2, 5], "max_patch_size_m": 30,
                  "patches": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]},
-    "grid": {"members_per_family": 12, "map_resolution": 64, "map_tolerance_m": 0.002, "alpha_bar": 1.2,
+    "grid": {"members_per_family": 12, "map_resolution": 64, "map_tolerance_relative": 0.002, "alpha_bar": 1.2,
              "min_planar_angle_rad": 0.3},
     "lamella": {"width_m": 0.5, "thickness_m": 0.05, "material": "birch_plywood"},
     "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false},
@@ -63,7 +64,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_EQ(s.grid.alpha_bar, "value");
   EXPECT_DOUBLE_EQ(s.grid.alpha_bar_rad, 1.2);
   EXPECT_DOUBLE_EQ(s.grid.min_planar_angle_rad, 0.3);
-  EXPECT_DOUBLE_EQ(s.grid.map_tolerance_m, 0.002);
+  EXPECT_DOUBLE_EQ(s.grid.map_tolerance_relative, 0.002);
   EXPECT_EQ(s.lamella.material, "birch_plywood");
   EXPECT_FALSE(s.simulation.enabled);
   EXPECT_DOUBLE_EQ(s.fabrication.sheet_mm[1], 1500.0);
@@ -75,7 +76,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
     return j;
   }(), "/scenes/test.json");
   EXPECT_EQ(back.grid.alpha_bar_rad, 1.2);
-  EXPECT_DOUBLE_EQ(back.grid.map_tolerance_m, 0.002);
+  EXPECT_DOUBLE_EQ(back.grid.map_tolerance_relative, 0.002);
   EXPECT_EQ(back.patching.patches.size(), 1u);
 }
 
@@ -94,7 +95,7 @@ TEST(Scene, BadValuesAreErrorsNamingTheFieldAndFile) {
             std::string::npos);
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "grid": {"alpha_bar": 4.0}})").find("grid.alpha_bar"),
             std::string::npos);
-  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "grid": {"map_tolerance_m": -0.001}})").find("grid.map_tolerance_m"),
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "grid": {"map_tolerance_relative": -0.001}})").find("grid.map_tolerance_relative"),
             std::string::npos);
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"eta_max": 0.9}})").find("patching.eta_max"),
             std::string::npos);

@@ -19,7 +19,7 @@ TEST(PatchMaps, PlanePatchMapsAreThePlanarClosedForm) {
   const geodesic::DistanceSolver solver(patch.mesh);
   DistanceMapOptions options;
   options.resolution = 9;
-  options.toleranceM = 0.0;  // every row exact
+  options.toleranceRelative = 0.0;  // every row exact
   const PatchDistanceMaps maps = computeDistanceMaps(patch, solver, options);
   EXPECT_NO_THROW(maps.validate());
   const auto quad = *planarQuad(maps.sides, maps.alphaSpatial);
@@ -66,21 +66,55 @@ TEST(PatchMaps, AdaptiveMapsOfABumpStayWithinTheToleranceOfTheExactMaps) {
   const geodesic::DistanceSolver solver(patch.mesh);
   DistanceMapOptions exact;
   exact.resolution = 100;
-  exact.toleranceM = 0.0;
+  exact.toleranceRelative = 0.0;
   DistanceMapOptions adaptive = exact;
-  adaptive.toleranceM = 1e-3;
+  adaptive.toleranceRelative = DistanceMapOptions{}.toleranceRelative;
   const PatchDistanceMaps reference = computeDistanceMaps(patch, solver, exact);
   const PatchDistanceMaps maps = computeDistanceMaps(patch, solver, adaptive);
   EXPECT_EQ(reference.propagations, 200);
-  EXPECT_LT(maps.propagations, 90);
+  EXPECT_LT(maps.propagations, 110);  // 96 measured
   for (Family family : {Family::U, Family::V}) {
+    const double side = std::min(familySideLength(patch, family, false), familySideLength(patch, family, true));
     double largest = 0.0;
     for (size_t k = 0; k < maps.map(family).values.size(); ++k)
       largest = std::max(largest, std::abs(maps.map(family).values[k] - reference.map(family).values[k]));
-    EXPECT_LT(largest, adaptive.toleranceM) << (family == Family::U ? "u" : "v");
+    // Not a guarantee: near the centre line the exact rows themselves jitter by a few 1e-4 m
+    // (geodesics sweeping over the apex vertices), which the cubic smooths over: 6.6e-4 m =
+    // 1.1x the tolerance measured for u.
+    EXPECT_LT(largest, 1.5 * adaptive.toleranceRelative * side) << (family == Family::U ? "u" : "v");
   }
   EXPECT_EQ(maps.diagonalE, reference.diagonalE);  // corner rows are always exact
   EXPECT_EQ(maps.diagonalF, reference.diagonalF);
+}
+
+TEST(PatchMaps, TheToleranceScalesWithThePatch) {
+  // The same bump and mesh scaled by 1/7 (a 0.86 m patch): geodesic distances scale by 1/7, and
+  // so does the tolerance, so the refinement takes the same decisions up to rounding (100 and
+  // 101 fields) and both maps stay within the relative tolerance. An absolute tolerance of the
+  // same size on the large patch allowed 7x the relative error on the small one, with far
+  // fewer fields.
+  const auto relativeError = [](double scale, int& fields) {
+    const double s = scale;
+    const TriMesh mesh = samples::generateSample(
+        "bump", {{"height", 1.0 * s}, {"sigma", 1.5 * s}, {"length", 8.0 * s}, {"width", 8.0 * s}}, 0.3 * s);
+    const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3 * s, -3 * s, 0), {3 * s, -3 * s, 0}, {3 * s, 3 * s, 0}, {-3 * s, 3 * s, 0}});
+    const geodesic::DistanceSolver solver(patch.mesh);
+    DistanceMapOptions exact;
+    exact.toleranceRelative = 0.0;
+    const auto reference = computeDistanceMaps(patch, solver, exact);
+    const auto maps = computeDistanceMaps(patch, solver, DistanceMapOptions{});
+    fields = maps.propagations;
+    double largest = 0.0;
+    for (size_t k = 0; k < maps.u.values.size(); ++k) largest = std::max(largest, std::abs(maps.u.values[k] - reference.u.values[k]));
+    return largest / familySideLength(patch, Family::U, false);
+  };
+  int fieldsLarge = 0, fieldsSmall = 0;
+  const double large = relativeError(1.0, fieldsLarge);
+  const double small = relativeError(1.0 / 7.0, fieldsSmall);
+  EXPECT_NEAR(fieldsSmall, fieldsLarge, 4);
+  EXPECT_LT(fieldsLarge, 200);
+  EXPECT_LT(large, DistanceMapOptions{}.toleranceRelative);
+  EXPECT_LT(small, DistanceMapOptions{}.toleranceRelative);
 }
 
 TEST(PatchMaps, OptionsNameTheBadField) {
@@ -94,13 +128,14 @@ TEST(PatchMaps, OptionsNameTheBadField) {
   };
   DistanceMapOptions options;
   EXPECT_EQ(message(options), "");
-  options.toleranceM = -1e-6;
-  EXPECT_NE(message(options).find("toleranceM"), std::string::npos);
-  options.toleranceM = std::nan("");
-  EXPECT_NE(message(options).find("toleranceM"), std::string::npos);
-  options.toleranceM = INFINITY;
-  EXPECT_NE(message(options).find("toleranceM"), std::string::npos);
-  options.toleranceM = 0.0;
+  // The messages name the scene key a user writes.
+  options.toleranceRelative = -1e-6;
+  EXPECT_NE(message(options).find("grid.map_tolerance_relative"), std::string::npos);
+  options.toleranceRelative = std::nan("");
+  EXPECT_NE(message(options).find("grid.map_tolerance_relative"), std::string::npos);
+  options.toleranceRelative = INFINITY;
+  EXPECT_NE(message(options).find("grid.map_tolerance_relative"), std::string::npos);
+  options.toleranceRelative = 0.0;
   EXPECT_EQ(message(options), "");
   options.initialNodes = 1;
   EXPECT_NE(message(options).find("initialNodes"), std::string::npos);

@@ -1,6 +1,7 @@
 #include "core/egg/uniqueness.hpp"
 
 #include "core/egg/patch_maps.hpp"
+#include "core/errors.hpp"
 
 #include "samples/generators/samples.hpp"
 
@@ -55,9 +56,9 @@ TEST(Uniqueness, TallBumpHasLargeEta) {
 }
 
 TEST(Uniqueness, CheckOnTheMapsEqualsTheStandaloneCheck) {
-  // solveEgg reads d(p1, opposite side) and the diagonals from the distance maps and computes
-  // only the peak fields; on the same boundary samples it must give the standalone check's eta,
-  // p1 and q1 (the same distances, measured from the other end where p1 lies on an end side).
+  // solveEgg takes the diagonals from the maps and computes the peak and p1 fields alongside
+  // them; on the same boundary samples it must give the standalone check's (the one after
+  // smoothing) eta, p1 and q1 exactly: the same fields from the same points.
   const TriMesh mesh =
       samples::generateSample("bump", {{"height", 3.0}, {"sigma", 1.2}, {"length", 8.0}, {"width", 8.0}}, 0.35);
   const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
@@ -71,21 +72,62 @@ TEST(Uniqueness, CheckOnTheMapsEqualsTheStandaloneCheck) {
   const auto peaks = findPatchPeaks(patch, options);
   ASSERT_FALSE(peaks.peaks.empty());
   EXPECT_FALSE(boundCertainlyHolds(patch, peaks));
-  std::vector<SurfacePoint> sources;
-  for (const auto& p : peaks.peaks) sources.push_back(geodesic::vertexPoint(patch.mesh, p.vertex));
-  const auto peakFields = solver.distances(sources, uniquenessPeakTargets(patch, mapOptions.resolution));
-  const auto fromMaps = checkUniqueness(patch, peaks, peakFields, maps, options);
+  const auto fields = uniquenessFields(patch, peaks, solver, mapOptions.resolution);
+  EXPECT_EQ(fields.propagations(), 3 * static_cast<int>(peaks.peaks.size()));
+  const auto fromMaps = checkUniqueness(patch, peaks, fields, maps, options);
   EXPECT_EQ(fromMaps.passed, standalone.passed);
   EXPECT_NEAR(fromMaps.longestGeodesicM, standalone.longestGeodesicM, 1e-9);
-  EXPECT_NEAR(fromMaps.etaU, standalone.etaU, 1e-9);
-  EXPECT_NEAR(fromMaps.etaV, standalone.etaV, 1e-9);
+  EXPECT_EQ(fromMaps.etaU, standalone.etaU);
+  EXPECT_EQ(fromMaps.etaV, standalone.etaV);
   ASSERT_EQ(fromMaps.checks.size(), standalone.checks.size());
   for (size_t k = 0; k < fromMaps.checks.size(); ++k) {
+    EXPECT_EQ(fromMaps.checks[k].eta, standalone.checks[k].eta);
     EXPECT_NEAR((fromMaps.checks[k].p1 - standalone.checks[k].p1).norm(), 0.0, 1e-12);
     EXPECT_NEAR((fromMaps.checks[k].q1 - standalone.checks[k].q1).norm(), 0.0, 1e-12);
   }
   // The standalone check spends 2 + peaks fields, then one per peak and family.
   EXPECT_EQ(standalone.propagations, 2 + 3 * static_cast<int>(peaks.peaks.size()));
+  // Fields for another resolution than the maps' are refused.
+  EXPECT_THROW(checkUniqueness(patch, peaks, uniquenessFields(patch, peaks, solver, 17), maps, options), InvalidInput);
+}
+
+TEST(Uniqueness, EtaDoesNotDependOnTheMapTolerance) {
+  // The maps' rows between exact source fields are interpolated; eta (margin 1.5e-3 relative)
+  // must not read them. The bump of the bench (height 1 m, sigma 1.5 m, 6 m patch) scaled by
+  // 1/7 to a 0.86 m patch, where a 1e-3 m map tolerance is 1.2e-3 relative: eta_u moved from
+  // 1.000014 (exact maps) to 1.000082 when it was read off the adaptive maps.
+  const double s = 1.0 / 7.0;
+  const TriMesh mesh = samples::generateSample(
+      "bump", {{"height", 1.0 * s}, {"sigma", 1.5 * s}, {"length", 8.0 * s}, {"width", 8.0 * s}}, 0.25 * s);
+  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3 * s, -3 * s, 0), {3 * s, -3 * s, 0}, {3 * s, 3 * s, 0}, {-3 * s, 3 * s, 0}});
+  const geodesic::DistanceSolver solver(patch.mesh);
+  UniquenessOptions options;
+  options.sideSamples = 100;
+  const auto peaks = findPatchPeaks(patch, options);
+  ASSERT_FALSE(peaks.peaks.empty());
+  ASSERT_FALSE(boundCertainlyHolds(patch, peaks));
+  const auto fields = uniquenessFields(patch, peaks, solver, 100);
+  DistanceMapOptions exact;
+  exact.toleranceRelative = 0.0;
+  DistanceMapOptions adaptive;
+  adaptive.toleranceRelative = 1e-3;  // far coarser than the default: the maps differ visibly
+  const auto exactMaps = computeDistanceMaps(patch, solver, exact);
+  const auto adaptiveMaps = computeDistanceMaps(patch, solver, adaptive);
+  ASSERT_LT(adaptiveMaps.propagations, exactMaps.propagations);
+  double largest = 0.0;
+  for (size_t k = 0; k < exactMaps.u.values.size(); ++k)
+    largest = std::max(largest, std::abs(adaptiveMaps.u.values[k] - exactMaps.u.values[k]));
+  EXPECT_GT(largest, 1e-6);  // so reading d(p1, q) off the maps would move eta
+  const auto withExact = checkUniqueness(patch, peaks, fields, exactMaps, options);
+  const auto withAdaptive = checkUniqueness(patch, peaks, fields, adaptiveMaps, options);
+  const auto standalone = checkUniqueness(patch, solver, options);
+  ASSERT_FALSE(withExact.boundHolds);
+  ASSERT_FALSE(withExact.checks.empty());
+  EXPECT_EQ(withAdaptive.etaU, withExact.etaU);
+  EXPECT_EQ(withAdaptive.etaV, withExact.etaV);
+  EXPECT_EQ(standalone.etaU, withExact.etaU);
+  EXPECT_EQ(standalone.etaV, withExact.etaV);
+  EXPECT_NEAR(withExact.etaU, 1.0, 1e-3);  // this patch passes: a small gap only
 }
 
 TEST(Uniqueness, BoundCertainlyHoldsWithoutCurvatureAndNotAgainstATightBound) {

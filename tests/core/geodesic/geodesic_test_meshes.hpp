@@ -47,16 +47,17 @@ inline TriMesh gridMesh(int nx, int ny, double sizeX, double sizeY, const std::f
   return meshFromSoup(soup);
 }
 
-// The L-shaped domain [0,2]x[0,2] minus (1,2]x(1,2], n cells per unit, z = height(x, y): one
-// reflex boundary corner at (1,1), which shortest paths between the two arms bend around.
-inline TriMesh lShapeMesh(int n, const std::function<double(double, double)>& height) {
+// The square [0,2]x[0,2], n cells per unit, z = height(x, y); with `notch` the L-shaped domain
+// [0,2]^2 minus (1,2]x(1,2], whose reflex boundary corner (1,1) shortest paths between the two arms
+// bend around. Each cell is split along the diagonal (i,j)-(i+1,j+1), or the other one.
+inline TriMesh squareDomainMesh(int n, const std::function<double(double, double)>& height, bool notch,
+                                bool otherDiagonal = false) {
   TriangleSoup soup;
-  auto inside = [](double x, double y) { return !(x > 1.0 + 1e-12 && y > 1.0 + 1e-12); };
   std::vector<int> index((2 * n + 1) * (2 * n + 1), -1);
   for (int j = 0; j <= 2 * n; ++j) {
     for (int i = 0; i <= 2 * n; ++i) {
+      if (notch && i > n && j > n) continue;
       const double x = double(i) / n, y = double(j) / n;
-      if (!inside(x, y)) continue;
       index[j * (2 * n + 1) + i] = static_cast<int>(soup.vertices.size());
       soup.vertices.emplace_back(x, y, height(x, y));
     }
@@ -66,11 +67,20 @@ inline TriMesh lShapeMesh(int n, const std::function<double(double, double)>& he
       const int a = index[j * (2 * n + 1) + i], b = index[j * (2 * n + 1) + i + 1];
       const int c = index[(j + 1) * (2 * n + 1) + i + 1], d = index[(j + 1) * (2 * n + 1) + i];
       if (a < 0 || b < 0 || c < 0 || d < 0) continue;
-      soup.triangles.push_back({a, b, c});
-      soup.triangles.push_back({a, c, d});
+      if (otherDiagonal) {
+        soup.triangles.push_back({a, b, d});
+        soup.triangles.push_back({b, c, d});
+      } else {
+        soup.triangles.push_back({a, b, c});
+        soup.triangles.push_back({a, c, d});
+      }
     }
   }
   return meshFromSoup(soup);
+}
+
+inline TriMesh lShapeMesh(int n, const std::function<double(double, double)>& height) {
+  return squareDomainMesh(n, height, true);
 }
 
 inline double flat(double, double) { return 0.0; }

@@ -14,27 +14,7 @@ namespace egg::geodesic {
 namespace {
 
 // [0,2]^2, minus (1,2]x(1,2] when `notch`.
-TriMesh squareDomain(int n, bool notch) {
-  TriangleSoup soup;
-  std::vector<int> index((2 * n + 1) * (2 * n + 1), -1);
-  for (int j = 0; j <= 2 * n; ++j) {
-    for (int i = 0; i <= 2 * n; ++i) {
-      if (notch && i > n && j > n) continue;
-      index[j * (2 * n + 1) + i] = static_cast<int>(soup.vertices.size());
-      soup.vertices.emplace_back(double(i) / n, double(j) / n, 0.0);
-    }
-  }
-  for (int j = 0; j < 2 * n; ++j) {
-    for (int i = 0; i < 2 * n; ++i) {
-      const int a = index[j * (2 * n + 1) + i], b = index[j * (2 * n + 1) + i + 1];
-      const int c = index[(j + 1) * (2 * n + 1) + i + 1], d = index[(j + 1) * (2 * n + 1) + i];
-      if (a < 0 || b < 0 || c < 0 || d < 0) continue;
-      soup.triangles.push_back({a, b, c});
-      soup.triangles.push_back({a, c, d});
-    }
-  }
-  return meshFromSoup(soup);
-}
+TriMesh squareDomain(int n, bool notch) { return testing::squareDomainMesh(n, testing::flat, notch); }
 
 struct LoopData {
   std::vector<int> vertices;

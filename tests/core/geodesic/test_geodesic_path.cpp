@@ -67,27 +67,8 @@ TEST(GeodesicPath, IsAStraightSegmentOnAPlane) {
 }
 
 TEST(GeodesicPath, BendsAtAReflexBoundaryCorner) {
-  // Flat C-shape: [0,3]x[0,1] plus [0,1]x[1,3]... simpler: the square [0,2]^2 minus [1,2]x[1,2].
-  TriangleSoup soup;
-  const int n = 6;
-  std::vector<int> index((2 * n + 1) * (2 * n + 1), -1);
-  for (int j = 0; j <= 2 * n; ++j) {
-    for (int i = 0; i <= 2 * n; ++i) {
-      if (i > n && j > n) continue;
-      index[j * (2 * n + 1) + i] = static_cast<int>(soup.vertices.size());
-      soup.vertices.emplace_back(double(i) / n, double(j) / n, 0.0);
-    }
-  }
-  for (int j = 0; j < 2 * n; ++j) {
-    for (int i = 0; i < 2 * n; ++i) {
-      const int a = index[j * (2 * n + 1) + i], b = index[j * (2 * n + 1) + i + 1];
-      const int c = index[(j + 1) * (2 * n + 1) + i + 1], d = index[(j + 1) * (2 * n + 1) + i];
-      if (a < 0 || b < 0 || c < 0 || d < 0) continue;
-      soup.triangles.push_back({a, b, d});
-      soup.triangles.push_back({b, c, d});
-    }
-  }
-  const TriMesh mesh = meshFromSoup(soup);
+  // The flat L: the square [0,2]^2 minus (1,2]x(1,2].
+  const TriMesh mesh = testing::squareDomainMesh(6, testing::flat, true, /*otherDiagonal=*/true);
   const DistanceSolver solver(mesh);
   const SurfacePoint from = snapToSurface(mesh, {1.85, 0.3, 0.0}), to = snapToSurface(mesh, {0.3, 1.9, 0.0});
   const Eigen::Vector3d corner(1, 1, 0);

@@ -18,14 +18,14 @@ struct DistanceMapOptions {
   // accuracy); 0 = an exact field at every sample. Scene key grid.map_tolerance_relative.
   // Default 1e-4: the accuracy bar of the geodesic engine (distance_solver.hpp), and below the
   // noise of the exact polyhedral maps themselves: on the symmetric bench bump the exact D_u and
-  // D_v, equal on the smooth surface, differ by 1.4e-4 (3.4k vertices) to 3.7e-4 (0.6k) of the
-  // side. `egg bench grid --map-tolerance 2e-5,5e-5,1e-4,1.5e-4,3e-4` (6 m bump, 0.6k/1.1k/2.0k/
-  // 3.4k vertices) at 1e-4: 145/78/66/66 of 200 fields, max |D - D_exact| 5.1/7.3/6.4/4.0e-4 m
-  // (up to 1.2e-4 of the side, where a single noisy exact row lies between nodes), cladding
-  // functions within 1.5e-4/4.3e-4/2.1e-4/0.6e-4 m, alpha_bar unchanged. 1.5e-4 saves fields on
-  // the 0.6k mesh only (118); 3e-4 reaches that mesh's noise (1.9e-3 m); 5e-5 costs 200/168/77/83
-  // fields. The bump scaled to a 0.86 m patch: 101 fields, 1.0e-4 of the side. eta reads exact
-  // fields, not the maps (uniqueness.hpp).
+  // D_v, equal on the smooth surface, differ by 1.4e-4 (1.1k-3.4k vertices) to 3.7e-4 (0.6k) of
+  // the side. `egg bench grid --map-tolerance 2e-5,5e-5,1e-4,1.5e-4,3e-4` (6 m bump, 0.6k/1.1k/
+  // 2.0k/3.4k vertices, saddle tolerance 1e-4) at 1e-4: 145/77/66/66 of 200 fields, CPU time of
+  // the solve 0.71/0.50/0.41/0.37 of the exact maps', max |D - D_exact| 5.1/5.7/2.7/1.9e-4 m
+  // (<= 0.95e-4 of the side), cladding functions within 1.5/4.3/1.8/0.6e-4 m, alpha_bar and eta
+  // unchanged. 1.5e-4 saves fields on the two coarse meshes only (118/74); 3e-4 reaches the
+  // 0.6k mesh's noise (1.9e-3 m); 5e-5 costs 200/166/76/71 fields. The bump scaled to a 0.86 m
+  // patch: 101 fields, 1.0e-4 of the side. eta reads exact fields, not the maps (uniqueness.hpp).
   double toleranceRelative = 1e-4;
   int initialNodes = 9;  // start-side samples with exact fields before refinement (>= 2)
   void validate() const; // throws InvalidInput naming the field

@@ -13,21 +13,6 @@ using D6 = HyperDual<6>;
 using Vec8 = Eigen::Matrix<double, 8, 1>;
 using Mat8 = Eigen::Matrix<double, 8, 8>;
 
-// a * b for a function a of e0 and b of e1 (3 variables each), over (e0, e1).
-D6 bilinear(const D3& a, const D3& b) {
-  D6 r(a.v * b.v);
-  for (int p = 0; p < 3; ++p) {
-    r.g[p] = b.v * a.g[p];
-    r.g[3 + p] = a.v * b.g[p];
-    for (int q = 0; q <= p; ++q) {
-      r.h(p, q) = b.v * a.h(p, q);
-      r.h(3 + p, 3 + q) = a.v * b.h(p, q);
-    }
-    for (int q = 0; q < 3; ++q) r.h(3 + p, q) = b.g[p] * a.g[q];
-  }
-  return r;
-}
-
 // sum_k sign_k a_k * b_k in one pass (a_k of e0, b_k of e1).
 template <int K>
 D6 bilinearSum(const D3* const (&a)[K], const D3* const (&b)[K], const double (&sign)[K]) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <future>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -84,8 +85,9 @@ class FreeHessian {
   // The assembled Hessian plus shift * scale on the diagonal, in copy `which` (0 or 1: two shifts
   // can be factorised at the same time).
   const Eigen::SparseMatrix<double>& shifted(double shift, const Eigen::VectorXd& scale, int which = 0) {
+    // The two copies share one pattern, made in rebuild(): here each thread only writes the values
+    // of its own copy.
     Eigen::SparseMatrix<double>& matrix = which == 0 ? matrix_ : second_;
-    if (which != 0 && second_.nonZeros() != matrix_.nonZeros()) second_ = matrix_;
     double* values = matrix.valuePtr();
     std::copy(base_.begin(), base_.end(), values);
     if (shift > 0.0) {
@@ -106,7 +108,7 @@ class FreeHessian {
     for (int i = 0; i < n; ++i) pattern.emplace_back(i, i, 0.0);  // every diagonal entry exists (shifts)
     matrix_.setFromTriplets(pattern.begin(), pattern.end());
     matrix_.makeCompressed();
-    second_ = Eigen::SparseMatrix<double>();
+    second_ = matrix_;
     auto slotOf = [&](int r, int c) {
       const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[c];
       const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[c + 1];
@@ -217,10 +219,11 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       const bool pair = options.threads >= 2 && trials[k] > 0.0 && k + 1 < trials.size();
       if (pair) {
         Eigen::VectorXd second;
-        bool secondOk = false;
-        std::thread other([&]() { secondOk = attempt(1, trials[k + 1], second); });
+        // std::async, not a bare thread: an exception on either side propagates (get() rethrows
+        // the worker's; if the first attempt throws, the future's destructor waits for the worker).
+        auto other = std::async(std::launch::async, [&]() { return attempt(1, trials[k + 1], second); });
         const bool firstOk = attempt(0, trials[k], direction);
-        other.join();
+        const bool secondOk = other.get();
         if (firstOk) {
           factored = true;
           shift = trials[k];

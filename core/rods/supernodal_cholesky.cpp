@@ -89,6 +89,9 @@ void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower
       slot_[k] = valueStart_[s] + (b - first_[s]) * static_cast<long>(end - begin) + localRow;
     }
   }
+  patternOuter_.assign(outer, outer + n_ + 1);
+  patternInner_.assign(inner, inner + lower.nonZeros());
+  factored_ = false;
   head_.assign(count, -1);
   next_.assign(count, -1);
   pointer_.assign(count, 0);
@@ -98,8 +101,11 @@ void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower
 }
 
 bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
-  if (static_cast<long>(slot_.size()) != lower.nonZeros() || lower.rows() != n_) {
-    throw InvalidInput("SupernodalCholesky: factorize with the analysed pattern");
+  factored_ = false;
+  if (static_cast<long>(slot_.size()) != lower.nonZeros() || lower.rows() != n_ || !lower.isCompressed() ||
+      !std::equal(patternOuter_.begin(), patternOuter_.end(), lower.outerIndexPtr()) ||
+      !std::equal(patternInner_.begin(), patternInner_.end(), lower.innerIndexPtr())) {
+    throw InvalidInput("SupernodalCholesky: factorize needs the pattern given to analyzePattern");
   }
   std::fill(values_.begin(), values_.end(), 0.0);
   const double* input = lower.valuePtr();
@@ -191,10 +197,13 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
       head_[target] = J;
     }
   }
+  factored_ = true;
   return true;
 }
 
 Eigen::VectorXd SupernodalCholesky::solve(const Eigen::VectorXd& b) const {
+  if (!factored_) throw SolverFailure("SupernodalCholesky: solve needs a successful factorize first");
+  if (b.size() != n_) throw InvalidInput("SupernodalCholesky: right-hand side of the wrong size");
   Eigen::VectorXd x(n_);
   for (int i = 0; i < n_; ++i) x[newIndex_[i]] = b[i];
   const int count = supernodeCount();

@@ -20,9 +20,12 @@ class SupernodalCholesky {
   // Symbolic analysis of a symmetric matrix given by its lower triangle (compressed column
   // storage). Later factorisations must use a matrix with exactly this pattern.
   void analyzePattern(const Eigen::SparseMatrix<double>& lower);
-  // Numeric factorisation; false when the matrix is not positive definite.
+  // Numeric factorisation; false when the matrix is not positive definite. Throws InvalidInput when
+  // the pattern differs from the analysed one (same size and count are not enough: a bolt that
+  // slid to another edge keeps the count but moves entries).
   bool factorize(const Eigen::SparseMatrix<double>& lower);
-  // Solves A x = b with the last successful factorisation.
+  // Solves A x = b with the factor of the last factorize call, which must have succeeded (a failed
+  // one leaves the factor half overwritten): throws SolverFailure otherwise.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   long factorNonZeros() const;  // stored entries of L (dense blocks, lower part of the diagonal blocks counted fully)
   int supernodeCount() const { return static_cast<int>(first_.size()) - 1; }
@@ -37,6 +40,8 @@ class SupernodalCholesky {
   std::vector<double> values_;
   std::vector<int> supernodeOf_;  // column -> supernode
   std::vector<long> slot_;        // input nonzero k -> position in values_
+  std::vector<int> patternOuter_, patternInner_;  // the analysed pattern (compressed columns)
+  bool factored_ = false;         // the last factorize succeeded
   // Work space of factorize.
   std::vector<int> head_, next_, pointer_, relative_, localRow_;
   std::vector<double> accumulator_;

@@ -53,6 +53,25 @@ TEST(RodModel, SlidingBoltSettlesWhereTheSlidingForceVanishes) {
   }
 }
 
+TEST(RodModel, SlidingSolveIsBitIdenticalOnOneAndTwoThreads) {
+  // Two threads assemble in fixed parts and factorise two trial shifts at once, taking the same
+  // shift as one after the other: the whole solve, bolt edge switches (new patterns, new symbolic
+  // analyses) included, must not depend on the thread count.
+  SlidingCase one(Notch{0.3, 0.1}), two(Notch{0.3, 0.1});
+  SolverOptions single, dual;
+  single.threads = 1;
+  dual.threads = 2;
+  const SolverResult a = minimiseEnergy(one.model, single), b = minimiseEnergy(two.model, dual);
+  ASSERT_TRUE(a.converged) << a.reason;
+  ASSERT_TRUE(b.converged) << b.reason;
+  EXPECT_GE(a.boltEdgeSwitches, 3);
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.energy, b.energy);
+  EXPECT_EQ(a.boltEdgeSwitches, b.boltEdgeSwitches);
+  EXPECT_EQ(one.model.boltPosition(0, 0), two.model.boltPosition(0, 0));
+  for (int i = 0; i < one.model.vertexCount(0); ++i) EXPECT_EQ(one.model.vertex(0, i), two.model.vertex(0, i)) << i;
+}
+
 TEST(RodModel, NotchLimitHoldsTheBoltInItsSlot) {
   SlidingCase c(Notch{0.1, 0.1});  // slot [0.4, 0.6]: cannot reach 0.3
   const SolverResult result = minimiseEnergy(c.model, SolverOptions{});

@@ -2,6 +2,8 @@
 // symmetric matrices with the structure of rod networks, and its positive-definiteness test.
 #include "core/rods/supernodal_cholesky.hpp"
 
+#include "core/errors.hpp"
+
 #include <Eigen/SparseCholesky>
 #include <gtest/gtest.h>
 
@@ -93,6 +95,60 @@ TEST(SupernodalCholesky, RejectsIndefiniteMatrices) {
   EXPECT_NE(reference.info(), Eigen::Success);
   lower.coeffRef(40, 40) = 1e3;
   EXPECT_TRUE(cholesky.factorize(lower));
+}
+
+TEST(SupernodalCholesky, RejectsIndefiniteMatricesWithAPositiveDiagonalLikeSimplicialLLT) {
+  // Diagonal shifts below the dominance margin: every diagonal entry stays positive, but small
+  // shifts make the matrix indefinite. The two factorisations must agree on every shift.
+  Eigen::SparseMatrix<double> lower = gridMatrix(6, 5, 3, 0.0, 11);
+  SupernodalCholesky cholesky;
+  cholesky.analyzePattern(lower);
+  int accepted = 0, rejected = 0;
+  for (const double scale : {0.05, 0.2, 0.4, 0.6, 0.8, 1.0}) {
+    Eigen::SparseMatrix<double> trial = lower;
+    for (int j = 0; j < trial.outerSize(); ++j) trial.coeffRef(j, j) *= scale;
+    const bool ours = cholesky.factorize(trial);
+    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> reference(trial);
+    EXPECT_EQ(ours, reference.info() == Eigen::Success) << "diagonal scaled by " << scale;
+    (ours ? accepted : rejected) += 1;
+  }
+  EXPECT_GT(accepted, 0);
+  EXPECT_GT(rejected, 0);
+}
+
+TEST(SupernodalCholesky, RefusesAnotherPatternAndASolveAfterAFailure) {
+  Eigen::SparseMatrix<double> lower = gridMatrix(6, 5, 3, 0.1, 3);
+  SupernodalCholesky cholesky;
+  cholesky.analyzePattern(lower);
+  // Same size and entry count, one entry moved (as when a bolt slides to another edge).
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int j = 0; j < lower.outerSize(); ++j) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(lower, j); it; ++it) triplets.emplace_back(it.row(), it.col(), it.value());
+  }
+  for (auto& t : triplets) {
+    if (t.row() != t.col()) {
+      const int row = t.row() + 1 < lower.rows() ? t.row() + 1 : t.row() - 1;
+      bool taken = false;
+      for (const auto& o : triplets) taken = taken || (o.row() == row && o.col() == t.col());
+      if (taken || row <= t.col()) continue;
+      t = Eigen::Triplet<double>(row, t.col(), t.value());
+      break;
+    }
+  }
+  Eigen::SparseMatrix<double> moved(lower.rows(), lower.cols());
+  moved.setFromTriplets(triplets.begin(), triplets.end());
+  moved.makeCompressed();
+  ASSERT_EQ(moved.nonZeros(), lower.nonZeros());
+  EXPECT_THROW(cholesky.factorize(moved), InvalidInput);
+  // A failed factorisation leaves no factor to solve with.
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(lower.rows());
+  EXPECT_THROW(cholesky.solve(b), SolverFailure);
+  Eigen::SparseMatrix<double> indefinite = lower;
+  indefinite.coeffRef(40, 40) = -1.0;
+  EXPECT_FALSE(cholesky.factorize(indefinite));
+  EXPECT_THROW(cholesky.solve(b), SolverFailure);
+  ASSERT_TRUE(cholesky.factorize(lower));
+  EXPECT_NO_THROW(cholesky.solve(b));
 }
 
 }  // namespace

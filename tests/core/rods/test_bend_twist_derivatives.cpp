@@ -3,6 +3,8 @@
 // differences.
 #include "core/rods/bend_twist_derivatives.hpp"
 
+#include "tests/core/rods/rod_test_references.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -20,15 +22,7 @@ struct Stencil {
   EdgeReference r0, r1;
 };
 
-EdgeReference referenceNear(const Eigen::Vector3d& edge, std::mt19937& rng, double spread) {
-  std::normal_distribution<double> noise(0.0, spread);
-  EdgeReference r;
-  r.tangent = (edge.normalized() + Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).normalized();
-  Eigen::Vector3d d(noise(rng), noise(rng), 1.0);
-  d -= d.dot(r.tangent) * r.tangent;
-  r.director = d.normalized();
-  return r;
-}
+using testing::referenceNear;
 
 Stencil randomStencil(std::mt19937& rng, double bend, double thetaSpread) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);

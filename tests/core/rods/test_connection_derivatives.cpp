@@ -3,6 +3,8 @@
 // place) and against finite differences.
 #include "core/rods/connection_derivatives.hpp"
 
+#include "tests/core/rods/rod_test_references.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -12,15 +14,7 @@
 namespace egg::rods {
 namespace {
 
-EdgeReference referenceNear(const Eigen::Vector3d& edge, std::mt19937& rng) {
-  std::normal_distribution<double> noise(0.0, 0.2);
-  EdgeReference r;
-  r.tangent = (edge.normalized() + Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).normalized();
-  Eigen::Vector3d d(noise(rng), noise(rng), 1.0);
-  d -= d.dot(r.tangent) * r.tangent;
-  r.director = d.normalized();
-  return r;
-}
+using testing::referenceNear;
 
 // Variables as in the model's bolt stencil: g0, g1, theta_g, beta_g, h0, h1, theta_h, beta_h.
 struct Bolt {

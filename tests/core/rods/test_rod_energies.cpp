@@ -2,6 +2,8 @@
 // and closed-form values of bending and twisting for simple configurations.
 #include "core/rods/rod_energies.hpp"
 
+#include "tests/core/rods/rod_test_references.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -46,15 +48,7 @@ void expectExactDerivatives(const std::array<double, N>& x, const F& f, double t
   }
 }
 
-EdgeReference referenceNear(const Eigen::Vector3d& edge, std::mt19937& rng) {
-  std::normal_distribution<double> noise(0.0, 0.2);
-  EdgeReference r;
-  r.tangent = (edge.normalized() + Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).normalized();
-  Eigen::Vector3d d(noise(rng), noise(rng), 1.0);
-  d -= d.dot(r.tangent) * r.tangent;
-  r.director = d.normalized();
-  return r;
-}
+using testing::referenceNear;
 
 const RodStiffness kStiffness{2.0e4, 3.0, 70.0, 1.7};
 

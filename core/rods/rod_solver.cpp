@@ -171,6 +171,15 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       result.reason = "energy or gradient not finite at the current state";
       return result;
     }
+    if (g.squaredNorm() == 0.0) {
+      // Already in equilibrium (an unloaded straight rod, say): no descent direction exists, and
+      // the shift search below would report that as a stall.
+      result.status = SolverStatus::Converged;
+      result.converged = true;
+      result.decrement = 0.0;
+      result.reason = "gradient exactly zero: already in equilibrium";
+      return result;
+    }
     if (result.iterations >= options.maxIterations) {
       result.status = SolverStatus::IterationLimit;
       result.reason = format("no convergence in %d iterations (decrement %.3g J)", result.iterations, result.decrement);

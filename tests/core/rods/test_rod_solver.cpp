@@ -161,6 +161,18 @@ TEST(RodSolver, HorizontalCantileverUnderSelfWeightMatchesBeamTheory) {
   EXPECT_NEAR(deflection, expected, 0.01 * expected);
 }
 
+TEST(RodSolver, AStateAlreadyInEquilibriumConvergesAtOnce) {
+  // Every unknown held: the gradient over the free unknowns is exactly zero and no descent
+  // direction exists; that is equilibrium, not a stall.
+  Cantilever c;
+  for (int i = 0; i <= c.n; ++i) c.model.fixVertex(0, i);
+  for (int j = 0; j < c.n; ++j) c.model.fixTwist(0, j);
+  const SolverResult result = minimiseEnergy(c.model, SolverOptions{});
+  EXPECT_TRUE(result.converged) << result.reason;
+  EXPECT_EQ(result.status, SolverStatus::Converged);
+  EXPECT_EQ(result.iterations, 0);
+}
+
 TEST(RodSolver, IterationLimitIsReportedWithAReason) {
   Cantilever c;
   c.model.addPointLoad(0, c.n, Eigen::Vector3d(0, 0, -10.0 * c.model.stiffness(0).bendingWeak));

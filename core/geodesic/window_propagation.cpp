@@ -325,7 +325,7 @@ class Propagator {
       // The window covers only where the allowed rays cross the opposite edge. On a near-flat
       // saddle the cone is a sliver of the face: a full-edge window there is dominated almost
       // everywhere, yet it is trimmed against and propagated across the whole front - measured on
-      // the 4.5k bump, the full-edge windows cost ~40 % of the propagation.
+      // the 4.5k bump, clipping saves 16 % of the propagation's instructions (half the trimming).
       const double length = t_.he[ho].length;
       const double ox = t_.he[ho].oppositeX, oy = t_.he[ho].oppositeY;  // v in the frame of ho
       // A needle face (v almost on the opposite edge) maps the whole cone into a sliver about as

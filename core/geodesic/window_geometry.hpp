@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <utility>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -48,6 +50,57 @@ inline void planarLengths(double dx0, double dy0, double dx1, double dy1, double
 #endif
 }
 
+
+// The directions in which a shortest path may leave a pseudo-source vertex v through one face of
+// its fan, the face spanning fan angles [a0, a1] (counter-clockwise around v). A path through v is
+// locally shortest only if it leaves at least pi of surface angle on each side
+// (Mitchell-Mount-Papadimitriou, Lemma 3.4): seen from the direction back along the path
+// (`backAngle`), interior vertices allow the cone [pi, total - pi] (modulo the angle sum `total`),
+// boundary vertices the directions at least pi away on the surface side. The allowed set within
+// the face is returned as one interval [lo, hi] (the hull of its pieces, a superset, so nothing
+// exact is lost); false if it is empty. `tol` widens it against rounding of the angles.
+inline bool allowedFanInterval(double a0, double a1, double backAngle, double total, bool boundary, double tol,
+                               double& lo, double& hi) {
+  constexpr double pi = std::numbers::pi;
+  lo = std::numeric_limits<double>::infinity();
+  hi = -std::numeric_limits<double>::infinity();
+  auto include = [&](double from, double to) {
+    from = std::max(from, a0);
+    to = std::min(to, a1);
+    if (from <= to) {
+      lo = std::min(lo, from);
+      hi = std::max(hi, to);
+    }
+  };
+  if (boundary) {
+    include(a0, backAngle - pi + tol);
+    include(backAngle + pi - tol, a1);
+  } else {
+    // A cone of width total - 2 pi (the excess) opposite the incoming direction.
+    const double c0 = backAngle + pi - tol, c1 = backAngle + total - pi + tol;
+    for (const double shift : {-total, 0.0, total}) include(c0 + shift, c1 + shift);
+  }
+  return lo <= hi;
+}
+
+// Where the rays from v turned psi0 and psi1 (0 <= psi0 <= psi1 <= corner, measured from v->B)
+// cross the edge B->C opposite v, as distances from B; v sits at (ox, oy), oy > 0, in the frame of
+// that edge (B at the origin, C at (length, 0)) and `corner` is the face's angle at v. A needle
+// face (v almost on the edge) would squeeze the whole cone into a sliver about as wide as its
+// height, which the window width floor could drop: there the whole edge is returned.
+inline std::pair<double, double> coneCrossings(double ox, double oy, double length, double corner, double psi0,
+                                               double psi1) {
+  if (oy < 1e-8 * length) return {0.0, length};
+  auto crossing = [&](double psi) {
+    if (psi <= 0.0) return 0.0;
+    if (psi >= corner) return length;
+    const double c = std::cos(psi), s = std::sin(psi);
+    const double dx = s * oy - c * ox, dy = -s * ox - c * oy;  // v->B turned by psi
+    if (!(dy < 0.0)) return length;
+    return std::clamp(ox - oy / dy * dx, 0.0, length);
+  };
+  return {crossing(psi0), crossing(psi1)};
+}
 
 inline double windowMinDistance(const Window& w) {
   if (w.sx >= w.b0 && w.sx <= w.b1) return w.sigma - w.sy;

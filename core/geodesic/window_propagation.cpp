@@ -294,31 +294,8 @@ class Propagator {
       const double corner = std::atan2(t_.he[h].oppositeY, t_.he[h].oppositeX);
       const double a0 = cumulative, a1 = cumulative + corner;
       cumulative = a1;
-      // The directions of this face a shortest path may leave v in, as one interval [lo, hi] of fan
-      // angles (the hull of the allowed pieces, so a superset: nothing exact is lost).
       double lo = a0, hi = a1;
-      if (backAngle >= 0.0) {
-        lo = kInfinity;
-        hi = -kInfinity;
-        auto include = [&](double from, double to) {
-          from = std::max(from, a0);
-          to = std::min(to, a1);
-          if (from <= to) {
-            lo = std::min(lo, from);
-            hi = std::max(hi, to);
-          }
-        };
-        if (boundary) {
-          include(a0, backAngle - std::numbers::pi + tol);
-          include(backAngle + std::numbers::pi - tol, a1);
-        } else {
-          // Relative angles, taken modulo the angle sum, must lie in [pi, total - pi]: a cone of
-          // width total - 2 pi (the excess) opposite the incoming direction.
-          const double c0 = backAngle + std::numbers::pi - tol, c1 = backAngle + total - std::numbers::pi + tol;
-          for (const double shift : {-total, 0.0, total}) include(c0 + shift, c1 + shift);
-        }
-        if (lo > hi) continue;
-      }
+      if (backAngle >= 0.0 && !allowedFanInterval(a0, a1, backAngle, total, boundary, tol, lo, hi)) continue;
       const int ho = t_.he[h].next;  // edge opposite v in this face; v is its opposite vertex
       const int tw = t_.twin(ho);
       if (t_.he[tw].face < 0) continue;
@@ -328,22 +305,13 @@ class Propagator {
       // the 4.5k bump, clipping saves 16 % of the propagation's instructions (half the trimming).
       const double length = t_.he[ho].length;
       const double ox = t_.he[ho].oppositeX, oy = t_.he[ho].oppositeY;  // v in the frame of ho
-      // A needle face (v almost on the opposite edge) maps the whole cone into a sliver about as
-      // wide as the face's height, which the width floor could drop: keep the full edge there.
-      const bool needle = oy < 1e-8 * length;
-      auto crossing = [&](double psi) {  // where the ray turned psi from v->B meets ho (from B)
-        if (psi <= 0.0) return 0.0;
-        if (psi >= corner) return length;
-        const double c = std::cos(psi), s = std::sin(psi);
-        const double dx = s * oy - c * ox, dy = -s * ox - c * oy;
-        if (!(dy < 0.0)) return length;
-        return std::clamp(ox - oy / dy * dx, 0.0, length);
-      };
       Window win;
       win.halfedge = tw;
       win.parent = Window::fromVertex(v);
-      win.b0 = needle ? 0.0 : length - crossing(hi - a0);
-      win.b1 = needle ? length : length - crossing(lo - a0);
+      // Coordinates on the twin run from the other end of the edge.
+      const auto [from, to] = coneCrossings(ox, oy, length, corner, lo - a0, hi - a0);
+      win.b0 = length - to;
+      win.b1 = length - from;
       win.sx = length - ox;
       win.sy = -oy;
       win.sigma = dv;

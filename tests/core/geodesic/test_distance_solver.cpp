@@ -87,7 +87,7 @@ TEST(DistanceSolver, ShortestPathBendsAroundAReflexBoundaryCorner) {
     }
     return t1 - t0 > 1e-9;
   };
-  for (const Eigen::Vector3d requested : {Eigen::Vector3d(1.8, 0.0, 0.0), Eigen::Vector3d(0.0, 1.8, 0.0)}) {
+  for (const Eigen::Vector3d& requested : {Eigen::Vector3d(1.8, 0.0, 0.0), Eigen::Vector3d(0.0, 1.8, 0.0)}) {
     const SurfacePoint source = snapToSurface(mesh, requested);  // on the boundary
     const Eigen::Vector3d s = position(mesh, source);
     const auto field = solver.distances(source);

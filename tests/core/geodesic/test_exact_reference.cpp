@@ -156,7 +156,7 @@ TEST(ExactReference, ExactModeAgreesWithCgalAroundAReflexCorner) {
   DistanceSolverOptions exact;
   exact.saddleAngleTolerance = 0.0;
   const DistanceSolver solver(mesh, exact);
-  for (const Eigen::Vector3d requested :
+  for (const Eigen::Vector3d& requested :
        {Eigen::Vector3d(1.7, 0.0, 0.0), Eigen::Vector3d(0.0, 1.7, 0.0), Eigen::Vector3d(1.6, 0.4, 0.0),
         Eigen::Vector3d(0.3, 1.8, 0.0)}) {
     const SurfacePoint source = snapToSurface(mesh, requested);

@@ -3,6 +3,7 @@
 #include "core/errors.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -13,6 +14,9 @@ void MemberOptions::validate() const {
   if (!(lamellaWidthM > 0.0)) throw InvalidInput("lamella.width_m must be > 0");
   if (!(spacingFactor >= 1.0)) throw InvalidInput("grid spacing factor must be >= 1 (members cannot overlap)");
   if (!(featureFraction >= 0.0 && featureFraction <= 1.0)) throw InvalidInput("grid feature fraction must lie in [0, 1]");
+  if (!(smoothingFraction > 0.0)) throw InvalidInput("grid smoothing fraction must be > 0");
+  if (scanSamplesPerSigma < 2) throw InvalidInput("grid scan samples per smoothing length must be >= 2");
+  if (!(tieBand >= 0.0 && tieBand < 1.0)) throw InvalidInput("grid tie band must lie in [0, 1)");
 }
 
 double lamellaFootprint(double width, double angle) { return width / std::max(std::sin(angle), 1e-6); }
@@ -49,15 +53,143 @@ struct CurveParameter {
     const double s = span > 0 ? (value - t[lo]) / span : 0.0;
     return f.points[lo] + s * (f.points[hi] - f.points[lo]);
   }
-  double lengthAt(double value) const {
-    value = std::clamp(value, 0.0, total());
-    const size_t hi = std::min<size_t>(std::upper_bound(t.begin(), t.end(), value) - t.begin(), t.size() - 1);
-    const size_t lo = hi - 1;
-    const double span = t[hi] - t[lo];
-    const double s = span > 0 ? (value - t[lo]) / span : 0.0;
-    return f.lengths[lo] + s * (f.lengths[hi] - f.lengths[lo]);
-  }
 };
+
+// C(t), piecewise linear over the cladding curve's vertices and continued linearly beyond both
+// ends (so the ends add no bend of their own), convolved with a Gaussian of standard deviation
+// sigma. With s_0 the first segment's slope and ds_j the change of slope at interior vertex t_j,
+//   C_s'(t)   = s_0 + sum_j ds_j Phi(z_j),   z_j = (t - t_j) / sigma,
+//   C_s''(t)  = sum_j ds_j phi(z_j) / sigma,
+//   C_s'''(t) = -sum_j ds_j z_j phi(z_j) / sigma^2,
+// exact for the piecewise-linear C. The extrema of Section 2.4.4 are then roots of smooth
+// functions of t that move continuously with C, wherever they fall between samples, and sigma is
+// a physical length (a fraction of the target spacing), not a number of samples.
+class SmoothedLength {
+ public:
+  SmoothedLength(const std::vector<double>& t, const std::vector<double>& c, double sigma) : sigma_(sigma) {
+    std::vector<double> tt, cc;
+    for (size_t k = 0; k < t.size(); ++k)
+      if (tt.empty() || t[k] > tt.back()) tt.push_back(t[k]), cc.push_back(c[k]);  // skip zero-length segments
+    for (size_t k = 1; k < tt.size(); ++k) slope_.push_back((cc[k] - cc[k - 1]) / (tt[k] - tt[k - 1]));
+    if (slope_.empty()) slope_.push_back(0.0);
+    for (size_t k = 1; k + 1 < tt.size(); ++k) knot_.push_back(tt[k]), jump_.push_back(slope_[k] - slope_[k - 1]);
+  }
+
+  struct Derivatives {
+    double d1 = 0.0, d2 = 0.0, d3 = 0.0;
+  };
+  Derivatives at(double t) const {
+    // Vertices further than 8 sigma contribute below 1e-14 of their jump to C_s'' and C_s''';
+    // those on the left count fully in C_s' (Phi = 1), i.e. as the slope left of the window.
+    constexpr double kWindow = 8.0;
+    const size_t lo = std::lower_bound(knot_.begin(), knot_.end(), t - kWindow * sigma_) - knot_.begin();
+    const size_t hi = std::upper_bound(knot_.begin(), knot_.end(), t + kWindow * sigma_) - knot_.begin();
+    constexpr double kInvSqrt2Pi = 0.3989422804014327;
+    Derivatives d;
+    d.d1 = slope_[lo];
+    for (size_t j = lo; j < hi; ++j) {
+      const double z = (t - knot_[j]) / sigma_;
+      const double phi = std::exp(-0.5 * z * z) * kInvSqrt2Pi;
+      d.d1 += jump_[j] * 0.5 * std::erfc(-z * M_SQRT1_2);
+      d.d2 += jump_[j] * phi;
+      d.d3 -= jump_[j] * z * phi;
+    }
+    d.d2 /= sigma_;
+    d.d3 /= sigma_ * sigma_;
+    return d;
+  }
+
+ private:
+  double sigma_;
+  std::vector<double> slope_;        // slope_[j]: slope left of knot_[j]; slope_.back(): right of the last
+  std::vector<double> knot_, jump_;  // interior vertices and their changes of slope
+};
+
+// The root of f in [a, b], where f(a) and f(b) lie on opposite sides of zero, to within tol:
+// Illinois false position (superlinear, never leaves the bracket).
+template <class Function>
+double bracketedRoot(const Function& f, double a, double fa, double b, double fb, double tol) {
+  double c = a, previous = b;
+  int side = 0;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    c = fb != fa ? std::clamp((a * fb - b * fa) / (fb - fa), a, b) : 0.5 * (a + b);
+    const double fc = f(c);
+    if (fc == 0.0 || std::abs(c - previous) < tol || b - a < tol) return c;
+    previous = c;
+    if ((fc > 0) == (fb > 0)) {
+      b = c, fb = fc;
+      if (side == -1) fa *= 0.5;
+      side = -1;
+    } else {
+      a = c, fa = fc;
+      if (side == 1) fb *= 0.5;
+      side = 1;
+    }
+  }
+  return c;
+}
+
+// The numerator of kappa' for kappa = C'' / (1 + C'^2)^(3/2): kappa' (1 + C'^2)^(5/2).
+double curvatureSlope(const SmoothedLength::Derivatives& d) {
+  return d.d3 * (1.0 + d.d1 * d.d1) - 3.0 * d.d1 * d.d2 * d.d2;
+}
+
+// Candidates of both tiers of Section 2.4.4 on the smoothed C: the extrema of C_s (roots of C_s',
+// locally longest and shortest members) and the extrema of its curvature kappa (roots of
+// curvatureSlope), keeping those with |C_s''| >= featureFraction * max |C_s''|. Both are
+// prioritised by |C_s''| at the root. Roots are bracketed by sign changes on a scan of
+// scanSamplesPerSigma points per sigma and solved to 1e-12 of the length: the scan density only
+// decides whether two roots closer than its step (a nearly flat extremum) are seen at all.
+std::array<std::vector<Candidate>, 2> featureCandidates(const SmoothedLength& c, double total, double sigma,
+                                                        const MemberOptions& options) {
+  const double wanted = std::ceil(total * options.scanSamplesPerSigma / sigma);
+  const int steps = static_cast<int>(std::clamp(wanted, 16.0, 262144.0));
+  const double tol = 1e-12 * total;
+  std::vector<double> ts(steps + 1);
+  std::vector<SmoothedLength::Derivatives> ds(steps + 1);
+  for (int k = 0; k <= steps; ++k) ts[k] = k == steps ? total : total * k / steps, ds[k] = c.at(ts[k]);
+  std::vector<double> lengthRoots, curvatureRoots;
+  double largest = 0.0;
+  for (const auto& d : ds) largest = std::max(largest, std::abs(d.d2));
+  for (int k = 0; k < steps; ++k) {
+    const auto &a = ds[k], &b = ds[k + 1];
+    if ((a.d1 > 0) != (b.d1 > 0))
+      lengthRoots.push_back(bracketedRoot([&](double t) { return c.at(t).d1; }, ts[k], a.d1, ts[k + 1], b.d1, tol));
+    if ((a.d3 > 0) != (b.d3 > 0)) {  // an extremum of C_s'' between the scan points
+      const double t = bracketedRoot([&](double t) { return c.at(t).d3; }, ts[k], a.d3, ts[k + 1], b.d3, tol);
+      largest = std::max(largest, std::abs(c.at(t).d2));
+    }
+    const double ga = curvatureSlope(a), gb = curvatureSlope(b);
+    if ((ga > 0) != (gb > 0))
+      curvatureRoots.push_back(
+          bracketedRoot([&](double t) { return curvatureSlope(c.at(t)); }, ts[k], ga, ts[k + 1], gb, tol));
+  }
+  // An extremum whose slope changes by less than 1e-9 over sigma is flat to rounding (e.g. a C
+  // whose every feature the smoothing removed): its sign changes are noise, not features.
+  const double flat = 1e-9 / sigma;
+  std::array<std::vector<Candidate>, 2> tiers;
+  for (double t : lengthRoots) {
+    const double priority = std::abs(c.at(t).d2);
+    if (t > 0.0 && t < total && priority > flat) tiers[0].push_back({t, priority, MemberOrigin::LengthExtremum});
+  }
+  for (double t : curvatureRoots) {
+    const double priority = std::abs(c.at(t).d2);
+    if (t > 0.0 && t < total && priority > flat && priority >= options.featureFraction * largest)
+      tiers[1].push_back({t, priority, MemberOrigin::CurvatureExtremum});
+  }
+  // Highest priority first; priorities equal up to rounding (mirror images) in order of t, so the
+  // order does not hang on their last bits.
+  for (auto& tier : tiers) {
+    std::sort(tier.begin(), tier.end(), [](const Candidate& a, const Candidate& b) { return a.priority > b.priority; });
+    for (size_t first = 0; first < tier.size();) {
+      size_t last = first + 1;
+      while (last < tier.size() && tier[first].priority - tier[last].priority <= 1e-9 * tier[first].priority) ++last;
+      std::sort(tier.begin() + first, tier.begin() + last, [](const Candidate& a, const Candidate& b) { return a.t < b.t; });
+      first = last;
+    }
+  }
+  return tiers;
+}
 
 }  // namespace
 
@@ -97,50 +229,43 @@ FamilyMembers placeMembers(const CladdingFunction& cladding, const PlanarQuad& q
                            " is too dense for lamellas of width " + std::to_string(w) + " m on this patch");
   } else {
     const double target = options.spacingFactor * w;
-    // C(t) resampled uniformly and smoothed lightly: the piecewise-linear intersection carries
-    // O(h) slope noise that would otherwise show up as spurious curvature extrema.
-    const int samples = 256;
-    const double dt = total / (samples - 1);
-    std::vector<double> c(samples), smooth(samples);
-    for (int k = 0; k < samples; ++k) c[k] = curve.lengthAt(k * dt);
-    for (int k = 0; k < samples; ++k) {
-      double sum = 0, weight = 0;
-      for (int j = std::max(0, k - 6); j <= std::min(samples - 1, k + 6); ++j) {
-        const double g = std::exp(-0.5 * (j - k) * (j - k) / 4.0);
-        sum += g * c[j], weight += g;
-      }
-      smooth[k] = sum / weight;
-    }
-    std::vector<double> d1(samples, 0.0), d2(samples, 0.0), kappa(samples, 0.0);
-    for (int k = 1; k + 1 < samples; ++k) {
-      d1[k] = (smooth[k + 1] - smooth[k - 1]) / (2 * dt);
-      d2[k] = (smooth[k + 1] - 2 * smooth[k] + smooth[k - 1]) / (dt * dt);
-      kappa[k] = d2[k] / std::pow(1.0 + d1[k] * d1[k], 1.5);
-    }
-    double largestD2 = 0.0;
-    for (int k = 2; k + 2 < samples; ++k) largestD2 = std::max(largestD2, std::abs(d2[k]));
-    std::vector<Candidate> lengthExtrema, curvatureExtrema;
-    for (int k = 2; k + 3 < samples; ++k) {
-      if ((d1[k] > 0) != (d1[k + 1] > 0)) {  // C' changes sign: a locally longest/shortest member
-        const double s = d1[k] / (d1[k] - d1[k + 1]);
-        lengthExtrema.push_back({(k + s) * dt, std::abs(d2[k]), MemberOrigin::LengthExtremum});
-      }
-      const double kp0 = kappa[k] - kappa[k - 1], kp1 = kappa[k + 1] - kappa[k];
-      if ((kp0 > 0) != (kp1 > 0) && std::abs(d2[k]) >= options.featureFraction * largestD2 && largestD2 > 0)
-        curvatureExtrema.push_back({k * dt, std::abs(d2[k]), MemberOrigin::CurvatureExtremum});
-    }
-    const auto byPriority = [](const Candidate& a, const Candidate& b) { return a.priority > b.priority; };
-    std::sort(lengthExtrema.begin(), lengthExtrema.end(), byPriority);
-    std::sort(curvatureExtrema.begin(), curvatureExtrema.end(), byPriority);
+    // Section 2.4.4 on C smoothed over a physical length (MemberOptions::smoothingFraction): the
+    // piecewise-linear intersection carries slope noise at the scale of the map grid that would
+    // otherwise show up as spurious curvature extrema (dozens on the bench bump), and features
+    // much narrower than the target spacing cannot get members of their own anyway.
+    const double sigma = options.smoothingFraction * target;
+    const SmoothedLength smoothed(curve.t, cladding.lengths, sigma);
+    const auto tiers = featureCandidates(smoothed, total, sigma, options);
 
+    // Greedy by priority, length extrema before curvature extrema; a candidate needs half the
+    // target spacing (and the lamella footprint d+/d-) to every member placed so far. A candidate
+    // blocked only by one member of its own tier whose priority it nearly ties (within tieBand)
+    // pulls that member towards itself instead of being dropped, with a weight from 0 at the edge
+    // of the band to 1/2 at an exact tie: as two crowding priorities cross, the member moves
+    // continuously instead of jumping from one feature to the other.
     chosen = {0.0, total};
     origins = {MemberOrigin::Boundary, MemberOrigin::Boundary};
-    // Features may not crowd closer than half the target spacing (nor the lamella footprint).
-    for (const auto* tier : {&lengthExtrema, &curvatureExtrema})
-      for (const auto& candidate : *tier) {
+    std::vector<double> priorities{0.0, 0.0};
+    std::vector<bool> merged{true, true};  // boundaries never move; a feature member merges at most once
+    for (const auto& tier : tiers)
+      for (const auto& candidate : tier) {
+        std::vector<size_t> blockers;
+        for (size_t i = 0; i < chosen.size(); ++i)
+          if (!spacingOk(chosen[i], candidate.t, 0.5 * target)) blockers.push_back(i);
+        if (blockers.empty()) {
+          chosen.push_back(candidate.t), origins.push_back(candidate.origin);
+          priorities.push_back(candidate.priority), merged.push_back(false);
+          continue;
+        }
+        const size_t b = blockers.front();
+        if (blockers.size() != 1 || merged[b] || origins[b] != candidate.origin || options.tieBand <= 0.0 ||
+            candidate.priority < (1.0 - options.tieBand) * priorities[b])
+          continue;
+        const double weight = 0.5 * (1.0 - (priorities[b] - candidate.priority) / (options.tieBand * priorities[b]));
+        const double moved = chosen[b] + weight * (candidate.t - chosen[b]);
         bool fits = true;
-        for (double t : chosen) fits = fits && spacingOk(t, candidate.t, 0.5 * target);
-        if (fits) chosen.push_back(candidate.t), origins.push_back(candidate.origin);
+        for (size_t i = 0; i < chosen.size() && fits; ++i) fits = i == b || spacingOk(chosen[i], moved, 0.5 * target);
+        if (fits) chosen[b] = moved, merged[b] = true;
       }
     std::vector<size_t> order(chosen.size());
     for (size_t k = 0; k < order.size(); ++k) order[k] = k;

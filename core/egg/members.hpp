@@ -9,6 +9,12 @@
 //      they meet the boundaries at angles beta (start side) and gamma (end side);
 //   3. gaps wider than the target spacing are filled, and the filled members are evened out
 //      (least squares on neighbour distances, which spaces them equally inside each gap).
+// C is read through a Gaussian over a physical length (smoothingFraction * target spacing) and
+// every extremum is a root of the smoothed C' or kappa', solved between samples: member positions
+// move continuously with C. What stays discrete (a small change of C can still add, drop or swap
+// a member): a candidate at exactly half the target spacing from another, |C''| at the
+// featureFraction threshold, a gap at a half-integer multiple of the target spacing (the count of
+// filled members), and crowding candidates of different tiers, or near-tied beyond tieBand.
 // A fixed count instead spaces the members equally along the cladding curve.
 #include "core/egg/cladding.hpp"
 #include "core/egg/planar_quad.hpp"
@@ -22,6 +28,20 @@ struct MemberOptions {
   double lamellaWidthM = 0.05;    // w, lamella width (metres)
   double spacingFactor = 8.0;     // automatic: target spacing between members = factor * w
   double featureFraction = 0.1;   // curvature extrema with |C''| below this fraction of the largest are ignored
+  // Automatic placement reads C through a Gaussian of standard deviation smoothingFraction * target
+  // spacing: a physical length, so the features found do not depend on how finely C is sampled.
+  // Half the spacing: features of C closer than about one spacing merge (they could not all get
+  // members), a narrow feature's curvature extrema land about one spacing from its centre, and on
+  // `egg bench grid` sub-millimetre map changes move members by about a millimetre (a quarter of
+  // the spacing left curvature extrema so flat that they moved by centimetres).
+  double smoothingFraction = 0.5;
+  // Extrema are bracketed on a scan with this many points per smoothing length and then solved
+  // for (roots of the smoothed derivatives): the scan density does not move them.
+  int scanSamplesPerSigma = 4;
+  // Two feature candidates of one tier that crowd each other and whose priorities |C''| differ by
+  // less than this fraction are a near-tie: one member is placed between them, weighted by
+  // priority, instead of the winner flipping with the last digits of C.
+  double tieBand = 0.05;
   void validate() const;          // throws InvalidInput naming the field
 };
 

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace egg {
 namespace {
@@ -73,6 +75,140 @@ TEST(Members, LongestGeodesicGetsAMember) {
   }
 }
 
+// Members placed automatically on C(x) (target spacing 0.1 on unit sides, C smoothed over 5 cm):
+// a bump of C at x0 (a locally longest member) and a dip at 0.72.
+MemberOptions featureOptions() {
+  MemberOptions options;
+  options.lamellaWidthM = 0.01;
+  options.spacingFactor = 10.0;
+  return options;
+}
+double bumpAndDip(double x, double x0) {
+  return 1.0 + 0.1 * std::exp(-std::pow((x - x0) / 0.08, 2)) - 0.06 * std::exp(-std::pow((x - 0.72) / 0.1, 2));
+}
+// Deterministic noise in [-1, 1] per cladding point.
+double noise(int k) {
+  const double v = std::sin(12.9898 * k + 78.233) * 43758.5453;
+  return 2.0 * (v - std::floor(v)) - 1.0;
+}
+template <class Length>
+CladdingFunction noisyCladding(Length length, double relative, int n = 201) {
+  CladdingFunction f = identityCladding(length, n);
+  for (size_t k = 0; k < f.lengths.size(); ++k) f.lengths[k] *= 1.0 + relative * noise(static_cast<int>(k));
+  return f;
+}
+double largestShift(const FamilyMembers& a, const FamilyMembers& b) {
+  if (a.x1.size() != b.x1.size()) return 1.0;
+  double shift = 0.0;
+  for (size_t k = 0; k < a.x1.size(); ++k) shift = std::max(shift, std::abs(a.x1[k] - b.x1[k]));
+  return shift;
+}
+
+TEST(Members, LengthExtremaAreFoundBetweenSamples) {
+  // The bump's maximum at x0 and the dip's minimum at 0.72 are analytic (the tails of the other
+  // feature are below 1e-11 there, and smoothing a symmetric feature does not move its centre);
+  // x0 lies between the samples of any grid with a round count of samples on [0, 1].
+  const double x0 = 0.3 + 0.37 / 255;
+  const auto members =
+      placeMembers(identityCladding([&](double x) { return bumpAndDip(x, x0); }), kSquare, 1.0, 1.0, featureOptions());
+  std::vector<double> extrema;
+  for (size_t k = 0; k < members.x1.size(); ++k)
+    if (members.origin[k] == MemberOrigin::LengthExtremum) extrema.push_back(members.x1[k]);
+  ASSERT_EQ(extrema.size(), 2u);
+  EXPECT_NEAR(extrema[0], x0, 1e-4);  // 1e-4 of the total length (1 m)
+  EXPECT_NEAR(extrema[1], 0.72, 1e-4);
+}
+
+TEST(Members, TinyNoiseOnCMovesNoMember) {
+  // Relative noise of 1e-6 on C must move every member by far less than a millimetre on a 1 m
+  // side. Member positions on a sample grid (256 samples: steps of 3.9 mm) jumped by a whole step
+  // whenever an extremum sat near the middle between two samples; x0 sweeps one such step in 80
+  // offsets.
+  for (int j = 0; j < 80; ++j) {
+    const double x0 = 0.3 + j / (80.0 * 255.0);
+    const auto length = [&](double x) { return bumpAndDip(x, x0); };
+    const auto exact = placeMembers(identityCladding(length), kSquare, 1.0, 1.0, featureOptions());
+    const auto noisy = placeMembers(noisyCladding(length, 1e-6), kSquare, 1.0, 1.0, featureOptions());
+    ASSERT_EQ(exact.x1.size(), noisy.x1.size()) << "x0 = " << x0;
+    EXPECT_LT(largestShift(exact, noisy), 1e-4) << "x0 = " << x0;
+  }
+}
+
+TEST(Members, MirrorSymmetricLengthsGiveMirrorSymmetricMembers) {
+  // C(x) = C(1 - x) on the square: the members are symmetric about x = 1/2.
+  const auto length = [](double x) {
+    return 1.0 + 0.1 * std::exp(-std::pow((x - 0.5) / 0.1, 2)) + 0.04 * std::exp(-std::pow((x - 0.17) / 0.06, 2)) +
+           0.04 * std::exp(-std::pow((x - 0.83) / 0.06, 2));
+  };
+  const auto members = placeMembers(identityCladding(length), kSquare, 1.0, 1.0, featureOptions());
+  const size_t n = members.x1.size();
+  ASSERT_GE(n, 5u);
+  int features = 0;
+  for (size_t k = 0; k < n; ++k) {
+    EXPECT_NEAR(members.x1[k] + members.x1[n - 1 - k], 1.0, 1e-9) << k;
+    EXPECT_EQ(members.origin[k], members.origin[n - 1 - k]) << k;
+    features += members.origin[k] == MemberOrigin::LengthExtremum || members.origin[k] == MemberOrigin::CurvatureExtremum;
+  }
+  EXPECT_GE(features, 3);  // the centre bump's maximum and the side bumps
+}
+
+TEST(Members, NeitherTheScanNorTheSamplingOfCMovesMembers) {
+  // The extrema are roots of C smoothed over a physical length (half the target spacing):
+  // doubling the scan that brackets them, or sampling C twice as finely, moves no member by more
+  // than 1e-4 of the side.
+  const auto length = [](double x) { return bumpAndDip(x, 0.3 + 0.37 / 255); };
+  const auto reference = placeMembers(identityCladding(length), kSquare, 1.0, 1.0, featureOptions());
+  ASSERT_GE(reference.x1.size(), 7u);
+  MemberOptions finerScan = featureOptions();
+  finerScan.scanSamplesPerSigma *= 2;
+  EXPECT_LT(largestShift(placeMembers(identityCladding(length), kSquare, 1.0, 1.0, finerScan), reference), 1e-4);
+  EXPECT_LT(largestShift(placeMembers(identityCladding(length, 401), kSquare, 1.0, 1.0, featureOptions()), reference),
+            1e-4);
+}
+
+TEST(Members, RippleFinerThanTheSpacingIsNoFeature) {
+  // A 1 mm ripple of period 2 cm (a fifth of the target spacing) cannot carry members of its own:
+  // the smoothing over 5 cm removes it and the members are spaced as for a constant C.
+  const auto members = placeMembers(identityCladding([](double x) { return 1.0 + 1e-3 * std::sin(2 * M_PI * x / 0.02); }),
+                                    kSquare, 1.0, 1.0, featureOptions());
+  ASSERT_EQ(members.x1.size(), 11u);
+  for (size_t k = 0; k < 11; ++k) EXPECT_NEAR(members.x1[k], 0.1 * k, 1e-9);
+}
+
+TEST(Members, NearTiesMoveTheMemberContinuously) {
+  // Two bumps 8 cm apart (closer than half the target spacing, so only one member fits) with
+  // heights 0.1 and 0.1 (1 + e): a strict ranking puts the member on the higher bump and jumps
+  // 8 cm as e changes sign; within the tie band the member slides between them, through the
+  // midpoint 0.49 at e = 0.
+  MemberOptions options = featureOptions();
+  options.lamellaWidthM = 0.02;      // target spacing 0.2
+  options.smoothingFraction = 0.05;  // sigma 1 cm keeps the two bumps apart
+  const auto nearest = [](const FamilyMembers& m, double x) {
+    double best = 1.0;
+    for (double v : m.x1) best = std::abs(v - x) < std::abs(best - x) ? v : best;
+    return best;
+  };
+  const auto place = [&](double e, const MemberOptions& o) {
+    return placeMembers(identityCladding([&](double x) {
+                          return 1.0 + 0.1 * std::exp(-std::pow((x - 0.45) / 0.015, 2)) +
+                                 0.1 * (1 + e) * std::exp(-std::pow((x - 0.53) / 0.015, 2));
+                        }, 801),
+                        kSquare, 1.0, 1.0, o);
+  };
+  EXPECT_NEAR(nearest(place(0.0, options), 0.49), 0.49, 1e-6);
+  double previous = nearest(place(-0.1, options), 0.49), largestStep = 0.0;
+  EXPECT_NEAR(previous, 0.45, 2e-3);  // outside the band: the higher bump alone
+  for (int k = -19; k <= 20; ++k) {
+    const double x = nearest(place(0.005 * k, options), 0.49);
+    largestStep = std::max(largestStep, std::abs(x - previous));
+    previous = x;
+  }
+  EXPECT_NEAR(previous, 0.53, 2e-3);
+  EXPECT_LT(largestStep, 0.01);
+  options.tieBand = 0.0;  // strict ranking: the jump
+  EXPECT_NEAR(nearest(place(-1e-6, options), 0.49) - nearest(place(1e-6, options), 0.49), -0.08, 2e-3);
+}
+
 TEST(Members, FixedCountIsEvenAndChecksDensity) {
   MemberOptions options;
   options.count = 5;
@@ -92,6 +228,15 @@ TEST(Members, NonBijectiveCladdingIsInfeasible) {
   EXPECT_THROW(placeMembers(f, kSquare, 1.0, 1.0), InfeasiblePatch);
   MemberOptions bad;
   bad.count = 1;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = MemberOptions{};
+  bad.smoothingFraction = 0.0;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = MemberOptions{};
+  bad.scanSamplesPerSigma = 1;
+  EXPECT_THROW(bad.validate(), InvalidInput);
+  bad = MemberOptions{};
+  bad.tieBand = 1.0;
   EXPECT_THROW(bad.validate(), InvalidInput);
 }
 

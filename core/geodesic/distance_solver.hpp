@@ -29,24 +29,31 @@ struct MeshTables;  // flat connectivity + unfolded triangle frames (distance_so
 
 struct DistanceSolverOptions {
   // An interior vertex whose angle sum exceeds 2*pi by more than this (radians) is a saddle: a
-  // shortest path may bend around it, so it becomes a pseudo-source; likewise a boundary vertex
-  // whose angle sum exceeds pi (a reflex corner of the boundary).
-  // Below it the vertex's shadow is closed by paths bent over the neighbouring windows' ends
-  // instead. One skipped bend of angle e costs little, but along a path through a negatively
-  // curved region every vertex is a near-flat saddle, the skipped bends add up, and the error grows
-  // with the number of vertices the path passes (finer meshes skip more). Error study (2026-12,
-  // max relative error against tolerance 0, the exact polyhedral distance):
-  //   tolerance   patch side-to-side maps, steep bump       samples, interior sources
-  //               3.9k vertices     14.9k vertices          (bump/hypar/waves 1k-18k)
-  //   7e-4        1.7e-4 - 2.2e-4   -                       2.4e-6
-  //   5e-4        3.4e-5 - 1.5e-4   -                       1.8e-6
-  //   2e-4        8.9e-6 - 1.7e-5   9.9e-5                  -
-  //   1e-4        8.9e-6            3.0e-5                  -
-  // (maps: bump height 2 m, sigma 1.5 m, 8 x 8 m, 6 x 6 m patch over the top, every row exact;
-  // the test PatchMapsAccuracy.* in tests/core/egg repeats the 3.9k case.) The default keeps the
-  // 1e-4 bar of Sections 2.3.3/3.4.1 with a margin of 3 at 15k vertices; meshes much finer than
-  // that should lower it or use 0. Reflex boundary vertices are always pseudo-sources.
-  double saddleAngleTolerance = 1e-4;
+  // shortest path may bend around it, so it becomes a pseudo-source. Reflex boundary vertices
+  // (angle sum > pi) always are. 0 gives the exact polyhedral distance.
+  // A saddle below the tolerance (a near-flat one: on a remeshed negatively curved surface almost
+  // every vertex is) emits no windows. Behind it lies a shadow wedge as wide as its excess that no
+  // window enters; the points in it get their distance by bending at the saddle from the windows
+  // that border the wedge (Propagator::bentDistance in window_propagation.cpp), which is exact up
+  // to what other skipped saddles inside the same shadow add. Near-flat saddles are ~40 % of the
+  // windows and ~60 % of the time of an exact field on the bench bump (4.5k vertices).
+  // Error study (2026-12, max relative error against tolerance 0; patch = side-to-side distances
+  // of a 6 x 6 m patch over an 8 x 8 m bump with sigma 1.5 m and height h, 9 sources x 100 targets
+  // per family, as the distance maps of Section 2.4.2 use them; bench = `egg bench geodesic` bump,
+  // side sources to all vertices):
+  //   tolerance   patch h = 2 m              patch h = 3 m      bench bump
+  //               1k      3.9k    15k        1.1k     4.5k      1k      4.5k    17.7k
+  //   7e-4        6.2e-7  1.1e-6  3.9e-6     2.9e-8   4.5e-6    4.2e-7  5.8e-7  2.9e-7
+  //   1e-3        1.3e-6  9.3e-6  6.4e-5     1.0e-6   3.8e-5    1.5e-6  8.2e-7  4.8e-7
+  //   2e-3        5.2e-6  9.3e-6  6.4e-5     1.2e-4   9.6e-5    4.1e-6  1.9e-6  1.1e-6
+  // Time per field at 7e-4 against tolerance 0: 0.40 (bench, 4.5k), 0.47 (patch 3.9k), 0.34 (15k).
+  // Bending at the window's end instead of at the saddle, as before, gave 1.7e-4 (patch h = 2 m,
+  // 3.9k) at 7e-4, and 3e-5 at 15k even at 1e-4; the bar (Sections 2.3.3, 3.4.1) is 1e-4. The
+  // default keeps a margin of 20 on every case above; past it the speed barely grows (most
+  // near-flat saddles are already skipped) and the error does.
+  // A saddle is also never skipped where its shadow could grow wider than a quarter of its
+  // shortest edge within twice the mesh's bounding-box diagonal (mesh_tables.cpp).
+  double saddleAngleTolerance = 7e-4;
   // Windows narrower than this fraction of their edge length are dropped (numerical slivers that
   // appear when a ray runs exactly through a vertex; the neighbouring windows cover them).
   double minWindowWidthRelative = 1e-11;

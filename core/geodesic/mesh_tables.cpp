@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -85,6 +86,19 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
     std::vector<int> fill(t.outgoingStart.begin(), t.outgoingStart.end() - 1);
     for (int h = 0; h < nh; ++h) t.outgoing[fill[fromVertex[h]]++] = h;
   }
+  // A skipped saddle's shadow is a wedge as wide as its excess e times the distance travelled; it
+  // is closed by bending at the saddle (Propagator::bentDistance) from the faces next to it, which
+  // works while the wedge stays narrower than a face. Distances stay below twice the bounding-box
+  // diagonal on any patch-like surface, so a saddle is skipped only if e times that stays below a
+  // quarter of its shortest edge; on very fine meshes this takes over from the tolerance.
+  Eigen::Vector3d lo = t.positions[0], hi = t.positions[0];
+  for (const auto& p : t.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double reach = 2.0 * (hi - lo).norm();
+  std::vector<double> shortestEdge(t.vertexCount, std::numeric_limits<double>::infinity());
+  for (int h = 0; h < nh; ++h) shortestEdge[fromVertex[h]] = std::min(shortestEdge[fromVertex[h]], length[h]);
   t.boundaryVertex.assign(t.vertexCount, 0);
   t.pseudoSource.assign(t.vertexCount, 0);
   for (auto vh : mesh.vertices()) {
@@ -100,7 +114,9 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
     if (t.boundaryVertex[v]) {
       t.pseudoSource[v] = t.angleSum[v] > std::numbers::pi ? 1 : 0;
     } else {
-      t.pseudoSource[v] = t.angleSum[v] > 2.0 * std::numbers::pi + options.saddleAngleTolerance ? 1 : 0;
+      const double excess = t.angleSum[v] - 2.0 * std::numbers::pi;
+      const bool skipped = excess <= options.saddleAngleTolerance && excess * reach <= 0.25 * shortestEdge[v];
+      t.pseudoSource[v] = excess > 0.0 && !skipped ? 1 : 0;
     }
   }
   return t;

@@ -1,4 +1,4 @@
-// Exact single-source geodesic distances on a triangle mesh by window propagation.
+// Single-source geodesic distances on a triangle mesh by window propagation (exact, or within ~1e-6).
 //
 // Algorithm (Chen-Han / ICH family: Mitchell-Mount-Papadimitriou 1987, Chen & Han 1990, Xin & Wang
 // 2009 "Improving Chen and Han's algorithm on the discrete geodesic problem"):
@@ -20,8 +20,10 @@
 //    almost never fire once the others are in place; see prune().)
 //  * Each window is pruned once, when it is added (see propagateWindow()).
 // A strictly dominated part never carries a shortest path, so the shortest path's window chain
-// always survives and the result is the exact polyhedral distance (up to rounding); the rules
-// stay valid against any real path, which every stored window is.
+// always survives and the result is the exact polyhedral distance (up to rounding) when every
+// saddle is a pseudo-source (saddleAngleTolerance = 0). By default near-flat saddles are not:
+// their shadows are reached by bending at them (pathBentAt in window_geometry.hpp), 2-3x faster
+// at ~1e-6 relative error (the study is in distance_solver.hpp).
 // Edge Dijkstra, fast marching and the heat method were ruled out by the accuracy bar (Section
 // 2.3.3 needs 0.15 %); a geodesic graph (saddle vertex graph, Dijkstra over exact local windows)
 // was measured on the 3.6k bump: 5.5e-3 max relative error with 84 edges per vertex, 2.4e-3 with
@@ -412,7 +414,20 @@ class Propagator {
     return true;
   }
 
+  // A path to (px, py) (frame of w's edge, in the face w enters) whose ray from the source image
+  // misses the window past end `side`, bent round that end or at the vertex on its boundary ray
+  // (window_geometry.hpp: why that makes skipping near-flat saddles accurate).
+  double bentDistance(const Window& w, int side, double px, double py) const {
+    const int x = w.endVertex[side];
+    if (x < 0) return pathBentAt(w, side, px, py, t_.he[w.halfedge].length, nullptr, o_.saddleAngleTolerance);
+    const BendVertex vertex{s_.vertexDistance[x],
+                            t_.angleSum[x] - (t_.boundaryVertex[x] ? 1.0 : 2.0) * std::numbers::pi,
+                            t_.pseudoSource[x] != 0};
+    return pathBentAt(w, side, px, py, t_.he[w.halfedge].length, &vertex, o_.saddleAngleTolerance);
+  }
+
   void addWindow(Window& w) {
+    const double b0In = w.b0, b1In = w.b1;
     if (!prune(w)) return;
     const double L = t_.he[w.halfedge].length;
     int& first = s_.firstBlock[w.halfedge];
@@ -427,6 +442,7 @@ class Propagator {
         if (!trimAgainst(w, s_.windows[span.window]) || w.b1 - w.b0 <= o_.minWindowWidthRelative * L) return;
       }
     }
+    markEndVertices(w, b0In, b1In, t_.he[w.halfedge]);
     s_.windows.push_back(w);
     const int index = static_cast<int>(s_.windows.size()) - 1;
     using SpanBlock = Propagation::SpanBlock;
@@ -481,13 +497,10 @@ class Propagator {
         relaxVertex(c, dc, {Predecessor::ThroughWindow, index});
       }
     } else {
-      // C lies just outside the window: the path bent over the window's end is still a valid
-      // upper bound. It is what closes the shadow of a near-flat saddle that is not treated as a
-      // pseudo-source (DistanceSolverOptions::saddleAngleTolerance): the shadow of a saddle with
-      // excess e is a wedge of angle e, so the bent detour is at most about e times the distance.
-      const double end = xc < w.b0 ? w.b0 : w.b1;
-      relaxVertex(c, w.sigma + planarLength(end - w.sx, w.sy) + planarLength(cx - end, cy),
-                  {Predecessor::ThroughWindow, index});
+      // C lies just outside the window: a path bent round the window's end, or at the vertex its
+      // boundary ray runs through, is still a valid upper bound - and the only way into the shadow
+      // of a near-flat saddle that is not a pseudo-source (see bentDistance).
+      relaxVertex(c, bentDistance(w, xc < w.b0 ? 0 : 1, cx, cy), {Predecessor::ThroughWindow, index});
     }
     // Targets inside the face the window enters.
     for (int i = s_.faceFirstTarget[f]; i >= 0; i = s_.nextTarget[i]) {
@@ -498,8 +511,7 @@ class Propagator {
       if (xq >= w.b0 - slack && xq <= w.b1 + slack) {
         d = w.sigma + planarLength(qx - w.sx, qy - w.sy);
       } else {
-        const double end = xq < w.b0 ? w.b0 : w.b1;  // bent over the window's end (upper bound)
-        d = w.sigma + planarLength(end - w.sx, w.sy) + planarLength(qx - end, qy);
+        d = bentDistance(w, xq < w.b0 ? 0 : 1, qx, qy);
       }
       if (d < s_.targetDistance[i]) {
         s_.targetDistance[i] = d;
@@ -517,6 +529,7 @@ class Propagator {
         cw.halfedge = child;
         cw.parent = index;
         cw.sigma = w.sigma;
+        std::copy_n(w.endVertex, 2, cw.endVertex);
         frame.apply(w.sx, w.sy, cw.sx, cw.sy);
         if (cw.sy < 0.0) {
           double px, py;
@@ -545,6 +558,7 @@ class Propagator {
         cw.halfedge = child;
         cw.parent = index;
         cw.sigma = w.sigma;
+        std::copy_n(w.endVertex, 2, cw.endVertex);
         frame.apply(w.sx, w.sy, cw.sx, cw.sy);
         if (cw.sy < 0.0) {
           double px, py;

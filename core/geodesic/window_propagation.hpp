@@ -50,7 +50,7 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
 // edge) enter face(halfedge). sigma is the geodesic distance from the source to the image (0 for
 // the source itself, d(v) for a pseudo-source vertex v).
 //
-// 48 bytes: ~200k windows of a 4k-vertex field are written once and read back at least once, so
+// 56 bytes: ~180k windows of a 4k-vertex field are written once and read back at least once, so
 // their size is memory traffic. The origin is therefore packed into one int.
 struct Window {
   int halfedge = -1;
@@ -60,6 +60,10 @@ struct Window {
   double b0 = 0.0, b1 = 0.0;
   double sx = 0.0, sy = 0.0;
   double sigma = 0.0;
+  // Per end (0: b0, 1: b1): the vertex its boundary ray passes through, -1 if the end was cut
+  // anywhere else (trimming, pruning, a pseudo-source cone). A point just outside the window on that side is reached by
+  // bending at the vertex, not at the end (see Propagator::bentDistance).
+  int endVertex[2] = {-1, -1};
 
   static constexpr int kFromSource = -1;
   static int fromVertex(int v) { return -2 - v; }
@@ -67,7 +71,7 @@ struct Window {
   // For a root window: the pseudo-source vertex its rays come from, or -1 for the source point.
   int rootVertex() const { return parent <= -2 ? -2 - parent : -1; }
 };
-static_assert(sizeof(Window) == 48);
+static_assert(sizeof(Window) == 56);
 
 // How the best value at a vertex or target was obtained (for backtracing paths).
 struct Predecessor {

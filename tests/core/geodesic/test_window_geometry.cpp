@@ -1,5 +1,6 @@
 // The planar pieces of the window propagation with known answers: the cone of directions a
-// shortest path may leave a pseudo-source in, and where its rays cross the opposite edge.
+// shortest path may leave a pseudo-source in, where its rays cross the opposite edge, and the
+// paths bent round a window's end or at the vertex on its boundary ray.
 #include "core/geodesic/window_geometry.hpp"
 
 #include <gtest/gtest.h>
@@ -57,6 +58,99 @@ TEST(WindowGeometry, ConeRaysCrossTheOppositeEdgeWhereTheyShould) {
   const auto [n0, n1] = coneCrossings(0.5, 1e-12, 1.0, kPi - 1e-10, 0.1, 0.2);
   EXPECT_EQ(n0, 0.0);
   EXPECT_EQ(n1, 1.0);
+}
+
+// A window on an edge of length 1, seen from (0, -1) at sigma 0.5, covering [0.2, 0.4]; its end b1
+// has the vertex X on its boundary ray, 0.5 from the source image.
+struct BentCase {
+  Window w;
+  Eigen::Vector2d s{0.0, -1.0}, u, x;
+  BentCase() {
+    w.b0 = 0.2;
+    w.b1 = 0.4;
+    w.sx = 0.0;
+    w.sy = -1.0;
+    w.sigma = 0.5;
+    w.endVertex[1] = 7;
+    u = (Eigen::Vector2d(0.4, 0.0) - s).normalized();
+    x = s + 0.5 * u;
+  }
+  // A point `length` beyond X, turned clockwise (away from the window, past b1) by `angle`.
+  Eigen::Vector2d beyond(double angle, double length) const {
+    const Eigen::Vector2d d(std::cos(angle) * u.x() + std::sin(angle) * u.y(), -std::sin(angle) * u.x() + std::cos(angle) * u.y());
+    return x + length * d;
+  }
+};
+
+TEST(WindowGeometry, ShadowOfASkippedSaddleIsReachedThroughTheSaddle) {
+  const BentCase c;
+  const double excess = 4e-4, tolerance = 7e-4;
+  const BendVertex skipped{1.0, excess, false};  // d(X) = sigma + 0.5: reached along this ray
+  // Within the excess, and within excess + tolerance: exactly d(X) + |X p|.
+  for (const double angle : {0.5 * excess, excess + 0.9 * tolerance}) {
+    const Eigen::Vector2d p = c.beyond(angle, 0.8);
+    EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, &skipped, tolerance), 1.8, 1e-14) << angle;
+  }
+  // Wider than that the segment might cross other vertices: bent round the window's end instead,
+  // sigma + |s end| + |end p|, which is longer.
+  const Eigen::Vector2d wide = c.beyond(excess + 1.2 * tolerance, 0.8);
+  const Eigen::Vector2d end(0.4, 0.0);
+  const double roundTheEnd = 0.5 + (end - c.s).norm() + (wide - end).norm();
+  EXPECT_NEAR(pathBentAt(c.w, 1, wide.x(), wide.y(), 1.0, &skipped, tolerance), roundTheEnd, 1e-14);
+  EXPECT_GT(roundTheEnd, 1.8);
+  // No vertex on the ray, or a pseudo-source there (its own windows cover its shadow): round the end.
+  const Eigen::Vector2d p = c.beyond(0.5 * excess, 0.8);
+  const double pRoundTheEnd = 0.5 + (end - c.s).norm() + (p - end).norm();
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, nullptr, tolerance), pRoundTheEnd, 1e-14);
+  const BendVertex pseudo{1.0, excess, true};
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, &pseudo, tolerance), pRoundTheEnd, 1e-14);
+  // Round the end overestimates a point just past the edge by ~(t e)^2 / 2m; through X it is exact.
+  EXPECT_GT(pRoundTheEnd - 1.8, 1e-9);
+}
+
+TEST(WindowGeometry, BendingAtAVertexReachedElsewhereBendsShortOfItOnTheRay) {
+  // d(X) = 0.9 < sigma + 0.5: a shorter path reached X. The bend is at the point 0.4 along the ray
+  // (sigma + 0.4 = d(X)), still a real path: sigma + 0.4 + |that point - p|.
+  const BentCase c;
+  const BendVertex reachedElsewhere{0.9, 4e-4, false};
+  const Eigen::Vector2d p = c.beyond(2e-4, 0.8);
+  const Eigen::Vector2d bend = c.s + 0.4 * c.u;
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, &reachedElsewhere, 7e-4), 0.9 + (p - bend).norm(), 1e-14);
+}
+
+TEST(WindowGeometry, AnEndAtAnEdgeEndpointBendsThereInAnyDirection) {
+  // The window reaches the edge's to-vertex B = (1, 0): B -> p is an edge of the face, a real path,
+  // whatever the angle and whatever B is.
+  Window w;
+  w.b0 = 0.5;
+  w.b1 = 1.0;
+  w.sx = 0.3;
+  w.sy = -2.0;
+  w.sigma = 0.25;
+  w.endVertex[1] = 3;
+  const double toB = std::hypot(0.7, 2.0);
+  const BendVertex b{0.25 + toB, -0.3, false};  // a convex vertex, even
+  EXPECT_NEAR(pathBentAt(w, 1, 1.4, 0.9, 1.0, &b, 7e-4), 0.25 + toB + std::hypot(0.4, 0.9), 1e-14);
+}
+
+TEST(WindowGeometry, EndVerticesFollowTheEdgeEndpointsAndAreLostWhereAnEndMoves) {
+  MeshTables::Halfedge e{};
+  e.length = 2.0;
+  e.fromVertex = 10;
+  e.toVertex = 11;
+  Window w;
+  w.endVertex[0] = 5;  // inherited from the parent
+  w.endVertex[1] = 6;
+  w.b0 = 0.3;
+  w.b1 = 2.0 - 1e-12;  // at the endpoint up to rounding
+  markEndVertices(w, 0.3, 1.5, e);
+  EXPECT_EQ(w.endVertex[0], 5);   // unchanged interior end keeps the parent's ray vertex
+  EXPECT_EQ(w.endVertex[1], 11);  // at the to-vertex
+  w.b0 = 0.0;
+  w.b1 = 1.2;
+  markEndVertices(w, 0.0, 1.7, e);
+  EXPECT_EQ(w.endVertex[0], 10);  // at the from-vertex
+  EXPECT_EQ(w.endVertex[1], -1);  // trimmed: no vertex on the new end's ray
 }
 
 }  // namespace

@@ -101,6 +101,7 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
   for (int h = 0; h < nh; ++h) shortestEdge[fromVertex[h]] = std::min(shortestEdge[fromVertex[h]], length[h]);
   t.boundaryVertex.assign(t.vertexCount, 0);
   t.pseudoSource.assign(t.vertexCount, 0);
+  t.shadowCone.assign(t.vertexCount, 0.0);
   for (auto vh : mesh.vertices()) {
     const int v = vh.idx();
     t.boundaryVertex[v] = mesh.is_boundary(vh) ? 1 : 0;
@@ -117,6 +118,7 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
       const double excess = t.angleSum[v] - 2.0 * std::numbers::pi;
       const bool skipped = excess <= options.saddleAngleTolerance && excess * reach <= 0.25 * shortestEdge[v];
       t.pseudoSource[v] = excess > 0.0 && !skipped ? 1 : 0;
+      if (excess > 0.0 && skipped) t.shadowCone[v] = excess + options.saddleAngleTolerance;
     }
   }
   return t;

@@ -115,12 +115,11 @@ inline void markEndVertices(Window& w, double b0In, double b1In, const MeshTable
   else if (w.b1 != b1In) w.endVertex[1] = -1;
 }
 
-// The vertex a window end's boundary ray runs through (Window::endVertex): its distance so far, its
-// angle excess (angle sum - 2 pi, or - pi on the boundary) and whether it is a pseudo-source.
+// The vertex a window end's boundary ray runs through (Window::endVertex): its distance so far and
+// the widest bend behind it that pathBentAt takes (MeshTables::shadowCone; 0 = none).
 struct BendVertex {
   double distance;
-  double excess;
-  bool pseudoSource;
+  double shadowCone;
 };
 
 // An upper bound on the distance to (px, py) (frame of w's edge, in the face w enters) whose ray
@@ -139,14 +138,9 @@ struct BendVertex {
 // X's place on the ray is d(X) - sigma from the source image; should X have been reached by a
 // shorter path than this window's (rare), that is a point short of X on the ray, still a real
 // path. The segment from there to p is a real path while it stays in the faces the ray crossed.
-// X is used when it is a skipped saddle and p lies within its excess plus one more skipped
-// excess (`tolerance`) of the ray's direction (the shadow behind X, widened by a skipped saddle
-// inside it), or when X is an endpoint of this edge (then the segment is an edge of the face). A
-// pseudo-source covers its own shadow with windows; wider cones let segments cross other vertices
-// and underestimate (measured: up to 3e-5 on a 1k-vertex patch with X's excess + the tolerance
-// for every X, 6e-7 with this rule).
-inline double pathBentAt(const Window& w, int side, double px, double py, double edgeLength, const BendVertex* x,
-                         double tolerance) {
+// X is used when p lies within X's shadow cone of the ray's direction, or when X is an endpoint of
+// this edge (then the segment is an edge of the face).
+inline double pathBentAt(const Window& w, int side, double px, double py, double edgeLength, const BendVertex* x) {
   const double end = side ? w.b1 : w.b0;
   const double ex = end - w.sx, ey = -w.sy;
   const double toEnd = planarLength(ex, ey);
@@ -156,8 +150,8 @@ inline double pathBentAt(const Window& w, int side, double px, double py, double
     const double vx = px - xx, vy = py - xy;
     const bool onThisEdge = f == 1.0 && (side == 0 ? end == 0.0 : end == edgeLength);
     const double along = ex * vx + ey * vy, across = ex * vy - ey * vx;
-    const double cone = x->excess + tolerance;
-    if (onThisEdge || (!x->pseudoSource && x->excess > 0.0 && along > 0.0 && across * across <= cone * cone * along * along)) {
+    const double cone = x->shadowCone;
+    if (onThisEdge || (along > 0.0 && across * across <= cone * cone * along * along)) {
       return w.sigma + f * toEnd + planarLength(vx, vy);
     }
   }

@@ -419,11 +419,8 @@ class Propagator {
   // (window_geometry.hpp: why that makes skipping near-flat saddles accurate).
   double bentDistance(const Window& w, int side, double px, double py) const {
     const int x = w.endVertex[side];
-    if (x < 0) return pathBentAt(w, side, px, py, t_.he[w.halfedge].length, nullptr, o_.saddleAngleTolerance);
-    const BendVertex vertex{s_.vertexDistance[x],
-                            t_.angleSum[x] - (t_.boundaryVertex[x] ? 1.0 : 2.0) * std::numbers::pi,
-                            t_.pseudoSource[x] != 0};
-    return pathBentAt(w, side, px, py, t_.he[w.halfedge].length, &vertex, o_.saddleAngleTolerance);
+    const BendVertex vertex{x >= 0 ? s_.vertexDistance[x] : 0.0, x >= 0 ? t_.shadowCone[x] : 0.0};
+    return pathBentAt(w, side, px, py, t_.he[w.halfedge].length, x >= 0 ? &vertex : nullptr);
   }
 
   void addWindow(Window& w) {

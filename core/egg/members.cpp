@@ -33,6 +33,9 @@ std::array<double, 2> boundaryAngles(const PlanarQuad& quad, Family family, doub
 
 namespace {
 
+// The smoothing width is at least this many of C's longest sample steps (see placeMembers).
+constexpr double kSigmaInSteps = 1.5;
+
 struct Candidate {
   double t;         // position along the cladding curve (metres, mean of the two sides)
   double priority;  // |C''|
@@ -198,6 +201,16 @@ FamilyMembers placeMembers(const CladdingFunction& cladding, const PlanarQuad& q
   options.validate();
   if (!cladding.bijective())
     throw InfeasiblePatch("cannot place members: the cladding function is not bijective (criterion iii)");
+  // Section 2.4.4 reads the member lengths C along the cladding curve; a NaN or infinite length
+  // would silently drop out of every sign test below (no extremum there, filled members instead).
+  if (cladding.lengths.size() != cladding.points.size())
+    throw InvalidInput("cannot place members: the cladding function has " + std::to_string(cladding.lengths.size()) +
+                       " member lengths for " + std::to_string(cladding.points.size()) + " points");
+  for (size_t k = 0; k < cladding.lengths.size(); ++k)
+    if (!std::isfinite(cladding.lengths[k]))
+      throw InvalidInput("cannot place members: member length C at cladding point " + std::to_string(k) + " (x1 = " +
+                         std::to_string(cladding.points[k].x()) + ", x2 = " + std::to_string(cladding.points[k].y()) +
+                         ") is not finite");
   const double w = options.lamellaWidthM;
   CurveParameter curve{{0.0}, cladding};
   for (size_t k = 1; k < cladding.points.size(); ++k) {
@@ -233,7 +246,18 @@ FamilyMembers placeMembers(const CladdingFunction& cladding, const PlanarQuad& q
     // piecewise-linear intersection carries slope noise at the scale of the map grid that would
     // otherwise show up as spurious curvature extrema (dozens on the bench bump), and features
     // much narrower than the target spacing cannot get members of their own anyway.
-    const double sigma = options.smoothingFraction * target;
+    // Never narrower than 1.5 x the longest step of C's samples: C is piecewise linear, so its
+    // smoothed curvature C_s'' is a sum of Gaussians of width sigma, one per sample, weighted by the
+    // slope change there. With sigma well below the step each sample is a bump of its own and a
+    // curvature extremum (on 40 m sides sampled every 0.4 m, sigma 0.2 m gave 15 curvature members
+    // instead of 4); from about one step on the bumps merge (for equal steps h the ripple is
+    // 2 exp(-2 pi^2 sigma^2 / h^2): 5e-9 at sigma = h, 1e-19 at 1.5 h, margin for uneven steps).
+    // C resolves no feature narrower than its steps, so this costs little; where it applies, the
+    // members depend on the sampling through sigma (steps of 0.4 m instead of 0.2 m on those sides:
+    // same members, curvature extrema moved by up to 8 cm).
+    double longestStep = 0.0;
+    for (size_t k = 1; k < curve.t.size(); ++k) longestStep = std::max(longestStep, curve.t[k] - curve.t[k - 1]);
+    const double sigma = std::max(options.smoothingFraction * target, kSigmaInSteps * longestStep);
     const SmoothedLength smoothed(curve.t, cladding.lengths, sigma);
     const auto tiers = featureCandidates(smoothed, total, sigma, options);
 

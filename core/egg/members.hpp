@@ -16,6 +16,10 @@
 // featureFraction threshold, a gap at a half-integer multiple of the target spacing (the count of
 // filled members), and crowding candidates of different tiers, or near-tied beyond tieBand.
 // A fixed count instead spaces the members equally along the cladding curve.
+// Deviations from Section 2.4.4, which places members at the extrema of C and of its curvature:
+//   - the extrema are those of C smoothed by a Gaussian (smoothingFraction), not of C itself;
+//   - a near-tie (tieBand) places one member between two crowding extrema, weighted by priority,
+//     i.e. at neither extremum.
 #include "core/egg/cladding.hpp"
 #include "core/egg/planar_quad.hpp"
 
@@ -29,7 +33,10 @@ struct MemberOptions {
   double spacingFactor = 8.0;     // automatic: target spacing between members = factor * w
   double featureFraction = 0.1;   // curvature extrema with |C''| below this fraction of the largest are ignored
   // Automatic placement reads C through a Gaussian of standard deviation smoothingFraction * target
-  // spacing: a physical length, so the features found do not depend on how finely C is sampled.
+  // spacing: a physical length, so the features found do not depend on how finely C is sampled,
+  // as long as C's samples are at most sigma / 1.5 apart along the curve. Coarser samples widen the
+  // Gaussian to 1.5 x the longest step (members.cpp: narrower, every sample of the piecewise-linear
+  // C is a curvature extremum of its own); the members are then those of C smoothed over that width.
   // Half the spacing: features of C closer than about one spacing merge (they could not all get
   // members), a narrow feature's curvature extrema land about one spacing from its centre, and on
   // `egg bench grid` sub-millimetre map changes move members by about a millimetre (a quarter of

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace egg {
@@ -164,6 +166,69 @@ TEST(Members, NeitherTheScanNorTheSamplingOfCMovesMembers) {
   EXPECT_LT(largestShift(placeMembers(identityCladding(length), kSquare, 1.0, 1.0, finerScan), reference), 1e-4);
   EXPECT_LT(largestShift(placeMembers(identityCladding(length, 401), kSquare, 1.0, 1.0, featureOptions()), reference),
             1e-4);
+}
+
+// Counts of the members that have each origin.
+std::array<int, 5> originCounts(const FamilyMembers& m) {
+  std::array<int, 5> counts{};
+  for (MemberOrigin origin : m.origin) ++counts[static_cast<size_t>(origin)];
+  return counts;
+}
+
+TEST(Members, SamplingCoarserThanTheSmoothingAddsNoFeatures) {
+  // Sides of 40 m, default lamellas (w = 5 cm, target spacing 0.4 m, smoothing 0.2 m). Sampled
+  // every 0.40 m (100 samples), each slope change of the piecewise-linear C used to be a bump of
+  // the smoothed curvature of its own: 103 members, 15 of them curvature extrema, against 101 and
+  // 4 with 200 samples. The smoothing now spans at least 1.5 sample steps.
+  const PlanarQuad square = *planarQuad({40, 40, 40, 40}, M_PI / 2);
+  const auto place = [&](int n, const MemberOptions& options) {
+    return placeMembers(identityCladding([](double x) { return 40.0 * bumpAndDip(x, 0.3); }, n), square, 40.0, 40.0,
+                        options);
+  };
+  const auto coarse = place(100, {}), finer = place(200, {}), fine = place(2001, {});
+  EXPECT_EQ(originCounts(fine)[static_cast<size_t>(MemberOrigin::CurvatureExtremum)], 4);
+  EXPECT_EQ(originCounts(coarse), originCounts(fine));
+  EXPECT_EQ(originCounts(finer), originCounts(fine));
+  ASSERT_EQ(coarse.x1.size(), finer.x1.size());
+  for (size_t k = 0; k < coarse.x1.size(); ++k) {
+    EXPECT_EQ(coarse.origin[k], finer.origin[k]) << k;
+    // The smoothing differs (0.61 m and 0.30 m), which moves curvature extrema (measured 2.1e-3
+    // of the side) but not the extrema of the symmetric bump and dip (1e-4 = 4 mm).
+    const bool length = coarse.origin[k] == MemberOrigin::LengthExtremum;
+    EXPECT_NEAR(coarse.x1[k], finer.x1[k], length ? 1e-4 : 2.5e-3) << k;  // 2.5e-3: a quarter of the spacing
+  }
+  // The coarse samples change nothing but the smoothing width: 100 samples give the members of a
+  // finely sampled C smoothed over 1.5 steps of 40/99 m (measured 1.9e-4; before, 2 members more).
+  MemberOptions wide;
+  wide.smoothingFraction = 1.5 * (40.0 / 99) / 0.4;
+  EXPECT_LT(largestShift(coarse, place(4001, wide)), 5e-4);
+  // w = 1 mm (smoothing 4 mm) on samples 0.4 m apart: still the 4 curvature members of the bump
+  // and dip, not one per sample.
+  MemberOptions thin;
+  thin.lamellaWidthM = 1e-3;
+  EXPECT_EQ(originCounts(place(100, thin))[static_cast<size_t>(MemberOrigin::CurvatureExtremum)], 4);
+}
+
+TEST(Members, NonFiniteLengthsAreRejected) {
+  // One NaN in C at x = 0.5 used to drop out of every sign test: the bump's member at 0.3 vanished
+  // and filled members took its place. Now it is an error naming the cladding point.
+  for (double bad : {NAN, INFINITY}) {
+    CladdingFunction f = identityCladding([](double x) { return 1.0 + 0.1 * std::exp(-std::pow((x - 0.3) / 0.08, 2)); });
+    f.lengths[100] = bad;  // x = 0.5
+    for (int count : {0, 5}) {
+      MemberOptions options = featureOptions();
+      options.count = count;
+      try {
+        placeMembers(f, kSquare, 1.0, 1.0, options);
+        ADD_FAILURE() << "no exception for C = " << bad << ", count " << count;
+      } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("point 100 (x1 = 0.5"), std::string::npos) << e.what();
+      }
+    }
+  }
+  CladdingFunction f = identityCladding([](double) { return 1.0; });
+  f.lengths.pop_back();
+  EXPECT_THROW(placeMembers(f, kSquare, 1.0, 1.0), InvalidInput);
 }
 
 TEST(Members, RippleFinerThanTheSpacingIsNoFeature) {

@@ -21,9 +21,9 @@ std::vector<std::vector<int>> boundaryLoops(const TriMesh& mesh);
 
 struct BoundaryConnectionOptions {
   // Eq. (4.6) tolerance: D - B below this is "along the boundary", and d(x,t) + d(t,y) - d(x,y)
-  // below it is "through t" (metres). <= 0: automatic, 1e-9 times the loop length (distances are
-  // exact up to rounding; raise it to 1e-6 x loop length when the engine's near-flat-saddle
-  // approximation is on, see DistanceSolverOptions::saddleAngleTolerance).
+  // below it is "through t" (metres). <= 0: automatic, 1e-9 times the loop length, right for
+  // distances of the engine's exact mode; raise it to 1e-5 x loop length for its default, which
+  // skips near-flat saddles (DistanceSolverOptions::saddleAngleTolerance, errors up to ~5e-6).
   double tolerance = 0.0;
 
   void validate() const;  // throws InvalidInput naming the field

@@ -6,8 +6,8 @@
 // (Sections 2.4.2, 3.3.2), the eta check whose threshold is a 0.15 % length difference (2.3.3,
 // 3.4.1), member intersections by summed distance fields (4.5.2) and non-convex boundaries (4.5.3).
 // Approximate methods (edge Dijkstra, fast marching, heat method) are off by 1-17 % and cannot
-// serve a 0.15 % test, so the engine is an exact window propagation (see distance_solver.cpp for
-// the algorithm and why it was chosen).
+// serve a 0.15 % test, so the engine is a window propagation, exact or within ~1e-5 (see
+// window_propagation.cpp for the algorithm, distance_solver.cpp for why it was chosen).
 //
 // Usage:
 //   egg::geodesic::DistanceSolver solver(mesh);                 // precomputes per-mesh tables
@@ -34,9 +34,11 @@ struct DistanceSolverOptions {
   // A saddle below the tolerance (a near-flat one: on a remeshed negatively curved surface almost
   // every vertex is) emits no windows. Behind it lies a shadow wedge as wide as its excess that no
   // window enters; the points in it get their distance by bending at the saddle from the windows
-  // that border the wedge (Propagator::bentDistance in window_propagation.cpp), which is exact up
-  // to what other skipped saddles inside the same shadow add. Near-flat saddles are ~40 % of the
-  // windows and ~60 % of the time of an exact field on the bench bump (4.5k vertices).
+  // that border the wedge (pathBentAt in window_geometry.hpp): exact for one bend, while other
+  // skipped saddles inside the same shadow make it slightly long or, where the straight segment
+  // passes one on its far side, slightly short (second order in the excess; measured to -1e-6).
+  // Near-flat saddles are ~40 % of the windows and ~60 % of the time of an exact field on the bench
+  // bump (4.5k vertices).
   // Error study (2026-12, max relative error against tolerance 0; patch = side-to-side distances
   // of a 6 x 6 m patch over an 8 x 8 m bump with sigma 1.5 m and height h, 9 sources x 100 targets
   // per family, as the distance maps of Section 2.4.2 use them; bench = `egg bench geodesic` bump,
@@ -111,8 +113,11 @@ class DistanceSolver {
   // Distance between two surface points (one propagation).
   double distance(const SurfacePoint& from, const SurfacePoint& to) const;
 
-  // The shortest geodesic from `from` to `to`, traced back through the propagation's windows
-  // (exact up to rounding; length equals distance(from, to)).
+  // The shortest geodesic from `from` to `to`, traced back through the propagation's windows. Its
+  // length equals distance(from, to) to rounding in exact mode; with skipped near-flat saddles
+  // (the default) the path bends at the saddle as the distance does, and where that straight
+  // segment would pass another vertex the traced path goes round it, up to ~1e-5 longer (measured
+  // 5e-6 on a 5.8k-vertex steep bump).
   GeodesicPath path(const SurfacePoint& from, const SurfacePoint& to) const;
 
   int vertexCount() const;

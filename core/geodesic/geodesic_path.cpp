@@ -5,9 +5,13 @@
 // the ray from the target to the window's source image, crossing the window's edge; then the same
 // ray continued through the parent window's face (same image, earlier edge), and so on until the
 // window born at a (pseudo-)source. At a pseudo-source vertex the path bends and continues with
-// whatever gave that vertex its distance. Section 4.5.2 avoids tracing for intersections; the
-// members themselves and the tests still need the polyline.
+// whatever gave that vertex its distance. A point whose distance came from bending at the vertex
+// X on a window end's boundary ray (Predecessor::BentAtVertex) is traced along the straight
+// segment to X's place on the ray first, through the same window chain, then on along the ray.
+// Section 4.5.2 avoids tracing for intersections; the members themselves and the tests still need
+// the polyline.
 #include "core/errors.hpp"
+#include "core/geodesic/window_geometry.hpp"
 #include "core/geodesic/window_propagation.hpp"
 
 #include <algorithm>
@@ -30,6 +34,35 @@ SurfacePoint edgePoint(const MeshTables& t, int h, double x) {
     if (t.faceVerts[f][i] == t.he[h].toVertex) p.barycentric[i] = s;
   }
   return p;
+}
+
+// The point (x, y) of the frame of halfedge h (inside its face) as a surface point.
+SurfacePoint framePoint(const MeshTables& t, int h, double x, double y) {
+  const auto& e = t.he[h];
+  const double wc = std::clamp(y / e.oppositeY, 0.0, 1.0);
+  const double wb = std::clamp((x - wc * e.oppositeX) / e.length, 0.0, 1.0 - wc);
+  SurfacePoint p;
+  p.face = e.face;
+  for (int i = 0; i < 3; ++i) {
+    const int v = t.faceVerts[e.face][i];
+    p.barycentric[i] = v == e.fromVertex ? 1.0 - wb - wc : v == e.toVertex ? wb : wc;
+  }
+  return p;
+}
+
+// From the frame of a child window's halfedge to its parent's (the child's edge is an edge of the
+// parent's face): rigid, the inverse of the propagation's FrameChange.
+void toParentFrame(const MeshTables& t, int child, int parent, double& x, double& y) {
+  const int tw = t.twin(child);
+  const double bx = t.he[parent].length, cx = t.he[parent].oppositeX, cy = t.he[parent].oppositeY;
+  const double length = t.he[tw].length;
+  // The child's frame: origin at its from-vertex (C, or A at the parent's origin), x along its edge.
+  const bool fromC = tw == t.he[parent].next;
+  const double ox = fromC ? cx : 0.0, oy = fromC ? cy : 0.0;
+  const double dx = fromC ? (bx - cx) / length : cx / length, dy = fromC ? -cy / length : cy / length;
+  const double px = ox + x * dx - y * dy, py = oy + x * dy + y * dx;
+  x = px;
+  y = py;
 }
 
 SurfacePoint vertexPointFromTables(const MeshTables& t, int v) {
@@ -62,13 +95,52 @@ class Tracer {
         v = pred.index;
         continue;
       }
-      if (pred.kind == Predecessor::ThroughWindow) {
+      if (pred.kind == Predecessor::ThroughWindow || pred.kind == Predecessor::BentAtVertex) {
         const int h = s_.windows[pred.index].halfedge;
-        fromWindow(pred.index, t_.he[h].oppositeX, t_.he[h].oppositeY);
+        fromWindow(pred, t_.he[h].oppositeX, t_.he[h].oppositeY);
       }
       return;  // Source (or None for an unreachable vertex)
     }
     throw SolverFailure("geodesic: path backtracing did not reach the source");
+  }
+
+  // (qx, qy): the current path point in the frame of the predecessor window's halfedge (inside
+  // its face). A bent path runs straight to the bend point (bx, by) first: its crossings with the
+  // window chain's edges, until the bend point lies in the current window's face.
+  void fromWindow(Predecessor pred, double qx, double qy) {
+    int wi = pred.index;
+    if (pred.kind == Predecessor::BentAtVertex) {
+      const Window& w0 = s_.windows[wi];
+      const int x = w0.endVertex[static_cast<int>(pred.side)];
+      double bx, by;
+      bendPoint(w0, pred.side, s_.vertexDistance[x], bx, by);
+      for (;;) {
+        const Window& w = s_.windows[wi];
+        const int h = w.halfedge;
+        const double L = t_.he[h].length;
+        if (by >= -1e-12 * L || w.isRoot()) {
+          // The bend is in this face, or on its edge (then it is the vertex X).
+          if (std::abs(by) <= 1e-12 * L) {
+            reversed.push_back(edgePoint(t_, h, bx));
+            if (std::min(bx, L - bx) <= 1e-9 * L) bends.push_back(x);
+          } else {
+            reversed.push_back(framePoint(t_, h, bx, by));
+          }
+          qx = bx;
+          qy = by;
+          break;
+        }
+        if (qy > 1e-12 * L) {
+          qx = std::clamp(qx + (bx - qx) * qy / (qy - by), 0.0, L);
+          reversed.push_back(edgePoint(t_, h, qx));
+        }
+        qy = 0.0;
+        toParentFrame(t_, h, s_.windows[w.parent].halfedge, qx, qy);
+        toParentFrame(t_, h, s_.windows[w.parent].halfedge, bx, by);
+        wi = w.parent;
+      }
+    }
+    fromWindow(wi, qx, qy);
   }
 
   // (qx, qy): the current path point in the frame of window `wi`'s halfedge (inside its face).
@@ -120,7 +192,7 @@ GeodesicPath tracePath(const MeshTables& t, const Propagation& s, int targetInde
   const Predecessor pred = s.targetPredecessor[targetIndex];
   if (pred.kind == Predecessor::Vertex) {
     tracer.fromVertex(pred.index);
-  } else if (pred.kind == Predecessor::ThroughWindow) {
+  } else if (pred.kind == Predecessor::ThroughWindow || pred.kind == Predecessor::BentAtVertex) {
     const Window& w = s.windows[pred.index];
     const int f = t.he[w.halfedge].face;
     const int h = w.halfedge;
@@ -134,7 +206,7 @@ GeodesicPath tracePath(const MeshTables& t, const Propagation& s, int targetInde
         qy += wt[i] * t.he[h].oppositeY;
       }
     }
-    tracer.fromWindow(pred.index, qx, qy);
+    tracer.fromWindow(pred, qx, qy);
   }
   tracer.reversed.push_back(source);
   // Source first; drop repeated points (a vertex source is also the end of the vertex chain).

@@ -86,18 +86,24 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
     std::vector<int> fill(t.outgoingStart.begin(), t.outgoingStart.end() - 1);
     for (int h = 0; h < nh; ++h) t.outgoing[fill[fromVertex[h]]++] = h;
   }
-  // A skipped saddle's shadow is a wedge as wide as its excess e times the distance travelled; it
-  // is closed by bending at the saddle (Propagator::bentDistance) from the faces next to it, which
-  // works while the wedge stays narrower than a face. Distances stay below twice the bounding-box
-  // diagonal on any patch-like surface, so a saddle is skipped only if e times that stays below a
-  // quarter of its shortest edge; on very fine meshes this takes over from the tolerance.
+  // A skipped saddle's shadow is a wedge as wide as its shadow cone (excess + tolerance) times the
+  // distance travelled; it is closed by bending at the saddle (pathBentAt, window_geometry.hpp)
+  // from the faces next to it, which works while the wedge stays narrower than a face. Distances
+  // stay below twice the bounding-box diagonal on any patch-like surface, so a saddle is skipped
+  // only if its cone times that stays below a quarter of the shorter of its own shortest edge and
+  // the mesh's 10th-percentile edge (faces along the shadow may be smaller than its own on a
+  // graded mesh). On very fine meshes this takes over from the tolerance.
   Eigen::Vector3d lo = t.positions[0], hi = t.positions[0];
   for (const auto& p : t.positions) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
   const double reach = 2.0 * (hi - lo).norm();
-  std::vector<double> shortestEdge(t.vertexCount, std::numeric_limits<double>::infinity());
+  std::vector<double> edges;
+  for (int h = 0; h < nh; h += 2) edges.push_back(length[h]);
+  std::nth_element(edges.begin(), edges.begin() + edges.size() / 10, edges.end());
+  const double shortEdge = edges[edges.size() / 10];
+  std::vector<double> shortestEdge(t.vertexCount, shortEdge);
   for (int h = 0; h < nh; ++h) shortestEdge[fromVertex[h]] = std::min(shortestEdge[fromVertex[h]], length[h]);
   t.boundaryVertex.assign(t.vertexCount, 0);
   t.pseudoSource.assign(t.vertexCount, 0);
@@ -116,9 +122,10 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
       t.pseudoSource[v] = t.angleSum[v] > std::numbers::pi ? 1 : 0;
     } else {
       const double excess = t.angleSum[v] - 2.0 * std::numbers::pi;
-      const bool skipped = excess <= options.saddleAngleTolerance && excess * reach <= 0.25 * shortestEdge[v];
+      const double cone = excess + options.saddleAngleTolerance;
+      const bool skipped = excess <= options.saddleAngleTolerance && cone * reach <= 0.25 * shortestEdge[v];
       t.pseudoSource[v] = excess > 0.0 && !skipped ? 1 : 0;
-      if (excess > 0.0 && skipped) t.shadowCone[v] = excess + options.saddleAngleTolerance;
+      if (excess > 0.0 && skipped) t.shadowCone[v] = cone;
     }
   }
   return t;

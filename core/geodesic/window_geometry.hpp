@@ -10,6 +10,7 @@
 #include <limits>
 #include <numbers>
 #include <utility>
+#include <vector>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -83,6 +84,29 @@ inline bool allowedFanInterval(double a0, double a1, double backAngle, double to
   return lo <= hi;
 }
 
+// The angle, counter-clockwise around the vertex at p from the start of its face fan `fan` (the
+// outgoing halfedges of its faces in order), of the 3D direction `dir` lying in one of those faces;
+// -1 if it lies in none. The face is the one whose corner angle equals the sum of the angles from
+// `dir` to its two edges, up to rounding; the best match is taken.
+inline double fanAngleOf(const MeshTables& t, const std::vector<int>& fan, const Eigen::Vector3d& p,
+                         const Eigen::Vector3d& dir) {
+  double cumulative = 0.0, best = -1.0, bestMismatch = std::numeric_limits<double>::infinity();
+  for (int h : fan) {
+    const Eigen::Vector3d ex = t.positions[t.he[h].toVertex] - p;
+    const Eigen::Vector3d ey = t.positions[t.he[t.he[h].next].toVertex] - p;
+    const double corner = std::atan2(t.he[h].oppositeY, t.he[h].oppositeX);
+    const double ax = std::atan2(ex.cross(dir).norm(), ex.dot(dir));
+    const double ay = std::atan2(ey.cross(dir).norm(), ey.dot(dir));
+    const double mismatch = std::abs(ax + ay - corner);
+    if (mismatch < bestMismatch) {
+      bestMismatch = mismatch;
+      best = cumulative + std::min(ax, corner);
+    }
+    cumulative += corner;
+  }
+  return bestMismatch < 1e-6 ? best : -1.0;
+}
+
 // Where the rays from v turned psi0 and psi1 (0 <= psi0 <= psi1 <= corner, measured from v->B)
 // cross the edge B->C opposite v, as distances from B; v sits at (ox, oy), oy > 0, in the frame of
 // that edge (B at the origin, C at (length, 0)) and `corner` is the face's angle at v. A needle
@@ -122,9 +146,9 @@ struct BendVertex {
   double shadowCone;
 };
 
-// An upper bound on the distance to (px, py) (frame of w's edge, in the face w enters) whose ray
-// from the source image misses the window past end `side` (0: before b0, 1: beyond b1): a path
-// bent round that end, or at the vertex X on the end's boundary ray (`x`, nullptr if none).
+// The length of a path to (px, py) (frame of w's edge, in the face w enters) whose ray from the
+// source image misses the window past end `side` (0: before b0, 1: beyond b1): bent round that
+// end, or at the vertex X on the end's boundary ray (`x`, nullptr if none).
 //
 // Bending at X is what makes skipping near-flat saddles (DistanceSolverOptions::
 // saddleAngleTolerance) accurate: a skipped saddle X with excess e leaves behind it a shadow wedge
@@ -135,27 +159,38 @@ struct BendVertex {
 // a steep bump at 3.9k vertices, side-to-side distances at tolerance 7e-4: 1.7e-4 relative error
 // bending at ends, 1.1e-6 bending at X.
 //
-// X's place on the ray is d(X) - sigma from the source image; should X have been reached by a
-// shorter path than this window's (rare), that is a point short of X on the ray, still a real
-// path. The segment from there to p is a real path while it stays in the faces the ray crossed.
-// X is used when p lies within X's shadow cone of the ray's direction, or when X is an endpoint of
-// this edge (then the segment is an edge of the face).
-inline double pathBentAt(const Window& w, int side, double px, double py, double edgeLength, const BendVertex* x) {
+// X's place on the ray is d(X) - sigma from the source image (bendPoint); should X have been
+// reached by a shorter path than this window's (rare), that is a point short of X on the ray. The
+// segment from there to p is a real path while it stays in the faces the ray crossed, so X is used
+// only when p lies within X's shadow cone (MeshTables::shadowCone) of the ray's direction. The
+// value is then not always an upper bound: a segment passing another skipped saddle on its far
+// side is shorter than any surface path, by a second-order amount (measured down to -6.7e-6
+// relative on a wavy surface; exact mode, with no cones, never bends at X).
+inline void bendPoint(const Window& w, int side, double distanceToX, double& bx, double& by) {
   const double end = side ? w.b1 : w.b0;
   const double ex = end - w.sx, ey = -w.sy;
   const double toEnd = planarLength(ex, ey);
-  if (x && toEnd > 0.0) {
-    const double f = std::clamp(x->distance - w.sigma, 0.0, toEnd) / toEnd;
-    const double xx = w.sx + f * ex, xy = w.sy + f * ey;
-    const double vx = px - xx, vy = py - xy;
-    const bool onThisEdge = f == 1.0 && (side == 0 ? end == 0.0 : end == edgeLength);
+  const double f = toEnd > 0.0 ? std::clamp(distanceToX - w.sigma, 0.0, toEnd) / toEnd : 1.0;
+  bx = w.sx + f * ex;
+  by = w.sy + f * ey;
+}
+
+// Sets atVertex when the path bends at X rather than round the end.
+inline double pathBentAt(const Window& w, int side, double px, double py, const BendVertex* x, bool& atVertex) {
+  const double end = side ? w.b1 : w.b0;
+  atVertex = false;
+  if (x && x->shadowCone > 0.0) {
+    double bx, by;
+    bendPoint(w, side, x->distance, bx, by);
+    const double ex = end - w.sx, ey = -w.sy;
+    const double vx = px - bx, vy = py - by;
     const double along = ex * vx + ey * vy, across = ex * vy - ey * vx;
-    const double cone = x->shadowCone;
-    if (onThisEdge || (along > 0.0 && across * across <= cone * cone * along * along)) {
-      return w.sigma + f * toEnd + planarLength(vx, vy);
+    if (along > 0.0 && across * across <= x->shadowCone * x->shadowCone * along * along) {
+      atVertex = true;
+      return x->distance + planarLength(vx, vy);
     }
   }
-  return w.sigma + toEnd + planarLength(px - end, py);
+  return w.sigma + planarLength(end - w.sx, w.sy) + planarLength(px - end, py);
 }
 
 inline double windowMinDistance(const Window& w) {

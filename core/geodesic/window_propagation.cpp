@@ -24,10 +24,6 @@
 // saddle is a pseudo-source (saddleAngleTolerance = 0). By default near-flat saddles are not:
 // their shadows are reached by bending at them (pathBentAt in window_geometry.hpp), 2-3x faster
 // at ~1e-6 relative error (the study is in distance_solver.hpp).
-// Edge Dijkstra, fast marching and the heat method were ruled out by the accuracy bar (Section
-// 2.3.3 needs 0.15 %); a geodesic graph (saddle vertex graph, Dijkstra over exact local windows)
-// was measured on the 3.6k bump: 5.5e-3 max relative error with 84 edges per vertex, 2.4e-3 with
-// 206 - far from the 1e-4 bar, because its paths bend at vertices on long saddle-free stretches.
 //
 // Arbitrary target points are evaluated on the fly: every window entering a target's face offers
 // sigma + |s q| if its ray to q crosses the window, and every vertex v of the face offers
@@ -326,11 +322,20 @@ class Propagator {
   double incomingAngle(int v) const {
     const Predecessor pred = s_.vertexPredecessor[v];
     Eigen::Vector3d back;
-    if (pred.kind == Predecessor::ThroughWindow) {
+    if (pred.kind == Predecessor::ThroughWindow || pred.kind == Predecessor::BentAtVertex) {
+      // Where the path entered v's face: on the window's ray, or on the segment from the bend.
       const Window& w = s_.windows[pred.index];
       const int h = w.halfedge;
       const double L = t_.he[h].length;
-      const double xc = std::clamp(rayCrossing(w.sx, w.sy, t_.he[h].oppositeX, t_.he[h].oppositeY), w.b0, w.b1);
+      const double cx = t_.he[h].oppositeX, cy = t_.he[h].oppositeY;
+      double xc;
+      if (pred.kind == Predecessor::ThroughWindow) {
+        xc = std::clamp(rayCrossing(w.sx, w.sy, cx, cy), w.b0, w.b1);
+      } else {
+        double bx, by;
+        bendPoint(w, pred.side, s_.vertexDistance[w.endVertex[static_cast<int>(pred.side)]], bx, by);
+        xc = std::clamp(rayCrossing(bx, by, cx, cy), 0.0, L);
+      }
       back = t_.positions[t_.he[h].fromVertex] + (xc / L) * (t_.positions[t_.he[h].toVertex] - t_.positions[t_.he[h].fromVertex]);
     } else if (pred.kind == Predecessor::Vertex) {
       back = t_.positions[pred.index];
@@ -342,23 +347,7 @@ class Propagator {
     const Eigen::Vector3d p = t_.positions[v];
     const Eigen::Vector3d dir = back - p;
     if (dir.squaredNorm() == 0.0) return -1.0;
-    // Find the face of the fan containing the back direction: the one whose corner angle equals
-    // the sum of the angles to its two edges (up to rounding); take the best match.
-    double cumulative = 0.0, best = -1.0, bestMismatch = kInfinity;
-    for (int h : fan_) {
-      const Eigen::Vector3d ex = t_.positions[t_.he[h].toVertex] - p;
-      const Eigen::Vector3d ey = t_.positions[t_.he[t_.he[h].next].toVertex] - p;
-      const double corner = std::atan2(t_.he[h].oppositeY, t_.he[h].oppositeX);
-      const double ax = std::atan2(ex.cross(dir).norm(), ex.dot(dir));
-      const double ay = std::atan2(ey.cross(dir).norm(), ey.dot(dir));
-      const double mismatch = std::abs(ax + ay - corner);
-      if (mismatch < bestMismatch) {
-        bestMismatch = mismatch;
-        best = cumulative + std::min(ax, corner);
-      }
-      cumulative += corner;
-    }
-    return bestMismatch < 1e-6 ? best : -1.0;
+    return fanAngleOf(t_, fan_, p, dir);
   }
 
   std::vector<int> fan_;
@@ -417,12 +406,11 @@ class Propagator {
   // A path to (px, py) (frame of w's edge, in the face w enters) whose ray from the source image
   // misses the window past end `side`, bent round that end or at the vertex on its boundary ray
   // (window_geometry.hpp: why that makes skipping near-flat saddles accurate).
-  double bentDistance(const Window& w, int side, double px, double py) const {
+  double bentDistance(const Window& w, int side, double px, double py, bool& atVertex) const {
     const int x = w.endVertex[side];
     const BendVertex vertex{x >= 0 ? s_.vertexDistance[x] : 0.0, x >= 0 ? t_.shadowCone[x] : 0.0};
-    return pathBentAt(w, side, px, py, t_.he[w.halfedge].length, x >= 0 ? &vertex : nullptr);
+    return pathBentAt(w, side, px, py, x >= 0 ? &vertex : nullptr, atVertex);
   }
-
   void addWindow(Window& w) {
     const double b0In = w.b0, b1In = w.b1;
     if (!prune(w)) return;
@@ -494,10 +482,13 @@ class Propagator {
         relaxVertex(c, dc, {Predecessor::ThroughWindow, index});
       }
     } else {
-      // C lies just outside the window: a path bent round the window's end, or at the vertex its
-      // boundary ray runs through, is still a valid upper bound - and the only way into the shadow
-      // of a near-flat saddle that is not a pseudo-source (see bentDistance).
-      relaxVertex(c, bentDistance(w, xc < w.b0 ? 0 : 1, cx, cy), {Predecessor::ThroughWindow, index});
+      // C lies just outside the window: a path bent round the window's end (a valid upper bound),
+      // or at the vertex its boundary ray runs through - the only way into the shadow of a
+      // near-flat saddle that is not a pseudo-source (see pathBentAt).
+      const int side = xc < w.b0 ? 0 : 1;
+      bool atVertex;
+      const double d = bentDistance(w, side, cx, cy, atVertex);
+      relaxVertex(c, d, Predecessor::throughWindow(index, side, atVertex));
     }
     // Targets inside the face the window enters.
     for (int i = s_.faceFirstTarget[f]; i >= 0; i = s_.nextTarget[i]) {
@@ -505,14 +496,18 @@ class Propagator {
       frameCoordinates(f, h, s_.targetWeights[i], qx, qy);
       const double xq = rayCrossing(w.sx, w.sy, qx, qy);
       double d;
+      Predecessor pred{Predecessor::ThroughWindow, index};
       if (xq >= w.b0 - slack && xq <= w.b1 + slack) {
         d = w.sigma + planarLength(qx - w.sx, qy - w.sy);
       } else {
-        d = bentDistance(w, xq < w.b0 ? 0 : 1, qx, qy);
+        const int side = xq < w.b0 ? 0 : 1;
+        bool atVertex;
+        d = bentDistance(w, side, qx, qy, atVertex);
+        pred = Predecessor::throughWindow(index, side, atVertex);
       }
       if (d < s_.targetDistance[i]) {
         s_.targetDistance[i] = d;
-        s_.targetPredecessor[i] = {Predecessor::ThroughWindow, index};
+        s_.targetPredecessor[i] = pred;
       }
     }
     // Child on edge A-C (rays left of the opposite vertex), on the halfedge A->C of the next face.

@@ -81,10 +81,18 @@ struct Window {
 static_assert(sizeof(Window) == 56);
 
 // How the best value at a vertex or target was obtained (for backtracing paths).
+// BentAtVertex: through window `index`, whose end `side` the path passed to bend at the vertex on
+// that end's boundary ray (pathBentAt in window_geometry.hpp).
 struct Predecessor {
-  enum Kind : char { None, Source, Vertex, ThroughWindow };
+  enum Kind : char { None, Source, Vertex, ThroughWindow, BentAtVertex };
   Kind kind = None;
   int index = -1;  // vertex or window index
+  char side = 0;   // BentAtVertex: which end of the window
+
+  static Predecessor throughWindow(int window, int side, bool bentAtVertex) {
+    return bentAtVertex ? Predecessor{BentAtVertex, window, static_cast<char>(side)}
+                        : Predecessor{ThroughWindow, window};
+  }
 };
 
 // Per-thread scratch space and the result of one propagation.

@@ -87,35 +87,45 @@ TEST(WindowGeometry, ShadowOfASkippedSaddleIsReachedThroughTheSaddle) {
   const double excess = 4e-4, tolerance = 7e-4;
   const BendVertex skipped{1.0, excess + tolerance};  // d(X) = sigma + 0.5: reached along this ray
   // Within the excess, and within excess + tolerance: exactly d(X) + |X p|.
+  bool atVertex = false;
   for (const double angle : {0.5 * excess, excess + 0.9 * tolerance}) {
     const Eigen::Vector2d p = c.beyond(angle, 0.8);
-    EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, &skipped), 1.8, 1e-14) << angle;
+    EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), &skipped, atVertex), 1.8, 1e-14) << angle;
+    EXPECT_TRUE(atVertex);
   }
   // Wider than that the segment might cross other vertices: bent round the window's end instead,
   // sigma + |s end| + |end p|, which is longer.
   const Eigen::Vector2d wide = c.beyond(excess + 1.2 * tolerance, 0.8);
   const Eigen::Vector2d end(0.4, 0.0);
   const double roundTheEnd = 0.5 + (end - c.s).norm() + (wide - end).norm();
-  EXPECT_NEAR(pathBentAt(c.w, 1, wide.x(), wide.y(), 1.0, &skipped), roundTheEnd, 1e-14);
+  EXPECT_NEAR(pathBentAt(c.w, 1, wide.x(), wide.y(), &skipped, atVertex), roundTheEnd, 1e-14);
+  EXPECT_FALSE(atVertex);
   EXPECT_GT(roundTheEnd, 1.8);
   // No vertex on the ray, or a pseudo-source there (its own windows cover its shadow): round the end.
   const Eigen::Vector2d p = c.beyond(0.5 * excess, 0.8);
   const double pRoundTheEnd = 0.5 + (end - c.s).norm() + (p - end).norm();
-  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, nullptr), pRoundTheEnd, 1e-14);
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), nullptr, atVertex), pRoundTheEnd, 1e-14);
+  EXPECT_FALSE(atVertex);
   const BendVertex pseudo{1.0, 0.0};  // a pseudo-source's shadow cone is 0
-  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, &pseudo), pRoundTheEnd, 1e-14);
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), &pseudo, atVertex), pRoundTheEnd, 1e-14);
+  EXPECT_FALSE(atVertex);
   // Round the end overestimates a point just past the edge by ~(t e)^2 / 2m; through X it is exact.
   EXPECT_GT(pRoundTheEnd - 1.8, 1e-9);
 }
 
 TEST(WindowGeometry, BendingAtAVertexReachedElsewhereBendsShortOfItOnTheRay) {
   // d(X) = 0.9 < sigma + 0.5: a shorter path reached X. The bend is at the point 0.4 along the ray
-  // (sigma + 0.4 = d(X)), still a real path: sigma + 0.4 + |that point - p|.
+  // (sigma + 0.4 = d(X)): sigma + 0.4 + |that point - p|, the path the tracer follows.
   const BentCase c;
   const BendVertex reachedElsewhere{0.9, 4e-4 + 7e-4};
   const Eigen::Vector2d p = c.beyond(2e-4, 0.8);
   const Eigen::Vector2d bend = c.s + 0.4 * c.u;
-  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, &reachedElsewhere), 0.9 + (p - bend).norm(), 1e-14);
+  bool atVertex = false;
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), &reachedElsewhere, atVertex), 0.9 + (p - bend).norm(), 1e-14);
+  EXPECT_TRUE(atVertex);
+  double bx = 0, by = 0;
+  bendPoint(c.w, 1, 0.9, bx, by);
+  EXPECT_NEAR((Eigen::Vector2d(bx, by) - bend).norm(), 0.0, 1e-15);
 }
 
 TEST(WindowGeometry, AnEndAtAnEdgeEndpointBendsThereInAnyDirection) {
@@ -130,7 +140,9 @@ TEST(WindowGeometry, AnEndAtAnEdgeEndpointBendsThereInAnyDirection) {
   w.endVertex[1] = 3;
   const double toB = std::hypot(0.7, 2.0);
   const BendVertex b{0.25 + toB, 0.0};  // a convex vertex, even
-  EXPECT_NEAR(pathBentAt(w, 1, 1.4, 0.9, 1.0, &b), 0.25 + toB + std::hypot(0.4, 0.9), 1e-14);
+  bool atVertex = true;
+  EXPECT_NEAR(pathBentAt(w, 1, 1.4, 0.9, &b, atVertex), 0.25 + toB + std::hypot(0.4, 0.9), 1e-14);
+  EXPECT_FALSE(atVertex);  // round the end, which is B
 }
 
 TEST(WindowGeometry, EndVerticesFollowTheEdgeEndpointsAndAreLostWhereAnEndMoves) {

@@ -86,13 +86,14 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
     std::vector<int> fill(t.outgoingStart.begin(), t.outgoingStart.end() - 1);
     for (int h = 0; h < nh; ++h) t.outgoing[fill[fromVertex[h]]++] = h;
   }
-  // A skipped saddle's shadow is a wedge as wide as its shadow cone (excess + tolerance) times the
-  // distance travelled; it is closed by bending at the saddle (pathBentAt, window_geometry.hpp)
-  // from the faces next to it, which works while the wedge stays narrower than a face. Distances
-  // stay below twice the bounding-box diagonal on any patch-like surface, so a saddle is skipped
-  // only if its cone times that stays below a quarter of the shorter of its own shortest edge and
-  // the mesh's 10th-percentile edge (faces along the shadow may be smaller than its own on a
-  // graded mesh). On very fine meshes this takes over from the tolerance.
+  // A skipped saddle's shadow is a wedge as wide as its excess times the distance travelled; it is
+  // closed by bending at the saddle (pathBentAt, window_geometry.hpp) from the faces next to it,
+  // which works while the wedge stays narrower than a face. Distances stay below twice the
+  // bounding-box diagonal on any patch-like surface, so a saddle is skipped only if its excess
+  // times that stays below a quarter of the shorter of its own shortest edge and the mesh's
+  // 10th-percentile edge (faces along the shadow may be smaller than its own on a graded mesh). On
+  // very fine meshes this takes over from the tolerance. (Bounding the whole bend cone, excess +
+  // tolerance, instead would skip nothing past ~10k vertices: 3.5x slower at 17.7k on the bench.)
   Eigen::Vector3d lo = t.positions[0], hi = t.positions[0];
   for (const auto& p : t.positions) {
     lo = lo.cwiseMin(p);
@@ -123,7 +124,7 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
     } else {
       const double excess = t.angleSum[v] - 2.0 * std::numbers::pi;
       const double cone = excess + options.saddleAngleTolerance;
-      const bool skipped = excess <= options.saddleAngleTolerance && cone * reach <= 0.25 * shortestEdge[v];
+      const bool skipped = excess <= options.saddleAngleTolerance && excess * reach <= 0.25 * shortestEdge[v];
       t.pseudoSource[v] = excess > 0.0 && !skipped ? 1 : 0;
       if (excess > 0.0 && skipped) t.shadowCone[v] = cone;
     }

@@ -60,24 +60,31 @@ TEST(WindowGeometry, ConeRaysCrossTheOppositeEdgeWhereTheyShould) {
   EXPECT_EQ(n1, 1.0);
 }
 
+// A window over [b0, b1] seen from (sx, sy) at sigma, with vertex `endVertex1` on the ray of b1.
+Window windowWithEndVertex(double b0, double b1, double sx, double sy, double sigma, int endVertex1) {
+  Window w;
+  w.b0 = b0;
+  w.b1 = b1;
+  w.sx = sx;
+  w.sy = sy;
+  w.sigma = sigma;
+  w.endVertex[1] = endVertex1;
+  return w;
+}
+
 // A window on an edge of length 1, seen from (0, -1) at sigma 0.5, covering [0.2, 0.4]; its end b1
 // has the vertex X on its boundary ray, 0.5 from the source image.
 struct BentCase {
-  Window w;
+  Window w = windowWithEndVertex(0.2, 0.4, 0.0, -1.0, 0.5, 7);
   Eigen::Vector2d s{0.0, -1.0}, u, x;
   BentCase() {
-    w.b0 = 0.2;
-    w.b1 = 0.4;
-    w.sx = 0.0;
-    w.sy = -1.0;
-    w.sigma = 0.5;
-    w.endVertex[1] = 7;
     u = (Eigen::Vector2d(0.4, 0.0) - s).normalized();
     x = s + 0.5 * u;
   }
   // A point `length` beyond X, turned clockwise (away from the window, past b1) by `angle`.
   Eigen::Vector2d beyond(double angle, double length) const {
-    const Eigen::Vector2d d(std::cos(angle) * u.x() + std::sin(angle) * u.y(), -std::sin(angle) * u.x() + std::cos(angle) * u.y());
+    const double cosine = std::cos(angle), sine = std::sin(angle);
+    const Eigen::Vector2d d(cosine * u.x() + sine * u.y(), -sine * u.x() + cosine * u.y());
     return x + length * d;
   }
 };
@@ -131,13 +138,7 @@ TEST(WindowGeometry, BendingAtAVertexReachedElsewhereBendsShortOfItOnTheRay) {
 TEST(WindowGeometry, AnEndAtAnEdgeEndpointBendsThereInAnyDirection) {
   // The window reaches the edge's to-vertex B = (1, 0): B -> p is an edge of the face, a real path,
   // whatever the angle and whatever B is.
-  Window w;
-  w.b0 = 0.5;
-  w.b1 = 1.0;
-  w.sx = 0.3;
-  w.sy = -2.0;
-  w.sigma = 0.25;
-  w.endVertex[1] = 3;
+  const Window w = windowWithEndVertex(0.5, 1.0, 0.3, -2.0, 0.25, 3);
   const double toB = std::hypot(0.7, 2.0);
   const BendVertex b{0.25 + toB, 0.0};  // a convex vertex, even
   bool atVertex = true;

@@ -176,7 +176,11 @@ inline void bendPoint(const Window& w, int side, double distanceToX, double& bx,
 }
 
 // Sets atVertex when the path bends at X rather than round the end.
-inline double pathBentAt(const Window& w, int side, double px, double py, const BendVertex* x, bool& atVertex) {
+// The segment must also cross w's own edge within it (edgeLength): a point next to a vertex of the
+// face could otherwise be reached past that vertex, which no surface path does (measured before
+// this check: a traced path 5.7e-5 longer than the distance on a 5.8k-vertex steep bump).
+inline double pathBentAt(const Window& w, int side, double px, double py, double edgeLength, const BendVertex* x,
+                         bool& atVertex) {
   const double end = side ? w.b1 : w.b0;
   atVertex = false;
   if (x && x->shadowCone > 0.0) {
@@ -185,7 +189,9 @@ inline double pathBentAt(const Window& w, int side, double px, double py, const 
     const double ex = end - w.sx, ey = -w.sy;
     const double vx = px - bx, vy = py - by;
     const double along = ex * vx + ey * vy, across = ex * vy - ey * vx;
-    if (along > 0.0 && across * across <= x->shadowCone * x->shadowCone * along * along) {
+    const double crossing = by < 0.0 ? rayCrossing(bx, by, px, py) : bx;
+    if (along > 0.0 && across * across <= x->shadowCone * x->shadowCone * along * along && crossing >= 0.0 &&
+        crossing <= edgeLength) {
       atVertex = true;
       return x->distance + planarLength(vx, vy);
     }

@@ -409,7 +409,7 @@ class Propagator {
   double bentDistance(const Window& w, int side, double px, double py, bool& atVertex) const {
     const int x = w.endVertex[side];
     const BendVertex vertex{x >= 0 ? s_.vertexDistance[x] : 0.0, x >= 0 ? t_.shadowCone[x] : 0.0};
-    return pathBentAt(w, side, px, py, x >= 0 ? &vertex : nullptr, atVertex);
+    return pathBentAt(w, side, px, py, t_.he[w.halfedge].length, x >= 0 ? &vertex : nullptr, atVertex);
   }
   void addWindow(Window& w) {
     const double b0In = w.b0, b1In = w.b1;

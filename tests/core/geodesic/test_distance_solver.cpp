@@ -243,7 +243,7 @@ TEST(DistanceSolver, DefaultStaysWithinItsErrorFromAnySource) {
       under = std::min(under, (ours[i] - reference[i]) / reference[i]);
     }
   }
-  EXPECT_LT(over, 2e-6);
+  EXPECT_LT(over, 1e-7);  // aiming from the straight ray instead of the bend: +2e-7
   EXPECT_GT(under, -1e-5);
 }
 

@@ -132,19 +132,26 @@ TEST(GeodesicPath, UnreachableTargetGivesAnInfiniteEmptyPath) {
 
 // A remeshed steep bump (5.8k vertices): most vertices are near-flat saddles that the default
 // skips, so many distances come from bending at a saddle (Predecessor::BentAtVertex). The traced
-// path bends at that saddle too. Measured: path length within 5.2e-6 of the distance; tracing round
-// the window's end instead, as the first version did, gave 6.9e-4 (vertex 4194 to 3922).
+// path bends at that saddle too. Vertex targets, and edge and face points 1 % from a vertex, where a
+// bent segment could pass the vertex on its far side. Measured: within 4.4e-6 of the distance.
+// Tracing round the window's end instead gave 6.9e-4 (vertex 4194 to 3922); accepting a bend whose
+// segment crosses the target's edge past its end gave 5.7e-5 (face 8675 to the edge point of 9056).
 TEST(GeodesicPath, LengthFollowsTheDistanceWhereSkippedSaddlesBendThePath) {
   const TriMesh mesh =
       samples::generateSample("bump", {{"height", 2.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.12);
   const DistanceSolver solver(mesh);
-  const int n = solver.vertexCount();
-  std::vector<std::pair<int, int>> pairs = {{4194, 3922}};
-  for (int k = 1; k < 16; ++k) pairs.push_back({(k * 7919) % n, (k * 104729 + 17) % n});
-  for (const auto& [a, b] : pairs) {
-    const SurfacePoint from = vertexPoint(mesh, a), to = vertexPoint(mesh, b);
+  const int n = solver.vertexCount(), faces = solver.faceCount();
+  std::vector<std::pair<SurfacePoint, SurfacePoint>> pairs = {
+      {vertexPoint(mesh, 4194), vertexPoint(mesh, 3922)},
+      {facePoint(8675, 0.099, 0.839, 0.062), facePoint(9056, 0.989, 0.011, 0.0)}};
+  for (int k = 1; k < 12; ++k) {
+    pairs.push_back({vertexPoint(mesh, (k * 7919) % n), vertexPoint(mesh, (k * 104729 + 17) % n)});
+    pairs.push_back({facePoint((k * 7919) % faces, 0.3, 0.3, 0.4), facePoint((k * 104729 + 17) % faces, 0.989, 0.011, 0.0)});
+    pairs.push_back({facePoint((k * 3301) % faces, 0.2, 0.5, 0.3), facePoint((k * 6007 + 5) % faces, 0.99, 0.006, 0.004)});
+  }
+  for (const auto& [from, to] : pairs) {
     const double d = solver.distance(from, to);
-    EXPECT_NEAR(solver.path(from, to).length, d, 2e-5 * d) << a << " -> " << b;
+    EXPECT_NEAR(solver.path(from, to).length, d, 2e-5 * d) << from.face << " -> " << to.face;
   }
 }
 

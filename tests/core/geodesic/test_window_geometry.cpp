@@ -97,7 +97,7 @@ TEST(WindowGeometry, ShadowOfASkippedSaddleIsReachedThroughTheSaddle) {
   bool atVertex = false;
   for (const double angle : {0.5 * excess, excess + 0.9 * tolerance}) {
     const Eigen::Vector2d p = c.beyond(angle, 0.8);
-    EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), &skipped, atVertex), 1.8, 1e-14) << angle;
+    EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, &skipped, atVertex), 1.8, 1e-14) << angle;
     EXPECT_TRUE(atVertex);
   }
   // Wider than that the segment might cross other vertices: bent round the window's end instead,
@@ -105,17 +105,23 @@ TEST(WindowGeometry, ShadowOfASkippedSaddleIsReachedThroughTheSaddle) {
   const Eigen::Vector2d wide = c.beyond(excess + 1.2 * tolerance, 0.8);
   const Eigen::Vector2d end(0.4, 0.0);
   const double roundTheEnd = 0.5 + (end - c.s).norm() + (wide - end).norm();
-  EXPECT_NEAR(pathBentAt(c.w, 1, wide.x(), wide.y(), &skipped, atVertex), roundTheEnd, 1e-14);
+  EXPECT_NEAR(pathBentAt(c.w, 1, wide.x(), wide.y(), 1.0, &skipped, atVertex), roundTheEnd, 1e-14);
   EXPECT_FALSE(atVertex);
   EXPECT_GT(roundTheEnd, 1.8);
   // No vertex on the ray, or a pseudo-source there (its own windows cover its shadow): round the end.
   const Eigen::Vector2d p = c.beyond(0.5 * excess, 0.8);
   const double pRoundTheEnd = 0.5 + (end - c.s).norm() + (p - end).norm();
-  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), nullptr, atVertex), pRoundTheEnd, 1e-14);
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, nullptr, atVertex), pRoundTheEnd, 1e-14);
   EXPECT_FALSE(atVertex);
   const BendVertex pseudo{1.0, 0.0};  // a pseudo-source's shadow cone is 0
-  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), &pseudo, atVertex), pRoundTheEnd, 1e-14);
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, &pseudo, atVertex), pRoundTheEnd, 1e-14);
   EXPECT_FALSE(atVertex);
+  // Not if the segment from X would cross this edge past its end (beyond a vertex of the face):
+  // the edge ends 1e-5 past the window, the segment crosses it ~1e-4 past.
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 0.40001, &skipped, atVertex), pRoundTheEnd, 1e-14);
+  EXPECT_FALSE(atVertex);
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 0.41, &skipped, atVertex), 1.8, 1e-14);
+  EXPECT_TRUE(atVertex);
   // Round the end overestimates a point just past the edge by ~(t e)^2 / 2m; through X it is exact.
   EXPECT_GT(pRoundTheEnd - 1.8, 1e-9);
 }
@@ -128,7 +134,7 @@ TEST(WindowGeometry, BendingAtAVertexReachedElsewhereBendsShortOfItOnTheRay) {
   const Eigen::Vector2d p = c.beyond(2e-4, 0.8);
   const Eigen::Vector2d bend = c.s + 0.4 * c.u;
   bool atVertex = false;
-  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), &reachedElsewhere, atVertex), 0.9 + (p - bend).norm(), 1e-14);
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, &reachedElsewhere, atVertex), 0.9 + (p - bend).norm(), 1e-14);
   EXPECT_TRUE(atVertex);
   double bx = 0, by = 0;
   bendPoint(c.w, 1, 0.9, bx, by);
@@ -142,7 +148,7 @@ TEST(WindowGeometry, AnEndAtAnEdgeEndpointBendsThereInAnyDirection) {
   const double toB = std::hypot(0.7, 2.0);
   const BendVertex b{0.25 + toB, 0.0};  // a convex vertex, even
   bool atVertex = true;
-  EXPECT_NEAR(pathBentAt(w, 1, 1.4, 0.9, &b, atVertex), 0.25 + toB + std::hypot(0.4, 0.9), 1e-14);
+  EXPECT_NEAR(pathBentAt(w, 1, 1.4, 0.9, 1.0, &b, atVertex), 0.25 + toB + std::hypot(0.4, 0.9), 1e-14);
   EXPECT_FALSE(atVertex);  // round the end, which is B
 }
 

@@ -23,7 +23,7 @@ struct BoundaryConnectionOptions {
   // Eq. (4.6) tolerance: D - B below this is "along the boundary", and d(x,t) + d(t,y) - d(x,y)
   // below it is "through t" (metres). <= 0: automatic, 1e-9 times the loop length, right for
   // distances of the engine's exact mode; raise it to 1e-5 x loop length for its default, which
-  // skips near-flat saddles (DistanceSolverOptions::saddleAngleTolerance, errors up to ~5e-6).
+  // skips near-flat saddles (DistanceSolverOptions::saddleAngleTolerance, errors up to ~1e-5).
   double tolerance = 0.0;
 
   void validate() const;  // throws InvalidInput naming the field

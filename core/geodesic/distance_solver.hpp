@@ -36,7 +36,8 @@ struct DistanceSolverOptions {
   // window enters; the points in it get their distance by bending at the saddle from the windows
   // that border the wedge (pathBentAt in window_geometry.hpp): exact for one bend, while other
   // skipped saddles inside the same shadow make it slightly long or, where the straight segment
-  // passes one on its far side, slightly short (second order in the excess; measured to -1e-6).
+  // passes one on its far side, slightly short (second order in the excess; measured from -1.1e-6
+  // to +8e-6, the latter on a hypar where an under-estimated pseudo-source shut out a window).
   // Near-flat saddles are ~40 % of the windows and ~60 % of the time of an exact field on the bench
   // bump (4.5k vertices).
   // Error study (2026-12, max relative error against tolerance 0; patch = side-to-side distances
@@ -45,9 +46,11 @@ struct DistanceSolverOptions {
   // side sources to all vertices):
   //   tolerance   patch h = 2 m              patch h = 3 m      bench bump
   //               1k      3.9k    15k        1.1k     4.5k      1k      4.5k    17.7k
-  //   7e-4        6.2e-7  1.1e-6  3.9e-6     2.9e-8   4.5e-6    4.2e-7  5.8e-7  2.9e-7
+  //   7e-4        6.2e-7  1.1e-6  3.3e-7     2.9e-8   4.5e-6    4.1e-7  5.8e-7  2.9e-7
   //   1e-3        1.3e-6  9.3e-6  6.4e-5     1.0e-6   3.8e-5    1.5e-6  8.2e-7  4.8e-7
   //   2e-3        5.2e-6  9.3e-6  6.4e-5     1.2e-4   9.6e-5    4.1e-6  1.9e-6  1.1e-6
+  // (The 1e-3 and 2e-3 rows were measured before the review fixes of the bend: aiming pseudo-source
+  // cones from the bend, and the edge check.)
   // Time per field at 7e-4 against tolerance 0: 0.40 (bench, 4.5k), 0.47 (patch 3.9k), 0.34 (15k).
   // Bending at the window's end instead of at the saddle, as before, gave 1.7e-4 (patch h = 2 m,
   // 3.9k) at 7e-4, and 3e-5 at 15k even at 1e-4; the bar (Sections 2.3.3, 3.4.1) is 1e-4. The
@@ -116,8 +119,8 @@ class DistanceSolver {
   // The shortest geodesic from `from` to `to`, traced back through the propagation's windows. Its
   // length equals distance(from, to) to rounding in exact mode; with skipped near-flat saddles
   // (the default) the path bends at the saddle as the distance does, and where that straight
-  // segment would pass another vertex the traced path goes round it, up to ~1e-5 longer (measured
-  // 5e-6 on a 5.8k-vertex steep bump).
+  // segment would pass another vertex the traced path goes round it, a little longer (reviewed on
+  // bump, hypar and waves samples with vertex, edge and face targets: up to 7e-6; tested: 2e-5).
   GeodesicPath path(const SurfacePoint& from, const SurfacePoint& to) const;
 
   int vertexCount() const;

@@ -1,4 +1,4 @@
-// Single-source geodesic distances on a triangle mesh by window propagation (exact, or within ~1e-6).
+// Single-source geodesic distances on a triangle mesh by window propagation (exact, or within 1e-5).
 //
 // Algorithm (Chen-Han / ICH family: Mitchell-Mount-Papadimitriou 1987, Chen & Han 1990, Xin & Wang
 // 2009 "Improving Chen and Han's algorithm on the discrete geodesic problem"):
@@ -21,9 +21,8 @@
 //  * Each window is pruned once, when it is added (see propagateWindow()).
 // A strictly dominated part never carries a shortest path, so the shortest path's window chain
 // always survives and the result is the exact polyhedral distance (up to rounding) when every
-// saddle is a pseudo-source (saddleAngleTolerance = 0). By default near-flat saddles are not:
-// their shadows are reached by bending at them (pathBentAt in window_geometry.hpp), 2-3x faster
-// at ~1e-6 relative error (the study is in distance_solver.hpp).
+// saddle is a pseudo-source (saddleAngleTolerance = 0). By default near-flat saddles are not: bent
+// at instead (pathBentAt), 2-3x faster at ~1e-6 relative error, 8e-6 at worst (distance_solver.hpp).
 //
 // Arbitrary target points are evaluated on the fly: every window entering a target's face offers
 // sigma + |s q| if its ray to q crosses the window, and every vertex v of the face offers
@@ -411,6 +410,7 @@ class Propagator {
     const BendVertex vertex{x >= 0 ? s_.vertexDistance[x] : 0.0, x >= 0 ? t_.shadowCone[x] : 0.0};
     return pathBentAt(w, side, px, py, t_.he[w.halfedge].length, x >= 0 ? &vertex : nullptr, atVertex);
   }
+
   void addWindow(Window& w) {
     const double b0In = w.b0, b1In = w.b1;
     if (!prune(w)) return;

@@ -107,6 +107,7 @@ struct BenchArgs {
   int threads = 2;
   int timedSources = 8;
   std::vector<int> cgalSources = {3, 2, 1};
+  std::vector<double> saddleTolerances;  // error-against-time table over these; empty = none
   std::string csv;
   bool json = false;
 };
@@ -165,6 +166,53 @@ SurfacePoint intoFace(SurfacePoint p) {
   for (int i = 0; i < 3; ++i) p.barycentric[i] = std::max(p.barycentric[i], 1e-10);
   p.barycentric /= p.barycentric.sum();
   return p;
+}
+
+// Error against run time over DistanceSolverOptions::saddleAngleTolerance, with the exact mode
+// (tolerance 0) of the same run as the reference: per tolerance, the median thread CPU time per
+// field, the windows created, and the worst and mean relative errors at the vertices (farther than
+// two mean edges) and at the opposite side's points (side-to-side, as the distance maps use them).
+nlohmann::json toleranceTable(const TriMesh& mesh, const std::vector<SurfacePoint>& sources,
+                              const std::vector<SurfacePoint>& targets, const std::vector<double>& tolerances) {
+  geodesic::DistanceSolverOptions exactOptions;
+  exactOptions.saddleAngleTolerance = 0.0;
+  const geodesic::DistanceSolver exact(mesh, exactOptions);
+  std::vector<geodesic::DistanceField> reference;
+  for (const auto& s : sources) reference.push_back(exact.distances(s, targets));
+  nlohmann::json rows = nlohmann::json::array();
+  for (const double tolerance : tolerances) {
+    geodesic::DistanceSolverOptions options;
+    options.saddleAngleTolerance = tolerance;
+    const geodesic::DistanceSolver solver(mesh, options);
+    std::vector<double> ms;
+    double windows = 0.0, worstVertex = 0.0, sumVertex = 0.0, worstSide = 0.0;
+    long counted = 0;
+    for (size_t i = 0; i < sources.size(); ++i) {
+      const double t0 = threadCpuSeconds();
+      const auto field = solver.distances(sources[i], targets);
+      ms.push_back(1e3 * (threadCpuSeconds() - t0));
+      windows += static_cast<double>(field.windowsCreated);
+      const auto& ref = reference[i];
+      for (size_t v = 0; v < ref.vertexDistances.size(); ++v) {
+        if (!(ref.vertexDistances[v] > 2.0 * solver.meanEdgeLength()) || !std::isfinite(ref.vertexDistances[v])) continue;
+        const double e = std::abs(field.vertexDistances[v] - ref.vertexDistances[v]) / ref.vertexDistances[v];
+        worstVertex = std::max(worstVertex, e);
+        sumVertex += e;
+        ++counted;
+      }
+      for (size_t j = 0; j < targets.size(); ++j) {
+        const double e = std::abs(field.targetDistances[j] - ref.targetDistances[j]) / ref.targetDistances[j];
+        worstSide = std::max(worstSide, e);
+      }
+    }
+    rows.push_back({{"saddle_angle_tolerance_rad", tolerance},
+                    {"ms_per_source", median(ms)},
+                    {"windows_per_source", windows / static_cast<double>(sources.size())},
+                    {"max_relative_error_vertices", worstVertex},
+                    {"mean_relative_error_vertices", counted ? sumVertex / static_cast<double>(counted) : 0.0},
+                    {"max_relative_error_side_to_side", worstSide}});
+  }
+  return rows;
 }
 
 int runBench(const BenchArgs& args) {
@@ -246,6 +294,29 @@ int runBench(const BenchArgs& args) {
                     {"peak_rss_mb", c.rss}});
   }
   std::cout << fmt::format("peak RSS with CGAL: {:.0f} MB\n", peakRssMb());
+  nlohmann::json toleranceRows = nlohmann::json::array();
+  if (!args.saddleTolerances.empty()) {
+    std::cout << "\nerror against time by saddleAngleTolerance (reference: tolerance 0 in the same run; "
+                 "vertices farther than 2 mean edges; side = the opposite side's points)\n";
+    std::cout << fmt::format("{:>7} {:>10} {:>11} {:>9} {:>12} {:>13} {:>12}\n", "verts", "tolerance", "ms/src",
+                             "windows", "max rel err", "mean rel err", "side max err");
+    for (const Case& c : cases) {
+      const int count = std::min<int>(std::max(args.timedSources, 1), static_cast<int>(c.sources.size()));
+      std::vector<SurfacePoint> sources;
+      for (int i = 0; i < count; ++i) sources.push_back(intoFace(c.sources[(2 * i + 1) * c.sources.size() / (2 * count)]));
+      const auto targets = sidePoints(c.mesh, args.sources, true);
+      for (auto& row : toleranceTable(c.mesh, sources, targets, args.saddleTolerances)) {
+        std::cout << fmt::format("{:>7} {:>10.2g} {:>11.2f} {:>9.0f} {:>12.2e} {:>13.2e} {:>12.2e}\n",
+                                 c.mesh.n_vertices(), row["saddle_angle_tolerance_rad"].get<double>(),
+                                 row["ms_per_source"].get<double>(), row["windows_per_source"].get<double>(),
+                                 row["max_relative_error_vertices"].get<double>(),
+                                 row["mean_relative_error_vertices"].get<double>(),
+                                 row["max_relative_error_side_to_side"].get<double>());
+        row["vertices"] = c.mesh.n_vertices();
+        toleranceRows.push_back(row);
+      }
+    }
+  }
   if (!args.csv.empty()) {
     std::ostringstream file;
     file << "vertices,ours_ms_per_source,cgal_ms_per_source,speedup,max_relative_error_vs_cgal,precompute_seconds,"
@@ -260,7 +331,10 @@ int runBench(const BenchArgs& args) {
     }
     writeFileAtomically(args.csv, file.str());
   }
-  if (args.json) std::cout << rows.dump(2) << "\n";
+  if (args.json) {
+    std::cout << (args.saddleTolerances.empty() ? rows : nlohmann::json{{"sizes", rows}, {"saddle_tolerance", toleranceRows}}).dump(2)
+              << "\n";
+  }
   return kExitOk;
 }
 
@@ -288,6 +362,11 @@ void registerGeodesicBench(CLI::App& bench, Action& action) {
   cmd->add_option("--threads", args->threads, "threads of the distance map")->check(CLI::PositiveNumber);
   cmd->add_option("--timed-sources", args->timedSources, "single-thread sources timed for ms per source");
   cmd->add_option("--cgal-sources", args->cgalSources, "CGAL sources per size (0 skips CGAL)")->delimiter(',');
+  cmd->add_option("--saddle-tolerance", args->saddleTolerances,
+                  "also tabulate error against time over these saddleAngleTolerance values (radians; 0 = exact), "
+                  "reference: the exact mode of the same run")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 0.0999));
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_flag("--json", args->json, "also print the table as JSON");
   cmd->callback([args, &action] { action = [args] { return runBench(*args); }; });

@@ -186,5 +186,24 @@ TEST_F(Cli, UnwritableOutputIsAFailureNamingTheFile) {
   EXPECT_NE(e.err.find("plane.obj"), std::string::npos) << e.err;
 }
 
+TEST_F(Cli, GeodesicBenchTabulatesErrorAgainstTimeOverTheSaddleTolerance) {
+  // The exact mode is the reference of its own run (error 0); the default stays inside the 1e-4 bar.
+  const Outcome o = runEgg({"bench", "geodesic", "--sizes", "400", "--cgal-sources", "0", "--sources", "8",
+                            "--timed-sources", "3", "--saddle-tolerance", "0,7e-4", "--json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const auto start = o.out.find("\n{");
+  ASSERT_NE(start, std::string::npos) << o.out;
+  const auto table = nlohmann::json::parse(o.out.substr(start + 1))["saddle_tolerance"];
+  ASSERT_EQ(table.size(), 2u);
+  EXPECT_EQ(table[0]["max_relative_error_vertices"].get<double>(), 0.0);
+  EXPECT_EQ(table[0]["max_relative_error_side_to_side"].get<double>(), 0.0);
+  EXPECT_LT(table[1]["max_relative_error_vertices"].get<double>(), 1e-4);
+  EXPECT_LT(table[1]["max_relative_error_side_to_side"].get<double>(), 1e-4);
+  EXPECT_GT(table[0]["windows_per_source"].get<double>(), 0.0);
+  const Outcome bad = runEgg({"bench", "geodesic", "--saddle-tolerance", "-1"});
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.err.find("--saddle-tolerance"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace egg::app

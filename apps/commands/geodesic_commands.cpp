@@ -343,7 +343,8 @@ int runBench(const BenchArgs& args) {
 void registerGeodesicCommand(CLI::App& parent, Action& action) {
   auto args = std::make_shared<GeodesicArgs>();
   auto* cmd = parent.add_subcommand(
-      "geodesic", "Exact geodesic distances from a point on SURFACE to every vertex, written as x,y,z,distance CSV");
+      "geodesic", "Geodesic distances (the polyhedral distance, within 1e-5) from a point on SURFACE to every "
+                  "vertex, written as x,y,z,distance CSV");
   cmd->add_option("SURFACE", args->surface, "sample name, mesh file, or scene file (its surface)")->required();
   cmd->add_option("--source", args->source, "source point x,y,z in metres (snapped to the surface)")->required();
   cmd->add_option("--out", args->out, "output CSV (x,y,z,distance per vertex; inf if unreachable)")->required();
@@ -354,7 +355,7 @@ void registerGeodesicCommand(CLI::App& parent, Action& action) {
 void registerGeodesicBench(CLI::App& bench, Action& action) {
   auto args = std::make_shared<BenchArgs>();
   auto* cmd = bench.add_subcommand(
-      "geodesic", "Exact geodesic engine vs CGAL Surface_mesh_shortest_path on the bump sample: ms per source, "
+      "geodesic", "Geodesic engine vs CGAL's exact Surface_mesh_shortest_path on the bump sample: ms per source, "
                   "speed-up, max error, distance-map wall time, precomputation, peak RSS");
   cmd->add_option("--sizes", args->sizes, "approximate vertex counts of the bump patches")->delimiter(',');
   cmd->add_option("--sources", args->sources, "sources (and targets) of the timed distance map")

@@ -1,4 +1,5 @@
 #include "core/egg/members.hpp"
+#include "core/egg/illinois_bracket.hpp"
 
 #include "core/errors.hpp"
 
@@ -109,25 +110,18 @@ class SmoothedLength {
 };
 
 // The root of f in [a, b], where f(a) and f(b) lie on opposite sides of zero, to within tol:
-// Illinois false position (superlinear, never leaves the bracket).
+// Illinois false position (superlinear, never leaves the bracket; illinois_bracket.hpp).
 template <class Function>
 double bracketedRoot(const Function& f, double a, double fa, double b, double fb, double tol) {
+  IllinoisBracket bracket{a, b, fa, fb};
   double c = a, previous = b;
-  int side = 0;
   for (int iteration = 0; iteration < 200; ++iteration) {
-    c = fb != fa ? std::clamp((a * fb - b * fa) / (fb - fa), a, b) : 0.5 * (a + b);
+    c = bracket.gb != bracket.ga ? std::clamp(bracket.falsePosition(), bracket.a, bracket.b)
+                                 : 0.5 * (bracket.a + bracket.b);
     const double fc = f(c);
-    if (fc == 0.0 || std::abs(c - previous) < tol || b - a < tol) return c;
+    if (fc == 0.0 || std::abs(c - previous) < tol || bracket.b - bracket.a < tol) return c;
     previous = c;
-    if ((fc > 0) == (fb > 0)) {
-      b = c, fb = fc;
-      if (side == -1) fa *= 0.5;
-      side = -1;
-    } else {
-      a = c, fa = fc;
-      if (side == 1) fb *= 0.5;
-      side = 1;
-    }
+    bracket.replace(c, fc, (fc > 0) == (bracket.gb > 0));
   }
   return c;
 }

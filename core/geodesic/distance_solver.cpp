@@ -110,13 +110,15 @@ std::vector<DistanceField> DistanceSolver::distances(const std::vector<SurfacePo
 }
 
 double DistanceSolver::distance(const SurfacePoint& from, const SurfacePoint& to) const {
-  return distances(from, {to}).targetDistances[0];
+  detail::Propagation& state = threadScratch();
+  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true);
+  return state.targetDistance[0];
 }
 
 GeodesicPath DistanceSolver::path(const SurfacePoint& from, const SurfacePoint& to) const {
   // The thread's scratch, as for distances(): a fresh state would fault in megabytes per path.
   detail::Propagation& state = threadScratch();
-  detail::propagate(*tables_, options_, from, {to}, state);
+  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true);
   return detail::tracePath(*tables_, state, 0, from, to);
 }
 

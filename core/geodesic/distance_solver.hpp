@@ -113,10 +113,13 @@ class DistanceSolver {
   std::vector<DistanceField> distances(const std::vector<SurfacePoint>& sources,
                                        const std::vector<SurfacePoint>& targets = {}) const;
 
-  // Distance between two surface points (one propagation).
+  // Distance between two surface points: one propagation directed at `to` (A*, goal_bound.hpp),
+  // which stops once `to` is final and sweeps only about the ellipse d(from, p) + |p to| <=
+  // d(from, to); the value is the full field's.
   double distance(const SurfacePoint& from, const SurfacePoint& to) const;
 
-  // The shortest geodesic from `from` to `to`, traced back through the propagation's windows. Its
+  // The shortest geodesic from `from` to `to`, traced back through the windows of a propagation
+  // directed at `to` (as distance()). Its
   // length equals distance(from, to) to rounding in exact mode; with skipped near-flat saddles
   // (the default) the path bends at the saddle as the distance does, and where that straight
   // segment would pass another vertex the traced path goes round it, a little longer (reviewed on

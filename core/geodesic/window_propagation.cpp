@@ -19,15 +19,14 @@
 //    root. (Xin-Wang's tests against the two opposite vertices are left out: measured, they
 //    almost never fire once the others are in place; see prune().)
 //  * Each window is pruned once, when it is added (see propagateWindow()).
-// A strictly dominated part never carries a shortest path, so the shortest path's window chain
-// always survives and the result is the exact polyhedral distance (up to rounding) when every
-// saddle is a pseudo-source (saddleAngleTolerance = 0). By default near-flat saddles are not: bent
-// at instead (pathBentAt), 2-3x faster at ~1e-6 relative error, 8e-6 at worst (distance_solver.hpp).
-//
-// Arbitrary target points are evaluated on the fly: every window entering a target's face offers
-// sigma + |s q| if its ray to q crosses the window, and every vertex v of the face offers
-// d(v) + |v q| at the end. Paths are traced back through the window parents (Window::parent).
+// A strictly dominated part never carries a shortest path, so the result is the exact polyhedral
+// distance (to rounding) when every saddle is a pseudo-source (saddleAngleTolerance = 0); by
+// default near-flat saddles are bent at instead (pathBentAt): 2-3x faster, 8e-6 at worst.
+// Targets: every window entering a target's face offers sigma + |s q| if its ray to q crosses
+// it, every vertex v of the face d(v) + |v q| at the end; paths are traced back through
+// Window::parent. A directed query queues by d + chord to the targets (goal_bound.hpp).
 #include "core/geodesic/window_propagation.hpp"
+#include "core/geodesic/goal_bound.hpp"
 #include "core/geodesic/window_geometry.hpp"
 
 #include "core/errors.hpp"
@@ -45,7 +44,7 @@ class Propagator {
  public:
   Propagator(const MeshTables& t, const DistanceSolverOptions& o, Propagation& s) : t_(t), o_(o), s_(s) {}
 
-  void run(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) {
+  void run(const SurfacePoint& source, const std::vector<SurfacePoint>& targets, bool directed) {
     reset(targets);  // cleans up after itself if a target is invalid
     // The scratch is reused by the thread's next query (thread_local): whatever happens below
     // (bad source, bad_alloc), leave its per-face target buckets clean, or that query would
@@ -56,12 +55,14 @@ class Propagator {
         for (int f : s.targetFace) s.faceFirstTarget[f] = -1;
       }
     } clean{s_};
+    if (directed) directed_.set(t_, s_);
     seed(source);
     while (!s_.queue.empty()) {
       const auto entry = s_.queue.pop();
+      if (goal_.active() && entry.key >= directed_.farthestBound(t_, s_)) break;  // targets final
       if (entry.item < 0) {
         const int v = -entry.item - 1;
-        if (s_.fired[v] || entry.key != s_.vertexDistance[v]) continue;
+        if (s_.fired[v] || entry.key != vertexKey(v)) continue;
         fire(v);
       } else {
         propagateWindow(entry.item);
@@ -74,6 +75,16 @@ class Propagator {
   const MeshTables& t_;
   const DistanceSolverOptions& o_;
   Propagation& s_;
+  DirectedTargets directed_;  // empty (a full field) unless the query is directed at its targets
+  const GoalBound& goal_ = directed_.goal;
+
+  double vertexKey(int v) const { return s_.vertexDistance[v] + (goal_.active() ? goal_.toPoint(t_.positions[v]) : 0.0); }
+  double windowKey(const Window& w) const {
+    if (!goal_.active()) return windowMinDistance(w);
+    const auto& e = t_.he[w.halfedge];
+    return windowMinDistance(w) +
+           goal_.toSegment(t_.positions[e.fromVertex], t_.positions[e.toVertex], w.b0 / e.length, w.b1 / e.length);
+  }
 
   void reset(const std::vector<SurfacePoint>& targets) {
     s_.vertexDistance.assign(t_.vertexCount, kInfinity);
@@ -129,20 +140,18 @@ class Propagator {
     if (!(d < s_.vertexDistance[v])) return;
     s_.vertexDistance[v] = d;
     s_.vertexPredecessor[v] = pred;
-    if (t_.pseudoSource[v] && !s_.fired[v]) push(d, -v - 1);
+    if (t_.pseudoSource[v] && !s_.fired[v]) push(vertexKey(v), -v - 1);
   }
 
   // Position of barycentric weights (in face circulator order) in the frame of halfedge h of face f.
   void frameCoordinates(int f, int h, const Eigen::Vector3d& w, double& x, double& y) const {
     const auto& fv = t_.faceVerts[f];
     const int a = t_.he[h].fromVertex, b = t_.he[h].toVertex;
-    double wa = 0, wb = 0, wc = 0;
+    double wb = 0, wc = 0;  // the from-vertex sits at the frame's origin
     for (int i = 0; i < 3; ++i) {
-      if (fv[i] == a) wa = w[i];
-      else if (fv[i] == b) wb = w[i];
-      else wc = w[i];
+      if (fv[i] == b) wb = w[i];
+      else if (fv[i] != a) wc = w[i];
     }
-    (void)wa;
     x = wb * t_.he[h].length + wc * t_.he[h].oppositeX;
     y = wc * t_.he[h].oppositeY;
   }
@@ -171,7 +180,7 @@ class Propagator {
       s_.sourcePosition = t_.positions[v];
       s_.vertexDistance[v] = 0.0;
       s_.vertexPredecessor[v] = {Predecessor::Source, -1};
-      push(0.0, -v - 1);
+      push(vertexKey(v), -v - 1);
       seedTargetsInFaces();
       return;
     }
@@ -394,11 +403,9 @@ class Propagator {
       }
     }
     if (w.b1 - w.b0 <= o_.minWindowWidthRelative * L) return false;
-    // Xin-Wang's other two tests (the vertex ahead in the face entered and the one behind the
-    // edge, whose dominated region is convex) are not made: measured over the whole propagation
-    // they killed 0 and 264 of 185k windows on a 3.6k-vertex bump (0, 85 of 57k on a hypar; 397,
-    // 930 of 15M on the Great Court), and cost a lookup and two square roots per window - the
-    // one-split rule and the trimming against the edge's other windows do that work already.
+    // Xin-Wang's other two tests (the vertex ahead, the one behind the edge) are not made: they
+    // killed 0 and 264 of 185k windows on a 3.6k-vertex bump (397, 930 of 15M on the Great Court)
+    // for a lookup and two square roots per window; one-split and trimming do that work already.
     return true;
   }
 
@@ -445,16 +452,13 @@ class Propagator {
     block.lo = std::min(block.lo, w.b0);
     block.hi = std::max(block.hi, w.b1);
     ++block.count;
-    push(windowMinDistance(w), index);
+    push(windowKey(w), index);
   }
 
   void propagateWindow(int index) {
-    // No second pruning here: the window was pruned when it was added, and by the time it is
-    // popped its vertices' distances have almost never dropped further (on a 3.6k-vertex bump,
-    // 24 of 183k windows would have died here and 3.6k been trimmed); re-pruning every pop cost
-    // ~10 % of the propagation for that. The result stays exact: an unpruned window is still a
-    // real path, so the distances it offers, the one-split rule it feeds and the trimming of
-    // later windows against it all remain valid - it only costs its own propagation.
+    // No second pruning here (pruned when added): on a 3.6k-vertex bump re-pruning at the pop would
+    // kill 24 of 183k windows for ~10 % of the time. An unpruned window is still a real path, so
+    // what it offers and the pruning it feeds stay valid: it only costs its own propagation.
     const Window w = s_.windows[index];
     const int h = w.halfedge;
     const int f = t_.he[h].face;
@@ -593,8 +597,8 @@ class Propagator {
 }  // namespace
 
 void propagate(const MeshTables& tables, const DistanceSolverOptions& options, const SurfacePoint& source,
-               const std::vector<SurfacePoint>& targets, Propagation& state) {
-  Propagator(tables, options, state).run(source, targets);
+               const std::vector<SurfacePoint>& targets, Propagation& state, bool directedAtTargets) {
+  Propagator(tables, options, state).run(source, targets, directedAtTargets && !targets.empty());
 }
 
 }  // namespace egg::geodesic::detail

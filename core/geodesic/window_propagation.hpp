@@ -137,9 +137,11 @@ struct Propagation {
 };
 
 // Runs the exact propagation from `source` with `targets`. Leaves the windows in `state` for
-// backtracing.
+// backtracing. directedAtTargets (with targets): queued by distance plus the chord to the nearest
+// target and stopped once every target is final (goal_bound.hpp); the target distances and paths
+// are the full field's, the vertex distances only upper bounds away from the targets.
 void propagate(const MeshTables& tables, const DistanceSolverOptions& options, const SurfacePoint& source,
-               const std::vector<SurfacePoint>& targets, Propagation& state);
+               const std::vector<SurfacePoint>& targets, Propagation& state, bool directedAtTargets = false);
 
 // Traces the shortest path from the source of `state` to its target `targetIndex`, returned from
 // source to target.

@@ -247,6 +247,43 @@ TEST(DistanceSolver, DefaultStaysWithinItsErrorFromAnySource) {
   EXPECT_GT(under, -1e-5);
 }
 
+TEST(DistanceSolver, DirectedQueriesEqualTheFullField) {
+  // distance() and path() direct their propagation at the target and stop once it is final
+  // (goal_bound.hpp). Their values must be the full field's: exact mode to rounding, the default
+  // within its own error of the default's full field. Pairs all over a steep bump (near-flat
+  // saddles everywhere), a hypar, a sphere and a domain with a reflex corner, vertex and face points.
+  struct Case {
+    const char* name;
+    TriMesh mesh;
+  };
+  std::vector<Case> cases;
+  cases.push_back({"steep bump", steepBump(3.0, 0.25)});
+  cases.push_back({"hypar", gridMesh(20, 20, 2.0, 2.0, testing::hypar(1.0, 1.0, 0.6), 0.3)});
+  cases.push_back({"sphere", testing::sphereMesh(1.0, 24, 48)});
+  cases.push_back({"reflex corner", testing::lShapeMesh(16, flat)});
+  for (const auto& c : cases) {
+    DistanceSolverOptions exactOptions;
+    exactOptions.saddleAngleTolerance = 0.0;
+    const DistanceSolver exact(c.mesh, exactOptions), solver(c.mesh);
+    const int faces = solver.faceCount(), n = solver.vertexCount();
+    double exactWorst = 0.0, defaultWorst = 0.0, pathWorst = 0.0;
+    for (int k = 0; k < 12; ++k) {
+      const SurfacePoint from = k % 3 ? facePoint((k * 7919 + 5) % faces, 0.2, 0.3, 0.5) : vertexPoint(c.mesh, (k * 104729) % n);
+      const SurfacePoint to = k % 2 ? facePoint((k * 3571 + 11) % faces, 0.6, 0.1, 0.3) : vertexPoint(c.mesh, (k * 613 + 7) % n);
+      const double fullExact = exact.distances(from, {to}).targetDistances[0];
+      const double fullDefault = solver.distances(from, {to}).targetDistances[0];
+      if (!(fullExact > 1e-9)) continue;
+      exactWorst = std::max(exactWorst, relativeError(exact.distance(from, to), fullExact));
+      defaultWorst = std::max(defaultWorst, relativeError(solver.distance(from, to), fullDefault));
+      pathWorst = std::max(pathWorst, relativeError(exact.path(from, to).length, fullExact));
+    }
+    EXPECT_LT(exactWorst, 1e-12) << c.name;
+    EXPECT_LT(pathWorst, 1e-9) << c.name;
+    EXPECT_LT(defaultWorst, 1e-5) << c.name;
+    std::printf("%s: directed vs full, exact %.2e, default %.2e, exact path %.2e\n", c.name, exactWorst, defaultWorst, pathWorst);
+  }
+}
+
 TEST(DistanceSolver, DisconnectedPartsAreInfinitelyFar) {
   TriangleSoup soup = soupFromMesh(gridMesh(4, 4, 1.0, 1.0, flat));
   const TriangleSoup other = soupFromMesh(gridMesh(3, 3, 1.0, 1.0, flat));

@@ -112,24 +112,37 @@ Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& re
                                ? options.maxCornerOffsetM
                                : std::max(2.0 * meanEdgeLength(surface), 0.01 * boundingBox(surface).size().norm());
 
-  // 1. Corners onto the surface, as vertices.
+  // 1. Corners onto the surface, as vertices. When the four land in faces whose neighbourhoods
+  //    (the face and the faces across its edges, all an insertion may split) are disjoint, the
+  //    usual case, they go into the soup together: one mesh rebuild instead of four (~2.5 ms each
+  //    on a 5k-vertex surface). Otherwise one at a time, each snapped on the mesh so far.
   TriangleSoup soup = soupFromMesh(surface);
-  TriMesh work = surface;
-  std::array<int, 4> cornerIds{};
+  std::array<SurfacePoint, 4> snapped;
+  std::set<int> neighbourhoods;
+  bool together = true;
   for (int k = 0; k < 4; ++k) {
     if (!requested[k].allFinite()) throw InvalidInput("patch corner " + std::to_string(k) + " is not a finite point");
-    const SurfacePoint snapped = geodesic::snapToSurface(work, requested[k]);
-    patch.cornerOffsets[k] = (position(work, snapped) - requested[k]).norm();
+    snapped[k] = geodesic::snapToSurface(surface, requested[k]);
+    patch.cornerOffsets[k] = (position(surface, snapped[k]) - requested[k]).norm();
     if (patch.cornerOffsets[k] > maxOffset)
       throw InvalidInput("patch corner " + std::to_string(k) + " " + format(requested[k]) + " lies " +
                          std::to_string(patch.cornerOffsets[k]) + " m off the surface (more than " +
                          std::to_string(maxOffset) + " m)");
-    cornerIds[k] = insertCorner(soup, work, snapped, merge);
-    work = meshFromSoup(soup);
+    std::set<int> faces{snapped[k].face};
+    for (auto fh : surface.ff_range(TriMesh::FaceHandle(snapped[k].face))) faces.insert(fh.idx());
+    for (int f : faces) together = neighbourhoods.insert(f).second && together;
+  }
+  TriMesh work = surface;
+  std::array<int, 4> cornerIds{};
+  for (int k = 0; k < 4; ++k) {
+    const SurfacePoint corner = together ? snapped[k] : geodesic::snapToSurface(work, requested[k]);
+    cornerIds[k] = insertCorner(soup, work, corner, merge);
+    if (!together) work = meshFromSoup(soup);
     for (int j = 0; j < k; ++j)
       if (cornerIds[j] == cornerIds[k])
         throw InvalidInput("patch corners " + std::to_string(j) + " and " + std::to_string(k) + " coincide");
   }
+  if (together) work = meshFromSoup(soup);
 
   // 2. The four shortest geodesics.
   const geodesic::DistanceSolver solver(work);

@@ -36,6 +36,7 @@ struct GridMember {
   Eigen::Vector2d planarStart = Eigen::Vector2d::Zero(), planarEnd = Eigen::Vector2d::Zero();
   double spatialLength = 0.0;             // metres
   double planarLength = 0.0;              // metres
+  bool bracketed = false;                 // matched by the fallback (bracketing with full fields), not in a strip
 };
 
 struct GridConnection {

@@ -20,6 +20,7 @@ EggOptions eggOptionsFromScene(const Scene& scene) {
   options.uniqueness.etaMax = scene.patching.eta_max;
   options.maps.resolution = scene.grid.map_resolution;
   options.maps.toleranceRelative = scene.grid.map_tolerance_relative;
+  options.maps.proxyVertices = scene.grid.map_proxy_vertices;
   options.alphaBar.slopeMin = scene.patching.slope_bounds[0];
   options.alphaBar.slopeMax = scene.patching.slope_bounds[1];
   if (scene.grid.alpha_bar == "value") {

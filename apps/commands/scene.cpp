@@ -200,6 +200,9 @@ void readGrid(Section s, GridSpec& out) {
   }
   out.map_resolution = s.integer("map_resolution", out.map_resolution, 8, 2000);
   out.map_tolerance_relative = s.number("map_tolerance_relative", out.map_tolerance_relative, 0.0, 0.1);
+  out.map_proxy_vertices = s.integer("map_proxy_vertices", out.map_proxy_vertices, 0, 10000000);
+  if (out.map_proxy_vertices > 0 && out.map_proxy_vertices < 8)
+    s.fail("map_proxy_vertices", "must be 0 (maps on the patch itself) or at least 8, got " + std::to_string(out.map_proxy_vertices));
   out.min_planar_angle_rad = s.number("min_planar_angle_rad", out.min_planar_angle_rad, 0.0, 0.78);
   if (s.has("alpha_bar")) {
     const json& v = s.raw("alpha_bar");
@@ -331,6 +334,7 @@ json sceneToJson(const Scene& scene) {
   }
   json grid{{"map_resolution", scene.grid.map_resolution},
             {"map_tolerance_relative", scene.grid.map_tolerance_relative},
+            {"map_proxy_vertices", scene.grid.map_proxy_vertices},
             {"min_planar_angle_rad", scene.grid.min_planar_angle_rad}};
   grid["members_per_family"] = scene.grid.members_per_family ? json(*scene.grid.members_per_family) : json("auto");
   grid["alpha_bar"] = scene.grid.alpha_bar == "value" ? json(scene.grid.alpha_bar_rad) : json(scene.grid.alpha_bar);

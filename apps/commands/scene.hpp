@@ -38,6 +38,9 @@ struct GridSpec {
   // 0 = every row exact. Default = DistanceMapOptions::toleranceRelative (patch_maps.hpp, where
   // it is justified; test_scene checks that the two agree).
   double map_tolerance_relative = 1e-4;
+  // Distance maps on a coarse proxy of at most this many vertices when the patch mesh is larger
+  // (core/egg/map_proxy.hpp); 0 = on the patch itself. Default = DistanceMapOptions::proxyVertices.
+  int map_proxy_vertices = 600;
   std::string alpha_bar = "min";             // "min" | "max" | "unrolled" | "value"
   double alpha_bar_rad = 0.0;                // used when alpha_bar == "value"
   // Smallest inner angle of the planar quad: convexity alone (criterion iv) lets the quad fold

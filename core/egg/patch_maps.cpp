@@ -1,11 +1,13 @@
 #include "core/egg/patch_maps.hpp"
 
+#include "core/egg/map_proxy.hpp"
 #include "core/egg/map_refinement.hpp"
 #include "core/errors.hpp"
 
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <string>
 #include <cmath>
 
 namespace egg {
@@ -15,6 +17,13 @@ void DistanceMapOptions::validate() const {
   if (!(toleranceRelative >= 0.0) || !std::isfinite(toleranceRelative))
     throw InvalidInput("grid.map_tolerance_relative must be a finite number >= 0 (a fraction of the shorter side; 0 = exact rows)");
   if (initialNodes < 2) throw InvalidInput("distance map initialNodes must be >= 2 (both corners of the start side)");
+  if (proxyVertices != 0 && (proxyVertices < 8 || proxyVertices > 10000000))
+    throw InvalidInput("grid.map_proxy_vertices must be 0 (maps on the patch itself) or an integer in [8, 1e7], got " +
+                       std::to_string(proxyVertices));
+  if (!(proxyToleranceRelative >= 0.0) || !std::isfinite(proxyToleranceRelative))
+    throw InvalidInput("distance map proxyToleranceRelative must be a finite number >= 0 (0 = exact rows on the proxy)");
+  if (!(proxySaddleAngleTolerance >= 0.0) || !std::isfinite(proxySaddleAngleTolerance))
+    throw InvalidInput("distance map proxySaddleAngleTolerance must be a finite number >= 0 (radians; 0 = exact fields on the proxy)");
 }
 
 std::pair<int, bool> familySide(Family family, bool end) {
@@ -33,10 +42,13 @@ SurfacePoint familyBoundaryPoint(const Patch& patch, Family family, bool end, do
   return sidePoint(patch, side, (reversed ? 1.0 - x : x) * length);
 }
 
-PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::DistanceSolver& solver,
-                                      const DistanceMapOptions& options) {
-  options.validate();
-  const int n = options.resolution;
+namespace {
+
+// Both maps of `patch` measured with `solver` (which must be built on patch.mesh); the adaptive
+// rows refine to `toleranceRelative` times the family's shorter side. Sides, diagonals and alpha
+// are those of `patch`.
+PatchDistanceMaps mapsOn(const Patch& patch, const geodesic::DistanceSolver& solver, int n, double toleranceRelative,
+                         int initialNodes) {
   PatchDistanceMaps maps;
   maps.sides = patch.sideLengths;
   maps.alphaSpatial = patch.innerAngles[0];
@@ -58,9 +70,9 @@ PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::Distan
       return rows;
     };
     std::vector<std::vector<double>> rows;
-    const double tolerance = options.toleranceRelative *
+    const double tolerance = toleranceRelative *
                              std::min(familySideLength(patch, family, false), familySideLength(patch, family, true));
-    const auto stats = refineMapRows(n, n, tolerance, options.initialNodes, exactRows, rows);
+    const auto stats = refineMapRows(n, n, tolerance, initialNodes, exactRows, rows);
     propagations[family == Family::U ? 0 : 1] = stats.exactRows;
     DistanceMap map(n, n);
     for (int i = 0; i < n; ++i)
@@ -72,6 +84,24 @@ PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::Distan
   maps.propagations = propagations[0] + propagations[1];
   maps.diagonalE = maps.u.at(0, n - 1);  // c0 to c2
   maps.diagonalF = maps.u.at(n - 1, 0);  // c3 to c1
+  return maps;
+}
+
+}  // namespace
+
+PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::DistanceSolver& solver,
+                                      const DistanceMapOptions& options) {
+  options.validate();
+  const int n = options.resolution;
+  if (options.proxyVertices == 0 || static_cast<int>(patch.mesh.n_vertices()) <= options.proxyVertices)
+    return mapsOn(patch, solver, n, options.toleranceRelative, options.initialNodes);
+  // Maps on the proxy (map_proxy.hpp): its own solver, its own row tolerance; the sides, alpha
+  // and the corners' parameters are the fine patch's (copied into the proxy patch).
+  const MapProxy proxy = makeMapProxy(patch, options.proxyVertices);
+  geodesic::DistanceSolverOptions proxyOptions = solver.options();
+  proxyOptions.saddleAngleTolerance = options.proxySaddleAngleTolerance;
+  const geodesic::DistanceSolver proxySolver(proxy.patch.mesh, proxyOptions);
+  PatchDistanceMaps maps = mapsOn(proxy.patch, proxySolver, n, options.proxyToleranceRelative, options.initialNodes);
   return maps;
 }
 

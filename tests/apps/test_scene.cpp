@@ -35,6 +35,7 @@ TEST(Scene, DefaultsFillEverythingButTheSurface) {
   EXPECT_DOUBLE_EQ(s.patching.slope_bounds[1], 10.0);
   EXPECT_EQ(s.grid.map_resolution, 100);
   EXPECT_DOUBLE_EQ(s.grid.map_tolerance_relative, egg::DistanceMapOptions{}.toleranceRelative);
+  EXPECT_EQ(s.grid.map_proxy_vertices, egg::DistanceMapOptions{}.proxyVertices);
   EXPECT_EQ(s.grid.alpha_bar, "min");
   EXPECT_FALSE(s.grid.members_per_family.has_value());
   EXPECT_DOUBLE_EQ(s.lamella.width_m, 0.25);
@@ -49,7 +50,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
     "patching": {"workflow": 1, "eta_max": 1.002, "slope_bounds": [0.2, 5], "max_patch_size_m": 30,
                  "patches": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]},
     "grid": {"members_per_family": 12, "map_resolution": 64, "map_tolerance_relative": 0.002, "alpha_bar": 1.2,
-             "min_planar_angle_rad": 0.3},
+             "min_planar_angle_rad": 0.3, "map_proxy_vertices": 450},
     "lamella": {"width_m": 0.5, "thickness_m": 0.05, "material": "birch_plywood"},
     "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false},
     "fabrication": {"enabled": false, "sheet_mm": [3000, 1500], "bolt_diameter_mm": 10},
@@ -65,6 +66,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_DOUBLE_EQ(s.grid.alpha_bar_rad, 1.2);
   EXPECT_DOUBLE_EQ(s.grid.min_planar_angle_rad, 0.3);
   EXPECT_DOUBLE_EQ(s.grid.map_tolerance_relative, 0.002);
+  EXPECT_EQ(s.grid.map_proxy_vertices, 450);
   EXPECT_EQ(s.lamella.material, "birch_plywood");
   EXPECT_FALSE(s.simulation.enabled);
   EXPECT_DOUBLE_EQ(s.fabrication.sheet_mm[1], 1500.0);
@@ -77,6 +79,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   }(), "/scenes/test.json");
   EXPECT_EQ(back.grid.alpha_bar_rad, 1.2);
   EXPECT_DOUBLE_EQ(back.grid.map_tolerance_relative, 0.002);
+  EXPECT_EQ(back.grid.map_proxy_vertices, 450);
   EXPECT_EQ(back.patching.patches.size(), 1u);
 }
 
@@ -97,6 +100,12 @@ TEST(Scene, BadValuesAreErrorsNamingTheFieldAndFile) {
             std::string::npos);
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "grid": {"map_tolerance_relative": -0.001}})").find("grid.map_tolerance_relative"),
             std::string::npos);
+  // 0 (no proxy) or at least 8 vertices (corners plus a vertex per side); integers only.
+  for (const char* bad : {"5", "-1", "300.5", "\"auto\""}) {
+    const std::string e = errorOf(std::string(R"({"surface": {"sample": "bump"}, "grid": {"map_proxy_vertices": )") + bad + "}}");
+    EXPECT_NE(e.find("grid.map_proxy_vertices"), std::string::npos) << bad << ": " << e;
+  }
+  EXPECT_EQ(parse(R"({"surface": {"sample": "bump"}, "grid": {"map_proxy_vertices": 0}})").grid.map_proxy_vertices, 0);
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"eta_max": 0.9}})").find("patching.eta_max"),
             std::string::npos);
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"slope_bounds": [2, 10]}})").find("slope_bounds"),

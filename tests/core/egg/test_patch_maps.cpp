@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -67,6 +68,7 @@ TEST(PatchMaps, AdaptiveMapsOfABumpStayWithinTheToleranceOfTheExactMaps) {
   DistanceMapOptions exact;
   exact.resolution = 100;
   exact.toleranceRelative = 0.0;
+  exact.proxyVertices = 0;  // the adaptive rows on the patch itself
   DistanceMapOptions adaptive = exact;
   adaptive.toleranceRelative = DistanceMapOptions{}.toleranceRelative;
   const PatchDistanceMaps reference = computeDistanceMaps(patch, solver, exact);
@@ -99,10 +101,12 @@ TEST(PatchMaps, TheToleranceScalesWithThePatch) {
         "bump", {{"height", 1.0 * s}, {"sigma", 1.5 * s}, {"length", 8.0 * s}, {"width", 8.0 * s}}, 0.3 * s);
     const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3 * s, -3 * s, 0), {3 * s, -3 * s, 0}, {3 * s, 3 * s, 0}, {-3 * s, 3 * s, 0}});
     const geodesic::DistanceSolver solver(patch.mesh);
-    DistanceMapOptions exact;
+    DistanceMapOptions adaptive;
+    adaptive.proxyVertices = 0;  // the adaptive rows on the patch itself
+    DistanceMapOptions exact = adaptive;
     exact.toleranceRelative = 0.0;
     const auto reference = computeDistanceMaps(patch, solver, exact);
-    const auto maps = computeDistanceMaps(patch, solver, DistanceMapOptions{});
+    const auto maps = computeDistanceMaps(patch, solver, adaptive);
     fields = maps.propagations;
     double largest = 0.0;
     for (size_t k = 0; k < maps.u.values.size(); ++k) largest = std::max(largest, std::abs(maps.u.values[k] - reference.u.values[k]));
@@ -142,6 +146,72 @@ TEST(PatchMaps, OptionsNameTheBadField) {
   options.initialNodes = 2;
   options.resolution = 2;
   EXPECT_NE(message(options).find("map_resolution"), std::string::npos);
+  options.resolution = 100;
+  for (int bad : {-1, 1, 7}) {
+    options.proxyVertices = bad;
+    EXPECT_NE(message(options).find("grid.map_proxy_vertices"), std::string::npos) << bad;
+  }
+  options.proxyVertices = 8;
+  EXPECT_EQ(message(options), "");
+  options.proxyToleranceRelative = -1.0;
+  EXPECT_NE(message(options).find("proxyToleranceRelative"), std::string::npos);
+  options.proxyToleranceRelative = 1e-3;
+  options.proxySaddleAngleTolerance = std::nan("");
+  EXPECT_NE(message(options).find("proxySaddleAngleTolerance"), std::string::npos);
+}
+
+TEST(PatchMaps, ProxyZeroOrAPatchNoLargerThanTheProxyGivesTheMapsOfThePatch) {
+  const TriMesh mesh =
+      samples::generateSample("bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.4);
+  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
+  const geodesic::DistanceSolver solver(patch.mesh);
+  DistanceMapOptions onPatch;
+  onPatch.resolution = 21;
+  onPatch.proxyVertices = 0;
+  DistanceMapOptions large = onPatch;
+  large.proxyVertices = static_cast<int>(patch.mesh.n_vertices());  // not more vertices than the option
+  DistanceMapOptions small = onPatch;
+  small.proxyVertices = static_cast<int>(patch.mesh.n_vertices()) / 2;
+  const auto reference = computeDistanceMaps(patch, solver, onPatch);
+  const auto same = computeDistanceMaps(patch, solver, large);
+  const auto proxy = computeDistanceMaps(patch, solver, small);
+  EXPECT_EQ(same.u.values, reference.u.values);  // bit-identical
+  EXPECT_EQ(same.v.values, reference.v.values);
+  EXPECT_EQ(same.propagations, reference.propagations);
+  EXPECT_NE(proxy.u.values, reference.u.values);  // and the smaller option did use a proxy
+}
+
+TEST(PatchMaps, ProxyMapsOfABumpStayWithinAMeasuredBoundOfTheFineMaps) {
+  // A 6 x 6 m patch of ~2.8k vertices on the bench bump: the maps on a 600-vertex proxy (the
+  // default) against exact maps on the patch. The fine mesh's own noise, max |D_u - D_v| on this
+  // patch symmetric about its diagonal (D_u = D_v on the smooth surface), is the scale.
+  const TriMesh mesh =
+      samples::generateSample("bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.13);
+  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
+  ASSERT_GT(patch.mesh.n_vertices(), 2000u);
+  const geodesic::DistanceSolver solver(patch.mesh);
+  DistanceMapOptions exact;
+  exact.resolution = 41;
+  exact.toleranceRelative = 0.0;
+  exact.proxyVertices = 0;
+  DistanceMapOptions proxy;
+  proxy.resolution = 41;
+  ASSERT_EQ(proxy.proxyVertices, 600);
+  const auto reference = computeDistanceMaps(patch, solver, exact);
+  const auto maps = computeDistanceMaps(patch, solver, proxy);
+  double error = 0.0, noise = 0.0;
+  for (size_t k = 0; k < maps.u.values.size(); ++k) {
+    error = std::max({error, std::abs(maps.u.values[k] - reference.u.values[k]), std::abs(maps.v.values[k] - reference.v.values[k])});
+    noise = std::max(noise, std::abs(reference.u.values[k] - reference.v.values[k]));
+  }
+  EXPECT_GT(error, 1e-5);      // the proxy was used
+  EXPECT_LT(error, 1.5e-3);    // 9.8e-4 measured (3.1k vertices, 41 x 41 samples)
+  EXPECT_LT(error, 3.0 * noise);  // 2.0x the mesh noise of 4.8e-4 measured
+  EXPECT_LT(maps.propagations, 40);  // 9 initial rows + 8 passing checks per family
+  EXPECT_EQ(maps.sides, patch.sideLengths);
+  EXPECT_EQ(maps.alphaSpatial, patch.innerAngles[0]);
+  EXPECT_NEAR(maps.diagonalE, reference.diagonalE, 2.0e-3);
+  EXPECT_NEAR(maps.diagonalF, reference.diagonalF, 2.0e-3);
 }
 
 }  // namespace

@@ -135,6 +135,36 @@ TriMesh bumpMesh(double height) {
   return samples::generateSample("bump", {{"height", height}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
 }
 
+TEST(SolvePatch, DevelopableCylinderWithMapsOnAProxyStillGivesTheUnrolledGrid) {
+  // The maps on a coarse proxy only steer F, C and the tracing guesses; tracing on the fine patch
+  // restores criterion (i), so at the unrolled angle the grid is still notch-free and unrolled.
+  const testing::RuledCylinder cylinder;
+  const TriMesh mesh = cylinder.mesh();
+  const std::array<Eigen::Vector2d, 4> flat{Eigen::Vector2d(0.6, -2.2), {5.0, -2.5}, {5.3, 2.4}, {0.9, 2.0}};
+  std::array<Eigen::Vector3d, 4> corners;
+  for (int k = 0; k < 4; ++k) corners[k] = cylinder.fromUnrolled(flat[k]);
+  EggOptions options = fastOptions();
+  options.maps.proxyVertices = 150;
+  parseAlphaBarChoice("unrolled", options.alphaBar);
+  const EggResult r = solveEgg(mesh, corners, options);
+  ASSERT_GT(r.patch.mesh.n_vertices(), 300u);  // so the maps were read on the proxy
+  expectGridCriteria(r);
+  for (const auto& c : r.grid.connections) {
+    EXPECT_LE(std::abs(c.notchU), 1e-4 * r.grid.u[c.memberU].planarLength);
+    EXPECT_LE(std::abs(c.notchV), 1e-4 * r.grid.v[c.memberV].planarLength);
+    EXPECT_TRUE(std::isfinite(c.notchU) && std::isfinite(c.notchV));
+  }
+  const Eigen::Vector2d o = cylinder.toUnrolled(r.patch.corners[0]);
+  const Eigen::Vector2d axis = (cylinder.toUnrolled(r.patch.corners[1]) - o).normalized();
+  Eigen::Matrix2d rotation;
+  rotation << axis.x(), axis.y(), -axis.y(), axis.x();
+  double worst = 0.0;
+  for (const auto& c : r.grid.connections)
+    worst = std::max(worst, (rotation * (cylinder.toUnrolled(c.spatial) - o) - c.planar).norm());
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_GE(r.grid.u.size(), 5u);
+}
+
 TEST(SolvePatch, BumpPatchNeedsNoSmoothingAndHasNotches) {
   const EggOptions options = fastOptions();
   const EggResult r = solveEgg(bumpMesh(1.0), kBumpCorners, options);

@@ -109,10 +109,14 @@ TEST(Uniqueness, EtaDoesNotDependOnTheMapTolerance) {
   const auto fields = uniquenessFields(patch, peaks, solver, 100);
   DistanceMapOptions exact;
   exact.toleranceRelative = 0.0;
-  DistanceMapOptions adaptive;
+  exact.proxyVertices = 0;  // on the patch itself
+  DistanceMapOptions adaptive = exact;
   adaptive.toleranceRelative = 1e-3;  // far coarser than the default: the maps differ visibly
+  DistanceMapOptions proxy;  // the default: maps on a coarse proxy of the patch (map_proxy.hpp)
+  ASSERT_GT(static_cast<int>(patch.mesh.n_vertices()), proxy.proxyVertices);
   const auto exactMaps = computeDistanceMaps(patch, solver, exact);
   const auto adaptiveMaps = computeDistanceMaps(patch, solver, adaptive);
+  const auto proxyMaps = computeDistanceMaps(patch, solver, proxy);
   ASSERT_LT(adaptiveMaps.propagations, exactMaps.propagations);
   double largest = 0.0;
   for (size_t k = 0; k < exactMaps.u.values.size(); ++k)
@@ -120,11 +124,14 @@ TEST(Uniqueness, EtaDoesNotDependOnTheMapTolerance) {
   EXPECT_GT(largest, 1e-6);  // so reading d(p1, q) off the maps would move eta
   const auto withExact = checkUniqueness(patch, peaks, fields, exactMaps, options);
   const auto withAdaptive = checkUniqueness(patch, peaks, fields, adaptiveMaps, options);
+  const auto withProxy = checkUniqueness(patch, peaks, fields, proxyMaps, options);
   const auto standalone = checkUniqueness(patch, solver, options);
   ASSERT_FALSE(withExact.boundHolds);
   ASSERT_FALSE(withExact.checks.empty());
   EXPECT_EQ(withAdaptive.etaU, withExact.etaU);
   EXPECT_EQ(withAdaptive.etaV, withExact.etaV);
+  EXPECT_EQ(withProxy.etaU, withExact.etaU);  // the check stays on the fine patch
+  EXPECT_EQ(withProxy.etaV, withExact.etaV);
   EXPECT_EQ(standalone.etaU, withExact.etaU);
   EXPECT_EQ(standalone.etaV, withExact.etaV);
   EXPECT_NEAR(withExact.etaU, 1.0, 1e-3);  // this patch passes: a small gap only

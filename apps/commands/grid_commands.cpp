@@ -2,6 +2,7 @@
 // on bump patches of increasing resolution (the paper reports 0.68-5.62 s per patch).
 #include "apps/commands/commands.hpp"
 
+#include "core/egg/map_proxy.hpp"
 #include "core/egg/solve_patch.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
@@ -30,6 +31,8 @@ struct GridBenchArgs {
   double height = 1.0;                            // bump height (m); the patch is 6 x 6 m
   int repeats = 3;                                // solves per size; the table shows medians
   std::vector<double> mapTolerances;              // relative tolerances of the adaptive maps' error-vs-time table (empty = none)
+  std::vector<int> mapProxies;                    // proxy vertex counts for the same table (0 = maps on the patch)
+  std::vector<double> mapProxyTolerances;         // proxy adaptive-row tolerances for the proxy rows (empty = default)
   std::string csv;
   bool json = false;
 };
@@ -80,18 +83,35 @@ double largestDifference(const DistanceMap& a, const DistanceMap& b) {
   return d;
 }
 
-// Error against run time of the adaptive distance maps (DistanceMapOptions::toleranceRelative):
-// per size, the exact maps (tolerance 0, a field at every sample) are the reference of the same
-// run; every tolerance is solved `repeats` times and compared with it.
+// One row of the error-vs-time table: maps on the patch at `tolerance` (proxy 0), or on a proxy
+// of `proxy` vertices whose adaptive rows refine to `proxyTolerance`.
+struct MapVariant {
+  double tolerance = 0.0;
+  int proxy = 0;
+  double proxyTolerance = 0.0;
+};
+
+// Error against run time of the adaptive distance maps (DistanceMapOptions::toleranceRelative)
+// and of maps on a coarse proxy (DistanceMapOptions::proxyVertices): per size, the exact maps on
+// the patch (tolerance 0, a field at every sample, no proxy) are the reference of the same run;
+// every variant is solved `repeats` times and compared with it.
 nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& mesh, const EggOptions& base) {
   const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
-  std::vector<double> tolerances{0.0};
-  for (double t : args.mapTolerances) if (t > 0.0) tolerances.push_back(t);
+  std::vector<MapVariant> variants{{0.0, 0, 0.0}};
+  for (double t : args.mapTolerances) if (t > 0.0) variants.push_back({t, 0, 0.0});
+  std::vector<double> proxyTolerances = args.mapProxyTolerances;
+  if (proxyTolerances.empty()) proxyTolerances.push_back(DistanceMapOptions{}.proxyToleranceRelative);
+  for (int proxy : args.mapProxies)
+    for (double pt : proxy > 0 ? proxyTolerances : std::vector<double>{0.0})
+      variants.push_back({DistanceMapOptions{}.toleranceRelative, proxy, pt});
   nlohmann::json rows = nlohmann::json::array();
   std::optional<EggResult> reference;
-  for (double tolerance : tolerances) {
+  for (const MapVariant& variant : variants) {
+    const double tolerance = variant.tolerance;
     EggOptions options = base;
     options.maps.toleranceRelative = tolerance;
+    options.maps.proxyVertices = variant.proxy;
+    options.maps.proxyToleranceRelative = variant.proxyTolerance;
     std::vector<double> maps, totals, cpu;
     std::optional<EggResult> last;
     for (int run = 0; run < args.repeats; ++run) {
@@ -115,8 +135,14 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
                  claddingShift(r.alphaBar.claddingV, e.alphaBar.claddingV, familySideLength(p, Family::V, true)));
     const bool sameCount = r.membersU.x1.size() == e.membersU.x1.size() && r.membersV.x1.size() == e.membersV.x1.size();
     const double etaChange = std::max(std::abs(r.uniqueness.etaU - e.uniqueness.etaU), std::abs(r.uniqueness.etaV - e.uniqueness.etaV));
+    // The proxy's actual size (the maps use it only when the patch is larger than the option).
+    const bool onProxy = variant.proxy > 0 && static_cast<int>(p.mesh.n_vertices()) > variant.proxy;
+    const int proxyVertices = onProxy ? static_cast<int>(makeMapProxy(p, variant.proxy).patch.mesh.n_vertices()) : 0;
     nlohmann::json row{{"vertices", p.mesh.n_vertices()},
                        {"tolerance_relative", tolerance},
+                       {"proxy_vertices_option", variant.proxy},
+                       {"proxy_vertices", proxyVertices},
+                       {"proxy_tolerance_relative", onProxy ? variant.proxyTolerance : 0.0},
                        {"t_distance_maps_s", median(maps)},
                        {"t_grid_s", median(totals)},
                        {"cpu_grid_s", median(cpu)},
@@ -136,8 +162,8 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
     const double uvMember = memberShift(r.membersU, r.membersV, familySideLength(p, Family::U, false), familySideLength(p, Family::U, true));
     row["uv_map_asymmetry_m"] = uvMap;
     if (std::isfinite(uvMember)) row["uv_member_asymmetry_m"] = uvMember;
-    fmt::print("{:>8} {:>9.1e} {:>8.3f} {:>8.3f} {:>8.3f} {:>6} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>10.2e} {:>10.2e} {:>10}\n",
-               p.mesh.n_vertices(), tolerance, median(maps), median(totals), median(cpu), r.maps.propagations, mapError, etaChange,
+    fmt::print("{:>8} {:>9.1e} {:>6} {:>8.1e} {:>8.3f} {:>8.3f} {:>8.3f} {:>6} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>10.2e} {:>10.2e} {:>10}\n",
+               p.mesh.n_vertices(), tolerance, proxyVertices, onProxy ? variant.proxyTolerance : 0.0, median(maps), median(totals), median(cpu), r.maps.propagations, mapError, etaChange,
                std::abs(r.alphaBar.alphaBar - e.alphaBar.alphaBar), std::abs(r.alphaBar.alphaMax - e.alphaBar.alphaMax),
                claddingChange, sameCount ? fmt::format("{:.2e}", shift) : std::string("count"), std::abs(r.grid.maxNotch - e.grid.maxNotch), uvMap,
                std::isfinite(uvMember) ? fmt::format("{:.2e}", uvMember) : std::string("count"));
@@ -148,12 +174,13 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
 
 int runGridBench(const GridBenchArgs& args) {
   fmt::print("egg bench grid: bump (height {} m, sigma 1.5 m) patch 6 x 6 m, distance maps {} x {} (adaptive rows,\n"
-             "tolerance {} x the shorter side), alpha_bar = min,\n"
+             "tolerance {} x the shorter side; on a proxy of {} vertices, rows to {}, when the patch is larger), alpha_bar = min,\n"
              "lamellas 0.1 m at spacing 0.6 m; wall seconds (all threads), median of {} solves per size;\n"
              "cpu_grid = CPU seconds of the solve over all threads (load-independent work);\n"
              "t_maps includes the eta check's curvature, peak and p1 fields (run alongside the maps), t_eta the\n"
              "check itself; share = part / t_grid; fields = propagations (patch sides + maps + eta + tracing)\n",
-             args.height, args.resolution, args.resolution, DistanceMapOptions{}.toleranceRelative, args.repeats);
+             args.height, args.resolution, args.resolution, DistanceMapOptions{}.toleranceRelative,
+             DistanceMapOptions{}.proxyVertices, DistanceMapOptions{}.proxyToleranceRelative, args.repeats);
   fmt::print("{:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>10} {:>18}\n", "vertices", "t_patch",
              "t_eta", "t_maps", "t_sqp", "t_member", "t_trace", "t_grid", "cpu_grid", "u x v", "fields", "max_notch",
              "alpha_bar range");
@@ -221,9 +248,10 @@ int runGridBench(const GridBenchArgs& args) {
     baseOptions = options;
   }
   nlohmann::json toleranceRows = nlohmann::json::array();
-  if (!args.mapTolerances.empty()) {
+  if (!args.mapTolerances.empty() || !args.mapProxies.empty()) {
     fmt::print("distance maps: error against time (adaptive rows, tol = DistanceMapOptions::toleranceRelative, times the\n"
-               "family's shorter side); reference = exact maps (tolerance 0, {} fields per family) of the same run; t_* medians\n"
+               "family's shorter side; proxy = vertices of the coarse copy the maps were computed on (--map-proxy, 0 = the patch),\n"
+               "ptol = its rows' tolerance); reference = exact maps on the patch (tolerance 0, {} fields per family) of the same run; t_* medians\n"
                "of {} solves; map_err = max |D - D_exact| over both maps; d_eta = largest change of eta_u, eta_v (the check\n"
                "reads exact p1 fields, so 0 unless smoothing took another path); d_alpha = |alpha_bar - exact| (alpha_bar_min), d_amax = |alpha_bar_max - exact|; d_F = largest\n"
                "change of the cladding functions F_u, F_v (metres along the end side, 201 samples of x1); d_member =\n"
@@ -231,7 +259,7 @@ int runGridBench(const GridBenchArgs& args) {
                "uv_map, uv_member = max |D_u - D_v| and largest u/v member mismatch of that solve: the patch is symmetric\n"
                "about its diagonal c0-c2, so on the smooth surface both are 0 and the exact row shows the mesh's own noise\n",
                args.resolution, args.repeats);
-    fmt::print("{:>8} {:>9} {:>8} {:>8} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "vertices", "tol_rel", "t_maps",
+    fmt::print("{:>8} {:>9} {:>6} {:>8} {:>8} {:>8} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "vertices", "tol_rel", "proxy", "ptol", "t_maps",
                "t_grid", "cpu_grid", "fields", "map_err_m", "d_eta", "d_alpha", "d_amax", "d_F_m", "d_member_m", "d_notch_m", "uv_map_m", "uv_member");
     for (const TriMesh& mesh : meshes)
       for (auto& row : runMapToleranceTable(args, mesh, baseOptions)) toleranceRows.push_back(row);
@@ -275,10 +303,20 @@ void registerGridBench(CLI::App& bench, Action& action) {
                   "the family's shorter side, comma-separated; the exact maps of the same run are the reference)")
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--map-proxy", args->mapProxies,
+                  "also tabulate error against time of distance maps on a coarse proxy of the patch with at most "
+                  "these many vertices (comma-separated; 0 = on the patch; same table and reference as --map-tolerance)")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--map-proxy-tolerance", args->mapProxyTolerances,
+                  "relative adaptive-row tolerances of the proxy rows (comma-separated; default: the default of "
+                  "DistanceMapOptions::proxyToleranceRelative)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--repeats", args->repeats, "solves per size (medians are shown)")->check(CLI::Range(1, 100));
   cmd->add_option("--height", args->height, "bump height in metres")->check(CLI::NonNegativeNumber);
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
-  cmd->add_flag("--json", args->json, "also print the tables as JSON: {\"sizes\": [...], \"map_tolerance\": [...]}");
+  cmd->add_flag("--json", args->json, "also print the tables as JSON: {\"sizes\": [...], \"map_tolerance\": [...]} (map_tolerance also holds the --map-proxy rows)");
   cmd->callback([args, &action] { action = [args] { return runGridBench(*args); }; });
 }
 

@@ -205,5 +205,32 @@ TEST_F(Cli, GeodesicBenchTabulatesErrorAgainstTimeOverTheSaddleTolerance) {
   EXPECT_NE(bad.err.find("--saddle-tolerance"), std::string::npos) << bad.err;
 }
 
+TEST_F(Cli, GridBenchTabulatesErrorAgainstTimeOfMapsOnAProxy) {
+  // Rows: the exact maps on the patch (the reference, error 0), --map-proxy 0 (the adaptive maps on
+  // the patch), and a 300-vertex proxy: fewer fields, a map error above zero and below the bound.
+  const Outcome o = runEgg({"bench", "grid", "--sizes", "1100", "--repeats", "1", "--resolution", "31", "--map-proxy", "0,300",
+                            "--json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const auto start = o.out.find("\n{");
+  ASSERT_NE(start, std::string::npos) << o.out;
+  const auto table = nlohmann::json::parse(o.out.substr(start + 1))["map_tolerance"];
+  ASSERT_EQ(table.size(), 3u);
+  EXPECT_EQ(table[0]["max_map_error_m"].get<double>(), 0.0);
+  EXPECT_EQ(table[0]["proxy_vertices"].get<int>(), 0);
+  EXPECT_EQ(table[1]["proxy_vertices"].get<int>(), 0);
+  EXPECT_EQ(table[1]["proxy_vertices_option"].get<int>(), 0);
+  EXPECT_LT(table[1]["max_map_error_m"].get<double>(), 1e-3);
+  EXPECT_EQ(table[2]["proxy_vertices_option"].get<int>(), 300);
+  EXPECT_GT(table[2]["proxy_vertices"].get<int>(), 250);
+  EXPECT_LE(table[2]["proxy_vertices"].get<int>(), 300);
+  EXPECT_GT(table[2]["max_map_error_m"].get<double>(), 1e-5);
+  EXPECT_LT(table[2]["max_map_error_m"].get<double>(), 3.5e-3);  // 2.4e-3 measured
+  EXPECT_LT(table[2]["map_fields"].get<int>(), table[0]["map_fields"].get<int>());
+  EXPECT_TRUE(table[2]["member_counts_equal"].get<bool>());
+  const Outcome bad = runEgg({"bench", "grid", "--map-proxy", "-5"});
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.err.find("--map-proxy"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace egg::app

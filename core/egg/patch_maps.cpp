@@ -4,9 +4,11 @@
 #include "core/egg/map_refinement.hpp"
 #include "core/errors.hpp"
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <array>
 #include <string>
 #include <cmath>
 
@@ -89,19 +91,49 @@ PatchDistanceMaps mapsOn(const Patch& patch, const geodesic::DistanceSolver& sol
 
 }  // namespace
 
+bool mapsUseProxy(const Patch& patch, const DistanceMapOptions& options) {
+  return options.proxyVertices != 0 && static_cast<int>(patch.mesh.n_vertices()) > options.proxyVertices;
+}
+
+geodesic::DistanceSolverOptions proxySolverOptions(const geodesic::DistanceSolver& solver, const DistanceMapOptions& options) {
+  geodesic::DistanceSolverOptions proxyOptions = solver.options();
+  proxyOptions.saddleAngleTolerance = options.proxySaddleAngleTolerance;
+  return proxyOptions;
+}
+
 PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::DistanceSolver& solver,
                                       const DistanceMapOptions& options) {
   options.validate();
-  const int n = options.resolution;
-  if (options.proxyVertices == 0 || static_cast<int>(patch.mesh.n_vertices()) <= options.proxyVertices)
-    return mapsOn(patch, solver, n, options.toleranceRelative, options.initialNodes);
+  if (!mapsUseProxy(patch, options)) return mapsOn(patch, solver, options.resolution, options.toleranceRelative, options.initialNodes);
   // Maps on the proxy (map_proxy.hpp): its own solver, its own row tolerance; the sides, alpha
   // and the corners' parameters are the fine patch's (copied into the proxy patch).
   const MapProxy proxy = makeMapProxy(patch, options.proxyVertices);
-  geodesic::DistanceSolverOptions proxyOptions = solver.options();
-  proxyOptions.saddleAngleTolerance = options.proxySaddleAngleTolerance;
-  const geodesic::DistanceSolver proxySolver(proxy.patch.mesh, proxyOptions);
-  PatchDistanceMaps maps = mapsOn(proxy.patch, proxySolver, n, options.proxyToleranceRelative, options.initialNodes);
+  const geodesic::DistanceSolver proxySolver(proxy.patch.mesh, proxySolverOptions(solver, options));
+  return computeDistanceMaps(patch, solver, proxy, proxySolver, options);
+}
+
+PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::DistanceSolver& solver, const MapProxy& proxy,
+                                      const geodesic::DistanceSolver& proxySolver, const DistanceMapOptions& options) {
+  options.validate();
+  PatchDistanceMaps maps;
+  std::array<double, 2> diagonals{};
+  // The diagonals e = d(c0, c2), f = d(c3, c1) enter Problem 2.3 directly ((e - e_bar)(f - f_bar)
+  // < 0) and the injectivity check: measured on the patch itself, each by one propagation
+  // directed at the far corner (a fraction of a field), alongside the proxy's rows.
+  tbb::parallel_invoke(
+      [&] { maps = mapsOn(proxy.patch, proxySolver, options.resolution, options.proxyToleranceRelative, options.initialNodes); },
+      [&] {
+        tbb::parallel_for(0, 2, [&](int k) {
+          const int from = k == 0 ? 0 : 3, to = k == 0 ? 2 : 1;
+          diagonals[k] = solver.distance(geodesic::vertexPoint(patch.mesh, patch.cornerVertices[from]),
+                                         geodesic::vertexPoint(patch.mesh, patch.cornerVertices[to]));
+        });
+      });
+  if (!std::isfinite(diagonals[0]) || !std::isfinite(diagonals[1]))
+    throw SolverFailure("distance map: opposite corners are unreachable inside the patch");
+  maps.diagonalE = diagonals[0];
+  maps.diagonalF = diagonals[1];
+  maps.propagations += 2;
   return maps;
 }
 

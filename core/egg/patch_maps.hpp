@@ -3,6 +3,7 @@
 // geodesic engine, measured inside the patch mesh, with the boundary parameters running at
 // constant speed along the geodesic sides (criterion ii).
 #include "core/egg/distance_map.hpp"
+#include "core/egg/map_proxy.hpp"
 #include "core/egg/patch.hpp"
 #include "core/geodesic/distance_solver.hpp"
 
@@ -74,5 +75,13 @@ double familySideLength(const Patch& patch, Family family, bool end);
 // families run concurrently.
 PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::DistanceSolver& solver,
                                       const DistanceMapOptions& options = {});
+// True when the maps are read on a proxy of the patch (options.proxyVertices, map_proxy.hpp).
+bool mapsUseProxy(const Patch& patch, const DistanceMapOptions& options);
+// The proxy solver's options: the patch solver's, with options.proxySaddleAngleTolerance.
+geodesic::DistanceSolverOptions proxySolverOptions(const geodesic::DistanceSolver& solver, const DistanceMapOptions& options);
+// The maps on a given proxy of `patch` (proxySolver built on proxy.patch.mesh), so the eta check
+// can share it (solveEgg). The diagonals are measured on the patch (`solver`), not the proxy.
+PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::DistanceSolver& solver, const MapProxy& proxy,
+                                      const geodesic::DistanceSolver& proxySolver, const DistanceMapOptions& options);
 
 }  // namespace egg

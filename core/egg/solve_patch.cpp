@@ -6,6 +6,8 @@
 #include <tbb/parallel_invoke.h>
 
 #include <chrono>
+#include <memory>
+#include <optional>
 #include <cmath>
 #include <string>
 #include <sstream>
@@ -46,16 +48,30 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   // exact, since the maps' rows between source fields are interpolated; none when the
   // injectivity bound holds for sure. Curvature, peaks and these fields run alongside the
   // maps' batches on the same thread pool.
+  // With a proxy (map_proxy.hpp) both read their fields there; eta's distances are then measured
+  // on the patch by directed propagations (uniquenessFieldsViaProxy).
   t = std::chrono::steady_clock::now();
   PatchPeaks peaks;
   UniquenessFields etaFields;
   etaFields.samples = options.maps.resolution;
-  tbb::parallel_invoke([&] { result.maps = computeDistanceMaps(result.patch, *solver, options.maps); },
-                       [&] {
-                         peaks = findPatchPeaks(result.patch, options.uniqueness);
-                         if (peaks.peaks.empty() || boundCertainlyHolds(result.patch, peaks)) return;
-                         etaFields = uniquenessFields(result.patch, peaks, *solver, options.maps.resolution);
-                       });
+  std::optional<MapProxy> proxy;
+  std::unique_ptr<geodesic::DistanceSolver> proxySolver;
+  if (mapsUseProxy(result.patch, options.maps)) {
+    proxy = makeMapProxy(result.patch, options.maps.proxyVertices);
+    proxySolver = std::make_unique<geodesic::DistanceSolver>(proxy->patch.mesh, proxySolverOptions(*solver, options.maps));
+  }
+  tbb::parallel_invoke(
+      [&] {
+        result.maps = proxy ? computeDistanceMaps(result.patch, *solver, *proxy, *proxySolver, options.maps)
+                            : computeDistanceMaps(result.patch, *solver, options.maps);
+      },
+      [&] {
+        peaks = findPatchPeaks(result.patch, options.uniqueness);
+        if (peaks.peaks.empty() || boundCertainlyHolds(result.patch, peaks)) return;
+        const int n = options.maps.resolution;
+        etaFields = proxy ? uniquenessFieldsViaProxy(result.patch, *solver, *proxy, *proxySolver, peaks, n)
+                          : uniquenessFields(result.patch, peaks, *solver, n);
+      });
   result.propagations += result.maps.propagations + etaFields.propagations();
   result.seconds.distanceMaps = since(t);
 

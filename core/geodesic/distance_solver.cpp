@@ -71,6 +71,13 @@ DistanceField DistanceSolver::distances(const SurfacePoint& source, const std::v
   return fieldFrom(state, secondsSince(start));
 }
 
+DistanceField DistanceSolver::directedDistances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const {
+  const auto start = std::chrono::steady_clock::now();
+  detail::Propagation& state = threadScratch();
+  detail::propagate(*tables_, options_, source, targets, state, /*directedAtTargets=*/true);
+  return fieldFrom(state, secondsSince(start));
+}
+
 DistanceField DistanceSolver::distancesFromVertex(int vertex, const std::vector<SurfacePoint>& targets) const {
   if (vertex < 0 || vertex >= tables_->vertexCount) {
     throw InvalidInput("geodesic: source vertex " + std::to_string(vertex) + " is out of range");

@@ -107,6 +107,11 @@ class DistanceSolver {
   // and to `targets` (any surface points: on the boundary, inside faces, at vertices).
   DistanceField distances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets = {}) const;
   DistanceField distancesFromVertex(int vertex, const std::vector<SurfacePoint>& targets = {}) const;
+  // The same distances to `targets` by one propagation directed at them (goal_bound.hpp): it stops
+  // once every target is final, sweeping about the union of the ellipses d(source, p) + |p t| <=
+  // d(source, t). targetDistances are the full field's; vertexDistances only upper bounds. For a
+  // few targets close together: the farthest one sets how far the propagation runs.
+  DistanceField directedDistances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const;
 
   // Many sources at once, in parallel over sources (TBB). Each field is computed by one thread
   // from scratch, so the result is bit-identical for any thread count.

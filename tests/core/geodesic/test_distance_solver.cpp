@@ -276,6 +276,11 @@ TEST(DistanceSolver, DirectedQueriesEqualTheFullField) {
       exactWorst = std::max(exactWorst, relativeError(exact.distance(from, to), fullExact));
       defaultWorst = std::max(defaultWorst, relativeError(solver.distance(from, to), fullDefault));
       pathWorst = std::max(pathWorst, relativeError(exact.path(from, to).length, fullExact));
+      // Several targets at once (directedDistances): each as in the full field.
+      const std::vector<SurfacePoint> several{to, facePoint((k * 17 + 3) % faces, 0.3, 0.3, 0.4), vertexPoint(c.mesh, (k * 31) % n)};
+      const auto full = exact.distances(from, several).targetDistances, directed = exact.directedDistances(from, several).targetDistances;
+      for (size_t i = 0; i < several.size(); ++i)
+        if (full[i] > 1e-9) exactWorst = std::max(exactWorst, relativeError(directed[i], full[i]));
     }
     EXPECT_LT(exactWorst, 1e-12) << c.name;
     EXPECT_LT(pathWorst, 1e-9) << c.name;

@@ -94,7 +94,14 @@ PrincipalFit fitPrincipal(const TriMesh& mesh, const Eigen::Vector3d& p, const E
       for (int j = 0; j <= d; ++j) A(i - 1, column++) = xPower[d - j] * yPower[j];
     rhs(i - 1) = q.dot(n);
   }
-  const Eigen::VectorXd coef = A.colPivHouseholderQr().solve(rhs);
+  // Normal equations by Cholesky: ~5x cheaper than the column-pivoting QR, which was a third of
+  // the eta check's peak search. The scaled coordinates (|x|, |y| <= 1) keep A^T A well
+  // conditioned; a neighbourhood that leaves it singular (LLT fails) takes the QR.
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(unknowns, unknowns);
+  normal.selfadjointView<Eigen::Lower>().rankUpdate(A.transpose());
+  Eigen::LLT<Eigen::MatrixXd> cholesky(normal);
+  const Eigen::VectorXd coef = cholesky.info() == Eigen::Success ? Eigen::VectorXd(cholesky.solve(A.transpose() * rhs))
+                                                                : Eigen::VectorXd(A.colPivHouseholderQr().solve(rhs));
   if (!coef.allFinite()) return fit;
   // Back to metres: z = s g(x/s, y/s), so second derivatives divide by s, first ones do not.
   const double fx = coef(0), fy = coef(1);

@@ -3,7 +3,7 @@
 #include "core/errors.hpp"
 #include "core/mesh/smoothing.hpp"
 
-#include <tbb/parallel_invoke.h>
+#include <tbb/task_group.h>
 
 #include <chrono>
 #include <memory>
@@ -56,22 +56,36 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   etaFields.samples = options.maps.resolution;
   std::optional<MapProxy> proxy;
   std::unique_ptr<geodesic::DistanceSolver> proxySolver;
+  // The peak search (curvature of the fine patch) overlaps the decimation; the maps start as
+  // soon as the proxy exists, and the eta fields, which need both, run alongside them.
+  tbb::task_group peakSearch, mapping;
+  // Should anything below throw, both groups are waited for (their tasks use these locals) before
+  // the exception leaves; on the normal path the explicit waits rethrow a task's exception.
+  struct WaitForBoth {
+    tbb::task_group &a, &b;
+    ~WaitForBoth() {
+      for (tbb::task_group* g : {&a, &b}) try {
+          g->wait();
+        } catch (...) {
+        }
+    }
+  } waitForBoth{peakSearch, mapping};
+  peakSearch.run([&] { peaks = findPatchPeaks(result.patch, options.uniqueness); });
   if (mapsUseProxy(result.patch, options.maps)) {
     proxy = makeMapProxy(result.patch, options.maps.proxyVertices);
     proxySolver = std::make_unique<geodesic::DistanceSolver>(proxy->patch.mesh, proxySolverOptions(*solver, options.maps));
   }
-  tbb::parallel_invoke(
-      [&] {
-        result.maps = proxy ? computeDistanceMaps(result.patch, *solver, *proxy, *proxySolver, options.maps)
-                            : computeDistanceMaps(result.patch, *solver, options.maps);
-      },
-      [&] {
-        peaks = findPatchPeaks(result.patch, options.uniqueness);
-        if (peaks.peaks.empty() || boundCertainlyHolds(result.patch, peaks)) return;
-        const int n = options.maps.resolution;
-        etaFields = proxy ? uniquenessFieldsViaProxy(result.patch, *solver, *proxy, *proxySolver, peaks, n)
-                          : uniquenessFields(result.patch, peaks, *solver, n);
-      });
+  mapping.run([&] {
+    result.maps = proxy ? computeDistanceMaps(result.patch, *solver, *proxy, *proxySolver, options.maps)
+                        : computeDistanceMaps(result.patch, *solver, options.maps);
+  });
+  peakSearch.wait();
+  if (!peaks.peaks.empty() && !boundCertainlyHolds(result.patch, peaks)) {
+    const int n = options.maps.resolution;
+    etaFields = proxy ? uniquenessFieldsViaProxy(result.patch, *solver, *proxy, *proxySolver, peaks, n)
+                      : uniquenessFields(result.patch, peaks, *solver, n);
+  }
+  mapping.wait();
   result.propagations += result.maps.propagations + etaFields.propagations();
   result.seconds.distanceMaps = since(t);
 

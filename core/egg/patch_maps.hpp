@@ -79,9 +79,9 @@ PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::Distan
 bool mapsUseProxy(const Patch& patch, const DistanceMapOptions& options);
 // The proxy solver's options: the patch solver's, with options.proxySaddleAngleTolerance.
 geodesic::DistanceSolverOptions proxySolverOptions(const geodesic::DistanceSolver& solver, const DistanceMapOptions& options);
-// The maps on a given proxy of `patch` (proxySolver built on proxy.patch.mesh), so the eta check
-// can share it (solveEgg). The diagonals are measured on the patch (`solver`), not the proxy.
-PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::DistanceSolver& solver, const MapProxy& proxy,
-                                      const geodesic::DistanceSolver& proxySolver, const DistanceMapOptions& options);
+// The maps on a given proxy of a patch (proxySolver built on proxy.patch.mesh), so the eta check
+// can share it (solveEgg).
+PatchDistanceMaps computeDistanceMaps(const MapProxy& proxy, const geodesic::DistanceSolver& proxySolver,
+                                      const DistanceMapOptions& options);
 
 }  // namespace egg

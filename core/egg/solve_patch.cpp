@@ -76,7 +76,7 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
     proxySolver = std::make_unique<geodesic::DistanceSolver>(proxy->patch.mesh, proxySolverOptions(*solver, options.maps));
   }
   mapping.run([&] {
-    result.maps = proxy ? computeDistanceMaps(result.patch, *solver, *proxy, *proxySolver, options.maps)
+    result.maps = proxy ? computeDistanceMaps(*proxy, *proxySolver, options.maps)
                         : computeDistanceMaps(result.patch, *solver, options.maps);
   });
   peakSearch.wait();

@@ -254,24 +254,24 @@ UniquenessFields uniquenessFieldsViaProxy(const Patch& patch, const geodesic::Di
       for (int k = std::max(0, q1 - 1); k <= std::min(n - 1, q1 + 1); ++k) l.candidates.push_back(k);
       located.push_back(l);
     }
-  // Two directed propagations per check on the patch: from p1 to the peak and the candidates,
-  // from the peak to the candidates.
+  // Three directed propagations per check on the patch: p1 to the peak, p1 to the candidates, the
+  // peak to the candidates. (p1 to the peak and the candidates at once would sweep every point
+  // with d(p1, p) + |p p_max| up to d(p1, q): most of the patch.)
   std::vector<std::vector<double>> fromP1Fine(located.size()), fromPeakFine(located.size());
-  tbb::parallel_for(0, static_cast<int>(2 * located.size()), [&](int job) {
-    const Located& l = located[job / 2];
-    const NearestBoundary& p1 = nearest[job / 2];
-    const double x1 = static_cast<double>(p1.index) / (n - 1);
-    std::vector<SurfacePoint> targets;
-    for (int k : l.candidates) targets.push_back(familyBoundaryPoint(patch, l.family, !p1.onEnd, static_cast<double>(k) / (n - 1)));
+  std::vector<double> p1ToPeak(located.size());
+  tbb::parallel_for(0, static_cast<int>(3 * located.size()), [&](int job) {
+    const size_t c = job / 3;
+    const Located& l = located[c];
+    const NearestBoundary& p1 = nearest[c];
+    const SurfacePoint start = familyBoundaryPoint(patch, l.family, p1.onEnd, static_cast<double>(p1.index) / (n - 1));
     const SurfacePoint peak = geodesic::vertexPoint(patch.mesh, peaks.peaks[l.peak].vertex);
-    if (job % 2 == 0) {
-      targets.push_back(peak);
-      fromP1Fine[job / 2] = solver.directedDistances(familyBoundaryPoint(patch, l.family, p1.onEnd, x1), targets).targetDistances;
-    } else {
-      fromPeakFine[job / 2] = solver.directedDistances(peak, targets).targetDistances;
-    }
+    std::vector<SurfacePoint> candidates;
+    for (int k : l.candidates) candidates.push_back(familyBoundaryPoint(patch, l.family, !p1.onEnd, static_cast<double>(k) / (n - 1)));
+    if (job % 3 == 0) p1ToPeak[c] = solver.distance(start, peak);
+    else if (job % 3 == 1) fromP1Fine[c] = solver.directedDistances(start, candidates).targetDistances;
+    else fromPeakFine[c] = solver.directedDistances(peak, candidates).targetDistances;
   });
-  fields.directed = static_cast<int>(2 * located.size());
+  fields.directed = static_cast<int>(3 * located.size());
   for (size_t c = 0; c < located.size(); ++c) {
     const Located& l = located[c];
     const NearestBoundary& p1 = nearest[c];
@@ -282,7 +282,7 @@ UniquenessFields uniquenessFieldsViaProxy(const Patch& patch, const geodesic::Di
     check.peak = peak.position;
     check.gaussian = peak.gaussian_max_nearby;
     check.p1 = position(patch.mesh, familyBoundaryPoint(patch, l.family, p1.onEnd, static_cast<double>(p1.index) / (n - 1)));
-    const double toPeak = fromP1Fine[c].back();
+    const double toPeak = p1ToPeak[c];
     double bestExcess = std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < l.candidates.size(); ++i) {
       const double viaPeak = toPeak + fromPeakFine[c][i], direct = fromP1Fine[c][i];

@@ -90,11 +90,11 @@ UniquenessFields uniquenessFields(const Patch& patch, const PatchPeaks& peaks, c
 // The same check with its fields on a coarse proxy of the patch (map_proxy.hpp; `proxySolver` on
 // proxy.patch.mesh): the proxy's peak and p1 fields pick p1 and q1 among the n boundary samples,
 // and each check's distances d(p1, p_max), d(p_max, q), d(p1, q) are then measured on the patch
-// (`solver`) by two propagations directed at them (goal_bound.hpp), for q1 and its two
+// (`solver`) by three propagations directed at them (goal_bound.hpp), for q1 and its two
 // neighbouring samples; the sample with the smallest excess d(p1,p_max) + d(p_max,q) - d(p1,q) is
 // q1, as in Section 2.3.3. So eta is the patch's own; the proxy's error (~1e-3 m on the 6 m bench
 // patch) can only shift which samples are measured, and the excess is stationary at its minimum.
-// Two p1 fields and a peak field on the proxy plus four short directed propagations per peak
+// Two p1 fields and a peak field on the proxy plus six short directed propagations per peak
 // replace three fields on the patch (~50 ms of CPU at 3.4k vertices).
 UniquenessFields uniquenessFieldsViaProxy(const Patch& patch, const geodesic::DistanceSolver& solver, const MapProxy& proxy,
                                           const geodesic::DistanceSolver& proxySolver, const PatchPeaks& peaks, int n);

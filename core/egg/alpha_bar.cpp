@@ -3,6 +3,8 @@
 
 #include "core/errors.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -281,12 +283,16 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
   // every constraint's sign changes located on their own, and the feasible set is their
   // intersection (see feasibleSet). alpha_min / alpha_max are its outer ends.
   const int samplesCount = options.scanSamples;
-  std::vector<Sample> samples;
+  // The scan's samples are independent: evaluated in parallel, each with its own evaluator (the
+  // same values in any order; a quarter of the SQP stage's serial time at 3.4k vertices).
+  std::vector<Sample> samples(samplesCount);
+  tbb::parallel_for(0, samplesCount, [&](int k) {
+    Evaluator local{maps, options, evaluate.scale};
+    samples[k] = sampleAt(local, range->lo + (range->hi - range->lo) * k / (samplesCount - 1));
+  });
+  evaluate.count += samplesCount;
   double leastViolation = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < samplesCount; ++k) {
-    samples.push_back(sampleAt(evaluate, range->lo + (range->hi - range->lo) * k / (samplesCount - 1)));
-    leastViolation = std::min(leastViolation, *std::max_element(samples.back().g.begin(), samples.back().g.end()));
-  }
+  for (const auto& sample : samples) leastViolation = std::min(leastViolation, *std::max_element(sample.g.begin(), sample.g.end()));
   // Stretches narrower than 1/256 of the scan spacing (about 2e-4 rad on a typical convex range)
   // are not searched for: far below any construction tolerance of alpha_bar.
   const double spacing = (range->hi - range->lo) / (samplesCount - 1);

@@ -177,8 +177,9 @@ int runGridBench(const GridBenchArgs& args) {
              "tolerance {} x the shorter side; on a proxy of {} vertices, rows to {}, when the patch is larger), alpha_bar = min,\n"
              "lamellas 0.1 m at spacing 0.6 m; wall seconds (all threads), median of {} solves per size;\n"
              "cpu_grid = CPU seconds of the solve over all threads (load-independent work);\n"
-             "t_maps includes the eta check's curvature, peak and p1 fields (run alongside the maps), t_eta the\n"
-             "check itself; share = part / t_grid; fields = propagations (patch sides + maps + eta + tracing)\n",
+             "t_maps includes the proxy's decimation and the eta check's curvature, peak and p1 fields (run\n"
+             "alongside the maps), t_eta the check itself; share = part / t_grid; fields = propagations on the\n"
+             "patch, its surface or its proxy, full fields and directed ones alike (sides + maps + eta + tracing)\n",
              args.height, args.resolution, args.resolution, DistanceMapOptions{}.toleranceRelative,
              DistanceMapOptions{}.proxyVertices, DistanceMapOptions{}.proxyToleranceRelative, args.repeats);
   fmt::print("{:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>10} {:>18}\n", "vertices", "t_patch",

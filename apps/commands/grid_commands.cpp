@@ -138,8 +138,10 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
     // The proxy's actual size (the maps use it only when the patch is larger than the option).
     const bool onProxy = variant.proxy > 0 && static_cast<int>(p.mesh.n_vertices()) > variant.proxy;
     const int proxyVertices = onProxy ? static_cast<int>(makeMapProxy(p, variant.proxy).patch.mesh.n_vertices()) : 0;
+    // A patch no larger than the proxy is its own proxy: its rows refine to the proxy tolerance.
+    const double rowTolerance = !onProxy && variant.proxy > 0 ? variant.proxyTolerance : tolerance;
     nlohmann::json row{{"vertices", p.mesh.n_vertices()},
-                       {"tolerance_relative", tolerance},
+                       {"tolerance_relative", rowTolerance},
                        {"proxy_vertices_option", variant.proxy},
                        {"proxy_vertices", proxyVertices},
                        {"proxy_tolerance_relative", onProxy ? variant.proxyTolerance : 0.0},
@@ -163,7 +165,7 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
     row["uv_map_asymmetry_m"] = uvMap;
     if (std::isfinite(uvMember)) row["uv_member_asymmetry_m"] = uvMember;
     fmt::print("{:>8} {:>9.1e} {:>6} {:>8.1e} {:>8.3f} {:>8.3f} {:>8.3f} {:>6} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>10.2e} {:>10.2e} {:>10}\n",
-               p.mesh.n_vertices(), tolerance, proxyVertices, onProxy ? variant.proxyTolerance : 0.0, median(maps), median(totals), median(cpu), r.maps.propagations, mapError, etaChange,
+               p.mesh.n_vertices(), rowTolerance, proxyVertices, onProxy ? variant.proxyTolerance : 0.0, median(maps), median(totals), median(cpu), r.maps.propagations, mapError, etaChange,
                std::abs(r.alphaBar.alphaBar - e.alphaBar.alphaBar), std::abs(r.alphaBar.alphaMax - e.alphaBar.alphaMax),
                claddingChange, sameCount ? fmt::format("{:.2e}", shift) : std::string("count"), std::abs(r.grid.maxNotch - e.grid.maxNotch), uvMap,
                std::isfinite(uvMember) ? fmt::format("{:.2e}", uvMember) : std::string("count"));

@@ -256,7 +256,7 @@ int runGridBench(const GridBenchArgs& args) {
                "family's shorter side; proxy = vertices of the coarse copy the maps were computed on (--map-proxy, 0 = the patch),\n"
                "ptol = its rows' tolerance); reference = exact maps on the patch (tolerance 0, {} fields per family) of the same run; t_* medians\n"
                "of {} solves; map_err = max |D - D_exact| over both maps; d_eta = largest change of eta_u, eta_v (the check\n"
-               "reads exact p1 fields, so 0 unless smoothing took another path); d_alpha = |alpha_bar - exact| (alpha_bar_min), d_amax = |alpha_bar_max - exact|; d_F = largest\n"
+               "measures its distances on the patch, so ~0 unless a proxy picked other samples or smoothing took another path); d_alpha = |alpha_bar - exact| (alpha_bar_min), d_amax = |alpha_bar_max - exact|; d_F = largest\n"
                "change of the cladding functions F_u, F_v (metres along the end side, 201 samples of x1); d_member =\n"
                "largest member end shift along its side (\"count\" if the member count changed); d_notch = change of max notch;\n"
                "uv_map, uv_member = max |D_u - D_v| and largest u/v member mismatch of that solve: the patch is symmetric\n"

@@ -18,7 +18,8 @@ struct DistanceMapOptions {
   // times the family's shorter side (relative, so a 0.9 m and a 40 m patch get the same relative
   // accuracy); 0 = an exact field at every sample. Scene key grid.map_tolerance_relative.
   // It applies when proxyVertices = 0; otherwise the rows are the proxy's, or those of a patch no
-  // larger than the proxy, which is its own proxy, and proxyToleranceRelative applies.
+  // larger than the proxy, which is its own proxy, and proxyToleranceRelative applies (such a
+  // patch keeps its own solver, i.e. the patch's saddle tolerance, not proxySaddleAngleTolerance).
   // Default 1e-4: the accuracy bar of the geodesic engine (distance_solver.hpp), and below the
   // noise of the exact polyhedral maps themselves: on the symmetric bench bump the exact D_u and
   // D_v, equal on the smooth surface, differ by 1.4e-4 (1.1k-3.4k vertices) to 3.7e-4 (0.6k) of

@@ -5,6 +5,7 @@
 
 #include <tbb/task_group.h>
 
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -56,36 +57,46 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   etaFields.samples = options.maps.resolution;
   std::optional<MapProxy> proxy;
   std::unique_ptr<geodesic::DistanceSolver> proxySolver;
-  // The peak search (curvature of the fine patch) overlaps the decimation; the maps start as
-  // soon as the proxy exists, and the eta fields, which need both, run alongside them.
-  tbb::task_group peakSearch, mapping;
-  // Should anything below throw, both groups are waited for (their tasks use these locals) before
-  // the exception leaves; on the normal path the explicit waits rethrow a task's exception.
-  struct WaitForBoth {
-    tbb::task_group &a, &b;
-    ~WaitForBoth() {
-      for (tbb::task_group* g : {&a, &b}) try {
-          g->wait();
-        } catch (...) {
-        }
+  // One task group: the peak search (curvature of the fine patch) overlaps the decimation, the
+  // maps start as soon as the proxy exists, and the eta fields, which need both, are spawned by
+  // whichever of the two finishes last, so they run alongside the maps. (Waiting for the peak
+  // search alone let the waiting thread pick up the maps task first: eta ran after the maps.)
+  tbb::task_group tasks;
+  // Should anything below throw, the group is waited for (its tasks use these locals) before the
+  // exception leaves; on the normal path tasks.wait() rethrows a task's exception.
+  struct WaitFor {
+    tbb::task_group& group;
+    ~WaitFor() {
+      try {
+        group.wait();
+      } catch (...) {
+      }
     }
-  } waitForBoth{peakSearch, mapping};
-  peakSearch.run([&] { peaks = findPatchPeaks(result.patch, options.uniqueness); });
+  } waitFor{tasks};
+  std::atomic<int> etaInputsPending{2};  // the peaks and the proxy
+  const auto etaInputReady = [&] {
+    if (--etaInputsPending > 0) return;
+    tasks.run([&] {
+      if (peaks.peaks.empty() || boundCertainlyHolds(result.patch, peaks)) return;
+      const int n = options.maps.resolution;
+      etaFields = proxy ? uniquenessFieldsViaProxy(result.patch, *solver, *proxy, *proxySolver, peaks, n)
+                        : uniquenessFields(result.patch, peaks, *solver, n);
+    });
+  };
+  tasks.run([&] {
+    peaks = findPatchPeaks(result.patch, options.uniqueness);
+    etaInputReady();
+  });
   if (mapsUseProxy(result.patch, options.maps)) {
     proxy = makeMapProxy(result.patch, options.maps.proxyVertices);
     proxySolver = std::make_unique<geodesic::DistanceSolver>(proxy->patch.mesh, proxySolverOptions(*solver, options.maps));
   }
-  mapping.run([&] {
+  tasks.run([&] {
     result.maps = proxy ? computeDistanceMaps(*proxy, *proxySolver, options.maps)
                         : computeDistanceMaps(result.patch, *solver, options.maps);
   });
-  peakSearch.wait();
-  if (!peaks.peaks.empty() && !boundCertainlyHolds(result.patch, peaks)) {
-    const int n = options.maps.resolution;
-    etaFields = proxy ? uniquenessFieldsViaProxy(result.patch, *solver, *proxy, *proxySolver, peaks, n)
-                      : uniquenessFields(result.patch, peaks, *solver, n);
-  }
-  mapping.wait();
+  etaInputReady();
+  tasks.wait();
   result.propagations += result.maps.propagations + etaFields.propagations();
   result.seconds.distanceMaps = since(t);
 

@@ -309,14 +309,17 @@ UniquenessReport checkUniqueness(const Patch& patch, const PatchPeaks& peaks, co
   const auto& s = patch.sideLengths;
   report.longestGeodesicM = std::max({maps.diagonalE, maps.diagonalF, s[0], s[1], s[2], s[3]});
   report.boundHolds = report.longestGeodesicM < report.injectivityBoundM;
-  if (report.boundHolds) {
-    report.passed = true;
+  if (!fields.measured.empty()) {
+    // uniquenessFieldsViaProxy measured the checks on the patch already. The maps' diagonals are
+    // then the proxy's (within ~1e-3 m), too rough to let the bound overrule a measured eta near
+    // it: eta decides.
+    for (const auto& check : fields.measured) addCheck(report, check);
+    report.passed = report.etaU <= options.etaMax && report.etaV <= options.etaMax;
     report.seconds = secondsSince(started) + peaks.seconds;
     return report;
   }
-  if (!fields.measured.empty()) {  // uniquenessFieldsViaProxy measured the checks already
-    for (const auto& check : fields.measured) addCheck(report, check);
-    report.passed = report.etaU <= options.etaMax && report.etaV <= options.etaMax;
+  if (report.boundHolds) {
+    report.passed = true;
     report.seconds = secondsSince(started) + peaks.seconds;
     return report;
   }

@@ -57,12 +57,14 @@ UniquenessReport checkUniqueness(const Patch& patch, const geodesic::DistanceSol
                                  const UniquenessOptions& options = {});
 
 // The same check when the distance maps of the patch are known (solveEgg): the maps hold the
-// diagonals (their corner rows are always exact), so the check itself needs no field. The
-// distances d(p1, q) are NOT read from the maps: their rows between exact source fields are
-// interpolated (map_refinement.hpp), off by up to the map tolerance, while eta's margin is
-// 1.5e-3 relative. As in Section 3.4.1 each check gets one exact field from p1, computed by
-// uniquenessFields alongside the maps, so eta does not depend on the map tolerance and equals
-// the standalone check's on the same boundary samples (the check after smoothing).
+// diagonals (their corner rows are exact fields on the patch, or the proxy's within ~1e-3 m), so
+// the check itself needs no field. The distances d(p1, q) are NOT read from the maps: their rows
+// between exact source fields are interpolated (map_refinement.hpp), off by up to the map
+// tolerance, while eta's margin is 1.5e-3 relative. As in Section 3.4.1 each check gets its
+// distances from p1 measured on the patch: by uniquenessFields (an exact field from p1; eta then
+// equals the standalone check's on the same boundary samples, the check after smoothing) or by
+// uniquenessFieldsViaProxy (directed propagations at the samples the proxy picked; its measured
+// eta decides even where the maps' proxy diagonals suggest the injectivity bound holds).
 struct PatchPeaks {
   std::vector<CurvaturePeak> peaks;  // interior peaks of positive K, strongest first, at most maxPeaks
   double gaussianMax = 0.0;          // largest K near them [1/m^2] (0 if none)
@@ -98,8 +100,9 @@ UniquenessFields uniquenessFields(const Patch& patch, const PatchPeaks& peaks, c
 // replace three fields on the patch (~50 ms of CPU at 3.4k vertices).
 UniquenessFields uniquenessFieldsViaProxy(const Patch& patch, const geodesic::DistanceSolver& solver, const MapProxy& proxy,
                                           const geodesic::DistanceSolver& proxySolver, const PatchPeaks& peaks, int n);
-// `fields` from uniquenessFields(patch, peaks, solver, maps.u.n1); ignored (may be empty) when
-// boundCertainlyHolds or when the diagonals of the maps satisfy the bound.
+// `fields` from uniquenessFields(patch, peaks, solver, maps.u.n1) or uniquenessFieldsViaProxy
+// (same n); may be empty when boundCertainlyHolds. Fields from uniquenessFields are ignored when
+// the diagonals of the maps satisfy the bound; checks measured via the proxy always decide.
 UniquenessReport checkUniqueness(const Patch& patch, const PatchPeaks& peaks, const UniquenessFields& fields,
                                  const PatchDistanceMaps& maps, const UniquenessOptions& options = {});
 

@@ -10,8 +10,10 @@
 // order is exactly (key, item), as a heap's, so every bit of the result is the same. On a graded
 // mesh (edges much shorter than the mean somewhere) a bucket can hold thousands of entries; it
 // then costs what one heap of that size costs, not a linear scan per pop.
-// Keys below the current bucket (only by rounding, since a child window never lies nearer than
-// its parent) are kept in the current bucket and still pop in key order. Keys must not be NaN.
+// Keys below the current bucket (by rounding in a full field, where a child window never lies
+// nearer than its parent; truly lower in a directed one, whose keys are sums of two separate
+// minima, goal_bound.hpp) are kept in the current bucket and still pop in key order. Keys must
+// not be NaN.
 #include <algorithm>
 #include <cmath>
 #include <functional>

@@ -14,9 +14,13 @@
 // bound), so while a shorter path to a target exists, some queued window on it has a key below
 // the target's current distance; once the smallest key reaches every target's distance, no
 // queued window can shorten any. A pseudo-source still fires with its final distance, by the same
-// argument with the vertex in the target's place. The distances at the targets and the traced
-// paths are therefore those of the full propagation (exact mode: to rounding; the default's
-// near-flat-saddle bends read d(X) as known when they are made, as in a full field).
+// argument with the vertex in the target's place. In exact mode the distances at the targets and
+// the traced paths are therefore those of the full propagation (to rounding). With skipped
+// near-flat saddles (the default) a bend at X offers d(X) + |X q|, which can lie a second-order
+// amount below the key of the window it came from, and reads d(X) as known at that moment: the
+// directed value can then be slightly longer than the full field's, never shorter (review,
+// random face pairs on bumps: up to 7.8e-7 relative at 7e-4, 1.2e-5 at 3e-3), i.e. closer to or
+// as far from the exact value as the full field's.
 #include "core/geodesic/window_propagation.hpp"
 
 #include <Eigen/Dense>

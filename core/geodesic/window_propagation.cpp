@@ -14,17 +14,16 @@
 //    exactly once, with its final distance.
 //  * Pruning, all of it exact: Chen-Han's one angle, one split; trimming a new window where an
 //    earlier window on the same edge is shorter (window_geometry.hpp); and Xin-Wang filtering by
-//    the edge's own endpoints: a window part where d(A) + |A p| is strictly shorter than
-//    sigma + |s p| is cut, and since the difference is monotone along the edge the cut is at a
-//    root. (Xin-Wang's tests against the two opposite vertices are left out: measured, they
-//    almost never fire once the others are in place; see prune().)
+//    the edge's own endpoints (a part where d(A) + |A p| < sigma + |s p| is cut, at a root since
+//    the difference is monotone along the edge; the opposite-vertex tests are left out, prune()).
 //  * Each window is pruned once, when it is added (see propagateWindow()).
 // A strictly dominated part never carries a shortest path, so the result is the exact polyhedral
 // distance (to rounding) when every saddle is a pseudo-source (saddleAngleTolerance = 0); by
 // default near-flat saddles are bent at instead (pathBentAt): 2-3x faster, 8e-6 at worst.
 // Targets: every window entering a target's face offers sigma + |s q| if its ray to q crosses
 // it, every vertex v of the face d(v) + |v q| at the end; paths are traced back through
-// Window::parent. A directed query queues by d + chord to the targets (goal_bound.hpp).
+// Window::parent. A directed query queues by d + chord to the targets and stops once they are
+// final (goal_bound.hpp); a stale vertex event is recognised by its vertex having fired.
 #include "core/geodesic/window_propagation.hpp"
 #include "core/geodesic/goal_bound.hpp"
 #include "core/geodesic/window_geometry.hpp"
@@ -62,7 +61,7 @@ class Propagator {
       if (goal_.active() && entry.key >= directed_.farthestBound(t_, s_)) break;  // targets final
       if (entry.item < 0) {
         const int v = -entry.item - 1;
-        if (s_.fired[v] || entry.key != vertexKey(v)) continue;
+        if (s_.fired[v]) continue;  // a stale event: a later, smaller key for v popped first
         fire(v);
       } else {
         propagateWindow(entry.item);
@@ -77,13 +76,12 @@ class Propagator {
   Propagation& s_;
   DirectedTargets directed_;  // empty (a full field) unless the query is directed at its targets
   const GoalBound& goal_ = directed_.goal;
-
   double vertexKey(int v) const { return s_.vertexDistance[v] + (goal_.active() ? goal_.toPoint(t_.positions[v]) : 0.0); }
   double windowKey(const Window& w) const {
-    if (!goal_.active()) return windowMinDistance(w);
     const auto& e = t_.he[w.halfedge];
-    return windowMinDistance(w) +
-           goal_.toSegment(t_.positions[e.fromVertex], t_.positions[e.toVertex], w.b0 / e.length, w.b1 / e.length);
+    return windowMinDistance(w) + (goal_.active() ? goal_.toSegment(t_.positions[e.fromVertex], t_.positions[e.toVertex],
+                                                                   w.b0 / e.length, w.b1 / e.length)
+                                                  : 0.0);
   }
 
   void reset(const std::vector<SurfacePoint>& targets) {

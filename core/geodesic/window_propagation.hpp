@@ -139,7 +139,7 @@ struct Propagation {
 // Runs the exact propagation from `source` with `targets`. Leaves the windows in `state` for
 // backtracing. directedAtTargets (with targets): queued by distance plus the chord to the nearest
 // target and stopped once every target is final (goal_bound.hpp); the target distances and paths
-// are the full field's, the vertex distances only upper bounds away from the targets.
+// are the full field's (exact mode; see goal_bound.hpp), the vertex distances only upper bounds.
 void propagate(const MeshTables& tables, const DistanceSolverOptions& options, const SurfacePoint& source,
                const std::vector<SurfacePoint>& targets, Propagation& state, bool directedAtTargets = false);
 

@@ -6,6 +6,7 @@
 #include "tests/support/analytic_meshes.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <map>
@@ -249,6 +250,20 @@ TEST(Curvature, SampleCylinderAndHyparMatchAnalyticCurvature) {
   // The angle defect is right in the integral (Gauss-Bonnet) though not vertex by vertex.
   EXPECT_NEAR(integralDefect / integralExact, 1.0, 0.01);
   EXPECT_GT(meanDefect / interior, worstFit);
+}
+
+TEST(Curvature, TheResultDoesNotDependOnTheThreadCount) {
+  // The fits run in parallel with a stamp array per thread: one thread and two must agree bit
+  // for bit (a shared stamp array would mix neighbourhoods across threads).
+  const TriMesh mesh = samples::generateSample("hypar", {}, 0.3);
+  CurvatureField one, two;
+  tbb::task_arena(1).execute([&] { one = computeCurvature(mesh); });
+  tbb::task_arena(2).execute([&] { two = computeCurvature(mesh); });
+  ASSERT_GT(mesh.n_vertices(), 200u);
+  EXPECT_EQ(one.gaussian, two.gaussian);
+  EXPECT_EQ(one.mean, two.mean);
+  EXPECT_EQ(one.kappa_max, two.kappa_max);
+  EXPECT_EQ(one.on_boundary, two.on_boundary);
 }
 
 TEST(Curvature, OptionsAreValidated) {

@@ -281,10 +281,19 @@ TEST(DistanceSolver, DirectedQueriesEqualTheFullField) {
       const auto full = exact.distances(from, several).targetDistances, directed = exact.directedDistances(from, several).targetDistances;
       for (size_t i = 0; i < several.size(); ++i)
         if (full[i] > 1e-9) exactWorst = std::max(exactWorst, relativeError(directed[i], full[i]));
+      // The default with several targets: a bend at a skipped saddle may lie below its window's
+      // key, so the directed value may be a little longer (goal_bound.hpp), never shorter.
+      const auto fullDefaults = solver.distances(from, several).targetDistances;
+      const auto directedDefaults = solver.directedDistances(from, several).targetDistances;
+      for (size_t i = 0; i < several.size(); ++i) {
+        if (!(fullDefaults[i] > 1e-9)) continue;
+        defaultWorst = std::max(defaultWorst, relativeError(directedDefaults[i], fullDefaults[i]));
+        EXPECT_GE(directedDefaults[i], fullDefaults[i] * (1.0 - 1e-12)) << c.name;
+      }
     }
     EXPECT_LT(exactWorst, 1e-12) << c.name;
     EXPECT_LT(pathWorst, 1e-9) << c.name;
-    EXPECT_LT(defaultWorst, 1e-5) << c.name;
+    EXPECT_LT(defaultWorst, 1e-5) << c.name;  // measured: 0 on these pairs
     std::printf("%s: directed vs full, exact %.2e, default %.2e, exact path %.2e\n", c.name, exactWorst, defaultWorst, pathWorst);
   }
 }
@@ -304,6 +313,13 @@ TEST(DistanceSolver, DisconnectedPartsAreInfinitelyFar) {
     EXPECT_EQ(field.vertexDistances[v], std::numeric_limits<double>::infinity());
   }
   EXPECT_EQ(field.targetDistances[0], std::numeric_limits<double>::infinity());
+  // Directed at an unreachable and a reachable target: the propagation runs out (it cannot stop
+  // early), the reachable one gets the full field's distance, the other stays infinite.
+  const SurfacePoint near = facePoint(3, 0.2, 0.2, 0.6);
+  const auto directed = solver.directedDistances(vertexPoint(mesh, 0), {facePoint(farFace, 0.3, 0.3, 0.4), near});
+  EXPECT_EQ(directed.targetDistances[0], std::numeric_limits<double>::infinity());
+  EXPECT_EQ(directed.targetDistances[1], solver.distances(vertexPoint(mesh, 0), {near}).targetDistances[0]);
+  EXPECT_EQ(solver.distance(vertexPoint(mesh, 0), facePoint(farFace, 0.3, 0.3, 0.4)), std::numeric_limits<double>::infinity());
 }
 
 TEST(DistanceSolver, BatchIsBitIdenticalForAnyThreadCount) {

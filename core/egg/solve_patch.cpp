@@ -62,17 +62,6 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   // whichever of the two finishes last, so they run alongside the maps. (Waiting for the peak
   // search alone let the waiting thread pick up the maps task first: eta ran after the maps.)
   tbb::task_group tasks;
-  // Should anything below throw, the group is waited for (its tasks use these locals) before the
-  // exception leaves; on the normal path tasks.wait() rethrows a task's exception.
-  struct WaitFor {
-    tbb::task_group& group;
-    ~WaitFor() {
-      try {
-        group.wait();
-      } catch (...) {
-      }
-    }
-  } waitFor{tasks};
   std::atomic<int> etaInputsPending{2};  // the peaks and the proxy
   const auto etaInputReady = [&] {
     if (--etaInputsPending > 0) return;
@@ -83,6 +72,17 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
                         : uniquenessFields(result.patch, peaks, *solver, n);
     });
   };
+  // Should anything below throw, the group is waited for (its tasks use the locals above) before
+  // the exception leaves; on the normal path tasks.wait() rethrows a task's exception.
+  struct WaitFor {
+    tbb::task_group& group;
+    ~WaitFor() {
+      try {
+        group.wait();
+      } catch (...) {
+      }
+    }
+  } waitFor{tasks};
   tasks.run([&] {
     peaks = findPatchPeaks(result.patch, options.uniqueness);
     etaInputReady();
@@ -97,6 +97,7 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   });
   etaInputReady();
   tasks.wait();
+  if (proxy && !peaks.peaks.empty()) measureDiagonalsNearTheBound(result.maps, result.patch, *solver, peaks);
   result.propagations += result.maps.propagations + etaFields.propagations();
   result.seconds.distanceMaps = since(t);
 

@@ -5,6 +5,7 @@
 #include "core/errors.hpp"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <chrono>
@@ -299,6 +300,20 @@ UniquenessFields uniquenessFieldsViaProxy(const Patch& patch, const geodesic::Di
   return fields;
 }
 
+bool measureDiagonalsNearTheBound(PatchDistanceMaps& maps, const Patch& patch, const geodesic::DistanceSolver& solver,
+                                  const PatchPeaks& peaks, double band) {
+  const double bound = injectivityRadiusBound(peaks.gaussianMax);
+  const double diagonal = std::max(maps.diagonalE, maps.diagonalF);
+  if (!std::isfinite(bound) || std::abs(diagonal - bound) > band * bound) return false;
+  const auto corner = [&](int k) { return geodesic::vertexPoint(patch.mesh, patch.cornerVertices[k]); };
+  double e = 0.0, f = 0.0;
+  tbb::parallel_invoke([&] { e = solver.distance(corner(0), corner(2)); }, [&] { f = solver.distance(corner(3), corner(1)); });
+  if (!std::isfinite(e) || !std::isfinite(f)) throw SolverFailure("uniqueness: opposite corners are unreachable inside the patch");
+  maps.diagonalE = e;
+  maps.diagonalF = f;
+  return true;
+}
+
 UniquenessReport checkUniqueness(const Patch& patch, const PatchPeaks& peaks, const UniquenessFields& fields,
                                  const PatchDistanceMaps& maps, const UniquenessOptions& options) {
   const auto started = std::chrono::steady_clock::now();
@@ -309,17 +324,14 @@ UniquenessReport checkUniqueness(const Patch& patch, const PatchPeaks& peaks, co
   const auto& s = patch.sideLengths;
   report.longestGeodesicM = std::max({maps.diagonalE, maps.diagonalF, s[0], s[1], s[2], s[3]});
   report.boundHolds = report.longestGeodesicM < report.injectivityBoundM;
-  if (!fields.measured.empty()) {
-    // uniquenessFieldsViaProxy measured the checks on the patch already. The maps' diagonals are
-    // then the proxy's (within ~1e-3 m), too rough to let the bound overrule a measured eta near
-    // it: eta decides.
-    for (const auto& check : fields.measured) addCheck(report, check);
-    report.passed = report.etaU <= options.etaMax && report.etaV <= options.etaMax;
+  if (report.boundHolds) {
+    report.passed = true;
     report.seconds = secondsSince(started) + peaks.seconds;
     return report;
   }
-  if (report.boundHolds) {
-    report.passed = true;
+  if (!fields.measured.empty()) {  // uniquenessFieldsViaProxy measured the checks on the patch already
+    for (const auto& check : fields.measured) addCheck(report, check);
+    report.passed = report.etaU <= options.etaMax && report.etaV <= options.etaMax;
     report.seconds = secondsSince(started) + peaks.seconds;
     return report;
   }

@@ -63,8 +63,9 @@ UniquenessReport checkUniqueness(const Patch& patch, const geodesic::DistanceSol
 // tolerance, while eta's margin is 1.5e-3 relative. As in Section 3.4.1 each check gets its
 // distances from p1 measured on the patch: by uniquenessFields (an exact field from p1; eta then
 // equals the standalone check's on the same boundary samples, the check after smoothing) or by
-// uniquenessFieldsViaProxy (directed propagations at the samples the proxy picked; its measured
-// eta decides even where the maps' proxy diagonals suggest the injectivity bound holds).
+// uniquenessFieldsViaProxy (directed propagations at the samples the proxy picked). With a proxy
+// the maps' diagonals are the proxy's (~1e-3 m off): measureDiagonalsNearTheBound replaces them
+// by the patch's where that could decide the bound.
 struct PatchPeaks {
   std::vector<CurvaturePeak> peaks;  // interior peaks of positive K, strongest first, at most maxPeaks
   double gaussianMax = 0.0;          // largest K near them [1/m^2] (0 if none)
@@ -101,8 +102,15 @@ UniquenessFields uniquenessFields(const Patch& patch, const PatchPeaks& peaks, c
 UniquenessFields uniquenessFieldsViaProxy(const Patch& patch, const geodesic::DistanceSolver& solver, const MapProxy& proxy,
                                           const geodesic::DistanceSolver& proxySolver, const PatchPeaks& peaks, int n);
 // `fields` from uniquenessFields(patch, peaks, solver, maps.u.n1) or uniquenessFieldsViaProxy
-// (same n); may be empty when boundCertainlyHolds. Fields from uniquenessFields are ignored when
-// the diagonals of the maps satisfy the bound; checks measured via the proxy always decide.
+// (same n); may be empty when boundCertainlyHolds, and ignored when the diagonals of the maps
+// satisfy the bound.
+// Maps read on a proxy carry the proxy's diagonals. Where the longer one lies within `band`
+// (relative) of the injectivity bound pi / sqrt(K_max), so that the proxy's error could tip the
+// bound, both are measured on the patch (two directed propagations) and written into `maps`;
+// returns whether it did. solveEgg calls it before checkUniqueness, so the check decides as it
+// would with maps on the patch (and as the standalone check after smoothing does).
+bool measureDiagonalsNearTheBound(PatchDistanceMaps& maps, const Patch& patch, const geodesic::DistanceSolver& solver,
+                                  const PatchPeaks& peaks, double band = 0.01);
 UniquenessReport checkUniqueness(const Patch& patch, const PatchPeaks& peaks, const UniquenessFields& fields,
                                  const PatchDistanceMaps& maps, const UniquenessOptions& options = {});
 

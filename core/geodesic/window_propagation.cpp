@@ -61,7 +61,7 @@ class Propagator {
       if (goal_.active() && entry.key >= directed_.farthestBound(t_, s_)) break;  // targets final
       if (entry.item < 0) {
         const int v = -entry.item - 1;
-        if (s_.fired[v]) continue;  // a stale event: a later, smaller key for v popped first
+        if (s_.fired[v]) continue;  // a stale event: a later, no larger key for v popped first
         fire(v);
       } else {
         propagateWindow(entry.item);

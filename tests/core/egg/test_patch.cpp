@@ -55,10 +55,11 @@ TEST(Patch, PlaneSquareHasExactSidesAnglesAndArea) {
 
 TEST(Patch, CornersInNeighbouringFacesAreInsertedOneAtATime) {
   // makePatch inserts the four corners in one mesh rebuild when their faces' neighbourhoods are
-  // disjoint, one at a time otherwise. A square of 0.9 m on a plane meshed at 2 m puts its corners
-  // in the same or neighbouring faces, so it takes the second path: the known answer must hold.
+  // disjoint, one at a time otherwise. A square of 0.3 m on a plane meshed at 2 m puts its corners
+  // in the same face (three of them here), so it takes the second path: the known answer must hold.
+  // (Inserted together into that face, or snapped on the unsplit surface, they break it.)
   const TriMesh coarse = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 2.0);
-  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(0.1, 0.2, 0), {1.0, 0.2, 0}, {1.0, 1.1, 0}, {0.1, 1.1, 0}};
+  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(0.1, 0.2, 0), {0.4, 0.2, 0}, {0.4, 0.5, 0}, {0.1, 0.5, 0}};
   std::set<int> faces;
   for (const auto& c : corners) faces.insert(geodesic::snapToSurface(coarse, c).face);
   std::set<int> neighbourhoods;
@@ -67,15 +68,16 @@ TEST(Patch, CornersInNeighbouringFacesAreInsertedOneAtATime) {
     disjoint = neighbourhoods.insert(f).second && disjoint;
     for (auto fh : coarse.ff_range(TriMesh::FaceHandle(f))) disjoint = neighbourhoods.insert(fh.idx()).second && disjoint;
   }
-  ASSERT_TRUE(faces.size() < 4 || !disjoint);  // so the corners cannot go in together
+  ASSERT_LT(faces.size(), 4u);  // corners share a face: they cannot go in together
+  ASSERT_FALSE(disjoint);
   const Patch patch = makePatch(coarse, corners);
   expectBoundaryIsTheQuad(patch);
   for (int k = 0; k < 4; ++k) {
-    EXPECT_NEAR(patch.sideLengths[k], 0.9, 1e-12) << k;
+    EXPECT_NEAR(patch.sideLengths[k], 0.3, 1e-12) << k;
     EXPECT_NEAR(patch.innerAngles[k], M_PI / 2, 1e-12) << k;
     EXPECT_NEAR((patch.corners[k] - corners[k]).norm(), 0.0, 1e-12) << k;
   }
-  EXPECT_NEAR(patch.area, 0.81, 1e-12);
+  EXPECT_NEAR(patch.area, 0.09, 1e-12);
 }
 
 TEST(Patch, ClockwiseCornersGiveTheSameRegion) {

@@ -176,16 +176,27 @@ TEST(Uniqueness, EtaViaTheProxyIsThePatchsOwn) {
     const auto onProxy = checkUniqueness(proxy.patch, proxySolver, onProxyOptions);
     const double proxyError = std::max(std::abs(onProxy.etaU - onPatch.etaU), std::abs(onProxy.etaV - onPatch.etaV));
     RecordProperty(c.height > 2.0 ? "eta_error_proxy_alone_tall" : "eta_error_proxy_alone_bench", std::to_string(proxyError));
-    // Measured checks decide even where the maps' diagonals (the proxy's, ~1e-3 m off) would let
-    // the injectivity bound pass the patch: with K_max lowered so that the bound (9.9 m) exceeds
-    // every side and diagonal, the tall bump still fails on its measured eta.
+    // Near the injectivity bound the proxy's diagonals (~1e-3 m off) are replaced by the patch's:
+    // with K_max set so that the bound equals the proxy's longer diagonal, both are measured and
+    // equal the patch's corner-to-corner distances; with the bound far away nothing is measured.
     if (c.height > 2.0) {
-      PatchPeaks lowered = peaks;
-      lowered.gaussianMax = 0.1;
-      EXPECT_TRUE(checkUniqueness(patch, lowered, uniquenessFields(patch, peaks, solver, n), maps).passed);
-      const auto measured = checkUniqueness(patch, lowered, viaProxy, maps);
-      EXPECT_TRUE(measured.boundHolds);
-      EXPECT_FALSE(measured.passed);
+      DistanceMapOptions onProxy;
+      onProxy.resolution = n;
+      onProxy.proxyVertices = 500;
+      auto proxyMaps = computeDistanceMaps(patch, solver, onProxy);
+      const auto corner = [&](int k) { return geodesic::vertexPoint(patch.mesh, patch.cornerVertices[k]); };
+      const double e = solver.distances(corner(0), {corner(2)}).targetDistances[0];
+      const double f = solver.distances(corner(3), {corner(1)}).targetDistances[0];
+      ASSERT_GT(std::abs(proxyMaps.diagonalE - e) + std::abs(proxyMaps.diagonalF - f), 1e-6);  // the proxy's differ
+      PatchPeaks far = peaks, near = peaks;
+      far.gaussianMax = 1e-3;  // bound 99 m
+      const double longer = std::max(proxyMaps.diagonalE, proxyMaps.diagonalF);
+      near.gaussianMax = std::pow(M_PI / longer, 2.0);  // bound = the proxy's longer diagonal
+      EXPECT_FALSE(measureDiagonalsNearTheBound(proxyMaps, patch, solver, far));
+      EXPECT_NE(proxyMaps.diagonalE, e);
+      EXPECT_TRUE(measureDiagonalsNearTheBound(proxyMaps, patch, solver, near));
+      EXPECT_NEAR(proxyMaps.diagonalE, e, 1e-12);
+      EXPECT_NEAR(proxyMaps.diagonalF, f, 1e-12);
     }
     std::printf("bump %.1f m: eta via proxy - on patch %.2e, proxy alone %.2e (eta_u %.6f)\n", c.height, worst, proxyError,
                 onPatch.etaU);

@@ -97,7 +97,8 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   });
   etaInputReady();
   tasks.wait();
-  if (proxy && !peaks.peaks.empty()) measureDiagonalsNearTheBound(result.maps, result.patch, *solver, peaks);
+  if (proxy && !peaks.peaks.empty() && measureDiagonalsNearTheBound(result.maps, result.patch, *solver, peaks))
+    result.propagations += 2;
   result.propagations += result.maps.propagations + etaFields.propagations();
   result.seconds.distanceMaps = since(t);
 

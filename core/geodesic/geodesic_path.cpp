@@ -213,9 +213,7 @@ GeodesicPath tracePath(const MeshTables& t, const Propagation& s, int targetInde
   std::reverse(tracer.reversed.begin(), tracer.reversed.end());
   const double tiny = 1e-12 * std::max(1.0, t.meanEdgeLength);
   for (const auto& p : tracer.reversed) {
-    const auto& fv = t.faceVerts[p.face];
-    const Eigen::Vector3d x =
-        p.barycentric[0] * t.positions[fv[0]] + p.barycentric[1] * t.positions[fv[1]] + p.barycentric[2] * t.positions[fv[2]];
+    const Eigen::Vector3d x = t.pointIn(p.face, p.barycentric);
     if (!path.positions.empty() && (x - path.positions.back()).norm() <= tiny) {
       if (&p == &tracer.reversed.back()) path.points.back() = p;  // keep the exact target
       continue;

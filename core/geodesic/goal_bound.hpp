@@ -71,8 +71,7 @@ struct DirectedTargets {
     legs.clear();
     for (size_t i = 0; i < s.targetFace.size(); ++i) {
       const auto& fv = t.faceVerts[s.targetFace[i]];
-      const Eigen::Vector3d& w = s.targetWeights[i];
-      const Eigen::Vector3d q = w[0] * t.positions[fv[0]] + w[1] * t.positions[fv[1]] + w[2] * t.positions[fv[2]];
+      const Eigen::Vector3d q = t.pointIn(s.targetFace[i], s.targetWeights[i]);
       goal.targets.push_back(q);
       legs.push_back({(q - t.positions[fv[0]]).norm(), (q - t.positions[fv[1]]).norm(), (q - t.positions[fv[2]]).norm()});
     }

@@ -163,7 +163,7 @@ class Propagator {
     }
     const Eigen::Vector3d w = normalisedWeights(source, "the source");
     const auto& fv = t_.faceVerts[source.face];
-    s_.sourcePosition = w[0] * t_.positions[fv[0]] + w[1] * t_.positions[fv[1]] + w[2] * t_.positions[fv[2]];
+    s_.sourcePosition = t_.pointIn(source.face, w);
     int nonZero = 0, lastNonZero = -1;
     for (int i = 0; i < 3; ++i) {
       if (w[i] > 0.0) {
@@ -241,11 +241,7 @@ class Propagator {
     }
     for (int f : faces) {
       for (int i = s_.faceFirstTarget[f]; i >= 0; i = s_.nextTarget[i]) {
-        const auto& fv = t_.faceVerts[f];
-        const Eigen::Vector3d q = s_.targetWeights[i][0] * t_.positions[fv[0]] +
-                                  s_.targetWeights[i][1] * t_.positions[fv[1]] +
-                                  s_.targetWeights[i][2] * t_.positions[fv[2]];
-        const double d = (q - s_.sourcePosition).norm();
+        const double d = (t_.pointIn(f, s_.targetWeights[i]) - s_.sourcePosition).norm();
         if (d < s_.targetDistance[i]) {
           s_.targetDistance[i] = d;
           s_.targetPredecessor[i] = {Predecessor::Source, -1};
@@ -578,9 +574,7 @@ class Propagator {
     for (int i = 0; i < nt; ++i) {
       const int f = s_.targetFace[i];
       const auto& fv = t_.faceVerts[f];
-      const Eigen::Vector3d q = s_.targetWeights[i][0] * t_.positions[fv[0]] +
-                                s_.targetWeights[i][1] * t_.positions[fv[1]] +
-                                s_.targetWeights[i][2] * t_.positions[fv[2]];
+      const Eigen::Vector3d q = t_.pointIn(f, s_.targetWeights[i]);
       for (int k = 0; k < 3; ++k) {
         const double d = s_.vertexDistance[fv[k]] + (q - t_.positions[fv[k]]).norm();
         if (d < s_.targetDistance[i]) {

@@ -48,6 +48,11 @@ struct MeshTables {
   double meanEdgeLength = 0.0;
 
   int twin(int h) const { return h ^ 1; }
+  // The 3D point with barycentric weights w (faceVerts order) in face f.
+  Eigen::Vector3d pointIn(int f, const Eigen::Vector3d& w) const {
+    const auto& fv = faceVerts[f];
+    return w[0] * positions[fv[0]] + w[1] * positions[fv[1]] + w[2] * positions[fv[2]];
+  }
 };
 
 MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options);

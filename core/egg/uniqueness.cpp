@@ -50,28 +50,45 @@ NearestBoundary nearestBoundary(const std::vector<double>& fromPeak, Family fami
   return best;
 }
 
-// eta for one family and peak: q1 on the side opposite p1 minimises d(p1,p_max) + d(p_max,q) - d(p1,q).
-// `fromP1(k)` is d(p1, sample k of the opposite side).
-EtaCheck etaCheck(const Patch& patch, Family family, const CurvaturePeak& peak, const std::vector<double>& fromPeak,
-                  const NearestBoundary& p1, int n, const std::function<double(int)>& fromP1) {
+// q1 (Section 2.3.3): the index i < count with the smallest excess viaPeak(i) - direct(i) among
+// those with direct(i) > 0; -1 if there is none.
+int leastExcess(int count, const std::function<double(int)>& viaPeak, const std::function<double(int)>& direct) {
+  int best = -1;
+  double bestExcess = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < count; ++i) {
+    const double d = direct(i), excess = viaPeak(i) - d;
+    if (!(d > 0.0) || excess >= bestExcess) continue;
+    bestExcess = excess;
+    best = i;
+  }
+  return best;
+}
+
+// The check of one family and peak with p1 and q1 = sample q of the side opposite p1 (eta =
+// viaPeak / direct there; q < 0: no sample qualified, eta stays 1).
+EtaCheck makeCheck(const Patch& patch, Family family, const CurvaturePeak& peak, const NearestBoundary& p1, int n, int q,
+                   double viaPeak, double direct) {
   EtaCheck check;
   check.family = family;
   check.peakVertex = peak.vertex;
   check.peak = peak.position;
   check.gaussian = peak.gaussian_max_nearby;
-  const double x1 = static_cast<double>(p1.index) / (n - 1);
-  check.p1 = position(patch.mesh, familyBoundaryPoint(patch, family, p1.onEnd, x1));
-  double bestExcess = std::numeric_limits<double>::infinity();
-  const int opposite = sideOffset(family, !p1.onEnd, n);
-  for (int k = 0; k < n; ++k) {
-    const double viaPeak = p1.distance + fromPeak[opposite + k];
-    const double direct = fromP1(k);
-    if (!(direct > 0.0) || viaPeak - direct >= bestExcess) continue;
-    bestExcess = viaPeak - direct;
+  check.p1 = position(patch.mesh, familyBoundaryPoint(patch, family, p1.onEnd, static_cast<double>(p1.index) / (n - 1)));
+  if (q >= 0) {
     check.eta = viaPeak / direct;
-    check.q1 = position(patch.mesh, familyBoundaryPoint(patch, family, !p1.onEnd, static_cast<double>(k) / (n - 1)));
+    check.q1 = position(patch.mesh, familyBoundaryPoint(patch, family, !p1.onEnd, static_cast<double>(q) / (n - 1)));
   }
   return check;
+}
+
+// eta for one family and peak: q1 on the side opposite p1 minimises d(p1,p_max) + d(p_max,q) - d(p1,q).
+// `fromP1(k)` is d(p1, sample k of the opposite side).
+EtaCheck etaCheck(const Patch& patch, Family family, const CurvaturePeak& peak, const std::vector<double>& fromPeak,
+                  const NearestBoundary& p1, int n, const std::function<double(int)>& fromP1) {
+  const int opposite = sideOffset(family, !p1.onEnd, n);
+  const auto viaPeak = [&](int k) { return p1.distance + fromPeak[opposite + k]; };
+  const int q = leastExcess(n, viaPeak, fromP1);
+  return makeCheck(patch, family, peak, p1, n, q, q >= 0 ? viaPeak(q) : 0.0, q >= 0 ? fromP1(q) : 1.0);
 }
 
 void addCheck(UniquenessReport& report, const EtaCheck& check) {
@@ -245,12 +262,8 @@ UniquenessFields uniquenessFieldsViaProxy(const Patch& patch, const geodesic::Di
       const NearestBoundary& p1 = nearest[at];
       const auto& direct = fields.fromP1[at++].targetDistances;
       const int opposite = sideOffset(family, !p1.onEnd, n);
-      int q1 = 0;
-      double bestExcess = std::numeric_limits<double>::infinity();
-      for (int k = 0; k < n; ++k) {
-        const double excess = p1.distance + (*fromPeaks[p])[opposite + k] - direct[opposite + k];
-        if (direct[opposite + k] > 0.0 && excess < bestExcess) bestExcess = excess, q1 = k;
-      }
+      const int q1 = std::max(0, leastExcess(n, [&](int k) { return p1.distance + (*fromPeaks[p])[opposite + k]; },
+                                             [&](int k) { return direct[opposite + k]; }));
       Located l{p, family, {}};
       for (int k = std::max(0, q1 - 1); k <= std::min(n - 1, q1 + 1); ++k) l.candidates.push_back(k);
       located.push_back(l);
@@ -276,25 +289,14 @@ UniquenessFields uniquenessFieldsViaProxy(const Patch& patch, const geodesic::Di
   for (size_t c = 0; c < located.size(); ++c) {
     const Located& l = located[c];
     const NearestBoundary& p1 = nearest[c];
-    const CurvaturePeak& peak = peaks.peaks[l.peak];
-    EtaCheck check;
-    check.family = l.family;
-    check.peakVertex = peak.vertex;
-    check.peak = peak.position;
-    check.gaussian = peak.gaussian_max_nearby;
-    check.p1 = position(patch.mesh, familyBoundaryPoint(patch, l.family, p1.onEnd, static_cast<double>(p1.index) / (n - 1)));
-    const double toPeak = p1ToPeak[c];
-    double bestExcess = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < l.candidates.size(); ++i) {
-      const double viaPeak = toPeak + fromPeakFine[c][i], direct = fromP1Fine[c][i];
-      if (!std::isfinite(viaPeak) || !std::isfinite(direct))
+    const auto viaPeak = [&](int i) { return p1ToPeak[c] + fromPeakFine[c][i]; };
+    const auto direct = [&](int i) { return fromP1Fine[c][i]; };
+    for (size_t i = 0; i < l.candidates.size(); ++i)
+      if (!std::isfinite(viaPeak(i)) || !std::isfinite(direct(i)))
         throw SolverFailure("eta check: a boundary sample is unreachable from p1 or the peak inside the patch");
-      if (!(direct > 0.0) || viaPeak - direct >= bestExcess) continue;
-      bestExcess = viaPeak - direct;
-      check.eta = viaPeak / direct;
-      check.q1 = position(patch.mesh, familyBoundaryPoint(patch, l.family, !p1.onEnd,
-                                                          static_cast<double>(l.candidates[i]) / (n - 1)));
-    }
+    const int i = leastExcess(static_cast<int>(l.candidates.size()), viaPeak, direct);
+    const EtaCheck check = makeCheck(patch, l.family, peaks.peaks[l.peak], p1, n, i >= 0 ? l.candidates[i] : -1,
+                                     i >= 0 ? viaPeak(i) : 0.0, i >= 0 ? direct(i) : 1.0);
     fields.measured.push_back(check);
   }
   return fields;

@@ -132,12 +132,16 @@ Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& re
     for (auto fh : surface.ff_range(TriMesh::FaceHandle(snapped[k].face))) faces.insert(fh.idx());
     for (int f : faces) together = neighbourhoods.insert(f).second && together;
   }
-  TriMesh work = surface;
+  TriMesh work;  // the surface with the corners inserted so far
+  if (!together) work = surface;
   std::array<int, 4> cornerIds{};
   for (int k = 0; k < 4; ++k) {
-    const SurfacePoint corner = together ? snapped[k] : geodesic::snapToSurface(work, requested[k]);
-    cornerIds[k] = insertCorner(soup, work, corner, merge);
-    if (!together) work = meshFromSoup(soup);
+    if (together) {
+      cornerIds[k] = insertCorner(soup, surface, snapped[k], merge);
+    } else {
+      cornerIds[k] = insertCorner(soup, work, geodesic::snapToSurface(work, requested[k]), merge);
+      work = meshFromSoup(soup);
+    }
     for (int j = 0; j < k; ++j)
       if (cornerIds[j] == cornerIds[k])
         throw InvalidInput("patch corners " + std::to_string(j) + " and " + std::to_string(k) + " coincide");

@@ -76,22 +76,6 @@ int insertCorner(TriangleSoup& soup, const TriMesh& mesh, const SurfacePoint& po
   return n;
 }
 
-double angleAt(const Eigen::Vector3d& at, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d u = a - at, v = b - at;
-  return std::atan2(u.cross(v).norm(), u.dot(v));
-}
-
-double vertexAngleSum(const TriMesh& mesh, TriMesh::VertexHandle v) {
-  double sum = 0.0;
-  const Eigen::Vector3d p = toEigen(mesh.point(v));
-  for (auto heh : mesh.voh_range(v)) {
-    if (mesh.is_boundary(heh)) continue;
-    const auto next = mesh.next_halfedge_handle(heh);
-    sum += angleAt(p, toEigen(mesh.point(mesh.to_vertex_handle(heh))), toEigen(mesh.point(mesh.to_vertex_handle(next))));
-  }
-  return sum;
-}
-
 // A point of a traced boundary: a mesh vertex or a point on an edge.
 struct PathNode {
   int vertex = -1;       // set for a vertex, else the id of the inserted vertex

@@ -2,6 +2,7 @@
 
 #include "core/errors.hpp"
 
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -125,6 +126,19 @@ double meanEdgeLength(const TriMesh& mesh) {
   double sum = 0.0;
   for (auto eh : mesh.edges()) sum += mesh.calc_edge_length(eh);
   return sum / static_cast<double>(mesh.n_edges());
+}
+
+double vertexAngleSum(const TriMesh& mesh, TriMesh::VertexHandle v) {
+  double sum = 0.0;
+  const Eigen::Vector3d p = toEigen(mesh.point(v));
+  for (auto heh : mesh.voh_range(v)) {
+    if (mesh.is_boundary(heh)) continue;
+    const auto next = mesh.next_halfedge_handle(heh);
+    const Eigen::Vector3d a = toEigen(mesh.point(mesh.to_vertex_handle(heh))) - p;
+    const Eigen::Vector3d b = toEigen(mesh.point(mesh.to_vertex_handle(next))) - p;
+    sum += std::atan2(a.cross(b).norm(), a.dot(b));
+  }
+  return sum;
 }
 
 }  // namespace egg

@@ -63,6 +63,9 @@ struct BoundingBox {
 
 BoundingBox boundingBox(const TriMesh& mesh);
 double surfaceArea(const TriMesh& mesh);
+// Sum of the corner angles of the faces around a vertex (radians): 2 pi at a flat interior vertex,
+// pi at a straight boundary vertex; a patch corner's inner angle (criterion iv).
+double vertexAngleSum(const TriMesh& mesh, TriMesh::VertexHandle v);
 double meanEdgeLength(const TriMesh& mesh);
 
 }  // namespace egg

@@ -25,6 +25,7 @@ const char* originName(MemberOrigin origin) {
     case MemberOrigin::CurvatureExtremum: return "curvature_extremum";
     case MemberOrigin::Filled: return "filled";
     case MemberOrigin::Even: return "even";
+    case MemberOrigin::Given: return "given";
   }
   return "unknown";
 }

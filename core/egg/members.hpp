@@ -52,7 +52,8 @@ struct MemberOptions {
   void validate() const;          // throws InvalidInput naming the field
 };
 
-enum class MemberOrigin { Boundary, LengthExtremum, CurvatureExtremum, Filled, Even };
+// Given: chosen by the caller (membersAt in patch_design.hpp, e.g. by propagation, Section 3.4.4).
+enum class MemberOrigin { Boundary, LengthExtremum, CurvatureExtremum, Filled, Even, Given };
 
 struct FamilyMembers {
   Family family = Family::U;

@@ -286,8 +286,9 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
                                "it is not a geodesic there",
                                layout.curves[c].from, layout.curves[c].to, format(toEigen(surface.point(vh)))));
     }
-  std::map<int, int> cornerOfVertex;
-  for (size_t k = 0; k < layout.cornerVertex.size(); ++k) cornerOfVertex[layout.cornerVertex[k]] = static_cast<int>(k);
+  std::map<int, int> cornerOfVertex;  // corners some patch uses (an unused corner may lie anywhere)
+  for (const auto& q : layout.patches)
+    for (int k : q) cornerOfVertex[layout.cornerVertex[k]] = k;
   std::map<int, int> curveOfVertex;
   for (size_t c = 0; c < layout.curves.size(); ++c) {
     const auto& corners = layout.curves[c].corners;

@@ -67,7 +67,9 @@ PatchGraph buildPatchGraph(const PatchLayout& layout, const std::vector<bool>& u
           }
         }
       }
-      graph.tJunctions.push_back(std::move(t));
+      // A corner in the middle of a free side, where only the patches meeting there use it, is no
+      // T-junction: no patch's side passes through it.
+      if (!t.patchesThrough.empty()) graph.tJunctions.push_back(std::move(t));
     }
   }
 

@@ -8,6 +8,10 @@
 
 #include <fmt/core.h>
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -15,51 +19,45 @@ namespace egg::app {
 
 using nlohmann::json;
 
-EggOptions eggOptionsFromScene(const Scene& scene) {
-  EggOptions options;
-  options.uniqueness.etaMax = scene.patching.eta_max;
-  options.maps.resolution = scene.grid.map_resolution;
-  options.maps.toleranceRelative = scene.grid.map_tolerance_relative;
-  options.maps.proxyVertices = scene.grid.map_proxy_vertices;
-  options.alphaBar.slopeMin = scene.patching.slope_bounds[0];
-  options.alphaBar.slopeMax = scene.patching.slope_bounds[1];
-  if (scene.grid.alpha_bar == "value") {
-    options.alphaBar.choice = AlphaBarChoice::Given;
-    options.alphaBar.givenAlphaBar = scene.grid.alpha_bar_rad;
-  } else {
-    parseAlphaBarChoice(scene.grid.alpha_bar, options.alphaBar);
-  }
-  options.members.count = scene.grid.members_per_family.value_or(0);
-  options.members.lamellaWidthM = scene.lamella.width_m;
-  options.alphaBar.minPlanarAngle = scene.grid.min_planar_angle_rad;
-  return options;
-}
-
-std::vector<SolvedPatch> solvePatches(const TriMesh& surface, const Scene& scene) {
-  const EggOptions options = eggOptionsFromScene(scene);
-  try {
-    options.validate();
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(scene.path.string() + ": " + e.what());
-  }
-  std::vector<SolvedPatch> out;
-  for (size_t i = 0; i < scene.patching.patches.size(); ++i) {
-    SolvedPatch patch;
+std::vector<SolvedPatch> tracePatches(PatchingRun& run, const Scene& scene) {
+  const auto& layout = run.layout.layout;
+  std::vector<SolvedPatch> out(run.layout.patches.size());
+  tbb::parallel_for(size_t(0), out.size(), [&](size_t i) {
+    SolvedPatch& patch = out[i];
+    patching::DesignedPatch& designed = run.layout.patches[i];
     patch.id = static_cast<int>(i);
-    patch.corners = scene.patching.patches[i];
+    patch.cornerIds = layout.patches[i];
+    for (int k = 0; k < 4; ++k) patch.corners[k] = layout.corners[patch.cornerIds[k]];
+    if (!designed.feasible()) {
+      patch.failure = designed.failure;
+      return;
+    }
+    const PatchDesign& design = *designed.design;
     try {
-      patch.egg = solveEgg(surface, patch.corners, options);
+      const auto started = std::chrono::steady_clock::now();
+      EggResult result;
+      result.patch = design.patch;
+      result.uniqueness = design.uniqueness;
+      result.maps = design.maps;
+      result.alphaBar = design.alphaBar;
+      result.seconds = design.seconds;
+      auto t = std::chrono::steady_clock::now();
+      result.membersU = placeDesignMembers(design, Family::U, design.options.members);
+      result.membersV = placeDesignMembers(design, Family::V, design.options.members);
+      result.seconds.members = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+      t = std::chrono::steady_clock::now();
+      result.grid = traceDesignGrid(design, result.membersU, result.membersV, design.options.grid);
+      result.seconds.tracing = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+      result.seconds.patch = designed.cut->patch.seconds;
+      result.seconds.total = design.seconds.total + std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      result.propagations = design.propagations + result.grid.propagations;
+      patch.egg = std::move(result);
     } catch (const InfeasiblePatch& e) {
       patch.failure = std::string("infeasible: ") + e.what();
     } catch (const SolverFailure& e) {
       patch.failure = std::string("solver failure: ") + e.what();
-    } catch (const InvalidInput& e) {
-      // The options were checked above, so what is left is the quad itself: a corner off the
-      // surface, coinciding or collinear corners, a concave quad. Name the patch in the scene.
-      throw InvalidInput(scene.path.string() + ": patching.patches[" + std::to_string(i) + "]: " + e.what());
     }
-    out.push_back(std::move(patch));
-  }
+  });
   return out;
 }
 
@@ -88,22 +86,28 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
   convert.section.thickness_m = scene.lamella.thickness_m;
   convert.material = materialByName(scene.lamella.material);
   convert.notches = true;  // the simulation switches notches off itself for the comparison run
-  for (auto& patch : patches) {
-    if (!patch.egg) continue;
+  // Patches in parallel, each simulation on one thread when there are several (the rods code's
+  // own threads would only compete with TBB's); the simulation is bit-identical for any count.
+  const int solved = static_cast<int>(std::count_if(patches.begin(), patches.end(), [](const auto& p) { return p.egg.has_value(); }));
+  tbb::parallel_for(size_t(0), patches.size(), [&](size_t i) {
+    auto& patch = patches[i];
+    if (!patch.egg) return;
     // One patch's failure must not discard the others' results: record it and go on.
     try {
       const rods::RodNetwork network = rodNetworkFromGrid(patch.egg->grid, convert);
-      patch.simulation = rods::simulateGrid(network, surface, simulationOptions(scene, *patch.egg));
+      rods::SimulationOptions options = simulationOptions(scene, *patch.egg);
+      if (solved > 1) options.solver.threads = 1;
+      patch.simulation = rods::simulateGrid(network, surface, options);
     } catch (const Error& e) {
       patch.simulationFailure = e.what();
     }
-  }
+  });
 }
 
 json patchEntry(const SolvedPatch& patch) {
   json corners = json::array();
   for (const auto& c : patch.corners) corners.push_back({c.x(), c.y(), c.z()});
-  json entry{{"id", patch.id}, {"corners", corners}, {"feasible", patch.egg.has_value()}};
+  json entry{{"id", patch.id}, {"corners", corners}, {"corner_ids", patch.cornerIds}, {"feasible", patch.egg.has_value()}};
   if (!patch.egg) {
     entry["reason"] = patch.failure;
     return entry;

@@ -1,6 +1,7 @@
 #pragma once
 // The per-patch stages of `egg run`: the EGG solve of every patch (Chapter 2 per patch, 3.3) and
 // the rod simulation of its grid (Section 2.5), with their report entries and files.
+#include "apps/commands/patching_stage.hpp"
 #include "apps/commands/scene.hpp"
 #include "core/egg/solve_patch.hpp"
 #include "core/rods/simulation.hpp"
@@ -16,23 +17,22 @@ namespace egg::app {
 
 struct SolvedPatch {
   int id = 0;
-  std::array<Eigen::Vector3d, 4> corners;
+  std::array<int, 4> cornerIds{};             // corners in the layout (patches.json)
+  std::array<Eigen::Vector3d, 4> corners;     // snapped onto the surface
   std::optional<EggResult> egg;  // empty when the patch is infeasible
   std::string failure;           // why not (InfeasiblePatch / SolverFailure message)
   std::optional<rods::SimulationResult> simulation;
   std::string simulationFailure;  // why the simulation could not run (an error, not non-convergence)
 };
 
-// The EGG solver's options as the scene sets them (eta_max, slope bounds, map resolution,
-// alpha_bar, member count, lamella width).
-EggOptions eggOptionsFromScene(const Scene& scene);
-
-// Solves every patch of the scene's layout. A patch the EGG criteria reject (InfeasiblePatch,
-// SolverFailure) is kept with its reason; input errors propagate.
-std::vector<SolvedPatch> solvePatches(const TriMesh& surface, const Scene& scene);
+// The grid stage: members placed on every feasible design (Section 2.4.4, per patch until
+// propagation exists) and traced into its grid (2.4.5-2.4.6), patches in parallel (results do not
+// depend on the thread count). A patch whose grid cannot be traced keeps its reason.
+std::vector<SolvedPatch> tracePatches(PatchingRun& run, const Scene& scene);
 
 // Simulates the grid of every solved patch (with notches and, when the scene wants notches,
-// also without, for RMS1/RMS2 of Section 2.6.2) against the design surface.
+// also without, for RMS1/RMS2 of Section 2.6.2) against the design surface, patches in parallel
+// (each simulation then on one thread: results do not depend on the thread count).
 void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene);
 
 // report.json entries (DESIGN.md "Report").

@@ -1,23 +1,57 @@
 #include "apps/commands/pipeline.hpp"
 
 #include "apps/commands/patch_stage.hpp"
+#include "apps/commands/patching_stage.hpp"
 #include "apps/commands/surface_loading.hpp"
 #include "core/errors.hpp"
+#include "core/geodesic/distance_solver.hpp"
 
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 namespace egg::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+}  // namespace
+
+StageNeeds stageNeeds(const Scene& scene) {
+  StageNeeds needs;
+  const bool report = scene.wants("report"), previews = scene.wants("previews"), plan = scene.wants("plan");
+  const bool fabrication = scene.wants("cut_files") || scene.wants("stickers") || scene.wants("supports");
+  needs.grid = report || previews || fabrication;
+  needs.patching = needs.grid || plan;
+  needs.surface = needs.patching;
+  needs.simulation = scene.simulation.enabled && (report || previews);
+  needs.fabrication = fabrication;
+  return needs;
 }
 
+void checkOutputsCanBeProduced(const Scene& scene) {
+  const std::string origin = scene.path.string();
+  for (const char* output : {"cut_files", "stickers", "supports"})
+    if (scene.wants(output)) {
+      if (!scene.fabrication.enabled)
+        throw InvalidInput(fmt::format("{}: outputs: \"{}\" needs the fabrication stage, but fabrication.enabled is false", origin, output));
+      throw InvalidInput(fmt::format("{}: outputs: \"{}\" is not produced yet: the fabrication stage (cut files, stickers, supports; "
+                                     "issue 16) is not built. Leave it out of \"outputs\" for now",
+                                     origin, output));
+    }
+}
+
+namespace {
+// Workflow 2 (issue 14) is not built: without a layout the run cannot get past the surface.
+bool needsWorkflow2(const Scene& scene) {
+  const bool given = !scene.patching.quads.empty() && !scene.patching.workflow_given;
+  const bool workflow1 = scene.patching.workflow_given && scene.patching.workflow == 1;
+  return !given && !workflow1;
+}
 }  // namespace
 
 PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
@@ -27,6 +61,15 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   };
   RunReport report(sceneToJson(scene));
   PipelineResult result;
+  const StageNeeds needs = stageNeeds(scene);
+  const std::string nothing = "no requested output needs it (outputs: " + nlohmann::json(scene.outputs).dump() + ")";
+  if (scene.outputs.empty()) {
+    for (const auto& stage : pipelineStages()) report.stageSkipped(stage, nothing);
+    result.seconds = secondsSince(start);
+    result.report = report.finish(result.seconds);
+    result.nothingRequested = true;
+    return result;
+  }
 
   // Files go to a staging folder that replaces the run folder only when the run completes; an
   // exception on the way (bad input included) removes it, so nothing half-written is left. It is
@@ -46,47 +89,84 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   report.section("surface") = surfaceSummary(surface);
   report.stageRan("surface", secondsSince(surfaceStart));
   for (const auto& w : surface.warnings) report.warn("surface: " + w);
+  // A requested output that nothing can produce is bad input, found before any heavy work (and
+  // the staging folder goes with the exception: nothing is written).
+  checkOutputsCanBeProduced(scene);
+  if (needsWorkflow2(scene)) {
+    const std::string reason =
+        "Workflow 2, the automatic decomposition of the whole surface (Section 3.4.3, issue 14), is not built yet: give a layout "
+        "as patching.patches (taken as given), or with \"workflow\": 1 as the initial layout that Workflow 1 splits";
+    report.stageSkipped("patching", reason);
+    for (const char* stage : {"design", "propagation", "grid", "simulation", "fabrication"})
+      report.stageSkipped(stage, "needs the patching stage");
+    result.failures.push_back("patching: " + reason);
+    result.seconds = secondsSince(start);
+    result.report = report.finish(result.seconds);
+    result.report["failures"] = result.failures;
+    if (scene.wants("report")) writeFileAtomically(out.staging() / "report.json", result.report.dump(2) + "\n");
+    out.commit();
+    result.out_dir = std::filesystem::absolute(options.out_dir);
+    return result;
+  }
 
-  // Patching (Section 3.4). A scene may give its layout; otherwise Workflow 1/2 would split the
-  // surface.
+  // Patching and design (Sections 3.3, 3.4): the layout, split by Workflow 1 if asked, and every
+  // patch's design on it, in parallel.
+  progress("patching", 0.1);
+  const auto patchingStart = Clock::now();
+  const geodesic::DistanceSolver surfaceSolver(surface.mesh);
+  PatchingRun patching = runPatching(surface.mesh, surfaceSolver, scene);
+  const double solverSeconds = secondsSince(patchingStart) - patching.layoutSeconds - patching.designSeconds;
+  report.stageRan("patching", patching.layoutSeconds + solverSeconds);
+  report.stageRan("design", patching.designSeconds);
+  addPatchingReport(patching, report.document());
+
   std::vector<SolvedPatch> patches;
-  if (!scene.patching.patches.empty()) {
-    report.stageSkipped("patching", "the scene gives its patch layout (patching.patches)");
-    progress("egg_solve", 0.2);
-    const auto eggStart = Clock::now();
-    patches = solvePatches(surface.mesh, scene);
-    double tracing = 0.0;
-    for (const auto& p : patches) {
-      if (p.egg) tracing += p.egg->seconds.tracing;
-    }
-    // solveEgg traces the grid (members, connections, notches, anchors) as its last part: report
-    // that part as the grid stage.
-    const double eggSeconds = secondsSince(eggStart);
-    report.stageRan("egg_solve", eggSeconds - tracing);
-    report.stageRan("grid", tracing);
+  if (needs.grid) {
+    const int designed = static_cast<int>(std::count_if(patching.layout.patches.begin(), patching.layout.patches.end(),
+                                                        [](const auto& p) { return p.feasible(); }));
+    report.stageSkipped("propagation", patching.layout.patches.size() == 1
+                                           ? "one patch: no boundary to continue members across"
+                                           : "not built yet (issue 15): members are placed on each patch on its own, so the "
+                                             "members of neighbouring patches need not meet on their shared sides");
+    progress("grid", 0.3);
+    const auto gridStart = Clock::now();
+    patches = tracePatches(patching, scene);
+    if (designed > 0) report.stageRan("grid", secondsSince(gridStart));
+    else report.stageSkipped("grid", "no feasible patch design");
   } else {
-    report.stageSkipped("egg_solve", "needs patches: the scene gives no patching.patches and the automatic "
-                                     "workflows are not implemented yet");
-    report.stageSkipped("grid", "needs solved patches");
+    report.stageSkipped("propagation", nothing);
+    report.stageSkipped("grid", nothing);
+    for (size_t i = 0; i < patching.layout.patches.size(); ++i) {
+      SolvedPatch p;
+      p.id = static_cast<int>(i);
+      p.cornerIds = patching.layout.layout.patches[i];
+      for (int k = 0; k < 4; ++k) p.corners[k] = patching.layout.layout.corners[p.cornerIds[k]];
+      p.failure = patching.layout.patches[i].failure;
+      patches.push_back(std::move(p));
+    }
   }
-  double coveredArea = 0.0;
   for (const auto& p : patches) {
-    report.section("patches").push_back(patchEntry(p));
-    if (p.egg) coveredArea += p.egg->patch.area;
-    if (!p.egg) result.failures.push_back(fmt::format("patch {}: {}", p.id, p.failure));
-  }
-  if (!patches.empty()) {
-    const double area = surfaceArea(surface.mesh);
-    report.section("coverage") = {{"covered_area_m2", coveredArea}, {"fraction", area > 0 ? coveredArea / area : 0.0}};
+    nlohmann::json entry = patchEntry(p);
+    const auto& designed = patching.layout.patches[p.id];
+    if (!p.egg && designed.design && designed.feasible()) {
+      // Designed but not traced (no output needs the grid): the design's own figures.
+      entry["feasible"] = true;
+      entry["eta_u"] = designed.design->uniqueness.etaU;
+      entry["eta_v"] = designed.design->uniqueness.etaV;
+      entry["alpha_bar_rad"] = designed.design->alphaBar.alphaBar;
+      entry["area_m2"] = designed.design->patch.area;
+    }
+    report.section("patches").push_back(entry);
+    if (!designed.feasible() || (needs.grid && !p.egg))
+      result.failures.push_back(fmt::format("patch {}: {}", p.id, p.failure.empty() ? designed.failure : p.failure));
   }
   const int solved = static_cast<int>(std::count_if(patches.begin(), patches.end(), [](const auto& p) { return p.egg.has_value(); }));
-  if (solved == 1 && patches.size() == 1) {
-    report.stageSkipped("propagation", "one patch: no boundary to continue members across");
-  }
 
   // Simulation (Section 2.5): only when asked for and there is a grid to deploy.
   if (!scene.simulation.enabled) {
     report.stageSkipped("simulation", "the scene disables it (simulation.enabled = false)");
+  } else if (!needs.simulation) {
+    report.stageSkipped("simulation", nothing);
   } else if (solved == 0) {
     report.stageSkipped("simulation", "no solved patch grid to deploy");
   } else {
@@ -101,15 +181,16 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
       result.failures.push_back("simulation: " + report.section("simulation").value("reason", std::string("did not converge")));
     }
   }
+  report.stageSkipped("fabrication", scene.fabrication.enabled ? nothing : "the scene disables it (fabrication.enabled = false)");
 
   progress("writing", 0.9);
-  for (const auto& p : patches) writePatchFiles(p, out.staging() / fmt::format("patch_{:03d}", p.id), scene);
+  if (scene.wants("previews") || scene.wants("report"))
+    for (const auto& p : patches) writePatchFiles(p, out.staging() / fmt::format("patch_{:03d}", p.id), scene);
+  if (scene.wants("plan")) writePatchesJson(patching, out.staging() / "patches.json");
   result.seconds = secondsSince(start);
   result.report = report.finish(result.seconds);
   if (!result.failures.empty()) result.report["failures"] = result.failures;
-  if (scene.wants("report")) {
-    writeFileAtomically(out.staging() / "report.json", result.report.dump(2) + "\n");
-  }
+  if (scene.wants("report")) writeFileAtomically(out.staging() / "report.json", result.report.dump(2) + "\n");
   out.commit();
   result.out_dir = std::filesystem::absolute(options.out_dir);
   progress("done", 1.0);

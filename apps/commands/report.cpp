@@ -13,8 +13,8 @@ namespace egg::app {
 using nlohmann::json;
 
 const std::vector<std::string>& pipelineStages() {
-  static const std::vector<std::string> stages{"surface",     "patching", "egg_solve",  "propagation",
-                                               "grid",        "simulation", "fabrication"};
+  static const std::vector<std::string> stages{"surface", "patching",   "design",     "propagation",
+                                               "grid",    "simulation", "fabrication"};
   return stages;
 }
 

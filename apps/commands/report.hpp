@@ -27,6 +27,7 @@ class RunReport {
   // Top-level sections (surface, patches, coverage, propagation, simulation, fabrication).
   nlohmann::json& section(const std::string& key) { return document_[key]; }
   void warn(const std::string& message) { document_["warnings"].push_back(message); }
+  nlohmann::json& document() { return document_; }
 
   // Completes the required keys (a section of a stage that did not run gets "ran": false and
   // the stage's reason) and the total time. Call once, before writing.

@@ -165,6 +165,7 @@ void readSurface(Section s, Scene& scene) {
 }
 
 void readPatching(Section s, PatchingSpec& out) {
+  out.workflow_given = s.has("workflow");
   out.workflow = s.integer("workflow", out.workflow, 1, 2);
   out.eta_max = s.number("eta_max", out.eta_max, 1.0, 2.0);
   if (out.eta_max <= 1.0) s.fail("eta_max", "must be greater than 1 (a ratio of geodesic lengths)");
@@ -173,17 +174,49 @@ void readPatching(Section s, PatchingSpec& out) {
     s.fail("slope_bounds", "must be [k_min, k_max] with k_min < 1 < k_max (Problem 2.3)");
   }
   out.max_patch_size_m = s.positive("max_patch_size_m", out.max_patch_size_m, 1e5);
+  out.max_splits = s.integer("max_splits", out.max_splits, 0, 10000);
+  if (s.has("smoothing")) out.smoothing = s.boolean("smoothing", true);
+  out.min_patch_size_m = s.number("min_patch_size_m", out.min_patch_size_m, 0.0, 1e5);
+  if (s.has("corners")) {
+    const json& corners = s.raw("corners");
+    if (!corners.is_array() || corners.empty()) s.fail("corners", "must be a non-empty array of points [x, y, z]");
+    for (size_t i = 0; i < corners.size(); ++i) out.corners.push_back(point3(corners[i], s, "corners[" + std::to_string(i) + "]"));
+  }
   if (s.has("patches")) {
     const json& patches = s.raw("patches");
-    if (!patches.is_array()) s.fail("patches", "must be an array of patches, each four corners [x, y, z]");
+    if (!patches.is_array()) s.fail("patches", "must be an array of patches, each four corners [x, y, z] (or four corner indices)");
+    const bool indexed = !out.corners.empty();
     for (size_t i = 0; i < patches.size(); ++i) {
       const std::string key = "patches[" + std::to_string(i) + "]";
       if (!patches[i].is_array() || patches[i].size() != 4) s.fail(key, "a patch must have exactly four corners");
       std::array<Eigen::Vector3d, 4> corners;
-      for (int c = 0; c < 4; ++c) corners[c] = point3(patches[i][c], s, key);
+      std::array<int, 4> quad{};
+      for (int c = 0; c < 4; ++c) {
+        const json& v = patches[i][c];
+        if (indexed) {
+          if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() >= static_cast<long long>(out.corners.size()))
+            s.fail(key, "with \"corners\" given, a patch is four indices into it (0 .. " + std::to_string(out.corners.size() - 1) +
+                            "), got " + v.dump());
+          quad[c] = static_cast<int>(v.get<long long>());
+          corners[c] = out.corners[quad[c]];
+        } else {
+          corners[c] = point3(v, s, key);
+          // Corners given twice (by neighbouring patches) are one corner of the layout.
+          int found = -1;
+          for (size_t k = 0; k < out.corners.size() && found < 0; ++k)
+            if ((out.corners[k] - corners[c]).norm() <= 1e-9 * (1.0 + corners[c].norm())) found = static_cast<int>(k);
+          if (found < 0) found = static_cast<int>(out.corners.size()), out.corners.push_back(corners[c]);
+          quad[c] = found;
+        }
+      }
       out.patches.push_back(corners);
+      out.quads.push_back(quad);
     }
+  } else if (!out.corners.empty()) {
+    s.fail("corners", "given without \"patches\" (quads of corner indices)");
   }
+  if (out.workflow_given && out.workflow == 1 && out.quads.empty())
+    s.fail("workflow", "Workflow 1 splits an initial layout: give it as \"patches\"");
   s.rejectUnknownKeys();
 }
 
@@ -253,7 +286,7 @@ void readFabrication(Section s, FabricationSpec& out) {
 }
 
 const std::vector<std::string>& knownOutputs() {
-  static const std::vector<std::string> names{"report", "cut_files", "stickers", "supports", "previews"};
+  static const std::vector<std::string> names{"report", "plan", "cut_files", "stickers", "supports", "previews"};
   return names;
 }
 
@@ -295,7 +328,7 @@ Scene parseScene(const json& document, const std::filesystem::path& origin) {
     for (const auto& item : v) {
       const auto& names = knownOutputs();
       if (!item.is_string() || std::find(names.begin(), names.end(), item.get<std::string>()) == names.end()) {
-        top.fail("outputs", "unknown output " + item.dump() + " (known: report, cut_files, stickers, supports, previews)");
+        top.fail("outputs", "unknown output " + item.dump() + " (known: report, plan, cut_files, stickers, supports, previews)");
       }
       scene.outputs.push_back(item.get<std::string>());
     }
@@ -326,28 +359,26 @@ json sceneToJson(const Scene& scene) {
     surface["file"] = scene.surface.file.string();
     surface["scale_to_m"] = scene.surface.scale_to_m;
   }
-  json patches = json::array();
-  for (const auto& quad : scene.patching.patches) {
-    json corners = json::array();
-    for (const auto& c : quad) corners.push_back({c.x(), c.y(), c.z()});
-    patches.push_back(corners);
-  }
+  json corners = json::array();
+  for (const auto& c : scene.patching.corners) corners.push_back({c.x(), c.y(), c.z()});
   json grid{{"map_resolution", scene.grid.map_resolution},
             {"map_tolerance_relative", scene.grid.map_tolerance_relative},
             {"map_proxy_vertices", scene.grid.map_proxy_vertices},
             {"min_planar_angle_rad", scene.grid.min_planar_angle_rad}};
   grid["members_per_family"] = scene.grid.members_per_family ? json(*scene.grid.members_per_family) : json("auto");
   grid["alpha_bar"] = scene.grid.alpha_bar == "value" ? json(scene.grid.alpha_bar_rad) : json(scene.grid.alpha_bar);
-  return {
+  json echo = {
       {"name", scene.name},
       {"path", scene.path.string()},
       {"surface", surface},
       {"patching",
-       {{"workflow", scene.patching.workflow},
-        {"eta_max", scene.patching.eta_max},
+       {{"eta_max", scene.patching.eta_max},
         {"slope_bounds", scene.patching.slope_bounds},
         {"max_patch_size_m", scene.patching.max_patch_size_m},
-        {"patches", patches}}},
+        {"max_splits", scene.patching.max_splits},
+        {"min_patch_size_m", scene.patching.min_patch_size_m},
+        {"corners", corners},
+        {"patches", scene.patching.quads}}},
       {"grid", grid},
       {"lamella",
        {{"width_m", scene.lamella.width_m},
@@ -364,6 +395,10 @@ json sceneToJson(const Scene& scene) {
         {"bolt_diameter_mm", scene.fabrication.bolt_diameter_mm}}},
       {"outputs", scene.outputs},
   };
+  // A layout without a workflow is taken as given: the echo leaves the key out, as the scene did.
+  if (scene.patching.workflow_given || scene.patching.quads.empty()) echo["patching"]["workflow"] = scene.patching.workflow;
+  if (scene.patching.smoothing) echo["patching"]["smoothing"] = *scene.patching.smoothing;
+  return echo;
 }
 
 }  // namespace egg::app

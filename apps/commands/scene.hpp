@@ -24,10 +24,21 @@ struct SurfaceSpec {
 
 struct PatchingSpec {
   int workflow = 2;                          // Workflow 1 or 2 of Section 3.4.3
+  bool workflow_given = false;               // the scene names a workflow (a layout without one is taken as given)
   double eta_max = 1.0015;                   // uniqueness threshold of Section 2.3.3 / 3.4.1
   std::array<double, 2> slope_bounds{0.1, 10.0};  // k_min, k_max of Problem 2.3
   double max_patch_size_m = 40.0;            // largest patch diagonal Workflow 2 may propose
-  std::vector<std::array<Eigen::Vector3d, 4>> patches;  // a given layout (corners snapped to the surface)
+  // A given layout, in either form of the scene file: four corners [x, y, z] per patch (corners that
+  // coincide are one corner), or "corners" plus patches as quads of corner indices (which can say
+  // that a corner lies on another patch's side: a T-junction). Both forms fill all three fields.
+  std::vector<std::array<Eigen::Vector3d, 4>> patches;
+  std::vector<Eigen::Vector3d> corners;
+  std::vector<std::array<int, 4>> quads;
+  // Smooth a patch whose eta fails (Section 2.3.3). Default: yes for a given layout (it cannot be
+  // changed), no in Workflow 1, which splits instead (smoothing alters the design, 3.1).
+  std::optional<bool> smoothing;
+  int max_splits = 64;                       // Workflow 1: splits before it gives up
+  double min_patch_size_m = 0.0;             // Workflow 1: no patch side shorter than this (0 = 4 mesh edges)
 };
 
 struct GridSpec {
@@ -76,7 +87,7 @@ struct Scene {
   LamellaSpec lamella;
   SimulationSpec simulation;
   FabricationSpec fabrication;
-  std::vector<std::string> outputs{"report", "cut_files", "stickers", "supports", "previews"};
+  std::vector<std::string> outputs{"report", "plan", "cut_files", "stickers", "supports", "previews"};
 
   bool wants(const std::string& output) const;
 };

@@ -112,7 +112,9 @@ TEST_F(Cli, SurfaceExportRoundTripsThroughAFile) {
 }
 
 TEST_F(Cli, RunWritesACompleteReport) {
-  const auto scene = write("small.json", R"({"name": "small", "surface": {"sample": "plane", "edge_length_m": 2.0},
+  const auto scene = write("small.json", R"({"name": "small", "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1, "sigma": 1.5}, "edge_length_m": 0.5},
+                                             "patching": {"patches": [[[-3, -3, 0], [3, -3, 0], [3, 3, 0], [-3, 3, 0]]]},
+                                             "grid": {"map_resolution": 20, "members_per_family": 4},
                                              "simulation": {"enabled": false}, "outputs": ["report"]})");
   const auto out = root / "run";
   const auto o = runEgg({"run", scene.string(), "--out", out.string(), "--quiet"});

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
+
 #include <filesystem>
 
 namespace egg::app {
@@ -105,6 +107,118 @@ TEST(Pipeline, SlowSelfWeightReportsTheSag) {
   // A 6 m patch of 100 x 10 mm poplar lamellas, five per family, anchored at its corners: it sags,
   // but by far less than its span unless it collapsed (which the status would say).
   if (patch["status"] != "collapsed") EXPECT_LT(patch["max_sag_m"].get<double>(), 0.6);
+  fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace egg::app
+
+namespace egg::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The 2 x 2 layout on the bump: four patches meeting at the peak, given as four corners each
+// (the corners they share are written twice and become one corner of the layout).
+Scene twoByTwoScene(const std::string& outputs) {
+  return parseScene(nlohmann::json::parse(R"({
+    "name": "bump_2x2",
+    "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 0.6, "sigma": 1.5}, "edge_length_m": 0.4},
+    "patching": {"patches": [[[-3,-3,0],[0,-3,0],[0,0,1],[-3,0,0]], [[0,-3,0],[3,-3,0],[3,0,0],[0,0,1]],
+                             [[-3,0,0],[0,0,1],[0,3,0],[-3,3,0]], [[0,0,1],[3,0,0],[3,3,0],[0,3,0]]]},
+    "grid": {"map_resolution": 30, "members_per_family": 4},
+    "lamella": {"width_m": 0.05, "thickness_m": 0.005},
+    "simulation": {"gravity": false},
+    "outputs": )" + outputs + "}"),
+                    "/virtual/bump_2x2.json");
+}
+
+fs::path scratch(const std::string& name) { return fs::temp_directory_path() / (name + "_" + std::to_string(::getpid())); }
+
+TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
+  const fs::path out = scratch("egg_pipeline_2x2");
+  PipelineOptions options;
+  options.out_dir = out;
+  const PipelineResult result = runPipeline(twoByTwoScene(R"(["report", "plan"])"), options);
+  const auto& report = result.report;
+  EXPECT_TRUE(result.failures.empty()) << nlohmann::json(result.failures).dump(1);
+  EXPECT_EQ(report["patching"]["workflow"], "given");
+  EXPECT_EQ(report["patching"]["corners"], 9);  // shared corners given twice are one
+  EXPECT_EQ(report["patching"]["sides"], 12);
+  int shared = 0;
+  for (const auto& b : report["boundaries"]) shared += b["kind"] == "shared";
+  EXPECT_EQ(shared, 4);
+  EXPECT_EQ(report["chains"].size(), 4u);
+  ASSERT_EQ(report["patches"].size(), 4u);
+  double area = 0.0;
+  for (const auto& p : report["patches"]) {
+    EXPECT_TRUE(p["feasible"].get<bool>()) << p.dump(1);
+    area += p["area_m2"].get<double>();
+  }
+  // Coverage is the union of the patches: here their sum, the 6 x 6 m square lifted by the bump.
+  EXPECT_NEAR(report["coverage"]["covered_area_m2"].get<double>(), area, 1e-9);
+  EXPECT_TRUE(report["stages"]["design"]["ran"].get<bool>());
+  EXPECT_TRUE(report["stages"]["simulation"]["ran"].get<bool>());
+  EXPECT_EQ(report["simulation"]["patches"].size(), 4u);
+  EXPECT_TRUE(fs::exists(out / "patches.json"));
+  EXPECT_TRUE(fs::exists(out / "report.json"));
+  EXPECT_FALSE(fs::exists(out / "patch_000" / "grid.obj"));  // previews were not asked for
+  fs::remove_all(out);
+}
+
+TEST(PipelineMultiPatch, SlowResultsDoNotDependOnTheThreadCount) {
+  Scene scene = twoByTwoScene(R"(["report"])");
+  scene.simulation.enabled = false;
+  const auto runWith = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    PipelineOptions options;
+    options.out_dir = scratch("egg_pipeline_threads_" + std::to_string(threads));
+    auto report = runPipeline(scene, options).report;
+    fs::remove_all(options.out_dir);
+    return report;
+  };
+  const auto one = runWith(1), two = runWith(2);
+  ASSERT_EQ(one["patches"].size(), two["patches"].size());
+  for (size_t i = 0; i < one["patches"].size(); ++i)
+    for (const char* key : {"area_m2", "eta_u", "eta_v", "alpha_bar_rad", "max_notch_m", "members_u", "members_v"})
+      EXPECT_EQ(one["patches"][i][key], two["patches"][i][key]) << i << " " << key;
+}
+
+TEST(PipelineMultiPatch, OutputsDecideWhatRuns) {
+  // Nothing asked for: no stage runs, no folder appears.
+  const fs::path out = scratch("egg_pipeline_outputs");
+  PipelineOptions options;
+  options.out_dir = out;
+  const PipelineResult none = runPipeline(twoByTwoScene("[]"), options);
+  EXPECT_TRUE(none.nothingRequested);
+  for (const auto& [stage, entry] : none.report["stages"].items()) EXPECT_FALSE(entry["ran"].get<bool>()) << stage;
+  EXPECT_FALSE(fs::exists(out));
+  // The plan alone: patching and design run, the grid and the simulation do not.
+  const PipelineResult plan = runPipeline(twoByTwoScene(R"(["plan"])"), options);
+  EXPECT_TRUE(plan.report["stages"]["design"]["ran"].get<bool>());
+  EXPECT_FALSE(plan.report["stages"]["grid"]["ran"].get<bool>());
+  EXPECT_FALSE(plan.report["stages"]["simulation"]["ran"].get<bool>());
+  EXPECT_TRUE(fs::exists(out / "patches.json"));
+  EXPECT_FALSE(fs::exists(out / "report.json"));
+  fs::remove_all(out);
+}
+
+TEST(PipelineMultiPatch, AnInfeasiblePatchDoesNotStopTheOthers) {
+  Scene scene = twoByTwoScene(R"(["report"])");
+  scene.simulation.enabled = false;
+  // Patch 3's corner 2 pulled inwards past its diagonal: the patch is not convex (criterion iv).
+  scene.patching.corners.push_back({1.0, 1.0, 0.0});
+  scene.patching.quads[3][2] = static_cast<int>(scene.patching.corners.size()) - 1;
+  const fs::path out = scratch("egg_pipeline_one_bad");
+  PipelineOptions options;
+  options.out_dir = out;
+  const PipelineResult result = runPipeline(scene, options);
+  ASSERT_EQ(result.report["patches"].size(), 4u);
+  int feasible = 0;
+  for (const auto& p : result.report["patches"]) feasible += p["feasible"].get<bool>();
+  EXPECT_EQ(feasible, 3);
+  EXPECT_EQ(result.failures.size(), 1u);
+  EXPECT_TRUE(fs::exists(out / "patch_000" / "grid.json"));
   fs::remove_all(out);
 }
 

@@ -1,0 +1,156 @@
+#include "apps/commands/patching_stage.hpp"
+
+#include "core/errors.hpp"
+#include "core/geodesic/distance_solver.hpp"
+#include "core/io/atomic_file.hpp"
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace egg::app {
+
+using nlohmann::json;
+
+EggOptions eggOptionsFromScene(const Scene& scene) {
+  EggOptions options;
+  options.uniqueness.etaMax = scene.patching.eta_max;
+  options.maps.resolution = scene.grid.map_resolution;
+  options.maps.toleranceRelative = scene.grid.map_tolerance_relative;
+  options.maps.proxyVertices = scene.grid.map_proxy_vertices;
+  options.alphaBar.slopeMin = scene.patching.slope_bounds[0];
+  options.alphaBar.slopeMax = scene.patching.slope_bounds[1];
+  if (scene.grid.alpha_bar == "value") {
+    options.alphaBar.choice = AlphaBarChoice::Given;
+    options.alphaBar.givenAlphaBar = scene.grid.alpha_bar_rad;
+  } else {
+    parseAlphaBarChoice(scene.grid.alpha_bar, options.alphaBar);
+  }
+  options.members.count = scene.grid.members_per_family.value_or(0);
+  options.members.lamellaWidthM = scene.lamella.width_m;
+  options.alphaBar.minPlanarAngle = scene.grid.min_planar_angle_rad;
+  const bool workflow1 = scene.patching.workflow_given && scene.patching.workflow == 1;
+  options.uniqueness.smooth = scene.patching.smoothing.value_or(!workflow1);
+  return options;
+}
+
+namespace {
+
+json point(const Eigen::Vector3d& p) { return json::array({p.x(), p.y(), p.z()}); }
+
+const char* familyName(Family f) { return f == Family::U ? "u" : "v"; }
+
+}  // namespace
+
+PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& surfaceSolver, const Scene& scene) {
+  const std::string origin = scene.path.string();
+  PatchingRun run;
+  const bool workflow1 = scene.patching.workflow_given && scene.patching.workflow == 1;
+  run.workflow = workflow1 ? "1" : "given";
+  patching::LayoutDesignOptions options;
+  options.design = eggOptionsFromScene(scene);
+  options.split = workflow1;
+  options.maxSplits = scene.patching.max_splits;
+  options.minSideM = scene.patching.min_patch_size_m;
+  try {
+    options.validate();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(origin + ": " + e.what());
+  }
+  const auto started = std::chrono::steady_clock::now();
+  patching::PatchLayout layout = [&] {
+    try {
+      return patching::makeLayout(surface, surfaceSolver, scene.patching.corners, scene.patching.quads, options.layout);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(origin + ": patching.patches: " + e.what());
+    }
+  }();
+  run.layout = patching::designLayout(std::move(layout), surfaceSolver, options);
+  std::vector<bool> usable;
+  std::vector<std::vector<int>> faces;
+  for (const auto& p : run.layout.patches) {
+    usable.push_back(p.cut.has_value());
+    faces.push_back(p.cut ? p.cut->layoutFace : std::vector<int>{});
+  }
+  run.graph = patching::buildPatchGraph(run.layout.layout, usable);
+  run.coverage = patching::computeCoverage(run.layout.layout, faces);
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  run.designSeconds = run.layout.designSeconds;
+  run.layoutSeconds = total - run.designSeconds;  // corners, traces, splits, layout mesh, graph, coverage
+  return run;
+}
+
+void addPatchingReport(const PatchingRun& run, json& report) {
+  const auto& L = run.layout;
+  json splits = json::array();
+  for (const auto& s : L.splits)
+    splits.push_back({{"parent", s.parent}, {"children", s.children}, {"kind", s.kind}, {"p_max_m", point(s.peak)}});
+  report["patching"] = {{"workflow", run.workflow},
+                        {"patches", L.patches.size()},
+                        {"splits", L.splits.size()},
+                        {"merges", 0},
+                        {"candidates_evaluated", L.evaluations},
+                        {"rounds", L.rounds},
+                        {"corners", L.layout.corners.size()},
+                        {"sides", L.layout.curves.size()},
+                        {"layout_mesh_vertices", L.layout.mesh.mesh.n_vertices()},
+                        {"split_log", splits},
+                        {"seconds", run.layoutSeconds + run.designSeconds}};
+  json boundaries = json::array();
+  for (const auto& b : run.graph.boundaries) {
+    json patches = json::array(), uses = json::array();
+    for (const auto& u : b.uses) {
+      patches.push_back(u.patch);
+      uses.push_back({{"patch", u.patch}, {"side", u.side}, {"from", u.from}, {"to", u.to}, {"reversed", u.reversed}});
+    }
+    boundaries.push_back({{"id", b.id}, {"kind", b.kind}, {"patches", patches}, {"length_m", b.lengthM}, {"on_patches", uses}});
+  }
+  report["boundaries"] = boundaries;
+  json tj = json::array();
+  for (const auto& t : run.graph.tJunctions)
+    tj.push_back({{"corner", t.corner},
+                  {"position_m", point(L.layout.corners[t.corner])},
+                  {"patches_through", t.patchesThrough},
+                  {"patches_at", t.patchesAt}});
+  report["t_junctions"] = tj;
+  json chains = json::array();
+  for (const auto& c : run.graph.chains) {
+    json nodes = json::array();
+    for (const auto& n : c.nodes) nodes.push_back({{"patch", n.patch}, {"family", familyName(n.family)}});
+    chains.push_back({{"nodes", nodes}, {"ring", c.ring}, {"branching", c.branching}});
+  }
+  report["chains"] = chains;
+  json cutOffs = json::array();
+  for (const auto& c : run.coverage.cutOffs) cutOffs.push_back({{"area_m2", c.areaM2}, {"centroid_m", point(c.centroid)}});
+  report["coverage"] = {{"covered_area_m2", run.coverage.coveredAreaM2},
+                        {"surface_area_m2", run.coverage.surfaceAreaM2},
+                        {"fraction", run.coverage.fraction},
+                        {"cut_offs", cutOffs}};
+}
+
+void writePatchesJson(const PatchingRun& run, const std::filesystem::path& file) {
+  const auto& layout = run.layout.layout;
+  json corners = json::array(), sides = json::array(), patches = json::array();
+  for (const auto& c : layout.corners) corners.push_back(point(c));
+  for (const auto& c : layout.curves) {
+    json polyline = json::array();
+    for (const auto& p : c.positions) polyline.push_back(point(p));
+    sides.push_back({{"from", c.from}, {"to", c.to}, {"corners", c.corners}, {"length_m", c.length}, {"polyline_m", polyline}});
+  }
+  for (size_t p = 0; p < layout.patches.size(); ++p) {
+    const auto& d = run.layout.patches[p];
+    json entry{{"id", p}, {"corners", layout.patches[p]}, {"feasible", d.feasible()}};
+    if (!d.feasible()) entry["reason"] = d.failure;
+    if (d.cut) entry["area_m2"] = d.cut->patch.area;
+    patches.push_back(entry);
+  }
+  json doc{{"units", {{"length", "m"}}}, {"workflow", run.workflow}, {"corners_m", corners}, {"sides", sides}, {"patches", patches}};
+  json report;
+  addPatchingReport(run, report);
+  for (const char* key : {"boundaries", "t_junctions", "chains", "coverage"}) doc[key] = report[key];
+  doc["splits"] = report["patching"]["split_log"];
+  writeFileAtomically(file, doc.dump(1) + "\n");
+}
+
+}  // namespace egg::app

@@ -1,0 +1,38 @@
+#pragma once
+// The patching and design stages of `egg run` (Sections 3.3, 3.4): the scene's layout (given, or
+// split by Workflow 1), every patch designed on it, the patch graph and the coverage; with their
+// report entries and patches.json.
+#include "apps/commands/scene.hpp"
+#include "patching/patch_graph.hpp"
+#include "patching/workflow1.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace egg::app {
+
+struct PatchingRun {
+  std::string workflow;              // "given" or "1"
+  patching::LayoutDesign layout;     // final layout and each patch's design
+  patching::PatchGraph graph;
+  patching::Coverage coverage;
+  double layoutSeconds = 0.0;        // corners, sides, splits, layout mesh (the patching stage's own time)
+  double designSeconds = 0.0;        // the patch designs, trial and final (the design stage)
+};
+
+// The per-patch design options as the scene sets them (eta_max, slope bounds, maps, alpha_bar,
+// members, lamella width); smoothing unless Workflow 1 splits instead or the scene says otherwise.
+EggOptions eggOptionsFromScene(const Scene& scene);
+
+// Throws InvalidInput naming the scene file and field (corners off the surface, bad indices).
+PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& surfaceSolver, const Scene& scene);
+
+// report.json: patching{}, boundaries[], t_junctions[], chains[], coverage{}.
+void addPatchingReport(const PatchingRun& run, nlohmann::json& report);
+
+// patches.json: corners, sides (polylines), patches, boundaries, T-junctions, chains, splits.
+void writePatchesJson(const PatchingRun& run, const std::filesystem::path& file);
+
+}  // namespace egg::app

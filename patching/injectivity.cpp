@@ -25,6 +25,7 @@ struct Crossing {
   double lo = 0.0, hi = 1.0;      // bracket of t
   double fLo = 0.0, fHi = 0.0;    // d - r at the bracket ends (fLo < 0 <= fHi)
   int lastSide = 0;               // Illinois: which end moved last (-1 lo, +1 hi)
+  double prevT = -1.0, prevF = 0.0;  // the evaluation before the last (secant)
   double bestT = 0.0;             // the evaluated t closest to the circle so far
   double error = std::numeric_limits<double>::infinity();  // its |d - r|
 };
@@ -41,7 +42,7 @@ SurfacePoint edgePoint(const TriMesh& mesh, const Crossing& c, double t) {
 }
 
 // Regula falsi with the Illinois modification (the end that stays put twice has its value halved),
-// so the bracket shrinks from both sides even where d(t) is curved.
+// so the bracket shrinks from both sides even where d(t) is curved; the fallback of the secant step.
 double nextGuess(const Crossing& c) {
   if (!std::isfinite(c.fHi)) return 0.5 * (c.lo + c.hi);
   const double t = c.lo - c.fLo * (c.hi - c.lo) / (c.fHi - c.fLo);
@@ -173,6 +174,14 @@ InjectivityCircle injectivityCircle(const TriMesh& surface, const geodesic::Dist
       }
       const double previous = c.t;
       c.t = nextGuess(c);
+      // Secant through the last two evaluations where it stays inside the bracket: superlinear once
+      // both lie in the same window of the field, where the vertex values at the edge's ends (often
+      // reached through other windows) slow regula falsi down.
+      if (c.prevT >= 0.0 && f != c.prevF) {
+        const double secant = previous - f * (previous - c.prevT) / (f - c.prevF);
+        if (secant > c.lo && secant < c.hi) c.t = secant;
+      }
+      c.prevT = previous, c.prevF = f;
       // A bracket at rounding: the best point stays (its error is reported).
       if (c.t != previous && c.hi - c.lo > 1e-15) still.push_back(active[k]);
     }

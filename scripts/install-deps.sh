@@ -10,6 +10,7 @@ PACKAGES=(
   libnlopt-cxx-dev libnlopt-dev libassimp-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev
+  librsvg2-bin
 )
 
 missing=()

@@ -3,6 +3,8 @@
 #include "core/errors.hpp"
 #include "core/geodesic/distance_solver.hpp"
 #include "core/io/atomic_file.hpp"
+#include "patching/injectivity.hpp"
+#include "patching/plan_svg.hpp"
 
 #include <fmt/core.h>
 
@@ -151,6 +153,34 @@ void writePatchesJson(const PatchingRun& run, const std::filesystem::path& file)
   for (const char* key : {"boundaries", "t_junctions", "chains", "coverage"}) doc[key] = report[key];
   doc["splits"] = report["patching"]["split_log"];
   writeFileAtomically(file, doc.dump(1) + "\n");
+}
+
+void writePlan(const PatchingRun& run, const TriMesh& surface, const geodesic::DistanceSolver& surfaceSolver, const Scene& scene,
+               const std::filesystem::path& file, json& report) {
+  const auto started = std::chrono::steady_clock::now();
+  patching::PlanDrawing drawing;
+  drawing.surface = &surface;
+  drawing.layout = &run.layout.layout;
+  for (const auto& p : run.layout.patches) drawing.patchProblems.push_back(p.feasible() ? "" : p.failure);
+  drawing.peaks = patching::findSurfacePeaks(surface);
+  drawing.circles = patching::injectivityCircles(surface, surfaceSolver, drawing.peaks);
+  drawing.coverage = &run.coverage;
+  drawing.title = scene.name;
+  patching::writePlanSvg(file, drawing);
+  json peaks = json::array();
+  for (size_t i = 0; i < drawing.peaks.size(); ++i) {
+    const auto& peak = drawing.peaks[i];
+    const auto& circle = drawing.circles[i];
+    peaks.push_back({{"p_max_m", point(peak.position)},
+                     {"gaussian_max_1_m2", peak.gaussianMax},
+                     {"injectivity_radius_m", peak.radiusM},
+                     {"on_boundary", peak.onBoundary},
+                     {"circle_complete", circle.complete},
+                     {"circle_covers_surface", circle.coversSurface},
+                     {"circle_length_m", circle.lengthM}});
+  }
+  report["peaks"] = peaks;
+  report["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
 }  // namespace egg::app

@@ -186,7 +186,13 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   progress("writing", 0.9);
   if (scene.wants("previews") || scene.wants("report"))
     for (const auto& p : patches) writePatchFiles(p, out.staging() / fmt::format("patch_{:03d}", p.id), scene);
-  if (scene.wants("plan")) writePatchesJson(patching, out.staging() / "patches.json");
+  if (scene.wants("plan")) {
+    progress("plan", 0.95);
+    writePatchesJson(patching, out.staging() / "patches.json");
+    nlohmann::json plan;
+    writePlan(patching, surface.mesh, surfaceSolver, scene, out.staging() / "plan.svg", plan);
+    report.section("plan") = plan;
+  }
   result.seconds = secondsSince(start);
   result.report = report.finish(result.seconds);
   if (!result.failures.empty()) result.report["failures"] = result.failures;

@@ -3,7 +3,10 @@
 
 #include <fmt/core.h>
 
+#include <tbb/global_control.h>
+
 #include <iostream>
+#include <optional>
 #include <memory>
 #include <unistd.h>
 
@@ -15,6 +18,7 @@ void registerRunCommand(CLI::App& parent, Action& action) {
     std::string out;
     bool json = false;
     bool quiet = false;
+    int threads = 0;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = parent.add_subcommand(
@@ -23,9 +27,13 @@ void registerRunCommand(CLI::App& parent, Action& action) {
   cmd->add_option("--out,-o", args->out, "Run folder (default: out/<scene name>); replaced whole when the run completes");
   cmd->add_flag("--json", args->json, "Print the report as JSON on stdout");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress on stderr");
+  cmd->add_option("-j,--threads", args->threads, "Worker threads (default: all cores); results do not depend on it")
+      ->check(CLI::Range(1, 1024));
   cmd->callback([args, &action] {
     action = [args]() {
       const Scene scene = loadScene(args->scene);
+      std::optional<tbb::global_control> threadLimit;
+      if (args->threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(args->threads));
       PipelineOptions options;
       options.out_dir = args->out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args->out);
       const bool terminal = isatty(STDERR_FILENO) && !args->quiet;
@@ -39,6 +47,10 @@ void registerRunCommand(CLI::App& parent, Action& action) {
         };
       }
       const PipelineResult result = runPipeline(scene, options);
+      if (result.nothingRequested) {
+        std::cout << fmt::format("egg run: {}: the scene asks for no outputs (\"outputs\": []): nothing to do\n", scene.name);
+        return kExitOk;
+      }
       if (args->json) {
         std::cout << result.report.dump(2) << "\n";
       } else {

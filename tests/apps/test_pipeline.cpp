@@ -123,7 +123,7 @@ namespace fs = std::filesystem;
 Scene twoByTwoScene(const std::string& outputs) {
   return parseScene(nlohmann::json::parse(R"({
     "name": "bump_2x2",
-    "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 0.6, "sigma": 1.5}, "edge_length_m": 0.4},
+    "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1.0, "sigma": 1.5}, "edge_length_m": 0.4},
     "patching": {"patches": [[[-3,-3,0],[0,-3,0],[0,0,1],[-3,0,0]], [[0,-3,0],[3,-3,0],[3,0,0],[0,0,1]],
                              [[-3,0,0],[0,0,1],[0,3,0],[-3,3,0]], [[0,0,1],[3,0,0],[3,3,0],[0,3,0]]]},
     "grid": {"map_resolution": 30, "members_per_family": 4},

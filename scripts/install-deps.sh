@@ -10,6 +10,8 @@ PACKAGES=(
   libnlopt-cxx-dev libnlopt-dev libassimp-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev
+  libcairo2-dev libdxflib-dev
+  python3-ezdxf librsvg2-bin poppler-utils admesh
 )
 
 missing=()

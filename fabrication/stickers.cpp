@@ -1,0 +1,92 @@
+#include "fabrication/stickers.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace egg::fabrication {
+
+double contactHalfLengthMm(double widthMm, double angleRad) {
+  const double s = std::max(std::sin(angleRad), 1e-3);  // nearly parallel lamellas: capped, stays finite
+  return widthMm * (1.0 + std::abs(std::cos(angleRad))) / (2.0 * s);
+}
+
+double crossingAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+namespace {
+
+// Unit tangent of a polyline at arc length s.
+Eigen::Vector3d tangentAt(const std::vector<Eigen::Vector3d>& polyline, double s) {
+  double walked = 0.0;
+  for (size_t i = 0; i + 1 < polyline.size(); ++i) {
+    const Eigen::Vector3d seg = polyline[i + 1] - polyline[i];
+    const double len = seg.norm();
+    if (len > 0.0 && (walked + len >= s || i + 2 == polyline.size())) return seg / len;
+    walked += len;
+  }
+  return Eigen::Vector3d::UnitX();
+}
+
+const LamellaPlan* findPlan(const std::vector<LamellaPlan>& plans, int patchId, Family family, int index) {
+  for (const auto& p : plans) {
+    if (p.patchId == patchId && p.family == family && p.index == index) return &p;
+  }
+  return nullptr;
+}
+
+const LamellaFeature* findFeature(const LamellaPlan& plan, int connection) {
+  for (const auto& f : plan.features) {
+    if (f.patchId == plan.patchId && f.connection == connection) return &f;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<Sticker> planStickers(const FabricationPatch& patch, const std::vector<LamellaPlan>& plans,
+                                  const FabricationOptions& options) {
+  std::vector<Sticker> stickers;
+  const EggGrid& grid = *patch.grid;
+  const int nv = static_cast<int>(grid.v.size());
+  for (int i = 0; i < static_cast<int>(grid.u.size()); ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const GridConnection& c = grid.at(i, j);
+      const GridMember& mu = grid.u[i];
+      const GridMember& mv = grid.v[j];
+      const LamellaPlan* pu = findPlan(plans, patch.patchId, Family::U, i);
+      const LamellaPlan* pv = findPlan(plans, patch.patchId, Family::V, j);
+      if (!pu || !pv) continue;
+      const LamellaFeature* fu = findFeature(*pu, i * nv + j);
+      const LamellaFeature* fv = findFeature(*pv, i * nv + j);
+      if (!fu || !fv || (fu->kind != FeatureKind::Slot && fv->kind != FeatureKind::Slot)) continue;
+      const Eigen::Vector2d du = mu.planarEnd - mu.planarStart, dv = mv.planarEnd - mv.planarStart;
+      const double planar = crossingAngle({du.x(), du.y(), 0.0}, {dv.x(), dv.y(), 0.0});
+      const double deployed = crossingAngle(tangentAt(mu.spatial, c.sU), tangentAt(mv.spatial, c.sV));
+      const double w = options.lamella_width_mm;
+      // The other lamella's footprint is widest at the angle furthest from a right angle.
+      const double half = std::max(contactHalfLengthMm(w, planar), contactHalfLengthMm(w, deployed));
+      for (const auto* f : {fu, fv}) {
+        const LamellaPlan& plan = f == fu ? *pu : *pv;
+        Sticker s;
+        s.connectionId = f->connectionId;
+        s.lamellaId = plan.id;
+        s.id = s.connectionId + "/" + s.lamellaId;
+        s.widthMm = w;
+        s.slideMm = f->kind == FeatureKind::Slot ? f->slideMm : 0.0;
+        // The contact centre runs with the bolt from x to x + slide; the footprint reaches `half`
+        // either side, the margin beyond that.
+        const double lo = std::min(0.0, s.slideMm) - half - options.sticker_margin_mm;
+        const double hi = std::max(0.0, s.slideMm) + half + options.sticker_margin_mm;
+        s.lengthMm = hi - lo;
+        s.boltXMm = -lo;
+        s.planarAngleRad = planar;
+        s.deployedAngleRad = deployed;
+        stickers.push_back(s);
+      }
+    }
+  }
+  return stickers;
+}
+
+}  // namespace egg::fabrication

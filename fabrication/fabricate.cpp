@@ -91,10 +91,12 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
     int memberIndex = 0;
     for (const auto* family : {&patch.grid->u, &patch.grid->v}) {
       for (const auto& m : *family) {
-        LamellaStress s = lamellaStress(m.spatial, &m.normals, t, r.material);
+        LamellaStress s = lamellaStress(m.spatial, &m.normals, t, r.material, curvatureWindowM(m.spatial, w));
         if (patch.deployedCentrelines) {
           // Bending from the simulated shape; the twist of the surface frame from the trace.
-          const LamellaStress deployed = lamellaStress((*patch.deployedCentrelines)[memberIndex], nullptr, t, r.material);
+          const auto& centreline = (*patch.deployedCentrelines)[memberIndex];
+          const LamellaStress deployed =
+              lamellaStress(centreline, nullptr, t, r.material, curvatureWindowM(centreline, w));
           s.maxCurvature_1_m = deployed.maxCurvature_1_m;
           s.maxBendingStress_pa = deployed.maxBendingStress_pa;
           s.stressRatio = std::max(s.maxBendingStress_pa / r.material.bending_strength_pa,
@@ -142,9 +144,9 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
     stickerParts.push_back({"sticker " + s.id, s.lengthMm, s.widthMm});
     r.stickerAreaM2 += s.areaM2();
   }
-  r.stickerNesting = nestParts(stickerParts, options.sticker_sheet_mm, options.kerf_mm, options.margin_mm,
+  r.stickerNesting = nestParts(stickerParts, options.stickerSheetMm(), options.kerf_mm, options.margin_mm,
                                "fabrication.sticker_sheet_mm");
-  r.stickerSheets = emptySheets(r.stickerNesting.sheets, options.sticker_sheet_mm, "PTFE sticker sheet");
+  r.stickerSheets = emptySheets(r.stickerNesting.sheets, options.stickerSheetMm(), "PTFE sticker sheet");
   for (size_t p = 0; p < r.stickers.size(); ++p) {
     const auto& at = r.stickerNesting.placements[p];
     drawSticker(r.stickers[p], {at.xMm, at.yMm}, options, r.stickerSheets[at.sheet]);
@@ -192,7 +194,7 @@ std::string bomCsv(const FabricationResult& r) {
   s << "support,," << r.supports.size() << ",,,,,,,see supports/supports.csv\n";
   s << "lamella_sheet,," << r.lamellaNesting.sheets << "," << o.sheet_mm[0] << "," << o.sheet_mm[1] << ","
     << o.lamella_thickness_mm << ",,,,yield " << formatted("%.3f", r.lamellaNesting.yield) << "\n";
-  s << "sticker_sheet,," << r.stickerNesting.sheets << "," << o.sticker_sheet_mm[0] << "," << o.sticker_sheet_mm[1]
+  s << "sticker_sheet,," << r.stickerNesting.sheets << "," << o.stickerSheetMm()[0] << "," << o.stickerSheetMm()[1]
     << ",,,,,PTFE foil\n";
   s << "total_lamellae,," << r.lamellae.size() << "," << formatted("%.2f", r.totalLengthM * 1000.0) << ",,,,"
     << formatted("%.6g", r.volumeM3) << "," << formatted("%.6g", r.massKg) << ",self-weight "

@@ -94,11 +94,19 @@ std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patch
     for (const auto& m : grid.u) plans.push_back(planMember(patch, m, options));
     for (const auto& m : grid.v) plans.push_back(planMember(patch, m, options));
   }
-  for (auto& plan : plans) placeSplices(plan, options.stock_length_mm, options.spliceClearanceMm(), options.bolt_diameter_mm);
+  const double piece = longestPieceMm(options);
+  const std::string field = piece < options.stock_length_mm ? "fabrication.sheet_mm (the longest strip a sheet holds)"
+                                                             : "fabrication.stock_length_mm";
+  for (auto& plan : plans) placeSplices(plan, piece, options.spliceClearanceMm(), options.bolt_diameter_mm, field);
   return plans;
 }
 
-void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm) {
+double longestPieceMm(const FabricationOptions& options) {
+  return std::min(options.stock_length_mm, options.sheet_mm[0] - 2.0 * options.margin_mm);
+}
+
+void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
+                  const std::string& field) {
   plan.splicesMm.clear();
   plan.segments.clear();
   // Forbidden intervals: every feature's extent grown by the clearance.
@@ -129,7 +137,7 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
     }
     if (cut <= start + 1e-9 || !clearAt(cut)) {
       std::ostringstream msg;
-      msg << "fabrication.stock_length_mm: lamella " << plan.id << " (" << plan.lengthMm
+      msg << field << ": lamella " << plan.id << " (" << plan.lengthMm
           << " mm) cannot be spliced: no position within " << stockLengthMm << " mm of " << start
           << " mm lies " << clearanceMm << " mm clear of its holes and slots (fabrication.splice_clearance_mm)";
       throw InvalidInput(msg.str());

@@ -50,14 +50,19 @@ struct LamellaPlan {
 };
 
 // Strips of every member of every patch (u members first, then v, patch by patch) with holes and
-// slots. Throws InvalidInput naming the patch when a grid is missing or inconsistent.
+// slots, spliced into pieces of at most longestPieceMm(options). Throws InvalidInput naming the patch when a grid is missing or inconsistent.
 std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches, const FabricationOptions& options);
 
 // Cut positions so that no segment exceeds `stockLengthMm` and every cut lies at least
 // `clearanceMm` from every hole and slot (Section 3.5: architectural lamellas of 20-40 m never come
 // in one piece). Fills plan.splicesMm and plan.segments. Throws InvalidInput naming the lamella and
-// "fabrication.stock_length_mm" when no clear cut position exists.
-void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm);
+// `field` when no clear cut position exists.
+void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
+                  const std::string& field = "fabrication.stock_length_mm");
+
+// The longest piece a lamella is cut in: the stock length, or the sheet's usable first side when
+// that is shorter (a strip cut from a sheet is no longer than the sheet).
+double longestPieceMm(const FabricationOptions& options);
 
 // Counts over plans, for the BOM and the report.
 struct FeatureCounts {

@@ -26,7 +26,9 @@ Nesting nestParts(const std::vector<NestPart>& parts, std::array<double, 2> shee
       msg << field << ": part " << p.name << " (" << p.lengthMm << " x " << p.widthMm << " mm) does not fit a "
           << sheetMm[0] << " x " << sheetMm[1] << " mm sheet with a " << marginMm << " mm margin";
       if (p.lengthMm > usableX + slack && p.lengthMm <= usableY + slack) msg << " (strips run along the sheet's first side)";
-      if (p.lengthMm > usableX + slack) msg << "; a shorter fabrication.stock_length_mm splices long lamellas";
+      if (p.lengthMm > usableX + slack && field == "fabrication.sheet_mm") {
+        msg << "; a shorter fabrication.stock_length_mm splices long lamellas";
+      }
       throw InvalidInput(msg.str());
     }
   }

@@ -65,8 +65,13 @@ void FabricationOptions::validate() const {
   if (splice_clearance_mm) requireNonNegative("fabrication.splice_clearance_mm", *splice_clearance_mm);
   if (label_height_mm) requirePositive("fabrication.label_height_mm", *label_height_mm);
   requireNonNegative("fabrication.sticker_margin_mm", sticker_margin_mm);
-  requirePositive("fabrication.sticker_sheet_mm", sticker_sheet_mm[0]);
-  requirePositive("fabrication.sticker_sheet_mm", sticker_sheet_mm[1]);
+  if (sticker_sheet_mm) {
+    requirePositive("fabrication.sticker_sheet_mm", (*sticker_sheet_mm)[0]);
+    requirePositive("fabrication.sticker_sheet_mm", (*sticker_sheet_mm)[1]);
+    if (2.0 * margin_mm >= std::min((*sticker_sheet_mm)[0], (*sticker_sheet_mm)[1])) {
+      fail("fabrication.sticker_sheet_mm", "leaves no room inside the margin (fabrication.margin_mm)");
+    }
+  }
   if (ground_height_m && !std::isfinite(*ground_height_m)) fail("fabrication.ground_height_m", "must be a finite number");
   if (support_block_mm) {
     requirePositive("fabrication.support_block_mm", *support_block_mm);

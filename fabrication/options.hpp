@@ -30,12 +30,12 @@ struct FabricationOptions {
   double margin_mm = 10.0;                  // unused border around every sheet
   double bolt_diameter_mm = 8.0;            // hole diameter and slot width
   double min_notch_mm = 1.0;                // shorter notches are cut as plain holes (mesh noise, 2.4.5)
-  double stock_length_mm = 6000.0;          // longest piece a lamella can be cut from; longer ones are spliced
+  double stock_length_mm = 6000.0;          // longest piece a lamella can be cut from (and at most the sheet's first side); longer ones are spliced
   std::optional<double> end_overhang_mm;    // strip beyond the end connections; default half the width
   std::optional<double> splice_clearance_mm;  // no hole or slot this close to a splice; default the width
   std::optional<double> label_height_mm;    // engraved text height; default 0.35 w (clamped to 1..30 mm)
   double sticker_margin_mm = 2.0;           // PTFE sticker beyond the swept contact area (3.5.1)
-  std::array<double, 2> sticker_sheet_mm{1000.0, 500.0};  // PTFE foil sheet
+  std::optional<std::array<double, 2>> sticker_sheet_mm;  // PTFE foil sheet; default sheet_mm
   std::optional<double> ground_height_m;    // ground plane z; default 0.1 m below the lowest support
   std::optional<double> support_block_mm;   // footprint side of a support block; default 3 w
   bool supports_at_boundary_connections = false;  // a support at every boundary connection (3.5.2 iv), not only at anchors
@@ -46,6 +46,7 @@ struct FabricationOptions {
   double endOverhangMm() const { return end_overhang_mm.value_or(lamella_width_mm / 2.0); }
   double spliceClearanceMm() const { return splice_clearance_mm.value_or(lamella_width_mm); }
   double labelHeightMm() const;
+  std::array<double, 2> stickerSheetMm() const { return sticker_sheet_mm.value_or(sheet_mm); }
   double supportBlockMm() const { return support_block_mm.value_or(3.0 * lamella_width_mm); }
 };
 

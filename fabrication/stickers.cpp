@@ -75,9 +75,24 @@ std::vector<Sticker> planStickers(const FabricationPatch& patch, const std::vect
         s.widthMm = w;
         s.slideMm = f->kind == FeatureKind::Slot ? f->slideMm : 0.0;
         // The contact centre runs with the bolt from x to x + slide; the footprint reaches `half`
-        // either side, the margin beyond that.
-        const double lo = std::min(0.0, s.slideMm) - half - options.sticker_margin_mm;
-        const double hi = std::max(0.0, s.slideMm) + half + options.sticker_margin_mm;
+        // either side, the margin beyond that. At small crossing angles (a compact planar layout)
+        // the footprint is long: it stops halfway to the neighbouring connections (their stickers
+        // cover the rest) and at the strip's ends, but always covers the slot and a bolt radius.
+        double lo = std::min(0.0, s.slideMm) - half - options.sticker_margin_mm;
+        double hi = std::max(0.0, s.slideMm) + half + options.sticker_margin_mm;
+        double limitLo = -f->xMm, limitHi = plan.lengthMm - f->xMm;
+        for (const auto& other : plan.features) {
+          if (&other == f) continue;
+          const double gap = other.xMm - f->xMm;
+          if (gap > 0) limitHi = std::min(limitHi, gap / 2.0);
+          if (gap < 0) limitLo = std::max(limitLo, gap / 2.0);
+        }
+        const double r = options.bolt_diameter_mm / 2.0;
+        limitLo = std::min(limitLo, std::min(0.0, s.slideMm) - 2.0 * r);
+        limitHi = std::max(limitHi, std::max(0.0, s.slideMm) + 2.0 * r);
+        s.clipped = lo < limitLo || hi > limitHi;
+        lo = std::max(lo, limitLo);
+        hi = std::min(hi, limitHi);
         s.lengthMm = hi - lo;
         s.boltXMm = -lo;
         s.planarAngleRad = planar;

@@ -19,6 +19,7 @@ struct Sticker {
   double boltXMm = 0.0;       // bolt centre in the planar state, from the sticker's start
   double slideMm = 0.0;       // slot: the bolt moves to boltXMm + slideMm (0: a plain hole)
   double planarAngleRad = 0.0, deployedAngleRad = 0.0;  // crossing angles of the two lamellas
+  bool clipped = false;       // shortened to half the way to the neighbouring connections (or the strip end)
   double areaM2() const { return lengthMm * widthMm * 1e-6; }
 };
 
@@ -30,7 +31,10 @@ double contactHalfLengthMm(double widthMm, double angleRad);
 double crossingAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 
 // Stickers of all notched connections of the grid of `patch` (both lamellas of a connection
-// where at least one of them has a slot), read from the lamella plans of that patch.
+// where at least one of them has a slot), read from the lamella plans of that patch. A sticker
+// reaches at most halfway to the neighbouring connections on its lamella and not beyond the strip
+// (at the small crossing angles of a compact planar grid the swept footprint would otherwise run
+// over the next connections), and always covers the slot plus a bolt radius.
 std::vector<Sticker> planStickers(const FabricationPatch& patch, const std::vector<LamellaPlan>& plans,
                                   const FabricationOptions& options);
 

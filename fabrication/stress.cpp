@@ -44,11 +44,65 @@ std::vector<double> polylineTwistRate(const std::vector<Eigen::Vector3d>& points
   return rate;
 }
 
+namespace {
+
+void finish(LamellaStress& s, double thicknessM, const MaterialProperties& material) {
+  s.maxBendingStress_pa = material.youngs_modulus_pa * s.maxCurvature_1_m * thicknessM / 2.0;
+  s.maxTorsionStress_pa = material.shear_modulus_pa * s.maxTwistRate_rad_m * thicknessM;
+  const double bendingRatio = material.bending_strength_pa > 0 ? s.maxBendingStress_pa / material.bending_strength_pa : 0.0;
+  const double torsionRatio = material.shear_strength_pa > 0 ? s.maxTorsionStress_pa / material.shear_strength_pa : 0.0;
+  s.stressRatio = std::max(bendingRatio, torsionRatio);
+}
+
+}  // namespace
+
+double curvatureWindowM(const std::vector<Eigen::Vector3d>& centreline, double lamellaWidthM) {
+  std::vector<double> segments;
+  for (size_t i = 0; i + 1 < centreline.size(); ++i) segments.push_back((centreline[i + 1] - centreline[i]).norm());
+  double median = 0.0;
+  if (!segments.empty()) {
+    std::nth_element(segments.begin(), segments.begin() + segments.size() / 2, segments.end());
+    median = segments[segments.size() / 2];
+  }
+  return std::max(2.0 * lamellaWidthM, 3.0 * median);
+}
+
 LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, const std::vector<Eigen::Vector3d>* normals,
-                            double thicknessM, const MaterialProperties& material) {
+                            double thicknessM, const MaterialProperties& material, double windowM) {
   LamellaStress s;
-  const auto kappa = polylineCurvature(centreline);
   const bool useNormals = normals && normals->size() == centreline.size();
+  const size_t n = centreline.size();
+  if (windowM > 0.0 && n >= 3) {
+    // For every vertex i the vertices j < i and k > i at least a window away along the polyline
+    // (the nearest such): the circle through j, i, k. Vertices, not interpolated points, so that a
+    // polyline inscribed in a circle still gives its exact curvature.
+    std::vector<double> arc(n, 0.0);
+    for (size_t i = 1; i < n; ++i) arc[i] = arc[i - 1] + (centreline[i] - centreline[i - 1]).norm();
+    bool measured = false;
+    size_t j = 0, k = 0;
+    for (size_t i = 1; i + 1 < n; ++i) {
+      if (arc[i] < windowM || arc[n - 1] - arc[i] < windowM) continue;
+      while (j + 1 < i && arc[i] - arc[j + 1] >= windowM) ++j;
+      k = std::max(k, i + 1);
+      while (k + 1 < n && arc[k] - arc[i] < windowM) ++k;
+      const Eigen::Vector3d kappa = polylineCurvature({centreline[j], centreline[i], centreline[k]})[1];
+      measured = true;
+      if (useNormals) {
+        s.maxCurvature_1_m = std::max(s.maxCurvature_1_m, std::abs(kappa.dot((*normals)[i].normalized())));
+        // The turn of the normal from j to k about the chord, over the arc between them.
+        const double rate = polylineTwistRate({centreline[j], centreline[k]}, {(*normals)[j], (*normals)[k]})[0];
+        const double chord = (centreline[k] - centreline[j]).norm();
+        s.maxTwistRate_rad_m = std::max(s.maxTwistRate_rad_m, std::abs(rate) * chord / (arc[k] - arc[j]));
+      } else {
+        s.maxCurvature_1_m = std::max(s.maxCurvature_1_m, kappa.norm());
+      }
+    }
+    if (measured) {
+      finish(s, thicknessM, material);
+      return s;
+    }
+  }
+  const auto kappa = polylineCurvature(centreline);
   for (size_t i = 0; i < kappa.size(); ++i) {
     const double k = useNormals ? std::abs(kappa[i].dot((*normals)[i].normalized())) : kappa[i].norm();
     s.maxCurvature_1_m = std::max(s.maxCurvature_1_m, k);
@@ -56,11 +110,7 @@ LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, cons
   if (useNormals) {
     for (double r : polylineTwistRate(centreline, *normals)) s.maxTwistRate_rad_m = std::max(s.maxTwistRate_rad_m, std::abs(r));
   }
-  s.maxBendingStress_pa = material.youngs_modulus_pa * s.maxCurvature_1_m * thicknessM / 2.0;
-  s.maxTorsionStress_pa = material.shear_modulus_pa * s.maxTwistRate_rad_m * thicknessM;
-  const double bendingRatio = material.bending_strength_pa > 0 ? s.maxBendingStress_pa / material.bending_strength_pa : 0.0;
-  const double torsionRatio = material.shear_strength_pa > 0 ? s.maxTorsionStress_pa / material.shear_strength_pa : 0.0;
-  s.stressRatio = std::max(bendingRatio, torsionRatio);
+  finish(s, thicknessM, material);
   return s;
 }
 

@@ -32,7 +32,16 @@ struct LamellaStress {
 // Bending: with `normals` (one per point) the normal curvature kappa . n, else the whole curvature
 // (a deployed lamella is a geodesic: its curvature is normal curvature). Torsion: from `normals`
 // when given, else zero. thicknessM is t; the material gives E, G, f_m, f_v.
+// With windowM > 0 both are measured over that arc length instead of vertex by vertex: the circle
+// through the points at s - window, s, s + window (still exact on a circle) and the turn of the
+// normal from s - window to s + window. A geodesic traced on a triangle mesh kinks at every edge it
+// crosses, and vertex-by-vertex curvature of such a polyline measures the mesh, not the lamella,
+// which cannot bend over less than about its width anyway.
 LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, const std::vector<Eigen::Vector3d>* normals,
-                            double thicknessM, const MaterialProperties& material);
+                            double thicknessM, const MaterialProperties& material, double windowM = 0.0);
+
+// The window fabricate() measures over: twice the lamella width, and at least three median segments
+// of the polyline (its resolution).
+double curvatureWindowM(const std::vector<Eigen::Vector3d>& centreline, double lamellaWidthM);
 
 }  // namespace egg::fabrication

@@ -261,7 +261,7 @@ void readFabrication(Section s, FabricationSpec& out) {
   optionalNumber("splice_clearance_mm", out.splice_clearance_mm, 0.0, 1e5);
   optionalNumber("label_height_mm", out.label_height_mm, 0.1, 1000.0);
   out.sticker_margin_mm = s.number("sticker_margin_mm", out.sticker_margin_mm, 0.0, 1000.0);
-  out.sticker_sheet_mm = s.pair("sticker_sheet_mm", out.sticker_sheet_mm, 1.0, 1e5);
+  if (s.has("sticker_sheet_mm")) out.sticker_sheet_mm = s.pair("sticker_sheet_mm", out.sheet_mm, 1.0, 1e5);
   optionalNumber("ground_height_m", out.ground_height_m, -1e5, 1e5);
   optionalNumber("support_block_mm", out.support_block_mm, 1.0, 1e5);
   out.supports_at_boundary_connections = s.boolean("supports_at_boundary_connections", out.supports_at_boundary_connections);
@@ -363,7 +363,6 @@ json sceneToJson(const Scene& scene) {
                    {"min_notch_mm", f.min_notch_mm},
                    {"stock_length_mm", f.stock_length_mm},
                    {"sticker_margin_mm", f.sticker_margin_mm},
-                   {"sticker_sheet_mm", f.sticker_sheet_mm},
                    {"supports_at_boundary_connections", f.supports_at_boundary_connections}};
   // Unset optional keys are left out (their defaults derive from the lamella).
   if (f.end_overhang_mm) fabrication["end_overhang_mm"] = *f.end_overhang_mm;
@@ -371,6 +370,7 @@ json sceneToJson(const Scene& scene) {
   if (f.label_height_mm) fabrication["label_height_mm"] = *f.label_height_mm;
   if (f.ground_height_m) fabrication["ground_height_m"] = *f.ground_height_m;
   if (f.support_block_mm) fabrication["support_block_mm"] = *f.support_block_mm;
+  if (f.sticker_sheet_mm) fabrication["sticker_sheet_mm"] = *f.sticker_sheet_mm;
   return {
       {"name", scene.name},
       {"path", scene.path.string()},

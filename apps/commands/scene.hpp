@@ -75,7 +75,7 @@ struct FabricationSpec {
   std::optional<double> splice_clearance_mm;  // no hole or slot this close to a splice (default the width)
   std::optional<double> label_height_mm;     // engraved text height (default 0.35 w, 1..30 mm)
   double sticker_margin_mm = 2.0;            // PTFE sticker beyond the swept contact area
-  std::array<double, 2> sticker_sheet_mm{1000.0, 500.0};  // PTFE foil sheet
+  std::optional<std::array<double, 2>> sticker_sheet_mm;  // PTFE foil sheet (default sheet_mm)
   std::optional<double> ground_height_m;     // ground plane z of the supports (default 0.1 m below the lowest)
   std::optional<double> support_block_mm;    // footprint side of a support block (default 3 w)
   bool supports_at_boundary_connections = false;  // a support at every boundary connection, not only at anchors

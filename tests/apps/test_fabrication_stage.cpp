@@ -21,7 +21,7 @@ TEST(FabricationStage, SceneDefaultsAreTheLibraryDefaults) {
   EXPECT_DOUBLE_EQ(o.min_notch_mm, library.min_notch_mm);
   EXPECT_DOUBLE_EQ(o.stock_length_mm, library.stock_length_mm);
   EXPECT_DOUBLE_EQ(o.sticker_margin_mm, library.sticker_margin_mm);
-  EXPECT_EQ(o.sticker_sheet_mm, library.sticker_sheet_mm);
+  EXPECT_EQ(o.stickerSheetMm(), library.sheet_mm);
   EXPECT_EQ(o.supports_at_boundary_connections, library.supports_at_boundary_connections);
   EXPECT_FALSE(o.end_overhang_mm.has_value());
   EXPECT_NO_THROW(o.validate());

@@ -82,7 +82,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_DOUBLE_EQ(*s.fabrication.splice_clearance_mm, 300.0);
   EXPECT_DOUBLE_EQ(*s.fabrication.label_height_mm, 12.0);
   EXPECT_DOUBLE_EQ(s.fabrication.sticker_margin_mm, 3.0);
-  EXPECT_DOUBLE_EQ(s.fabrication.sticker_sheet_mm[0], 600.0);
+  EXPECT_DOUBLE_EQ((*s.fabrication.sticker_sheet_mm)[0], 600.0);
   EXPECT_DOUBLE_EQ(*s.fabrication.ground_height_m, -0.5);
   EXPECT_DOUBLE_EQ(*s.fabrication.support_block_mm, 200.0);
   EXPECT_TRUE(s.fabrication.supports_at_boundary_connections);

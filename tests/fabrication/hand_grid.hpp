@@ -86,7 +86,7 @@ inline FabricationOptions handOptions() {
   o.stock_length_mm = 1000.0;
   o.end_overhang_mm = 5.0;
   o.label_height_mm = 3.0;
-  o.sticker_sheet_mm = {200.0, 100.0};
+  o.sticker_sheet_mm = std::array<double, 2>{200.0, 100.0};
   o.support_block_mm = 30.0;
   return o;
 }

@@ -1,11 +1,14 @@
 #include "fabrication/fabricate.hpp"
 
+#include "core/egg/solve_patch.hpp"
 #include "core/errors.hpp"
 #include "hand_grid.hpp"
+#include "samples/generators/samples.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <regex>
 
 namespace egg::fabrication {
@@ -92,7 +95,7 @@ TEST(Fabricate, SimulatedCentrelinesDriveTheBendingStress) {
 TEST(Fabricate, SheetSmallerThanTheWidestPartIsAClearError) {
   const EggGrid grid = handGrid();
   auto options = handOptions();
-  options.sheet_mm = {200.0, 100.0};
+  options.sheet_mm = {500.0, 18.0};  // 8 mm usable across: narrower than the 10 mm strips
   try {
     fabricate({{0, &grid, std::nullopt}}, options);
     FAIL() << "expected InvalidInput";
@@ -100,7 +103,28 @@ TEST(Fabricate, SheetSmallerThanTheWidestPartIsAClearError) {
     const std::string what = e.what();
     EXPECT_EQ(what.rfind("fabrication.sheet_mm:", 0), 0u) << what;
     EXPECT_NE(what.find("P0-U0"), std::string::npos) << what;
+    EXPECT_NE(what.find("210 x 10 mm"), std::string::npos) << what;
   }
+  // The sticker foil too.
+  options = handOptions();
+  options.sticker_sheet_mm = std::array<double, 2>{15.0, 100.0};
+  try {
+    fabricate({{0, &grid, std::nullopt}}, options);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("fabrication.sticker_sheet_mm: part sticker P0-C1-1/P0-U1", 0), 0u) << e.what();
+  }
+}
+
+TEST(Fabricate, StripsLongerThanTheSheetAreSplicedToFitIt) {
+  // 160 mm sheet, 5 mm margins: pieces of at most 150 mm although the stock is 1000 mm.
+  const EggGrid grid = handGrid();
+  auto options = handOptions();
+  options.sheet_mm = {160.0, 300.0};
+  const auto r = fabricate({{0, &grid, std::nullopt}}, options);
+  EXPECT_DOUBLE_EQ(longestPieceMm(options), 150.0);
+  EXPECT_EQ(r.splices, 6);
+  for (const auto& plan : r.lamellae) EXPECT_DOUBLE_EQ(plan.splicesMm.at(0), 150.0) << plan.id;
 }
 
 TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
@@ -224,6 +248,45 @@ TEST(Fabricate, MultiPageSheetsPdf) {
   EXPECT_EQ(files.size(), 3u * 2u + 1u + 1u);  // svg + dxf per sheet, the pdf, bom.csv
   const auto run = testing::runTool("pdfinfo " + (dir / "cut/sheets.pdf").string());
   EXPECT_NE(run.output.find("Pages:           3"), std::string::npos) << run.output;
+}
+
+}  // namespace
+}  // namespace egg::fabrication
+
+namespace egg::fabrication {
+namespace {
+
+// A solved patch end to end: the 6 m bump of samples/scenes/bump_patch.json (poplar plywood lamellas
+// 100 x 10 mm). Its counts must match its grid; the numbers are printed for the record.
+TEST(Fabricate, SolvedBumpPatchEndToEnd) {
+  const TriMesh mesh =
+      samples::generateSample("bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+  EggOptions egg;
+  egg.maps.resolution = 41;
+  egg.members.lamellaWidthM = 0.1;
+  egg.members.spacingFactor = 6.0;
+  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
+  const EggResult solved = solveEgg(mesh, corners, egg);
+  const EggGrid& grid = solved.grid;
+  FabricationOptions options;
+  options.lamella_width_mm = 100.0;
+  options.lamella_thickness_mm = 10.0;
+  options.sheet_mm = {2500.0, 1250.0};
+  const auto r = fabricate({{0, &grid, std::nullopt}}, options);
+  EXPECT_EQ(r.lamellae.size(), grid.u.size() + grid.v.size());
+  EXPECT_EQ(r.connections, static_cast<int>(grid.connections.size()));
+  EXPECT_EQ(r.counts.holes + r.counts.slots, 2 * static_cast<int>(grid.connections.size()));
+  // Slots: exactly the inner members' notches of at least min_notch_mm (countNotches of the grid).
+  EXPECT_EQ(r.counts.slots + r.counts.droppedBoundary, countNotches(grid, options.min_notch_mm / 1000.0));
+  EXPECT_GT(r.counts.slots, 0);
+  EXPECT_EQ(r.supports.size(), grid.anchors.size());
+  EXPECT_GT(r.maxStressRatio, 0.0);
+  const auto dir = testing::scratchDir("fabricate_bump");
+  const auto files = writeFabricationFiles(r, dir);
+  for (const auto& f : files) {
+    if (f.size() > 4 && f.substr(f.size() - 4) == ".dxf") EXPECT_EQ(testing::readDxf(dir / f)["audit_errors"], 0) << f;
+  }
+  std::cout << "bump patch: " << fabricationReport(r, files).dump() << "\n";
 }
 
 }  // namespace

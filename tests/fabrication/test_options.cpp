@@ -55,7 +55,7 @@ TEST(FabricationOptions, EachBadFieldIsNamed) {
   o.support_block_mm = 10.0;
   expectFieldError(o, "fabrication.support_block_mm");
   o = {};
-  o.sticker_sheet_mm = {100.0, -1.0};
+  o.sticker_sheet_mm = std::array<double, 2>{100.0, -1.0};
   expectFieldError(o, "fabrication.sticker_sheet_mm");
 }
 

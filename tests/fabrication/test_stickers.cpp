@@ -38,6 +38,23 @@ TEST(Stickers, TwoStickersPerNotchedConnectionCoveringTheSlideRange) {
   EXPECT_NEAR(v.lengthMm, 17.0, 1e-12);
   EXPECT_NEAR(v.boltXMm, 10.0, 1e-12);  // the bolt slides 3 mm back towards the start
   EXPECT_NEAR(u.areaM2() + v.areaM2(), (19.0 + 17.0) * 10.0 * 1e-6, 1e-15);
+  EXPECT_FALSE(u.clipped);
+}
+
+TEST(Stickers, NearlyParallelLamellasStopHalfwayToTheNeighbours) {
+  // At 0.1 rad the 10 mm strips overlap over w (1 + cos) / (2 sin) = 99.7 mm either side: the
+  // sticker on u1 stops halfway to the holes 100 mm away (x = 55 .. 155 on the strip).
+  EggGrid grid = testing::handGrid();
+  for (int s = 0; s <= 4; ++s) {
+    grid.v[1].spatial[s] = Eigen::Vector3d(0.1 + 0.05 * (s - 2) * std::cos(0.1), 0.1 + 0.05 * (s - 2) * std::sin(0.1), 0.5);
+  }
+  const auto options = testing::handOptions();
+  const FabricationPatch patch{0, &grid, std::nullopt};
+  const auto stickers = planStickers(patch, planLamellae({patch}, options), options);
+  ASSERT_EQ(stickers.size(), 2u);
+  EXPECT_TRUE(stickers[0].clipped);
+  EXPECT_NEAR(stickers[0].lengthMm, 100.0, 1e-9);
+  EXPECT_NEAR(stickers[0].boltXMm, 50.0, 1e-9);
 }
 
 TEST(Stickers, ShearedDeploymentWidensTheSticker) {

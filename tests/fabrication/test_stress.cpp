@@ -70,3 +70,43 @@ TEST(Stress, ShortPolylinesHaveNoCurvature) {
 
 }  // namespace
 }  // namespace egg::fabrication
+
+namespace egg::fabrication {
+namespace {
+
+TEST(Stress, WindowedCurvatureIsExactOnACircleAndIgnoresMeshKinks) {
+  const MaterialProperties& lime = materialByName("limewood");
+  // A 2 m radius arc through 200 points 10 mm apart, every other point pushed 0.2 mm off the
+  // circle: vertex by vertex the polyline is kinked, over a 0.2 m window it is nearly the circle
+  // (an offset d of one point changes the curvature by at most about 2 d / window^2 = 0.01).
+  std::vector<Eigen::Vector3d> clean, kinked, normals;
+  for (int k = 0; k < 200; ++k) {
+    const double phi = -0.5 + 0.005 * k;
+    const Eigen::Vector3d n(std::sin(phi), 0.0, std::cos(phi));
+    clean.push_back(2.0 * n);
+    kinked.push_back((2.0 + (k % 2 ? 0.0002 : 0.0)) * n);
+    normals.push_back(n);
+  }
+  EXPECT_NEAR(lamellaStress(clean, &normals, 0.001, lime, 0.2).maxCurvature_1_m, 0.5, 1e-12);
+  EXPECT_NEAR(lamellaStress(clean, &normals, 0.001, lime, 0.2).maxBendingStress_pa, 2.275e6, 1e-5);
+  EXPECT_GT(lamellaStress(kinked, &normals, 0.001, lime).maxCurvature_1_m, 4.0);  // vertex by vertex: 8 x too much
+  EXPECT_NEAR(lamellaStress(kinked, &normals, 0.001, lime, 0.2).maxCurvature_1_m, 0.5, 0.015);
+  EXPECT_NEAR(lamellaStress(kinked, nullptr, 0.001, lime, 0.2).maxCurvature_1_m, 0.5, 0.015);
+  // The window: twice the width, or three median segments (10 mm here).
+  EXPECT_NEAR(curvatureWindowM(clean, 0.1), 0.2, 1e-12);
+  EXPECT_NEAR(curvatureWindowM(clean, 0.001), 3.0 * 2.0 * 2.0 * std::sin(0.0025), 1e-9);
+}
+
+TEST(Stress, WindowedTwistRate) {
+  std::vector<Eigen::Vector3d> points, normals;
+  for (int k = 0; k <= 100; ++k) {
+    const double x = 0.02 * k;
+    points.emplace_back(x, 0.0, 0.0);
+    normals.emplace_back(0.0, -std::sin(0.5 * x), std::cos(0.5 * x));
+  }
+  const auto& poplar = materialByName("poplar_plywood");
+  EXPECT_NEAR(lamellaStress(points, &normals, 0.003, poplar, 0.3).maxTwistRate_rad_m, 0.5, 1e-3);
+}
+
+}  // namespace
+}  // namespace egg::fabrication

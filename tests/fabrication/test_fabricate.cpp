@@ -284,7 +284,9 @@ TEST(Fabricate, SolvedBumpPatchEndToEnd) {
   const auto dir = testing::scratchDir("fabricate_bump");
   const auto files = writeFabricationFiles(r, dir);
   for (const auto& f : files) {
-    if (f.size() > 4 && f.substr(f.size() - 4) == ".dxf") EXPECT_EQ(testing::readDxf(dir / f)["audit_errors"], 0) << f;
+    if (f.size() > 4 && f.substr(f.size() - 4) == ".dxf") {
+      EXPECT_EQ(testing::readDxf(dir / f)["audit_errors"], 0) << f;
+    }
   }
   std::cout << "bump patch: " << fabricationReport(r, files).dump() << "\n";
 }

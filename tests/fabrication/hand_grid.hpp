@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace egg::fabrication::testing {
 
 // Three u members (rows, y = 0, 0.1, 0.2 m) and three v members (columns, x = 0, 0.1, 0.2 m) of a
@@ -111,9 +113,10 @@ inline ToolRun runTool(const std::string& command) {
 
 inline bool haveTool(const std::string& name) { return runTool("command -v " + name).status == 0; }
 
-// A fresh, empty folder for one test.
+// A fresh, empty folder for one test (the process id keeps parallel runs of other checkouts apart).
 inline std::filesystem::path scratchDir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("egg_fabrication_test_" + name);
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("egg_fabrication_test_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

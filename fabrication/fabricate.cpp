@@ -74,45 +74,47 @@ void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult&
 
 }  // namespace
 
-FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const FabricationOptions& options) {
+FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
+                            const std::vector<SharedBoundary>& shared) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
   FabricationResult r;
   r.options = options;
   r.material = materialByName(options.material);
-  r.lamellae = planLamellae(patches, options);
+  r.lamellae = planLamellae(patches, options, shared);
   r.counts = countFeatures(r.lamellae);
   const double t = options.lamella_thickness_mm / 1000.0, w = options.lamella_width_mm / 1000.0;
 
-  // Stress and weight per lamella (same order as the plans: patch by patch, u then v).
-  size_t planIndex = 0;
-  for (const auto& patch : patches) {
-    r.connections += static_cast<int>(patch.grid->connections.size());
-    int memberIndex = 0;
-    for (const auto* family : {&patch.grid->u, &patch.grid->v}) {
-      for (const auto& m : *family) {
-        LamellaStress s = lamellaStress(m.spatial, &m.normals, t, r.material, curvatureWindowM(m.spatial, w));
-        if (patch.deployedCentrelines) {
-          // Bending from the simulated shape; the twist of the surface frame from the trace.
-          const auto& centreline = (*patch.deployedCentrelines)[memberIndex];
-          const LamellaStress deployed =
-              lamellaStress(centreline, nullptr, t, r.material, curvatureWindowM(centreline, w));
-          s.maxCurvature_1_m = deployed.maxCurvature_1_m;
-          s.maxBendingStress_pa = deployed.maxBendingStress_pa;
-          s.stressRatio = std::max(s.maxBendingStress_pa / r.material.bending_strength_pa,
-                                   s.maxTorsionStress_pa / r.material.shear_strength_pa);
-          s.fromSimulation = true;
-        }
-        r.stress.push_back(s);
-        const LamellaPlan& plan = r.lamellae[planIndex++];
-        if (s.stressRatio > r.maxStressRatio) r.maxStressRatio = s.stressRatio, r.maxStressLamella = plan.id;
-        r.maxBendingStressPa = std::max(r.maxBendingStressPa, s.maxBendingStress_pa);
-        r.maxTorsionStressPa = std::max(r.maxTorsionStressPa, s.maxTorsionStress_pa);
-        r.totalLengthM += plan.lengthMm / 1000.0;
-        r.splices += static_cast<int>(plan.splicesMm.size());
-        ++memberIndex;
-      }
+  // One bolt per connection, one for each group of connections merged on a shared lamella.
+  for (const auto& patch : patches) r.connections += static_cast<int>(patch.grid->connections.size());
+  for (const auto& plan : r.lamellae) {
+    for (const auto& f : plan.features) r.connections -= static_cast<int>(f.alsoConnections.size());
+  }
+  // Stress and weight per lamella, from the member it was planned from.
+  for (const auto& plan : r.lamellae) {
+    const FabricationPatch* patch = nullptr;
+    for (const auto& p : patches) {
+      if (p.patchId == plan.patchId) patch = &p;
     }
+    const bool isU = plan.family == Family::U;
+    const GridMember& m = isU ? patch->grid->u[plan.index] : patch->grid->v[plan.index];
+    LamellaStress s = lamellaStress(m.spatial, &m.normals, t, r.material, curvatureWindowM(m.spatial, w));
+    if (patch->deployedCentrelines) {
+      // Bending from the simulated shape; the twist of the surface frame from the trace.
+      const auto& centreline = (*patch->deployedCentrelines)[isU ? plan.index : patch->grid->u.size() + plan.index];
+      const LamellaStress deployed = lamellaStress(centreline, nullptr, t, r.material, curvatureWindowM(centreline, w));
+      s.maxCurvature_1_m = deployed.maxCurvature_1_m;
+      s.maxBendingStress_pa = deployed.maxBendingStress_pa;
+      s.stressRatio = std::max(s.maxBendingStress_pa / r.material.bending_strength_pa,
+                               s.maxTorsionStress_pa / r.material.shear_strength_pa);
+      s.fromSimulation = true;
+    }
+    r.stress.push_back(s);
+    if (s.stressRatio > r.maxStressRatio) r.maxStressRatio = s.stressRatio, r.maxStressLamella = plan.id;
+    r.maxBendingStressPa = std::max(r.maxBendingStressPa, s.maxBendingStress_pa);
+    r.maxTorsionStressPa = std::max(r.maxTorsionStressPa, s.maxTorsionStress_pa);
+    r.totalLengthM += plan.lengthMm / 1000.0;
+    r.splices += static_cast<int>(plan.splicesMm.size());
   }
   r.volumeM3 = r.totalLengthM * w * t;
   r.massKg = r.volumeM3 * r.material.density_kg_m3;
@@ -186,7 +188,7 @@ std::string bomCsv(const FabricationResult& r) {
   }
   s << "splice,," << r.splices << ",,,,,,,butt joints clear of holes by " << formatted("%.1f", o.spliceClearanceMm())
     << " mm\n";
-  s << "bolt,," << r.connections << ",,,,,,,diameter " << formatted("%.1f", o.bolt_diameter_mm) << " mm; one per connection\n";
+  s << "bolt,," << r.connections << ",,,,,,,diameter " << formatted("%.1f", o.bolt_diameter_mm) << " mm; one per connection (merged on shared lamellas)\n";
   s << "washer,," << 2 * r.connections << ",,,,,,,two per bolt\n";
   s << "brass_sleeve,," << r.counts.slots << ",,,,,,,one per slot (Section 3.5.1)\n";
   s << "ptfe_sticker,," << r.stickers.size() << ",,,," << formatted("%.6g", r.stickerAreaM2)

@@ -34,7 +34,7 @@ struct FabricationResult {
   std::vector<Drawing> sheets;             // lamella sheets
   std::vector<Drawing> stickerSheets;      // PTFE foil sheets
   FeatureCounts counts;
-  int connections = 0;                     // = bolts
+  int connections = 0;                     // bolts: connections, those merged on a shared lamella once
   int splices = 0;
   double totalLengthM = 0.0;               // all strips, overhangs included
   double volumeM3 = 0.0;
@@ -47,10 +47,12 @@ struct FabricationResult {
   double seconds = 0.0;
 };
 
-// Validates the options, plans the lamellas, splices, stickers and supports, nests the parts and
-// checks stresses. Throws InvalidInput (bad option, a part larger than the sheet, a lamella that
-// cannot be spliced clear of its holes, a support that cannot be built).
-FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const FabricationOptions& options);
+// Validates the options, plans the lamellas (one lamella for each shared side, holding the holes
+// of both patches), splices, stickers and supports, nests the parts and checks stresses. Throws
+// InvalidInput (bad option, a part larger than the sheet, a lamella that cannot be spliced clear
+// of its holes, a support that cannot be built, a shared side that does not match).
+FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
+                            const std::vector<SharedBoundary>& shared = {});
 
 // Which files to write (the scene's outputs "cut_files", "stickers", "supports").
 struct FabricationOutputs {

@@ -16,6 +16,20 @@ double LamellaFeature::maxXMm(double boltDiameterMm) const {
   return std::max(xMm, xMm + slideMm) + boltDiameterMm / 2.0;
 }
 
+std::string LamellaFeature::label() const {
+  std::string text = connectionId;
+  for (const auto& merged : alsoConnections) text += "=P" + std::to_string(merged.first);
+  return text;
+}
+
+bool LamellaFeature::holds(int patch, int index) const {
+  if (patch == patchId && index == connection) return true;
+  for (const auto& [p, c] : alsoConnections) {
+    if (p == patch && c == index) return true;
+  }
+  return false;
+}
+
 namespace {
 
 std::string lamellaId(int patchId, Family family, int index) {
@@ -76,7 +90,8 @@ LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member, 
 
 }  // namespace
 
-std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches, const FabricationOptions& options) {
+std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
+                                      const std::vector<SharedBoundary>& shared) {
   std::vector<LamellaPlan> plans;
   for (const auto& patch : patches) {
     if (!patch.grid) throw InvalidInput("fabrication: patch " + std::to_string(patch.patchId) + " has no grid");
@@ -94,6 +109,7 @@ std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patch
     for (const auto& m : grid.u) plans.push_back(planMember(patch, m, options));
     for (const auto& m : grid.v) plans.push_back(planMember(patch, m, options));
   }
+  mergeSharedBoundaries(plans, shared, 0.5);
   const double piece = longestPieceMm(options);
   const std::string field = piece < options.stock_length_mm ? "fabrication.sheet_mm (the longest strip a sheet holds)"
                                                              : "fabrication.stock_length_mm";
@@ -147,6 +163,50 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
     start = cut;
   }
   plan.segments.push_back({start, plan.lengthMm});
+}
+
+int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<SharedBoundary>& shared, double toleranceMm) {
+  auto find = [&](int patch, Family family, int index) -> std::ptrdiff_t {
+    for (size_t i = 0; i < plans.size(); ++i) {
+      if (plans[i].patchId == patch && plans[i].family == family && plans[i].index == index) return static_cast<std::ptrdiff_t>(i);
+    }
+    return -1;
+  };
+  int merged = 0;
+  for (const auto& side : shared) {
+    const std::string what = "fabrication: shared side " + lamellaId(side.patchA, side.familyA, side.indexA) + " = " +
+                             lamellaId(side.patchB, side.familyB, side.indexB);
+    const std::ptrdiff_t ia = find(side.patchA, side.familyA, side.indexA), ib = find(side.patchB, side.familyB, side.indexB);
+    if (ia < 0 || ib < 0 || ia == ib) throw InvalidInput(what + ": no such pair of lamellas");
+    LamellaPlan& a = plans[ia];
+    const LamellaPlan& b = plans[ib];
+    if (!a.boundary || !b.boundary) throw InvalidInput(what + ": both must be boundary members");
+    const double innerA = a.lengthMm - 2.0 * a.overhangMm, innerB = b.lengthMm - 2.0 * b.overhangMm;
+    if (std::abs(innerA - innerB) > toleranceMm) {
+      std::ostringstream msg;
+      msg << what << ": planar lengths differ (" << innerA << " and " << innerB << " mm)";
+      throw InvalidInput(msg.str());
+    }
+    for (LamellaFeature f : b.features) {
+      const double along = f.xMm - b.overhangMm;
+      f.xMm = a.overhangMm + (side.reversed ? innerA - along : along);
+      f.slideMm = side.reversed ? -f.slideMm : f.slideMm;
+      LamellaFeature* same = nullptr;
+      for (auto& g : a.features) {
+        if (g.kind == FeatureKind::Hole && f.kind == FeatureKind::Hole && std::abs(g.xMm - f.xMm) <= toleranceMm) same = &g;
+      }
+      if (same) {
+        same->alsoConnections.emplace_back(f.patchId, f.connection);
+        same->alsoConnections.insert(same->alsoConnections.end(), f.alsoConnections.begin(), f.alsoConnections.end());
+        ++merged;
+      } else {
+        a.features.push_back(f);
+      }
+    }
+    std::sort(a.features.begin(), a.features.end(), [](const LamellaFeature& x, const LamellaFeature& y) { return x.xMm < y.xMm; });
+    plans.erase(plans.begin() + ib);
+  }
+  return merged;
 }
 
 FeatureCounts countFeatures(const std::vector<LamellaPlan>& plans) {

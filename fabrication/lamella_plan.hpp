@@ -23,6 +23,11 @@ struct LamellaFeature {
   std::string connectionId;  // engraved next to the hole: "P<patch>-C<i>-<j>"
   bool demotedNotch = false;  // a notch shorter than min_notch_mm, cut as a plain hole
   bool droppedBoundaryNotch = false;  // a boundary member's notch (no notches there, 3.5.3)
+  // Further connections this one bolt holds: a shared boundary lamella's hole where the members
+  // of both patches meet it (mergeSharedBoundaries). (patch, connection) pairs.
+  std::vector<std::pair<int, int>> alsoConnections;
+  std::string label() const;  // connectionId, plus "=P<patch>" for every merged connection
+  bool holds(int patch, int connection) const;
   // Extent along the strip of what is cut (the hole, or the slot including its round ends).
   double minXMm(double boltDiameterMm) const;
   double maxXMm(double boltDiameterMm) const;
@@ -49,9 +54,32 @@ struct LamellaPlan {
   std::vector<LamellaSegment> segments;  // pieces between splices (at least one)
 };
 
+// A patch side shared by two patches (Section 3.5.3: adjacent grids are joined along their common
+// lamellas): boundary member `indexA` of family `familyA` in patch `patchA` and member B of patch B
+// are one lamella. `reversed`: B runs from A's planarEnd towards its planarStart.
+struct SharedBoundary {
+  int patchA = 0;
+  Family familyA = Family::U;
+  int indexA = 0;
+  int patchB = 0;
+  Family familyB = Family::U;
+  int indexB = 0;
+  bool reversed = false;
+};
+
 // Strips of every member of every patch (u members first, then v, patch by patch) with holes and
-// slots, spliced into pieces of at most longestPieceMm(options). Throws InvalidInput naming the patch when a grid is missing or inconsistent.
-std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches, const FabricationOptions& options);
+// slots, shared boundaries merged (mergeSharedBoundaries, 0.5 mm), spliced into pieces of at most
+// longestPieceMm(options). Throws InvalidInput naming the patch when a grid is missing or
+// inconsistent.
+std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
+                                      const std::vector<SharedBoundary>& shared = {});
+
+// Moves the holes of every shared side's lamella B onto lamella A (x mirrored when reversed), one
+// hole where a hole of A lies within `toleranceMm` (one bolt through the members of both patches),
+// and removes B. Returns how many holes were merged into existing ones. Throws InvalidInput naming
+// the side when a lamella is missing, not a boundary member, or the two lengths differ by more than
+// `toleranceMm`. Call before placeSplices.
+int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<SharedBoundary>& shared, double toleranceMm);
 
 // Cut positions so that no segment exceeds `stockLengthMm` and every cut lies at least
 // `clearanceMm` from every hole and slot (Section 3.5: architectural lamellas of 20-40 m never come

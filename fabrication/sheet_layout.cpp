@@ -45,10 +45,11 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
       drawing.circles.push_back({Layer::Cut, centre, r});
     }
     // After the feature, or before it where the label would run off the segment's end.
-    const double labelLength = textLengthMm(f.connectionId, hc);
+    const std::string text = f.label();
+    const double labelLength = textLengthMm(text, hc);
     double labelStart = f.maxXMm(d) + 0.25 * h;
     if (labelStart + labelLength > seg.endMm) labelStart = f.minXMm(d) - 0.25 * h - labelLength;
-    drawing.texts.push_back({Layer::Label, at(labelStart, w / 2.0), hc, f.connectionId, TextAlign::Left});
+    drawing.texts.push_back({Layer::Label, at(labelStart, w / 2.0), hc, text, TextAlign::Left});
     occupied.emplace_back(std::min(labelStart, f.minXMm(d)), std::max(labelStart + labelLength, f.maxXMm(d)));
   }
   const double clearance = options.spliceClearanceMm();

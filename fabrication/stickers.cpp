@@ -28,18 +28,17 @@ Eigen::Vector3d tangentAt(const std::vector<Eigen::Vector3d>& polyline, double s
   return Eigen::Vector3d::UnitX();
 }
 
-const LamellaPlan* findPlan(const std::vector<LamellaPlan>& plans, int patchId, Family family, int index) {
+// The holes and slots of one connection, on whichever lamellas carry them (a shared boundary
+// lamella holds the other patch's connections too): two for a connection of two lamellas.
+std::vector<std::pair<const LamellaPlan*, const LamellaFeature*>> featuresOf(const std::vector<LamellaPlan>& plans,
+                                                                            int patchId, int connection) {
+  std::vector<std::pair<const LamellaPlan*, const LamellaFeature*>> found;
   for (const auto& p : plans) {
-    if (p.patchId == patchId && p.family == family && p.index == index) return &p;
+    for (const auto& f : p.features) {
+      if (f.holds(patchId, connection)) found.emplace_back(&p, &f);
+    }
   }
-  return nullptr;
-}
-
-const LamellaFeature* findFeature(const LamellaPlan& plan, int connection) {
-  for (const auto& f : plan.features) {
-    if (f.patchId == plan.patchId && f.connection == connection) return &f;
-  }
-  return nullptr;
+  return found;
 }
 
 }  // namespace
@@ -54,20 +53,17 @@ std::vector<Sticker> planStickers(const FabricationPatch& patch, const std::vect
       const GridConnection& c = grid.at(i, j);
       const GridMember& mu = grid.u[i];
       const GridMember& mv = grid.v[j];
-      const LamellaPlan* pu = findPlan(plans, patch.patchId, Family::U, i);
-      const LamellaPlan* pv = findPlan(plans, patch.patchId, Family::V, j);
-      if (!pu || !pv) continue;
-      const LamellaFeature* fu = findFeature(*pu, i * nv + j);
-      const LamellaFeature* fv = findFeature(*pv, i * nv + j);
-      if (!fu || !fv || (fu->kind != FeatureKind::Slot && fv->kind != FeatureKind::Slot)) continue;
+      const auto features = featuresOf(plans, patch.patchId, i * nv + j);
+      if (features.size() != 2) continue;
+      if (features[0].second->kind != FeatureKind::Slot && features[1].second->kind != FeatureKind::Slot) continue;
       const Eigen::Vector2d du = mu.planarEnd - mu.planarStart, dv = mv.planarEnd - mv.planarStart;
       const double planar = crossingAngle({du.x(), du.y(), 0.0}, {dv.x(), dv.y(), 0.0});
       const double deployed = crossingAngle(tangentAt(mu.spatial, c.sU), tangentAt(mv.spatial, c.sV));
       const double w = options.lamella_width_mm;
       // The other lamella's footprint is widest at the angle furthest from a right angle.
       const double half = std::max(contactHalfLengthMm(w, planar), contactHalfLengthMm(w, deployed));
-      for (const auto* f : {fu, fv}) {
-        const LamellaPlan& plan = f == fu ? *pu : *pv;
+      for (const auto& [planPointer, f] : features) {
+        const LamellaPlan& plan = *planPointer;
         Sticker s;
         s.connectionId = f->connectionId;
         s.lamellaId = plan.id;

@@ -33,6 +33,10 @@ std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, 
     std::sort(picks.begin(), picks.end());
     for (const auto& [k, reason] : picks) {
       const GridConnection& c = grid.connections[k];
+      // Patches meeting at a corner or a shared side anchor the same point: one support there.
+      bool taken = false;
+      for (const auto& other : supports) taken |= (other.position - c.spatial).norm() < 1e-3;
+      if (taken) continue;
       Support s;
       s.patchId = patch.patchId;
       s.connection = k;

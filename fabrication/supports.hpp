@@ -30,7 +30,7 @@ struct TriangleMesh {
 };
 
 // Supports at the anchors of every patch (and, with supports_at_boundary_connections, at every
-// boundary connection), sorted by patch and connection, with the ground plane of the options (or
+// boundary connection), sorted by patch and connection, one per point (within 1 mm) where patches meet, with the ground plane of the options (or
 // 0.1 m below the lowest). Throws InvalidInput naming the support when its plane is steeper than 80°.
 std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
                                   double* groundHeightM = nullptr);

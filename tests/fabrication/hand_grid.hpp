@@ -25,8 +25,8 @@ namespace egg::fabrication::testing {
 // flat 0.2 m square, lifted to z = 0.5 m. Connection (i, j) sits at (0.1 j, 0.1 i); s_bar along u
 // member i is 0.1 j, along v member j 0.1 i. Notches: (1,1) u +5 mm, v -3 mm (two slots);
 // (1,0) u 0.4 mm (below min_notch: a plain hole); (0,1) u 2 mm on the boundary member u0 (dropped).
-// Anchors at the four corners.
-inline EggGrid handGrid() {
+// Anchors at the four corners. `shiftXM` moves the spatial grid along x (a neighbouring patch).
+inline EggGrid handGrid(double shiftXM = 0.0) {
   EggGrid g;
   for (int k = 0; k < 3; ++k) {
     GridMember u;
@@ -37,7 +37,7 @@ inline EggGrid handGrid() {
     u.planarEnd = {0.2, 0.1 * k};
     u.planarLength = u.spatialLength = 0.2;
     for (int s = 0; s <= 4; ++s) {
-      u.spatial.emplace_back(0.05 * s, 0.1 * k, 0.5);
+      u.spatial.emplace_back(shiftXM + 0.05 * s, 0.1 * k, 0.5);
       u.normals.emplace_back(0.0, 0.0, 1.0);
     }
     GridMember v = u;
@@ -45,7 +45,7 @@ inline EggGrid handGrid() {
     v.planarStart = {0.1 * k, 0.0};
     v.planarEnd = {0.1 * k, 0.2};
     v.spatial.clear();
-    for (int s = 0; s <= 4; ++s) v.spatial.emplace_back(0.1 * k, 0.05 * s, 0.5);
+    for (int s = 0; s <= 4; ++s) v.spatial.emplace_back(shiftXM + 0.1 * k, 0.05 * s, 0.5);
     g.u.push_back(u);
     g.v.push_back(v);
   }
@@ -55,7 +55,7 @@ inline EggGrid handGrid() {
       c.memberU = i;
       c.memberV = j;
       c.planar = {0.1 * j, 0.1 * i};
-      c.spatial = {0.1 * j, 0.1 * i, 0.5};
+      c.spatial = {shiftXM + 0.1 * j, 0.1 * i, 0.5};
       c.sU = c.sBarU = 0.1 * j;
       c.sV = c.sBarV = 0.1 * i;
       c.onBoundary = i != 1 || j != 1;

@@ -72,6 +72,20 @@ TEST(Fabricate, HandGridCountsMatchTheGrid) {
   EXPECT_EQ(report["files"][0], "bom.csv");
 }
 
+TEST(Fabricate, TwoPatchesSharingASideCountOneLamellaAndOneBoltThere) {
+  const EggGrid left = handGrid(), right = handGrid(0.2);
+  const auto r = fabricate({{0, &left, std::nullopt}, {1, &right, std::nullopt}}, handOptions(),
+                           {{0, Family::V, 2, 1, Family::V, 0, false}});
+  EXPECT_EQ(r.lamellae.size(), 11u);
+  EXPECT_EQ(r.connections, 18 - 3);  // the three connections on the shared side hold one bolt each
+  EXPECT_EQ(r.counts.slots, 4);
+  EXPECT_EQ(r.stickers.size(), 4u);
+  EXPECT_EQ(r.supports.size(), 6u);  // 8 corner anchors, two pairs on the same points
+  EXPECT_EQ(r.stress.size(), 11u);
+  const std::string bom = bomCsv(r);
+  EXPECT_NE(bom.find("\nbolt,,15,"), std::string::npos) << bom;
+}
+
 TEST(Fabricate, SimulatedCentrelinesDriveTheBendingStress) {
   const EggGrid grid = handGrid();
   std::vector<std::vector<Eigen::Vector3d>> deployed;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace egg::fabrication {
 namespace {
 
@@ -96,6 +98,66 @@ TEST(LamellaPlan, NoClearSplicePositionIsAClearError) {
     const std::string what = e.what();
     EXPECT_NE(what.find("P3-V2"), std::string::npos) << what;
     EXPECT_NE(what.find("fabrication.stock_length_mm"), std::string::npos) << what;
+  }
+}
+
+TEST(LamellaPlan, SharedBoundaryLamellaCarriesTheHolesOfBothPatches) {
+  // Patch 1 continues patch 0 along +x: patch 0's v2 and patch 1's v0 are the same side.
+  const EggGrid left = handGrid(), right = handGrid(0.2);
+  const std::vector<FabricationPatch> patches{{0, &left, std::nullopt}, {1, &right, std::nullopt}};
+  const SharedBoundary side{0, Family::V, 2, 1, Family::V, 0, false};
+  const auto plans = planLamellae(patches, handOptions(), {side});
+  ASSERT_EQ(plans.size(), 11u);  // 12 members, one lamella for the shared side
+  const auto shared = std::find_if(plans.begin(), plans.end(), [](const LamellaPlan& p) { return p.id == "P0-V2"; });
+  ASSERT_NE(shared, plans.end());
+  ASSERT_EQ(shared->features.size(), 3u);  // both patches' members meet it at the same three points
+  for (int k = 0; k < 3; ++k) {
+    const auto& f = shared->features[k];
+    EXPECT_NEAR(f.xMm, 5.0 + 100.0 * k, 1e-12);
+    ASSERT_EQ(f.alsoConnections.size(), 1u);
+    EXPECT_EQ(f.alsoConnections[0], std::make_pair(1, 3 * k));  // patch 1's connection (k, 0)
+    EXPECT_TRUE(f.holds(1, 3 * k));
+    EXPECT_EQ(f.label(), "P0-C" + std::to_string(k) + "-2=P1");
+  }
+  EXPECT_EQ(std::count_if(plans.begin(), plans.end(), [](const LamellaPlan& p) { return p.id == "P1-V0"; }), 0);
+}
+
+TEST(LamellaPlan, ReversedSharedSideMirrorsTheOtherPatchsHoles) {
+  auto strip = [](const std::string& id, std::vector<double> holes) {
+    LamellaPlan p;
+    p.id = id;
+    p.boundary = true;
+    p.lengthMm = 210.0;
+    p.overhangMm = 5.0;
+    for (double x : holes) {
+      LamellaFeature f;
+      f.xMm = x;
+      f.connectionId = id + "@" + std::to_string(static_cast<int>(x));
+      p.features.push_back(f);
+    }
+    return p;
+  };
+  std::vector<LamellaPlan> plans{strip("A", {5.0, 105.0, 205.0}), strip("B", {5.0, 35.0, 205.0})};
+  plans[1].patchId = 1;
+  const int merged = mergeSharedBoundaries(plans, {{0, Family::U, 0, 1, Family::U, 0, true}}, 0.5);
+  EXPECT_EQ(merged, 2);  // B's ends land on A's ends
+  ASSERT_EQ(plans.size(), 1u);
+  ASSERT_EQ(plans[0].features.size(), 4u);
+  EXPECT_NEAR(plans[0].features[2].xMm, 175.0, 1e-12);  // 35 -> 5 + (200 - 30)
+  EXPECT_EQ(plans[0].features[2].connectionId, "B@35");
+  // Not boundary members, or different lengths: errors naming the side.
+  std::vector<LamellaPlan> inner{strip("A", {5.0}), strip("B", {5.0})};
+  inner[1].patchId = 1;
+  inner[0].boundary = false;
+  EXPECT_THROW(mergeSharedBoundaries(inner, {{0, Family::U, 0, 1, Family::U, 0, false}}, 0.5), InvalidInput);
+  std::vector<LamellaPlan> unequal{strip("A", {5.0}), strip("B", {5.0})};
+  unequal[1].patchId = 1;
+  unequal[1].lengthMm = 212.0;
+  try {
+    mergeSharedBoundaries(unequal, {{0, Family::U, 0, 1, Family::U, 0, false}}, 0.5);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("P0-U0 = P1-U0"), std::string::npos) << e.what();
   }
 }
 

@@ -29,6 +29,16 @@ fabrication::FabricationOutputs fabricationOutputsFromScene(const Scene& scene) 
   return {scene.wants("cut_files"), scene.wants("stickers"), scene.wants("supports")};
 }
 
+FabricationStageResult runFabricationStage(const Scene& scene, const std::vector<fabrication::FabricationPatch>& patches,
+                                           const std::filesystem::path& runDir,
+                                           const std::vector<fabrication::SharedBoundary>& shared) {
+  FabricationStageResult stage;
+  stage.result = fabrication::fabricate(patches, fabricationOptionsFromScene(scene), shared);
+  stage.files = fabrication::writeFabricationFiles(stage.result, runDir, fabricationOutputsFromScene(scene));
+  stage.report = fabrication::fabricationReport(stage.result, stage.files);
+  return stage;
+}
+
 bool fabricationWanted(const Scene& scene) {
   const auto o = fabricationOutputsFromScene(scene);
   return scene.fabrication.enabled && (o.cutFiles || o.stickers || o.supports);

@@ -1,6 +1,7 @@
 #include "apps/commands/fabrication_stage.hpp"
 
 #include "core/errors.hpp"
+#include "tests/support/fabrication_hand_grid.hpp"
 
 #include <gtest/gtest.h>
 
@@ -58,6 +59,47 @@ TEST(FabricationStage, NotWantedWithoutItsOutputsOrWhenDisabled) {
   const Scene disabled = parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"}, "fabrication": {"enabled": false}})"),
                                     "/scenes/test.json");
   EXPECT_FALSE(fabricationWanted(disabled));
+}
+
+TEST(FabricationStage, OneCallWritesWhatTheSceneAsksForAndReportsIt) {
+  // The hand grid of the fabrication tests with its options given as scene keys.
+  const Scene scene = parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"},
+      "lamella": {"width_m": 0.01, "thickness_m": 0.001, "material": "limewood"},
+      "fabrication": {"sheet_mm": [500, 300], "kerf_mm": 0.5, "margin_mm": 5, "bolt_diameter_mm": 3,
+                      "min_notch_mm": 1, "stock_length_mm": 1000, "end_overhang_mm": 5, "label_height_mm": 3,
+                      "sticker_sheet_mm": [200, 100], "support_block_mm": 30},
+      "outputs": ["report", "cut_files", "supports"]})"),
+                                 "/scenes/test.json");
+  const EggGrid grid = fabrication::testing::handGrid();
+  const auto dir = fabrication::testing::scratchDir("stage");
+  const auto stage = runFabricationStage(scene, {{0, &grid, std::nullopt}}, dir);
+  // No "stickers" output: no sticker sheets written (the stickers are still counted).
+  const std::vector<std::string> expected{"cut/sheet_01.svg", "cut/sheet_01.dxf", "cut/sheets.pdf", "supports/supports.csv",
+                                          "supports/support_001.stl", "supports/support_002.stl",
+                                          "supports/support_003.stl", "supports/support_004.stl", "bom.csv"};
+  EXPECT_EQ(stage.files, expected);
+  for (const auto& f : expected) EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+  EXPECT_EQ(stage.report["lamellae"], 6);
+  EXPECT_EQ(stage.report["notches"], 2);
+  EXPECT_EQ(stage.report["plain_holes"], 1);
+  EXPECT_EQ(stage.report["stickers"], 2);
+  EXPECT_EQ(stage.report["supports"], 4);
+  EXPECT_EQ(stage.report["sheets"], 1);
+  EXPECT_EQ(stage.report["bolts"], 9);
+  EXPECT_EQ(stage.report["files"].size(), expected.size());
+}
+
+TEST(FabricationStage, SheetTooSmallIsBadInputNamingTheSceneField) {
+  const Scene scene = parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"},
+      "lamella": {"width_m": 0.01, "thickness_m": 0.001}, "fabrication": {"sheet_mm": [500, 13], "margin_mm": 2}})"),
+                                 "/scenes/test.json");
+  const EggGrid grid = fabrication::testing::handGrid();
+  try {
+    runFabricationStage(scene, {{0, &grid, std::nullopt}}, fabrication::testing::scratchDir("stage_small"));
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("fabrication.sheet_mm:", 0), 0u) << e.what();
+  }
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #include "fabrication/dxf_writer.hpp"
 
-#include "hand_grid.hpp"
+#include "tests/support/fabrication_hand_grid.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 
 #include "core/egg/solve_patch.hpp"
 #include "core/errors.hpp"
-#include "hand_grid.hpp"
+#include "tests/support/fabrication_hand_grid.hpp"
 #include "samples/generators/samples.hpp"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 #include "fabrication/lamella_plan.hpp"
 
 #include "core/errors.hpp"
-#include "hand_grid.hpp"
+#include "tests/support/fabrication_hand_grid.hpp"
 
 #include <gtest/gtest.h>
 

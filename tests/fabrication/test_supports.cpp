@@ -1,7 +1,7 @@
 #include "fabrication/supports.hpp"
 
 #include "core/errors.hpp"
-#include "hand_grid.hpp"
+#include "tests/support/fabrication_hand_grid.hpp"
 
 #include <gtest/gtest.h>
 

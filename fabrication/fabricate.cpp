@@ -188,6 +188,14 @@ std::string bomCsv(const FabricationResult& r) {
   }
   s << "splice,," << r.splices << ",,,,,,,butt joints clear of holes by " << formatted("%.1f", o.spliceClearanceMm())
     << " mm\n";
+  // Every splice: where along its lamella (length_mm = the cut's distance from the strip's start).
+  for (const auto& p : r.lamellae) {
+    for (size_t k = 0; k < p.splicesMm.size(); ++k) {
+      std::snprintf(line, sizeof line, "splice_joint,%s S%zu,1,%.2f,%.2f,%.2f,,,,between pieces %zu and %zu\n", p.id.c_str(),
+                    k + 1, p.splicesMm[k], p.widthMm, o.lamella_thickness_mm, k + 1, k + 2);
+      s << line;
+    }
+  }
   s << "bolt,," << r.connections << ",,,,,,,diameter " << formatted("%.1f", o.bolt_diameter_mm) << " mm; one per connection (merged on shared lamellas)\n";
   s << "washer,," << 2 * r.connections << ",,,,,,,two per bolt\n";
   s << "brass_sleeve,," << r.counts.slots << ",,,,,,,one per slot (Section 3.5.1)\n";

@@ -67,6 +67,8 @@ std::vector<std::string> writeFabricationFiles(const FabricationResult& result, 
                                                const FabricationOutputs& outputs = {});
 
 // The bill of materials: item,id,count,length_mm,width_mm,thickness_mm,area_m2,volume_m3,mass_kg,note.
+// Rows: one per lamella, splices (total, then one splice_joint row per splice with its position),
+// bolts, washers, brass sleeves, PTFE stickers, supports, sheets, totals.
 std::string bomCsv(const FabricationResult& result);
 
 // report.json "fabrication": lamellae, notches, plain_holes, stickers, supports, sheets, yield,

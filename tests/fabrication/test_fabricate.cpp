@@ -248,6 +248,7 @@ TEST(Fabricate, LamellasLongerThanTheStockAreSplitClearOfTheirHoles) {
   }
   const std::string bom = bomCsv(r);
   EXPECT_NE(bom.find("\nsplice,,6,"), std::string::npos) << bom;
+  EXPECT_NE(bom.find("\nsplice_joint,P0-U1 S1,1,150.00,10.00,1.00,"), std::string::npos) << bom;
 }
 
 TEST(Fabricate, MultiPageSheetsPdf) {

@@ -282,6 +282,22 @@ void readFabrication(Section s, FabricationSpec& out) {
   out.enabled = s.boolean("enabled", out.enabled);
   out.sheet_mm = s.pair("sheet_mm", out.sheet_mm, 1.0, 1e5);
   out.bolt_diameter_mm = s.positive("bolt_diameter_mm", out.bolt_diameter_mm, 1000.0);
+  out.kerf_mm = s.number("kerf_mm", out.kerf_mm, 0.0, 100.0);
+  out.margin_mm = s.number("margin_mm", out.margin_mm, 0.0, 1e4);
+  if (2.0 * out.margin_mm >= std::min(out.sheet_mm[0], out.sheet_mm[1])) s.fail("margin_mm", "leaves no room on the sheet");
+  out.min_notch_mm = s.number("min_notch_mm", out.min_notch_mm, 0.0, 1e4);
+  out.stock_length_mm = s.positive("stock_length_mm", out.stock_length_mm, 1e6);
+  auto optionalNumber = [&](const char* key, std::optional<double>& value, double lo, double hi) {
+    if (s.has(key)) value = s.number(key, 0.0, lo, hi);
+  };
+  optionalNumber("end_overhang_mm", out.end_overhang_mm, 0.0, 1e4);
+  optionalNumber("splice_clearance_mm", out.splice_clearance_mm, 0.0, 1e5);
+  optionalNumber("label_height_mm", out.label_height_mm, 0.1, 1000.0);
+  out.sticker_margin_mm = s.number("sticker_margin_mm", out.sticker_margin_mm, 0.0, 1000.0);
+  if (s.has("sticker_sheet_mm")) out.sticker_sheet_mm = s.pair("sticker_sheet_mm", out.sheet_mm, 1.0, 1e5);
+  optionalNumber("ground_height_m", out.ground_height_m, -1e5, 1e5);
+  optionalNumber("support_block_mm", out.support_block_mm, 1.0, 1e5);
+  out.supports_at_boundary_connections = s.boolean("supports_at_boundary_connections", out.supports_at_boundary_connections);
   s.rejectUnknownKeys();
 }
 
@@ -367,7 +383,28 @@ json sceneToJson(const Scene& scene) {
             {"min_planar_angle_rad", scene.grid.min_planar_angle_rad}};
   grid["members_per_family"] = scene.grid.members_per_family ? json(*scene.grid.members_per_family) : json("auto");
   grid["alpha_bar"] = scene.grid.alpha_bar == "value" ? json(scene.grid.alpha_bar_rad) : json(scene.grid.alpha_bar);
+<<<<<<< HEAD
   json echo = {
+=======
+  const FabricationSpec& f = scene.fabrication;
+  json fabrication{{"enabled", f.enabled},
+                   {"sheet_mm", f.sheet_mm},
+                   {"bolt_diameter_mm", f.bolt_diameter_mm},
+                   {"kerf_mm", f.kerf_mm},
+                   {"margin_mm", f.margin_mm},
+                   {"min_notch_mm", f.min_notch_mm},
+                   {"stock_length_mm", f.stock_length_mm},
+                   {"sticker_margin_mm", f.sticker_margin_mm},
+                   {"supports_at_boundary_connections", f.supports_at_boundary_connections}};
+  // Unset optional keys are left out (their defaults derive from the lamella).
+  if (f.end_overhang_mm) fabrication["end_overhang_mm"] = *f.end_overhang_mm;
+  if (f.splice_clearance_mm) fabrication["splice_clearance_mm"] = *f.splice_clearance_mm;
+  if (f.label_height_mm) fabrication["label_height_mm"] = *f.label_height_mm;
+  if (f.ground_height_m) fabrication["ground_height_m"] = *f.ground_height_m;
+  if (f.support_block_mm) fabrication["support_block_mm"] = *f.support_block_mm;
+  if (f.sticker_sheet_mm) fabrication["sticker_sheet_mm"] = *f.sticker_sheet_mm;
+  return {
+>>>>>>> fab
       {"name", scene.name},
       {"path", scene.path.string()},
       {"surface", surface},
@@ -389,10 +426,7 @@ json sceneToJson(const Scene& scene) {
         {"gravity", scene.simulation.gravity},
         {"friction_mu", scene.simulation.friction_mu},
         {"notches", scene.simulation.notches}}},
-      {"fabrication",
-       {{"enabled", scene.fabrication.enabled},
-        {"sheet_mm", scene.fabrication.sheet_mm},
-        {"bolt_diameter_mm", scene.fabrication.bolt_diameter_mm}}},
+      {"fabrication", fabrication},
       {"outputs", scene.outputs},
   };
   // A layout without a workflow is taken as given: the echo leaves the key out, as the scene did.

@@ -72,10 +72,24 @@ struct SimulationSpec {
   bool notches = true;                       // simulate with notches (RMS1) as well as without (RMS2)
 };
 
+// Defaults as fabrication::FabricationOptions (fabrication/options.hpp); the `std::optional` ones
+// default to values derived from the lamella (see there). test_fabrication_stage checks they agree.
 struct FabricationSpec {
   bool enabled = true;
-  std::array<double, 2> sheet_mm{2500.0, 1250.0};  // stock sheet size for nesting
+  std::array<double, 2> sheet_mm{2500.0, 1250.0};  // stock sheet size for nesting; strips along the first side
   double bolt_diameter_mm = 8.0;
+  double kerf_mm = 0.2;                      // gap the cutter removes between nested parts
+  double margin_mm = 10.0;                   // unused border of every sheet
+  double min_notch_mm = 1.0;                 // shorter notches are cut as plain holes (and counted)
+  double stock_length_mm = 6000.0;           // longer lamellas are spliced, clear of holes and slots
+  std::optional<double> end_overhang_mm;     // strip beyond the end connections (default half the width)
+  std::optional<double> splice_clearance_mm;  // no hole or slot this close to a splice (default the width)
+  std::optional<double> label_height_mm;     // engraved text height (default 0.35 w, 1..30 mm)
+  double sticker_margin_mm = 2.0;            // PTFE sticker beyond the swept contact area
+  std::optional<std::array<double, 2>> sticker_sheet_mm;  // PTFE foil sheet (default sheet_mm)
+  std::optional<double> ground_height_m;     // ground plane z of the supports (default 0.1 m below the lowest)
+  std::optional<double> support_block_mm;    // footprint side of a support block (default 3 w)
+  bool supports_at_boundary_connections = false;  // a support at every boundary connection, not only at anchors
 };
 
 struct Scene {

@@ -53,7 +53,11 @@ TEST(Scene, ReadsEveryDocumentedKey) {
              "min_planar_angle_rad": 0.3, "map_proxy_vertices": 450},
     "lamella": {"width_m": 0.5, "thickness_m": 0.05, "material": "birch_plywood"},
     "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false},
-    "fabrication": {"enabled": false, "sheet_mm": [3000, 1500], "bolt_diameter_mm": 10},
+    "fabrication": {"enabled": false, "sheet_mm": [3000, 1500], "bolt_diameter_mm": 10, "kerf_mm": 0.3,
+                    "margin_mm": 12, "min_notch_mm": 2, "stock_length_mm": 5000, "end_overhang_mm": 40,
+                    "splice_clearance_mm": 300, "label_height_mm": 12, "sticker_margin_mm": 3,
+                    "sticker_sheet_mm": [600, 400], "ground_height_m": -0.5, "support_block_mm": 200,
+                    "supports_at_boundary_connections": true},
     "outputs": ["report"]})");
   EXPECT_EQ(s.name, "court");
   EXPECT_DOUBLE_EQ(s.surface.params.at("holes"), 1.0);
@@ -70,6 +74,18 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_EQ(s.lamella.material, "birch_plywood");
   EXPECT_FALSE(s.simulation.enabled);
   EXPECT_DOUBLE_EQ(s.fabrication.sheet_mm[1], 1500.0);
+  EXPECT_DOUBLE_EQ(s.fabrication.kerf_mm, 0.3);
+  EXPECT_DOUBLE_EQ(s.fabrication.margin_mm, 12.0);
+  EXPECT_DOUBLE_EQ(s.fabrication.min_notch_mm, 2.0);
+  EXPECT_DOUBLE_EQ(s.fabrication.stock_length_mm, 5000.0);
+  EXPECT_DOUBLE_EQ(*s.fabrication.end_overhang_mm, 40.0);
+  EXPECT_DOUBLE_EQ(*s.fabrication.splice_clearance_mm, 300.0);
+  EXPECT_DOUBLE_EQ(*s.fabrication.label_height_mm, 12.0);
+  EXPECT_DOUBLE_EQ(s.fabrication.sticker_margin_mm, 3.0);
+  EXPECT_DOUBLE_EQ((*s.fabrication.sticker_sheet_mm)[0], 600.0);
+  EXPECT_DOUBLE_EQ(*s.fabrication.ground_height_m, -0.5);
+  EXPECT_DOUBLE_EQ(*s.fabrication.support_block_mm, 200.0);
+  EXPECT_TRUE(s.fabrication.supports_at_boundary_connections);
   EXPECT_FALSE(s.wants("cut_files"));
   // And it survives a round trip through the report echo.
   const Scene back = parseScene([&] {
@@ -81,6 +97,9 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_DOUBLE_EQ(back.grid.map_tolerance_relative, 0.002);
   EXPECT_EQ(back.grid.map_proxy_vertices, 450);
   EXPECT_EQ(back.patching.patches.size(), 1u);
+  EXPECT_DOUBLE_EQ(*back.fabrication.end_overhang_mm, 40.0);
+  EXPECT_DOUBLE_EQ(back.fabrication.stock_length_mm, 5000.0);
+  EXPECT_FALSE(parse(R"({"surface": {"sample": "bump"}})").fabrication.end_overhang_mm.has_value());
 }
 
 TEST(Scene, UnknownKeysAreErrorsNamingTheField) {
@@ -108,6 +127,11 @@ TEST(Scene, BadValuesAreErrorsNamingTheFieldAndFile) {
   EXPECT_EQ(parse(R"({"surface": {"sample": "bump"}, "grid": {"map_proxy_vertices": 0}})").grid.map_proxy_vertices, 0);
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"eta_max": 0.9}})").find("patching.eta_max"),
             std::string::npos);
+  for (const char* bad : {R"("kerf_mm": -1)", R"("stock_length_mm": 0)", R"("margin_mm": 900)", R"("min_notch_mm": "1")",
+                          R"("sticker_sheet_mm": [10])", R"("end_overhang_mm": -2)"}) {
+    const std::string e = errorOf(std::string(R"({"surface": {"sample": "bump"}, "fabrication": {)") + bad + "}}");
+    EXPECT_NE(e.find("fabrication."), std::string::npos) << bad << ": " << e;
+  }
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"slope_bounds": [2, 10]}})").find("slope_bounds"),
             std::string::npos);
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"patches": [[[0,0,0],[1,0,0],[1,1,0]]]}})")

@@ -22,8 +22,18 @@ TEST(Materials, EveryEntryIsPhysical) {
     EXPECT_GT(m.shear_modulus_pa, 0.0) << m.name;
     EXPECT_LT(m.shear_modulus_pa, m.youngs_modulus_pa / 2.0) << m.name;  // Poisson ratio > 0 bound
     EXPECT_GT(m.density_kg_m3, 100.0) << m.name;
+    EXPECT_GT(m.bending_strength_pa, 1e6) << m.name;
+    EXPECT_LT(m.bending_strength_pa, m.youngs_modulus_pa / 50.0) << m.name;  // strain at failure below 2 %
+    EXPECT_GT(m.shear_strength_pa, 1e6) << m.name;
     EXPECT_FALSE(m.source.empty()) << m.name;
   }
+}
+
+TEST(Materials, TheIssueSixteenMaterialsAreThere) {
+  for (const char* name : {"limewood", "birch_plywood", "poplar_plywood", "gfrp", "steel_s235"}) {
+    EXPECT_NO_THROW(materialByName(name)) << name;
+  }
+  EXPECT_DOUBLE_EQ(materialByName("steel_s235").bending_strength_pa, 235e6);
 }
 
 TEST(Materials, UnknownNameListsTheKnownOnes) {

@@ -1,0 +1,132 @@
+#include "fabrication/dxf_writer.hpp"
+
+#include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
+
+#include <dl_dxf.h>
+#include <dl_writer_ascii.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+namespace egg::fabrication {
+namespace {
+
+int colourOf(Layer layer) { return layer == Layer::Cut ? 1 : 5; }  // ACI 1 red, 5 blue
+
+DL_Attributes attributesOf(Layer layer) {
+  // Colour and line type BYLAYER (256): the layer decides, as CAM software expects.
+  return DL_Attributes(layerName(layer), 256, -1, "BYLAYER", 1.0);
+}
+
+void writePolyline(DL_Dxf& dxf, DL_WriterA& dw, Layer layer, const std::vector<Eigen::Vector2d>& points,
+                   const std::vector<double>& bulges, bool closed) {
+  dxf.writePolyline(dw, DL_PolylineData(static_cast<int>(points.size()), 0, 0, closed ? 1 : 0), attributesOf(layer));
+  for (size_t i = 0; i < points.size(); ++i) {
+    dxf.writeVertex(dw, DL_VertexData(points[i].x(), points[i].y(), 0.0, bulges.empty() ? 0.0 : bulges[i]));
+  }
+  dxf.writePolylineEnd(dw);
+}
+
+void writeEntities(DL_Dxf& dxf, DL_WriterA& dw, const Drawing& d) {
+  for (const auto& c : d.circles) {
+    dxf.writeCircle(dw, DL_CircleData(c.centre.x(), c.centre.y(), 0.0, c.radius), attributesOf(c.layer));
+  }
+  for (const auto& s : d.slots) {
+    // Counter-clockwise: straight side, half circle (bulge 1) around b, straight side, half circle around a.
+    writePolyline(dxf, dw, s.layer, slotCorners(s), {0.0, 1.0, 0.0, 1.0}, true);
+  }
+  for (const auto& p : d.polylines) {
+    if (p.points.size() >= 2) writePolyline(dxf, dw, p.layer, p.points, {}, p.closed);
+  }
+  for (const auto& t : d.texts) {
+    // Horizontal justification 0 = left, 1 = centre; vertical 2 = middle. With a justification
+    // other than left/baseline the alignment point (codes 11/21) places the text.
+    const int h = t.align == TextAlign::Left ? 0 : 1;
+    dxf.writeText(dw,
+                  DL_TextData(t.anchor.x(), t.anchor.y(), 0.0, t.anchor.x(), t.anchor.y(), 0.0, t.height, 1.0, 0, h, 2,
+                              t.text, "Standard", 0.0),
+                  attributesOf(t.layer));
+  }
+}
+
+}  // namespace
+
+std::string toDxf(const Drawing& d) {
+  // dxflib writes only to a named file: write into a private temporary file and read it back, so
+  // that the caller places the text atomically (core/io/atomic_file.hpp).
+  const auto tmp = std::filesystem::temp_directory_path() / ("egg_dxf_" + temporarySuffix() + ".dxf");
+  {
+    DL_Dxf dxf;
+    std::unique_ptr<DL_WriterA> dw(dxf.out(tmp.string().c_str(), DL_Codes::AC1015));
+    if (!dw) throw WriteError("cannot write a temporary DXF file " + tmp.string());
+    dxf.writeHeader(*dw);
+    dw->dxfString(9, "$INSUNITS");
+    dw->dxfInt(70, 4);  // millimetres
+    dw->dxfString(9, "$MEASUREMENT");
+    dw->dxfInt(70, 1);  // metric
+    dw->dxfString(9, "$EXTMIN");
+    dw->dxfReal(10, 0.0);
+    dw->dxfReal(20, 0.0);
+    dw->dxfReal(30, 0.0);
+    dw->dxfString(9, "$EXTMAX");
+    dw->dxfReal(10, d.widthMm);
+    dw->dxfReal(20, d.heightMm);
+    dw->dxfReal(30, 0.0);
+    dw->sectionEnd();
+
+    dw->sectionTables();
+    dxf.writeVPort(*dw);
+    dw->tableLinetypes(3);
+    dxf.writeLinetype(*dw, DL_LinetypeData("BYBLOCK", "", 0, 0, 0.0));
+    dxf.writeLinetype(*dw, DL_LinetypeData("BYLAYER", "", 0, 0, 0.0));
+    dxf.writeLinetype(*dw, DL_LinetypeData("CONTINUOUS", "Solid line", 0, 0, 0.0));
+    dw->tableEnd();
+    dw->tableLayers(4);
+    dxf.writeLayer(*dw, DL_LayerData("0", 0), DL_Attributes("", 7, -1, "CONTINUOUS", 1.0));
+    for (Layer layer : {Layer::Cut, Layer::Engrave, Layer::Label}) {
+      dxf.writeLayer(*dw, DL_LayerData(layerName(layer), 0), DL_Attributes("", colourOf(layer), -1, "CONTINUOUS", 1.0));
+    }
+    dw->tableEnd();
+    dw->tableStyle(1);
+    dxf.writeStyle(*dw, DL_StyleData("Standard", 0, 0.0, 1.0, 0.0, 0, 2.5, "txt", ""));
+    dw->tableEnd();
+    dxf.writeView(*dw);
+    dxf.writeUcs(*dw);
+    dw->tableAppid(1);
+    dxf.writeAppid(*dw, "ACAD");
+    dw->tableEnd();
+    dxf.writeDimStyle(*dw, 2.5, 0.625, 0.625, 0.625, 2.5);
+    dxf.writeBlockRecord(*dw);
+    dw->tableEnd();
+    dw->sectionEnd();
+
+    dw->sectionBlocks();
+    dxf.writeBlock(*dw, DL_BlockData("*Model_Space", 0, 0.0, 0.0, 0.0));
+    dxf.writeEndBlock(*dw, "*Model_Space");
+    dxf.writeBlock(*dw, DL_BlockData("*Paper_Space", 0, 0.0, 0.0, 0.0));
+    dxf.writeEndBlock(*dw, "*Paper_Space");
+    dxf.writeBlock(*dw, DL_BlockData("*Paper_Space0", 0, 0.0, 0.0, 0.0));
+    dxf.writeEndBlock(*dw, "*Paper_Space0");
+    dw->sectionEnd();
+
+    dw->sectionEntities();
+    writeEntities(dxf, *dw, d);
+    dw->sectionEnd();
+    dxf.writeObjects(*dw);
+    dxf.writeObjectsEnd(*dw);
+    dw->dxfEOF();
+    dw->close();
+  }
+  std::ifstream in(tmp, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::error_code ignored;
+  std::filesystem::remove(tmp, ignored);
+  if (!in) throw WriteError("cannot read back the temporary DXF file " + tmp.string());
+  return text.str();
+}
+
+}  // namespace egg::fabrication

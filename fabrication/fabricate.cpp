@@ -1,0 +1,277 @@
+#include "fabrication/fabricate.hpp"
+
+#include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
+#include "fabrication/dxf_writer.hpp"
+#include "fabrication/pdf_writer.hpp"
+#include "fabrication/sheet_layout.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+namespace egg::fabrication {
+namespace {
+
+std::string formatted(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+std::string numbered(const std::string& stem, int number, int digits, const std::string& extension) {
+  char buffer[16];
+  std::snprintf(buffer, sizeof buffer, "%0*d", digits, number);
+  return stem + buffer + extension;
+}
+
+std::vector<Drawing> emptySheets(int count, std::array<double, 2> sizeMm, const std::string& title) {
+  std::vector<Drawing> sheets(count);
+  for (int i = 0; i < count; ++i) {
+    sheets[i].title = title + " " + std::to_string(i + 1) + "/" + std::to_string(count);
+    sheets[i].widthMm = sizeMm[0];
+    sheets[i].heightMm = sizeMm[1];
+  }
+  return sheets;
+}
+
+void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult& r) {
+  const auto& o = r.options;
+  // Section 3.5.2: t < w/5, or the lamella no longer behaves like a geodesic ribbon.
+  if (o.lamella_thickness_mm >= o.lamella_width_mm / 5.0) {
+    r.warnings.push_back("lamella thickness " + formatted("%.3g", o.lamella_thickness_mm) + " mm is not below w/5 = " +
+                         formatted("%.3g", o.lamella_width_mm / 5.0) + " mm (Section 3.5.2)");
+  }
+  // Section 3.5.2: for desktop and medium models a width of about 2 % of the size works well.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& p : patches) {
+    for (const auto* family : {&p.grid->u, &p.grid->v}) {
+      for (const auto& m : *family) {
+        for (const auto& q : m.spatial) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+      }
+    }
+  }
+  if ((hi - lo).allFinite()) {
+    const double sizeMm = (hi - lo).maxCoeff() * 1000.0;
+    const double ratio = o.lamella_width_mm / sizeMm;
+    if (sizeMm <= 10000.0 && (ratio < 0.01 || ratio > 0.04)) {
+      r.warnings.push_back("lamella width " + formatted("%.3g", o.lamella_width_mm) + " mm is " +
+                           formatted("%.2f", 100.0 * ratio) + " % of the model size " + formatted("%.0f", sizeMm) +
+                           " mm; about 2 % works well for desktop and medium models (Section 3.5.2)");
+    }
+  }
+  if (r.maxStressRatio > 1.0) {
+    r.warnings.push_back("lamella " + r.maxStressLamella + " is stressed to " + formatted("%.2f", r.maxStressRatio) +
+                         " of the strength of " + r.material.name + " (Section 3.5.2: check sigma = E kappa t / 2)");
+  }
+  if (r.counts.droppedBoundary > 0) {
+    r.warnings.push_back(std::to_string(r.counts.droppedBoundary) +
+                         " notches on boundary members are cut as plain holes (no notches on boundaries, Section 3.5.3)");
+  }
+}
+
+}  // namespace
+
+FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
+                            const std::vector<SharedBoundary>& shared) {
+  const auto started = std::chrono::steady_clock::now();
+  options.validate();
+  FabricationResult r;
+  r.options = options;
+  r.material = materialByName(options.material);
+  r.lamellae = planLamellae(patches, options, shared);
+  r.counts = countFeatures(r.lamellae);
+  const double t = options.lamella_thickness_mm / 1000.0, w = options.lamella_width_mm / 1000.0;
+
+  // One bolt per connection, one for each group of connections merged on a shared lamella.
+  for (const auto& patch : patches) r.connections += static_cast<int>(patch.grid->connections.size());
+  for (const auto& plan : r.lamellae) {
+    for (const auto& f : plan.features) r.connections -= static_cast<int>(f.alsoConnections.size());
+  }
+  // Stress and weight per lamella, from the member it was planned from.
+  for (const auto& plan : r.lamellae) {
+    const FabricationPatch* patch = nullptr;
+    for (const auto& p : patches) {
+      if (p.patchId == plan.patchId) patch = &p;
+    }
+    const bool isU = plan.family == Family::U;
+    const GridMember& m = isU ? patch->grid->u[plan.index] : patch->grid->v[plan.index];
+    LamellaStress s = lamellaStress(m.spatial, &m.normals, t, r.material, curvatureWindowM(m.spatial, w));
+    if (patch->deployedCentrelines) {
+      // Bending from the simulated shape; the twist of the surface frame from the trace.
+      const auto& centreline = (*patch->deployedCentrelines)[isU ? plan.index : patch->grid->u.size() + plan.index];
+      const LamellaStress deployed = lamellaStress(centreline, nullptr, t, r.material, curvatureWindowM(centreline, w));
+      s.maxCurvature_1_m = deployed.maxCurvature_1_m;
+      s.maxBendingStress_pa = deployed.maxBendingStress_pa;
+      s.stressRatio = std::max(s.maxBendingStress_pa / r.material.bending_strength_pa,
+                               s.maxTorsionStress_pa / r.material.shear_strength_pa);
+      s.fromSimulation = true;
+    }
+    r.stress.push_back(s);
+    if (s.stressRatio > r.maxStressRatio) r.maxStressRatio = s.stressRatio, r.maxStressLamella = plan.id;
+    r.maxBendingStressPa = std::max(r.maxBendingStressPa, s.maxBendingStress_pa);
+    r.maxTorsionStressPa = std::max(r.maxTorsionStressPa, s.maxTorsionStress_pa);
+    r.totalLengthM += plan.lengthMm / 1000.0;
+    r.splices += static_cast<int>(plan.splicesMm.size());
+  }
+  r.volumeM3 = r.totalLengthM * w * t;
+  r.massKg = r.volumeM3 * r.material.density_kg_m3;
+
+  // Lamella sheets: every segment is a part.
+  std::vector<NestPart> parts;
+  std::vector<std::pair<int, int>> partOf;  // (lamella, segment)
+  for (size_t i = 0; i < r.lamellae.size(); ++i) {
+    const auto& plan = r.lamellae[i];
+    for (size_t k = 0; k < plan.segments.size(); ++k) {
+      parts.push_back({segmentLabel(plan, static_cast<int>(k)), plan.segments[k].lengthMm(), plan.widthMm});
+      partOf.emplace_back(static_cast<int>(i), static_cast<int>(k));
+    }
+  }
+  r.lamellaNesting = nestParts(parts, options.sheet_mm, options.kerf_mm, options.margin_mm, "fabrication.sheet_mm");
+  r.sheets = emptySheets(r.lamellaNesting.sheets, options.sheet_mm, "lamella sheet");
+  for (size_t p = 0; p < parts.size(); ++p) {
+    const auto& at = r.lamellaNesting.placements[p];
+    drawLamellaSegment(r.lamellae[partOf[p].first], partOf[p].second, {at.xMm, at.yMm}, options, r.sheets[at.sheet]);
+  }
+
+  // PTFE stickers.
+  for (const auto& patch : patches) {
+    auto stickers = planStickers(patch, r.lamellae, options);
+    r.stickers.insert(r.stickers.end(), stickers.begin(), stickers.end());
+  }
+  std::vector<NestPart> stickerParts;
+  for (const auto& s : r.stickers) {
+    stickerParts.push_back({"sticker " + s.id, s.lengthMm, s.widthMm});
+    r.stickerAreaM2 += s.areaM2();
+  }
+  r.stickerNesting = nestParts(stickerParts, options.stickerSheetMm(), options.kerf_mm, options.margin_mm,
+                               "fabrication.sticker_sheet_mm");
+  r.stickerSheets = emptySheets(r.stickerNesting.sheets, options.stickerSheetMm(), "PTFE sticker sheet");
+  for (size_t p = 0; p < r.stickers.size(); ++p) {
+    const auto& at = r.stickerNesting.placements[p];
+    drawSticker(r.stickers[p], {at.xMm, at.yMm}, options, r.stickerSheets[at.sheet]);
+  }
+
+  // Supports.
+  r.supports = planSupports(patches, options, &r.groundHeightM);
+  for (const auto& s : r.supports) {
+    double drop = 0.0;
+    r.supportSolids.push_back(supportSolid(s, options.supportBlockMm(), options.bolt_diameter_mm,
+                                           3.0 * options.bolt_diameter_mm, &drop));
+    if (drop > 0.0) {
+      r.warnings.push_back("support " + s.id + ": the contact plane comes within 5 mm of the ground; the block reaches " +
+                           formatted("%.1f", drop) + " mm below it");
+    }
+  }
+  checkRules(patches, r);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return r;
+}
+
+std::string bomCsv(const FabricationResult& r) {
+  std::ostringstream s;
+  const auto& o = r.options;
+  s << "item,id,count,length_mm,width_mm,thickness_mm,area_m2,volume_m3,mass_kg,note\n";
+  char line[512];
+  const double rho = r.material.density_kg_m3;
+  for (size_t i = 0; i < r.lamellae.size(); ++i) {
+    const auto& p = r.lamellae[i];
+    int holes = 0, slots = 0;
+    for (const auto& f : p.features) (f.kind == FeatureKind::Slot ? slots : holes)++;
+    const double volume = p.lengthMm * p.widthMm * o.lamella_thickness_mm * 1e-9;
+    std::snprintf(line, sizeof line, "lamella,%s,1,%.2f,%.2f,%.2f,,%.6g,%.6g,%s; %d holes; %d slots; %zu segments; stress ratio %.3f\n",
+                  p.id.c_str(), p.lengthMm, p.widthMm, o.lamella_thickness_mm, volume, volume * rho,
+                  r.material.name.c_str(), holes, slots, p.segments.size(), r.stress[i].stressRatio);
+    s << line;
+  }
+  s << "splice,," << r.splices << ",,,,,,,butt joints clear of holes by " << formatted("%.1f", o.spliceClearanceMm())
+    << " mm\n";
+  // Every splice: where along its lamella (length_mm = the cut's distance from the strip's start).
+  for (const auto& p : r.lamellae) {
+    for (size_t k = 0; k < p.splicesMm.size(); ++k) {
+      std::snprintf(line, sizeof line, "splice_joint,%s S%zu,1,%.2f,%.2f,%.2f,,,,between pieces %zu and %zu\n", p.id.c_str(),
+                    k + 1, p.splicesMm[k], p.widthMm, o.lamella_thickness_mm, k + 1, k + 2);
+      s << line;
+    }
+  }
+  s << "bolt,," << r.connections << ",,,,,,,diameter " << formatted("%.1f", o.bolt_diameter_mm) << " mm; one per connection (merged on shared lamellas)\n";
+  s << "washer,," << 2 * r.connections << ",,,,,,,two per bolt\n";
+  s << "brass_sleeve,," << r.counts.slots << ",,,,,,,one per slot (Section 3.5.1)\n";
+  s << "ptfe_sticker,," << r.stickers.size() << ",,,," << formatted("%.6g", r.stickerAreaM2)
+    << ",,,two per notched connection (Section 3.5.1)\n";
+  s << "support,," << r.supports.size() << ",,,,,,,see supports/supports.csv\n";
+  s << "lamella_sheet,," << r.lamellaNesting.sheets << "," << o.sheet_mm[0] << "," << o.sheet_mm[1] << ","
+    << o.lamella_thickness_mm << ",,,,yield " << formatted("%.3f", r.lamellaNesting.yield) << "\n";
+  s << "sticker_sheet,," << r.stickerNesting.sheets << "," << o.stickerSheetMm()[0] << "," << o.stickerSheetMm()[1]
+    << ",,,,,PTFE foil\n";
+  s << "total_lamellae,," << r.lamellae.size() << "," << formatted("%.2f", r.totalLengthM * 1000.0) << ",,,,"
+    << formatted("%.6g", r.volumeM3) << "," << formatted("%.6g", r.massKg) << ",self-weight "
+    << formatted("%.1f", r.massKg * 9.81) << " N\n";
+  return s.str();
+}
+
+std::vector<std::string> writeFabricationFiles(const FabricationResult& r, const std::filesystem::path& dir,
+                                               const FabricationOutputs& outputs) {
+  std::vector<std::string> files;
+  auto write = [&](const std::string& relative, const std::string& text) {
+    const auto path = dir / relative;
+    std::error_code error;
+    std::filesystem::create_directories(path.parent_path(), error);
+    if (error) throw WriteError("cannot create the folder " + path.parent_path().string() + ": " + error.message());
+    writeFileAtomically(path, text);
+    files.push_back(relative);
+  };
+  auto writeSheets = [&](const std::vector<Drawing>& sheets, const std::string& stem, const std::string& pdf) {
+    for (size_t i = 0; i < sheets.size(); ++i) {
+      write(numbered("cut/" + stem, static_cast<int>(i + 1), 2, ".svg"), toSvg(sheets[i]));
+      write(numbered("cut/" + stem, static_cast<int>(i + 1), 2, ".dxf"), toDxf(sheets[i]));
+    }
+    if (!sheets.empty()) write("cut/" + pdf, toPdf(sheets));
+  };
+  if (outputs.cutFiles) writeSheets(r.sheets, "sheet_", "sheets.pdf");
+  if (outputs.stickers) writeSheets(r.stickerSheets, "stickers_", "stickers.pdf");
+  if (outputs.supports) {
+    write("supports/supports.csv", supportsCsv(r.supports));
+    for (size_t i = 0; i < r.supports.size(); ++i) {
+      write(numbered("supports/support_", static_cast<int>(i + 1), 3, ".stl"),
+            toBinaryStl(r.supportSolids[i], "eggshell support " + r.supports[i].id + " (mm)"));
+    }
+  }
+  write("bom.csv", bomCsv(r));
+  return files;
+}
+
+nlohmann::json fabricationReport(const FabricationResult& r, const std::vector<std::string>& files) {
+  nlohmann::json j;
+  j["ran"] = true;
+  j["lamellae"] = r.lamellae.size();
+  j["notches"] = r.counts.slots;
+  j["plain_holes"] = r.counts.demoted;
+  j["holes"] = r.counts.holes;
+  j["boundary_notches_dropped"] = r.counts.droppedBoundary;
+  j["bolts"] = r.connections;
+  j["splices"] = r.splices;
+  j["stickers"] = r.stickers.size();
+  j["sticker_area_m2"] = r.stickerAreaM2;
+  j["sticker_sheets"] = r.stickerNesting.sheets;
+  j["supports"] = r.supports.size();
+  j["ground_height_m"] = r.groundHeightM;
+  j["sheets"] = r.lamellaNesting.sheets;
+  j["yield"] = r.lamellaNesting.yield;
+  j["material"] = r.material.name;
+  j["total_length_m"] = r.totalLengthM;
+  j["volume_m3"] = r.volumeM3;
+  j["mass_kg"] = r.massKg;
+  j["max_stress_ratio"] = r.maxStressRatio;
+  j["max_stress_lamella"] = r.maxStressLamella;
+  j["max_bending_stress_pa"] = r.maxBendingStressPa;
+  j["max_torsion_stress_pa"] = r.maxTorsionStressPa;
+  j["warnings"] = r.warnings;
+  j["files"] = files;
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+}  // namespace egg::fabrication

@@ -1,0 +1,78 @@
+#pragma once
+// The fabrication stage (Sections 3.5, 3.6.1): from the traced grids to what a workshop needs —
+// lamella cut sheets with holes, slots, labels and splices; PTFE sticker sheets; support solids;
+// a bill of materials; the bending and torsion stress check and the self-weight.
+//   FabricationResult r = fabricate(patches, options);          // pure: geometry and numbers
+//   auto files = writeFabricationFiles(r, runDir, outputs);      // cut/, supports/, bom.csv
+//   report["fabrication"] = fabricationReport(r, files);
+#include "fabrication/drawing.hpp"
+#include "fabrication/lamella_plan.hpp"
+#include "fabrication/nesting.hpp"
+#include "fabrication/options.hpp"
+#include "fabrication/stickers.hpp"
+#include "fabrication/stress.hpp"
+#include "fabrication/supports.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace egg::fabrication {
+
+struct FabricationResult {
+  FabricationOptions options;
+  MaterialProperties material;
+  std::vector<LamellaPlan> lamellae;       // u then v members, patch by patch
+  std::vector<LamellaStress> stress;       // one per lamella
+  std::vector<Sticker> stickers;
+  std::vector<Support> supports;
+  std::vector<TriangleMesh> supportSolids;  // one per support, millimetres
+  double groundHeightM = 0.0;
+  Nesting lamellaNesting, stickerNesting;
+  std::vector<Drawing> sheets;             // lamella sheets
+  std::vector<Drawing> stickerSheets;      // PTFE foil sheets
+  FeatureCounts counts;
+  int connections = 0;                     // bolts: connections, those merged on a shared lamella once
+  int splices = 0;
+  double totalLengthM = 0.0;               // all strips, overhangs included
+  double volumeM3 = 0.0;
+  double massKg = 0.0;
+  double stickerAreaM2 = 0.0;
+  double maxStressRatio = 0.0;
+  double maxBendingStressPa = 0.0, maxTorsionStressPa = 0.0;
+  std::string maxStressLamella;
+  std::vector<std::string> warnings;       // Section 3.5.2 rules and other things to look at
+  double seconds = 0.0;
+};
+
+// Validates the options, plans the lamellas (one lamella for each shared side, holding the holes
+// of both patches), splices, stickers and supports, nests the parts and checks stresses. Throws
+// InvalidInput (bad option, a part larger than the sheet, a lamella that cannot be spliced clear
+// of its holes, a support that cannot be built, a shared side that does not match).
+FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
+                            const std::vector<SharedBoundary>& shared = {});
+
+// Which files to write (the scene's outputs "cut_files", "stickers", "supports").
+struct FabricationOutputs {
+  bool cutFiles = true;   // cut/sheet_NN.svg, cut/sheet_NN.dxf, cut/sheets.pdf
+  bool stickers = true;   // cut/stickers_NN.svg, cut/stickers_NN.dxf, cut/stickers.pdf
+  bool supports = true;   // supports/supports.csv, supports/support_NNN.stl
+};
+
+// Writes the files below `dir` (bom.csv always) atomically and returns their paths relative to
+// `dir`, in the order written. Throws WriteError naming a file that cannot be written.
+std::vector<std::string> writeFabricationFiles(const FabricationResult& result, const std::filesystem::path& dir,
+                                               const FabricationOutputs& outputs = {});
+
+// The bill of materials: item,id,count,length_mm,width_mm,thickness_mm,area_m2,volume_m3,mass_kg,note.
+// Rows: one per lamella, splices (total, then one splice_joint row per splice with its position),
+// bolts, washers, brass sleeves, PTFE stickers, supports, sheets, totals.
+std::string bomCsv(const FabricationResult& result);
+
+// report.json "fabrication": lamellae, notches, plain_holes, stickers, supports, sheets, yield,
+// max_stress_ratio, mass_kg, files[] and the details behind them (units in the keys).
+nlohmann::json fabricationReport(const FabricationResult& result, const std::vector<std::string>& files = {});
+
+}  // namespace egg::fabrication

@@ -1,0 +1,228 @@
+#include "fabrication/lamella_plan.hpp"
+
+#include "core/errors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace egg::fabrication {
+
+double LamellaFeature::minXMm(double boltDiameterMm) const {
+  return std::min(xMm, xMm + slideMm) - boltDiameterMm / 2.0;
+}
+
+double LamellaFeature::maxXMm(double boltDiameterMm) const {
+  return std::max(xMm, xMm + slideMm) + boltDiameterMm / 2.0;
+}
+
+std::string LamellaFeature::label() const {
+  std::string text = connectionId;
+  for (const auto& merged : alsoConnections) text += "=P" + std::to_string(merged.first);
+  return text;
+}
+
+bool LamellaFeature::holds(int patch, int index) const {
+  if (patch == patchId && index == connection) return true;
+  for (const auto& [p, c] : alsoConnections) {
+    if (p == patch && c == index) return true;
+  }
+  return false;
+}
+
+namespace {
+
+std::string lamellaId(int patchId, Family family, int index) {
+  return "P" + std::to_string(patchId) + "-" + (family == Family::U ? "U" : "V") + std::to_string(index);
+}
+
+std::string connectionId(int patchId, int i, int j) {
+  return "P" + std::to_string(patchId) + "-C" + std::to_string(i) + "-" + std::to_string(j);
+}
+
+LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member, const FabricationOptions& options) {
+  const EggGrid& grid = *patch.grid;
+  LamellaPlan plan;
+  plan.patchId = patch.patchId;
+  plan.family = member.family;
+  plan.index = member.index;
+  plan.boundary = member.boundary;
+  plan.id = lamellaId(patch.patchId, member.family, member.index);
+  plan.widthMm = options.lamella_width_mm;
+  plan.overhangMm = options.endOverhangMm();
+  plan.lengthMm = member.planarLength * 1000.0 + 2.0 * plan.overhangMm;
+  const bool isU = member.family == Family::U;
+  const int nu = static_cast<int>(grid.u.size()), nv = static_cast<int>(grid.v.size());
+  // The connections on this member: row `index` of the grid for a u member, column for a v member.
+  const int count = isU ? nv : nu;
+  for (int k = 0; k < count; ++k) {
+    const int i = isU ? member.index : k, j = isU ? k : member.index;
+    const GridConnection& c = grid.at(i, j);
+    LamellaFeature f;
+    f.patchId = patch.patchId;
+    f.connection = i * nv + j;
+    f.connectionId = connectionId(patch.patchId, i, j);
+    f.xMm = plan.overhangMm + (isU ? c.sBarU : c.sBarV) * 1000.0;
+    const double notchMm = (isU ? c.notchU : c.notchV) * 1000.0;
+    if (member.boundary) {
+      f.droppedBoundaryNotch = std::abs(notchMm) >= options.min_notch_mm && notchMm != 0.0;
+    } else if (std::abs(notchMm) >= options.min_notch_mm && notchMm != 0.0) {
+      f.kind = FeatureKind::Slot;
+      f.slideMm = notchMm;
+    } else {
+      f.demotedNotch = notchMm != 0.0;
+    }
+    plan.features.push_back(f);
+  }
+  std::sort(plan.features.begin(), plan.features.end(),
+            [](const LamellaFeature& a, const LamellaFeature& b) { return a.xMm < b.xMm; });
+  const double d = options.bolt_diameter_mm;
+  for (const auto& f : plan.features) {
+    if (f.minXMm(d) < -1e-9 || f.maxXMm(d) > plan.lengthMm + 1e-9) {
+      std::ostringstream msg;
+      msg << "lamella " << plan.id << ": the " << (f.kind == FeatureKind::Slot ? "slot" : "hole") << " of connection "
+          << f.connectionId << " reaches beyond the strip end (raise fabrication.end_overhang_mm)";
+      throw InvalidInput(msg.str());
+    }
+  }
+  return plan;
+}
+
+}  // namespace
+
+std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
+                                      const std::vector<SharedBoundary>& shared) {
+  std::vector<LamellaPlan> plans;
+  for (const auto& patch : patches) {
+    if (!patch.grid) throw InvalidInput("fabrication: patch " + std::to_string(patch.patchId) + " has no grid");
+    const EggGrid& grid = *patch.grid;
+    if (grid.connections.size() != grid.u.size() * grid.v.size()) {
+      throw InvalidInput("fabrication: patch " + std::to_string(patch.patchId) + ": the grid has " +
+                         std::to_string(grid.connections.size()) + " connections, expected u x v = " +
+                         std::to_string(grid.u.size() * grid.v.size()));
+    }
+    if (patch.deployedCentrelines && patch.deployedCentrelines->size() != grid.u.size() + grid.v.size()) {
+      throw InvalidInput("fabrication: patch " + std::to_string(patch.patchId) + ": " +
+                         std::to_string(patch.deployedCentrelines->size()) + " deployed centrelines for " +
+                         std::to_string(grid.u.size() + grid.v.size()) + " members");
+    }
+    for (const auto& m : grid.u) plans.push_back(planMember(patch, m, options));
+    for (const auto& m : grid.v) plans.push_back(planMember(patch, m, options));
+  }
+  mergeSharedBoundaries(plans, shared, 0.5);
+  const double piece = longestPieceMm(options);
+  const std::string field = piece < options.stock_length_mm ? "fabrication.sheet_mm (the longest strip a sheet holds)"
+                                                             : "fabrication.stock_length_mm";
+  for (auto& plan : plans) placeSplices(plan, piece, options.spliceClearanceMm(), options.bolt_diameter_mm, field);
+  return plans;
+}
+
+double longestPieceMm(const FabricationOptions& options) {
+  return std::min(options.stock_length_mm, options.sheet_mm[0] - 2.0 * options.margin_mm);
+}
+
+void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
+                  const std::string& field) {
+  plan.splicesMm.clear();
+  plan.segments.clear();
+  // Forbidden intervals: every feature's extent grown by the clearance.
+  std::vector<std::pair<double, double>> forbidden;
+  for (const auto& f : plan.features) {
+    forbidden.emplace_back(f.minXMm(boltDiameterMm) - clearanceMm, f.maxXMm(boltDiameterMm) + clearanceMm);
+  }
+  auto clearAt = [&](double x) {
+    for (const auto& [lo, hi] : forbidden) {
+      if (x > lo && x < hi) return false;
+    }
+    return true;
+  };
+  double start = 0.0;
+  while (plan.lengthMm - start > stockLengthMm + 1e-9) {
+    // The furthest clear position within one stock length: either the stock end itself or the
+    // lower end of the forbidden interval that covers it (intervals may chain, so repeat).
+    double cut = start + stockLengthMm;
+    bool moved = true;
+    while (moved && cut > start) {
+      moved = false;
+      for (const auto& [lo, hi] : forbidden) {
+        if (cut > lo && cut < hi) {
+          cut = lo;
+          moved = true;
+        }
+      }
+    }
+    if (cut <= start + 1e-9 || !clearAt(cut)) {
+      std::ostringstream msg;
+      msg << field << ": lamella " << plan.id << " (" << plan.lengthMm
+          << " mm) cannot be spliced: no position within " << stockLengthMm << " mm of " << start
+          << " mm lies " << clearanceMm << " mm clear of its holes and slots (fabrication.splice_clearance_mm)";
+      throw InvalidInput(msg.str());
+    }
+    plan.splicesMm.push_back(cut);
+    plan.segments.push_back({start, cut});
+    start = cut;
+  }
+  plan.segments.push_back({start, plan.lengthMm});
+}
+
+int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<SharedBoundary>& shared, double toleranceMm) {
+  auto find = [&](int patch, Family family, int index) -> std::ptrdiff_t {
+    for (size_t i = 0; i < plans.size(); ++i) {
+      if (plans[i].patchId == patch && plans[i].family == family && plans[i].index == index) return static_cast<std::ptrdiff_t>(i);
+    }
+    return -1;
+  };
+  int merged = 0;
+  for (const auto& side : shared) {
+    const std::string what = "fabrication: shared side " + lamellaId(side.patchA, side.familyA, side.indexA) + " = " +
+                             lamellaId(side.patchB, side.familyB, side.indexB);
+    const std::ptrdiff_t ia = find(side.patchA, side.familyA, side.indexA), ib = find(side.patchB, side.familyB, side.indexB);
+    if (ia < 0 || ib < 0 || ia == ib) throw InvalidInput(what + ": no such pair of lamellas");
+    LamellaPlan& a = plans[ia];
+    const LamellaPlan& b = plans[ib];
+    if (!a.boundary || !b.boundary) throw InvalidInput(what + ": both must be boundary members");
+    const double innerA = a.lengthMm - 2.0 * a.overhangMm, innerB = b.lengthMm - 2.0 * b.overhangMm;
+    if (std::abs(innerA - innerB) > toleranceMm) {
+      std::ostringstream msg;
+      msg << what << ": planar lengths differ (" << innerA << " and " << innerB << " mm)";
+      throw InvalidInput(msg.str());
+    }
+    for (LamellaFeature f : b.features) {
+      const double along = f.xMm - b.overhangMm;
+      f.xMm = a.overhangMm + (side.reversed ? innerA - along : along);
+      f.slideMm = side.reversed ? -f.slideMm : f.slideMm;
+      LamellaFeature* same = nullptr;
+      for (auto& g : a.features) {
+        if (g.kind == FeatureKind::Hole && f.kind == FeatureKind::Hole && std::abs(g.xMm - f.xMm) <= toleranceMm) same = &g;
+      }
+      if (same) {
+        same->alsoConnections.emplace_back(f.patchId, f.connection);
+        same->alsoConnections.insert(same->alsoConnections.end(), f.alsoConnections.begin(), f.alsoConnections.end());
+        ++merged;
+      } else {
+        a.features.push_back(f);
+      }
+    }
+    std::sort(a.features.begin(), a.features.end(), [](const LamellaFeature& x, const LamellaFeature& y) { return x.xMm < y.xMm; });
+    plans.erase(plans.begin() + ib);
+  }
+  return merged;
+}
+
+FeatureCounts countFeatures(const std::vector<LamellaPlan>& plans) {
+  FeatureCounts counts;
+  for (const auto& plan : plans) {
+    for (const auto& f : plan.features) {
+      if (f.kind == FeatureKind::Slot) {
+        ++counts.slots;
+      } else {
+        ++counts.holes;
+      }
+      counts.demoted += f.demotedNotch ? 1 : 0;
+      counts.droppedBoundary += f.droppedBoundaryNotch ? 1 : 0;
+    }
+  }
+  return counts;
+}
+
+}  // namespace egg::fabrication

@@ -1,0 +1,104 @@
+#pragma once
+// Lamella plans (Section 3.5, 3.6.1): every member becomes a straight strip of its planar length
+// (plus an overhang beyond the end connections) and the lamella width, with a bolt hole at every
+// fixed connection and a stadium slot at every notched one. Coordinates along a strip are
+// millimetres from its start (the member's planarStart side, minus the overhang).
+#include "fabrication/options.hpp"
+
+#include <string>
+#include <vector>
+
+namespace egg::fabrication {
+
+enum class FeatureKind { Hole, Slot };
+
+// One bolt position on a lamella. A lamella collects features from every patch whose members
+// it carries (a boundary lamella shared by two patches holds the holes of both).
+struct LamellaFeature {
+  FeatureKind kind = FeatureKind::Hole;
+  double xMm = 0.0;          // bolt centre in the cut (planar) state, from the strip's start
+  double slideMm = 0.0;      // slots: the bolt moves from xMm to xMm + slideMm while deploying (l = s - s_bar)
+  int patchId = 0;
+  int connection = 0;        // index into that patch's EggGrid::connections
+  std::string connectionId;  // engraved next to the hole: "P<patch>-C<i>-<j>"
+  bool demotedNotch = false;  // a notch shorter than min_notch_mm, cut as a plain hole
+  bool droppedBoundaryNotch = false;  // a boundary member's notch (no notches there, 3.5.3)
+  // Further connections this one bolt holds: a shared boundary lamella's hole where the members
+  // of both patches meet it (mergeSharedBoundaries). (patch, connection) pairs.
+  std::vector<std::pair<int, int>> alsoConnections;
+  std::string label() const;  // connectionId, plus "=P<patch>" for every merged connection
+  bool holds(int patch, int connection) const;
+  // Extent along the strip of what is cut (the hole, or the slot including its round ends).
+  double minXMm(double boltDiameterMm) const;
+  double maxXMm(double boltDiameterMm) const;
+};
+
+// One piece cut from stock: a lamella shorter than the stock is one segment; a longer one is cut
+// at its splices into several.
+struct LamellaSegment {
+  double startMm = 0.0, endMm = 0.0;  // along the lamella
+  double lengthMm() const { return endMm - startMm; }
+};
+
+struct LamellaPlan {
+  std::string id;             // "P<patch>-U<index>" or "P<patch>-V<index>"
+  int patchId = 0;
+  Family family = Family::U;
+  int index = 0;
+  bool boundary = false;
+  double lengthMm = 0.0;      // whole strip, overhangs included
+  double widthMm = 0.0;
+  double overhangMm = 0.0;
+  std::vector<LamellaFeature> features;  // sorted along the strip
+  std::vector<double> splicesMm;         // cut positions of the splices, ascending
+  std::vector<LamellaSegment> segments;  // pieces between splices (at least one)
+};
+
+// A patch side shared by two patches (Section 3.5.3: adjacent grids are joined along their common
+// lamellas): boundary member `indexA` of family `familyA` in patch `patchA` and member B of patch B
+// are one lamella. `reversed`: B runs from A's planarEnd towards its planarStart.
+struct SharedBoundary {
+  int patchA = 0;
+  Family familyA = Family::U;
+  int indexA = 0;
+  int patchB = 0;
+  Family familyB = Family::U;
+  int indexB = 0;
+  bool reversed = false;
+};
+
+// Strips of every member of every patch (u members first, then v, patch by patch) with holes and
+// slots, shared boundaries merged (mergeSharedBoundaries, 0.5 mm), spliced into pieces of at most
+// longestPieceMm(options). Throws InvalidInput naming the patch when a grid is missing or
+// inconsistent.
+std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
+                                      const std::vector<SharedBoundary>& shared = {});
+
+// Moves the holes of every shared side's lamella B onto lamella A (x mirrored when reversed), one
+// hole where a hole of A lies within `toleranceMm` (one bolt through the members of both patches),
+// and removes B. Returns how many holes were merged into existing ones. Throws InvalidInput naming
+// the side when a lamella is missing, not a boundary member, or the two lengths differ by more than
+// `toleranceMm`. Call before placeSplices.
+int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<SharedBoundary>& shared, double toleranceMm);
+
+// Cut positions so that no segment exceeds `stockLengthMm` and every cut lies at least
+// `clearanceMm` from every hole and slot (Section 3.5: architectural lamellas of 20-40 m never come
+// in one piece). Fills plan.splicesMm and plan.segments. Throws InvalidInput naming the lamella and
+// `field` when no clear cut position exists.
+void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
+                  const std::string& field = "fabrication.stock_length_mm");
+
+// The longest piece a lamella is cut in: the stock length, or the sheet's usable first side when
+// that is shorter (a strip cut from a sheet is no longer than the sheet).
+double longestPieceMm(const FabricationOptions& options);
+
+// Counts over plans, for the BOM and the report.
+struct FeatureCounts {
+  int holes = 0;            // round holes (fixed connections and demoted notches)
+  int slots = 0;            // notches cut as slots
+  int demoted = 0;          // notches shorter than min_notch_mm (cut as plain holes)
+  int droppedBoundary = 0;  // notches on boundary members (cut as plain holes)
+};
+FeatureCounts countFeatures(const std::vector<LamellaPlan>& plans);
+
+}  // namespace egg::fabrication

@@ -1,0 +1,53 @@
+#pragma once
+// Inputs of the fabrication stage (Sections 3.5, 3.6.1): the traced grids of the patches and the
+// workshop's options. Lengths on the workshop side are millimetres (cut files are in mm); the
+// grid is in metres, as everywhere inside eggshell.
+#include "core/egg/grid.hpp"
+
+#include <Eigen/Core>
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace egg::fabrication {
+
+// One patch handed to fabrication: its grid and, when the simulation ran, the deployed centrelines
+// of its members in the grid's member order (all u members, then all v members). Without them the
+// stress check reads the traced geodesics (the design), with them the simulated shape.
+struct FabricationPatch {
+  int patchId = 0;
+  const EggGrid* grid = nullptr;
+  std::optional<std::vector<std::vector<Eigen::Vector3d>>> deployedCentrelines;  // metres
+};
+
+struct FabricationOptions {
+  double lamella_width_mm = 250.0;          // w, across the strip (scene lamella.width_m)
+  double lamella_thickness_mm = 40.0;       // t, the weak axis the lamella bends about (lamella.thickness_m)
+  std::string material = "poplar_plywood";  // core/materials name (lamella.material)
+  std::array<double, 2> sheet_mm{2500.0, 1250.0};  // stock sheet or laser bed; strips run along the first side
+  double kerf_mm = 0.2;                     // width the cutter removes: gap between nested parts
+  double margin_mm = 10.0;                  // unused border around every sheet
+  double bolt_diameter_mm = 8.0;            // hole diameter and slot width
+  double min_notch_mm = 1.0;                // shorter notches are cut as plain holes (mesh noise, 2.4.5)
+  double stock_length_mm = 6000.0;          // longest piece a lamella can be cut from (and at most the sheet's first side); longer ones are spliced
+  std::optional<double> end_overhang_mm;    // strip beyond the end connections; default half the width
+  std::optional<double> splice_clearance_mm;  // no hole or slot this close to a splice; default the width
+  std::optional<double> label_height_mm;    // engraved text height; default 0.35 w (clamped to 1..30 mm)
+  double sticker_margin_mm = 2.0;           // PTFE sticker beyond the swept contact area (3.5.1)
+  std::optional<std::array<double, 2>> sticker_sheet_mm;  // PTFE foil sheet; default sheet_mm
+  std::optional<double> ground_height_m;    // ground plane z; default 0.1 m below the lowest support
+  std::optional<double> support_block_mm;   // footprint side of a support block; default 3 w
+  bool supports_at_boundary_connections = false;  // a support at every boundary connection (3.5.2 iv), not only at anchors
+
+  // Throws InvalidInput naming the scene field ("fabrication.sheet_mm: ...").
+  void validate() const;
+
+  double endOverhangMm() const { return end_overhang_mm.value_or(lamella_width_mm / 2.0); }
+  double spliceClearanceMm() const { return splice_clearance_mm.value_or(lamella_width_mm); }
+  double labelHeightMm() const;
+  std::array<double, 2> stickerSheetMm() const { return sticker_sheet_mm.value_or(sheet_mm); }
+  double supportBlockMm() const { return support_block_mm.value_or(3.0 * lamella_width_mm); }
+};
+
+}  // namespace egg::fabrication

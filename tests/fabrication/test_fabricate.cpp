@@ -1,0 +1,310 @@
+#include "fabrication/fabricate.hpp"
+
+#include "core/egg/solve_patch.hpp"
+#include "core/errors.hpp"
+#include "tests/support/fabrication_hand_grid.hpp"
+#include "samples/generators/samples.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <regex>
+
+namespace egg::fabrication {
+namespace {
+
+using testing::handGrid;
+using testing::handOptions;
+
+struct Point {
+  double x, y;
+};
+
+// Hand-computed positions on sheet 1 (mm, y up). The nesting puts P0-U1 at (215.5, 5) and P0-V1 at
+// (5, 26) (test_nesting); the strips' centrelines are 5 mm above.
+const Point kHolesU1[] = {{220.5, 10.0}, {420.5, 10.0}};
+const Point kSlotU1[] = {{320.5, 8.5}, {325.5, 11.5}};       // corners a - r n and b + r n
+const Point kSlotV1[] = {{110.0, 32.5}, {107.0, 29.5}};      // sliding -3 mm: a = 110, b = 107
+const Point kLabelU1 = {215.5 + (16.07 + 103.5) / 2.0, 10.0};  // lamella label, centred
+const Point kLabelC10 = {222.75, 10.0};                       // connection label, left-aligned
+
+bool near(double a, double b) { return std::abs(a - b) <= 0.01; }  // the acceptance tolerance
+
+TEST(Fabricate, HandGridCountsMatchTheGrid) {
+  const EggGrid grid = handGrid();
+  const auto r = fabricate({{0, &grid, std::nullopt}}, handOptions());
+  EXPECT_EQ(r.lamellae.size(), 6u);
+  EXPECT_EQ(r.connections, 9);
+  EXPECT_EQ(r.counts.slots, 2);
+  EXPECT_EQ(r.counts.demoted, 1);
+  EXPECT_EQ(r.stickers.size(), 4u / 2u);
+  EXPECT_EQ(r.supports.size(), 4u);
+  EXPECT_EQ(r.lamellaNesting.sheets, 1);
+  EXPECT_EQ(r.splices, 0);
+  // 6 strips of 210 x 10 x 1 mm of limewood (500 kg/m^3).
+  EXPECT_NEAR(r.totalLengthM, 1.26, 1e-12);
+  EXPECT_NEAR(r.massKg, 6 * 0.21 * 0.01 * 0.001 * 500.0, 1e-12);
+  EXPECT_NEAR(r.lamellaNesting.yield, 6 * 2100.0 / 150000.0, 1e-12);
+  EXPECT_NEAR(r.maxStressRatio, 0.0, 1e-12);  // flat grid
+  // 10 mm on a 200 mm model is 5 %: the 2 % rule of 3.5.2 warns.
+  bool widthWarning = false;
+  for (const auto& w : r.warnings) widthWarning |= w.find("2 %") != std::string::npos;
+  EXPECT_TRUE(widthWarning);
+
+  const std::string bom = bomCsv(r);
+  EXPECT_EQ(std::count(bom.begin(), bom.end(), '\n'), 1 + 6 + 9);
+  EXPECT_NE(bom.find("\nbolt,,9,"), std::string::npos) << bom;
+  EXPECT_NE(bom.find("\nwasher,,18,"), std::string::npos) << bom;
+  EXPECT_NE(bom.find("\nbrass_sleeve,,2,"), std::string::npos) << bom;
+  EXPECT_NE(bom.find("\nptfe_sticker,,2,"), std::string::npos) << bom;
+  EXPECT_NE(bom.find("\nsupport,,4,"), std::string::npos) << bom;
+  EXPECT_NE(bom.find("\nlamella,P0-U1,1,210.00,10.00,1.00,"), std::string::npos) << bom;
+
+  const auto report = fabricationReport(r, {"bom.csv"});
+  for (const char* key : {"lamellae", "notches", "plain_holes", "stickers", "supports", "sheets", "yield",
+                          "max_stress_ratio", "mass_kg", "files"}) {
+    EXPECT_TRUE(report.contains(key)) << key;
+  }
+  EXPECT_EQ(report["lamellae"], 6);
+  EXPECT_EQ(report["notches"], 2);
+  EXPECT_EQ(report["plain_holes"], 1);
+  EXPECT_EQ(report["files"][0], "bom.csv");
+}
+
+TEST(Fabricate, TwoPatchesSharingASideCountOneLamellaAndOneBoltThere) {
+  const EggGrid left = handGrid(), right = handGrid(0.2);
+  const auto r = fabricate({{0, &left, std::nullopt}, {1, &right, std::nullopt}}, handOptions(),
+                           {{0, Family::V, 2, 1, Family::V, 0, false}});
+  EXPECT_EQ(r.lamellae.size(), 11u);
+  EXPECT_EQ(r.connections, 18 - 3);  // the three connections on the shared side hold one bolt each
+  EXPECT_EQ(r.counts.slots, 4);
+  EXPECT_EQ(r.stickers.size(), 4u);
+  EXPECT_EQ(r.supports.size(), 6u);  // 8 corner anchors, two pairs on the same points
+  EXPECT_EQ(r.stress.size(), 11u);
+  const std::string bom = bomCsv(r);
+  EXPECT_NE(bom.find("\nbolt,,15,"), std::string::npos) << bom;
+}
+
+TEST(Fabricate, SimulatedCentrelinesDriveTheBendingStress) {
+  const EggGrid grid = handGrid();
+  std::vector<std::vector<Eigen::Vector3d>> deployed;
+  for (const auto* family : {&grid.u, &grid.v}) {
+    for (const auto& m : *family) deployed.push_back(m.spatial);
+  }
+  // Member u1 deployed onto a circle of radius 0.5 m.
+  deployed[1].clear();
+  for (int k = 0; k <= 8; ++k) {
+    const double phi = -0.2 + 0.05 * k;
+    deployed[1].emplace_back(0.5 * std::sin(phi), 0.1, 0.5 * std::cos(phi));
+  }
+  const auto r = fabricate({{0, &grid, deployed}}, handOptions());
+  const auto& lime = materialByName("limewood");
+  EXPECT_TRUE(r.stress[1].fromSimulation);
+  EXPECT_NEAR(r.stress[1].maxBendingStress_pa, lime.youngs_modulus_pa * 2.0 * 0.001 / 2.0, 1e-3);
+  EXPECT_EQ(r.maxStressLamella, "P0-U1");
+  EXPECT_NEAR(r.maxStressRatio, 9.1e6 / lime.bending_strength_pa, 1e-9);
+}
+
+TEST(Fabricate, SheetSmallerThanTheWidestPartIsAClearError) {
+  const EggGrid grid = handGrid();
+  auto options = handOptions();
+  options.sheet_mm = {500.0, 18.0};  // 8 mm usable across: narrower than the 10 mm strips
+  try {
+    fabricate({{0, &grid, std::nullopt}}, options);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("fabrication.sheet_mm:", 0), 0u) << what;
+    EXPECT_NE(what.find("P0-U0"), std::string::npos) << what;
+    EXPECT_NE(what.find("210 x 10 mm"), std::string::npos) << what;
+  }
+  // The sticker foil too.
+  options = handOptions();
+  options.sticker_sheet_mm = std::array<double, 2>{15.0, 100.0};
+  try {
+    fabricate({{0, &grid, std::nullopt}}, options);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("fabrication.sticker_sheet_mm: part sticker P0-C1-1/P0-U1", 0), 0u) << e.what();
+  }
+}
+
+TEST(Fabricate, StripsLongerThanTheSheetAreSplicedToFitIt) {
+  // 160 mm sheet, 5 mm margins: pieces of at most 150 mm although the stock is 1000 mm.
+  const EggGrid grid = handGrid();
+  auto options = handOptions();
+  options.sheet_mm = {160.0, 300.0};
+  const auto r = fabricate({{0, &grid, std::nullopt}}, options);
+  EXPECT_DOUBLE_EQ(longestPieceMm(options), 150.0);
+  EXPECT_EQ(r.splices, 6);
+  for (const auto& plan : r.lamellae) EXPECT_DOUBLE_EQ(plan.splicesMm.at(0), 150.0) << plan.id;
+}
+
+TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
+  for (const char* tool : {"rsvg-convert", "pdfinfo", "admesh"}) {
+    ASSERT_TRUE(testing::haveTool(tool)) << tool << " missing: run scripts/install-deps.sh";
+  }
+  const EggGrid grid = handGrid();
+  const auto r = fabricate({{0, &grid, std::nullopt}}, handOptions());
+  const auto dir = testing::scratchDir("fabricate");
+  const auto files = writeFabricationFiles(r, dir);
+  const std::vector<std::string> expected{"cut/sheet_01.svg", "cut/sheet_01.dxf", "cut/sheets.pdf", "cut/stickers_01.svg",
+                                          "cut/stickers_01.dxf", "cut/stickers.pdf", "supports/supports.csv",
+                                          "supports/support_001.stl", "supports/support_002.stl", "supports/support_003.stl",
+                                          "supports/support_004.stl", "bom.csv"};
+  EXPECT_EQ(files, expected);
+
+  // SVG: holes, slots and labels at the hand positions.
+  const auto svg = testing::readSvg(testing::readText(dir / "cut/sheet_01.svg"));
+  auto hasCircle = [&](Point p) {
+    for (const auto& c : svg["circles"]) {
+      if (near(c[0], p.x) && near(c[1], p.y) && near(c[2], 1.5)) return true;
+    }
+    return false;
+  };
+  for (Point p : kHolesU1) EXPECT_TRUE(hasCircle(p)) << p.x << ", " << p.y;
+  EXPECT_TRUE(hasCircle({10.0, 31.0}));  // P0-V1 at (0,1)
+  EXPECT_EQ(svg["circles"].size(), 16u);
+  EXPECT_EQ(svg["slots"].size(), 2u);
+  auto hasSlot = [&](const Point* k) {
+    for (const auto& s : svg["slots"]) {
+      if (near(s[0], k[0].x) && near(s[1], k[0].y) && near(s[4], k[1].x) && near(s[5], k[1].y)) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(hasSlot(kSlotU1));
+  EXPECT_TRUE(hasSlot(kSlotV1));
+  auto hasText = [&](const std::string& text, Point p) {
+    for (const auto& t : svg["texts"]) {
+      if (t[3] == text && near(t[0], p.x) && near(t[1], p.y)) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(hasText("P0-U1", kLabelU1));
+  EXPECT_TRUE(hasText("P0-C1-0", kLabelC10));
+
+  // DXF: the same, through ezdxf; the audit finds nothing.
+  const auto dxf = testing::readDxf(dir / "cut/sheet_01.dxf");
+  EXPECT_EQ(dxf["audit_errors"], 0);
+  EXPECT_EQ(dxf["insunits"], 4);
+  int circles = 0, slotsFound = 0;
+  bool labelU1 = false, labelC10 = false;
+  for (const auto& e : dxf["entities"]) {
+    if (e["type"] == "CIRCLE") {
+      ++circles;
+    } else if (e["type"] == "LWPOLYLINE" && e["points"].size() == 4 && e["points"][1][2] == 1.0) {
+      for (const Point* k : {kSlotU1, kSlotV1}) {
+        if (near(e["points"][0][0], k[0].x) && near(e["points"][0][1], k[0].y) && near(e["points"][2][0], k[1].x) &&
+            near(e["points"][2][1], k[1].y)) {
+          ++slotsFound;
+        }
+      }
+    } else if (e["type"] == "TEXT") {
+      labelU1 |= e["text"] == "P0-U1" && near(e["align"][0], kLabelU1.x) && near(e["align"][1], kLabelU1.y);
+      labelC10 |= e["text"] == "P0-C1-0" && near(e["align"][0], kLabelC10.x) && near(e["align"][1], kLabelC10.y);
+    }
+  }
+  EXPECT_EQ(circles, 16);
+  EXPECT_EQ(slotsFound, 2);
+  EXPECT_TRUE(labelU1);
+  EXPECT_TRUE(labelC10);
+
+  // Every DXF audits clean, every SVG renders, each PDF has its page count, every STL is closed.
+  for (const auto& f : files) {
+    const auto path = dir / f;
+    if (path.extension() == ".dxf") {
+      EXPECT_EQ(testing::readDxf(path)["audit_errors"], 0) << f;
+    } else if (path.extension() == ".svg") {
+      const auto run = testing::runTool("rsvg-convert --format=png --output " + path.string() + ".png " + path.string());
+      EXPECT_EQ(run.status, 0) << f << ": " << run.output;
+    } else if (path.extension() == ".pdf") {
+      const auto run = testing::runTool("pdfinfo " + path.string());
+      EXPECT_NE(run.output.find("Pages:           1"), std::string::npos) << f << ": " << run.output;
+    } else if (path.extension() == ".stl") {
+      const auto run = testing::runTool("admesh " + path.string());
+      EXPECT_EQ(run.status, 0) << run.output;
+      std::smatch m;
+      ASSERT_TRUE(std::regex_search(run.output, m, std::regex(R"(Facets with 1 disconnected edge\s*:\s*([0-9]+))"))) << run.output;
+      EXPECT_EQ(m[1], "0") << f;
+      ASSERT_TRUE(std::regex_search(run.output, m, std::regex(R"(Backwards edges\s*:\s*([0-9]+))"))) << run.output;
+      EXPECT_EQ(m[1], "0") << f;
+    }
+  }
+}
+
+TEST(Fabricate, LamellasLongerThanTheStockAreSplitClearOfTheirHoles) {
+  const EggGrid grid = handGrid();
+  auto options = handOptions();
+  options.stock_length_mm = 150.0;
+  const auto r = fabricate({{0, &grid, std::nullopt}}, options);
+  EXPECT_EQ(r.splices, 6);  // every 210 mm strip once
+  for (const auto& plan : r.lamellae) {
+    ASSERT_EQ(plan.segments.size(), 2u) << plan.id;
+    for (const auto& seg : plan.segments) EXPECT_LE(seg.lengthMm(), 150.0);
+    for (const auto& f : plan.features) {
+      EXPECT_TRUE(f.maxXMm(3.0) + 10.0 <= plan.splicesMm[0] || f.minXMm(3.0) - 10.0 >= plan.splicesMm[0]) << plan.id;
+    }
+  }
+  const std::string bom = bomCsv(r);
+  EXPECT_NE(bom.find("\nsplice,,6,"), std::string::npos) << bom;
+  EXPECT_NE(bom.find("\nsplice_joint,P0-U1 S1,1,150.00,10.00,1.00,"), std::string::npos) << bom;
+}
+
+TEST(Fabricate, MultiPageSheetsPdf) {
+  // A tighter sheet: 2 strips per sheet (one row of 210 + 0.5 + 210 on 440 - 10 usable... per row).
+  const EggGrid grid = handGrid();
+  auto options = handOptions();
+  options.sheet_mm = {440.0, 21.0};  // usable 430 x 11: one row of two strips
+  const auto r = fabricate({{0, &grid, std::nullopt}}, options);
+  EXPECT_EQ(r.lamellaNesting.sheets, 3);
+  const auto dir = testing::scratchDir("fabricate_pages");
+  const auto files = writeFabricationFiles(r, dir, {true, false, false});
+  EXPECT_EQ(files.size(), 3u * 2u + 1u + 1u);  // svg + dxf per sheet, the pdf, bom.csv
+  const auto run = testing::runTool("pdfinfo " + (dir / "cut/sheets.pdf").string());
+  EXPECT_NE(run.output.find("Pages:           3"), std::string::npos) << run.output;
+}
+
+}  // namespace
+}  // namespace egg::fabrication
+
+namespace egg::fabrication {
+namespace {
+
+// A solved patch end to end: the 6 m bump of samples/scenes/bump_patch.json (poplar plywood lamellas
+// 100 x 10 mm). Its counts must match its grid; the numbers are printed for the record.
+TEST(Fabricate, SolvedBumpPatchEndToEnd) {
+  const TriMesh mesh =
+      samples::generateSample("bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+  EggOptions egg;
+  egg.maps.resolution = 41;
+  egg.members.lamellaWidthM = 0.1;
+  egg.members.spacingFactor = 6.0;
+  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
+  const EggResult solved = solveEgg(mesh, corners, egg);
+  const EggGrid& grid = solved.grid;
+  FabricationOptions options;
+  options.lamella_width_mm = 100.0;
+  options.lamella_thickness_mm = 10.0;
+  options.sheet_mm = {2500.0, 1250.0};
+  const auto r = fabricate({{0, &grid, std::nullopt}}, options);
+  EXPECT_EQ(r.lamellae.size(), grid.u.size() + grid.v.size());
+  EXPECT_EQ(r.connections, static_cast<int>(grid.connections.size()));
+  EXPECT_EQ(r.counts.holes + r.counts.slots, 2 * static_cast<int>(grid.connections.size()));
+  // Slots: exactly the inner members' notches of at least min_notch_mm (countNotches of the grid).
+  EXPECT_EQ(r.counts.slots + r.counts.droppedBoundary, countNotches(grid, options.min_notch_mm / 1000.0));
+  EXPECT_GT(r.counts.slots, 0);
+  EXPECT_EQ(r.supports.size(), grid.anchors.size());
+  EXPECT_GT(r.maxStressRatio, 0.0);
+  const auto dir = testing::scratchDir("fabricate_bump");
+  const auto files = writeFabricationFiles(r, dir);
+  for (const auto& f : files) {
+    if (f.size() > 4 && f.substr(f.size() - 4) == ".dxf") {
+      EXPECT_EQ(testing::readDxf(dir / f)["audit_errors"], 0) << f;
+    }
+  }
+  std::cout << "bump patch: " << fabricationReport(r, files).dump() << "\n";
+}
+
+}  // namespace
+}  // namespace egg::fabrication

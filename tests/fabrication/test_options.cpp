@@ -1,0 +1,63 @@
+#include "fabrication/options.hpp"
+
+#include "core/errors.hpp"
+
+#include <gtest/gtest.h>
+
+namespace egg::fabrication {
+namespace {
+
+void expectFieldError(const FabricationOptions& o, const std::string& field) {
+  try {
+    o.validate();
+    FAIL() << "expected InvalidInput naming " << field;
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(field + ":", 0), 0u) << e.what();
+  }
+}
+
+TEST(FabricationOptions, DefaultsAreValid) {
+  EXPECT_NO_THROW(FabricationOptions{}.validate());
+  FabricationOptions o;
+  EXPECT_DOUBLE_EQ(o.endOverhangMm(), 125.0);      // half the 250 mm width
+  EXPECT_DOUBLE_EQ(o.spliceClearanceMm(), 250.0);  // the width
+  EXPECT_DOUBLE_EQ(o.labelHeightMm(), 30.0);       // 0.35 w = 87.5, clamped
+  o.lamella_width_mm = 10.0;
+  EXPECT_DOUBLE_EQ(o.labelHeightMm(), 3.5);
+}
+
+TEST(FabricationOptions, EachBadFieldIsNamed) {
+  FabricationOptions o;
+  o.sheet_mm = {0.0, 100.0};
+  expectFieldError(o, "fabrication.sheet_mm");
+  o = {};
+  o.kerf_mm = -1.0;
+  expectFieldError(o, "fabrication.kerf_mm");
+  o = {};
+  o.margin_mm = 700.0;
+  expectFieldError(o, "fabrication.margin_mm");
+  o = {};
+  o.bolt_diameter_mm = 300.0;
+  expectFieldError(o, "fabrication.bolt_diameter_mm");
+  o = {};
+  o.min_notch_mm = -0.1;
+  expectFieldError(o, "fabrication.min_notch_mm");
+  o = {};
+  o.stock_length_mm = 0.0;
+  expectFieldError(o, "fabrication.stock_length_mm");
+  o = {};
+  o.end_overhang_mm = 1.0;
+  expectFieldError(o, "fabrication.end_overhang_mm");
+  o = {};
+  o.material = "balsa";
+  expectFieldError(o, "lamella.material");
+  o = {};
+  o.support_block_mm = 10.0;
+  expectFieldError(o, "fabrication.support_block_mm");
+  o = {};
+  o.sticker_sheet_mm = std::array<double, 2>{100.0, -1.0};
+  expectFieldError(o, "fabrication.sticker_sheet_mm");
+}
+
+}  // namespace
+}  // namespace egg::fabrication

@@ -1,0 +1,138 @@
+#include "fabrication/supports.hpp"
+
+#include "core/errors.hpp"
+#include "tests/support/fabrication_hand_grid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <regex>
+
+namespace egg::fabrication {
+namespace {
+
+// Every directed edge once, its reverse once: a closed, consistently oriented 2-manifold.
+void expectClosedManifold(const TriangleMesh& mesh) {
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) ++edges[{t[k], t[(k + 1) % 3]}];
+  }
+  for (const auto& [e, count] : edges) {
+    EXPECT_EQ(count, 1) << e.first << "->" << e.second;
+    EXPECT_EQ(edges.count({e.second, e.first}), 1u) << "open edge " << e.first << "-" << e.second;
+  }
+}
+
+double signedVolume(const TriangleMesh& mesh) {
+  double v = 0.0;
+  for (const auto& t : mesh.triangles) {
+    v += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]])) / 6.0;
+  }
+  return v;
+}
+
+// admesh's report of a binary STL: fails the test unless 0 open edges and nothing to fix.
+void expectAdmeshClosed(const std::filesystem::path& stl) {
+  ASSERT_TRUE(testing::haveTool("admesh")) << "admesh missing: run scripts/install-deps.sh";
+  const auto run = testing::runTool("admesh " + stl.string());
+  ASSERT_EQ(run.status, 0) << run.output;
+  auto field = [&](const std::string& name) {
+    std::smatch m;
+    const std::regex re(name + R"(\s*:\s*(-?[0-9]+))");
+    if (!std::regex_search(run.output, m, re)) {
+      ADD_FAILURE() << "admesh printed no \"" << name << "\":\n" << run.output;
+      return -1;
+    }
+    return std::stoi(m[1]);
+  };
+  EXPECT_EQ(field("Number of parts"), 1) << run.output;
+  EXPECT_EQ(field("Facets with 1 disconnected edge"), 0) << run.output;
+  EXPECT_EQ(field("Facets with 2 disconnected edges"), 0) << run.output;
+  EXPECT_EQ(field("Facets with 3 disconnected edges"), 0) << run.output;
+  EXPECT_EQ(field("Edges fixed"), 0) << run.output;
+  EXPECT_EQ(field("Facets reversed"), 0) << run.output;
+  EXPECT_EQ(field("Backwards edges"), 0) << run.output;
+  EXPECT_EQ(field("Normals fixed"), 0) << run.output;  // no flipped facets
+  EXPECT_EQ(field("Degenerate facets"), 0) << run.output;
+}
+
+TEST(Supports, AtTheAnchorsWithTheTangentPlane) {
+  const EggGrid grid = testing::handGrid();
+  double ground = 0.0;
+  const auto supports = planSupports({{0, &grid, std::nullopt}}, testing::handOptions(), &ground);
+  ASSERT_EQ(supports.size(), 4u);  // the four corner anchors
+  EXPECT_NEAR(ground, 0.4, 1e-12);  // 0.1 m below the lowest support
+  EXPECT_EQ(supports[0].id, "S001");
+  EXPECT_EQ(supports[3].connectionId, "P0-C2-2");
+  EXPECT_EQ(supports[1].reason, "anchor: corner");
+  for (const auto& s : supports) {
+    EXPECT_NEAR(s.heightM, 0.1, 1e-12);
+    EXPECT_NEAR(s.inclinationDeg, 0.0, 1e-12);
+  }
+  auto options = testing::handOptions();
+  options.supports_at_boundary_connections = true;
+  options.ground_height_m = 0.0;
+  const auto all = planSupports({{0, &grid, std::nullopt}}, options);
+  EXPECT_EQ(all.size(), 8u);  // every connection but the inner one
+  EXPECT_NEAR(all[0].heightM, 0.5, 1e-12);
+}
+
+TEST(Supports, InclinedBlockIsAClosedSolidWithItsContactFaceThroughThePoint) {
+  Support s;
+  s.id = "S001";
+  s.position = {1.0, 2.0, 0.6};
+  s.normal = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
+  s.heightM = 0.25;
+  const TriangleMesh mesh = supportSolid(s, 40.0, 6.0, 18.0);
+  expectClosedManifold(mesh);
+  const double hole = M_PI * 9.0 * 18.0;
+  EXPECT_LT(signedVolume(mesh), 40.0 * 40.0 * 250.0 - 0.8 * hole);  // the plane through the centre at 250 mm
+  EXPECT_GT(signedVolume(mesh), 40.0 * 40.0 * 250.0 - 1.05 * hole);
+  // Every top vertex on the contact plane through (0, 0, 250).
+  for (const auto& v : mesh.vertices) {
+    const double off = s.normal.dot(v - Eigen::Vector3d(0, 0, 250.0));
+    EXPECT_TRUE(std::abs(off) < 1e-9 || off < -1.0) << v.transpose();  // on the plane or below it
+  }
+  const auto dir = testing::scratchDir("supports");
+  std::ofstream(dir / "inclined.stl", std::ios::binary) << toBinaryStl(mesh, "test");
+  expectAdmeshClosed(dir / "inclined.stl");
+}
+
+TEST(Supports, FlatLowSupportDropsItsBottomAndStaysClosed) {
+  Support s;
+  s.normal = Eigen::Vector3d(0.0, 0.8, 0.6);  // 53 deg
+  s.heightM = 0.004;                           // the plane would cut the ground inside the footprint
+  double drop = 0.0;
+  const TriangleMesh mesh = supportSolid(s, 30.0, 4.0, 12.0, &drop);
+  EXPECT_GT(drop, 0.0);
+  expectClosedManifold(mesh);
+  EXPECT_GT(signedVolume(mesh), 0.0);
+  const auto dir = testing::scratchDir("supports_low");
+  std::ofstream(dir / "low.stl", std::ios::binary) << toBinaryStl(mesh, "test");
+  expectAdmeshClosed(dir / "low.stl");
+}
+
+TEST(Supports, TooSteepOrBelowGroundIsAnError) {
+  EggGrid grid = testing::handGrid();
+  grid.connections[0].normal = Eigen::Vector3d(1.0, 0.0, 0.05).normalized();
+  EXPECT_THROW(planSupports({{0, &grid, std::nullopt}}, testing::handOptions()), InvalidInput);
+  auto options = testing::handOptions();
+  options.ground_height_m = 0.6;
+  const EggGrid flat = testing::handGrid();
+  EXPECT_THROW(planSupports({{0, &flat, std::nullopt}}, options), InvalidInput);
+}
+
+TEST(Supports, CsvHasOneRowPerSupport) {
+  const EggGrid grid = testing::handGrid();
+  const auto csv = supportsCsv(planSupports({{0, &grid, std::nullopt}}, testing::handOptions()));
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
+  EXPECT_EQ(csv.rfind("id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m\n", 0), 0u);
+  EXPECT_NE(csv.find("S001,P0-C0-0,anchor: corner,0.000000,0.000000,0.500000,0.000000,0.000000,1.000000,0.000,0.000,0.100000"),
+            std::string::npos)
+      << csv;
+}
+
+}  // namespace
+}  // namespace egg::fabrication

@@ -1,0 +1,210 @@
+#pragma once
+// Shared by the fabrication tests: a hand-checkable 3 x 3 grid and runners for the external
+// readers (ezdxf, rsvg-convert, pdfinfo, admesh). A missing tool fails the test: install-deps.sh
+// installs them.
+#include "core/egg/grid.hpp"
+#include "fabrication/options.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace egg::fabrication::testing {
+
+// Three u members (rows, y = 0, 0.1, 0.2 m) and three v members (columns, x = 0, 0.1, 0.2 m) of a
+// flat 0.2 m square, lifted to z = 0.5 m. Connection (i, j) sits at (0.1 j, 0.1 i); s_bar along u
+// member i is 0.1 j, along v member j 0.1 i. Notches: (1,1) u +5 mm, v -3 mm (two slots);
+// (1,0) u 0.4 mm (below min_notch: a plain hole); (0,1) u 2 mm on the boundary member u0 (dropped).
+// Anchors at the four corners. `shiftXM` moves the spatial grid along x (a neighbouring patch).
+inline EggGrid handGrid(double shiftXM = 0.0) {
+  EggGrid g;
+  for (int k = 0; k < 3; ++k) {
+    GridMember u;
+    u.family = Family::U;
+    u.index = k;
+    u.boundary = k != 1;
+    u.planarStart = {0.0, 0.1 * k};
+    u.planarEnd = {0.2, 0.1 * k};
+    u.planarLength = u.spatialLength = 0.2;
+    for (int s = 0; s <= 4; ++s) {
+      u.spatial.emplace_back(shiftXM + 0.05 * s, 0.1 * k, 0.5);
+      u.normals.emplace_back(0.0, 0.0, 1.0);
+    }
+    GridMember v = u;
+    v.family = Family::V;
+    v.planarStart = {0.1 * k, 0.0};
+    v.planarEnd = {0.1 * k, 0.2};
+    v.spatial.clear();
+    for (int s = 0; s <= 4; ++s) v.spatial.emplace_back(shiftXM + 0.1 * k, 0.05 * s, 0.5);
+    g.u.push_back(u);
+    g.v.push_back(v);
+  }
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      GridConnection c;
+      c.memberU = i;
+      c.memberV = j;
+      c.planar = {0.1 * j, 0.1 * i};
+      c.spatial = {shiftXM + 0.1 * j, 0.1 * i, 0.5};
+      c.sU = c.sBarU = 0.1 * j;
+      c.sV = c.sBarV = 0.1 * i;
+      c.onBoundary = i != 1 || j != 1;
+      g.connections.push_back(c);
+    }
+  }
+  auto at = [&](int i, int j) -> GridConnection& { return g.connections[i * 3 + j]; };
+  at(1, 1).notchU = 0.005;
+  at(1, 1).sU = 0.105;
+  at(1, 1).notchV = -0.003;
+  at(1, 1).sV = 0.097;
+  at(1, 0).notchU = 0.0004;
+  at(0, 1).notchU = 0.002;
+  for (int k : {0, 2, 6, 8}) g.anchors.push_back({k, "corner"});
+  g.maxNotch = 0.005;
+  return g;
+}
+
+// The options the hand-checked numbers below assume (millimetres).
+inline FabricationOptions handOptions() {
+  FabricationOptions o;
+  o.lamella_width_mm = 10.0;
+  o.lamella_thickness_mm = 1.0;
+  o.material = "limewood";
+  o.sheet_mm = {500.0, 300.0};
+  o.kerf_mm = 0.5;
+  o.margin_mm = 5.0;
+  o.bolt_diameter_mm = 3.0;
+  o.min_notch_mm = 1.0;
+  o.stock_length_mm = 1000.0;
+  o.end_overhang_mm = 5.0;
+  o.label_height_mm = 3.0;
+  o.sticker_sheet_mm = std::array<double, 2>{200.0, 100.0};
+  o.support_block_mm = 30.0;
+  return o;
+}
+
+struct ToolRun {
+  int status = -1;
+  std::string output;
+};
+
+// Runs a shell command, capturing stdout and stderr.
+inline ToolRun runTool(const std::string& command) {
+  ToolRun run;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buffer{};
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+inline bool haveTool(const std::string& name) { return runTool("command -v " + name).status == 0; }
+
+// A fresh, empty folder for one test (the process id keeps parallel runs of other checkouts apart).
+inline std::filesystem::path scratchDir(const std::string& name) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("egg_fabrication_test_" + name + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// Reads a DXF with ezdxf: {"audit_errors": n, "insunits": u, "version": "AC1015", "layers": [...],
+// "entities": [{"type", "layer", ...}]} (circles: centre, radius; lwpolylines: points [x, y, bulge],
+// closed; text: text, insert, align, halign, valign, height).
+inline nlohmann::json readDxf(const std::filesystem::path& path) {
+  const std::string script = R"PY(
+import json, sys, ezdxf
+doc = ezdxf.readfile(sys.argv[1])
+auditor = doc.audit()
+out = {"audit_errors": len(auditor.errors), "insunits": doc.header.get("$INSUNITS", 0),
+       "version": doc.dxfversion, "layers": [l.dxf.name for l in doc.layers], "entities": []}
+for e in doc.modelspace():
+    d = {"type": e.dxftype(), "layer": e.dxf.layer}
+    if e.dxftype() == "CIRCLE":
+        d["centre"] = [e.dxf.center.x, e.dxf.center.y]; d["radius"] = e.dxf.radius
+    elif e.dxftype() == "LWPOLYLINE":
+        d["points"] = [[p[0], p[1], p[4]] for p in e.get_points()]; d["closed"] = bool(e.closed)
+    elif e.dxftype() == "TEXT":
+        d["text"] = e.dxf.text; d["insert"] = [e.dxf.insert.x, e.dxf.insert.y]
+        d["align"] = [e.dxf.align_point.x, e.dxf.align_point.y] if e.dxf.hasattr("align_point") else None
+        d["halign"] = e.dxf.halign; d["valign"] = e.dxf.valign; d["height"] = e.dxf.height
+    out["entities"].append(d)
+print(json.dumps(out))
+)PY";
+  const auto scriptPath = path.parent_path() / "read_dxf.py";
+  FILE* f = fopen(scriptPath.c_str(), "w");
+  fputs(script.c_str(), f);
+  fclose(f);
+  const ToolRun run = runTool("/usr/bin/python3 " + scriptPath.string() + " " + path.string());
+  if (run.status != 0) {
+    ADD_FAILURE() << "ezdxf could not read " << path << ": " << run.output;
+    return nlohmann::json::object();
+  }
+  return nlohmann::json::parse(run.output.substr(run.output.find('{')));
+}
+
+// Reads back what our SVG writer writes, in sheet millimetres with y up again (y = height - y_svg):
+// {"height": h, "circles": [[x, y, r]], "slots": [[x0, y0, ...corner points]], "texts": [[x, y, size, text]],
+// "polylines": [[x0, y0, x1, y1, ...]]}.
+inline nlohmann::json readSvg(const std::string& svg) {
+  nlohmann::json out{{"circles", nlohmann::json::array()}, {"slots", nlohmann::json::array()},
+                     {"texts", nlohmann::json::array()}, {"polylines", nlohmann::json::array()}};
+  std::smatch m;
+  const std::regex viewBox(R"re(viewBox="0 0 ([-0-9.]+) ([-0-9.]+)")re");
+  if (!std::regex_search(svg, m, viewBox)) return out;
+  const double h = std::stod(m[2]);
+  out["height"] = h;
+  const std::regex circle(R"re(<circle cx="([-0-9.]+)" cy="([-0-9.]+)" r="([-0-9.]+)")re");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circle); it != std::sregex_iterator(); ++it) {
+    out["circles"].push_back({std::stod((*it)[1]), h - std::stod((*it)[2]), std::stod((*it)[3])});
+  }
+  const std::regex text(R"re(<text x="([-0-9.]+)" y="([-0-9.]+)" font-family="[^"]*" font-size="([-0-9.]+)"[^>]*>([^<]*)</text>)re");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), text); it != std::sregex_iterator(); ++it) {
+    out["texts"].push_back({std::stod((*it)[1]), h - std::stod((*it)[2]), std::stod((*it)[3]), (*it)[4].str()});
+  }
+  const std::regex path(R"re(<path d="([^"]*)")re");
+  const std::regex number(R"re(-?[0-9]+\.[0-9]+)re");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), path); it != std::sregex_iterator(); ++it) {
+    // M x y L x y A r r 0 0 0 x y L x y A r r 0 0 0 x y Z: keep the four corners.
+    std::vector<double> v;
+    const std::string d = (*it)[1];
+    for (auto n = std::sregex_iterator(d.begin(), d.end(), number); n != std::sregex_iterator(); ++n) v.push_back(std::stod((*n)[0]));
+    if (v.size() < 12) continue;
+    out["slots"].push_back({v[0], h - v[1], v[2], h - v[3], v[6], h - v[7], v[8], h - v[9]});
+  }
+  const std::regex poly(R"re(<(polygon|polyline) points="([^"]*)")re");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), poly); it != std::sregex_iterator(); ++it) {
+    std::vector<double> v;
+    const std::string d = (*it)[2];
+    int k = 0;
+    for (auto n = std::sregex_iterator(d.begin(), d.end(), number); n != std::sregex_iterator(); ++n, ++k) {
+      const double x = std::stod((*n)[0]);
+      v.push_back(k % 2 ? h - x : x);
+    }
+    out["polylines"].push_back(v);
+  }
+  return out;
+}
+
+inline std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace egg::fabrication::testing

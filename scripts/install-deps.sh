@@ -10,12 +10,8 @@ PACKAGES=(
   libnlopt-cxx-dev libnlopt-dev libassimp-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev
-<<<<<<< HEAD
-  librsvg2-bin
-=======
   libcairo2-dev libdxflib-dev
   python3-ezdxf librsvg2-bin poppler-utils admesh
->>>>>>> fab
 )
 
 missing=()

@@ -1,5 +1,6 @@
 #include "apps/commands/pipeline.hpp"
 
+#include "apps/commands/fabrication_stage.hpp"
 #include "apps/commands/patch_stage.hpp"
 #include "apps/commands/patching_stage.hpp"
 #include "apps/commands/surface_loading.hpp"
@@ -39,9 +40,6 @@ void checkOutputsCanBeProduced(const Scene& scene) {
     if (scene.wants(output)) {
       if (!scene.fabrication.enabled)
         throw InvalidInput(fmt::format("{}: outputs: \"{}\" needs the fabrication stage, but fabrication.enabled is false", origin, output));
-      throw InvalidInput(fmt::format("{}: outputs: \"{}\" is not produced yet: the fabrication stage (cut files, stickers, supports; "
-                                     "issue 16) is not built. Leave it out of \"outputs\" for now",
-                                     origin, output));
     }
 }
 
@@ -181,7 +179,34 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
       result.failures.push_back("simulation: " + report.section("simulation").value("reason", std::string("did not converge")));
     }
   }
-  report.stageSkipped("fabrication", scene.fabrication.enabled ? nothing : "the scene disables it (fabrication.enabled = false)");
+  // Fabrication (Section 3.5): cut files, stickers, supports and the BOM of the traced grids, with
+  // stresses from the deployed centrelines where the simulation ran.
+  if (!scene.fabrication.enabled) {
+    report.stageSkipped("fabrication", "the scene disables it (fabrication.enabled = false)");
+  } else if (!needs.fabrication || !fabricationWanted(scene)) {
+    report.stageSkipped("fabrication", nothing);
+  } else if (solved == 0) {
+    report.stageSkipped("fabrication", "no solved patch grid to cut");
+  } else {
+    progress("fabrication", 0.8);
+    const auto fabStart = Clock::now();
+    std::vector<fabrication::FabricationPatch> grids;
+    for (const auto& p : patches) {
+      if (!p.egg) continue;
+      fabrication::FabricationPatch entry{p.id, &p.egg->grid, std::nullopt};
+      if (p.simulation) entry.deployedCentrelines = p.simulation->deployed.centrelines;
+      grids.push_back(std::move(entry));
+    }
+    FabricationStageResult fab = [&] {
+      try {
+        return runFabricationStage(scene, grids, out.staging());
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(scene.path.string() + ": " + e.what());
+      }
+    }();
+    report.stageRan("fabrication", secondsSince(fabStart));
+    report.section("fabrication") = fab.report;
+  }
 
   progress("writing", 0.9);
   if (scene.wants("previews") || scene.wants("report"))

@@ -17,7 +17,8 @@ namespace egg::app {
 //   report    -> patching, design, grid, simulation (if enabled)
 //   previews  -> patching, design, grid, simulation (if enabled)
 //   plan      -> patching, design (patches.json, plan.svg)
-//   cut_files, stickers, supports -> patching, design, grid, fabrication
+//   cut_files, stickers, supports -> patching, design, grid, fabrication (and the simulation, if
+//   enabled, when the report or previews ask for it: stresses then come from the deployed shape)
 struct StageNeeds {
   bool surface = false, patching = false, grid = false, simulation = false, fabrication = false;
 };

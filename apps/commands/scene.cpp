@@ -383,9 +383,6 @@ json sceneToJson(const Scene& scene) {
             {"min_planar_angle_rad", scene.grid.min_planar_angle_rad}};
   grid["members_per_family"] = scene.grid.members_per_family ? json(*scene.grid.members_per_family) : json("auto");
   grid["alpha_bar"] = scene.grid.alpha_bar == "value" ? json(scene.grid.alpha_bar_rad) : json(scene.grid.alpha_bar);
-<<<<<<< HEAD
-  json echo = {
-=======
   const FabricationSpec& f = scene.fabrication;
   json fabrication{{"enabled", f.enabled},
                    {"sheet_mm", f.sheet_mm},
@@ -403,8 +400,7 @@ json sceneToJson(const Scene& scene) {
   if (f.ground_height_m) fabrication["ground_height_m"] = *f.ground_height_m;
   if (f.support_block_mm) fabrication["support_block_mm"] = *f.support_block_mm;
   if (f.sticker_sheet_mm) fabrication["sticker_sheet_mm"] = *f.sticker_sheet_mm;
-  return {
->>>>>>> fab
+  json echo = {
       {"name", scene.name},
       {"path", scene.path.string()},
       {"surface", surface},

@@ -20,6 +20,36 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
+// The boundary lamellas two patches share (Section 3.5.3: "adjacent grids can be simply
+// connected along their common lamellae"): a side shared whole by both patches is one lamella that
+// carries the holes of both grids. Side k of a patch is its boundary member: side 0 = u member 0
+// (running c0 -> c1, with the side), side 2 = the last u member (c3 -> c2, against it), side 3 = v
+// member 0 (c0 -> c3, against it), side 1 = the last v member (c1 -> c2, with it).
+std::vector<fabrication::SharedBoundary> sharedLamellae(const PatchingRun& run, const std::vector<SolvedPatch>& patches) {
+  std::vector<fabrication::SharedBoundary> out;
+  const auto member = [&](const patching::BoundaryUse& use, Family& family, int& index, bool& againstSegment) {
+    const EggGrid& grid = patches[use.patch].egg->grid;
+    family = use.side % 2 == 0 ? Family::U : Family::V;
+    const int count = static_cast<int>(family == Family::U ? grid.u.size() : grid.v.size());
+    index = (use.side == 0 || use.side == 3) ? 0 : count - 1;
+    const bool againstSide = use.side == 2 || use.side == 3;
+    againstSegment = againstSide != use.reversed;
+  };
+  for (const auto& b : run.graph.boundaries) {
+    if (b.kind != "shared" || b.uses.size() != 2) continue;
+    const auto &a = b.uses[0], &c = b.uses[1];
+    if (!patches[a.patch].egg || !patches[c.patch].egg) continue;
+    fabrication::SharedBoundary shared;
+    bool againstA = false, againstB = false;
+    shared.patchA = a.patch, shared.patchB = c.patch;
+    member(a, shared.familyA, shared.indexA, againstA);
+    member(c, shared.familyB, shared.indexB, againstB);
+    shared.reversed = againstA != againstB;
+    out.push_back(shared);
+  }
+  return out;
+}
+
 }  // namespace
 
 StageNeeds stageNeeds(const Scene& scene) {
@@ -199,7 +229,7 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     }
     FabricationStageResult fab = [&] {
       try {
-        return runFabricationStage(scene, grids, out.staging());
+        return runFabricationStage(scene, grids, out.staging(), sharedLamellae(patching, patches));
       } catch (const InvalidInput& e) {
         throw InvalidInput(scene.path.string() + ": " + e.what());
       }

@@ -139,7 +139,7 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   const fs::path out = scratch("egg_pipeline_2x2");
   PipelineOptions options;
   options.out_dir = out;
-  const PipelineResult result = runPipeline(twoByTwoScene(R"(["report", "plan"])"), options);
+  const PipelineResult result = runPipeline(twoByTwoScene(R"(["report", "plan", "cut_files"])"), options);
   const auto& report = result.report;
   EXPECT_TRUE(result.failures.empty()) << nlohmann::json(result.failures).dump(1);
   EXPECT_EQ(report["patching"]["workflow"], "given");
@@ -161,8 +161,13 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   EXPECT_TRUE(report["stages"]["simulation"]["ran"].get<bool>());
   EXPECT_EQ(report["simulation"]["patches"].size(), 4u);
   EXPECT_TRUE(fs::exists(out / "patches.json"));
+  EXPECT_TRUE(fs::exists(out / "plan.svg"));
   EXPECT_TRUE(fs::exists(out / "report.json"));
+  EXPECT_TRUE(fs::exists(out / "cut" / "sheets.pdf"));
   EXPECT_FALSE(fs::exists(out / "patch_000" / "grid.obj"));  // previews were not asked for
+  // Fabrication: 4 patches x 8 members, the 4 shared sides cut once each (one lamella carrying the
+  // holes of both patches).
+  EXPECT_EQ(report["fabrication"]["lamellae"], 4 * 8 - 4);
   fs::remove_all(out);
 }
 

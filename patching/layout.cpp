@@ -281,8 +281,20 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
     for (int v : layout.curves[c].bendVertices) {
       const auto vh = TriMesh::VertexHandle(v);
       if (!surface.is_boundary(vh)) continue;
-      if (vertexAngleSum(surface, vh) > M_PI + options.patch.straightBoundaryTolerance)
-        problem(c, fmt::format("the side from corner {} to corner {} wraps around the surface boundary or a hole at {}: "
+      if (vertexAngleSum(surface, vh) <= M_PI + options.patch.straightBoundaryTolerance) continue;
+      // Running along a boundary that is straight in space (the Great Court's rectangle at its
+      // eave height) is no wrap: the side is that straight line, whatever the discrete angle sums
+      // of the vertices on it. It wraps where it turns there.
+      const auto& pos = layout.curves[c].positions;
+      const Eigen::Vector3d at = toEigen(surface.point(vh));
+      size_t i = 0;
+      for (size_t k = 1; k < pos.size(); ++k)
+        if ((pos[k] - at).squaredNorm() < (pos[i] - at).squaredNorm()) i = k;
+      if (i > 0 && i + 1 < pos.size()) {
+        const Eigen::Vector3d a = (pos[i] - pos[i - 1]).normalized(), b = (pos[i + 1] - pos[i]).normalized();
+        if (std::atan2(a.cross(b).norm(), a.dot(b)) <= options.patch.straightBoundaryTolerance) continue;
+      }
+      problem(c, fmt::format("the side from corner {} to corner {} wraps around the surface boundary or a hole at {}: "
                                "it is not a geodesic there",
                                layout.curves[c].from, layout.curves[c].to, format(toEigen(surface.point(vh)))));
     }

@@ -104,6 +104,34 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
   });
 }
 
+int supportDesignBoundary(std::vector<SolvedPatch>& patches, const patching::PatchGraph& graph) {
+  int added = 0;
+  for (const auto& b : graph.boundaries) {
+    if (b.kind != "free") continue;
+    const auto& use = b.uses.front();
+    auto& patch = patches[use.patch];
+    if (!patch.egg) continue;
+    EggGrid& grid = patch.egg->grid;
+    const int nu = static_cast<int>(grid.u.size()), nv = static_cast<int>(grid.v.size());
+    // Side 0 is u member 0, side 2 the last u member, side 3 v member 0, side 1 the last v member.
+    std::vector<int> connections;
+    if (use.side == 0 || use.side == 2) {
+      const int i = use.side == 0 ? 0 : nu - 1;
+      for (int j = 0; j < nv; ++j) connections.push_back(i * nv + j);
+    } else {
+      const int j = use.side == 3 ? 0 : nv - 1;
+      for (int i = 0; i < nu; ++i) connections.push_back(i * nv + j);
+    }
+    for (int c : connections) {
+      const bool known = std::any_of(grid.anchors.begin(), grid.anchors.end(), [&](const GridAnchor& a) { return a.connection == c; });
+      if (known) continue;
+      grid.anchors.push_back({c, "design boundary support"});
+      ++added;
+    }
+  }
+  return added;
+}
+
 json patchEntry(const SolvedPatch& patch) {
   json corners = json::array();
   for (const auto& c : patch.corners) corners.push_back({c.x(), c.y(), c.z()});

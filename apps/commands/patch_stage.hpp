@@ -30,6 +30,14 @@ struct SolvedPatch {
 // depend on the thread count). A patch whose grid cannot be traced keeps its reason.
 std::vector<SolvedPatch> tracePatches(PatchingRun& run, const Scene& scene);
 
+// Supports along the design boundary (Section 3.5.3: "supports at anchors and boundary
+// connections"): every connection on a side of the layout that no other patch shares (the
+// building's walls, the rim of a hole) becomes an anchor too. A multi-patch roof rests on its
+// whole boundary, not on a few anchors per patch: the Great Court's 80 m patches fall through
+// under their own weight when held at their corners and curvature extrema alone. Shared sides are
+// held by the neighbouring grid, not by supports. Returns the anchors added.
+int supportDesignBoundary(std::vector<SolvedPatch>& patches, const patching::PatchGraph& graph);
+
 // Simulates the grid of every solved patch (with notches and, when the scene wants notches,
 // also without, for RMS1/RMS2 of Section 2.6.2) against the design surface, patches in parallel
 // (each simulation then on one thread: results do not depend on the thread count).

@@ -15,6 +15,8 @@ namespace egg::app {
 
 using nlohmann::json;
 
+bool layoutIsGiven(const Scene& scene) { return !scene.patching.quads.empty() && !scene.patching.workflow_given; }
+
 EggOptions eggOptionsFromScene(const Scene& scene) {
   EggOptions options;
   options.uniqueness.etaMax = scene.patching.eta_max;
@@ -32,8 +34,8 @@ EggOptions eggOptionsFromScene(const Scene& scene) {
   options.members.count = scene.grid.members_per_family.value_or(0);
   options.members.lamellaWidthM = scene.lamella.width_m;
   options.alphaBar.minPlanarAngle = scene.grid.min_planar_angle_rad;
-  const bool workflow1 = scene.patching.workflow_given && scene.patching.workflow == 1;
-  options.uniqueness.smooth = scene.patching.smoothing.value_or(!workflow1);
+  // Splitting replaces smoothing in the workflows (Section 3.1: smoothing alters the design).
+  options.uniqueness.smooth = scene.patching.smoothing.value_or(layoutIsGiven(scene));
   return options;
 }
 
@@ -48,11 +50,12 @@ const char* familyName(Family f) { return f == Family::U ? "u" : "v"; }
 PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& surfaceSolver, const Scene& scene) {
   const std::string origin = scene.path.string();
   PatchingRun run;
-  const bool workflow1 = scene.patching.workflow_given && scene.patching.workflow == 1;
-  run.workflow = workflow1 ? "1" : "given";
+  const bool given = layoutIsGiven(scene);
+  const bool workflow2 = !given && scene.patching.workflow == 2;
+  run.workflow = given ? "given" : workflow2 ? "2" : "1";
   patching::LayoutDesignOptions options;
   options.design = eggOptionsFromScene(scene);
-  options.split = workflow1;
+  options.split = !given;
   options.maxSplits = scene.patching.max_splits;
   options.minSideM = scene.patching.min_patch_size_m;
   try {
@@ -61,11 +64,24 @@ PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& 
     throw InvalidInput(origin + ": " + e.what());
   }
   const auto started = std::chrono::steady_clock::now();
+  std::vector<Eigen::Vector3d> corners = scene.patching.corners;
+  std::vector<std::array<int, 4>> quads = scene.patching.quads;
+  if (workflow2) {
+    patching::Workflow2Options w2;
+    w2.maxPatchSizeM = scene.patching.max_patch_size_m;
+    try {
+      run.initial = patching::proposeLayout(surface, w2);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(origin + ": patching: " + e.what());
+    }
+    corners = run.initial->corners;
+    quads = run.initial->quads;
+  }
   patching::PatchLayout layout = [&] {
     try {
-      return patching::makeLayout(surface, surfaceSolver, scene.patching.corners, scene.patching.quads, options.layout);
+      return patching::makeLayout(surface, surfaceSolver, corners, quads, options.layout);
     } catch (const InvalidInput& e) {
-      throw InvalidInput(origin + ": patching.patches: " + e.what());
+      throw InvalidInput(origin + (workflow2 ? ": patching (Workflow 2's initial layout): " : ": patching.patches: ") + e.what());
     }
   }();
   run.layout = patching::designLayout(std::move(layout), surfaceSolver, options);
@@ -107,6 +123,14 @@ void addPatchingReport(const PatchingRun& run, json& report) {
       uses.push_back({{"patch", u.patch}, {"side", u.side}, {"from", u.from}, {"to", u.to}, {"reversed", u.reversed}});
     }
     boundaries.push_back({{"id", b.id}, {"kind", b.kind}, {"patches", patches}, {"length_m", b.lengthM}, {"on_patches", uses}});
+  }
+  if (run.initial) {
+    report["patching"]["workflow2"] = {{"blocks", run.initial->blocks},
+                                       {"holes", run.initial->holes},
+                                       {"initial_patches", run.initial->quads.size()},
+                                       {"peaks_snapped", run.initial->peaksSnapped},
+                                       {"notes", run.initial->notes},
+                                       {"seconds", run.initial->seconds}};
   }
   report["boundaries"] = boundaries;
   json tj = json::array();

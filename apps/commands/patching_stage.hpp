@@ -5,22 +5,28 @@
 #include "apps/commands/scene.hpp"
 #include "patching/patch_graph.hpp"
 #include "patching/workflow1.hpp"
+#include "patching/workflow2.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace egg::app {
 
 struct PatchingRun {
-  std::string workflow;              // "given" or "1"
+  std::string workflow;              // "given", "1" or "2"
+  std::optional<patching::Workflow2Layout> initial;  // Workflow 2's proposal, before Workflow 1's splits
   patching::LayoutDesign layout;     // final layout and each patch's design
   patching::PatchGraph graph;
   patching::Coverage coverage;
   double layoutSeconds = 0.0;        // corners, sides, splits, layout mesh (the patching stage's own time)
   double designSeconds = 0.0;        // the patch designs, trial and final (the design stage)
 };
+
+// A layout the scene gives without naming a workflow is taken as it is.
+bool layoutIsGiven(const Scene& scene);
 
 // The per-patch design options as the scene sets them (eta_max, slope bounds, maps, alpha_bar,
 // members, lamella width); smoothing unless Workflow 1 splits instead or the scene says otherwise.

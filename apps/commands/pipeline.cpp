@@ -73,15 +73,6 @@ void checkOutputsCanBeProduced(const Scene& scene) {
     }
 }
 
-namespace {
-// Workflow 2 (issue 14) is not built: without a layout the run cannot get past the surface.
-bool needsWorkflow2(const Scene& scene) {
-  const bool given = !scene.patching.quads.empty() && !scene.patching.workflow_given;
-  const bool workflow1 = scene.patching.workflow_given && scene.patching.workflow == 1;
-  return !given && !workflow1;
-}
-}  // namespace
-
 PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   const auto start = Clock::now();
   auto progress = [&](const std::string& stage, double fraction) {
@@ -120,23 +111,6 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   // A requested output that nothing can produce is bad input, found before any heavy work (and
   // the staging folder goes with the exception: nothing is written).
   checkOutputsCanBeProduced(scene);
-  if (needsWorkflow2(scene)) {
-    const std::string reason =
-        "Workflow 2, the automatic decomposition of the whole surface (Section 3.4.3, issue 14), is not built yet: give a layout "
-        "as patching.patches (taken as given), or with \"workflow\": 1 as the initial layout that Workflow 1 splits";
-    report.stageSkipped("patching", reason);
-    for (const char* stage : {"design", "propagation", "grid", "simulation", "fabrication"})
-      report.stageSkipped(stage, "needs the patching stage");
-    result.failures.push_back("patching: " + reason);
-    result.seconds = secondsSince(start);
-    result.report = report.finish(result.seconds);
-    result.report["failures"] = result.failures;
-    if (scene.wants("report")) writeFileAtomically(out.staging() / "report.json", result.report.dump(2) + "\n");
-    out.commit();
-    result.out_dir = std::filesystem::absolute(options.out_dir);
-    return result;
-  }
-
   // Patching and design (Sections 3.3, 3.4): the layout, split by Workflow 1 if asked, and every
   // patch's design on it, in parallel.
   progress("patching", 0.1);
@@ -200,6 +174,9 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   } else {
     progress("simulation", 0.6);
     const auto simStart = Clock::now();
+    const bool boundarySupports = scene.simulation.supports == "design_boundary" ||
+                                  (scene.simulation.supports == "auto" && patching.layout.patches.size() > 1);
+    if (boundarySupports) report.document()["supports"] = {{"design_boundary_anchors", supportDesignBoundary(patches, patching.graph)}};
     simulatePatches(patches, surface.mesh, scene);
     report.stageRan("simulation", secondsSince(simStart));
     report.section("simulation") = simulationSection(patches, scene);

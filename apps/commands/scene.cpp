@@ -275,6 +275,9 @@ void readSimulation(Section s, SimulationSpec& out) {
   out.gravity = s.boolean("gravity", out.gravity);
   out.friction_mu = s.number("friction_mu", out.friction_mu, 0.0, 2.0);
   out.notches = s.boolean("notches", out.notches);
+  out.supports = s.text("supports", out.supports);
+  if (out.supports != "auto" && out.supports != "anchors" && out.supports != "design_boundary")
+    s.fail("supports", "must be \"auto\", \"anchors\" or \"design_boundary\", got \"" + out.supports + "\"");
   s.rejectUnknownKeys();
 }
 
@@ -421,7 +424,8 @@ json sceneToJson(const Scene& scene) {
        {{"enabled", scene.simulation.enabled},
         {"gravity", scene.simulation.gravity},
         {"friction_mu", scene.simulation.friction_mu},
-        {"notches", scene.simulation.notches}}},
+        {"notches", scene.simulation.notches},
+        {"supports", scene.simulation.supports}}},
       {"fabrication", fabrication},
       {"outputs", scene.outputs},
   };

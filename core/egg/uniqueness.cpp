@@ -20,6 +20,7 @@ void UniquenessOptions::validate() const {
   if (maxPeaks < 1) throw InvalidInput("uniqueness max_peaks must be >= 1");
   if (sideSamples < 3) throw InvalidInput("uniqueness side_samples must be >= 3");
   if (maxSmoothingRounds < 0) throw InvalidInput("uniqueness max_smoothing_rounds must be >= 0");
+  if (!(boundaryMarginRelative >= 0.0 && boundaryMarginRelative < 0.5)) throw InvalidInput("uniqueness boundary_margin_relative must lie in [0, 0.5)");
 }
 
 namespace {
@@ -139,7 +140,16 @@ PatchPeaks findPatchPeaks(const Patch& patch, const UniquenessOptions& options) 
   PeakOptions peakOptions;
   peakOptions.include_boundary = false;  // a peak on the boundary is harmless (Section 2.3.3)
   auto peaks = findGaussianPeaks(patch.mesh, curvature.gaussian, curvature.mixed_area, peakOptions);
-  peaks.erase(std::remove_if(peaks.begin(), peaks.end(), [](const CurvaturePeak& p) { return p.gaussian_max_nearby <= 0; }),
+  const double longest = *std::max_element(patch.sideLengths.begin(), patch.sideLengths.end());
+  const double margin = std::max(options.boundaryMarginRelative * longest, 2.0 * meanEdgeLength(patch.mesh));
+  const auto nearBoundary = [&](const CurvaturePeak& p) {
+    for (const auto& side : patch.sides)
+      for (int v : side)
+        if ((toEigen(patch.mesh.point(TriMesh::VertexHandle(v))) - p.position).norm() < margin) return true;
+    return false;
+  };
+  peaks.erase(std::remove_if(peaks.begin(), peaks.end(),
+                             [&](const CurvaturePeak& p) { return p.gaussian_max_nearby <= 0 || nearBoundary(p); }),
               peaks.end());
   if (static_cast<int>(peaks.size()) > options.maxPeaks) peaks.resize(options.maxPeaks);
   for (const auto& p : peaks) result.gaussianMax = std::max(result.gaussianMax, p.gaussian_max_nearby);

@@ -21,6 +21,11 @@ namespace egg {
 struct UniquenessOptions {
   double etaMax = 1.0015;         // largest acceptable eta (thesis value)
   int maxPeaks = 4;               // strongest interior K peaks checked
+  // Peaks closer to the boundary than this fraction of the longest side (at least two mean edge
+  // lengths) count as on the boundary, which is harmless (Section 2.3.3): eta there measures the
+  // corner's shape, not a gap (a peak 1 % of the side from a corner gives eta ~ 1 + 0.3 % whatever
+  // its height), and the curvature fit is least reliable at corner vertices.
+  double boundaryMarginRelative = 0.03;
   int sideSamples = 64;           // boundary samples searched for p1 and q1 (solveEgg: the maps' resolution)
   bool smooth = true;             // smooth the patch (cotan Laplacian) until eta <= eta_max
   int maxSmoothingRounds = 30;    // smoothing rounds before giving up

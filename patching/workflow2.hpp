@@ -1,0 +1,48 @@
+#pragma once
+// Workflow 2, automatic (Algorithm 2, Section 3.4.3): an initial layout of the whole design
+// surface with no hand input, which Workflow 1 then splits where a patch is infeasible. The thesis
+// split its three architectural examples by hand ("some hours each") and names automating it
+// future work (3.7.2); this is a first automatic version for surfaces that are height fields over
+// a plane with at most one hole:
+//   - the footprint (the surface seen along its least-variance direction) gives blocks: one quad
+//     block between four outer corners (the boundary points extreme in the diagonal directions:
+//     the rectangle's corners, a superellipse's shoulders), or, around a hole, a ring of four
+//     blocks between the outer corners and the corners of the box tangent to the hole;
+//   - each block is cut into a grid of patches (Coons interpolation of its sides in the plan)
+//     with cells no larger than max_patch_size_m, its neighbours' counts matching on shared sides;
+//   - the high-K regions first: an interior grid node near a K peak moves onto p_max (Algorithm 2:
+//     "introduce a corner at p_max");
+//   - boundary nodes lie on the design boundary, and patch sides along it are chords; a node whose
+//     chord would leave the footprint (a concave stretch) is pulled inwards, leaving a cut-off.
+#include "core/mesh/mesh.hpp"
+
+#include <Eigen/Dense>
+#include <array>
+#include <string>
+#include <vector>
+
+namespace egg::patching {
+
+struct Workflow2Options {
+  double maxPatchSizeM = 40.0;     // largest patch diagonal proposed (handling on site, 3.5.3)
+  double holeMarginRelative = 0.03;  // the box around a hole, inflated by this fraction of its size
+  double peakSnapFraction = 0.35;  // a grid node within this fraction of a cell of a K peak moves onto it
+  void validate() const;
+};
+
+struct Workflow2Layout {
+  std::vector<Eigen::Vector3d> corners;    // on the surface
+  std::vector<std::array<int, 4>> quads;   // corner indices, counter-clockwise seen from above
+  int blocks = 0;
+  int holes = 0;
+  int peaksSnapped = 0;
+  int nodesPulledIn = 0;
+  std::vector<std::string> notes;          // how the layout was made, for the report
+  double seconds = 0.0;
+};
+
+// Throws InvalidInput when the surface is not a height field over its footprint plane (a patch
+// corner could not be placed) or has more than one hole.
+Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& options = {});
+
+}  // namespace egg::patching

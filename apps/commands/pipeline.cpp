@@ -152,13 +152,22 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   if (needs.grid) {
     const int designed = static_cast<int>(std::count_if(patching.layout.patches.begin(), patching.layout.patches.end(),
                                                         [](const auto& p) { return p.feasible(); }));
-    report.stageSkipped("propagation", patching.layout.patches.size() == 1
-                                           ? "one patch: no boundary to continue members across"
-                                           : "not built yet (issue 15): members are placed on each patch on its own, so the "
-                                             "members of neighbouring patches need not meet on their shared sides");
+    // Propagation (Problem 3.3, Section 3.4.4): members continued across the shared sides.
+    std::optional<propagation::LayoutPropagation> members;
+    if (patching.layout.patches.size() == 1) {
+      report.stageSkipped("propagation", "one patch: no boundary to continue members across");
+    } else if (designed == 0) {
+      report.stageSkipped("propagation", "no feasible patch design");
+    } else {
+      progress("propagation", 0.25);
+      members = propagateMembers(patching, scene);
+      report.stageRan("propagation", members->seconds);
+    }
     progress("grid", 0.3);
     const auto gridStart = Clock::now();
-    patches = tracePatches(patching, scene);
+    propagation::LayoutTracing tracing;
+    patches = tracePatches(patching, scene, members ? &*members : nullptr, &tracing);
+    if (members) report.section("propagation") = propagationSection(*members, tracing);
     if (designed > 0) report.stageRan("grid", secondsSince(gridStart));
     else report.stageSkipped("grid", "no feasible patch design");
   } else {

@@ -275,6 +275,7 @@ void readSimulation(Section s, SimulationSpec& out) {
   out.gravity = s.boolean("gravity", out.gravity);
   out.friction_mu = s.number("friction_mu", out.friction_mu, 0.0, 2.0);
   out.notches = s.boolean("notches", out.notches);
+  out.join_patches = s.boolean("join_patches", out.join_patches);
   s.rejectUnknownKeys();
 }
 
@@ -421,7 +422,8 @@ json sceneToJson(const Scene& scene) {
        {{"enabled", scene.simulation.enabled},
         {"gravity", scene.simulation.gravity},
         {"friction_mu", scene.simulation.friction_mu},
-        {"notches", scene.simulation.notches}}},
+        {"notches", scene.simulation.notches},
+        {"join_patches", scene.simulation.join_patches}}},
       {"fabrication", fabrication},
       {"outputs", scene.outputs},
   };

@@ -70,6 +70,9 @@ struct SimulationSpec {
   bool gravity = true;                       // self-weight from the material density (Section 3.5.2)
   double friction_mu = 0.1;                  // pseudo-friction coefficient of E_p (Section 2.5)
   bool notches = true;                       // simulate with notches (RMS1) as well as without (RMS2)
+  // With propagated members (several patches): also simulate the whole structure with the shared
+  // boundary lamellas of neighbouring patches bolted at their coinciding member ends (3.5.3).
+  bool join_patches = true;
 };
 
 // Defaults as fabrication::FabricationOptions (fabrication/options.hpp); the `std::optional` ones

@@ -149,6 +149,16 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   for (const auto& b : report["boundaries"]) shared += b["kind"] == "shared";
   EXPECT_EQ(shared, 4);
   EXPECT_EQ(report["chains"].size(), 4u);
+  // Propagation (Problem 3.3, Section 3.4.4): the four chains (two per family) are optimised and
+  // the traced member ends of neighbours coincide on all four shared sides.
+  ASSERT_TRUE(report["stages"]["propagation"]["ran"].get<bool>());
+  const auto& propagation = report["propagation"];
+  EXPECT_EQ(propagation["chains"], 4);
+  EXPECT_EQ(propagation["originals"], 0);
+  EXPECT_LE(propagation["c0_max_gap_m"].get<double>(), 1e-6);
+  EXPECT_LE(propagation["evenness_after"].get<double>(), propagation["evenness_before"].get<double>());
+  ASSERT_EQ(propagation["sides"].size(), 4u);
+  for (const auto& side : propagation["sides"]) EXPECT_EQ(side["kind"], "closed") << side.dump();
   ASSERT_EQ(report["patches"].size(), 4u);
   double area = 0.0;
   for (const auto& p : report["patches"]) {

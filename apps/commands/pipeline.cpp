@@ -1,6 +1,7 @@
 #include "apps/commands/pipeline.hpp"
 
 #include "apps/commands/fabrication_stage.hpp"
+#include "apps/commands/joined_stage.hpp"
 #include "apps/commands/patch_stage.hpp"
 #include "apps/commands/patching_stage.hpp"
 #include "apps/commands/surface_loading.hpp"
@@ -149,11 +150,11 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   addPatchingReport(patching, report.document());
 
   std::vector<SolvedPatch> patches;
+  std::optional<propagation::LayoutPropagation> members;  // propagated members (several patches)
   if (needs.grid) {
     const int designed = static_cast<int>(std::count_if(patching.layout.patches.begin(), patching.layout.patches.end(),
                                                         [](const auto& p) { return p.feasible(); }));
     // Propagation (Problem 3.3, Section 3.4.4): members continued across the shared sides.
-    std::optional<propagation::LayoutPropagation> members;
     if (patching.layout.patches.size() == 1) {
       report.stageSkipped("propagation", "one patch: no boundary to continue members across");
     } else if (designed == 0) {
@@ -212,11 +213,15 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     simulatePatches(patches, surface.mesh, scene);
     report.stageRan("simulation", secondsSince(simStart));
     report.section("simulation") = simulationSection(patches, scene);
+    addJoinedSimulation(patching, patches, surface.mesh, scene, members.has_value(), solved, report.section("simulation"));
     // A deployment that did not reach equilibrium is a failure of the run (exit 1), whose report
     // still carries every figure.
     if (!report.section("simulation")["converged"].get<bool>()) {
       result.failures.push_back("simulation: " + report.section("simulation").value("reason", std::string("did not converge")));
     }
+    const auto& joined = report.section("simulation")["joined"];
+    if (joined["ran"].get<bool>() && !joined["converged"].get<bool>())
+      result.failures.push_back("joined simulation: " + joined.value("failure", joined.value("reason", std::string("did not converge"))));
   }
   // Fabrication (Section 3.5): cut files, stickers, supports and the BOM of the traced grids, with
   // stresses from the deployed centrelines where the simulation ran.

@@ -170,6 +170,12 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   EXPECT_TRUE(report["stages"]["design"]["ran"].get<bool>());
   EXPECT_TRUE(report["stages"]["simulation"]["ran"].get<bool>());
   EXPECT_EQ(report["simulation"]["patches"].size(), 4u);
+  // The joined structure: 4 shared sides x 4 member ends bolted, a checkerboard of layer swaps.
+  const auto& joined = report["simulation"]["joined"];
+  EXPECT_TRUE(joined["converged"].get<bool>()) << joined.dump(1);
+  EXPECT_EQ(joined["bolts"], 16);
+  EXPECT_EQ(joined["patches_swapped"], 2);
+  EXPECT_TRUE(report["simulation"]["patch_by_patch"].contains("rmse_m"));
   EXPECT_TRUE(fs::exists(out / "patches.json"));
   EXPECT_TRUE(fs::exists(out / "plan.svg"));
   EXPECT_TRUE(fs::exists(out / "report.json"));

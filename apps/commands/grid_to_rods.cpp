@@ -37,8 +37,9 @@ double clampToRod(double s, double length) { return std::clamp(s, 0.0, length); 
 rods::RodNetwork rodNetworkFromGrid(const EggGrid& grid, const GridToRodsOptions& options) {
   rods::RodNetwork network;
   const int uCount = static_cast<int>(grid.u.size());
-  for (const auto& m : grid.u) network.rods.push_back(rodOf(m, options, 0));
-  for (const auto& m : grid.v) network.rods.push_back(rodOf(m, options, 1));
+  const int uLayer = options.swapLayers ? 1 : 0;
+  for (const auto& m : grid.u) network.rods.push_back(rodOf(m, options, uLayer));
+  for (const auto& m : grid.v) network.rods.push_back(rodOf(m, options, 1 - uLayer));
   for (const auto& c : grid.connections) {
     rods::Connection bolt;
     bolt.rodA = c.memberU;

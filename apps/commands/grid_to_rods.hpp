@@ -13,9 +13,13 @@ struct GridToRodsOptions {
   rods::CrossSection section;   // lamella section w x t
   MaterialProperties material;  // E, G, rho
   bool notches = true;          // false: plain holes (the comparison run without notches)
+  // u members on top (layer 1) and v below: a joined structure swaps every other patch so that
+  // two neighbours' boundary lamellas along a shared side lie face to face (3.5.3).
+  bool swapLayers = false;
 };
 
-// u members become rods 0 .. u-1 (layer 0), v members rods u .. u+v-1 (layer 1).
+// u members become rods 0 .. u-1 (layer 0), v members rods u .. u+v-1 (layer 1); swapLayers
+// exchanges the layers.
 rods::RodNetwork rodNetworkFromGrid(const EggGrid& grid, const GridToRodsOptions& options);
 
 }  // namespace egg::app

@@ -5,6 +5,7 @@
 #include "core/egg/grid_io.hpp"
 #include "core/errors.hpp"
 #include "core/materials/materials.hpp"
+#include "propagation/patch_sides.hpp"
 
 #include <fmt/core.h>
 
@@ -19,39 +20,89 @@ namespace egg::app {
 
 using nlohmann::json;
 
-std::vector<SolvedPatch> tracePatches(PatchingRun& run, const Scene& scene) {
+namespace {
+
+// The report's EggResult of a traced design.
+EggResult eggResult(const patching::DesignedPatch& designed, FamilyMembers u, FamilyMembers v, EggGrid grid, double membersSeconds,
+                    double tracingSeconds) {
+  const PatchDesign& design = *designed.design;
+  EggResult result;
+  result.patch = design.patch;
+  result.uniqueness = design.uniqueness;
+  result.maps = design.maps;
+  result.alphaBar = design.alphaBar;
+  result.seconds = design.seconds;
+  result.membersU = std::move(u);
+  result.membersV = std::move(v);
+  result.grid = std::move(grid);
+  result.seconds.members = membersSeconds;
+  result.seconds.tracing = tracingSeconds;
+  result.seconds.patch = designed.cut->patch.seconds;
+  result.seconds.total = design.seconds.total + membersSeconds + tracingSeconds;
+  result.propagations = design.propagations + result.grid.propagations;
+  return result;
+}
+
+}  // namespace
+
+std::optional<propagation::LayoutPropagation> propagateMembers(const PatchingRun& run, const Scene& scene) {
+  if (run.layout.patches.size() < 2) return std::nullopt;
+  std::vector<propagation::PatchSideData> sides;
+  for (const auto& designed : run.layout.patches) {
+    if (designed.feasible()) sides.push_back(propagation::patchSideData(*designed.design, scene.lamella.width_m));
+    else sides.emplace_back();
+  }
+  propagation::PropagationOptions options;
+  options.members = scene.grid.members_per_family;
+  options.lamellaWidthM = scene.lamella.width_m;
+  options.spacingFactor = MemberOptions{}.spacingFactor;
+  return propagation::propagateLayout(run.graph, sides, options);
+}
+
+std::vector<SolvedPatch> tracePatches(PatchingRun& run, const Scene& /*scene*/, const propagation::LayoutPropagation* members,
+                                      propagation::LayoutTracing* tracing) {
   const auto& layout = run.layout.layout;
   std::vector<SolvedPatch> out(run.layout.patches.size());
+  for (size_t i = 0; i < out.size(); ++i) {
+    out[i].id = static_cast<int>(i);
+    out[i].cornerIds = layout.patches[i];
+    for (int k = 0; k < 4; ++k) out[i].corners[k] = layout.corners[out[i].cornerIds[k]];
+    if (!run.layout.patches[i].feasible()) out[i].failure = run.layout.patches[i].failure;
+  }
+  if (members) {
+    // Several patches: the propagated members (Problem 3.3), traced in member order so that
+    // neighbours' member ends coincide on their shared sides (propagation/chain_tracing.hpp).
+    std::vector<const PatchDesign*> designs;
+    for (const auto& designed : run.layout.patches) designs.push_back(designed.feasible() ? &*designed.design : nullptr);
+    propagation::LayoutTracing traced = propagation::traceLayout(designs, *members);
+    for (size_t i = 0; i < out.size(); ++i) {
+      auto& t = traced.patches[i];
+      if (!run.layout.patches[i].feasible()) continue;
+      if (!t.grid) {
+        out[i].failure = t.failure;
+        continue;
+      }
+      out[i].egg = eggResult(run.layout.patches[i], std::move(*t.u), std::move(*t.v), std::move(*t.grid), t.membersSeconds, t.tracingSeconds);
+      t.grid.reset();
+    }
+    if (tracing) *tracing = std::move(traced);
+    return out;
+  }
   tbb::parallel_for(size_t(0), out.size(), [&](size_t i) {
     SolvedPatch& patch = out[i];
     patching::DesignedPatch& designed = run.layout.patches[i];
-    patch.id = static_cast<int>(i);
-    patch.cornerIds = layout.patches[i];
-    for (int k = 0; k < 4; ++k) patch.corners[k] = layout.corners[patch.cornerIds[k]];
-    if (!designed.feasible()) {
-      patch.failure = designed.failure;
-      return;
-    }
+    if (!designed.feasible()) return;
     const PatchDesign& design = *designed.design;
     try {
-      const auto started = std::chrono::steady_clock::now();
-      EggResult result;
-      result.patch = design.patch;
-      result.uniqueness = design.uniqueness;
-      result.maps = design.maps;
-      result.alphaBar = design.alphaBar;
-      result.seconds = design.seconds;
+      // One patch (or no propagation): its own automatic placement (Section 2.4.4).
       auto t = std::chrono::steady_clock::now();
-      result.membersU = placeDesignMembers(design, Family::U, design.options.members);
-      result.membersV = placeDesignMembers(design, Family::V, design.options.members);
-      result.seconds.members = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+      FamilyMembers u = placeDesignMembers(design, Family::U, design.options.members);
+      FamilyMembers v = placeDesignMembers(design, Family::V, design.options.members);
+      const double membersSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
       t = std::chrono::steady_clock::now();
-      result.grid = traceDesignGrid(design, result.membersU, result.membersV, design.options.grid);
-      result.seconds.tracing = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-      result.seconds.patch = designed.cut->patch.seconds;
-      result.seconds.total = design.seconds.total + std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      result.propagations = design.propagations + result.grid.propagations;
-      patch.egg = std::move(result);
+      EggGrid grid = traceDesignGrid(design, u, v, design.options.grid);
+      const double tracingSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+      patch.egg = eggResult(designed, std::move(u), std::move(v), std::move(grid), membersSeconds, tracingSeconds);
     } catch (const InfeasiblePatch& e) {
       patch.failure = std::string("infeasible: ") + e.what();
     } catch (const SolverFailure& e) {
@@ -59,6 +110,44 @@ std::vector<SolvedPatch> tracePatches(PatchingRun& run, const Scene& scene) {
     }
   });
   return out;
+}
+
+json propagationSection(const propagation::LayoutPropagation& members, const propagation::LayoutTracing& tracing) {
+  json chains = json::array();
+  for (const auto& chain : members.chains) {
+    json nodes = json::array();
+    for (const auto& n : chain.nodes)
+      nodes.push_back({{"patch", n.patch}, {"family", n.family == Family::U ? "u" : "v"}, {"forward", n.forward}});
+    chains.push_back({{"graph_chain", chain.graphChain},
+                      {"nodes", nodes},
+                      {"ring", chain.ring},
+                      {"members", chain.solution.start.size()},
+                      {"evenness_before", chain.solution.evennessBefore},
+                      {"evenness_after", chain.solution.evennessAfter},
+                      {"iterations", chain.solution.iterations},
+                      {"status", chain.solution.status}});
+  }
+  json fallbacks = json::array();
+  for (const auto& f : members.fallbacks) {
+    json patches = json::array();
+    for (const auto& n : f.nodes) patches.push_back({{"patch", n.patch}, {"family", n.family == Family::U ? "u" : "v"}});
+    fallbacks.push_back({{"graph_chain", f.graphChain}, {"nodes", patches}, {"reason", f.reason}});
+  }
+  json gaps = json::array();
+  for (const auto& g : tracing.gaps)
+    gaps.push_back({{"boundary", g.boundary}, {"patches", {g.patchA, g.patchB}}, {"max_gap_m", g.maxGapM}, {"kind", g.kind}});
+  return {{"ran", true},
+          {"c0_max_gap_m", tracing.c0MaxGapM},
+          {"evenness_before", members.evennessBefore},
+          {"evenness_after", members.evennessAfter},
+          {"iterations", members.iterations},
+          {"chains", members.chains.size()},
+          {"originals", members.originals},
+          {"seconds", members.seconds},
+          {"tracing_rounds", tracing.rounds},
+          {"propagated_chains", chains},
+          {"per_patch_chains", fallbacks},
+          {"sides", gaps}};
 }
 
 namespace {

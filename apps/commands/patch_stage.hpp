@@ -5,6 +5,8 @@
 #include "apps/commands/scene.hpp"
 #include "core/egg/solve_patch.hpp"
 #include "core/rods/simulation.hpp"
+#include "propagation/chain_tracing.hpp"
+#include "propagation/layout_propagation.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -25,10 +27,20 @@ struct SolvedPatch {
   std::string simulationFailure;  // why the simulation could not run (an error, not non-convergence)
 };
 
-// The grid stage: members placed on every feasible design (Section 2.4.4, per patch until
-// propagation exists) and traced into its grid (2.4.5-2.4.6), patches in parallel (results do not
-// depend on the thread count). A patch whose grid cannot be traced keeps its reason.
-std::vector<SolvedPatch> tracePatches(PatchingRun& run, const Scene& scene);
+// The propagation stage (Problem 3.3, Section 3.4.4): the members of every chain of patches,
+// C0 at their shared sides. Empty for a single patch, which places its own (2.4.4).
+std::optional<propagation::LayoutPropagation> propagateMembers(const PatchingRun& run, const Scene& scene);
+
+// The grid stage: the members of every feasible design traced into its grid (2.4.5-2.4.6). With
+// `members` (several patches), the propagated ones, traced in member order so that neighbours'
+// member ends coincide (the gaps go to `tracing`); without, each patch places its own (2.4.4),
+// patches in parallel. Results do not depend on the thread count. A patch whose grid cannot be
+// traced keeps its reason.
+std::vector<SolvedPatch> tracePatches(PatchingRun& run, const Scene& scene, const propagation::LayoutPropagation* members = nullptr,
+                                      propagation::LayoutTracing* tracing = nullptr);
+
+// report.json propagation{}: c0_max_gap_m, evenness before/after Problem 3.3, per chain and side.
+nlohmann::json propagationSection(const propagation::LayoutPropagation& members, const propagation::LayoutTracing& tracing);
 
 // Supports along the design boundary (Section 3.5.3: "supports at anchors and boundary
 // connections"): every connection on a side of the layout that no other patch shares (the

@@ -1,6 +1,7 @@
 #include "apps/commands/pipeline.hpp"
 
 #include "apps/commands/fabrication_stage.hpp"
+#include "apps/commands/joined_stage.hpp"
 #include "apps/commands/patch_stage.hpp"
 #include "apps/commands/patching_stage.hpp"
 #include "apps/commands/surface_loading.hpp"
@@ -123,16 +124,25 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   addPatchingReport(patching, report.document());
 
   std::vector<SolvedPatch> patches;
+  std::optional<propagation::LayoutPropagation> members;  // propagated members (several patches)
   if (needs.grid) {
     const int designed = static_cast<int>(std::count_if(patching.layout.patches.begin(), patching.layout.patches.end(),
                                                         [](const auto& p) { return p.feasible(); }));
-    report.stageSkipped("propagation", patching.layout.patches.size() == 1
-                                           ? "one patch: no boundary to continue members across"
-                                           : "not built yet (issue 15): members are placed on each patch on its own, so the "
-                                             "members of neighbouring patches need not meet on their shared sides");
+    // Propagation (Problem 3.3, Section 3.4.4): members continued across the shared sides.
+    if (patching.layout.patches.size() == 1) {
+      report.stageSkipped("propagation", "one patch: no boundary to continue members across");
+    } else if (designed == 0) {
+      report.stageSkipped("propagation", "no feasible patch design");
+    } else {
+      progress("propagation", 0.25);
+      members = propagateMembers(patching, scene);
+      report.stageRan("propagation", members->seconds);
+    }
     progress("grid", 0.3);
     const auto gridStart = Clock::now();
-    patches = tracePatches(patching, scene);
+    propagation::LayoutTracing tracing;
+    patches = tracePatches(patching, scene, members ? &*members : nullptr, &tracing);
+    if (members) report.section("propagation") = propagationSection(*members, tracing);
     if (designed > 0) report.stageRan("grid", secondsSince(gridStart));
     else report.stageSkipped("grid", "no feasible patch design");
   } else {
@@ -180,11 +190,15 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     simulatePatches(patches, surface.mesh, scene);
     report.stageRan("simulation", secondsSince(simStart));
     report.section("simulation") = simulationSection(patches, scene);
+    addJoinedSimulation(patching, patches, surface.mesh, scene, members.has_value(), solved, report.section("simulation"));
     // A deployment that did not reach equilibrium is a failure of the run (exit 1), whose report
     // still carries every figure.
     if (!report.section("simulation")["converged"].get<bool>()) {
       result.failures.push_back("simulation: " + report.section("simulation").value("reason", std::string("did not converge")));
     }
+    const auto& joined = report.section("simulation")["joined"];
+    if (joined["ran"].get<bool>() && !joined["converged"].get<bool>())
+      result.failures.push_back("joined simulation: " + joined.value("failure", joined.value("reason", std::string("did not converge"))));
   }
   // Fabrication (Section 3.5): cut files, stickers, supports and the BOM of the traced grids, with
   // stresses from the deployed centrelines where the simulation ran.

@@ -278,6 +278,7 @@ void readSimulation(Section s, SimulationSpec& out) {
   out.supports = s.text("supports", out.supports);
   if (out.supports != "auto" && out.supports != "anchors" && out.supports != "design_boundary")
     s.fail("supports", "must be \"auto\", \"anchors\" or \"design_boundary\", got \"" + out.supports + "\"");
+  out.join_patches = s.boolean("join_patches", out.join_patches);
   s.rejectUnknownKeys();
 }
 
@@ -425,7 +426,8 @@ json sceneToJson(const Scene& scene) {
         {"gravity", scene.simulation.gravity},
         {"friction_mu", scene.simulation.friction_mu},
         {"notches", scene.simulation.notches},
-        {"supports", scene.simulation.supports}}},
+        {"supports", scene.simulation.supports},
+        {"join_patches", scene.simulation.join_patches}}},
       {"fabrication", fabrication},
       {"outputs", scene.outputs},
   };

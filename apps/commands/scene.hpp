@@ -74,6 +74,9 @@ struct SimulationSpec {
   // "design_boundary" (those plus every connection on a side of the layout no other patch shares,
   // 3.5.3), "auto" = anchors for one patch, design_boundary for several.
   std::string supports = "auto";
+  // With propagated members (several patches): also simulate the whole structure with the shared
+  // boundary lamellas of neighbouring patches bolted at their coinciding member ends (3.5.3).
+  bool join_patches = true;
 };
 
 // Defaults as fabrication::FabricationOptions (fabrication/options.hpp); the `std::optional` ones

@@ -149,6 +149,16 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   for (const auto& b : report["boundaries"]) shared += b["kind"] == "shared";
   EXPECT_EQ(shared, 4);
   EXPECT_EQ(report["chains"].size(), 4u);
+  // Propagation (Problem 3.3, Section 3.4.4): the four chains (two per family) are optimised and
+  // the traced member ends of neighbours coincide on all four shared sides.
+  ASSERT_TRUE(report["stages"]["propagation"]["ran"].get<bool>());
+  const auto& propagation = report["propagation"];
+  EXPECT_EQ(propagation["chains"], 4);
+  EXPECT_EQ(propagation["originals"], 0);
+  EXPECT_LE(propagation["c0_max_gap_m"].get<double>(), 1e-6);
+  EXPECT_LE(propagation["evenness_after"].get<double>(), propagation["evenness_before"].get<double>());
+  ASSERT_EQ(propagation["sides"].size(), 4u);
+  for (const auto& side : propagation["sides"]) EXPECT_EQ(side["kind"], "closed") << side.dump();
   ASSERT_EQ(report["patches"].size(), 4u);
   double area = 0.0;
   for (const auto& p : report["patches"]) {
@@ -160,6 +170,12 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   EXPECT_TRUE(report["stages"]["design"]["ran"].get<bool>());
   EXPECT_TRUE(report["stages"]["simulation"]["ran"].get<bool>());
   EXPECT_EQ(report["simulation"]["patches"].size(), 4u);
+  // The joined structure: 4 shared sides x 4 member ends bolted, a checkerboard of layer swaps.
+  const auto& joined = report["simulation"]["joined"];
+  EXPECT_TRUE(joined["converged"].get<bool>()) << joined.dump(1);
+  EXPECT_EQ(joined["bolts"], 16);
+  EXPECT_EQ(joined["patches_swapped"], 2);
+  EXPECT_TRUE(report["simulation"]["patch_by_patch"].contains("rmse_m"));
   EXPECT_TRUE(fs::exists(out / "patches.json"));
   EXPECT_TRUE(fs::exists(out / "plan.svg"));
   EXPECT_TRUE(fs::exists(out / "report.json"));

@@ -40,6 +40,7 @@ TEST(Scene, DefaultsFillEverythingButTheSurface) {
   EXPECT_FALSE(s.grid.members_per_family.has_value());
   EXPECT_DOUBLE_EQ(s.lamella.width_m, 0.25);
   EXPECT_DOUBLE_EQ(s.simulation.friction_mu, 0.1);
+  EXPECT_TRUE(s.simulation.join_patches);
   EXPECT_TRUE(s.wants("cut_files"));
 }
 
@@ -52,7 +53,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
     "grid": {"members_per_family": 12, "map_resolution": 64, "map_tolerance_relative": 0.002, "alpha_bar": 1.2,
              "min_planar_angle_rad": 0.3, "map_proxy_vertices": 450},
     "lamella": {"width_m": 0.5, "thickness_m": 0.05, "material": "birch_plywood"},
-    "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false},
+    "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false, "join_patches": false},
     "fabrication": {"enabled": false, "sheet_mm": [3000, 1500], "bolt_diameter_mm": 10, "kerf_mm": 0.3,
                     "margin_mm": 12, "min_notch_mm": 2, "stock_length_mm": 5000, "end_overhang_mm": 40,
                     "splice_clearance_mm": 300, "label_height_mm": 12, "sticker_margin_mm": 3,
@@ -73,6 +74,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_EQ(s.grid.map_proxy_vertices, 450);
   EXPECT_EQ(s.lamella.material, "birch_plywood");
   EXPECT_FALSE(s.simulation.enabled);
+  EXPECT_FALSE(s.simulation.join_patches);
   EXPECT_DOUBLE_EQ(s.fabrication.sheet_mm[1], 1500.0);
   EXPECT_DOUBLE_EQ(s.fabrication.kerf_mm, 0.3);
   EXPECT_DOUBLE_EQ(s.fabrication.margin_mm, 12.0);
@@ -96,6 +98,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_EQ(back.grid.alpha_bar_rad, 1.2);
   EXPECT_DOUBLE_EQ(back.grid.map_tolerance_relative, 0.002);
   EXPECT_EQ(back.grid.map_proxy_vertices, 450);
+  EXPECT_FALSE(back.simulation.join_patches);
   EXPECT_EQ(back.patching.patches.size(), 1u);
   EXPECT_DOUBLE_EQ(*back.fabrication.end_overhang_mm, 40.0);
   EXPECT_DOUBLE_EQ(back.fabrication.stock_length_mm, 5000.0);

@@ -1,0 +1,52 @@
+#pragma once
+// The joined simulation of a multi-patch grid (beyond the paper, whose patches were simulated
+// apart, 3.7.1): the patches' rod networks side by side, with the two boundary lamellas of every
+// shared side bolted together at the member ends they share ("adjacent grids can be simply
+// connected along their common lamellae", 3.5.3). Those ends coincide where propagation made the
+// members C0 (Section 3.4.4). Two lamellas bolted face to face must lie in different layers, so
+// patches swap their layers (u on top) where needed: a two-colouring of the patch adjacency; a
+// side whose two lamellas still share a layer (an odd cycle of patches) is left unbolted and
+// counted.
+#include "apps/commands/patch_stage.hpp"
+#include "apps/commands/patching_stage.hpp"
+#include "apps/commands/scene.hpp"
+#include "core/rods/joined_network.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace egg::app {
+
+struct JoinedRun {
+  std::optional<rods::SimulationResult> simulation;  // the joined structure (with notches as the scene says)
+  std::vector<rods::PatchJoin> joins;
+  std::vector<char> swapped;     // per patch: u members on top
+  int sidesJoined = 0;           // shared sides carrying at least one bolt
+  int sidesSkipped = 0;          // shared sides whose lamellas fell in one layer
+  std::string failure;           // an error of the joined run (not non-convergence)
+  double seconds = 0.0;
+};
+
+// The join bolts: per shared side (both patches solved), the connections along the two boundary
+// lamellas that lie within `tolerance` metres of each other.
+std::vector<rods::PatchJoin> patchJoins(const PatchingRun& run, const std::vector<SolvedPatch>& patches,
+                                        const std::vector<char>& swapped, double tolerance, int* sidesJoined = nullptr,
+                                        int* sidesSkipped = nullptr);
+// Per patch: swap its layers so that neighbours' boundary lamellas lie in different layers.
+std::vector<char> layerSwaps(const PatchingRun& run, const std::vector<SolvedPatch>& patches);
+
+JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene);
+
+// report.json simulation.joined{}.
+nlohmann::json joinedSection(const JoinedRun& joined);
+
+// The pipeline's step: when members were propagated, the scene joins patches and two or more
+// are solved, simulates the joined structure; writes simulation.joined{} (or why it did not run)
+// and simulation.patch_by_patch{rmse_m, max_error_m} (the pooled per-patch figures beside it).
+void addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene,
+                         bool propagated, int solved, nlohmann::json& simulation);
+
+}  // namespace egg::app

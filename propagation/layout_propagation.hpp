@@ -1,0 +1,92 @@
+#pragma once
+// Member propagation over a patch layout (Section 3.4.4, Figs. 3.8-3.9): every chain of the patch
+// graph (patching/patch_graph.hpp) becomes a ChainProblem (chain_problem.hpp), oriented so that
+// members run from the chain's first free side through every patch: a patch entered at its
+// family's end side is read backwards (F^-1), and a side whose parameter runs the other way on
+// the next patch (BoundaryUse.reversed, familySide) mirrors the map. The solution gives every
+// patch of a chain the start parameters x1 of its members, the same members on both sides of
+// every shared side (C0). The second family is solved independently (each chain on its own).
+//
+// Kept to what the graph supports exactly: a chain whose links are whole shared sides. A branching
+// chain (T-junction, Fig. 3.8's patch 3) falls back to per-patch placement and is reported as
+// such (its shared sides are not C0); ChainProblem's originals are the hook for it. A chain cut by
+// an infeasible patch is split at it; a lone patch places its own members (Section 2.4.4).
+#include "core/egg/planar_quad.hpp"
+#include "patching/patch_graph.hpp"
+#include "propagation/chain_problem.hpp"
+#include "propagation/side_map.hpp"
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace egg::propagation {
+
+// What propagation reads of one patch's design (patch_sides.hpp builds it from a PatchDesign).
+struct PatchSideData {
+  bool usable = false;                        // designed and feasible
+  std::array<PiecewiseLinearMap, 2> cladding; // F_u, F_v: x1 on the family's start side -> x2 on its end side
+  std::array<double, 4> sideLengths{};        // metres, side k = corner k -> k+1
+  // Smallest distance (metres along the side) between two members' ends: the lamella footprint
+  // w / sin(angle) at the smallest angle the family meets its [start, end] side at (2.4.4).
+  std::array<std::array<double, 2>, 2> minGapM{};
+};
+
+struct PropagationOptions {
+  std::optional<int> members;    // per chain, both boundary members included; empty = spacing rule
+  double lamellaWidthM = 0.05;   // w
+  double spacingFactor = 8.0;    // spacing rule: intervals = round(longest side of the chain / (factor * w))
+  ChainOptions chain;
+  void validate() const;
+};
+
+// One patch of a propagated chain.
+struct PropagatedNode {
+  int patch = -1;
+  Family family = Family::U;
+  bool forward = true;   // enters at the family's start side (F), else at its end side (F^-1)
+  // The chain's parameter on the node's two boundaries is 1 - the family's own parameter.
+  bool mirrored = false;
+};
+
+struct PropagatedChain {
+  int graphChain = -1;               // index into PatchGraph::chains
+  std::vector<PropagatedNode> nodes;
+  bool ring = false;                 // boundary n is boundary 0 again (cut open: need not close)
+  std::vector<int> boundaries;       // per chain boundary: PatchGraph boundary id, -1 for a free side
+  ChainSolution solution;
+  // Members' start parameters x1 of node k (increasing, 0 .. 1) from the chain's positions.
+  std::vector<double> startParameters(int node) const;
+  // Member j of the chain is member memberIndex(node, j) of the node's family (x1 increasing).
+  int memberIndex(int node, int member) const;
+};
+
+struct FallbackChain {
+  int graphChain = -1;
+  std::vector<patching::ChainNode> nodes;
+  std::string reason;
+};
+
+struct LayoutPropagation {
+  std::vector<PropagatedChain> chains;
+  std::vector<FallbackChain> fallbacks;  // chains (or pieces) whose patches place their own members
+  // Per patch and family (Family as index): x1 of its members, empty = it places its own.
+  std::vector<std::array<std::vector<double>, 2>> x1;
+  // Per patch and family: (chain, node) in `chains`, or (-1, -1).
+  std::vector<std::array<std::pair<int, int>, 2>> nodeOf;
+  double evennessBefore = 0.0, evennessAfter = 0.0;  // sums over the propagated chains
+  int iterations = 0;                                // SLSQP evaluations, all chains
+  int originals = 0;
+  double seconds = 0.0;
+};
+
+// Throws InvalidInput on bad options or when `patches` does not match the graph.
+LayoutPropagation propagateLayout(const patching::PatchGraph& graph, const std::vector<PatchSideData>& patches,
+                                  const PropagationOptions& options = {});
+
+// Which side (start = false, end = true) of `family` side k is, and whether the family's
+// parameter runs against the side (corner k -> k+1); throws for a side of the other family.
+std::pair<bool, bool> familySideRole(Family family, int side);
+
+}  // namespace egg::propagation

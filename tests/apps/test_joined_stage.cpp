@@ -1,0 +1,70 @@
+// The joined simulation of a multi-patch grid: two patches of the bump sharing a side, their
+// boundary lamellas bolted face to face at the member ends propagation made coincide.
+#include "apps/commands/joined_stage.hpp"
+
+#include "apps/commands/pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+
+namespace egg::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+Scene twoPatchScene(bool join) {
+  Scene scene = parseScene(nlohmann::json::parse(R"({
+    "name": "bump_1x2",
+    "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1.0, "sigma": 1.5}, "edge_length_m": 0.4},
+    "patching": {"patches": [[[-3,-3,0],[0,-3,0],[0,3,0],[-3,3,0]], [[0,-3,0],[3,-3,0],[3,3,0],[0,3,0]]]},
+    "grid": {"map_resolution": 30, "members_per_family": 5},
+    "lamella": {"width_m": 0.05, "thickness_m": 0.005},
+    "simulation": {"gravity": false},
+    "outputs": ["report"]})"),
+                             "/virtual/bump_1x2.json");
+  scene.simulation.join_patches = join;
+  return scene;
+}
+
+nlohmann::json run(const Scene& scene, const std::string& name) {
+  PipelineOptions options;
+  options.out_dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+  auto result = runPipeline(scene, options);
+  fs::remove_all(options.out_dir);
+  EXPECT_TRUE(result.failures.empty()) << nlohmann::json(result.failures).dump(1);
+  return result.report;
+}
+
+TEST(JoinedStage, SlowTwoPatchesSharingASideConvergeBoltedTogether) {
+  const auto report = run(twoPatchScene(true), "egg_joined");
+  const auto& sim = report["simulation"];
+  ASSERT_TRUE(sim["converged"].get<bool>());
+  const auto& joined = sim["joined"];
+  ASSERT_TRUE(joined["ran"].get<bool>()) << joined.dump(1);
+  EXPECT_TRUE(joined["converged"].get<bool>()) << joined.dump(1);
+  // The shared side's two boundary lamellas are bolted at all five member ends (the corners and
+  // the three propagated members); one patch swaps its layers so that they lie face to face.
+  EXPECT_EQ(joined["sides_joined"], 1);
+  EXPECT_EQ(joined["bolts"], 5);
+  EXPECT_EQ(joined["patches_swapped"], 1);
+  EXPECT_EQ(joined["sides_skipped_same_layer"], 0);
+  EXPECT_LE(report["propagation"]["c0_max_gap_m"].get<double>(), 1e-6);
+  // Both errors are reported: the joined structure's and the pooled patch-by-patch one.
+  EXPECT_GT(joined["rmse_m"].get<double>(), 0.0);
+  EXPECT_LT(joined["rmse_m"].get<double>(), 0.05);
+  EXPECT_GE(joined["max_error_m"].get<double>(), joined["rmse_m"].get<double>());
+  EXPECT_EQ(sim["patch_by_patch"]["rmse_m"], sim["rmse_m"]);
+  EXPECT_EQ(sim["patch_by_patch"]["max_error_m"], sim["max_error_m"]);
+}
+
+TEST(JoinedStage, SlowTheSceneCanKeepPatchesApart) {
+  const auto report = run(twoPatchScene(false), "egg_unjoined");
+  EXPECT_FALSE(report["simulation"]["joined"]["ran"].get<bool>());
+  EXPECT_NE(report["simulation"]["joined"]["skipped_reason"].get<std::string>().find("join_patches"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace egg::app

@@ -157,6 +157,12 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
   // Supports.
   r.supports = planSupports(patches, options, &r.groundHeightM);
   for (const auto& s : r.supports) {
+    if (!s.block) {
+      r.supportSolids.emplace_back();  // no block: listed in supports.csv as a bracket
+      r.warnings.push_back("support " + s.id + " at " + s.connectionId + ": the contact plane is inclined " +
+                           formatted("%.1f", s.inclinationDeg) + " deg, too steep for a block (more than 80): it needs a wall bracket");
+      continue;
+    }
     double drop = 0.0;
     r.supportSolids.push_back(supportSolid(s, options.supportBlockMm(), options.bolt_diameter_mm,
                                            3.0 * options.bolt_diameter_mm, &drop));
@@ -235,6 +241,7 @@ std::vector<std::string> writeFabricationFiles(const FabricationResult& r, const
   if (outputs.supports) {
     write("supports/supports.csv", supportsCsv(r.supports));
     for (size_t i = 0; i < r.supports.size(); ++i) {
+      if (!r.supports[i].block) continue;
       write(numbered("supports/support_", static_cast<int>(i + 1), 3, ".stl"),
             toBinaryStl(r.supportSolids[i], "eggshell support " + r.supports[i].id + " (mm)"));
     }

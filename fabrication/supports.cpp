@@ -61,10 +61,7 @@ std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, 
     std::snprintf(id, sizeof id, "S%03zu", i + 1);
     s.id = id;
     s.heightM = s.position.z() - ground;
-    if (s.inclinationDeg > 80.0) {
-      throw InvalidInput("fabrication: support " + s.id + " at " + s.connectionId + ": the contact plane is inclined " +
-                         std::to_string(s.inclinationDeg) + " deg (more than 80: no block can carry it)");
-    }
+    s.block = s.inclinationDeg <= 80.0;
     if (s.heightM <= 0.0) {
       throw InvalidInput("fabrication.ground_height_m: support " + s.id + " at " + s.connectionId +
                          " lies at or below the ground plane");
@@ -173,12 +170,13 @@ std::string toBinaryStl(const TriangleMesh& mesh, const std::string& header) {
 
 std::string supportsCsv(const std::vector<Support>& supports) {
   std::ostringstream s;
-  s << "id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m\n";
+  s << "id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind\n";
   char line[512];
   for (const auto& p : supports) {
-    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f,%.3f,%.6f\n", p.id.c_str(),
+    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f,%.3f,%.6f,%s\n", p.id.c_str(),
                   p.connectionId.c_str(), p.reason.c_str(), p.position.x(), p.position.y(), p.position.z(),
-                  p.normal.x(), p.normal.y(), p.normal.z(), p.inclinationDeg, p.directionDeg, p.heightM);
+                  p.normal.x(), p.normal.y(), p.normal.z(), p.inclinationDeg, p.directionDeg, p.heightM,
+                  p.block ? "block" : "bracket");
     s << line;
   }
   return s.str();

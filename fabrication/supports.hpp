@@ -22,6 +22,9 @@ struct Support {
   double inclinationDeg = 0.0;    // angle of the contact plane to the horizontal
   double directionDeg = 0.0;      // azimuth (from +x towards +y) the contact plane falls towards
   double heightM = 0.0;           // the point above the ground plane
+  // A contact plane steeper than 80 degrees (a near-vertical wall, as at the Lilium's base) cannot
+  // sit on a block: it needs a bracket fixed to the wall, which is listed but not drawn.
+  bool block = true;
 };
 
 struct TriangleMesh {
@@ -31,7 +34,7 @@ struct TriangleMesh {
 
 // Supports at the anchors of every patch (and, with supports_at_boundary_connections, at every
 // boundary connection), sorted by patch and connection, one per point (within 1 mm) where patches meet, with the ground plane of the options (or
-// 0.1 m below the lowest). Throws InvalidInput naming the support when its plane is steeper than 80°.
+// 0.1 m below the lowest). A support whose plane is steeper than 80° is a bracket (block = false).
 std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
                                   double* groundHeightM = nullptr);
 
@@ -46,7 +49,7 @@ TriangleMesh supportSolid(const Support& support, double blockMm, double holeDia
 std::string toBinaryStl(const TriangleMesh& mesh, const std::string& header);
 
 // The supports table: id, connection, reason, x_m, y_m, z_m, nx, ny, nz, inclination_deg,
-// direction_deg, height_m.
+// direction_deg, height_m, kind (block | bracket).
 std::string supportsCsv(const std::vector<Support>& supports);
 
 }  // namespace egg::fabrication

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 
 namespace egg::patching {
 
@@ -86,6 +87,7 @@ double distanceToPolygon(const Polygon& poly, const Vec2& q) {
 
 struct Footprint {
   Polygon outer;               // counter-clockwise
+  std::vector<Eigen::Vector3d> outer3d;  // the same boundary vertices in space
   std::vector<Polygon> holes;
   double tolerance = 0.0;      // "on the boundary" (half a mean edge length)
   bool contains(const Vec2& q) const {
@@ -106,24 +108,31 @@ struct Footprint {
 
 Footprint footprintOf(const TriMesh& mesh, const Plan& plan) {
   std::vector<Polygon> loops;
+  std::vector<std::vector<Eigen::Vector3d>> loops3d;
   std::vector<char> seen(mesh.n_halfedges(), 0);
   for (auto heh : mesh.halfedges()) {
     if (!mesh.is_boundary(heh) || seen[heh.idx()]) continue;
     Polygon loop;
+    std::vector<Eigen::Vector3d> loop3d;
     auto h = heh;
     do {
       seen[h.idx()] = 1;
-      loop.push_back(plan(toEigen(mesh.point(mesh.from_vertex_handle(h)))));
+      loop3d.push_back(toEigen(mesh.point(mesh.from_vertex_handle(h))));
+      loop.push_back(plan(loop3d.back()));
       h = mesh.next_halfedge_handle(h);
     } while (h != heh && !seen[h.idx()]);
     loops.push_back(std::move(loop));
+    loops3d.push_back(std::move(loop3d));
   }
   if (loops.empty()) throw InvalidInput("workflow 2: the surface has no boundary (a closed surface cannot be laid out in plan)");
-  std::stable_sort(loops.begin(), loops.end(), [](const Polygon& a, const Polygon& b) { return std::abs(signedArea(a)) > std::abs(signedArea(b)); });
+  std::vector<size_t> order(loops.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return std::abs(signedArea(loops[a])) > std::abs(signedArea(loops[b])); });
   Footprint f;
-  f.outer = loops.front();
-  if (signedArea(f.outer) < 0) std::reverse(f.outer.begin(), f.outer.end());
-  f.holes.assign(loops.begin() + 1, loops.end());
+  f.outer = loops[order[0]];
+  f.outer3d = loops3d[order[0]];
+  if (signedArea(f.outer) < 0) std::reverse(f.outer.begin(), f.outer.end()), std::reverse(f.outer3d.begin(), f.outer3d.end());
+  for (size_t i = 1; i < order.size(); ++i) f.holes.push_back(loops[order[i]]);
   f.tolerance = 0.5 * meanEdgeLength(mesh);
   return f;
 }
@@ -131,7 +140,17 @@ Footprint footprintOf(const TriMesh& mesh, const Plan& plan) {
 // A piece of the outer boundary between two of its vertices, counter-clockwise, by arc length.
 struct Arc {
   std::vector<Vec2> points;
+  std::vector<Eigen::Vector3d> points3d;
   std::vector<double> s;
+  // The boundary point in space at the arc's parameter u (the loop is the mesh's own boundary).
+  Eigen::Vector3d at3d(double u) const {
+    const double target = std::clamp(u, 0.0, 1.0) * s.back();
+    size_t hi = std::upper_bound(s.begin(), s.end(), target) - s.begin();
+    hi = std::clamp<size_t>(hi, 1, s.size() - 1);
+    const double span = s[hi] - s[hi - 1];
+    const double t = span > 0 ? (target - s[hi - 1]) / span : 0.0;
+    return (1.0 - t) * points3d[hi - 1] + t * points3d[hi];
+  }
   Vec2 at(double u) const {
     const double target = std::clamp(u, 0.0, 1.0) * s.back();
     size_t hi = std::upper_bound(s.begin(), s.end(), target) - s.begin();
@@ -142,10 +161,12 @@ struct Arc {
   }
 };
 
-Arc arcOf(const Polygon& loop, size_t from, size_t to) {
+Arc arcOf(const Footprint& foot, size_t from, size_t to) {
+  const Polygon& loop = foot.outer;
   Arc arc;
   for (size_t i = from;; i = (i + 1) % loop.size()) {
     arc.points.push_back(loop[i]);
+    arc.points3d.push_back(foot.outer3d[i]);
     if (i == to) break;
   }
   arc.s.push_back(0.0);
@@ -160,6 +181,7 @@ Vec2 lerp(const Vec2& a, const Vec2& b, double t) { return (1.0 - t) * a + t * b
 // its grid of nu x nv patches.
 struct Block {
   std::function<Vec2(double)> bottom, top, left, right;  // C0(u), C2(u), D3(v), D1(v)
+  std::function<Eigen::Vector3d(double)> bottom3d, top3d, left3d, right3d;  // the same in space, for sides on the boundary
   int nu = 1, nv = 1;
   bool bottomOnBoundary = false, topOnBoundary = false, leftOnBoundary = false, rightOnBoundary = false;
   Vec2 coons(double u, double v) const {
@@ -217,7 +239,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     }
   }
   std::array<Arc, 4> arcs;
-  for (int k = 0; k < 4; ++k) arcs[k] = arcOf(foot.outer, cornerIndex[k], cornerIndex[(k + 1) % 4]);
+  for (int k = 0; k < 4; ++k) arcs[k] = arcOf(foot, cornerIndex[k], cornerIndex[(k + 1) % 4]);
 
   std::vector<Block> blocks;
   if (foot.holes.empty()) {
@@ -226,6 +248,10 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     b.right = [a = arcs[1]](double v) { return a.at(v); };
     b.top = [a = arcs[2]](double u) { return a.at(1.0 - u); };
     b.left = [a = arcs[3]](double v) { return a.at(1.0 - v); };
+    b.bottom3d = [a = arcs[0]](double u) { return a.at3d(u); };
+    b.right3d = [a = arcs[1]](double v) { return a.at3d(v); };
+    b.top3d = [a = arcs[2]](double u) { return a.at3d(1.0 - u); };
+    b.left3d = [a = arcs[3]](double v) { return a.at3d(1.0 - v); };
     b.bottomOnBoundary = b.topOnBoundary = b.leftOnBoundary = b.rightOnBoundary = true;
     blocks.push_back(b);
     out.notes.push_back("one block between the four outer corners");
@@ -240,6 +266,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
       const Vec2 o0 = arcs[k].points.front(), o1 = arcs[k].points.back(), i0 = inner[k], i1 = inner[(k + 1) % 4];
       Block b;
       b.bottom = [a = arcs[k]](double u) { return a.at(u); };
+      b.bottom3d = [a = arcs[k]](double u) { return a.at3d(u); };
       b.top = [i0, i1](double u) { return lerp(i0, i1, u); };
       b.left = [o0, i0](double v) { return lerp(o0, i0, v); };
       b.right = [o1, i1](double v) { return lerp(o1, i1, v); };
@@ -272,6 +299,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   const double mergeTolerance = 1e-6 * std::max(half.x(), half.y());
   std::vector<Vec2> nodes;
   std::vector<char> onBoundary, fixedNode;  // fixed: on the boundary or on the box around the hole
+  std::vector<std::optional<Eigen::Vector3d>> onSurface;  // boundary nodes: their point of the boundary in space
   const auto nodeId = [&](const Vec2& p, bool boundary) {
     for (size_t i = 0; i < nodes.size(); ++i)
       if ((nodes[i] - p).norm() <= mergeTolerance) {
@@ -281,6 +309,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     nodes.push_back(p);
     onBoundary.push_back(boundary);
     fixedNode.push_back(0);
+    onSurface.emplace_back();
     return static_cast<int>(nodes.size()) - 1;
   };
   std::vector<std::vector<std::vector<int>>> grid(blocks.size());
@@ -293,7 +322,12 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
       for (int j = 0; j <= b.nv; ++j) {
         const bool boundary = (j == 0 && b.bottomOnBoundary) || (j == b.nv && b.topOnBoundary) || (i == 0 && b.leftOnBoundary) ||
                               (i == b.nu && b.rightOnBoundary);
-        grid[bi][i][j] = nodeId(b.coons(double(i) / b.nu, double(j) / b.nv), boundary);
+        const double u = double(i) / b.nu, v = double(j) / b.nv;
+        const int id = grid[bi][i][j] = nodeId(b.coons(u, v), boundary);
+        if (j == 0 && b.bottomOnBoundary) onSurface[id] = b.bottom3d(u);
+        else if (j == b.nv && b.topOnBoundary) onSurface[id] = b.top3d(u);
+        else if (i == 0 && b.leftOnBoundary) onSurface[id] = b.left3d(v);
+        else if (i == b.nu && b.rightOnBoundary) onSurface[id] = b.right3d(v);
         const bool onHoleBox = !foot.holes.empty() && j == b.nv;
         if (boundary || onHoleBox) fixedNode[grid[bi][i][j]] = 1;
       }
@@ -331,6 +365,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
       if (!bad[node]) continue;
       const Vec2 target = towards >= 0 && towards != node ? nodes[towards] : blockCentre;
       nodes[node] = lerp(nodes[node], target, 0.08);
+      onSurface[node].reset();
       bad[node] = 0;
       ++out.nodesPulledIn;
     }
@@ -358,13 +393,19 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     }
   }
 
-  // Lift the nodes onto the surface: the point of the surface over each plan point.
+  // Lift the nodes onto the surface. A node on the boundary is its point of the boundary in space;
+  // any other the highest point of the surface over its plan point (the roof seen from above:
+  // near a vertical wall, as at the Lilium's base, the plan can see the surface twice).
+  int overhangs = 0;
   for (size_t i = 0; i < nodes.size(); ++i) {
+    if (onSurface[i]) {
+      out.corners.push_back(*onSurface[i]);
+      continue;
+    }
     const Vec2& q = nodes[i];
-    double bestOutside = std::numeric_limits<double>::infinity();
+    double bestOutside = std::numeric_limits<double>::infinity(), bestHeight = -std::numeric_limits<double>::infinity();
     Eigen::Vector3d best = Eigen::Vector3d::Zero();
-    bool found = false;
-    std::vector<double> heights;
+    int containing = 0;
     for (auto fh : surface.faces()) {
       const auto ids = faceVertices(surface, fh.idx());
       std::array<Eigen::Vector3d, 3> p;
@@ -375,26 +416,21 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
       if (std::abs(det) < 1e-300) continue;
       const double b1 = (d.x() * e2.y() - d.y() * e2.x()) / det, b2 = (e1.x() * d.y() - e1.y() * d.x()) / det, b0 = 1 - b1 - b2;
       const double outside = std::max({-b0, -b1, -b2, 0.0});
-      const Eigen::Vector3d point = b0 * p[0] + b1 * p[1] + b2 * p[2];
       if (outside <= 1e-9) {
-        heights.push_back((point - plan.origin).dot(plan.normal));
-        if (!found) best = point;
-        found = true;
-      } else if (!found && outside < bestOutside) {
+        const Eigen::Vector3d point = b0 * p[0] + b1 * p[1] + b2 * p[2];
+        const double height = (point - plan.origin).dot(plan.normal);
+        ++containing;
+        if (height > bestHeight) bestHeight = height, best = point;
+      } else if (containing == 0 && outside < bestOutside) {
         bestOutside = outside;
         const double c0 = std::max(b0, 0.0), c1 = std::max(b1, 0.0), c2 = std::max(b2, 0.0);
         best = (c0 * p[0] + c1 * p[1] + c2 * p[2]) / (c0 + c1 + c2);
       }
     }
-    if (heights.size() > 1) {
-      const auto [mn, mx] = std::minmax_element(heights.begin(), heights.end());
-      if (*mx - *mn > 10.0 * foot.tolerance)
-        throw InvalidInput(fmt::format("workflow 2: the surface is not a height field over its plan: it lies over itself at "
-                                       "plan point ({:.4g}, {:.4g}); give patching.patches",
-                                       q.x(), q.y()));
-    }
+    if (containing > 1) ++overhangs;
     out.corners.push_back(best);
   }
+  if (overhangs) out.notes.push_back(fmt::format("{} corner(s) over a part of the surface that the plan sees twice: the upper one taken", overhangs));
   for (size_t bi = 0; bi < blocks.size(); ++bi)
     for (int i = 0; i < blocks[bi].nu; ++i)
       for (int j = 0; j < blocks[bi].nv; ++j) {

@@ -41,8 +41,7 @@ struct Workflow2Layout {
   double seconds = 0.0;
 };
 
-// Throws InvalidInput when the surface is not a height field over its footprint plane (a patch
-// corner could not be placed) or has more than one hole.
+// Throws InvalidInput when the surface has no boundary or more than one hole.
 Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& options = {});
 
 }  // namespace egg::patching

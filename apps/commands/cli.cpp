@@ -26,6 +26,7 @@ int runCli(int argc, char** argv) {
   bench->require_subcommand(1);
   registerGeodesicBench(*bench, action);
   registerGridBench(*bench, action);
+  registerLayoutBench(*bench, action);
   registerSimBench(*bench, action);
 
   try {

@@ -24,6 +24,7 @@ void registerGeodesicCommand(CLI::App& parent, Action& action);  // geodesic_com
 void registerGeodesicBench(CLI::App& bench, Action& action);     // geodesic_commands.cpp (egg bench geodesic)
 void registerSimBench(CLI::App& bench, Action& action);          // sim_commands.cpp (egg bench sim)
 void registerGridBench(CLI::App& bench, Action& action);         // grid_commands.cpp (egg bench grid)
+void registerLayoutBench(CLI::App& bench, Action& action);       // layout_bench.cpp (egg bench layout)
 void registerStressCommand(CLI::App& parent, Action& action);    // sim_commands.cpp (egg stress)
 
 // Runs the program; returns the process exit code.

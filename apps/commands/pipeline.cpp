@@ -218,15 +218,17 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
       if (p.simulation) entry.deployedCentrelines = p.simulation->deployed.centrelines;
       grids.push_back(std::move(entry));
     }
-    FabricationStageResult fab = [&] {
-      try {
-        return runFabricationStage(scene, grids, out.staging(), sharedLamellae(patching, patches));
-      } catch (const InvalidInput& e) {
-        throw InvalidInput(scene.path.string() + ": " + e.what());
-      }
-    }();
-    report.stageRan("fabrication", secondsSince(fabStart));
-    report.section("fabrication") = fab.report;
+    // The grid decides whether its parts can be cut (a lamella whose slots leave no place for a
+    // splice, a part wider than the sheet): a failure of this run with its report, not bad input
+    // (the options themselves were checked when the scene was read).
+    try {
+      FabricationStageResult fab = runFabricationStage(scene, grids, out.staging(), sharedLamellae(patching, patches));
+      report.stageRan("fabrication", secondsSince(fabStart));
+      report.section("fabrication") = fab.report;
+    } catch (const InvalidInput& e) {
+      report.stageSkipped("fabrication", std::string("the grid cannot be cut with these settings: ") + e.what());
+      result.failures.push_back(std::string("fabrication: ") + e.what());
+    }
   }
 
   progress("writing", 0.9);

@@ -243,5 +243,23 @@ TEST(PipelineMultiPatch, AnInfeasiblePatchDoesNotStopTheOthers) {
   fs::remove_all(out);
 }
 
+TEST(PipelineMultiPatch, PartsThatCannotBeCutAreAFailureWithItsReport) {
+  // A sheet narrower than a lamella (50 mm): the grid is fine, its parts cannot be cut. The run
+  // fails (exit 1) and says why; the report is written, the cut files are not.
+  Scene scene = twoByTwoScene(R"(["report", "cut_files"])");
+  scene.simulation.enabled = false;
+  scene.fabrication.sheet_mm = {2500.0, 40.0};
+  const fs::path out = scratch("egg_pipeline_uncuttable");
+  PipelineOptions options;
+  options.out_dir = out;
+  const PipelineResult result = runPipeline(scene, options);
+  ASSERT_EQ(result.failures.size(), 1u);
+  EXPECT_EQ(result.failures[0].rfind("fabrication: ", 0), 0u) << result.failures[0];
+  EXPECT_FALSE(result.report["stages"]["fabrication"]["ran"].get<bool>());
+  EXPECT_TRUE(fs::exists(out / "report.json"));
+  EXPECT_FALSE(fs::exists(out / "cut"));
+  fs::remove_all(out);
+}
+
 }  // namespace
 }  // namespace egg::app

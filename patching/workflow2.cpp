@@ -2,6 +2,7 @@
 #include "patching/workflow2.hpp"
 
 #include "core/errors.hpp"
+#include "core/geodesic/distance_solver.hpp"
 #include "patching/injectivity.hpp"
 
 #include <fmt/core.h>
@@ -205,7 +206,7 @@ struct Block {
 
 }  // namespace
 
-Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& options) {
+Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& options, const geodesic::DistanceSolver* solver) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
   if (surface.n_faces() == 0) throw InvalidInput("workflow 2: the surface has no faces");
@@ -397,11 +398,8 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   // any other the highest point of the surface over its plan point (the roof seen from above:
   // near a vertical wall, as at the Lilium's base, the plan can see the surface twice).
   int overhangs = 0;
-  for (size_t i = 0; i < nodes.size(); ++i) {
-    if (onSurface[i]) {
-      out.corners.push_back(*onSurface[i]);
-      continue;
-    }
+  const auto lift = [&](size_t i) -> Eigen::Vector3d {
+    if (onSurface[i]) return *onSurface[i];
     const Vec2& q = nodes[i];
     double bestOutside = std::numeric_limits<double>::infinity(), bestHeight = -std::numeric_limits<double>::infinity();
     Eigen::Vector3d best = Eigen::Vector3d::Zero();
@@ -428,8 +426,45 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
       }
     }
     if (containing > 1) ++overhangs;
-    out.corners.push_back(best);
+    return best;
+  };
+  std::vector<Eigen::Vector3d> lifted(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) lifted[i] = lift(i);
+
+  // The plan test above cannot see a chord that hugs a wall (the Lilium's base is vertical): trace
+  // each boundary chord on the surface, and where it bends round a boundary vertex, pull its ends
+  // further in.
+  if (solver) {
+    const double turnTolerance = 1e-3;
+    for (int round = 0; round < 12; ++round) {
+      std::vector<char> bad(nodes.size(), 0);
+      for (const auto& [a, b] : boundaryChords) {
+        const auto path = solver->path(geodesic::snapToSurface(surface, lifted[a]), geodesic::snapToSurface(surface, lifted[b]));
+        for (int v : path.bendVertices) {
+          if (!surface.is_boundary(TriMesh::VertexHandle(v))) continue;
+          const Eigen::Vector3d at = toEigen(surface.point(TriMesh::VertexHandle(v)));
+          size_t k = 0;
+          for (size_t j = 1; j < path.positions.size(); ++j)
+            if ((path.positions[j] - at).squaredNorm() < (path.positions[k] - at).squaredNorm()) k = j;
+          if (k == 0 || k + 1 >= path.positions.size()) continue;
+          const Eigen::Vector3d u = (path.positions[k] - path.positions[k - 1]).normalized(),
+                                w = (path.positions[k + 1] - path.positions[k]).normalized();
+          if (std::atan2(u.cross(w).norm(), u.dot(w)) > turnTolerance) bad[a] = bad[b] = 1;
+        }
+      }
+      if (std::none_of(bad.begin(), bad.end(), [](char c) { return c; })) break;
+      for (const auto& [node, towards] : inwards) {
+        if (!bad[node]) continue;
+        const Vec2 target = towards >= 0 && towards != node ? nodes[towards] : blockCentre;
+        nodes[node] = lerp(nodes[node], target, 0.08);
+        onSurface[node].reset();
+        lifted[node] = lift(node);
+        bad[node] = 0;
+        ++out.nodesPulledIn;
+      }
+    }
   }
+  out.corners = lifted;
   if (overhangs) out.notes.push_back(fmt::format("{} corner(s) over a part of the surface that the plan sees twice: the upper one taken", overhangs));
   for (size_t bi = 0; bi < blocks.size(); ++bi)
     for (int i = 0; i < blocks[bi].nu; ++i)

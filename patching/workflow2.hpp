@@ -21,6 +21,10 @@
 #include <string>
 #include <vector>
 
+namespace egg::geodesic {
+class DistanceSolver;
+}
+
 namespace egg::patching {
 
 struct Workflow2Options {
@@ -41,7 +45,10 @@ struct Workflow2Layout {
   double seconds = 0.0;
 };
 
+// With `solver` (on `surface`) every boundary chord is traced, and a chord that bends round a
+// boundary vertex (hugging a wall the plan view cannot see) has its ends pulled in further.
 // Throws InvalidInput when the surface has no boundary or more than one hole.
-Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& options = {});
+Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& options = {},
+                              const geodesic::DistanceSolver* solver = nullptr);
 
 }  // namespace egg::patching

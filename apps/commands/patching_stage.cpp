@@ -70,7 +70,7 @@ PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& 
     patching::Workflow2Options w2;
     w2.maxPatchSizeM = scene.patching.max_patch_size_m;
     try {
-      run.initial = patching::proposeLayout(surface, w2);
+      run.initial = patching::proposeLayout(surface, w2, &surfaceSolver);
     } catch (const InvalidInput& e) {
       throw InvalidInput(origin + ": patching: " + e.what());
     }

@@ -1,5 +1,7 @@
 #include "fabrication/drawing.hpp"
 
+#include "core/io/xml_text.hpp"
+
 #include <cstdio>
 #include <sstream>
 
@@ -35,19 +37,6 @@ std::string number(double x) {
   return s;
 }
 
-std::string escapeXml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 }  // namespace
 

@@ -1,5 +1,7 @@
 #include "patching/plan_svg.hpp"
 
+#include "core/io/xml_text.hpp"
+
 #include "core/curvature/curvature.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
@@ -24,20 +26,6 @@ struct Projection {
   double py(double y) const { return top + (ymax - y) * scale; }
 };
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 std::string point(const Projection& p, const Eigen::Vector3d& q) { return fmt::format("{:.1f},{:.1f}", p.px(q.x()), p.py(q.y())); }
 
@@ -56,7 +44,7 @@ std::string label(double x, double y, const std::string& text, double size, cons
   return fmt::format(
       "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{:.0f}\" text-anchor=\"{}\" paint-order=\"stroke\" stroke=\"#fff\" "
       "stroke-width=\"3\" stroke-linejoin=\"round\"{}>{}</text>\n",
-      x, y, size, anchor, extra, escape(text));
+      x, y, size, anchor, extra, escapeXml(text));
 }
 
 // Diverging ColorBrewer RdBu: blue for negative K, white at 0, red for positive; v in [-1, 1].
@@ -159,13 +147,13 @@ struct Legend {
   std::string svg;
   void gap(double h) { y += h; }
   void text(const std::string& t, double size = 12, const std::string& extra = "") {
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{:.0f}\"{}>{}</text>\n", x, y + size, size, extra, escape(t));
+    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{:.0f}\"{}>{}</text>\n", x, y + size, size, extra, escapeXml(t));
     y += size + 5;
   }
   // A swatch (any SVG drawn in a 30 x 14 box at (sx, sy)) and its text.
   void item(const std::string& swatch, const std::string& t) {
     svg += fmt::format("<g transform=\"translate({:.1f},{:.1f})\">{}</g>\n", x, y, swatch);
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\">{}</text>\n", x + 40, y + 11, escape(t));
+    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\">{}</text>\n", x + 40, y + 11, escapeXml(t));
     y += 20;
   }
 };
@@ -373,7 +361,7 @@ std::string planSvg(const PlanDrawing& drawing) {
   for (auto [frac, text, anchor] : {std::tuple{0.0, fmt::format("−{}", number(kScale)), "start"}, std::tuple{0.5, std::string("0"), "middle"},
                                     std::tuple{1.0, fmt::format("+{}", number(kScale)), "end"}})
     legend.svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" text-anchor=\"{}\">{}</text>\n",
-                              legend.x + frac * barWidth, legend.y + 11, anchor, escape(text));
+                              legend.x + frac * barWidth, legend.y + 11, anchor, escapeXml(text));
   legend.y += 16;
   legend.text(fmt::format("colours capped at the {:g}th percentile of |K|", drawing.options.curvature_percentile), 10);
   legend.text(fmt::format("K from {} to {} /m² (face means)", number(*kMinIt), number(*kMaxIt)), 10);
@@ -422,7 +410,7 @@ std::string planSvg(const PlanDrawing& drawing) {
   svg += fmt::format("<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n");
   if (!drawing.title.empty())
     svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"20\" font-weight=\"bold\">{}</text>\n", margin, margin + 10,
-                       escape(drawing.title));
+                       escapeXml(drawing.title));
   svg += body + legend.svg + "</svg>\n";
   return svg;
 }

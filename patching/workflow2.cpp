@@ -143,21 +143,21 @@ struct Arc {
   std::vector<Vec2> points;
   std::vector<Eigen::Vector3d> points3d;
   std::vector<double> s;
-  // The boundary point in space at the arc's parameter u (the loop is the mesh's own boundary).
-  Eigen::Vector3d at3d(double u) const {
+  // Where arc parameter u falls: the segment's end index and the fraction along it.
+  std::pair<size_t, double> locate(double u) const {
     const double target = std::clamp(u, 0.0, 1.0) * s.back();
     size_t hi = std::upper_bound(s.begin(), s.end(), target) - s.begin();
     hi = std::clamp<size_t>(hi, 1, s.size() - 1);
     const double span = s[hi] - s[hi - 1];
-    const double t = span > 0 ? (target - s[hi - 1]) / span : 0.0;
+    return {hi, span > 0 ? (target - s[hi - 1]) / span : 0.0};
+  }
+  // The boundary point in space at u (the loop is the mesh's own boundary), and in the plan.
+  Eigen::Vector3d at3d(double u) const {
+    const auto [hi, t] = locate(u);
     return (1.0 - t) * points3d[hi - 1] + t * points3d[hi];
   }
   Vec2 at(double u) const {
-    const double target = std::clamp(u, 0.0, 1.0) * s.back();
-    size_t hi = std::upper_bound(s.begin(), s.end(), target) - s.begin();
-    hi = std::clamp<size_t>(hi, 1, s.size() - 1);
-    const double span = s[hi] - s[hi - 1];
-    const double t = span > 0 ? (target - s[hi - 1]) / span : 0.0;
+    const auto [hi, t] = locate(u);
     return (1.0 - t) * points[hi - 1] + t * points[hi];
   }
 };

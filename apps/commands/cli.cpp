@@ -27,6 +27,7 @@ int runCli(int argc, char** argv) {
   registerGeodesicBench(*bench, action);
   registerGridBench(*bench, action);
   registerLayoutBench(*bench, action);
+  registerPatchingBench(*bench, action);
   registerSimBench(*bench, action);
 
   try {

@@ -25,6 +25,7 @@ void registerGeodesicBench(CLI::App& bench, Action& action);     // geodesic_com
 void registerSimBench(CLI::App& bench, Action& action);          // sim_commands.cpp (egg bench sim)
 void registerGridBench(CLI::App& bench, Action& action);         // grid_commands.cpp (egg bench grid)
 void registerLayoutBench(CLI::App& bench, Action& action);       // layout_bench.cpp (egg bench layout)
+void registerPatchingBench(CLI::App& bench, Action& action);     // patching_bench.cpp (egg bench patching)
 void registerStressCommand(CLI::App& parent, Action& action);    // sim_commands.cpp (egg stress)
 
 // Runs the program; returns the process exit code.

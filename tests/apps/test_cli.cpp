@@ -234,5 +234,19 @@ TEST_F(Cli, GridBenchTabulatesErrorAgainstTimeOfMapsOnAProxy) {
   EXPECT_NE(bad.err.find("--map-proxy"), std::string::npos) << bad.err;
 }
 
+TEST_F(Cli, PatchingBenchDecomposesTheGreatCourtUnattended) {
+  // Workflow 2 on the default scene: four patches round the Reading Room (the paper's hand layout
+  // had four), every one feasible, the hole's tangent box as the only cut-off.
+  const auto scene = (std::filesystem::path(EGG_SOURCE_DIR) / "samples" / "great_court.json").string();
+  const auto o = runEgg({"bench", "patching", "--samples", scene, "--json"});
+  ASSERT_EQ(o.code, kExitOk) << o.err;
+  const auto rows = nlohmann::json::parse(o.out);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0]["patches"], 4);
+  EXPECT_EQ(rows[0]["feasible"], 4);
+  EXPECT_GT(rows[0]["coverage"].get<double>(), 0.85);
+  EXPECT_LT(rows[0]["coverage"].get<double>(), 1.0);
+}
+
 }  // namespace
 }  // namespace egg::app

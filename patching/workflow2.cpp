@@ -230,10 +230,36 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   for (const auto& p : foot.outer) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const Vec2 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
   const std::array<Vec2, 4> quadrant{Vec2(-1, -1), Vec2(1, -1), Vec2(1, 1), Vec2(-1, 1)};
+  // Only convex points of the boundary may be block corners (its convex hull's vertices): a corner
+  // in a concave neck, as between the Lilium's lobes, would make its patch reflex there.
+  std::vector<char> onHull(foot.outer.size(), 0);
+  {
+    std::vector<size_t> order(foot.outer.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+      return foot.outer[a].x() < foot.outer[b].x() || (foot.outer[a].x() == foot.outer[b].x() && foot.outer[a].y() < foot.outer[b].y());
+    });
+    const auto cross = [&](size_t o, size_t a, size_t b) {
+      const Vec2 u = foot.outer[a] - foot.outer[o], w = foot.outer[b] - foot.outer[o];
+      return u.x() * w.y() - u.y() * w.x();
+    };
+    std::vector<size_t> hull;
+    for (int pass = 0; pass < 2; ++pass) {
+      const size_t start = hull.size();
+      for (size_t k = 0; k < order.size(); ++k) {
+        const size_t i = pass == 0 ? order[k] : order[order.size() - 1 - k];
+        while (hull.size() >= start + 2 && cross(hull[hull.size() - 2], hull.back(), i) <= 0) hull.pop_back();
+        hull.push_back(i);
+      }
+      hull.pop_back();
+    }
+    for (size_t i : hull) onHull[i] = 1;
+  }
   std::array<size_t, 4> cornerIndex{};
   for (int k = 0; k < 4; ++k) {
     double best = -std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < foot.outer.size(); ++i) {
+      if (!onHull[i]) continue;
       const Vec2 d = (foot.outer[i] - centre).cwiseQuotient(half);
       const double score = quadrant[k].dot(d);
       if (score > best) best = score, cornerIndex[k] = i;

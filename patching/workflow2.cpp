@@ -327,6 +327,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   std::vector<Vec2> nodes;
   std::vector<char> onBoundary, fixedNode;  // fixed: on the boundary or on the box around the hole
   std::vector<std::optional<Eigen::Vector3d>> onSurface;  // boundary nodes: their point of the boundary in space
+  std::vector<std::optional<Eigen::Vector3d>> startedOn;  // boundary nodes: where they were before being pulled in
   const auto nodeId = [&](const Vec2& p, bool boundary) {
     for (size_t i = 0; i < nodes.size(); ++i)
       if ((nodes[i] - p).norm() <= mergeTolerance) {
@@ -337,6 +338,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     onBoundary.push_back(boundary);
     fixedNode.push_back(0);
     onSurface.emplace_back();
+    startedOn.emplace_back();
     return static_cast<int>(nodes.size()) - 1;
   };
   std::vector<std::vector<std::vector<int>>> grid(blocks.size());
@@ -355,6 +357,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
         else if (j == b.nv && b.topOnBoundary) onSurface[id] = b.top3d(u);
         else if (i == 0 && b.leftOnBoundary) onSurface[id] = b.left3d(v);
         else if (i == b.nu && b.rightOnBoundary) onSurface[id] = b.right3d(v);
+        if (onSurface[id]) startedOn[id] = onSurface[id];
         const bool onHoleBox = !foot.holes.empty() && j == b.nv;
         if (boundary || onHoleBox) fixedNode[grid[bi][i][j]] = 1;
       }
@@ -442,7 +445,9 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
       const double outside = std::max({-b0, -b1, -b2, 0.0});
       if (outside <= 1e-9) {
         const Eigen::Vector3d point = b0 * p[0] + b1 * p[1] + b2 * p[2];
-        const double height = (point - plan.origin).dot(plan.normal);
+        // A corner pulled in from the boundary stays on the sheet of surface it came from (nearest
+        // to its boundary point: not up an overhanging wall); any other takes the upper sheet.
+        const double height = startedOn[i] ? -(point - *startedOn[i]).norm() : (point - plan.origin).dot(plan.normal);
         ++containing;
         if (height > bestHeight) bestHeight = height, best = point;
       } else if (containing == 0 && outside < bestOutside) {

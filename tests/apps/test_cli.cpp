@@ -193,9 +193,10 @@ TEST_F(Cli, GeodesicBenchTabulatesErrorAgainstTimeOverTheSaddleTolerance) {
   const Outcome o = runEgg({"bench", "geodesic", "--sizes", "400", "--cgal-sources", "0", "--sources", "8",
                             "--timed-sources", "3", "--saddle-tolerance", "0,7e-4", "--json"});
   ASSERT_EQ(o.code, 0) << o.err;
-  const auto start = o.out.find("\n{");
-  ASSERT_NE(start, std::string::npos) << o.out;
-  const auto table = nlohmann::json::parse(o.out.substr(start + 1))["saddle_tolerance"];
+  // With --json, stdout is the JSON document alone (issue 17: the table went first); the table is on stderr.
+  ASSERT_TRUE(nlohmann::json::accept(o.out)) << o.out;
+  EXPECT_NE(o.err.find("vertices"), std::string::npos) << o.err;
+  const auto table = nlohmann::json::parse(o.out)["saddle_tolerance"];
   ASSERT_EQ(table.size(), 2u);
   EXPECT_EQ(table[0]["max_relative_error_vertices"].get<double>(), 0.0);
   EXPECT_EQ(table[0]["max_relative_error_side_to_side"].get<double>(), 0.0);
@@ -213,9 +214,10 @@ TEST_F(Cli, GridBenchTabulatesErrorAgainstTimeOfMapsOnAProxy) {
   const Outcome o = runEgg({"bench", "grid", "--sizes", "1100", "--repeats", "1", "--resolution", "31", "--map-proxy", "0,300",
                             "--json"});
   ASSERT_EQ(o.code, 0) << o.err;
-  const auto start = o.out.find("\n{");
-  ASSERT_NE(start, std::string::npos) << o.out;
-  const auto table = nlohmann::json::parse(o.out.substr(start + 1))["map_tolerance"];
+  // With --json, stdout is the JSON document alone (issue 17: the table went first); the table is on stderr.
+  ASSERT_TRUE(nlohmann::json::accept(o.out)) << o.out;
+  EXPECT_NE(o.err.find("vertices"), std::string::npos) << o.err;
+  const auto table = nlohmann::json::parse(o.out)["map_tolerance"];
   ASSERT_EQ(table.size(), 3u);
   EXPECT_EQ(table[0]["max_map_error_m"].get<double>(), 0.0);
   EXPECT_EQ(table[0]["proxy_vertices"].get<int>(), 0);

@@ -3,6 +3,7 @@
 #include "apps/commands/report.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/io/json_check.hpp"
 #include "core/materials/materials.hpp"
 
 #include <algorithm>
@@ -406,70 +407,14 @@ Scene parseScene(const json& document, const std::filesystem::path& origin) {
   return scene;
 }
 
-namespace {
-
-// Where the parser is in the document ("patching.slope_bounds[1]"), for messages about a value the
-// parser itself refuses (a number that overflows a double), and the nesting depth limit.
-class ParsePosition {
- public:
-  struct TooDeep {};
-
-  bool event(int /*depth*/, json::parse_event_t event, const json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start:
-      case json::parse_event_t::array_start:
-        if (frames_.size() >= static_cast<size_t>(kMaxSceneDepth)) throw TooDeep{};
-        frames_.push_back({event == json::parse_event_t::array_start, "", 0});
-        break;
-      case json::parse_event_t::key:
-        if (!frames_.empty() && parsed.is_string()) frames_.back().key = parsed.get<std::string>();
-        break;
-      case json::parse_event_t::value:
-        if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
-        break;
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        if (!frames_.empty()) frames_.pop_back();
-        if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
-        break;
-    }
-    return true;
-  }
-
-  std::string path() const {
-    std::string out;
-    for (const auto& f : frames_) {
-      if (f.array) out += "[" + std::to_string(f.index) + "]";
-      else out += (out.empty() ? "" : ".") + abbreviate(f.key, 80);
-    }
-    return out;
-  }
-
- private:
-  struct Frame {
-    bool array;
-    std::string key;
-    size_t index;
-  };
-  std::vector<Frame> frames_;
-};
-
-}  // namespace
-
 Scene parseSceneText(const std::string& text, const std::filesystem::path& origin) {
   const std::string where = abbreviate(origin.string());
-  ParsePosition position;
+  // One linear pass first: nesting, numbers that overflow a double, valid JSON, named by position.
+  const JsonCheck check = checkJsonText(text, kMaxSceneDepth);
+  if (!check.ok) throw InvalidInput(where + ": " + (check.path.empty() ? "" : check.path + ": ") + check.problem);
   json document;
   try {
-    document = json::parse(
-        text, [&](int depth, json::parse_event_t event, json& parsed) { return position.event(depth, event, parsed); });
-  } catch (const ParsePosition::TooDeep&) {
-    throw InvalidInput(where + ": " + position.path() + ": nested deeper than " + std::to_string(kMaxSceneDepth) +
-                       " levels of objects and arrays");
-  } catch (const json::out_of_range& e) {
-    // 1e400 and the like: nlohmann refuses numbers that overflow a double (error 406).
-    const std::string field = position.path();
-    throw InvalidInput(where + ": " + (field.empty() ? "" : field + ": ") + "number out of range: " + abbreviate(e.what()));
+    document = json::parse(text);
   } catch (const json::exception& e) {
     throw InvalidInput(where + ": not valid JSON: " + abbreviate(e.what(), 400));
   }

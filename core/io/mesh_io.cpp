@@ -3,6 +3,7 @@
 #include "core/errors.hpp"
 
 #include "core/io/atomic_file.hpp"
+#include "core/io/json_check.hpp"
 
 #include <assimp/Exporter.hpp>
 #include <assimp/IOStream.hpp>
@@ -230,17 +231,17 @@ bool objSoupInFileOrder(const aiScene& scene, const std::vector<aiVector3D>& fil
 // indices) at most kMaxGltfNodeDepth deep and without cycles; a file of 200,000 nested nodes
 // overflowed the stack inside assimp.
 void checkGltfJson(const fs::path& path, const std::string& jsonText) {
-  struct TooDeep {};
+  const JsonCheck check = checkJsonText(jsonText, kMaxGltfJsonDepth);
+  if (!check.ok) {
+    if (check.problem.rfind("nested deeper", 0) == 0)
+      throw IoError("cannot read mesh " + quoted(path) + ": its JSON is " + check.problem + " (at " + check.path + ")");
+    return;  // not valid JSON: assimp reports it
+  }
   nlohmann::json document;
   try {
-    document = nlohmann::json::parse(jsonText, [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-      if (depth > kMaxGltfJsonDepth) throw TooDeep{};
-      return true;
-    });
-  } catch (const TooDeep&) {
-    throw IoError("cannot read mesh " + quoted(path) + ": its JSON nests deeper than " + std::to_string(kMaxGltfJsonDepth) + " levels");
+    document = nlohmann::json::parse(jsonText);
   } catch (const nlohmann::json::exception&) {
-    return;  // not valid JSON: assimp reports it
+    return;
   }
   if (!document.is_object() || !document.contains("nodes") || !document["nodes"].is_array()) return;
   const nlohmann::json& nodes = document["nodes"];

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -234,6 +235,81 @@ TEST_F(Cli, GridBenchTabulatesErrorAgainstTimeOfMapsOnAProxy) {
   const Outcome bad = runEgg({"bench", "grid", "--map-proxy", "-5"});
   EXPECT_NE(bad.code, 0);
   EXPECT_NE(bad.err.find("--map-proxy"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace egg::app
+
+namespace egg::app {
+namespace {
+
+// Issue 17: NaN passed CLI11's range checks; absurd --threads aborted (std::terminate); absurd
+// sizes ran for minutes, grew past 12 GB or silently benchmarked something else (int overflow).
+TEST_F(Cli, AbsurdOrNanFlagsAreBadInputBeforeAnyWork) {
+  const std::vector<std::vector<std::string>> cases{
+      {"bench", "sim", "--tolerances", "nan"},
+      {"bench", "sim", "--notch-fraction", "nan"},
+      {"bench", "sim", "--spacings", "0.001"},
+      {"bench", "sim", "--threads", "100000"},
+      {"bench", "grid", "--height", "nan"},
+      {"bench", "grid", "--sizes", "2000000000"},
+      {"bench", "grid", "--map-tolerance", "nan"},
+      {"bench", "geodesic", "--threads", "1000000000"},
+      {"bench", "geodesic", "--sources", "2000000000"},
+      {"bench", "geodesic", "--sizes", "2000000000"},
+      {"bench", "geodesic", "--saddle-tolerance", "nan"},
+      {"stress", "--time-limit", "nan"},
+      {"surface", "plane", "--edge-length", "nan"},
+      {"run", "--threads", "100000"},
+  };
+  for (const auto& args : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    const Outcome o = runEgg(args);
+    EXPECT_EQ(o.code, kExitBadInput) << args[args.size() - 2] << " " << args.back() << ": " << o.err;
+    EXPECT_NE(o.err.find(args[args.size() - 2]), std::string::npos) << o.err;
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  }
+}
+
+// Issue 17: `geodesic --out` onto a character device replaced the device node with a file.
+TEST_F(Cli, AnOutputOntoADeviceIsRefused) {
+  const Outcome o = runEgg({"geodesic", "plane", "--source", "0,0,0", "--out", "/dev/null"});
+  EXPECT_EQ(o.code, kExitFailure) << o.err;
+  EXPECT_NE(o.err.find("character device"), std::string::npos) << o.err;
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+}
+
+// Issue 17: a folder as the scene and 1e400 in a field were "internal error", exit 1.
+TEST_F(Cli, AFolderAsSceneAndAnOverflowingNumberAreBadInputNamingTheField) {
+  fs::create_directories(root / "dir.json");
+  const Outcome dir = runEgg({"run", (root / "dir.json").string(), "--quiet"});
+  EXPECT_EQ(dir.code, kExitBadInput) << dir.err;
+  EXPECT_EQ(dir.err.find("internal error"), std::string::npos) << dir.err;
+  const auto scene = write("big.json", R"({"surface": {"sample": "bump"}, "lamella": {"width_m": 1e400}})");
+  const Outcome big = runEgg({"run", scene.string(), "--out", (root / "out").string(), "--quiet"});
+  EXPECT_EQ(big.code, kExitBadInput) << big.err;
+  EXPECT_NE(big.err.find("lamella.width_m"), std::string::npos) << big.err;
+  EXPECT_FALSE(fs::exists(root / "out"));
+}
+
+// Issue 17: `egg run run/scene.json --out run` onto an earlier run deleted the run's own scene.
+TEST_F(Cli, ARunNeverReplacesAFolderHoldingTheUsersFiles) {
+  const std::string text = R"({"name": "small", "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1, "sigma": 1.5}, "edge_length_m": 0.5},
+                               "patching": {"patches": [[[-3, -3, 0], [3, -3, 0], [3, 3, 0], [-3, 3, 0]]]},
+                               "grid": {"map_resolution": 20, "members_per_family": 4},
+                               "simulation": {"enabled": false}, "outputs": ["report"]})";
+  const auto first = write("small.json", text);
+  const auto out = root / "run";
+  ASSERT_EQ(runEgg({"run", first.string(), "--out", out.string(), "--quiet"}).code, kExitOk);
+  ASSERT_EQ(runEgg({"run", first.string(), "--out", out.string(), "--quiet"}).code, kExitOk) << "a pure run is replaced";
+  std::ofstream(out / "scene.json") << text;
+  std::ofstream(out / "notes.txt") << "mine";
+  const Outcome o = runEgg({"run", (out / "scene.json").string(), "--out", out.string(), "--quiet"});
+  EXPECT_EQ(o.code, kExitBadInput) << o.err;
+  EXPECT_NE(o.err.find("did not write"), std::string::npos) << o.err;
+  EXPECT_TRUE(fs::exists(out / "scene.json"));
+  EXPECT_TRUE(fs::exists(out / "notes.txt"));
+  EXPECT_TRUE(fs::exists(out / "report.json"));
 }
 
 }  // namespace

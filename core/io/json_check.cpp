@@ -71,6 +71,7 @@ class ShapeScanner : public json::json_sax_t {
     for (const auto& f : frames_) {
       if (f.array) out += "[" + std::to_string(f.index) + "]";
       else out += (out.empty() ? "" : ".") + abbreviate(f.key, 80);
+      if (out.size() > 160) return out.substr(0, 160) + "...";
     }
     return out;
   }

@@ -119,6 +119,10 @@ void checkOffFile(const fs::path& path, const std::string& text) {
     return;
   }
   if (vertices < 0 || faces < 0) throw IoError("cannot read mesh " + quoted(path) + ": negative vertex or face count in the OFF header");
+  // Assimp reserves by these counts; every vertex and face takes at least two bytes of the file.
+  if (static_cast<unsigned long long>(vertices) + static_cast<unsigned long long>(faces) > text.size() / 2 + 1)
+    throw IoError("cannot read mesh " + quoted(path) + ": the header declares " + std::to_string(vertices) + " vertices and " +
+                  std::to_string(faces) + " faces, more than the file's " + std::to_string(text.size()) + " bytes can hold");
   for (long long v = 0; v < vertices; ++v)
     if (!nextContentLine(line)) return;  // truncated: assimp reports it
   for (long long f = 0; f < faces; ++f) {
@@ -137,6 +141,69 @@ void checkOffFile(const fs::path& path, const std::string& text) {
                       " refers to vertex " + std::to_string(index) + ", but the file has vertices 0 .. " +
                       std::to_string(vertices - 1));
       }
+    }
+  }
+}
+
+// PLY: element counts the file cannot hold. Assimp reserves memory by the header's counts: a
+// 169-byte file declaring 2,000,000,000 vertices was killed for lack of memory. Every element
+// takes at least a few bytes in the body (ASCII: a digit and a separator per property; binary:
+// the sizes of its properties), so the counts are bounded by the file's size.
+void checkPlyFile(const fs::path& path, const std::string& text) {
+  const size_t headerEnd = text.find("end_header");
+  if (text.compare(0, 3, "ply") != 0 || headerEnd == std::string::npos) return;  // assimp reports it
+  std::istringstream header(text.substr(0, headerEnd));
+  std::string line, format;
+  struct Element {
+    std::string name;
+    unsigned long long count = 0;
+    unsigned long long minBytes = 0;
+  };
+  std::vector<Element> elements;
+  auto typeSize = [](const std::string& t) -> unsigned long long {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "double" || t == "float64") return 8;
+    return 4;
+  };
+  while (std::getline(header, line)) {
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "format") {
+      words >> format;
+    } else if (word == "element") {
+      Element e;
+      words >> e.name;
+      std::string count;
+      words >> count;
+      if (!count.empty() && count[0] == '-')
+        throw IoError("cannot read mesh " + quoted(path) + ": element " + abbreviate(e.name, 40) + " has a negative count");
+      e.count = std::strtoull(count.c_str(), nullptr, 10);
+      elements.push_back(e);
+    } else if (word == "property" && !elements.empty()) {
+      std::string type;
+      words >> type;
+      unsigned long long bytes = 2;  // ASCII: at least one digit and one separator
+      if (format != "ascii") {
+        if (type == "list") {
+          std::string countType;
+          words >> countType;
+          bytes = typeSize(countType);
+        } else {
+          bytes = typeSize(type);
+        }
+      }
+      elements.back().minBytes += bytes;
+    }
+  }
+  const unsigned long long body = text.size() - headerEnd;
+  for (const Element& e : elements) {
+    const unsigned long long perElement = std::max<unsigned long long>(e.minBytes, 1);
+    if (e.count > body / perElement + 1) {
+      throw IoError("cannot read mesh " + quoted(path) + ": the header declares " + std::to_string(e.count) + " " +
+                    abbreviate(e.name, 40) + " elements, more than the file's " + std::to_string(body) +
+                    " bytes after the header can hold");
     }
   }
 }
@@ -298,12 +365,13 @@ void checkGlb(const fs::path& path, const std::string& data) {
 // the vertex positions of an OBJ file (empty for other formats).
 std::vector<aiVector3D> precheckMeshFile(const fs::path& path) {
   const std::string ext = lowerExtension(path);
-  if (ext != ".off" && ext != ".obj" && ext != ".gltf" && ext != ".glb") {
+  if (ext != ".off" && ext != ".obj" && ext != ".gltf" && ext != ".glb" && ext != ".ply") {
     checkRegularInputFile(path, kMaxMeshFileBytes, "mesh file");
     return {};
   }
   const std::string text = readRegularFile(path, kMaxMeshFileBytes, "mesh file");
   if (ext == ".off") checkOffFile(path, text);
+  if (ext == ".ply") checkPlyFile(path, text);
   if (ext == ".gltf") checkGltfJson(path, text);
   if (ext == ".glb") checkGlb(path, text);
   if (ext == ".obj") return checkObjFile(path, text);

@@ -16,6 +16,7 @@ if [ ! -f "$BUILD_DIR/build.ninja" ]; then
 fi
 cmake --build "$BUILD_DIR" -j "${EGG_JOBS:-$(nproc)}" --target $(printf 'fuzz_%s ' "${TARGETS[@]}")
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
+export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0"
 for t in "${TARGETS[@]}"; do
   mkdir -p "$BUILD_DIR/corpus/$t" "$BUILD_DIR/crashes/$t"
   echo "== fuzz_$t: $RUNS inputs"

@@ -21,6 +21,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <set>
 #include <unordered_map>
 #include <memory>
 #include <sstream>
@@ -110,14 +111,26 @@ void checkOffFile(const fs::path& path, const std::string& text) {
   header >> magic;
   // Only plain ASCII OFF (optionally COFF/NOFF...): anything else is left to assimp.
   if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0) return;
-  long long vertices = -1, faces = -1;
-  if (!(header >> vertices)) {
+  // The counts, on the OFF line or the next one. Assimp parses them with a wrapping strtoul: a
+  // count of 10^25 became a 61 GB allocation. Not two plain numbers below 2^31: refused here.
+  std::string first, second;
+  if (!(header >> first)) {
     if (!nextContentLine(line)) return;
     std::istringstream counts(line);
-    if (!(counts >> vertices >> faces)) return;
-  } else if (!(header >> faces)) {
-    return;
+    counts >> first >> second;
+  } else {
+    header >> second;
   }
+  auto count = [&](const std::string& text) -> long long {
+    if (text.empty() || text.size() > 10 || text.find_first_not_of("0123456789") != std::string::npos)
+      throw IoError("cannot read mesh " + quoted(path) + ": the OFF header's vertex and face counts must be numbers below 2^31, got " +
+                    abbreviate(first, 40) + " " + abbreviate(second, 40));
+    const long long value = std::stoll(text);
+    if (value > 0x7fffffffLL)
+      throw IoError("cannot read mesh " + quoted(path) + ": the OFF header's count " + text + " is too large");
+    return value;
+  };
+  const long long vertices = count(first), faces = count(second);
   if (vertices < 0 || faces < 0) throw IoError("cannot read mesh " + quoted(path) + ": negative vertex or face count in the OFF header");
   // Assimp reserves by these counts; every vertex and face takes at least two bytes of the file.
   if (static_cast<unsigned long long>(vertices) + static_cast<unsigned long long>(faces) > text.size() / 2 + 1)
@@ -310,7 +323,23 @@ void checkGltfJson(const fs::path& path, const std::string& jsonText) {
   } catch (const nlohmann::json::exception&) {
     return;
   }
-  if (!document.is_object() || !document.contains("nodes") || !document["nodes"].is_array()) return;
+  if (!document.is_object()) return;
+  // Accessors: assimp sizes its buffers by componentType and count before checking them against
+  // the data (a GLB accessor without a componentType asked for gigabytes).
+  if (document.contains("accessors") && document["accessors"].is_array()) {
+    size_t k = 0;
+    for (const auto& accessor : document["accessors"]) {
+      const std::string name = "accessor " + std::to_string(k++);
+      if (!accessor.is_object()) throw IoError("cannot read mesh " + quoted(path) + ": " + name + " is not an object");
+      const auto& type = accessor.contains("componentType") ? accessor["componentType"] : nlohmann::json();
+      const bool knownType = type.is_number_integer() && std::set<long long>{5120, 5121, 5122, 5123, 5125, 5126}.count(type.get<long long>());
+      if (!knownType) throw IoError("cannot read mesh " + quoted(path) + ": " + name + " has no valid componentType");
+      const auto& count = accessor.contains("count") ? accessor["count"] : nlohmann::json();
+      if (!count.is_number_integer() || count.get<long long>() < 0 || count.get<long long>() > 100000000LL)
+        throw IoError("cannot read mesh " + quoted(path) + ": " + name + " needs a count between 0 and 100000000");
+    }
+  }
+  if (!document.contains("nodes") || !document["nodes"].is_array()) return;
   const nlohmann::json& nodes = document["nodes"];
   const long long n = static_cast<long long>(nodes.size());
   std::vector<int> depth(static_cast<size_t>(n), 0);  // 0 = not reached yet

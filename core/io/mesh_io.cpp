@@ -384,9 +384,15 @@ void checkGltfJson(const fs::path& path, const std::string& jsonText) {
 void checkGlb(const fs::path& path, const std::string& data) {
   // Header: magic "glTF", version, length; first chunk: length, type "JSON", the JSON text.
   if (data.size() < 20 || data.compare(0, 4, "glTF") != 0) return;
-  uint32_t chunkLength = 0;
+  // Assimp allocates by these lengths before it reads: a chunk length of 4 GB in a 648-byte file
+  // took seconds and gigabytes. Lengths beyond the file are refused here.
+  uint32_t totalLength = 0, chunkLength = 0;
+  std::memcpy(&totalLength, data.data() + 8, 4);
   std::memcpy(&chunkLength, data.data() + 12, 4);
-  if (data.compare(16, 4, "JSON") != 0 || chunkLength > data.size() - 20) return;
+  if (totalLength > data.size() || chunkLength > data.size() - 20)
+    throw IoError("cannot read mesh " + quoted(path) + ": its GLB header declares more bytes than the file's " +
+                  std::to_string(data.size()));
+  if (data.compare(16, 4, "JSON") != 0) return;
   checkGltfJson(path, data.substr(20, chunkLength));
 }
 

@@ -20,7 +20,9 @@ export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppress
 for t in "${TARGETS[@]}"; do
   mkdir -p "$BUILD_DIR/corpus/$t" "$BUILD_DIR/crashes/$t"
   echo "== fuzz_$t: $RUNS inputs"
-  "$BUILD_DIR/fuzz_$t" -runs="$RUNS" -max_len=65536 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+  dict=()
+  [ -f "tests/fuzz/$t.dict" ] && dict=(-dict="tests/fuzz/$t.dict")
+  "$BUILD_DIR/fuzz_$t" "${dict[@]}" -runs="$RUNS" -max_len=65536 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$BUILD_DIR/crashes/$t/" "$BUILD_DIR/corpus/$t" "tests/fuzz/corpus/$t" 2>&1 | \
     grep -E "^(#[0-9]+ +DONE|Done|stat::number_of_executed_units|stat::peak_rss_mb|==[0-9]+==ERROR|SUMMARY|artifact_prefix)" || true
   crashes=$(find "$BUILD_DIR/crashes/$t" -type f | wc -l)

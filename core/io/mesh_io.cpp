@@ -163,8 +163,10 @@ void checkOffFile(const fs::path& path, const std::string& text) {
 // takes at least a few bytes in the body (ASCII: a digit and a separator per property; binary:
 // the sizes of its properties), so the counts are bounded by the file's size.
 void checkPlyFile(const fs::path& path, const std::string& text) {
+  if (text.compare(0, 3, "ply") != 0) return;  // assimp reports it
+  // Without end_header assimp's parser loops forever (a fuzzed 115-byte file hung `egg`).
   const size_t headerEnd = text.find("end_header");
-  if (text.compare(0, 3, "ply") != 0 || headerEnd == std::string::npos) return;  // assimp reports it
+  if (headerEnd == std::string::npos) throw IoError("cannot read mesh " + quoted(path) + ": the PLY header has no end_header line");
   std::istringstream header(text.substr(0, headerEnd));
   std::string line, format;
   struct Element {

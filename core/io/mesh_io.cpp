@@ -164,55 +164,85 @@ void checkOffFile(const fs::path& path, const std::string& text) {
 // the sizes of its properties), so the counts are bounded by the file's size.
 void checkPlyFile(const fs::path& path, const std::string& text) {
   if (text.compare(0, 3, "ply") != 0) return;  // assimp reports it
-  // Without end_header assimp's parser loops forever (a fuzzed 115-byte file hung `egg`).
-  const size_t headerEnd = text.find("end_header");
-  if (headerEnd == std::string::npos) throw IoError("cannot read mesh " + quoted(path) + ": the PLY header has no end_header line");
-  std::istringstream header(text.substr(0, headerEnd));
-  std::string line, format;
-  struct Element {
-    std::string name;
-    unsigned long long count = 0;
-    unsigned long long minBytes = 0;
+  // The header must follow the PLY grammar exactly: assimp's parser looped forever on fuzzed
+  // headers (no end_header line, or misspelt keywords), so anything else is refused here.
+  auto fail = [&](long line, const std::string& why) {
+    throw IoError("cannot read mesh " + quoted(path) + ": PLY header line " + std::to_string(line) + ": " + why);
   };
-  std::vector<Element> elements;
+  static const std::set<std::string> types{"char",  "uchar", "short", "ushort",  "int",     "uint",    "float",  "double",
+                                           "int8",  "uint8", "int16", "uint16",  "int32",   "uint32",  "float32", "float64"};
   auto typeSize = [](const std::string& t) -> unsigned long long {
     if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
     if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
     if (t == "double" || t == "float64") return 8;
     return 4;
   };
-  while (std::getline(header, line)) {
+  struct Element {
+    std::string name;
+    unsigned long long count = 0;
+    unsigned long long minBytes = 0;
+  };
+  std::vector<Element> elements;
+  std::string format;
+  size_t pos = 0;
+  long lineNumber = 0;
+  bool ended = false;
+  while (pos < text.size() && !ended) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++lineNumber;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
     std::string word;
     words >> word;
-    if (word == "format") {
-      words >> format;
+    if (lineNumber == 1) {
+      if (word != "ply") fail(1, "the file must start with \"ply\"");
+      continue;
+    }
+    if (word == "end_header") {
+      ended = true;
+    } else if (word == "comment" || word == "obj_info") {
+    } else if (word == "format") {
+      std::string version;
+      words >> format >> version;
+      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+        fail(lineNumber, "unknown format " + abbreviate(format, 40));
     } else if (word == "element") {
       Element e;
-      words >> e.name;
       std::string count;
-      words >> count;
-      if (!count.empty() && count[0] == '-')
-        throw IoError("cannot read mesh " + quoted(path) + ": element " + abbreviate(e.name, 40) + " has a negative count");
-      e.count = std::strtoull(count.c_str(), nullptr, 10);
+      words >> e.name >> count;
+      if (e.name.empty() || count.empty() || count.size() > 19 || count.find_first_not_of("0123456789") != std::string::npos)
+        fail(lineNumber, "an element needs a name and a count");
+      e.count = std::stoull(count);
       elements.push_back(e);
-    } else if (word == "property" && !elements.empty()) {
-      std::string type;
+    } else if (word == "property") {
+      if (elements.empty()) fail(lineNumber, "a property before any element");
+      std::string type, name;
       words >> type;
       unsigned long long bytes = 2;  // ASCII: at least one digit and one separator
-      if (format != "ascii") {
-        if (type == "list") {
-          std::string countType;
-          words >> countType;
-          bytes = typeSize(countType);
-        } else {
-          bytes = typeSize(type);
-        }
+      if (type == "list") {
+        std::string countType, itemType;
+        words >> countType >> itemType >> name;
+        if (!types.count(countType) || !types.count(itemType)) fail(lineNumber, "unknown list type");
+        if (format != "ascii") bytes = typeSize(countType);
+      } else {
+        words >> name;
+        if (!types.count(type)) fail(lineNumber, "unknown property type " + abbreviate(type, 40));
+        if (format != "ascii") bytes = typeSize(type);
       }
+      if (name.empty()) fail(lineNumber, "a property needs a name");
       elements.back().minBytes += bytes;
+    } else {
+      fail(lineNumber, "unknown keyword " + abbreviate(word, 40) + " (expected element, property, comment or end_header)");
     }
   }
-  const unsigned long long body = text.size() - headerEnd;
+  if (!ended) throw IoError("cannot read mesh " + quoted(path) + ": the PLY header has no end_header line");
+  if (format.empty()) throw IoError("cannot read mesh " + quoted(path) + ": the PLY header has no format line");
+  // Every element takes at least a few bytes in the body (ASCII: a digit and a separator per
+  // property; binary: the sizes of its properties), so the counts are bounded by the file's size.
+  const unsigned long long body = text.size() - std::min(pos, text.size());
   for (const Element& e : elements) {
     const unsigned long long perElement = std::max<unsigned long long>(e.minBytes, 1);
     if (e.count > body / perElement + 1) {

@@ -584,13 +584,26 @@ TriangleSoup readMeshFile(const fs::path& path, const MeshImportOptions& options
   // Not a regular file (a FIFO would block assimp forever), too large, or what assimp takes wrongly.
   const std::vector<aiVector3D> objPositions = precheckMeshFile(path);
   Assimp::Importer importer;
-  // Triangulate polygons; validation makes assimp refuse inconsistent data instead of crashing later.
-  const aiScene* scene = importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_ValidateDataStructure);
-  if (scene == nullptr) {
+  // Validation makes assimp refuse inconsistent data instead of crashing later. Triangulation is
+  // a second step: assimp's validation lets a face without vertices through, and its triangulation
+  // then aborts the process on an assertion (a fuzzed binary PLY), so such faces are refused first.
+  const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+  auto failed = [&] {
     std::string reason = importer.GetErrorString();
     if (reason.empty()) reason = "unknown format or corrupt file";
     throw IoError("cannot read mesh " + quoted(path) + ": " + reason);
+  };
+  if (scene == nullptr) failed();
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    for (unsigned f = 0; mesh != nullptr && f < mesh->mNumFaces; ++f) {
+      if (mesh->mFaces[f].mNumIndices == 0 || mesh->mFaces[f].mIndices == nullptr)
+        throw IoError("cannot read mesh " + quoted(path) + ": face " + std::to_string(f) +
+                      (scene->mNumMeshes > 1 ? " of mesh " + std::to_string(m) : std::string()) + " has no vertices");
+    }
   }
+  scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
+  if (scene == nullptr) failed();
   TriangleSoup soup;
   long ignoredPrimitives = 0;
   if (scene->mRootNode != nullptr)

@@ -109,12 +109,16 @@ void checkOffFile(const fs::path& path, const std::string& text) {
   std::istringstream header(line);
   std::string magic;
   header >> magic;
-  // Only plain ASCII OFF (optionally COFF/NOFF...): anything else is left to assimp.
-  if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0) return;
-  // The counts, on the OFF line or the next one. Assimp parses them with a wrapping strtoul: a
-  // count of 10^25 became a 61 GB allocation. Not two plain numbers below 2^31: refused here.
+  // The counts: on the OFF line (OFF, COFF, NOFF, ...), on the next one, or, without the
+  // keyword, on the first line. Assimp parses them with a wrapping strtoul: a count of 10^25
+  // became a 61 GB allocation (or 16 GB without the keyword). Not two plain numbers below 2^31:
+  // refused here.
   std::string first, second;
-  if (!(header >> first)) {
+  const bool keyword = magic.size() >= 3 && magic.compare(magic.size() - 3, 3, "OFF") == 0;
+  if (!keyword) {
+    std::istringstream counts(line);
+    counts >> first >> second;
+  } else if (!(header >> first)) {
     if (!nextContentLine(line)) return;
     std::istringstream counts(line);
     counts >> first >> second;

@@ -197,6 +197,9 @@ void checkPlyFile(const fs::path& path, const std::string& text) {
     pos = end + 1;
     ++lineNumber;
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    // Assimp splits header words at spaces and tabs only ("end_header\v0 0 0" hung it).
+    for (const char c : line)
+      if (static_cast<unsigned char>(c) < 0x20 && c != '\t') fail(lineNumber, "a control character in the header");
     std::istringstream words(line);
     std::string word;
     words >> word;

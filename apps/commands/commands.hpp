@@ -5,7 +5,9 @@
 // returns an exit code; exceptions from the libraries are mapped to messages and codes in cli.cpp.
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <functional>
+#include <string>
 
 namespace egg::app {
 
@@ -27,6 +29,24 @@ void registerGridBench(CLI::App& bench, Action& action);         // grid_command
 void registerLayoutBench(CLI::App& bench, Action& action);       // layout_bench.cpp (egg bench layout)
 void registerPatchingBench(CLI::App& bench, Action& action);     // patching_bench.cpp (egg bench patching)
 void registerStressCommand(CLI::App& parent, Action& action);    // sim_commands.cpp (egg stress)
+
+// A CLI11 check for a floating-point option: a finite number in [lo, hi]. CLI11's own Range and
+// PositiveNumber let NaN through (every comparison with NaN is false).
+inline CLI::Validator finiteRange(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double x = 0.0;
+        if (!CLI::detail::lexical_cast(text, x)) return "'" + text.substr(0, 40) + "' is not a number";
+        if (!std::isfinite(x) || x < lo || x > hi)
+          return "'" + text.substr(0, 40) + "' is not a finite number in [" + CLI::detail::to_string(lo) + ", " +
+                 CLI::detail::to_string(hi) + "]";
+        return "";
+      },
+      "FINITE in [" + CLI::detail::to_string(lo) + " - " + CLI::detail::to_string(hi) + "]");
+}
+
+// Worker threads any command accepts (thousands of threads made std::thread abort).
+constexpr int kMaxThreads = 256;
 
 // Runs the program; returns the process exit code.
 int runCli(int argc, char** argv);

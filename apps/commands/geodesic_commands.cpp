@@ -216,6 +216,8 @@ nlohmann::json toleranceTable(const TriMesh& mesh, const std::vector<SurfacePoin
 }
 
 int runBench(const BenchArgs& args) {
+  // With --json, stdout carries only the JSON document; the human table goes to stderr.
+  std::ostream& table = args.json ? std::cerr : std::cout;
   nlohmann::json rows = nlohmann::json::array();
   // Phase 1: the distance maps at every size, so the peak RSS reported is ours (before CGAL).
   struct Case {
@@ -241,9 +243,9 @@ int runBench(const BenchArgs& args) {
   }
   // Phase 2: ms per source, ours and CGAL's, interleaved source by source so that a change in
   // machine load hits both; and our error against CGAL on the same sources.
-  std::cout << "ms/src: median thread CPU time per single-source field (one thread each); speedup = their ratio;\n"
+  table << "ms/src: median thread CPU time per single-source field (one thread each); speedup = their ratio;\n"
                "map speedup = CGAL ms/src over the map's wall time per source on `threads` threads.\n";
-  std::cout << fmt::format("{:>7} {:>11} {:>11} {:>8} {:>11} {:>9} {:>10} {:>7} {:>9} {:>11}\n", "verts", "ours ms/src",
+  table << fmt::format("{:>7} {:>11} {:>11} {:>8} {:>11} {:>9} {:>10} {:>7} {:>9} {:>11}\n", "verts", "ours ms/src",
                            "cgal ms/src", "speedup", "max rel err", "precomp s",
                            fmt::format("map{} s", args.sources), "threads", "map spdup", "ours RSS MB");
   for (size_t k = 0; k < cases.size(); ++k) {
@@ -276,10 +278,10 @@ int runBench(const BenchArgs& args) {
     // The target arithmetic: the whole map's wall time per source (on `threads` threads)
     // against CGAL's time per source.
     const double mapSpeedup = cgalMs / (1e3 * c.mapSeconds / args.sources);
-    std::cout << fmt::format("{:>7} {:>11.2f} {:>11.1f} {:>7.1f}x {:>11.2e} {:>9.4f} {:>10.3f} {:>7} {:>8.1f}x {:>11.0f}\n",
+    table << fmt::format("{:>7} {:>11.2f} {:>11.1f} {:>7.1f}x {:>11.2e} {:>9.4f} {:>10.3f} {:>7} {:>8.1f}x {:>11.0f}\n",
                              c.mesh.n_vertices(), oursMs, cgalMs, speedup, cgalCount > 0 ? maxError : NAN,
                              c.precompute, c.mapSeconds, args.threads, mapSpeedup, c.rss);
-    std::cout.flush();
+    table.flush();
     auto orNull = [&](double x) { return cgalCount > 0 ? nlohmann::json(x) : nlohmann::json(nullptr); };
     rows.push_back({{"vertices", c.mesh.n_vertices()},
                     {"ours_ms_per_source", oursMs},
@@ -293,12 +295,12 @@ int runBench(const BenchArgs& args) {
                     {"threads", args.threads},
                     {"peak_rss_mb", c.rss}});
   }
-  std::cout << fmt::format("peak RSS with CGAL: {:.0f} MB\n", peakRssMb());
+  table << fmt::format("peak RSS with CGAL: {:.0f} MB\n", peakRssMb());
   nlohmann::json toleranceRows = nlohmann::json::array();
   if (!args.saddleTolerances.empty()) {
-    std::cout << "\nerror against time by saddleAngleTolerance (reference: tolerance 0 in the same run; "
+    table << "\nerror against time by saddleAngleTolerance (reference: tolerance 0 in the same run; "
                  "vertices farther than 2 mean edges; side = the opposite side's points)\n";
-    std::cout << fmt::format("{:>7} {:>10} {:>11} {:>9} {:>12} {:>13} {:>12}\n", "verts", "tolerance", "ms/src",
+    table << fmt::format("{:>7} {:>10} {:>11} {:>9} {:>12} {:>13} {:>12}\n", "verts", "tolerance", "ms/src",
                              "windows", "max rel err", "mean rel err", "side max err");
     for (const Case& c : cases) {
       const int count = std::min<int>(std::max(args.timedSources, 1), static_cast<int>(c.sources.size()));
@@ -306,7 +308,7 @@ int runBench(const BenchArgs& args) {
       for (int i = 0; i < count; ++i) sources.push_back(intoFace(c.sources[(2 * i + 1) * c.sources.size() / (2 * count)]));
       const auto targets = sidePoints(c.mesh, args.sources, true);
       for (auto& row : toleranceTable(c.mesh, sources, targets, args.saddleTolerances)) {
-        std::cout << fmt::format("{:>7} {:>10.2g} {:>11.2f} {:>9.0f} {:>12.2e} {:>13.2e} {:>12.2e}\n",
+        table << fmt::format("{:>7} {:>10.2g} {:>11.2f} {:>9.0f} {:>12.2e} {:>13.2e} {:>12.2e}\n",
                                  c.mesh.n_vertices(), row["saddle_angle_tolerance_rad"].get<double>(),
                                  row["ms_per_source"].get<double>(), row["windows_per_source"].get<double>(),
                                  row["max_relative_error_vertices"].get<double>(),
@@ -357,17 +359,22 @@ void registerGeodesicBench(CLI::App& bench, Action& action) {
   auto* cmd = bench.add_subcommand(
       "geodesic", "Geodesic engine vs CGAL's exact Surface_mesh_shortest_path on the bump sample: ms per source, "
                   "speed-up, max error, distance-map wall time, precomputation, peak RSS");
-  cmd->add_option("--sizes", args->sizes, "approximate vertex counts of the bump patches")->delimiter(',');
+  cmd->add_option("--sizes", args->sizes, "approximate vertex counts of the bump patches")
+      ->delimiter(',')
+      ->check(CLI::Range(100, 1000000));
   cmd->add_option("--sources", args->sources, "sources (and targets) of the timed distance map")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--threads", args->threads, "threads of the distance map")->check(CLI::PositiveNumber);
-  cmd->add_option("--timed-sources", args->timedSources, "single-thread sources timed for ms per source");
-  cmd->add_option("--cgal-sources", args->cgalSources, "CGAL sources per size (0 skips CGAL)")->delimiter(',');
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--threads", args->threads, "threads of the distance map")->check(CLI::Range(1, kMaxThreads));
+  cmd->add_option("--timed-sources", args->timedSources, "single-thread sources timed for ms per source")
+      ->check(CLI::Range(0, 10000));
+  cmd->add_option("--cgal-sources", args->cgalSources, "CGAL sources per size (0 skips CGAL)")
+      ->delimiter(',')
+      ->check(CLI::Range(0, 1000));
   cmd->add_option("--saddle-tolerance", args->saddleTolerances,
                   "also tabulate error against time over these saddleAngleTolerance values (radians; 0 = exact), "
                   "reference: the exact mode of the same run")
       ->delimiter(',')
-      ->check(CLI::Range(0.0, 0.0999));
+      ->check(finiteRange(0.0, 0.0999));
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_flag("--json", args->json, "also print the table as JSON");
   cmd->callback([args, &action] { action = [args] { return runBench(*args); }; });

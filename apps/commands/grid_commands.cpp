@@ -25,6 +25,9 @@
 namespace egg::app {
 namespace {
 
+// With --json, stdout carries only the JSON document; the human table goes to stderr.
+std::FILE* tableStream(bool json) { return json ? stderr : stdout; }
+
 struct GridBenchArgs {
   std::vector<int> sizes{600, 1100, 2000, 3400};  // approximate patch vertex counts
   int resolution = 100;                           // distance map samples per side
@@ -164,7 +167,7 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
     const double uvMember = memberShift(r.membersU, r.membersV, familySideLength(p, Family::U, false), familySideLength(p, Family::U, true));
     row["uv_map_asymmetry_m"] = uvMap;
     if (std::isfinite(uvMember)) row["uv_member_asymmetry_m"] = uvMember;
-    fmt::print("{:>8} {:>9.1e} {:>6} {:>8.1e} {:>8.3f} {:>8.3f} {:>8.3f} {:>6} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>10.2e} {:>10.2e} {:>10}\n",
+    fmt::print(tableStream(args.json), "{:>8} {:>9.1e} {:>6} {:>8.1e} {:>8.3f} {:>8.3f} {:>8.3f} {:>6} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>10} {:>10.2e} {:>10.2e} {:>10}\n",
                p.mesh.n_vertices(), rowTolerance, proxyVertices, onProxy ? variant.proxyTolerance : 0.0, median(maps), median(totals), median(cpu), r.maps.propagations, mapError, etaChange,
                std::abs(r.alphaBar.alphaBar - e.alphaBar.alphaBar), std::abs(r.alphaBar.alphaMax - e.alphaBar.alphaMax),
                claddingChange, sameCount ? fmt::format("{:.2e}", shift) : std::string("count"), std::abs(r.grid.maxNotch - e.grid.maxNotch), uvMap,
@@ -175,7 +178,7 @@ nlohmann::json runMapToleranceTable(const GridBenchArgs& args, const TriMesh& me
 }
 
 int runGridBench(const GridBenchArgs& args) {
-  fmt::print("egg bench grid: bump (height {} m, sigma 1.5 m) patch 6 x 6 m, distance maps {} x {} (adaptive rows,\n"
+  fmt::print(tableStream(args.json), "egg bench grid: bump (height {} m, sigma 1.5 m) patch 6 x 6 m, distance maps {} x {} (adaptive rows,\n"
              "tolerance {} x the shorter side; on a proxy of {} vertices, rows to {}, when the patch is larger), alpha_bar = min,\n"
              "lamellas 0.1 m at spacing 0.6 m; wall seconds (all threads), median of {} solves per size;\n"
              "cpu_grid = CPU seconds of the solve over all threads (load-independent work);\n"
@@ -184,7 +187,7 @@ int runGridBench(const GridBenchArgs& args) {
              "patch, its surface or its proxy, full fields and directed ones alike (sides + maps + eta + tracing)\n",
              args.height, args.resolution, args.resolution, DistanceMapOptions{}.toleranceRelative,
              DistanceMapOptions{}.proxyVertices, DistanceMapOptions{}.proxyToleranceRelative, args.repeats);
-  fmt::print("{:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>10} {:>18}\n", "vertices", "t_patch",
+  fmt::print(tableStream(args.json), "{:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>6} {:>10} {:>18}\n", "vertices", "t_patch",
              "t_eta", "t_maps", "t_sqp", "t_member", "t_trace", "t_grid", "cpu_grid", "u x v", "fields", "max_notch",
              "alpha_bar range");
   nlohmann::json rows = nlohmann::json::array();
@@ -192,7 +195,7 @@ int runGridBench(const GridBenchArgs& args) {
   std::vector<TriMesh> meshes;
   EggOptions baseOptions;
   for (int size : args.sizes) {
-    if (size < 50) throw InvalidInput("egg bench grid: --sizes must be at least 50 vertices");
+    if (size < 50 || size > 200000) throw InvalidInput("egg bench grid: --sizes must lie in [50, 200000] vertices");
     // Calibrated on the bump sample: a surface meshed for `density` vertices per 50 m^2 gives a
     // 6 x 6 m patch of about 0.861 density + 141 vertices (the inserted boundary adds the offset).
     const int density = std::max(50, static_cast<int>(std::lround((size - 141) / 0.861)));
@@ -223,7 +226,7 @@ int runGridBench(const GridBenchArgs& args) {
     for (int k = 0; k < kParts; ++k) share[k] = total > 0 ? t[k] / total : 0.0;
     shares.push_back(share);
     const int fields = r.propagations;  // load-independent work measure
-    fmt::print("{:>8} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.4f} {:>8.3f} {:>8.3f} {:>8.3f} {:>3}x{:<2} {:>6} {:>10.4f} [{:.4f}, {:.4f}]\n",
+    fmt::print(tableStream(args.json), "{:>8} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.4f} {:>8.3f} {:>8.3f} {:>8.3f} {:>3}x{:<2} {:>6} {:>10.4f} [{:.4f}, {:.4f}]\n",
                r.patch.mesh.n_vertices(), t[0], t[1], t[2], t[3], t[4], t[5], total, cpuTotal, r.grid.u.size(), r.grid.v.size(),
                fields, r.grid.maxNotch, r.alphaBar.alphaMin, r.alphaBar.alphaMax);
     nlohmann::json row{{"vertices", r.patch.mesh.n_vertices()},
@@ -252,7 +255,7 @@ int runGridBench(const GridBenchArgs& args) {
   }
   nlohmann::json toleranceRows = nlohmann::json::array();
   if (!args.mapTolerances.empty() || !args.mapProxies.empty()) {
-    fmt::print("distance maps: error against time (adaptive rows, tol = DistanceMapOptions::toleranceRelative, times the\n"
+    fmt::print(tableStream(args.json), "distance maps: error against time (adaptive rows, tol = DistanceMapOptions::toleranceRelative, times the\n"
                "family's shorter side; proxy = vertices of the coarse copy the maps were computed on (--map-proxy, 0 = the patch),\n"
                "ptol = its rows' tolerance); reference = exact maps on the patch (tolerance 0, {} fields per family) of the same run; t_* medians\n"
                "of {} solves; map_err = max |D - D_exact| over both maps; d_eta = largest change of eta_u, eta_v (the check\n"
@@ -262,18 +265,18 @@ int runGridBench(const GridBenchArgs& args) {
                "uv_map, uv_member = max |D_u - D_v| and largest u/v member mismatch of that solve: the patch is symmetric\n"
                "about its diagonal c0-c2, so on the smooth surface both are 0 and the exact row shows the mesh's own noise\n",
                args.resolution, args.repeats);
-    fmt::print("{:>8} {:>9} {:>6} {:>8} {:>8} {:>8} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "vertices", "tol_rel", "proxy", "ptol", "t_maps",
+    fmt::print(tableStream(args.json), "{:>8} {:>9} {:>6} {:>8} {:>8} {:>8} {:>8} {:>6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "vertices", "tol_rel", "proxy", "ptol", "t_maps",
                "t_grid", "cpu_grid", "fields", "map_err_m", "d_eta", "d_alpha", "d_amax", "d_F_m", "d_member_m", "d_notch_m", "uv_map_m", "uv_member");
     for (const TriMesh& mesh : meshes)
       for (auto& row : runMapToleranceTable(args, mesh, baseOptions)) toleranceRows.push_back(row);
   }
-  fmt::print("share of t_grid:\n{:>8}", "vertices");
-  for (const char* name : kPartNames) fmt::print(" {:>8}", name);
-  fmt::print("\n");
+  fmt::print(tableStream(args.json), "share of t_grid:\n{:>8}", "vertices");
+  for (const char* name : kPartNames) fmt::print(tableStream(args.json), " {:>8}", name);
+  fmt::print(tableStream(args.json), "\n");
   for (size_t k = 0; k < shares.size(); ++k) {
-    fmt::print("{:>8}", rows[k]["vertices"].get<size_t>());
-    for (double s : shares[k]) fmt::print(" {:>7.1f}%", 100.0 * s);
-    fmt::print("\n");
+    fmt::print(tableStream(args.json), "{:>8}", rows[k]["vertices"].get<size_t>());
+    for (double s : shares[k]) fmt::print(tableStream(args.json), " {:>7.1f}%", 100.0 * s);
+    fmt::print(tableStream(args.json), "\n");
   }
   if (!args.csv.empty()) {
     std::ostringstream file;
@@ -299,25 +302,27 @@ void registerGridBench(CLI::App& bench, Action& action) {
   auto* cmd = bench.add_subcommand("grid",
                                    "Single-patch EGG solve (patch, eta, distance maps, SQP, members, tracing) per patch "
                                    "size: wall time of each part");
-  cmd->add_option("--sizes", args->sizes, "approximate patch vertex counts")->delimiter(',');
+  cmd->add_option("--sizes", args->sizes, "approximate patch vertex counts")
+      ->delimiter(',')
+      ->check(CLI::Range(50, 200000));
   cmd->add_option("--resolution", args->resolution, "distance map samples per side")->check(CLI::Range(3, 2000));
   cmd->add_option("--map-tolerance", args->mapTolerances,
                   "also tabulate error against time of the adaptive distance maps for these tolerances (relative to "
                   "the family's shorter side, comma-separated; the exact maps of the same run are the reference)")
       ->delimiter(',')
-      ->check(CLI::NonNegativeNumber);
+      ->check(finiteRange(0.0, 1.0));
   cmd->add_option("--map-proxy", args->mapProxies,
                   "also tabulate error against time of distance maps on a coarse proxy of the patch with at most "
                   "these many vertices (comma-separated; 0 = on the patch; same table and reference as --map-tolerance)")
       ->delimiter(',')
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 10000000));
   cmd->add_option("--map-proxy-tolerance", args->mapProxyTolerances,
                   "relative adaptive-row tolerances of the proxy rows (comma-separated; default: the default of "
                   "DistanceMapOptions::proxyToleranceRelative)")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(finiteRange(1e-12, 1.0));
   cmd->add_option("--repeats", args->repeats, "solves per size (medians are shown)")->check(CLI::Range(1, 100));
-  cmd->add_option("--height", args->height, "bump height in metres")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--height", args->height, "bump height in metres")->check(finiteRange(0.0, 100.0));
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_flag("--json", args->json, "also print the tables as JSON: {\"sizes\": [...], \"map_tolerance\": [...]} (map_tolerance also holds the --map-proxy rows)");
   cmd->callback([args, &action] { action = [args] { return runGridBench(*args); }; });

@@ -28,7 +28,7 @@ void registerRunCommand(CLI::App& parent, Action& action) {
   cmd->add_flag("--json", args->json, "Print the report as JSON on stdout");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress on stderr");
   cmd->add_option("-j,--threads", args->threads, "Worker threads (default: all cores); results do not depend on it")
-      ->check(CLI::Range(1, 1024));
+      ->check(CLI::Range(1, kMaxThreads));
   cmd->callback([args, &action] {
     action = [args]() {
       const Scene scene = loadScene(args->scene);

@@ -1,6 +1,9 @@
 #include "apps/commands/scene.hpp"
 
+#include "apps/commands/report.hpp"
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
+#include "core/io/json_check.hpp"
 #include "core/materials/materials.hpp"
 
 #include <algorithm>
@@ -14,6 +17,47 @@ namespace {
 
 using nlohmann::json;
 
+// Deepest nesting of objects and arrays a scene file may have (the real ones nest 4 levels).
+constexpr int kMaxSceneDepth = 64;
+// Largest scene file read (a layout of kMaxPatches patches is a few MB).
+constexpr std::size_t kMaxSceneBytes = 64u << 20;
+// Most patches a given layout may have (each is minutes of work at most; 10,000 ran for hours).
+constexpr std::size_t kMaxPatches = 1000;
+
+// A JSON value for a message: at most ~200 characters, never recursing deeper than a few levels,
+// so that a huge or deeply nested value neither floods stderr nor overflows the stack.
+void renderBrief(const json& v, int depth, std::string& out, std::size_t limit) {
+  if (out.size() > limit) return;
+  if (v.is_string()) {
+    const std::string& text = v.get_ref<const std::string&>();
+    out += json(text.substr(0, limit)).dump(-1, ' ', false, json::error_handler_t::replace);
+  } else if (v.is_array() || v.is_object()) {
+    const bool array = v.is_array();
+    out += array ? "[" : "{";
+    if (depth >= 4 && !v.empty()) {
+      out += "...";
+    } else {
+      bool first = true;
+      for (auto it = v.begin(); it != v.end() && out.size() <= limit; ++it) {
+        if (!first) out += ", ";
+        first = false;
+        if (!array) out += json(it.key().substr(0, limit)).dump(-1, ' ', false, json::error_handler_t::replace) + ": ";
+        renderBrief(it.value(), depth + 1, out, limit);
+      }
+    }
+    out += array ? "]" : "}";
+  } else {
+    out += v.dump();
+  }
+}
+
+std::string brief(const json& v, std::size_t limit = 200) {
+  std::string out;
+  renderBrief(v, 0, out, limit);
+  if (out.size() > limit) out = out.substr(0, limit) + "...";
+  return out;
+}
+
 // Reads one JSON object, remembering its dotted path for messages and which keys were consumed,
 // so that anything left over is reported as an unknown key.
 class Section {
@@ -24,7 +68,8 @@ class Section {
   }
 
   [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw InvalidInput(origin_ + ": " + dotted(key) + (dotted(key).empty() ? "" : ": ") + what);
+    const std::string field = abbreviate(dotted(key));
+    throw InvalidInput(abbreviate(origin_) + ": " + field + (field.empty() ? "" : ": ") + what);
   }
 
   std::string dotted(const std::string& key) const {
@@ -45,7 +90,7 @@ class Section {
   double number(const std::string& key, double fallback, double lo, double hi) {
     if (!has(key)) return fallback;
     const json& v = node_.at(key);
-    if (!v.is_number()) fail(key, "must be a number, got " + v.dump());
+    if (!v.is_number()) fail(key, "must be a number, got " + brief(v));
     const double x = v.get<double>();
     if (!std::isfinite(x) || x < lo || x > hi) {
       std::ostringstream msg;
@@ -64,7 +109,10 @@ class Section {
   int integer(const std::string& key, int fallback, int lo, int hi) {
     if (!has(key)) return fallback;
     const json& v = node_.at(key);
-    if (!v.is_number_integer()) fail(key, "must be an integer, got " + v.dump());
+    if (!v.is_number_integer()) fail(key, "must be an integer, got " + brief(v));
+    // An unsigned above LLONG_MAX would wrap to a negative long long: compare it as unsigned.
+    if (v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(hi))
+      fail(key, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + brief(v));
     const long long x = v.get<long long>();
     if (x < lo || x > hi) fail(key, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(x));
     return static_cast<int>(x);
@@ -73,14 +121,14 @@ class Section {
   bool boolean(const std::string& key, bool fallback) {
     if (!has(key)) return fallback;
     const json& v = node_.at(key);
-    if (!v.is_boolean()) fail(key, "must be true or false, got " + v.dump());
+    if (!v.is_boolean()) fail(key, "must be true or false, got " + brief(v));
     return v.get<bool>();
   }
 
   std::string text(const std::string& key, const std::string& fallback) {
     if (!has(key)) return fallback;
     const json& v = node_.at(key);
-    if (!v.is_string()) fail(key, "must be a string, got " + v.dump());
+    if (!v.is_string()) fail(key, "must be a string, got " + brief(v));
     return v.get<std::string>();
   }
 
@@ -88,7 +136,7 @@ class Section {
     if (!has(key)) return fallback;
     const json& v = node_.at(key);
     if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
-      fail(key, "must be an array of two numbers, got " + v.dump());
+      fail(key, "must be an array of two numbers, got " + brief(v));
     }
     std::array<double, 2> out{v[0].get<double>(), v[1].get<double>()};
     for (double x : out) {
@@ -122,10 +170,10 @@ class Section {
 };
 
 Eigen::Vector3d point3(const json& v, const Section& where, const std::string& key) {
-  if (!v.is_array() || v.size() != 3) where.fail(key, "a corner must be [x, y, z], got " + v.dump());
+  if (!v.is_array() || v.size() != 3) where.fail(key, "a corner must be [x, y, z], got " + brief(v));
   Eigen::Vector3d p;
   for (int i = 0; i < 3; ++i) {
-    if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) where.fail(key, "corner coordinates must be finite numbers, got " + v.dump());
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) where.fail(key, "corner coordinates must be finite numbers, got " + brief(v));
     p[i] = v[i].get<double>();
   }
   return p;
@@ -156,7 +204,7 @@ void readSurface(Section s, Scene& scene) {
       } else if (v.is_number() && std::isfinite(v.get<double>())) {
         out.params[it.key()] = v.get<double>();
       } else {
-        s.fail("params." + it.key(), "must be a number or a boolean, got " + v.dump());
+        s.fail("params." + it.key(), "must be a number or a boolean, got " + brief(v));
       }
     }
   }
@@ -180,11 +228,15 @@ void readPatching(Section s, PatchingSpec& out) {
   if (s.has("corners")) {
     const json& corners = s.raw("corners");
     if (!corners.is_array() || corners.empty()) s.fail("corners", "must be a non-empty array of points [x, y, z]");
+    if (corners.size() > 4 * kMaxPatches)
+      s.fail("corners", "has " + std::to_string(corners.size()) + " corners; at most " + std::to_string(4 * kMaxPatches));
     for (size_t i = 0; i < corners.size(); ++i) out.corners.push_back(point3(corners[i], s, "corners[" + std::to_string(i) + "]"));
   }
   if (s.has("patches")) {
     const json& patches = s.raw("patches");
     if (!patches.is_array()) s.fail("patches", "must be an array of patches, each four corners [x, y, z] (or four corner indices)");
+    if (patches.size() > kMaxPatches)
+      s.fail("patches", "has " + std::to_string(patches.size()) + " patches; at most " + std::to_string(kMaxPatches));
     const bool indexed = !out.corners.empty();
     for (size_t i = 0; i < patches.size(); ++i) {
       const std::string key = "patches[" + std::to_string(i) + "]";
@@ -196,7 +248,7 @@ void readPatching(Section s, PatchingSpec& out) {
         if (indexed) {
           if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() >= static_cast<long long>(out.corners.size()))
             s.fail(key, "with \"corners\" given, a patch is four indices into it (0 .. " + std::to_string(out.corners.size() - 1) +
-                            "), got " + v.dump());
+                            "), got " + brief(v));
           quad[c] = static_cast<int>(v.get<long long>());
           corners[c] = out.corners[quad[c]];
         } else {
@@ -228,7 +280,7 @@ void readGrid(Section s, GridSpec& out) {
     } else if (v.is_number_integer() && v.get<long long>() >= 2 && v.get<long long>() <= 10000) {
       out.members_per_family = static_cast<int>(v.get<long long>());
     } else {
-      s.fail("members_per_family", "must be \"auto\" or an integer in [2, 10000], got " + v.dump());
+      s.fail("members_per_family", "must be \"auto\" or an integer in [2, 10000], got " + brief(v));
     }
   }
   out.map_resolution = s.integer("map_resolution", out.map_resolution, 8, 2000);
@@ -242,7 +294,7 @@ void readGrid(Section s, GridSpec& out) {
     if (v.is_string()) {
       const std::string mode = v.get<std::string>();
       if (mode != "min" && mode != "max" && mode != "unrolled") {
-        s.fail("alpha_bar", "must be \"min\", \"max\", \"unrolled\" or an angle in radians, got \"" + mode + "\"");
+        s.fail("alpha_bar", "must be \"min\", \"max\", \"unrolled\" or an angle in radians, got " + brief(v));
       }
       out.alpha_bar = mode;
     } else if (v.is_number()) {
@@ -251,7 +303,7 @@ void readGrid(Section s, GridSpec& out) {
       out.alpha_bar = "value";
       out.alpha_bar_rad = a;
     } else {
-      s.fail("alpha_bar", "must be a string or a number, got " + v.dump());
+      s.fail("alpha_bar", "must be a string or a number, got " + brief(v));
     }
   }
   s.rejectUnknownKeys();
@@ -264,7 +316,7 @@ void readLamella(Section s, LamellaSpec& out) {
   try {
     materialByName(out.material);
   } catch (const InvalidInput& e) {
-    s.fail("material", e.what());
+    s.fail("material", abbreviate(e.what(), 400));
   }
   if (out.thickness_m > out.width_m) s.fail("thickness_m", "must not exceed width_m (a lamella bends about its weak axis)");
   s.rejectUnknownKeys();
@@ -329,11 +381,13 @@ Scene parseScene(const json& document, const std::filesystem::path& origin) {
   scene.path = origin;
   Section top(document, "", origin.string());
   scene.name = top.text("name", origin.stem().string());
-  // The name becomes the default run folder out/<name>: it must be a plain folder name, never a
-  // path that climbs out of out/ or names out/ itself.
-  if (scene.name.empty() || scene.name.front() == '.' || scene.name.find_first_of("/\\") != std::string::npos) {
-    top.fail("name", "must be a plain name (no '/', '\\', not starting with '.'), got \"" + scene.name + "\"");
-  }
+  // The name becomes the default run folder out/<name>: it must be a plain, portable folder name,
+  // never a path that climbs out of out/ or names out/ itself (a name "\u0000" once named "out/."),
+  // and short enough that the staging folder's name beside it fits NAME_MAX.
+  if (const std::string problem = portableNameProblem(scene.name, kMaxRunFolderName); !problem.empty())
+    top.fail("name", "must be a plain folder name (" + problem + "), got " + brief(json(scene.name)));
+  if (scene.name.front() == '.')
+    top.fail("name", "must be a plain name (no '/', '\\', not starting with '.'), got " + brief(json(scene.name)));
   if (!top.has("surface")) top.fail("surface", "is required ({\"sample\": ...} or {\"file\": ...})");
   readSurface(top.child("surface"), scene);
   readPatching(top.child("patching"), scene.patching);
@@ -348,7 +402,7 @@ Scene parseScene(const json& document, const std::filesystem::path& origin) {
     for (const auto& item : v) {
       const auto& names = knownOutputs();
       if (!item.is_string() || std::find(names.begin(), names.end(), item.get<std::string>()) == names.end()) {
-        top.fail("outputs", "unknown output " + item.dump() + " (known: report, plan, cut_files, stickers, supports, previews)");
+        top.fail("outputs", "unknown output " + brief(item) + " (known: report, plan, cut_files, stickers, supports, previews)");
       }
       scene.outputs.push_back(item.get<std::string>());
     }
@@ -357,16 +411,23 @@ Scene parseScene(const json& document, const std::filesystem::path& origin) {
   return scene;
 }
 
-Scene loadScene(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw IoError(path.string() + ": cannot open scene file");
+Scene parseSceneText(const std::string& text, const std::filesystem::path& origin) {
+  const std::string where = abbreviate(origin.string());
+  // One linear pass first: nesting, numbers that overflow a double, valid JSON, named by position.
+  const JsonCheck check = checkJsonText(text, kMaxSceneDepth);
+  if (!check.ok) throw InvalidInput(where + ": " + (check.path.empty() ? "" : check.path + ": ") + check.problem);
   json document;
   try {
-    document = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InvalidInput(path.string() + ": not valid JSON: " + e.what());
+    document = json::parse(text);
+  } catch (const json::exception& e) {
+    throw InvalidInput(where + ": not valid JSON: " + abbreviate(e.what(), 400));
   }
-  return parseScene(document, path);
+  return parseScene(document, origin);
+}
+
+Scene loadScene(const std::filesystem::path& path) {
+  // A folder, a FIFO or a device is refused before any read (a FIFO would block forever).
+  return parseSceneText(readRegularFile(path, kMaxSceneBytes, "scene file"), path);
 }
 
 json sceneToJson(const Scene& scene) {

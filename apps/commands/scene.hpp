@@ -120,6 +120,10 @@ double defaultSampleEdgeLength(const std::string& sample);
 // naming the file and the field ("scene.json: grid.alpha_bar: ...").
 Scene loadScene(const std::filesystem::path& path);
 
+// Same from the text of a scene file (what loadScene reads): JSON nested at most 64 levels, a
+// number that overflows a double named by its field. `origin` names it in messages.
+Scene parseSceneText(const std::string& text, const std::filesystem::path& origin);
+
 // Same from an already parsed document; `origin` names it in messages and anchors relative paths.
 Scene parseScene(const nlohmann::json& document, const std::filesystem::path& origin);
 

@@ -22,6 +22,9 @@
 namespace egg::app {
 namespace {
 
+// With --json, stdout carries only the JSON document; the human table goes to stderr.
+std::FILE* tableStream(bool json) { return json ? stderr : stdout; }
+
 struct SimBenchArgs {
   std::vector<double> spacings{1.0, 0.8, 0.72};
   std::vector<double> tolerances{1e-4, 1e-6, 1e-8, 1e-10};
@@ -60,13 +63,13 @@ TimedRun timedRun(const rods::RodNetwork& network, const rods::SurfaceDistance& 
 int runSimBench(const SimBenchArgs& args) {
   if (args.repeats < 1) throw InvalidInput("--repeats must be >= 1");
   nlohmann::json rows = nlohmann::json::array();
-  fmt::print("egg bench sim: cylinder vault R 5 m, 8 m long, exact geodesic grid at +-45 deg, lamellas 50 x 5 mm,\n"
+  fmt::print(tableStream(args.json), "egg bench sim: cylinder vault R 5 m, 8 m long, exact geodesic grid at +-45 deg, lamellas 50 x 5 mm,\n"
              "supports at every member end, notches +-{:.0f} % of the spacing on inner bolts{}, {} thread(s);\n"
              "seconds = median of {} runs (solver + setup, one simulation){}\n",
              100.0 * args.notchFraction, args.gravity ? ", self-weight" : "", args.threads, args.repeats,
              args.reference ? ";\nplain_s = the same grid with plain holes (no sliding, RMS1 run), ratio = seconds / plain_s"
                             : "");
-  fmt::print("{:>7} {:>8} {:>8} {:>5} {:>9} {:>5} {:>8} {:>15} {:>9} {:>4} {:>9} {:>9} {:>8} {:>5} {:>6}\n", "spacing",
+  fmt::print(tableStream(args.json), "{:>7} {:>8} {:>8} {:>5} {:>9} {:>5} {:>8} {:>15} {:>9} {:>4} {:>9} {:>9} {:>8} {:>5} {:>6}\n", "spacing",
              "vertices", "unknowns", "bolts", "tolerance", "iters", "seconds", "(min..max)", "grad_norm", "conv",
              "rmse_mm", "max_mm", "plain_s", "iters", "ratio");
   for (double spacing : args.spacings) {
@@ -92,7 +95,7 @@ int runSimBench(const SimBenchArgs& args) {
       const double rmse = run.deviation ? run.deviation->rmse_m : 0.0;
       const double maxError = run.deviation ? run.deviation->max_m : 0.0;
       const double ratio = plain ? notched.medianSeconds / plain->medianSeconds : 0.0;
-      fmt::print("{:>7.2f} {:>8} {:>8} {:>5} {:>9.0e} {:>5} {:>8.3f} {:>15} {:>9.2e} {:>4} {:>9.4f} {:>9.4f} {:>8} {:>5} {:>6}\n",
+      fmt::print(tableStream(args.json), "{:>7.2f} {:>8} {:>8} {:>5} {:>9.0e} {:>5} {:>8.3f} {:>15} {:>9.2e} {:>4} {:>9.4f} {:>9.4f} {:>8} {:>5} {:>6}\n",
                  spacing, run.vertices, run.unknowns, grid.network.connections.size(), tolerance,
                  run.solver.iterations, notched.medianSeconds,
                  fmt::format("({:.3f}..{:.3f})", notched.minSeconds, notched.maxSeconds), run.solver.gradientNorm,
@@ -100,7 +103,7 @@ int runSimBench(const SimBenchArgs& args) {
                  plain ? fmt::format("{:.3f}", plain->medianSeconds) : "-",
                  plain ? std::to_string(plain->run.solver.iterations) : "-",
                  plain ? fmt::format("{:.2f}", ratio) : "-");
-      if (!run.solver.converged) fmt::print("        not converged: {}\n", run.solver.reason);
+      if (!run.solver.converged) fmt::print(tableStream(args.json), "        not converged: {}\n", run.solver.reason);
       nlohmann::json row{{"spacing_m", spacing},
                          {"vertices", run.vertices},
                          {"unknowns", run.unknowns},
@@ -158,19 +161,19 @@ int runStress(const StressArgs& args) {
   if (!(args.timeLimit > 0.0)) throw InvalidInput("--time-limit must be > 0");
   nlohmann::json rows = nlohmann::json::array();
   bool allFinite = true;
-  fmt::print("egg stress: cylinder vault (radius = length = 3 f, spacing 0.75 f, width 0.05 f) under self-weight;\n"
+  fmt::print(tableStream(args.json), "egg stress: cylinder vault (radius = length = 3 f, spacing 0.75 f, width 0.05 f) under self-weight;\n"
              "every case converges or says why, never NaN (limits: {} s, {} iterations)\n",
              args.timeLimit, args.maxIterations);
-  fmt::print("sag = largest displacement from the weightless equilibrium, in % of the vault's extent; a converged\n"
+  fmt::print(tableStream(args.json), "sag = largest displacement from the weightless equilibrium, in % of the vault's extent; a converged\n"
              "case that sags several % has found a collapsed equilibrium (the jump of Fig. 3.11)\n");
-  fmt::print("{:<28} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>10} {:>9} {:>7}  {}\n", "case", "scale_m", "w:t", "E_GPa",
+  fmt::print(tableStream(args.json), "{:<28} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>10} {:>9} {:>7}  {}\n", "case", "scale_m", "w:t", "E_GPa",
              "rho", "iters", "seconds", "rmse_m", "nrmse", "sag_%", "result");
   for (const rods::StressCase& c : rods::stressCases()) {
     const rods::StressOutcome o = rods::runStressCase(c, args.timeLimit, args.maxIterations);
     allFinite = allFinite && o.finite;
     const std::string result = !o.finite ? "NON-FINITE" : o.converged ? "converged" : "stopped: " + o.reason;
     const double sagPercent = o.extent_m > 0.0 ? 100.0 * o.sag_m / o.extent_m : 0.0;
-    fmt::print("{:<28} {:>9.3g} {:>6.0f} {:>8.3g} {:>6.0f} {:>6} {:>8.2f} {:>10.3g} {:>9.3g} {:>7.2f}  {}\n", c.name,
+    fmt::print(tableStream(args.json), "{:<28} {:>9.3g} {:>6.0f} {:>8.3g} {:>6.0f} {:>6} {:>8.2f} {:>10.3g} {:>9.3g} {:>7.2f}  {}\n", c.name,
                3.0 * c.scale, c.widthToThickness, 1e-9 * c.youngsModulus_pa, c.density_kg_m3, o.iterations, o.seconds,
                o.rmse_m, o.nrmse, sagPercent, result);
     rows.push_back({{"case", c.name},
@@ -205,13 +208,17 @@ void registerSimBench(CLI::App& bench, Action& action) {
              "against the same grid with plain holes");
   cmd->add_option("--spacings", args->spacings,
                   "member spacings in m (1.0 -> 416 vertices, 0.8 -> 640, 0.72 -> 784)")
-      ->delimiter(',');
-  cmd->add_option("--tolerances", args->tolerances, "relative Newton-decrement tolerances")->delimiter(',');
-  cmd->add_option("--notch-fraction", args->notchFraction, "notch length on each side of inner bolts, in spacings");
+      ->delimiter(',')
+      ->check(finiteRange(0.25, 8.0));  // 0.25 m: ~8,000 vertices; 0.001 m grew past 12 GB
+  cmd->add_option("--tolerances", args->tolerances, "relative Newton-decrement tolerances")
+      ->delimiter(',')
+      ->check(finiteRange(1e-15, 1.0));
+  cmd->add_option("--notch-fraction", args->notchFraction, "notch length on each side of inner bolts, in spacings")
+      ->check(finiteRange(0.0, 0.45));
   cmd->add_flag("--gravity", args->gravity, "add self-weight");
-  cmd->add_option("--threads", args->threads, "threads assembling the Hessian")->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", args->threads, "threads assembling the Hessian")->check(CLI::Range(1, kMaxThreads));
   cmd->add_option("--repeats", args->repeats, "runs per row; the table shows the median time")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000));
   cmd->add_flag("!--no-reference", args->reference, "skip the plain-hole reference run of each row");
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_flag("--json", args->json, "also print the table as JSON");
@@ -223,8 +230,8 @@ void registerStressCommand(CLI::App& parent, Action& action) {
   auto* cmd = parent.add_subcommand(
       "stress", "Stiff and extreme simulation cases (width:thickness 5-100, E 0.5-210 GPa, 0.1-220 m, "
                 "400-7850 kg/m3): each converges or reports why; exit 1 if any result is not finite");
-  cmd->add_option("--time-limit", args->timeLimit, "seconds per case");
-  cmd->add_option("--max-iterations", args->maxIterations, "Newton iterations per case")->check(CLI::PositiveNumber);
+  cmd->add_option("--time-limit", args->timeLimit, "seconds per case")->check(finiteRange(1e-3, 86400.0));
+  cmd->add_option("--max-iterations", args->maxIterations, "Newton iterations per case")->check(CLI::Range(1, 1000000));
   cmd->add_flag("--json", args->json, "also print the table as JSON");
   cmd->callback([args, &action] { action = [args] { return runStress(*args); }; });
 }

@@ -61,7 +61,7 @@ void registerSurfaceCommand(CLI::App& parent, Action& action) {
   cmd->add_flag("--list", args->list, "List the procedural samples and their parameters");
   cmd->add_option("--export", args->exportPath, "Write the mesh (OBJ, PLY, STL, glTF, GLB by extension)");
   cmd->add_option("--edge-length", args->edgeLength, "Target edge length of a generated sample, metres")
-      ->check(CLI::PositiveNumber);
+      ->check(finiteRange(1e-3, 1e4));
   cmd->callback([args, &action] {
     action = [args]() {
       if (args->list) {

@@ -46,11 +46,18 @@ std::string formatNumber(double x) {
   return s.str();
 }
 
-std::string formatPoint(const Eigen::Vector3d& p) {
+// NaN printed as "nan" (iostreams print "-nan" for a NaN with the sign bit set), inf as "inf".
+std::string formatCoordinate(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
   std::ostringstream s;
   s.precision(9);
-  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  s << x;
   return s.str();
+}
+
+std::string formatPoint(const Eigen::Vector3d& p) {
+  return "(" + formatCoordinate(p.x()) + ", " + formatCoordinate(p.y()) + ", " + formatCoordinate(p.z()) + ")";
 }
 
 class Checker {
@@ -217,7 +224,7 @@ void Checker::handleComponents() {
     named.push_back("component " + std::to_string(c) + ": " + std::to_string(size[c]) + " triangles from " +
                     triangleName(first[c]));
   add(MeshIssueKind::SeveralComponents, count, Severity::Error,
-      "the mesh has " + std::to_string(count) + " connected components (keep the largest by option): " +
+      "the mesh has " + std::to_string(count) + " connected components (to keep only the largest, set the scene's surface.keep_largest_component to true): " +
           list(named, count));
 }
 
@@ -361,7 +368,7 @@ void Checker::checkEdgesAndOrientation() {
   if (conflictCount == 0) return;
   if (!o_.fix_orientation) {
     add(MeshIssueKind::InconsistentOrientation, conflictCount, Severity::Error,
-        "inconsistent orientation at " + std::to_string(conflictCount) + " edge(s) (fix by option): " +
+        "inconsistent orientation at " + std::to_string(conflictCount) + " edge(s) (turn the faces so that neighbours agree, e.g. unify the normals in the modelling tool): " +
             list(conflicts, conflictCount));
     return;
   }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -193,9 +194,10 @@ TEST_F(Cli, GeodesicBenchTabulatesErrorAgainstTimeOverTheSaddleTolerance) {
   const Outcome o = runEgg({"bench", "geodesic", "--sizes", "400", "--cgal-sources", "0", "--sources", "8",
                             "--timed-sources", "3", "--saddle-tolerance", "0,7e-4", "--json"});
   ASSERT_EQ(o.code, 0) << o.err;
-  const auto start = o.out.find("\n{");
-  ASSERT_NE(start, std::string::npos) << o.out;
-  const auto table = nlohmann::json::parse(o.out.substr(start + 1))["saddle_tolerance"];
+  // With --json, stdout is the JSON document alone (issue 17: the table went first); the table is on stderr.
+  ASSERT_TRUE(nlohmann::json::accept(o.out)) << o.out;
+  EXPECT_NE(o.err.find("vertices"), std::string::npos) << o.err;
+  const auto table = nlohmann::json::parse(o.out)["saddle_tolerance"];
   ASSERT_EQ(table.size(), 2u);
   EXPECT_EQ(table[0]["max_relative_error_vertices"].get<double>(), 0.0);
   EXPECT_EQ(table[0]["max_relative_error_side_to_side"].get<double>(), 0.0);
@@ -213,9 +215,10 @@ TEST_F(Cli, GridBenchTabulatesErrorAgainstTimeOfMapsOnAProxy) {
   const Outcome o = runEgg({"bench", "grid", "--sizes", "1100", "--repeats", "1", "--resolution", "31", "--map-proxy", "0,300",
                             "--json"});
   ASSERT_EQ(o.code, 0) << o.err;
-  const auto start = o.out.find("\n{");
-  ASSERT_NE(start, std::string::npos) << o.out;
-  const auto table = nlohmann::json::parse(o.out.substr(start + 1))["map_tolerance"];
+  // With --json, stdout is the JSON document alone (issue 17: the table went first); the table is on stderr.
+  ASSERT_TRUE(nlohmann::json::accept(o.out)) << o.out;
+  EXPECT_NE(o.err.find("vertices"), std::string::npos) << o.err;
+  const auto table = nlohmann::json::parse(o.out)["map_tolerance"];
   ASSERT_EQ(table.size(), 3u);
   EXPECT_EQ(table[0]["max_map_error_m"].get<double>(), 0.0);
   EXPECT_EQ(table[0]["proxy_vertices"].get<int>(), 0);
@@ -246,6 +249,81 @@ TEST_F(Cli, PatchingBenchDecomposesTheGreatCourtUnattended) {
   EXPECT_EQ(rows[0]["feasible"], 4);
   EXPECT_GT(rows[0]["coverage"].get<double>(), 0.85);
   EXPECT_LT(rows[0]["coverage"].get<double>(), 1.0);
+}
+
+}  // namespace
+}  // namespace egg::app
+
+namespace egg::app {
+namespace {
+
+// Issue 17: NaN passed CLI11's range checks; absurd --threads aborted (std::terminate); absurd
+// sizes ran for minutes, grew past 12 GB or silently benchmarked something else (int overflow).
+TEST_F(Cli, AbsurdOrNanFlagsAreBadInputBeforeAnyWork) {
+  const std::vector<std::vector<std::string>> cases{
+      {"bench", "sim", "--tolerances", "nan"},
+      {"bench", "sim", "--notch-fraction", "nan"},
+      {"bench", "sim", "--spacings", "0.001"},
+      {"bench", "sim", "--threads", "100000"},
+      {"bench", "grid", "--height", "nan"},
+      {"bench", "grid", "--sizes", "2000000000"},
+      {"bench", "grid", "--map-tolerance", "nan"},
+      {"bench", "geodesic", "--threads", "1000000000"},
+      {"bench", "geodesic", "--sources", "2000000000"},
+      {"bench", "geodesic", "--sizes", "2000000000"},
+      {"bench", "geodesic", "--saddle-tolerance", "nan"},
+      {"stress", "--time-limit", "nan"},
+      {"surface", "plane", "--edge-length", "nan"},
+      {"run", "--threads", "100000"},
+  };
+  for (const auto& args : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    const Outcome o = runEgg(args);
+    EXPECT_EQ(o.code, kExitBadInput) << args[args.size() - 2] << " " << args.back() << ": " << o.err;
+    EXPECT_NE(o.err.find(args[args.size() - 2]), std::string::npos) << o.err;
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  }
+}
+
+// Issue 17: `geodesic --out` onto a character device replaced the device node with a file.
+TEST_F(Cli, AnOutputOntoADeviceIsRefused) {
+  const Outcome o = runEgg({"geodesic", "plane", "--source", "0,0,0", "--out", "/dev/null"});
+  EXPECT_EQ(o.code, kExitFailure) << o.err;
+  EXPECT_NE(o.err.find("character device"), std::string::npos) << o.err;
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+}
+
+// Issue 17: a folder as the scene and 1e400 in a field were "internal error", exit 1.
+TEST_F(Cli, AFolderAsSceneAndAnOverflowingNumberAreBadInputNamingTheField) {
+  fs::create_directories(root / "dir.json");
+  const Outcome dir = runEgg({"run", (root / "dir.json").string(), "--quiet"});
+  EXPECT_EQ(dir.code, kExitBadInput) << dir.err;
+  EXPECT_EQ(dir.err.find("internal error"), std::string::npos) << dir.err;
+  const auto scene = write("big.json", R"({"surface": {"sample": "bump"}, "lamella": {"width_m": 1e400}})");
+  const Outcome big = runEgg({"run", scene.string(), "--out", (root / "out").string(), "--quiet"});
+  EXPECT_EQ(big.code, kExitBadInput) << big.err;
+  EXPECT_NE(big.err.find("lamella.width_m"), std::string::npos) << big.err;
+  EXPECT_FALSE(fs::exists(root / "out"));
+}
+
+// Issue 17: `egg run run/scene.json --out run` onto an earlier run deleted the run's own scene.
+TEST_F(Cli, ARunNeverReplacesAFolderHoldingTheUsersFiles) {
+  const std::string text = R"({"name": "small", "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1, "sigma": 1.5}, "edge_length_m": 0.5},
+                               "patching": {"patches": [[[-3, -3, 0], [3, -3, 0], [3, 3, 0], [-3, 3, 0]]]},
+                               "grid": {"map_resolution": 20, "members_per_family": 4},
+                               "simulation": {"enabled": false}, "outputs": ["report"]})";
+  const auto first = write("small.json", text);
+  const auto out = root / "run";
+  ASSERT_EQ(runEgg({"run", first.string(), "--out", out.string(), "--quiet"}).code, kExitOk);
+  ASSERT_EQ(runEgg({"run", first.string(), "--out", out.string(), "--quiet"}).code, kExitOk) << "a pure run is replaced";
+  std::ofstream(out / "scene.json") << text;
+  std::ofstream(out / "notes.txt") << "mine";
+  const Outcome o = runEgg({"run", (out / "scene.json").string(), "--out", out.string(), "--quiet"});
+  EXPECT_EQ(o.code, kExitBadInput) << o.err;
+  EXPECT_NE(o.err.find("did not write"), std::string::npos) << o.err;
+  EXPECT_TRUE(fs::exists(out / "scene.json"));
+  EXPECT_TRUE(fs::exists(out / "notes.txt"));
+  EXPECT_TRUE(fs::exists(out / "report.json"));
 }
 
 }  // namespace

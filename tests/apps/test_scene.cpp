@@ -6,7 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <fstream>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace egg::app {
 namespace {
@@ -197,6 +201,97 @@ TEST(Scene, ShippedScenesParse) {
   EXPECT_DOUBLE_EQ(loadScene(dir / "yas.json").lamella.width_m, 0.40);          // 40 x 5 cm
   EXPECT_EQ(parsed, 7);
   EXPECT_EQ(loadScene(dir / "scenes" / "bump_patch.json").patching.patches.size(), 1u);
+}
+
+std::string messageOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// Issue 17: a name starting with NUL emptied ./out; control characters and long names are refused
+// as the scene's error, naming the field.
+TEST(SceneSafety, NamesMustBePortableFolderNames) {
+  const std::string surface = R"("surface": {"sample": "bump"})";
+  for (const std::string name : {"\\u0000", "\\u0000abc", "a\\nb", "a\\u001bb", "..", "a/b"}) {
+    const std::string m = messageOf([&] { parse("{\"name\": \"" + name + "\", " + surface + "}"); });
+    EXPECT_NE(m.find("name"), std::string::npos) << name << ": " << m;
+    EXPECT_EQ(m.find('\0'), std::string::npos);
+  }
+  // 238-255 characters failed at the staging folder; now: too long, at parse time.
+  const std::string m = messageOf([&] { parse("{\"name\": \"" + std::string(240, 'n') + "\", " + surface + "}"); });
+  EXPECT_NE(m.find("too long"), std::string::npos) << m;
+  EXPECT_NO_THROW(parse("{\"name\": \"" + std::string(200, 'n') + "\", " + surface + "}"));
+}
+
+// Issue 17: messages echoed the whole offending value (200 MB of stderr for a 200 MB name).
+TEST(SceneSafety, MessagesShowAtMostAShortPieceOfTheValue) {
+  const std::string huge(5000000, 'x');
+  const std::string m = messageOf([&] { parse(R"({"surface": {"sample": "bump"}, "grid": {"alpha_bar": ")" + huge + "\"}}"); });
+  EXPECT_NE(m.find("grid.alpha_bar"), std::string::npos) << m.substr(0, 300);
+  EXPECT_LT(m.size(), 600u);
+  const std::string m2 = messageOf([&] { parse(R"({"surface": {"sample": "bump"}, ")" + huge + "\": 1}"); });
+  EXPECT_LT(m2.size(), 1000u);
+}
+
+// Issue 17: a deeply nested value in a typed field crashed (SIGSEGV) in the message's dump.
+TEST(SceneSafety, DeeplyNestedValuesNeitherCrashNorFlood) {
+  const int depth = 70000;
+  const std::string deep = std::string(depth, '[') + std::string(depth, ']');
+  const std::string m = messageOf([&] { parseSceneText(R"({"surface": {"sample": "bump"}, "lamella": {"width_m": )" + deep + "}}", "deep.json"); });
+  EXPECT_NE(m.find("deeper than"), std::string::npos) << m.substr(0, 300);
+  EXPECT_NE(m.find("lamella.width_m"), std::string::npos) << m.substr(0, 300);
+  // A parsed document handed over directly: the message renders a few levels only.
+  json value = json::array();
+  for (int i = 0; i < 2000; ++i) value = json::array({value});
+  const std::string m2 = messageOf([&] { parseScene(json{{"surface", {{"sample", "bump"}}}, {"lamella", {{"width_m", value}}}}, "x.json"); });
+  EXPECT_NE(m2.find("lamella.width_m: must be a number"), std::string::npos) << m2.substr(0, 300);
+  EXPECT_LT(m2.size(), 400u);
+}
+
+// Issue 17: 1e400 (nlohmann refuses the overflow) was an "internal error", exit 1, naming no field.
+TEST(SceneSafety, ANumberThatOverflowsADoubleNamesTheField) {
+  try {
+    parseSceneText(R"({"surface": {"sample": "bump"}, "patching": {"slope_bounds": [0.1, 1e400]}})", "big.json");
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("big.json: patching.slope_bounds[1]"), std::string::npos) << m;
+    EXPECT_NE(m.find("1e400"), std::string::npos) << m;
+  }
+  const std::string m = messageOf([] { parseSceneText(R"({"surface": {"sample": "bump"}, "lamella": {"width_m": -1e999}})", "s.json"); });
+  EXPECT_NE(m.find("lamella.width_m"), std::string::npos) << m;
+}
+
+// Issue 17: 18446744073709551615 was reported as "got -1".
+TEST(SceneSafety, HugeUnsignedIntegersAreReportedAsWritten) {
+  const std::string m = messageOf([] { parse(R"({"surface": {"sample": "bump"}, "grid": {"map_resolution": 18446744073709551615}})"); });
+  EXPECT_NE(m.find("18446744073709551615"), std::string::npos) << m;
+  EXPECT_EQ(m.find("-1"), std::string::npos) << m;
+}
+
+// Issue 17: a layout of 10,000 patches ran for minutes with no limit.
+TEST(SceneSafety, TooManyPatchesIsAnErrorBeforeTheWork) {
+  json patches = json::array();
+  for (int i = 0; i < 1001; ++i) patches.push_back({{i, 0, 0}, {i + 1, 0, 0}, {i + 1, 1, 0}, {i, 1, 0}});
+  const std::string m = messageOf([&] { parseScene(json{{"surface", {{"sample", "bump"}}}, {"patching", {{"patches", patches}}}}, "p.json"); });
+  EXPECT_NE(m.find("patching.patches: has 1001 patches; at most 1000"), std::string::npos) << m;
+}
+
+// Issue 17: a directory as the scene was an internal error (exit 1); a FIFO blocked forever.
+TEST(SceneSafety, AFolderOrFifoAsSceneIsAnIoError) {
+  const auto dir = std::filesystem::temp_directory_path() / ("egg_scene_safety_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "scene.json");
+  EXPECT_THROW(loadScene(dir / "scene.json"), IoError);
+  const auto fifo = dir / "fifo.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string m = messageOf([&] { loadScene(fifo); });
+  EXPECT_NE(m.find("FIFO"), std::string::npos) << m;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -9,6 +9,11 @@
 #include <assimp/scene.h>
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -281,6 +286,143 @@ TEST(MeshIo, ExtensionListsContainTheRequiredFormats) {
   for (const std::string ext : {".obj", ".stl", ".ply", ".off", ".gltf", ".glb", ".fbx"})
     EXPECT_NE(std::find(in.begin(), in.end(), ext), in.end()) << ext;
   EXPECT_EQ(exportableExtensions().size(), 5u);
+}
+
+// Issue 17: mesh export onto a full disk exited 0 and left a truncated file (assimp does not check
+// its writes). The file size limit stands in for the full disk: write() fails with EFBIG.
+TEST(MeshIoSafety, ExportToAFullDiskFailsAndLeavesNoTruncatedFile) {
+  const TriangleSoup soup = wavySurface(30);
+  for (const char* name : {"s.obj", "s.stl", "s.ply", "s.glb", "s.gltf"}) {
+    TempDir dir;
+    ::signal(SIGXFSZ, SIG_IGN);
+    rlimit old{};
+    ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+    rlimit small = old;
+    small.rlim_cur = 4096;
+    ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+    bool threw = false;
+    try {
+      writeMeshFile(dir / name, soup);
+    } catch (const WriteError& e) {
+      threw = true;
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+    ::setrlimit(RLIMIT_FSIZE, &old);
+    EXPECT_TRUE(threw) << name;
+    // No main file; at most a whole companion (.bin written before the .gltf failed? it is larger).
+    for (const auto& f : dir.files()) EXPECT_NE(f, std::string(name)) << name;
+    for (const auto& f : dir.files()) EXPECT_NE(f.rfind(".egg-", 0), 0u) << f;
+  }
+}
+
+TEST(MeshIoSafety, ExportOntoADeviceIsRefused) {
+  TempDir dir;
+  fs::create_directories(dir / "folder.obj");
+  EXPECT_THROW(writeMeshFile(dir / "folder.obj", wavySurface(3)), WriteError);
+  EXPECT_TRUE(fs::is_directory(dir / "folder.obj"));
+  const fs::path fifo = dir / "pipe.stl";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THROW(writeMeshFile(fifo, wavySurface(3)), WriteError);
+  EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+// Issue 17: leftovers of interrupted exports (.egg-write-PID-N) were never removed.
+TEST(MeshIoSafety, LeftoverExportFoldersOfDeadProcessesAreRemoved) {
+  TempDir dir;
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);
+  const fs::path leftover = dir / (".egg-write-" + std::to_string(child) + "-0");
+  fs::create_directories(leftover);
+  writeText(leftover / "s.obj", "half");
+  writeMeshFile(dir / "s.obj", wavySurface(3));
+  EXPECT_FALSE(fs::exists(leftover));
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"s.obj"});
+}
+
+// Issue 17: a FIFO as mesh file blocked forever.
+TEST(MeshIoSafety, AFifoAsMeshFileIsAnErrorNotAHang) {
+  TempDir dir;
+  const fs::path fifo = dir / "roof.obj";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    readMeshFile(fifo);
+    FAIL() << "expected IoError";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("FIFO"), std::string::npos) << e.what();
+  }
+}
+
+// Issue 17: OFF faces with negative or out-of-range indices were accepted silently.
+TEST(MeshIoSafety, OffFacesWithBadIndicesNameTheFaceAndLine) {
+  TempDir dir;
+  writeText(dir / "bad.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 7 3\n");
+  try {
+    readMeshFile(dir / "bad.off");
+    FAIL() << "expected IoError";
+  } catch (const IoError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("line 8: face 1 refers to vertex 7"), std::string::npos) << m;
+  }
+  writeText(dir / "neg.off", "OFF\n# comment\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 -2 3\n");
+  EXPECT_THROW(readMeshFile(dir / "neg.off"), IoError);
+  writeText(dir / "ok.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n");
+  EXPECT_EQ(readMeshFile(dir / "ok.off").triangles.size(), 2u);
+}
+
+// Issue 17: every clean OBJ warned "merged N duplicate vertices", messages used assimp's vertex
+// numbers (not the file's), and an inf coordinate was printed as -nan.
+TEST(MeshIoSafety, ObjKeepsTheFileNumberingWarnsNothingAndNamesInf) {
+  TempDir dir;
+  writeText(dir / "sq.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+  const TriangleSoup soup = readMeshFile(dir / "sq.obj");
+  EXPECT_EQ(soup.vertices.size(), 4u);
+  ASSERT_EQ(soup.triangles.size(), 2u);
+  EXPECT_EQ(soup.triangles[1], (std::array<int, 3>{1, 3, 2}));
+  MeshRepairDiagnostics diagnostics;
+  loadMeshFile(dir / "sq.obj", {}, {}, diagnostics);
+  EXPECT_TRUE(diagnostics.warnings.empty()) << diagnostics.warnings.front();
+  // Elements are named by the file's numbers (0-based: vertex k is the (k+1)-th "v" line), not
+  // assimp's per-corner ones: this edge was "(1, 2)" before.
+  writeText(dir / "fin.obj", "v 0 0 1\nv 0 -1 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 5 3 4\nf 3 2 4\nf 3 4 1\n");
+  try {
+    loadMeshFile(dir / "fin.obj", {}, {}, diagnostics);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("edge (2, 3)"), std::string::npos) << e.what();
+  }
+  writeText(dir / "inf.obj", "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n");
+  try {
+    readMeshFile(dir / "inf.obj");
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("line 2: vertex 2"), std::string::npos) << m;
+    EXPECT_NE(m.find("(inf)"), std::string::npos) << m;
+    EXPECT_EQ(m.find("nan"), std::string::npos) << m;
+  }
+}
+
+// Issue 17: a glTF of 200,000 nested nodes overflowed the stack (inside assimp).
+TEST(MeshIoSafety, DeeplyNestedGltfNodesAreRefusedBeforeAssimp) {
+  TempDir dir;
+  const int depth = 200000;
+  std::string nodes;
+  nodes.reserve(depth * 20);
+  for (int i = 0; i < depth; ++i) nodes += (i ? "," : "") + (i + 1 < depth ? "{\"children\":[" + std::to_string(i + 1) + "]}" : std::string("{}"));
+  writeText(dir / "deep.gltf", "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[" + nodes + "]}");
+  try {
+    readMeshFile(dir / "deep.gltf");
+    FAIL() << "expected IoError";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("nest deeper"), std::string::npos) << e.what();
+  }
+  // Deep JSON nesting itself.
+  writeText(dir / "deepjson.gltf", std::string(100000, '[') + std::string(100000, ']'));
+  EXPECT_THROW(readMeshFile(dir / "deepjson.gltf"), IoError);
+  // A cycle.
+  writeText(dir / "cycle.gltf", "{\"asset\":{\"version\":\"2.0\"},\"nodes\":[{\"children\":[1]},{\"children\":[0]}]}");
+  EXPECT_THROW(readMeshFile(dir / "cycle.gltf"), IoError);
 }
 
 }  // namespace

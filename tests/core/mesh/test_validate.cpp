@@ -59,6 +59,11 @@ TEST(Validate, NanCoordinateNamesTheVertex) {
   const std::string message = messageOf(soup);
   EXPECT_TRUE(contains(message, "vertex 6 at")) << message;
   EXPECT_TRUE(contains(message, "NaN")) << message;
+  // Issue 17: a NaN with its sign bit set was printed as "-nan"; an infinity is printed as inf.
+  soup.vertices[6].y() = -std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(contains(messageOf(soup), "-nan")) << messageOf(soup);
+  soup.vertices[6].y() = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(contains(messageOf(soup), ", inf, ")) << messageOf(soup);
 }
 
 TEST(Validate, InfiniteUnusedVertexIsSimplyDropped) {
@@ -149,6 +154,9 @@ TEST(Validate, SeveralComponentsRejectedOrLargestKept) {
   const std::string message = messageOf(soup);
   EXPECT_TRUE(contains(message, "2 connected components")) << message;
   EXPECT_TRUE(contains(message, "component 1: 1 triangles from triangle 18")) << message;
+  // Issue 17: the advice named a non-existent option ("keep the largest by option").
+  EXPECT_FALSE(contains(message, "by option")) << message;
+  EXPECT_TRUE(contains(message, "surface.keep_largest_component")) << message;
 
   MeshCheckOptions options;
   options.components = ComponentPolicy::KeepLargest;
@@ -167,6 +175,7 @@ TEST(Validate, InconsistentOrientationIsNamedOrFixed) {
   const std::string message = messageOf(soup);
   EXPECT_TRUE(contains(message, "inconsistent orientation at 3 edge(s)")) << message;
   EXPECT_TRUE(contains(message, "triangles 2 and 3")) << message;
+  EXPECT_FALSE(contains(message, "by option")) << message;  // issue 17: there is no such option
 
   MeshCheckOptions options;
   options.fix_orientation = true;

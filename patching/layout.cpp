@@ -124,6 +124,15 @@ double nearestArcLength(const PatchLayout& layout, int curveId, const Eigen::Vec
   return bestS;
 }
 
+bool polylineTurnsAt(const std::vector<Eigen::Vector3d>& pos, const Eigen::Vector3d& at, double tolerance) {
+  size_t i = 0;
+  for (size_t k = 1; k < pos.size(); ++k)
+    if ((pos[k] - at).squaredNorm() < (pos[i] - at).squaredNorm()) i = k;
+  if (i == 0 || i + 1 >= pos.size()) return false;  // at an end: no turn to measure
+  const Eigen::Vector3d a = (pos[i] - pos[i - 1]).normalized(), b = (pos[i + 1] - pos[i]).normalized();
+  return std::atan2(a.cross(b).norm(), a.dot(b)) > tolerance;
+}
+
 int addCorner(PatchLayout& layout, const SurfacePoint& point) {
   layout.cornerPoints.push_back(point);
   layout.corners.push_back(position(*layout.surface, point));
@@ -285,15 +294,8 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
       // Running along a boundary that is straight in space (the Great Court's rectangle at its
       // eave height) is no wrap: the side is that straight line, whatever the discrete angle sums
       // of the vertices on it. It wraps where it turns there.
-      const auto& pos = layout.curves[c].positions;
-      const Eigen::Vector3d at = toEigen(surface.point(vh));
-      size_t i = 0;
-      for (size_t k = 1; k < pos.size(); ++k)
-        if ((pos[k] - at).squaredNorm() < (pos[i] - at).squaredNorm()) i = k;
-      if (i > 0 && i + 1 < pos.size()) {
-        const Eigen::Vector3d a = (pos[i] - pos[i - 1]).normalized(), b = (pos[i + 1] - pos[i]).normalized();
-        if (std::atan2(a.cross(b).norm(), a.dot(b)) <= options.patch.straightBoundaryTolerance) continue;
-      }
+      if (!polylineTurnsAt(layout.curves[c].positions, toEigen(surface.point(vh)), options.patch.straightBoundaryTolerance))
+        continue;
       problem(c, fmt::format("the side from corner {} to corner {} wraps around the surface boundary or a hole at {}: "
                                "it is not a geodesic there",
                                layout.curves[c].from, layout.curves[c].to, format(toEigen(surface.point(vh)))));

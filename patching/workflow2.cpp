@@ -4,6 +4,7 @@
 #include "core/errors.hpp"
 #include "core/geodesic/distance_solver.hpp"
 #include "patching/injectivity.hpp"
+#include "patching/layout.hpp"
 
 #include <fmt/core.h>
 
@@ -385,20 +386,28 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     return Vec2(c / static_cast<double>(nodes.size()));
   }();
 
-  // A chord along a concave stretch leaves the footprint: pull its ends inwards until it does not.
-  for (int round = 0; round < 10; ++round) {
-    std::vector<char> bad(nodes.size(), 0);
-    for (const auto& [a, b] : boundaryChords)
-      if (!foot.containsSegment(nodes[a], nodes[b])) bad[a] = bad[b] = 1;
-    if (std::none_of(bad.begin(), bad.end(), [](char c) { return c; })) break;
+  // Moves the marked boundary nodes 8 % of the way to their inward targets (they leave the
+  // boundary); false when none is marked.
+  std::vector<char> moved(nodes.size(), 0);
+  const auto pullIn = [&](const std::vector<char>& bad) {
+    if (std::none_of(bad.begin(), bad.end(), [](char c) { return c; })) return false;
     for (const auto& [node, towards] : inwards) {
       if (!bad[node]) continue;
       const Vec2 target = towards >= 0 && towards != node ? nodes[towards] : blockCentre;
       nodes[node] = lerp(nodes[node], target, 0.08);
       onSurface[node].reset();
-      bad[node] = 0;
+      moved[node] = 1;
       ++out.nodesPulledIn;
     }
+    return true;
+  };
+
+  // A chord along a concave stretch leaves the footprint: pull its ends inwards until it does not.
+  for (int round = 0; round < 10; ++round) {
+    std::vector<char> bad(nodes.size(), 0);
+    for (const auto& [a, b] : boundaryChords)
+      if (!foot.containsSegment(nodes[a], nodes[b])) bad[a] = bad[b] = 1;
+    if (!pullIn(bad)) break;
   }
 
   // High K first (Algorithm 2): an interior node near a K peak becomes a corner at p_max.
@@ -471,28 +480,15 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
       std::vector<char> bad(nodes.size(), 0);
       for (const auto& [a, b] : boundaryChords) {
         const auto path = solver->path(geodesic::snapToSurface(surface, lifted[a]), geodesic::snapToSurface(surface, lifted[b]));
-        for (int v : path.bendVertices) {
-          if (!surface.is_boundary(TriMesh::VertexHandle(v))) continue;
-          const Eigen::Vector3d at = toEigen(surface.point(TriMesh::VertexHandle(v)));
-          size_t k = 0;
-          for (size_t j = 1; j < path.positions.size(); ++j)
-            if ((path.positions[j] - at).squaredNorm() < (path.positions[k] - at).squaredNorm()) k = j;
-          if (k == 0 || k + 1 >= path.positions.size()) continue;
-          const Eigen::Vector3d u = (path.positions[k] - path.positions[k - 1]).normalized(),
-                                w = (path.positions[k + 1] - path.positions[k]).normalized();
-          if (std::atan2(u.cross(w).norm(), u.dot(w)) > turnTolerance) bad[a] = bad[b] = 1;
-        }
+        for (int v : path.bendVertices)
+          if (surface.is_boundary(TriMesh::VertexHandle(v)) &&
+              polylineTurnsAt(path.positions, toEigen(surface.point(TriMesh::VertexHandle(v))), turnTolerance))
+            bad[a] = bad[b] = 1;
       }
-      if (std::none_of(bad.begin(), bad.end(), [](char c) { return c; })) break;
-      for (const auto& [node, towards] : inwards) {
-        if (!bad[node]) continue;
-        const Vec2 target = towards >= 0 && towards != node ? nodes[towards] : blockCentre;
-        nodes[node] = lerp(nodes[node], target, 0.08);
-        onSurface[node].reset();
-        lifted[node] = lift(node);
-        bad[node] = 0;
-        ++out.nodesPulledIn;
-      }
+      std::fill(moved.begin(), moved.end(), 0);
+      if (!pullIn(bad)) break;
+      for (size_t i = 0; i < nodes.size(); ++i)
+        if (moved[i]) lifted[i] = lift(i);
     }
   }
   out.corners = lifted;

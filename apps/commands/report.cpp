@@ -41,7 +41,7 @@ json RunReport::finish(double totalSeconds) const {
   json out = document_;
   for (const auto& stage : pipelineStages()) {
     if (!out["stages"].contains(stage)) {
-      out["stages"][stage] = {{"ran", false}, {"seconds", 0.0}, {"skipped_reason", "not implemented"}};
+      out["stages"][stage] = {{"ran", false}, {"seconds", 0.0}, {"skipped_reason", "the run recorded no outcome for this stage"}};
     }
   }
   // A section whose stage did not run carries the stage's verdict, so a reader of one section

@@ -124,15 +124,6 @@ double nearestArcLength(const PatchLayout& layout, int curveId, const Eigen::Vec
   return bestS;
 }
 
-bool polylineTurnsAt(const std::vector<Eigen::Vector3d>& pos, const Eigen::Vector3d& at, double tolerance) {
-  size_t i = 0;
-  for (size_t k = 1; k < pos.size(); ++k)
-    if ((pos[k] - at).squaredNorm() < (pos[i] - at).squaredNorm()) i = k;
-  if (i == 0 || i + 1 >= pos.size()) return false;  // at an end: no turn to measure
-  const Eigen::Vector3d a = (pos[i] - pos[i - 1]).normalized(), b = (pos[i + 1] - pos[i]).normalized();
-  return std::atan2(a.cross(b).norm(), a.dot(b)) > tolerance;
-}
-
 int addCorner(PatchLayout& layout, const SurfacePoint& point) {
   layout.cornerPoints.push_back(point);
   layout.corners.push_back(position(*layout.surface, point));
@@ -286,20 +277,19 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
   const auto problem = [&](size_t c, const std::string& what) {
     if (layout.curveProblems[c].empty()) layout.curveProblems[c] = what;
   };
-  for (size_t c = 0; c < layout.curves.size(); ++c)
-    for (int v : layout.curves[c].bendVertices) {
-      const auto vh = TriMesh::VertexHandle(v);
-      if (!surface.is_boundary(vh)) continue;
-      if (vertexAngleSum(surface, vh) <= M_PI + options.patch.straightBoundaryTolerance) continue;
-      // Running along a boundary that is straight in space (the Great Court's rectangle at its
-      // eave height) is no wrap: the side is that straight line, whatever the discrete angle sums
-      // of the vertices on it. It wraps where it turns there.
-      if (!polylineTurnsAt(layout.curves[c].positions, toEigen(surface.point(vh)), options.patch.straightBoundaryTolerance))
-        continue;
-      problem(c, fmt::format("the side from corner {} to corner {} wraps around the surface boundary or a hole at {}: "
-                               "it is not a geodesic there",
-                               layout.curves[c].from, layout.curves[c].to, format(toEigen(surface.point(vh)))));
-    }
+  for (size_t c = 0; c < layout.curves.size(); ++c) {
+    // Running along a boundary that is a geodesic (the Great Court's rectangle at its eave height,
+    // the Lilium's vertical base) is no wrap; bending round the boundary or a hole is.
+    const auto& curve = layout.curves[c];
+    const double wrap = boundaryWrapTurning(surface, curve.positions, curve.bendVertices);
+    if (wrap <= options.patch.boundaryWrapToleranceRad) continue;
+    int at = curve.bendVertices.front();
+    for (int v : curve.bendVertices)
+      if (surface.is_boundary(TriMesh::VertexHandle(v))) at = v;
+    problem(c, fmt::format("the side from corner {} to corner {} wraps around the surface boundary or a hole near {} (it turns {:.3g} rad "
+                           "round it): it is not a geodesic there",
+                           curve.from, curve.to, format(toEigen(surface.point(TriMesh::VertexHandle(at)))), wrap));
+  }
   std::map<int, int> cornerOfVertex;  // corners some patch uses (an unused corner may lie anywhere)
   for (const auto& q : layout.patches)
     for (int k : q) cornerOfVertex[layout.cornerVertex[k]] = k;

@@ -93,9 +93,6 @@ struct LayoutPatch {
 };
 LayoutPatch cutLayoutPatch(const PatchLayout& layout, int index, const LayoutOptions& options = {});
 
-// Whether a polyline turns by more than `tolerance` (radians) at its point nearest to `at` (a
-// geodesic bending round a boundary vertex wraps there; one running straight past it does not).
-bool polylineTurnsAt(const std::vector<Eigen::Vector3d>& polyline, const Eigen::Vector3d& at, double tolerance);
 
 // Point of a curve at arc length s (on the surface) and the arc length of the curve's point nearest to `p`.
 SurfacePoint curvePoint(const PatchLayout& layout, int curve, double arcLength);

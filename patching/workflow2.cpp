@@ -116,12 +116,25 @@ GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, cons
       const auto onBoundary = taken[i][j] ? std::nullopt : b.boundaryPoint(i, j, nu, nv);
       space[i][j] = onBoundary ? *onBoundary : lifter.lift(t.plan[i][j]);
     }
+  // A cell's size: its diagonals measured on the surface over the plan diagonals (a chord through
+  // the air would take a cell over the Lilium's dome for half its size).
+  const auto overSurface = [&](int i0, int j0, int i1, int j1) {
+    const int samples = 12;
+    double length = 0.0;
+    Eigen::Vector3d last = space[i0][j0];
+    for (int k = 1; k <= samples; ++k) {
+      const Eigen::Vector3d x = k == samples ? space[i1][j1] : lifter.lift(lerp(t.plan[i0][j0], t.plan[i1][j1], double(k) / samples), last);
+      length += (x - last).norm();
+      last = x;
+    }
+    return length;
+  };
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j) {
-      const auto &a = space[i][j], &c = space[i + 1][j + 1], &bb = space[i + 1][j], &d = space[i][j + 1];
-      const double diag = std::max((c - a).norm(), (d - bb).norm());
+      const double diag = std::max(overSurface(i, j, i + 1, j + 1), overSurface(i + 1, j, i, j + 1));
       if (diag > t.worstDiagonalM)
-        t.worstDiagonalM = diag, t.worstAlongU = (bb - a).norm() + (c - d).norm() >= (d - a).norm() + (c - bb).norm();
+        t.worstDiagonalM = diag,
+        t.worstAlongU = overSurface(i, j, i + 1, j) + overSurface(i, j + 1, i + 1, j + 1) >= overSurface(i, j, i, j + 1) + overSurface(i + 1, j, i + 1, j + 1);
     }
   // Expression 3.1 is "only useful as a quick check" (3.4.1): members cross a cell in about its
   // diagonal, and a 1.5 x 2 m cell of a bump whose circle is 2.51 m already fails η; hence the margin.
@@ -137,9 +150,8 @@ GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, cons
 double holeClearance(const Vec2& from, const Vec2& to, const Polygon& hole, const Plan& plan, const PlanLifter& lifter,
                      const TriMesh& surface, const geodesic::DistanceSolver& solver) {
   const auto path = solver.path(geodesic::snapToSurface(surface, lifter.lift(from)), geodesic::snapToSurface(surface, lifter.lift(to)));
-  for (int v : path.bendVertices)
-    if (surface.is_boundary(TriMesh::VertexHandle(v)) && polylineTurnsAt(path.positions, toEigen(surface.point(TriMesh::VertexHandle(v))), 1e-3))
-      return -std::numeric_limits<double>::infinity();
+  if (boundaryWrapTurning(surface, path.positions, path.bendVertices) > PatchOptions{}.boundaryWrapToleranceRad)
+    return -std::numeric_limits<double>::infinity();
   double clearance = std::numeric_limits<double>::infinity();
   for (const auto& x : path.positions) {
     const Vec2 q = plan(x);
@@ -290,7 +302,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
         if (nu * nv > bestPredicted) continue;  // cannot win
         const GridTrial t = tryGrid(b, nu, nv, lifter, peaks, options.peakSnapFraction);
         ++out.candidatesScreened;
-        if (t.worstDiagonalM > options.maxPatchSizeM) continue;
+        if (t.worstDiagonalM > options.maxPatchSizeM * (1 + 1e-9)) continue;  // a cell of exactly the size fits
         const int predicted = nu * nv + 3 * t.peaksLeftInside;
         if (predicted < bestPredicted || (predicted == bestPredicted && t.worstDiagonalM < bestDiagonal))
           bestPredicted = predicted, bestDiagonal = t.worstDiagonalM, b.nu = nu, b.nv = nv;
@@ -304,7 +316,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
       for (auto& b : blocks) {
         const GridTrial t = tryGrid(b, b.nu, b.nv, lifter, {}, 0.0);
         ++out.candidatesScreened;
-        if (t.worstDiagonalM <= options.maxPatchSizeM) continue;
+        if (t.worstDiagonalM <= options.maxPatchSizeM * (1 + 1e-9)) continue;
         if (t.worstAlongU) {
           ++b.nu;
         } else {
@@ -442,15 +454,68 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   // each boundary chord on the surface, and where it bends round a boundary vertex, pull its ends
   // further in.
   if (solver) {
-    const double turnTolerance = 1e-3;
+    // An outer corner where the boundary runs on nearly straight (in the surface: the Lilium's
+    // base is a geodesic all round, so Gauss-Bonnet leaves its corners no turning) gives its patch
+    // an inner angle of about pi, and criterion (iv) fails. Moving the corner in would make that
+    // angle reflex; its two neighbours along the boundary move in instead, along the surface (in
+    // plan a step near a vertical wall would climb it) by a tenth of their side, which leaves the
+    // corner an angle of about pi - 0.2 and two thin cut-offs.
+    const double cornerAngleMargin = 0.1, neighbourStep = 0.1;
+    std::vector<int> outerCorners;
+    for (size_t k = 0; k < 4; ++k)
+      for (size_t i = 0; i < nodes.size(); ++i)
+        if (onSurface[i] && (nodes[i] - foot.outer[cornerIndex[k]]).norm() <= mergeTolerance) outerCorners.push_back(static_cast<int>(i));
+    const auto boundaryVertexAt = [&](const Eigen::Vector3d& x) {
+      int vertex = -1;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (auto vh : surface.vertices())
+        if (surface.is_boundary(vh) && (toEigen(surface.point(vh)) - x).norm() < nearest) nearest = (toEigen(surface.point(vh)) - x).norm(), vertex = vh.idx();
+      return TriMesh::VertexHandle(vertex);
+    };
+    const auto inwardOf = [&](int node) {
+      for (const auto& [n, towards] : inwards)
+        if (n == node && towards >= 0 && towards != node) return towards;
+      return -1;
+    };
+    for (int node : outerCorners) {
+      std::vector<int> along;
+      for (const auto& [a, b] : boundaryChords)
+        if (a == node || b == node) along.push_back(a == node ? b : a);
+      if (along.size() != 2) continue;
+      const auto from = geodesic::snapToSurface(surface, lifted[node]);
+      const auto toA = solver->path(from, geodesic::snapToSurface(surface, lifted[along[0]]));
+      const auto toB = solver->path(from, geodesic::snapToSurface(surface, lifted[along[1]]));
+      if (toA.positions.size() < 2 || toB.positions.size() < 2) continue;
+      const double angle = M_PI + geodesicTurningAtBoundary(surface, boundaryVertexAt(lifted[node]), toA.positions[1], toB.positions[1]);
+      if (angle <= M_PI - cornerAngleMargin) continue;
+      for (size_t side = 0; side < 2; ++side) {
+        const int neighbour = along[side], towards = inwardOf(neighbour);
+        if (towards < 0 || !onSurface[neighbour] || std::count(outerCorners.begin(), outerCorners.end(), neighbour)) continue;
+        const auto inward = solver->path(geodesic::snapToSurface(surface, lifted[neighbour]), geodesic::snapToSurface(surface, lifted[towards]));
+        const double step = neighbourStep * (side == 0 ? toA.length : toB.length);
+        double walked = 0.0;
+        Eigen::Vector3d moved = lifted[neighbour];
+        for (size_t i = 1; i < inward.positions.size(); ++i) {
+          const double piece = (inward.positions[i] - inward.positions[i - 1]).norm();
+          if (walked + piece >= step) {
+            moved = inward.positions[i - 1] + (step - walked) / std::max(piece, 1e-300) * (inward.positions[i] - inward.positions[i - 1]);
+            break;
+          }
+          walked += piece;
+          moved = inward.positions[i];
+        }
+        lifted[neighbour] = moved;
+        onSurface[neighbour] = moved;
+        nodes[neighbour] = plan(moved);
+      }
+      ++out.cornersMovedOffStraightBoundary;
+    }
     for (int round = 0; round < 12; ++round) {
       std::vector<char> bad(nodes.size(), 0);
       for (const auto& [a, b] : boundaryChords) {
         const auto path = solver->path(geodesic::snapToSurface(surface, lifted[a]), geodesic::snapToSurface(surface, lifted[b]));
-        for (int v : path.bendVertices)
-          if (surface.is_boundary(TriMesh::VertexHandle(v)) && vertexAngleSum(surface, TriMesh::VertexHandle(v)) > M_PI + turnTolerance &&
-              polylineTurnsAt(path.positions, toEigen(surface.point(TriMesh::VertexHandle(v))), turnTolerance))
-            bad[a] = bad[b] = 1;
+        const double wrap = boundaryWrapTurning(surface, path.positions, path.bendVertices);
+        if (wrap > options.boundaryWrapToleranceRad) bad[a] = bad[b] = 1;
       }
       std::fill(moved.begin(), moved.end(), 0);
       if (!pullIn(bad)) break;
@@ -471,6 +536,9 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   out.notes.push_back(fmt::format("patches per block: {} (cells up to {:.3g} m across in space; {} grids screened)", counts, options.maxPatchSizeM,
                                   out.candidatesScreened));
   if (out.peaksSnapped) out.notes.push_back(fmt::format("{} grid corner(s) moved onto K peaks", out.peaksSnapped));
+  if (out.cornersMovedOffStraightBoundary)
+    out.notes.push_back(fmt::format("{} outer corner(s) on a boundary running on straight there (an inner angle near pi): their neighbours moved in",
+                                    out.cornersMovedOffStraightBoundary));
   if (out.nodesPulledIn) out.notes.push_back(fmt::format("boundary corners pulled inwards {} time(s) off concave stretches", out.nodesPulledIn));
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;

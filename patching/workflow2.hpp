@@ -14,6 +14,7 @@
 //     "introduce a corner at p_max");
 //   - boundary nodes lie on the design boundary, and patch sides along it are chords; a node whose
 //     chord would leave the footprint (a concave stretch) is pulled inwards, leaving a cut-off.
+#include "core/egg/patch.hpp"
 #include "core/mesh/mesh.hpp"
 
 #include <Eigen/Dense>
@@ -30,6 +31,7 @@ namespace egg::patching {
 struct Workflow2Options {
   double maxPatchSizeM = 40.0;     // largest patch diagonal proposed (handling on site, 3.5.3)
   double holeMarginRelative = 0.03;  // the box around a hole, inflated by this fraction of its size
+  double boundaryWrapToleranceRad = PatchOptions{}.boundaryWrapToleranceRad;  // a traced side along the boundary may turn this much round it
   double peakSnapFraction = 0.45;  // a grid node moves onto a K peak within this fraction of its cells along each grid direction
   void validate() const;
 };
@@ -41,6 +43,7 @@ struct Workflow2Layout {
   int holes = 0;
   int peaksSnapped = 0;
   int nodesPulledIn = 0;
+  int cornersMovedOffStraightBoundary = 0;
   int candidatesScreened = 0;             // grids tried (cheap: plan nodes lifted, cell chords measured)
   std::vector<std::string> notes;          // how the layout was made, for the report
   double seconds = 0.0;

@@ -19,7 +19,7 @@ namespace egg {
 
 void PatchOptions::validate() const {
   if (!(angleMargin >= 0.0 && angleMargin < 1.0)) throw InvalidInput("patch.angle_margin must lie in [0, 1) rad");
-  if (!(straightBoundaryTolerance >= 0.0)) throw InvalidInput("patch.straight_boundary_tolerance must be >= 0");
+  if (!(boundaryWrapToleranceRad >= 0.0)) throw InvalidInput("patch.boundary_wrap_tolerance_rad must be >= 0");
   if (!(mergeFraction >= 0.0 && mergeFraction < 0.1)) throw InvalidInput("patch.merge_fraction must lie in [0, 0.1)");
 }
 
@@ -146,12 +146,13 @@ Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& re
     if (!std::isfinite(path.length) || path.points.size() < 2)
       throw InfeasiblePatch("boundary " + std::to_string(k) + ": corners " + std::to_string(k) + " and " +
                             std::to_string((k + 1) % 4) + " are not connected on the surface");
-    for (int v : path.bendVertices) {
-      const auto vh = TriMesh::VertexHandle(v);
-      if (!work.is_boundary(vh) || v == cornerIds[k] || v == cornerIds[(k + 1) % 4]) continue;
-      if (vertexAngleSum(work, vh) > M_PI + options.straightBoundaryTolerance)
-        throw InfeasiblePatch("boundary " + std::to_string(k) + " wraps around the surface boundary or a hole at " +
-                              format(toEigen(work.point(vh))) + ": it is not a geodesic there");
+    if (const double wrap = boundaryWrapTurning(work, path.positions, path.bendVertices); wrap > options.boundaryWrapToleranceRad) {
+      int at = path.bendVertices.front();
+      for (int v : path.bendVertices)
+        if (work.is_boundary(TriMesh::VertexHandle(v))) at = v;
+      throw InfeasiblePatch("boundary " + std::to_string(k) + " wraps around the surface boundary or a hole (turning " +
+                            std::to_string(wrap) + " rad round it, near " + format(toEigen(work.point(TriMesh::VertexHandle(at)))) +
+                            "): it is not a geodesic there");
     }
     for (const SurfacePoint& sp : path.points) {
       const auto ids = faceVertices(work, sp.face);

@@ -20,9 +20,12 @@ struct PatchOptions {
   double maxCornerOffsetM = 0.0;
   // Inner angles must stay below pi - this (radians), criterion (iv).
   double angleMargin = 1e-3;
-  // A boundary may run along the surface boundary only where that is straight: a surface-boundary
-  // vertex on it may have an inner angle sum of at most pi + this (radians).
-  double straightBoundaryTolerance = 1e-3;
+  // A side may run along the surface boundary where that is a geodesic: summed over the boundary
+  // vertices it passes, it may turn round them (bend towards the boundary, as round a hole) by at
+  // most this (radians). The Lilium's vertical base is a geodesic, yet its discrete angle sums
+  // scatter by +-0.01 rad, and a side hugging 12 m of it turns up to 0.043 in all; a side
+  // wrapping round a corner or a hole turns by far more.
+  double boundaryWrapToleranceRad = 0.06;
   // Inserted points closer than this fraction of their edge to an edge end are merged with it.
   double mergeFraction = 1e-6;
   void validate() const;  // throws InvalidInput naming the field

@@ -141,4 +141,56 @@ double vertexAngleSum(const TriMesh& mesh, TriMesh::VertexHandle v) {
   return sum;
 }
 
+namespace {
+double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
+}  // namespace
+
+double geodesicTurningAtBoundary(const TriMesh& mesh, TriMesh::VertexHandle v, const Eigen::Vector3d& before,
+                                 const Eigen::Vector3d& after) {
+  // The fan of faces round a boundary vertex is open: walk it from its first boundary edge,
+  // measuring each direction by the angle swept through the faces so far.
+  const Eigen::Vector3d p = toEigen(mesh.point(v));
+  TriMesh::HalfedgeHandle start;
+  for (auto heh : mesh.voh_range(v))
+    if (mesh.is_boundary(mesh.opposite_halfedge_handle(heh))) start = heh;  // its face is the fan's first
+  if (!start.is_valid()) return 0.0;
+  const auto sweep = [&](const Eigen::Vector3d& point) {
+    const Eigen::Vector3d d = point - p;
+    double swept = 0.0, bestSlack = std::numeric_limits<double>::infinity(), at = 0.0;
+    for (auto heh = start; heh.is_valid() && !mesh.is_boundary(heh);) {
+      const auto next = mesh.next_halfedge_handle(heh);
+      const Eigen::Vector3d a = toEigen(mesh.point(mesh.to_vertex_handle(heh))) - p;
+      const Eigen::Vector3d b = toEigen(mesh.point(mesh.to_vertex_handle(next))) - p;
+      const double corner = angleBetween(a, b), toD = angleBetween(a, d);
+      // d lies in this face's corner when the two part angles add up to the corner angle.
+      const double slack = std::abs(toD + angleBetween(d, b) - corner);
+      if (slack < bestSlack) bestSlack = slack, at = swept + toD;
+      swept += corner;
+      heh = mesh.opposite_halfedge_handle(mesh.prev_halfedge_handle(heh));  // round v to the next face
+      if (heh == start) break;
+    }
+    return at;
+  };
+  return std::abs(sweep(after) - sweep(before)) - M_PI;
+}
+
+double boundaryWrapTurning(const TriMesh& mesh, const std::vector<Eigen::Vector3d>& polyline, const std::vector<int>& vertices) {
+  double total = 0.0;
+  for (int id : vertices) {
+    const auto vh = TriMesh::VertexHandle(id);
+    if (!mesh.is_boundary(vh)) continue;
+    const Eigen::Vector3d x = toEigen(mesh.point(vh));
+    size_t i = 0;
+    for (size_t k = 1; k < polyline.size(); ++k)
+      if ((polyline[k] - x).squaredNorm() < (polyline[i] - x).squaredNorm()) i = k;
+    if (i == 0 || i + 1 >= polyline.size()) continue;  // an end of the polyline
+    size_t before = i - 1, after = i + 1;
+    const double tiny = 1e-12 * (1.0 + x.squaredNorm());
+    while (before > 0 && (polyline[before] - x).squaredNorm() <= tiny) --before;
+    while (after + 1 < polyline.size() && (polyline[after] - x).squaredNorm() <= tiny) ++after;
+    total += std::max(0.0, geodesicTurningAtBoundary(mesh, vh, polyline[before], polyline[after]));
+  }
+  return total;
+}
+
 }  // namespace egg

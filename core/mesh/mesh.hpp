@@ -68,4 +68,15 @@ double surfaceArea(const TriMesh& mesh);
 double vertexAngleSum(const TriMesh& mesh, TriMesh::VertexHandle v);
 double meanEdgeLength(const TriMesh& mesh);
 
+// How much a polyline on the surface turns where it passes boundary vertex v, from `before` to
+// `after` (points on faces round v): the angle between the two through the faces round v, less pi.
+// Positive where it bends round a reflex boundary vertex (wrapping the boundary or a hole); about
+// zero along a boundary that is itself a geodesic, as the Lilium's vertical base wall, whatever
+// the curve does in space; negative on the inner side of a convex boundary vertex.
+double geodesicTurningAtBoundary(const TriMesh& mesh, TriMesh::VertexHandle v, const Eigen::Vector3d& before,
+                                 const Eigen::Vector3d& after);
+// The positive turning of a polyline summed over the listed vertices it passes that lie on the
+// boundary (its two ends excluded): how far it wraps round the boundary, in radians.
+double boundaryWrapTurning(const TriMesh& mesh, const std::vector<Eigen::Vector3d>& polyline, const std::vector<int>& vertices);
+
 }  // namespace egg

@@ -65,18 +65,65 @@ TEST(Workflow2, ACornerMovesOntoAPeak) {
   // onto p_max (Algorithm 2: a corner at p_max).
   const TriMesh bump = samples::generateSample("bump", {{"length", 6}, {"width", 6}, {"height", 0.8}, {"sigma", 0.8}}, 0.2);
   Workflow2Options options;
-  options.maxPatchSizeM = 2.9;  // 3 x 3 cells of 2 x 2 m
+  options.maxPatchSizeM = 3.4;  // 3 x 3 cells of 2 x 2 m (the centre one 3.3 m across over the bump)
   const Workflow2Layout layout = proposeLayout(bump, options);
   EXPECT_EQ(layout.quads.size(), 9u);
   // The bump is centred: no interior node of a 3 x 3 grid is near it, none moves.
   EXPECT_EQ(layout.peaksSnapped, 0);
-  options.maxPatchSizeM = 4.4;  // 2 x 2 cells (4.32 m across in space): the centre node is a grid node at the peak
+  options.maxPatchSizeM = 5.0;  // 2 x 2 cells (4.6 m across over the bump): the centre node is a grid node at the peak
   const Workflow2Layout two = proposeLayout(bump, options);
   EXPECT_EQ(two.quads.size(), 4u);
   EXPECT_EQ(two.peaksSnapped, 1);
   double nearest = 1e9;
   for (const auto& c : two.corners) nearest = std::min(nearest, c.head<2>().norm());
   EXPECT_LT(nearest, 0.25);
+}
+
+// z = two Gaussian bumps (height 2 m, sigma 1 m: K = 4 / m^2 at the tops, circles of pi / 2 m) at
+// x = -3 and x = +3 over a 14 x 8 m regular grid.
+TriMesh twoPeaks() {
+  TriangleSoup soup;
+  const int nx = 70, ny = 40;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const double x = -7.0 + 14.0 * i / nx, y = -4.0 + 8.0 * j / ny;
+      soup.vertices.emplace_back(x, y, 2.0 * (std::exp(-((x + 3) * (x + 3) + y * y) / 2) + std::exp(-((x - 3) * (x - 3) + y * y) / 2)));
+    }
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int a = j * (nx + 1) + i, b = a + 1, c = a + nx + 2, d = a + nx + 1;
+      soup.triangles.push_back({a, b, c});
+      soup.triangles.push_back({a, c, d});
+    }
+  return meshFromSoup(soup);
+}
+
+TEST(Workflow2, TwoPeaksGetACornerEach) {
+  // Cells up to 9 m across over the bumps: the screened grid with the fewest predicted patches puts
+  // a corner on each peak (a peak left inside a cell would cost Workflow 1 three more patches).
+  const TriMesh surface = twoPeaks();
+  Workflow2Options options;
+  options.maxPatchSizeM = 9.0;
+  const Workflow2Layout layout = proposeLayout(surface, options);
+  EXPECT_EQ(layout.peaksSnapped, 2);
+  EXPECT_GT(layout.candidatesScreened, 10);
+  for (double x : {-3.0, 3.0}) {
+    double nearest = 1e9;
+    for (const auto& c : layout.corners) nearest = std::min(nearest, std::hypot(c.x() - x, c.y()));
+    EXPECT_LT(nearest, 0.2) << "no corner on the peak at x = " << x;
+  }
+}
+
+TEST(Workflow2, ACapLargerThanItsCircleIsSplitHoweverLargePatchesMayBe) {
+  // A tall bump (K = 4 / m^2 at its top: a circle of pi / 2 m) on an 8 x 8 m footprint: one patch
+  // would hold the cap in a cell far larger than its circle, which Workflow 1 would split into four
+  // anyway; the layout starts with four round a corner on the peak.
+  const TriMesh cap = samples::generateSample("bump", {{"length", 8}, {"width", 8}, {"height", 2}, {"sigma", 1}}, 0.2);
+  Workflow2Options options;
+  options.maxPatchSizeM = 1000.0;
+  const Workflow2Layout layout = proposeLayout(cap, options);
+  EXPECT_EQ(layout.quads.size(), 4u);
+  EXPECT_EQ(layout.peaksSnapped, 1);
 }
 
 TEST(Workflow2, TheSameLayoutOnAnyThreadCount) {

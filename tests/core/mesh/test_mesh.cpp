@@ -71,5 +71,30 @@ TEST(Mesh, ClosestPointBarycentricCoversInteriorEdgesAndCorners) {
   EXPECT_TRUE(closestPointBarycentric({1, 1, 0}, a, b, c).isApprox(Eigen::Vector3d(0, 0.5, 0.5)));           // edge bc
 }
 
+// An L of three unit squares: the vertex (1, 1) is reflex (270 degrees inside).
+TriMesh lShape() {
+  TriangleSoup soup;
+  soup.vertices = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}, {0, 2, 0}, {1, 2, 0}};
+  soup.triangles = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {3, 4, 7}, {3, 7, 6}};
+  return meshFromSoup(soup);
+}
+
+TEST(Mesh, ATautStringRoundAReflexCornerTurnsByItsExcess) {
+  const TriMesh mesh = lShape();
+  // (2, 1) -> (1, 1) -> (1, 2) hugs the reflex corner: 270 degrees through the faces, less pi.
+  EXPECT_NEAR(geodesicTurningAtBoundary(mesh, TriMesh::VertexHandle(4), {2, 1, 0}, {1, 2, 0}), M_PI / 2, 1e-12);
+  // Along the straight bottom edge through (1, 0): no turn.
+  EXPECT_NEAR(geodesicTurningAtBoundary(mesh, TriMesh::VertexHandle(1), {0, 0, 0}, {2, 0, 0}), 0.0, 1e-12);
+  // From inside the faces: (1.5, 0.5) -> (1, 1) -> (0.5, 1.5) is a straight line, 180 degrees through them.
+  EXPECT_NEAR(geodesicTurningAtBoundary(mesh, TriMesh::VertexHandle(4), {1.5, 0.5, 0}, {0.5, 1.5, 0}), 0.0, 1e-12);
+  // At the convex corner (2, 0), 90 degrees inside: a polyline through it turns the other way.
+  EXPECT_NEAR(geodesicTurningAtBoundary(mesh, TriMesh::VertexHandle(2), {1.5, 0, 0}, {2, 0.5, 0}), -M_PI / 2, 1e-12);
+  const std::vector<Eigen::Vector3d> wrap{{2, 1, 0}, {1, 1, 0}, {1, 2, 0}};
+  EXPECT_NEAR(boundaryWrapTurning(mesh, wrap, {4}), M_PI / 2, 1e-12);
+  EXPECT_EQ(boundaryWrapTurning(mesh, wrap, {5, 7}), 0.0);  // the ends do not count
+  const std::vector<Eigen::Vector3d> straight{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+  EXPECT_NEAR(boundaryWrapTurning(mesh, straight, {1}), 0.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace egg

@@ -280,17 +280,31 @@ ChainSolution solveChain(const ChainProblem& problem, const ChainOptions& option
     out.positions = propagateMembers(problem, out.start);
     return out;
   }
+  // A footprint larger than the boundary can give (its members spaced equally between the fixed
+  // ones, whose positions no solution moves) is capped there: the members are then as far apart
+  // as that boundary allows.
+  const auto plain = propagateMembers(problem, out.start);
   std::vector<double> required;
-  for (const auto& b : problem.boundaries) required.push_back(std::max(b.minGap, options.minOrderGap));
-  // Accepted only if it is no worse (the optimisation must never make evenness worse) and
-  // feasible, or more feasible than the plain propagation was.
+  int capped = 0;
+  for (size_t i = 0; i < problem.boundaries.size(); ++i) {
+    double cap = 1.0;
+    for (size_t a = 0, b = 1; b < out.fixed.size(); ++b)
+      if (out.fixed[b]) cap = std::min(cap, (plain[i][b] - plain[i][a]) / static_cast<double>(b - a)), a = b;
+    const double asked = problem.boundaries[i].minGap;
+    if (asked > cap) ++capped;
+    required.push_back(std::max(std::min(asked, cap), options.minOrderGap));
+  }
+  // Accepted if it is no less even (the optimisation must never make evenness worse) and no less
+  // feasible than the plain propagation, or if it meets every footprint the plain propagation
+  // did not (a hard constraint of 2.4.4, worth some evenness).
   const auto accept = [&](const SlsqpRun& run, const std::vector<double>& bounds) {
     if (!(run.result > 0 || run.result == NLOPT_ROUNDOFF_LIMITED)) return false;
     const double objective = chainObjective(problem, run.start);
     const double before = worstViolation(problem, bounds, out.start, out.fixed);
     const double after = worstViolation(problem, bounds, run.start, out.fixed);
-    const bool feasible = after <= 1e-9 || after < before;
-    if (!feasible || !(objective <= out.evennessBefore || before > 1e-9)) return false;
+    const bool feasible = after <= 1e-9;
+    const bool noWorse = objective <= out.evennessBefore && (feasible || after <= before);
+    if (!noWorse && !(feasible && before > 1e-9)) return false;
     out.start = run.start;
     out.evennessAfter = objective;
     out.optimised = true;
@@ -299,11 +313,11 @@ ChainSolution solveChain(const ChainProblem& problem, const ChainOptions& option
   SlsqpRun run = runSlsqp(problem, options, out.start, out.fixed, required);
   out.iterations = run.evaluations;
   out.status = nlopt_result_to_string(run.result);
+  if (capped > 0) out.status += " (footprint capped at equal spacing on " + std::to_string(capped) + " boundaries)";
   if (!accept(run, required)) {
     // The footprints cannot all be met (a side too short for its members at the smallest angle
     // they meet it at, 2.4.4): asked for no more than the plain propagation already has on each
     // boundary, the optimum improves evenness without crowding any side further.
-    const auto plain = propagateMembers(problem, out.start);
     std::vector<double> relaxed = required;
     int loosened = 0;
     for (size_t i = 0; i < relaxed.size(); ++i) {

@@ -134,6 +134,23 @@ TEST(ChainProblem, AClosedRangeGetsNoFreeMember) {
   EXPECT_THROW(plainStart(problem), InvalidInput);
 }
 
+TEST(ChainProblem, AFootprintTooLargeForItsBoundaryIsCappedAtEqualSpacing) {
+  // Two gaps of at least 0.6 on boundary 1 cannot fit in [0, 1]: the footprint is capped at the
+  // equal spacing 0.5 there, which F (slopes 0.4 then 1.6, kink at (0.5, 0.2)) meets at one
+  // start only, F(t) = 1.6 t - 0.6 = 0.5: t = 0.6875. Evenness improves on the plain t = 0.5:
+  // J = t^2 + (1 - t)^2 + F^2 + (1 - F)^2 goes from 1.18 to 1.0703125.
+  const PiecewiseLinearMap f({{0, 0}, {0.5, 0.2}, {1, 1}});
+  auto problem = chainOf({&f}, 3);
+  problem.boundaries[1].minGap = 0.6;
+  const auto s = solveChain(problem);
+  EXPECT_TRUE(s.optimised) << s.status;
+  EXPECT_NE(s.status.find("capped"), std::string::npos) << s.status;
+  EXPECT_NEAR(s.start[1], 0.6875, 1e-7) << s.status;
+  EXPECT_NEAR(s.positions[1][1], 0.5, 1e-7);
+  EXPECT_NEAR(s.evennessBefore, 1.18, 1e-12);
+  EXPECT_NEAR(s.evennessAfter, 1.0703125, 1e-6);
+}
+
 TEST(ChainProblem, RejectsBadProblems) {
   const PiecewiseLinearMap identity;
   auto problem = chainOf({&identity}, 4);

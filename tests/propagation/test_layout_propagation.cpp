@@ -126,6 +126,20 @@ TEST(LayoutPropagation, ARingOfFourPatchesNeedNotClose) {
   for (int j = 0; j < 5; ++j) mismatch = std::max(mismatch, std::abs(chain.solution.positions[4][j] - chain.solution.positions[0][j]));
   EXPECT_GT(mismatch, 1e-3);
   EXPECT_LE(result.evennessAfter, result.evennessBefore);
+  // The cut is a piece of its own, with no joints (its members are not paired); the three other
+  // shared sides of the u ring pair the inner members: 3 each.
+  int cuts = 0;
+  for (const auto& piece : result.pieces) {
+    if (piece.kind == "ring cut") {
+      ++cuts;
+      EXPECT_EQ(piece.boundary, chain.boundaries.front());
+      EXPECT_EQ(piece.chain, c);
+      EXPECT_TRUE(piece.joints.empty());
+    } else if (piece.patchA >= 0 && result.nodeOf[piece.patchA][0].first == c) {
+      EXPECT_EQ(piece.joints.size(), 3u) << piece.boundary;
+    }
+  }
+  EXPECT_EQ(cuts, 1);
 }
 
 // A T-junction: patch 0 below two patches 1, 2 whose corner 7 lies half-way along patch 0's top side.

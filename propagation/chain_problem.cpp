@@ -30,6 +30,11 @@ void ChainProblem::validate() const {
     if (o.boundary < 0 || o.boundary >= static_cast<int>(boundaries.size()) || !(o.value > 0.0) || !(o.value < 1.0))
       throw InvalidInput("ChainProblem.originals[" + std::to_string(k) + "]: needs a boundary of the chain and a value in (0, 1)");
   }
+  for (size_t k = 0; k < closed.size(); ++k) {
+    const auto& c = closed[k];
+    if (c.boundary < 0 || c.boundary >= static_cast<int>(boundaries.size()) || !(c.from >= 0.0) || !(c.to <= 1.0) || !(c.from < c.to))
+      throw InvalidInput("ChainProblem.closed[" + std::to_string(k) + "]: needs a boundary of the chain and 0 <= from < to <= 1");
+  }
 }
 
 void ChainOptions::validate() const {
@@ -87,34 +92,60 @@ double chainObjective(const ChainProblem& problem, const std::vector<double>& st
   return value;
 }
 
-std::vector<double> plainStart(const ChainProblem& problem, std::vector<bool>* fixedOut) {
+namespace {
+// A parameter on boundary `boundary` pulled back to boundary 0 through G^-1 (back-propagation, Fig. 3.8).
+double pullBack(const ChainProblem& problem, int boundary, double t) {
+  for (int i = boundary - 1; i >= 0; --i) t = problem.maps[i]->inverse(t);
+  return t;
+}
+}  // namespace
+
+std::vector<double> fixedStarts(const ChainProblem& problem, std::vector<bool>* closedGaps) {
   problem.validate();
-  // Originals pulled back to boundary 0 through G^-1 (back-propagation, Fig. 3.8).
   std::vector<double> fixed{0.0, 1.0};
-  for (const auto& o : problem.originals) {
-    double t = o.value;
-    for (int i = o.boundary - 1; i >= 0; --i) t = problem.maps[i]->inverse(t);
-    fixed.push_back(t);
-  }
+  for (const auto& o : problem.originals) fixed.push_back(pullBack(problem, o.boundary, o.value));
   std::sort(fixed.begin(), fixed.end());
   fixed.erase(std::unique(fixed.begin(), fixed.end(), [](double a, double b) { return std::abs(a - b) < 1e-12; }), fixed.end());
+  if (closedGaps) {
+    closedGaps->assign(fixed.size() - 1, false);
+    for (const auto& range : problem.closed) {
+      const double from = pullBack(problem, range.boundary, range.from), to = pullBack(problem, range.boundary, range.to);
+      for (size_t g = 0; g + 1 < fixed.size(); ++g)
+        if (fixed[g] >= from - 1e-12 && fixed[g + 1] <= to + 1e-12) (*closedGaps)[g] = true;
+    }
+  }
+  return fixed;
+}
+
+std::vector<double> plainStart(const ChainProblem& problem, std::vector<bool>* fixedOut) {
+  std::vector<bool> closed;
+  const std::vector<double> fixed = fixedStarts(problem, &closed);
   const int free = problem.members - static_cast<int>(fixed.size());
   if (free < 0)
     throw InvalidInput("ChainProblem: " + std::to_string(fixed.size()) + " fixed members (boundaries and originals) but only " +
                        std::to_string(problem.members) + " members in all");
+  double open = 0.0;
+  for (size_t g = 0; g + 1 < fixed.size(); ++g)
+    if (!closed[g]) open += fixed[g + 1] - fixed[g];
+  if (free > 0 && !(open > 0.0))
+    throw InvalidInput("ChainProblem: " + std::to_string(free) + " free members but every gap between fixed members is closed");
   // Largest remainder: each gap gets free members in proportion to its length.
   const size_t gaps = fixed.size() - 1;
   std::vector<int> count(gaps, 0);
   std::vector<std::pair<double, size_t>> remainder;
   int given = 0;
   for (size_t g = 0; g < gaps; ++g) {
-    const double share = free * (fixed[g + 1] - fixed[g]);
+    const double share = closed[g] ? 0.0 : free * (fixed[g + 1] - fixed[g]) / open;
     count[g] = static_cast<int>(std::floor(share));
     given += count[g];
     remainder.push_back({share - count[g], g});
   }
   std::stable_sort(remainder.begin(), remainder.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  for (size_t k = 0; given < free; ++k, ++given) ++count[remainder[k % gaps].second];
+  // Only open gaps take the remainder (a closed one has share and remainder 0, sorted last).
+  std::vector<size_t> openGaps;
+  for (const auto& r : remainder)
+    if (!closed[r.second]) openGaps.push_back(r.second);
+  for (size_t k = 0; given < free; ++k, ++given) ++count[openGaps[k % openGaps.size()]];
   std::vector<double> start;
   std::vector<bool> isFixed;
   for (size_t g = 0; g < gaps; ++g) {
@@ -142,9 +173,8 @@ struct SolveData {
   void load(const double* x) {
     for (size_t k = 0; k < freeIndex.size(); ++k) start[freeIndex[k]] = x[k];
   }
-  double gapBound(size_t boundary) const {
-    return std::max(problem->boundaries[boundary].minGap, options->minOrderGap);
-  }
+  std::vector<double> bounds;  // per boundary: the smallest spacing the constraints ask for
+  double gapBound(size_t boundary) const { return bounds[boundary]; }
 };
 
 double objectiveCallback(unsigned n, const double* x, double* grad, void* raw) {
@@ -192,34 +222,29 @@ void constraintCallback(unsigned m, double* result, unsigned n, const double* x,
   }
 }
 
-double worstViolation(const ChainProblem& problem, const ChainOptions& options, const std::vector<double>& start) {
+// Over the pairs with a free member: two fixed members' spacing is given, no optimum can change it.
+double worstViolation(const ChainProblem& problem, const std::vector<double>& bounds, const std::vector<double>& start,
+                      const std::vector<bool>& fixed) {
   const auto p = propagateMembers(problem, start);
   double worst = -1.0;
-  for (size_t i = 0; i < p.size(); ++i)
-    for (size_t j = 1; j < start.size(); ++j)
-      worst = std::max(worst, std::max(problem.boundaries[i].minGap, options.minOrderGap) - (p[i][j] - p[i][j - 1]));
+  for (const auto& [i, j] : constraintPairs(problem, fixed)) worst = std::max(worst, bounds[i] - (p[i][j] - p[i][j - 1]));
   return worst;
 }
 
-}  // namespace
+struct SlsqpRun {
+  nlopt_result result = NLOPT_FAILURE;
+  std::vector<double> start;  // all members
+  int evaluations = 0;
+};
 
-ChainSolution solveChain(const ChainProblem& problem, const ChainOptions& options) {
-  options.validate();
-  ChainSolution out;
-  out.startBefore = plainStart(problem, &out.fixed);
-  out.start = out.startBefore;
-  out.evennessBefore = out.evennessAfter = chainObjective(problem, out.start);
-  SolveData data{&problem, &options, out.start, {}, 0};
-  std::vector<int> variableOf(out.start.size(), -1);
-  for (size_t j = 0; j < out.fixed.size(); ++j)
-    if (!out.fixed[j]) variableOf[j] = static_cast<int>(data.freeIndex.size()), data.freeIndex.push_back(static_cast<int>(j));
+SlsqpRun runSlsqp(const ChainProblem& problem, const ChainOptions& options, const std::vector<double>& initial,
+                  const std::vector<bool>& fixed, const std::vector<double>& bounds) {
+  SolveData data{&problem, &options, initial, {}, 0, bounds};
+  std::vector<int> variableOf(initial.size(), -1);
+  for (size_t j = 0; j < fixed.size(); ++j)
+    if (!fixed[j]) variableOf[j] = static_cast<int>(data.freeIndex.size()), data.freeIndex.push_back(static_cast<int>(j));
   const unsigned n = static_cast<unsigned>(data.freeIndex.size());
-  if (n == 0) {
-    out.status = "no free member";
-    out.positions = propagateMembers(problem, out.start);
-    return out;
-  }
-  ConstraintData constraints{&data, constraintPairs(problem, out.fixed), variableOf};
+  ConstraintData constraints{&data, constraintPairs(problem, fixed), variableOf};
   nlopt_opt opt = nlopt_create(NLOPT_LD_SLSQP, n);
   nlopt_set_lower_bounds1(opt, 0.0);
   nlopt_set_upper_bounds1(opt, 1.0);
@@ -231,30 +256,87 @@ ChainSolution solveChain(const ChainProblem& problem, const ChainOptions& option
   nlopt_set_xtol_abs1(opt, 1e-14);
   nlopt_set_maxeval(opt, options.maxIterations);
   std::vector<double> x(n);
-  for (unsigned k = 0; k < n; ++k) x[k] = out.start[data.freeIndex[k]];
+  for (unsigned k = 0; k < n; ++k) x[k] = initial[data.freeIndex[k]];
   double value = 0.0;
-  const nlopt_result result = nlopt_optimize(opt, x.data(), &value);
+  SlsqpRun run;
+  run.result = nlopt_optimize(opt, x.data(), &value);
   nlopt_destroy(opt);
-  out.iterations = data.evaluations;
-  out.status = nlopt_result_to_string(result);
-  if (result > 0 || result == NLOPT_ROUNDOFF_LIMITED) {
-    std::vector<double> candidate = out.start;
-    for (unsigned k = 0; k < n; ++k) candidate[data.freeIndex[k]] = x[k];
-    const double objective = chainObjective(problem, candidate);
-    const double before = worstViolation(problem, options, out.start);
-    const double after = worstViolation(problem, options, candidate);
-    // Accepted only if it is no worse (the optimisation must never make evenness worse) and
-    // feasible, or more feasible than the plain propagation was.
-    const bool feasible = after <= 1e-9 || after < before;
-    if (feasible && (objective <= out.evennessBefore || before > 1e-9)) {
-      out.start = candidate;
-      out.evennessAfter = objective;
-      out.optimised = true;
-    } else {
-      out.status += feasible ? " (no better than the plain propagation: kept it)" : " (violates the spacing: kept the plain propagation)";
+  run.evaluations = data.evaluations;
+  run.start = initial;
+  for (unsigned k = 0; k < n; ++k) run.start[data.freeIndex[k]] = x[k];
+  return run;
+}
+
+}  // namespace
+
+ChainSolution solveChain(const ChainProblem& problem, const ChainOptions& options) {
+  options.validate();
+  ChainSolution out;
+  out.startBefore = plainStart(problem, &out.fixed);
+  out.start = out.startBefore;
+  out.evennessBefore = out.evennessAfter = chainObjective(problem, out.start);
+  if (std::all_of(out.fixed.begin(), out.fixed.end(), [](bool f) { return f; })) {
+    out.status = "no free member";
+    out.positions = propagateMembers(problem, out.start);
+    return out;
+  }
+  // A footprint larger than the boundary can give (its members spaced equally between the fixed
+  // ones, whose positions no solution moves) is capped there: the members are then as far apart
+  // as that boundary allows.
+  const auto plain = propagateMembers(problem, out.start);
+  std::vector<double> required;
+  int capped = 0;
+  for (size_t i = 0; i < problem.boundaries.size(); ++i) {
+    double cap = 1.0;
+    for (size_t a = 0, b = 1; b < out.fixed.size(); ++b)
+      if (out.fixed[b]) cap = std::min(cap, (plain[i][b] - plain[i][a]) / static_cast<double>(b - a)), a = b;
+    const double asked = problem.boundaries[i].minGap;
+    if (asked > cap) ++capped;
+    required.push_back(std::max(std::min(asked, cap), options.minOrderGap));
+  }
+  // Accepted if it is no less even (the optimisation must never make evenness worse) and no less
+  // feasible than the plain propagation, or if it meets every footprint the plain propagation
+  // did not (a hard constraint of 2.4.4, worth some evenness).
+  const auto accept = [&](const SlsqpRun& run, const std::vector<double>& bounds) {
+    if (!(run.result > 0 || run.result == NLOPT_ROUNDOFF_LIMITED)) return false;
+    const double objective = chainObjective(problem, run.start);
+    const double before = worstViolation(problem, bounds, out.start, out.fixed);
+    const double after = worstViolation(problem, bounds, run.start, out.fixed);
+    const bool feasible = after <= 1e-9;
+    const bool noWorse = objective <= out.evennessBefore && (feasible || after <= before);
+    if (!noWorse && !(feasible && before > 1e-9)) return false;
+    out.start = run.start;
+    out.evennessAfter = objective;
+    out.optimised = true;
+    return true;
+  };
+  SlsqpRun run = runSlsqp(problem, options, out.start, out.fixed, required);
+  out.iterations = run.evaluations;
+  out.status = nlopt_result_to_string(run.result);
+  if (capped > 0) out.status += " (footprint capped at equal spacing on " + std::to_string(capped) + " boundaries)";
+  if (!accept(run, required)) {
+    // The footprints cannot all be met (a side too short for its members at the smallest angle
+    // they meet it at, 2.4.4): asked for no more than the plain propagation already has on each
+    // boundary, the optimum improves evenness without crowding any side further.
+    std::vector<double> relaxed = required;
+    int loosened = 0;
+    for (size_t i = 0; i < relaxed.size(); ++i) {
+      double smallest = 1.0;
+      for (const auto& [b, j] : constraintPairs(problem, out.fixed))
+        if (b == i) smallest = std::min(smallest, plain[i][j] - plain[i][j - 1]);
+      if (smallest < relaxed[i]) relaxed[i] = std::max(smallest, options.minOrderGap), ++loosened;
     }
-  } else {
-    out.status += " (kept the plain propagation)";
+    SlsqpRun second = loosened > 0 ? runSlsqp(problem, options, out.start, out.fixed, relaxed) : SlsqpRun{};
+    out.iterations += second.evaluations;
+    if (loosened > 0 && accept(second, relaxed) && out.evennessAfter < out.evennessBefore) {
+      out.status += std::string(" (footprint not met; then ") + nlopt_result_to_string(second.result) + " with the spacing of the plain propagation on " +
+                    std::to_string(loosened) + " boundaries)";
+    } else {
+      out.start = out.startBefore;
+      out.evennessAfter = out.evennessBefore;
+      out.optimised = false;
+      out.status += " (no better than the plain propagation within the spacing: kept it)";
+    }
   }
   out.positions = propagateMembers(problem, out.start);
   return out;

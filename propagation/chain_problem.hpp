@@ -31,11 +31,19 @@ struct ChainOriginal {
   double value = 0.5;    // its parameter there, in (0, 1)
 };
 
+// A range of a boundary where a neighbour across a T-junction has already placed its members
+// (Fig. 3.8): they are all originals, and no free member may lie strictly inside it.
+struct ChainClosedRange {
+  int boundary = 0;
+  double from = 0.0, to = 1.0;  // parameters on that boundary, from < to
+};
+
 struct ChainProblem {
   std::vector<const SideMap*> maps;       // n: boundary i -> boundary i+1, increasing bijections
   std::vector<ChainBoundary> boundaries;  // n + 1
   int members = 2;                        // per boundary, both boundary members (0 and 1) included
   std::vector<ChainOriginal> originals;
+  std::vector<ChainClosedRange> closed;
   void validate() const;                  // throws InvalidInput naming the field
 };
 
@@ -67,7 +75,11 @@ double chainObjective(const ChainProblem& problem, const std::vector<double>& st
 // The plain propagation: fixed members (0, 1, the originals pulled back to boundary 0 through
 // G^-1) and the free members spaced equally on boundary 0 between them, the free count shared
 // out by gap length. Throws InvalidInput when the originals leave fewer members than they need.
+// A gap between two consecutive fixed members that lies inside a closed range gets none.
 std::vector<double> plainStart(const ChainProblem& problem, std::vector<bool>* fixed = nullptr);
+// The fixed members on boundary 0 (0, 1 and the originals pulled back, increasing) and, per gap
+// between consecutive ones, whether it is closed (lies inside a closed range).
+std::vector<double> fixedStarts(const ChainProblem& problem, std::vector<bool>* closedGaps = nullptr);
 ChainSolution solveChain(const ChainProblem& problem, const ChainOptions& options = {});
 
 }  // namespace egg::propagation

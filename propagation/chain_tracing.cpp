@@ -1,57 +1,59 @@
-// Tracing a layout in member order (see chain_tracing.hpp).
+// Tracing a layout along the members' tracks (see chain_tracing.hpp).
 #include "propagation/chain_tracing.hpp"
 
+#include "core/egg/member_trace.hpp"
+#include "core/egg/patch_maps.hpp"
 #include "core/errors.hpp"
 
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
-#include <set>
+#include <cmath>
+#include <map>
+#include <tuple>
 
 namespace egg::propagation {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 int familyIndex(Family f) { return f == Family::U ? 0 : 1; }
-
 const std::vector<GridMember>& familyMembers(const EggGrid& grid, Family f) { return f == Family::U ? grid.u : grid.v; }
 
-// The node whose moving end (x2, refined by tracing) lies on node k's fixed side, if any: the
-// previous node when both run forwards, the next one when both run backwards. Ring cut: none.
-int upstreamNode(const PropagatedChain& chain, int k) {
-  const int n = static_cast<int>(chain.nodes.size());
-  const auto& node = chain.nodes[k];
-  if (node.forward) return k > 0 && chain.nodes[k - 1].forward ? k - 1 : -1;
-  return k + 1 < n && !chain.nodes[k + 1].forward ? k + 1 : -1;
-}
+// One member of one patch's family that a joint names.
+struct Instance {
+  int patch = -1;
+  Family family = Family::U;
+  int member = -1;
+  bool boundary = false;  // a patch side: fixed at x = 0 or 1, not traced
+  double x1 = 0.0, x2 = 0.0;
+  struct Link {
+    int other = -1;  // instance
+    bool otherAtEnd = false;
+    double offset = 0.0, scale = 1.0;  // x_this = offset + scale * x_other
+  };
+  std::vector<Link> atStart, atEnd;
+};
 
-// The chain parameter of a traced member end x of node k on one of its boundaries.
-double chainParameter(const PropagatedNode& node, double x) { return node.mirrored ? 1.0 - x : x; }
+// A run: instances linked end to start (the next one's x1 is the previous one's traced x2).
+struct Run {
+  std::vector<int> members;
+  std::vector<Instance::Link> steps;  // steps[k]: member k+1's x1 from member k's x2
+  bool freeStart = false;             // the first start lies on no joint: it may move
+  std::optional<double> fixedTarget;  // x2 the last member must reach (a fixed boundary member there)
+  int headOn = -1;                    // the run whose last end this one's last end meets
+  int waitFor = -1;                   // matches that run's traced end
+};
+
+double linkValue(const Instance::Link& link, double otherValue) { return link.offset + link.scale * otherValue; }
+Instance::Link reversedLink(int other, bool otherAtEnd, const MemberJoint& j, bool thisIsA) {
+  // x_b = offset + scale x_a; seen from a: x_a = (x_b - offset) / scale.
+  if (thisIsA) return {other, otherAtEnd, -j.offset / j.scale, 1.0 / j.scale};
+  return {other, otherAtEnd, j.offset, j.scale};
+}
 
 }  // namespace
-
-double traceGap(const PropagatedChain& chain, int node, const EggGrid& before, const EggGrid& after) {
-  const int n = static_cast<int>(chain.nodes.size());
-  const int prev = node == 0 ? n - 1 : node - 1;
-  const auto& a = chain.nodes[prev];
-  const auto& b = chain.nodes[node];
-  const auto& membersA = familyMembers(before, a.family);
-  const auto& membersB = familyMembers(after, b.family);
-  const int m = static_cast<int>(chain.solution.start.size());
-  if (static_cast<int>(membersA.size()) != m || static_cast<int>(membersB.size()) != m)
-    throw InvalidInput("traceGap: the traced grids do not carry the chain's members");
-  double worst = 0.0;
-  for (int j = 1; j + 1 < m; ++j) {
-    const GridMember& ma = membersA[chain.memberIndex(prev, j)];
-    const GridMember& mb = membersB[chain.memberIndex(node, j)];
-    // A's members leave over the side (their end if forward), B's enter over it (start if forward).
-    const Eigen::Vector3d& pa = a.forward ? ma.spatial.back() : ma.spatial.front();
-    const Eigen::Vector3d& pb = b.forward ? mb.spatial.front() : mb.spatial.back();
-    worst = std::max(worst, (pa - pb).norm());
-  }
-  return worst;
-}
 
 LayoutTracing traceLayout(const std::vector<const PatchDesign*>& designs, const LayoutPropagation& propagation) {
   const auto started = Clock::now();
@@ -59,22 +61,179 @@ LayoutTracing traceLayout(const std::vector<const PatchDesign*>& designs, const 
   if (propagation.x1.size() != count) throw InvalidInput("traceLayout: the propagation covers another number of patches");
   LayoutTracing out;
   out.patches.resize(count);
+  const auto usable = [&](int p) { return designs[p] && designs[p]->feasible; };
   std::vector<std::array<std::vector<double>, 2>> x1 = propagation.x1;
-  // Dependencies: patch p waits for the patches whose traced ends its members start from.
-  std::vector<std::set<int>> waitsFor(count);
-  for (size_t p = 0; p < count; ++p)
-    for (int f = 0; f < 2; ++f) {
-      const auto [c, k] = propagation.nodeOf[p][f];
-      if (c < 0) continue;
-      const int up = upstreamNode(propagation.chains[c], k);
-      if (up >= 0) waitsFor[p].insert(propagation.chains[c].nodes[up].patch);
+
+  // Instances of the members the joints name.
+  std::vector<Instance> inst;
+  std::map<std::tuple<int, int, int>, int> instanceOf;
+  const auto instance = [&](const MemberEnd& e) {
+    const auto key = std::tuple{e.patch, familyIndex(e.family), e.member};
+    if (auto it = instanceOf.find(key); it != instanceOf.end()) return it->second;
+    const auto& given = x1[e.patch][familyIndex(e.family)];
+    Instance i;
+    i.patch = e.patch, i.family = e.family, i.member = e.member;
+    i.boundary = e.member == 0 || e.member + 1 == static_cast<int>(given.size());
+    i.x1 = i.x2 = given[e.member];
+    inst.push_back(i);
+    return instanceOf[key] = static_cast<int>(inst.size()) - 1;
+  };
+  for (const auto& j : propagation.joints) {
+    if (!usable(j.a.patch) || !usable(j.b.patch)) continue;
+    if (x1[j.a.patch][familyIndex(j.a.family)].empty() || x1[j.b.patch][familyIndex(j.b.family)].empty()) continue;
+    const int a = instance(j.a), b = instance(j.b);
+    (j.a.atEnd ? inst[a].atEnd : inst[a].atStart).push_back(reversedLink(b, j.b.atEnd, j, true));
+    (j.b.atEnd ? inst[b].atEnd : inst[b].atStart).push_back(reversedLink(a, j.a.atEnd, j, false));
+  }
+  // Runs: from every inner instance whose start continues no inner member's end.
+  const auto nextOf = [&](int i) -> const Instance::Link* {
+    for (const auto& l : inst[i].atEnd)
+      if (!inst[l.other].boundary && !l.otherAtEnd) return &l;
+    return nullptr;
+  };
+  const auto hasPrevious = [&](int i) {
+    return std::any_of(inst[i].atStart.begin(), inst[i].atStart.end(), [&](const auto& l) { return !inst[l.other].boundary && l.otherAtEnd; });
+  };
+  std::vector<Run> runs;
+  std::vector<int> runOfLast(inst.size(), -1);
+  std::vector<char> inRun(inst.size(), 0);
+  for (size_t i = 0; i < inst.size(); ++i) {
+    if (inst[i].boundary || hasPrevious(static_cast<int>(i))) continue;
+    Run run;
+    run.freeStart = inst[i].atStart.empty();
+    for (int m = static_cast<int>(i); m >= 0 && !inRun[m];) {
+      inRun[m] = 1;
+      run.members.push_back(m);
+      const Instance::Link* next = nextOf(m);
+      if (!next) break;
+      // The next member's x1 from this one's x2: next->other's link back to m.
+      for (const auto& l : inst[next->other].atStart)
+        if (l.other == m) run.steps.push_back(l);
+      m = next->other;
     }
-  std::vector<char> done(count, 0);
-  const auto usable = [&](size_t p) { return designs[p] && designs[p]->feasible; };
-  for (size_t p = 0; p < count; ++p)
-    if (!usable(p)) done[p] = 1, out.patches[p].failure = designs[p] ? designs[p]->failure.message : "not designed";
-  const auto tracePatch = [&](size_t p) {
+    const int last = run.members.back();
+    for (const auto& l : inst[last].atEnd)
+      if (inst[l.other].boundary) run.fixedTarget = linkValue(l, inst[l.other].x1);
+    runOfLast[last] = static_cast<int>(runs.size());
+    runs.push_back(std::move(run));
+  }
+  // Head-on pairs: the run whose start may move matches the other's traced end.
+  for (size_t r = 0; r < runs.size(); ++r) {
+    if (runs[r].fixedTarget) continue;
+    for (const auto& l : inst[runs[r].members.back()].atEnd)
+      if (!inst[l.other].boundary && l.otherAtEnd && runOfLast[l.other] >= 0) runs[r].headOn = runOfLast[l.other];
+  }
+  for (size_t r = 0; r < runs.size(); ++r) {
+    Run& run = runs[r];
+    if (run.headOn < 0 || run.waitFor >= 0 || runs[run.headOn].waitFor == static_cast<int>(r)) continue;
+    Run& other = runs[run.headOn];
+    // Both free: the later one moves. Neither: both are held.
+    if (run.freeStart && (!other.freeStart || static_cast<int>(r) > run.headOn)) run.waitFor = run.headOn;
+    else if (other.freeStart) other.waitFor = static_cast<int>(r);
+  }
+
+  std::atomic<int> traces{0};
+  // One member traced alone, exactly as buildGrid traces it (same guess, same options).
+  const auto traceOne = [&](Instance& m) {
+    const PatchDesign& design = *designs[m.patch];
+    GridMember g;
+    g.family = m.family;
+    g.index = m.member;
+    g.x1 = m.x1;
+    g.x2 = membersAt(design, m.family, {0.0, m.x1, 1.0}).x2[1];
+    std::atomic<int> propagations{0};
+    traceInnerMember(design.patch, *design.solver, design.alphaBar.quad, g, design.options.grid, propagations);
+    ++traces;
+    m.x2 = g.x2;
+  };
+  const auto traceRun = [&](Run& run, double start) {
+    inst[run.members.front()].x1 = start;
+    for (size_t k = 0; k < run.members.size(); ++k) {
+      traceOne(inst[run.members[k]]);
+      if (k + 1 < run.members.size()) inst[run.members[k + 1]].x1 = linkValue(run.steps[k], inst[run.members[k]].x2);
+    }
+    return inst[run.members.back()].x2;
+  };
+  // The end parameter's rate of change with the start: the cladding slopes and joint scales.
+  const auto runSlope = [&](const Run& run) {
+    double slope = 1.0;
+    for (size_t k = 0; k < run.members.size(); ++k) {
+      const Instance& m = inst[run.members[k]];
+      slope *= claddingSlope(*designs[m.patch], m.family, m.x1);
+      if (k + 1 < run.members.size()) slope *= run.steps[k].scale;
+    }
+    return slope;
+  };
+  std::vector<char> matched(runs.size(), 0), held(runs.size(), 0);
+  const auto solveRun = [&](size_t r) {
+    Run& run = runs[r];
+    const double s0 = inst[run.members.front()].x1;
+    try {
+      double end = traceRun(run, s0);
+      std::optional<double> target = run.fixedTarget;
+      if (run.waitFor >= 0) {
+        const Instance& e = inst[runs[run.waitFor].members.back()];
+        for (const auto& l : inst[run.members.back()].atEnd)
+          if (l.other == runs[run.waitFor].members.back()) target = linkValue(l, e.x2);
+      }
+      if (!target) return;
+      const Instance& last = inst[run.members.back()];
+      const double length = designs[last.patch]->patch.sideLengths[familySide(last.family, true).first];
+      const double tolerance = 1e-10;  // metres along the end side
+      double f = end - *target;
+      if (!run.freeStart) {
+        held[r] = std::abs(f) * length > tolerance;
+        return;
+      }
+      // Secant on the start, from a first step along the cladding functions' slope.
+      double sPrev = s0, fPrev = f;
+      double s = std::clamp(s0 - f / runSlope(run), 1e-9, 1.0 - 1e-9);
+      for (int it = 0; it < 12 && std::abs(f) * length > tolerance; ++it) {
+        f = traceRun(run, s) - *target;
+        if (std::abs(f) * length <= tolerance || f == fPrev) break;
+        const double next = s - f * (s - sPrev) / (f - fPrev);
+        sPrev = s, fPrev = f;
+        s = std::clamp(next, 1e-9, 1.0 - 1e-9);
+      }
+      (std::abs(f) * length <= tolerance ? matched : held)[r] = 1;
+    } catch (const Error&) {
+      traceRun(run, s0);  // back to the propagated start; may throw again (caught below)
+    }
+  };
+  // Rounds: runs that wait for another's end go after it.
+  std::vector<char> done(runs.size(), 0);
+  size_t remaining = runs.size();
+  while (remaining > 0) {
+    std::vector<size_t> ready;
+    for (size_t r = 0; r < runs.size(); ++r)
+      if (!done[r] && (runs[r].waitFor < 0 || done[runs[r].waitFor])) ready.push_back(r);
+    tbb::parallel_for(size_t(0), ready.size(), [&](size_t i) {
+      try {
+        solveRun(ready[i]);
+      } catch (const Error&) {
+        // Left at the propagated starts; the patch's own trace reports the failure.
+      }
+    });
+    for (size_t r : ready) done[r] = 1;
+    remaining -= ready.size();
+    ++out.rounds;
+  }
+  for (size_t r = 0; r < runs.size(); ++r) {
+    // Head-on with neither start free: both held.
+    const bool stuck = runs[r].headOn >= 0 && runs[r].waitFor < 0 && runs[runs[r].headOn].waitFor != static_cast<int>(r);
+    out.matchedRuns += matched[r], out.heldRuns += held[r] || stuck;
+  }
+  out.memberTraces = traces;
+  for (const auto& m : inst)
+    if (!m.boundary) x1[m.patch][familyIndex(m.family)][m.member] = m.x1;
+
+  // Every patch's grid, from the starts the tracks settled.
+  tbb::parallel_for(size_t(0), count, [&](size_t p) {
     TracedPatch& traced = out.patches[p];
+    if (!usable(static_cast<int>(p))) {
+      traced.failure = designs[p] ? designs[p]->failure.message : "not designed";
+      return;
+    }
     const PatchDesign& design = *designs[p];
     try {
       auto t = Clock::now();
@@ -95,69 +254,52 @@ LayoutTracing traceLayout(const std::vector<const PatchDesign*>& designs, const 
     } catch (const InvalidInput& e) {
       traced.failure = std::string("invalid members: ") + e.what();
     }
+  });
+  ++out.rounds;
+
+  // C0 on every piece, measured on the traced member ends.
+  const auto endPoint = [&](const MemberEnd& e) -> const Eigen::Vector3d* {
+    const auto& grid = out.patches[e.patch].grid;
+    if (!grid) return nullptr;
+    const auto& members = familyMembers(*grid, e.family);
+    if (e.member < 0 || e.member >= static_cast<int>(members.size())) return nullptr;
+    return e.atEnd ? &members[e.member].spatial.back() : &members[e.member].spatial.front();
   };
-  // The downstream patches take their members' starts from the traced ends (C0 closed there).
-  const auto takeTracedEnds = [&](size_t p) {
-    for (int f = 0; f < 2; ++f) {
-      const auto [c, k] = propagation.nodeOf[p][f];
-      if (c < 0) continue;
-      const PropagatedChain& chain = propagation.chains[c];
-      const int up = upstreamNode(chain, k);
-      if (up < 0) continue;
-      const TracedPatch& source = out.patches[chain.nodes[up].patch];
-      if (!source.grid) continue;  // its trace failed: keep the propagated values
-      const auto& members = familyMembers(*source.grid, chain.nodes[up].family);
-      auto& mine = x1[p][f];
-      for (int j = 1; j + 1 < static_cast<int>(mine.size()); ++j) {
-        const double t = chainParameter(chain.nodes[up], members[chain.memberIndex(up, j)].x2);
-        mine[chain.memberIndex(k, j)] = chainParameter(chain.nodes[k], t);
+  for (const auto& piece : propagation.pieces) {
+    SideGap gap;
+    gap.boundary = piece.boundary;
+    gap.patchA = piece.patchA, gap.patchB = piece.patchB;
+    gap.piece = piece.kind;
+    gap.membersA = piece.membersA, gap.membersB = piece.membersB;
+    if (!out.patches[piece.patchA].grid || !out.patches[piece.patchB].grid) {
+      gap.kind = "not traced";
+    } else if (piece.kind == "ring cut") {
+      gap.kind = "ring cut";
+      // Members need not close round a ring (3.7.1): the chain's member j on both sides of the cut.
+      const PropagatedChain& chain = propagation.chains[piece.chain];
+      const int n = static_cast<int>(chain.nodes.size()), m = static_cast<int>(chain.solution.start.size());
+      for (int j = 1; j + 1 < m; ++j) {
+        const PropagatedNode &last = chain.nodes[n - 1], &first = chain.nodes[0];
+        const Eigen::Vector3d* a = endPoint({last.patch, last.family, chain.memberIndex(n - 1, j), last.forward});
+        const Eigen::Vector3d* b = endPoint({first.patch, first.family, chain.memberIndex(0, j), !first.forward});
+        if (a && b) gap.maxGapM = std::max(gap.maxGapM, (*a - *b).norm());
       }
-    }
-  };
-  size_t remaining = std::count(done.begin(), done.end(), 0);
-  while (remaining > 0) {
-    std::vector<size_t> ready;
-    for (size_t p = 0; p < count; ++p) {
-      if (done[p]) continue;
-      if (std::all_of(waitsFor[p].begin(), waitsFor[p].end(), [&](int q) { return done[q]; })) ready.push_back(p);
-    }
-    // A cycle of dependencies (members running round through both families): the first waiting
-    // patch goes with the propagated values; its gap is then what tracing leaves.
-    if (ready.empty())
-      for (size_t p = 0; p < count; ++p)
-        if (!done[p]) {
-          ready.push_back(p);
-          break;
-        }
-    for (size_t p : ready) takeTracedEnds(p);
-    tbb::parallel_for(size_t(0), ready.size(), [&](size_t i) { tracePatch(ready[i]); });
-    for (size_t p : ready) done[p] = 1;
-    remaining -= ready.size();
-    ++out.rounds;
-  }
-  // C0 on every shared side of the propagated chains, measured on the traced member ends.
-  for (size_t c = 0; c < propagation.chains.size(); ++c) {
-    const PropagatedChain& chain = propagation.chains[c];
-    const int n = static_cast<int>(chain.nodes.size());
-    for (int k = chain.ring ? 0 : 1; k < n; ++k) {
-      const int prev = k == 0 ? n - 1 : k - 1;
-      SideGap gap;
-      gap.boundary = chain.boundaries[k];
-      gap.chain = static_cast<int>(c);
-      gap.patchA = chain.nodes[prev].patch;
-      gap.patchB = chain.nodes[k].patch;
-      const bool aEnds = chain.nodes[prev].forward, bStarts = chain.nodes[k].forward;
-      gap.kind = k == 0 ? "ring cut" : aEnds && !bStarts ? "head-on" : !aEnds && bStarts ? "both start" : "closed";
-      const auto& a = out.patches[gap.patchA].grid;
-      const auto& b = out.patches[gap.patchB].grid;
-      if (!a || !b) {
-        gap.kind = "not traced";
-      } else {
-        gap.maxGapM = traceGap(chain, k, *a, *b);
-        if (k > 0) out.c0MaxGapM = std::max(out.c0MaxGapM, gap.maxGapM);
+    } else if (piece.membersA != piece.membersB) {
+      gap.kind = "count mismatch";
+    } else {
+      bool closed = false, bothStart = false, headOn = false;
+      for (int j : piece.joints) {
+        const MemberJoint& joint = propagation.joints[j];
+        const Eigen::Vector3d *a = endPoint(joint.a), *b = endPoint(joint.b);
+        if (a && b) gap.maxGapM = std::max(gap.maxGapM, (*a - *b).norm());
+        closed = closed || joint.a.atEnd != joint.b.atEnd;
+        bothStart = bothStart || (!joint.a.atEnd && !joint.b.atEnd);
+        headOn = headOn || (joint.a.atEnd && joint.b.atEnd);
       }
-      out.gaps.push_back(gap);
+      gap.kind = headOn ? "head-on" : bothStart ? "both start" : "closed";
     }
+    if (gap.kind != "ring cut") out.c0MaxGapM = std::max(out.c0MaxGapM, gap.maxGapM);
+    out.gaps.push_back(gap);
   }
   out.seconds = std::chrono::duration<double>(Clock::now() - started).count();
   return out;

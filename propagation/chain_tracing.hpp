@@ -2,12 +2,19 @@
 // The grid step of a multi-patch layout with C0 member ends (Sections 2.4.4-2.4.6, 3.4.4).
 // Tracing keeps a member's start x1 and refines its end x2 until the geodesic and the planar
 // segment have the same length (criterion i), which moves x2 off the propagated value (today by
-// up to ~0.3 mm). So the patches are traced in the order the members run: a patch whose members
-// enter over a side where the neighbour's members END (their moving end) takes its x1 from the
-// neighbour's traced x2, and the two patches' member ends coincide on that side to rounding.
-// Where both patches' members START on a shared side, both use the propagated value exactly.
-// Where both END on it (members running head-on, which a consistently oriented layout avoids) the
-// gap is what tracing leaves, reported per side; so is the cut of a ring (need not close, 3.7.1).
+// up to ~0.3 mm). So members are traced along their tracks, the sequences of member pieces that
+// the propagation's joints (LayoutPropagation::joints) link across shared sides:
+//   - a member whose start lies where its neighbour's member ends takes the neighbour's traced x2
+//     as its x1 ("closed": the ends coincide to rounding);
+//   - where both start on a side, both use the propagated value exactly ("both start");
+//   - where a run of members must END on a fixed point (the corner of a smaller patch at a
+//     T-junction of boundary members, or another run's traced end when members run head-on) and
+//     its first start lies on a free side, that start is iterated (secant on the single member's
+//     trace) until the traced end meets the point. A run whose start is held as well cannot move:
+//     its gap is what tracing leaves, reported per side.
+// Once every start is known each patch's grid is traced whole (the member traces are repeated
+// bit for bit, so the grid's ends are the matched ones). The cut of a ring is reported, not
+// closed (need not close, 3.7.1).
 #include "core/egg/patch_design.hpp"
 #include "propagation/layout_propagation.hpp"
 
@@ -24,20 +31,27 @@ struct TracedPatch {
   double membersSeconds = 0.0, tracingSeconds = 0.0;
 };
 
-// The traced member ends of the two patches on one shared side of a propagated chain.
+// The traced member ends of the two patches on one shared boundary piece.
 struct SideGap {
   int boundary = -1;       // PatchGraph boundary id
-  int chain = -1;          // index into LayoutPropagation::chains
   int patchA = -1, patchB = -1;
-  double maxGapM = 0.0;    // largest distance between corresponding inner member ends
-  std::string kind;        // "closed" (in tracing order), "both start" (exact), "head-on", "ring cut", "not traced"
+  std::string piece;       // SharedPiece::kind: "whole side", "t_junction", "ring cut"
+  int membersA = 0, membersB = 0;  // members each side puts on the piece
+  double maxGapM = 0.0;    // largest distance between corresponding member ends
+  // "closed" (one's ends start the other's), "both start", "head-on" (ends met by iterating a
+  // start), "held" (head-on or T-junction end whose start could not move), "ring cut",
+  // "count mismatch", "not traced"
+  std::string kind;
 };
 
 struct LayoutTracing {
   std::vector<TracedPatch> patches;
   std::vector<SideGap> gaps;
-  double c0MaxGapM = 0.0;  // over the sides of the chains, ring cuts not included
-  int rounds = 0;          // tracing rounds (patches of one round run in parallel)
+  double c0MaxGapM = 0.0;   // over the pieces, ring cuts not included
+  int matchedRuns = 0;      // runs whose start was iterated to meet a fixed end
+  int heldRuns = 0;         // runs with a fixed end but no free start (their gap is reported)
+  int memberTraces = 0;     // single-member traces spent on the tracks (matching included)
+  int rounds = 0;           // rounds of runs (a run matching another's end waits for it)
   double seconds = 0.0;
 };
 
@@ -45,9 +59,5 @@ struct LayoutTracing {
 // (fallback, or a lone patch) is placed by placeDesignMembers with the design's member options.
 // Each patch is traced with its design's grid options.
 LayoutTracing traceLayout(const std::vector<const PatchDesign*>& designs, const LayoutPropagation& propagation);
-
-// Largest distance between corresponding inner member ends of two traced patches of a chain on
-// the boundary between chain node `node` - 1 and `node` (1 <= node < nodes; node 0 of a ring: the cut).
-double traceGap(const PropagatedChain& chain, int node, const EggGrid& before, const EggGrid& after);
 
 }  // namespace egg::propagation

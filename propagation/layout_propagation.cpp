@@ -9,7 +9,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <map>
 #include <memory>
+#include <set>
 #include <tuple>
 
 namespace egg::propagation {
@@ -111,8 +114,13 @@ std::optional<Built> buildChain(const patching::PatchGraph& graph, const std::ve
     const bool hasNext = k + 1 < n || ring, hasPrevious = k > 0 || ring;
     if (hasNext) exit[k] = links[k].a.side;
     if (hasPrevious) entry[k] = (k > 0 ? links[k - 1] : links.back()).b.side;
-    if (!hasNext) exit[k] = otherFamilySide(f, entry[k]);
-    if (!hasPrevious) entry[k] = otherFamilySide(f, exit[k]);
+    if (!hasNext && !hasPrevious) {
+      // A lone node of a branching chain (linked by T-junction pieces only): read forwards.
+      entry[k] = familySide(f, false).first;
+      exit[k] = familySide(f, true).first;
+    }
+    if (!hasNext && hasPrevious) exit[k] = otherFamilySide(f, entry[k]);
+    if (!hasPrevious && hasNext) entry[k] = otherFamilySide(f, exit[k]);
     if (entry[k] == exit[k]) {
       reason = fmt::format("members would enter and leave patch {} through its side {}", nodes[k].patch, entry[k]);
       return std::nullopt;
@@ -159,6 +167,244 @@ std::optional<Built> buildChain(const patching::PatchGraph& graph, const std::ve
   return built;
 }
 
+// Where a node of a propagated chain meets side `side` of its patch: the chain boundary, and the
+// maps between the family's own parameter x and the chain's parameter t there.
+int chainBoundaryOf(const PropagatedChain& chain, int node, int side) {
+  const PropagatedNode& n = chain.nodes[node];
+  const bool entry = familySide(n.family, !n.forward).first == side;
+  return entry ? node : node + 1;
+}
+double chainOfFamily(const PropagatedNode& n, double x) { return n.mirrored ? 1.0 - x : x; }
+// The family's parameter on side `side` <-> the fraction along the side (corner k -> k+1).
+double sideFraction(Family family, int side, double x) { return familySideRole(family, side).second ? 1.0 - x : x; }
+// The fraction along a side <-> the parameter along the piece (its segment's own direction).
+double pieceToSide(const patching::BoundaryUse& u, double rho) { return u.reversed ? u.to - rho * (u.to - u.from) : u.from + rho * (u.to - u.from); }
+double sideToPiece(const patching::BoundaryUse& u, double s) {
+  const double r = (s - u.from) / (u.to - u.from);
+  return u.reversed ? 1.0 - r : r;
+}
+
+// The members' family parameters (index = member, x1 increasing) of node k on its side `side`.
+std::vector<double> sideParameters(const PropagatedChain& chain, int node, int side) {
+  const auto& t = chain.solution.positions[chainBoundaryOf(chain, node, side)];
+  const int m = static_cast<int>(t.size());
+  std::vector<double> x(m);
+  for (int j = 0; j < m; ++j) x[chain.memberIndex(node, j)] = chainOfFamily(chain.nodes[node], t[j]);
+  return x;
+}
+
+constexpr double kPieceTolerance = 1e-9;  // parameters this close count as the same point
+
+// The members of a family on a piece: (piece parameter, member index), increasing in the former.
+std::vector<std::pair<double, int>> membersOnPiece(const std::vector<double>& x, Family family, const patching::BoundaryUse& use) {
+  std::vector<std::pair<double, int>> out;
+  for (int i = 0; i < static_cast<int>(x.size()); ++i) {
+    const double sigma = sideFraction(family, use.side, x[i]);
+    if (sigma >= use.from - kPieceTolerance && sigma <= use.to + kPieceTolerance) out.push_back({sideToPiece(use, sigma), i});
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+struct NodeKey {
+  int patch;
+  Family family;
+  bool operator<(const NodeKey& o) const { return std::tie(patch, family) < std::tie(o.patch, o.family); }
+};
+NodeKey keyOf(const patching::BoundaryUse& use) { return {use.patch, patching::familyEndingAtSide(use.side)}; }
+
+using Fallback = std::function<void(std::vector<patching::ChainNode>, std::string)>;
+
+// A branching chain (see the header): sub-chains of whole sides, solved breadth first over the
+// T-junction pieces that join them, each taking its solved neighbours' members as originals.
+void propagateBranching(const patching::PatchGraph& graph, const std::vector<PatchSideData>& patches, const patching::MemberChain& chain,
+                        const PropagationOptions& options, const Fallback& fallback, const std::function<void(Built&)>& record,
+                        const LayoutPropagation& out) {
+  std::set<NodeKey> nodes;
+  for (const auto& n : chain.nodes)
+    if (patches[n.patch].usable) nodes.insert({n.patch, n.family});
+  std::map<NodeKey, std::vector<NodeKey>> whole;
+  std::vector<const patching::Boundary*> tPieces;
+  for (const auto& b : graph.boundaries) {
+    if (b.uses.size() != 2) continue;
+    const NodeKey a = keyOf(b.uses[0]), c = keyOf(b.uses[1]);
+    if (!nodes.count(a) || !nodes.count(c)) continue;
+    if (b.kind == "shared") whole[a].push_back(c), whole[c].push_back(a);
+    else if (b.kind == "t_junction") tPieces.push_back(&b);
+  }
+  // Sub-chains: a family has one start and one end side, so whole sides link it to at most two
+  // neighbours: paths, or rings.
+  std::vector<std::vector<patching::ChainNode>> subs;
+  std::vector<bool> rings;
+  std::map<NodeKey, int> subOf;
+  for (const NodeKey& seed : nodes) {
+    if (subOf.count(seed)) continue;
+    std::vector<NodeKey> component{seed};
+    std::set<NodeKey> seen{seed};
+    for (size_t i = 0; i < component.size(); ++i)
+      for (const auto& m : whole[component[i]])
+        if (seen.insert(m).second) component.push_back(m);
+    NodeKey first = *std::min_element(component.begin(), component.end());
+    bool ring = true;
+    for (const auto& m : seen)
+      if (whole[m].size() < 2) {
+        first = m, ring = false;
+        break;
+      }
+    std::vector<NodeKey> order{first};
+    std::set<NodeKey> walked{first};
+    for (bool more = true; more;) {
+      more = false;
+      for (const auto& m : whole[order.back()])
+        if (walked.insert(m).second) {
+          order.push_back(m), more = true;
+          break;
+        }
+    }
+    const int index = static_cast<int>(subs.size());
+    std::vector<patching::ChainNode> sub;
+    for (const auto& m : (order.size() == component.size() ? order : component)) sub.push_back({m.patch, m.family}), subOf[m] = index;
+    if (order.size() != component.size()) {
+      fallback(sub, "whole shared sides join these patches in no path or ring");
+      sub.clear();
+    }
+    subs.push_back(std::move(sub));
+    rings.push_back(ring && order.size() >= 3);
+  }
+  // Breadth first over the T-junction pieces, from the sub-chain of most patches.
+  std::vector<int> queue;
+  std::vector<char> queued(subs.size(), 0);
+  while (queue.size() < subs.size()) {
+    int best = -1;
+    for (size_t s = 0; s < subs.size(); ++s)
+      if (!queued[s] && (best < 0 || subs[s].size() > subs[best].size())) best = static_cast<int>(s);
+    queue.push_back(best), queued[best] = 1;
+    for (size_t i = queue.size() - 1; i < queue.size(); ++i)
+      for (const auto* b : tPieces) {
+        const int s0 = subOf[keyOf(b->uses[0])], s1 = subOf[keyOf(b->uses[1])];
+        for (int s : {s0, s1})
+          if ((s0 == queue[i] || s1 == queue[i]) && !queued[s]) queue.push_back(s), queued[s] = 1;
+      }
+  }
+  for (int s : queue) {
+    if (subs[s].empty()) continue;
+    std::string reason;
+    auto built = buildChain(graph, patches, subs[s], rings[s], options, reason);
+    if (!built) {
+      fallback(subs[s], reason);
+      continue;
+    }
+    ChainProblem& problem = built->problem;
+    const auto addOriginal = [&](int boundary, double t) {
+      if (!(t > kPieceTolerance && t < 1.0 - kPieceTolerance)) return;  // a boundary member
+      for (const auto& o : problem.originals)
+        if (o.boundary == boundary && std::abs(o.value - t) < 1e-12) return;
+      problem.originals.push_back({boundary, t});
+    };
+    for (const auto* b : tPieces)
+      for (int u = 0; u < 2; ++u) {
+        const auto &use = b->uses[u], &other = b->uses[1 - u];
+        const NodeKey key = keyOf(use);
+        const auto it = std::find_if(subs[s].begin(), subs[s].end(), [&](const auto& n) { return n.patch == key.patch && n.family == key.family; });
+        if (it == subs[s].end()) continue;
+        const int k = static_cast<int>(it - subs[s].begin());
+        const int boundary = chainBoundaryOf(built->chain, k, use.side);
+        const PropagatedNode& node = built->chain.nodes[k];
+        const auto chainAt = [&](double sigma) { return chainOfFamily(node, sideFraction(key.family, use.side, sigma)); };
+        // A T-junction of boundary members: a piece ending inside the side ends at a smaller
+        // patch's corner, whose boundary member the member here continues (Fig. 3.8).
+        if (use.from > kPieceTolerance) addOriginal(boundary, chainAt(use.from));
+        if (use.to < 1.0 - kPieceTolerance) addOriginal(boundary, chainAt(use.to));
+        const NodeKey otherKey = keyOf(other);
+        const auto [oc, on] = out.nodeOf[otherKey.patch][familyIndex(otherKey.family)];
+        if (oc < 0) continue;  // not solved yet (or not propagated): it will take ours
+        for (const auto& [rho, i] : membersOnPiece(sideParameters(out.chains[oc], on, other.side), otherKey.family, other))
+          addOriginal(boundary, chainAt(pieceToSide(use, rho)));
+        const double t0 = chainAt(use.from), t1 = chainAt(use.to);
+        problem.closed.push_back({boundary, std::min(t0, t1), std::max(t0, t1)});
+      }
+    try {
+      if (!problem.originals.empty()) {
+        // The spacing rule (the chain's longest boundary over its member intervals) applied to
+        // every open gap between fixed members, on the boundary where the gap is widest.
+        std::vector<bool> closedGaps;
+        const std::vector<double> fixed = fixedStarts(problem, &closedGaps);
+        const auto across = propagateMembers(problem, fixed);
+        double longest = 0.0;
+        for (const auto& b : problem.boundaries) longest = std::max(longest, b.lengthM);
+        const double spacingM = longest / (problem.members - 1);
+        int free = 0;
+        for (size_t g = 0; g + 1 < fixed.size(); ++g) {
+          if (closedGaps[g]) continue;
+          long most = 0;
+          for (size_t i = 0; i < across.size(); ++i)
+            most = std::max(most, std::lround((across[i][g + 1] - across[i][g]) * problem.boundaries[i].lengthM / spacingM));
+          free += static_cast<int>(std::max(0L, most - 1));
+        }
+        problem.members = static_cast<int>(fixed.size()) + free;
+      }
+      built->chain.solution = solveChain(problem, options.chain);
+    } catch (const InvalidInput& e) {
+      fallback(subs[s], std::string("Problem 3.3: ") + e.what());
+      continue;
+    }
+    record(*built);
+  }
+}
+
+// The joints of every piece between two propagated families (after all chains are solved).
+void addJoints(const patching::PatchGraph& graph, LayoutPropagation& out) {
+  for (const auto& boundary : graph.boundaries) {
+    if (boundary.uses.size() != 2) continue;
+    const auto &ua = boundary.uses[0], &ub = boundary.uses[1];
+    const NodeKey ka = keyOf(ua), kb = keyOf(ub);
+    const auto [ca, na] = out.nodeOf[ka.patch][familyIndex(ka.family)];
+    const auto [cb, nb] = out.nodeOf[kb.patch][familyIndex(kb.family)];
+    if (ca < 0 || cb < 0) continue;
+    SharedPiece piece;
+    piece.boundary = boundary.id;
+    piece.patchA = ua.patch, piece.patchB = ub.patch;
+    const PropagatedChain &chainA = out.chains[ca], &chainB = out.chains[cb];
+    const bool ringCut = ca == cb && chainA.ring && boundary.id == chainA.boundaries.front();
+    piece.kind = ringCut ? "ring cut" : boundary.kind == "shared" ? "whole side" : "t_junction";
+    if (ringCut) piece.chain = ca;
+    const auto onA = membersOnPiece(sideParameters(chainA, na, ua.side), ka.family, ua);
+    const auto onB = membersOnPiece(sideParameters(chainB, nb, ub.side), kb.family, ub);
+    piece.membersA = static_cast<int>(onA.size());
+    piece.membersB = static_cast<int>(onB.size());
+    if (!ringCut) {
+      if (onA.size() != onB.size()) {
+        out.notes.push_back(fmt::format("boundary {} (patches {}, {}): {} members on one side, {} on the other", boundary.id, ua.patch,
+                                        ub.patch, onA.size(), onB.size()));
+      } else {
+        // x_b as an affine function of x_a through the piece's own parameter.
+        const auto map = [&](double xa) {
+          return sideFraction(kb.family, ub.side, pieceToSide(ub, sideToPiece(ua, sideFraction(ka.family, ua.side, xa))));
+        };
+        const double offset = map(0.0), scale = map(1.0) - map(0.0);
+        const int countA = static_cast<int>(chainA.solution.start.size()), countB = static_cast<int>(chainB.solution.start.size());
+        for (size_t k = 0; k < onA.size(); ++k) {
+          if (std::abs(onA[k].first - onB[k].first) > kPieceTolerance)
+            out.notes.push_back(fmt::format("boundary {}: member {} of patch {} and member {} of patch {} lie {:.3g} apart (piece parameter)",
+                                            boundary.id, onA[k].second, ua.patch, onB[k].second, ub.patch,
+                                            std::abs(onA[k].first - onB[k].first)));
+          const int ia = onA[k].second, ib = onB[k].second;
+          const bool boundaryA = ia == 0 || ia == countA - 1, boundaryB = ib == 0 || ib == countB - 1;
+          if (boundaryA && boundaryB) continue;  // two patch sides meeting at a corner: nothing to trace
+          MemberJoint joint;
+          joint.boundary = boundary.id;
+          joint.a = {ua.patch, ka.family, ia, familySideRole(ka.family, ua.side).first};
+          joint.b = {ub.patch, kb.family, ib, familySideRole(kb.family, ub.side).first};
+          joint.offset = offset, joint.scale = scale;
+          piece.joints.push_back(static_cast<int>(out.joints.size()));
+          out.joints.push_back(joint);
+        }
+      }
+    }
+    out.pieces.push_back(std::move(piece));
+  }
+}
+
 }  // namespace
 
 LayoutPropagation propagateLayout(const patching::PatchGraph& graph, const std::vector<PatchSideData>& patches,
@@ -168,6 +414,20 @@ LayoutPropagation propagateLayout(const patching::PatchGraph& graph, const std::
   LayoutPropagation out;
   out.x1.resize(patches.size());
   out.nodeOf.assign(patches.size(), {std::pair{-1, -1}, std::pair{-1, -1}});
+  const auto record = [&](Built& built, int graphChain) {
+    built.chain.graphChain = graphChain;
+    const int index = static_cast<int>(out.chains.size());
+    for (size_t k = 0; k < built.chain.nodes.size(); ++k) {
+      const auto& node = built.chain.nodes[k];
+      out.x1[node.patch][familyIndex(node.family)] = built.chain.startParameters(static_cast<int>(k));
+      out.nodeOf[node.patch][familyIndex(node.family)] = {index, static_cast<int>(k)};
+    }
+    out.evennessBefore += built.chain.solution.evennessBefore;
+    out.evennessAfter += built.chain.solution.evennessAfter;
+    out.iterations += built.chain.solution.iterations;
+    out.originals += static_cast<int>(built.problem.originals.size());
+    out.chains.push_back(std::move(built.chain));
+  };
   for (size_t c = 0; c < graph.chains.size(); ++c) {
     const auto& chain = graph.chains[c];
     for (const auto& node : chain.nodes)
@@ -177,7 +437,7 @@ LayoutPropagation propagateLayout(const patching::PatchGraph& graph, const std::
       out.fallbacks.push_back({static_cast<int>(c), std::move(nodes), std::move(reason)});
     };
     if (chain.branching) {
-      fallback(chain.nodes, "T-junction (branching chain): its patches place their own members, so its shared sides are not C0");
+      propagateBranching(graph, patches, chain, options, fallback, [&](Built& b) { record(b, static_cast<int>(c)); }, out);
       continue;
     }
     // Runs of usable nodes; a ring broken by an unusable patch opens there.
@@ -205,26 +465,16 @@ LayoutPropagation propagateLayout(const patching::PatchGraph& graph, const std::
         fallback(run, reason);
         continue;
       }
-      built->chain.graphChain = static_cast<int>(c);
       try {
         built->chain.solution = solveChain(built->problem, options.chain);
       } catch (const InvalidInput& e) {
         fallback(run, std::string("Problem 3.3: ") + e.what());
         continue;
       }
-      const int index = static_cast<int>(out.chains.size());
-      for (size_t k = 0; k < built->chain.nodes.size(); ++k) {
-        const auto& node = built->chain.nodes[k];
-        out.x1[node.patch][familyIndex(node.family)] = built->chain.startParameters(static_cast<int>(k));
-        out.nodeOf[node.patch][familyIndex(node.family)] = {index, static_cast<int>(k)};
-      }
-      out.evennessBefore += built->chain.solution.evennessBefore;
-      out.evennessAfter += built->chain.solution.evennessAfter;
-      out.iterations += built->chain.solution.iterations;
-      out.originals += static_cast<int>(built->problem.originals.size());
-      out.chains.push_back(std::move(built->chain));
+      record(*built, static_cast<int>(c));
     }
   }
+  addJoints(graph, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;
 }

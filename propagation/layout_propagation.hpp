@@ -7,10 +7,13 @@
 // patch of a chain the start parameters x1 of its members, the same members on both sides of
 // every shared side (C0). The second family is solved independently (each chain on its own).
 //
-// Kept to what the graph supports exactly: a chain whose links are whole shared sides. A branching
-// chain (T-junction, Fig. 3.8's patch 3) falls back to per-patch placement and is reported as
-// such (its shared sides are not C0); ChainProblem's originals are the hook for it. A chain cut by
-// an infeasible patch is split at it; a lone patch places its own members (Section 2.4.4).
+// A branching chain (a side that meets two smaller patches' sides at a T-junction, Fig. 3.8) is cut
+// into sub-chains linked by whole sides, solved one after the other (breadth first over the
+// T-junction pieces, the longest first): the corner of a smaller patch inside a side (a T-junction
+// of boundary members) is an original there, and a sub-chain whose neighbour across a T-junction
+// piece is already solved takes that neighbour's members on the piece as originals and adds no
+// member inside it, so both sides carry the same members (forwards or backwards through F, F^-1).
+// A chain cut by an infeasible patch is split at it; a lone patch places its own members (2.4.4).
 #include "core/egg/planar_quad.hpp"
 #include "patching/patch_graph.hpp"
 #include "propagation/chain_problem.hpp"
@@ -62,6 +65,33 @@ struct PropagatedChain {
   int memberIndex(int node, int member) const;
 };
 
+// One end of a member of a patch's family (members indexed by x1 increasing, boundary members
+// included): on the family's start side (x1) or its end side (x2).
+struct MemberEnd {
+  int patch = -1;
+  Family family = Family::U;
+  int member = -1;
+  bool atEnd = false;  // x2
+};
+
+// Two member ends that meet on a shared boundary piece: x_b = offset + scale * x_a, in the two
+// families' own parameters on the sides the piece lies on.
+struct MemberJoint {
+  int boundary = -1;  // PatchGraph boundary id
+  MemberEnd a, b;
+  double offset = 0.0, scale = 1.0;
+};
+
+// A boundary piece two propagated families share, with the members each puts on it.
+struct SharedPiece {
+  int boundary = -1;
+  int patchA = -1, patchB = -1;
+  std::string kind;  // "whole side", "t_junction" or "ring cut" (members need not close, 3.7.1)
+  int membersA = 0, membersB = 0;
+  int chain = -1;           // a ring cut: the ring's index into LayoutPropagation::chains
+  std::vector<int> joints;  // indices into LayoutPropagation::joints
+};
+
 struct FallbackChain {
   int graphChain = -1;
   std::vector<patching::ChainNode> nodes;
@@ -78,6 +108,9 @@ struct LayoutPropagation {
   double evennessBefore = 0.0, evennessAfter = 0.0;  // sums over the propagated chains
   int iterations = 0;                                // SLSQP evaluations, all chains
   int originals = 0;
+  std::vector<MemberJoint> joints;  // every pair of member ends that must coincide (C0)
+  std::vector<SharedPiece> pieces;
+  std::vector<std::string> notes;   // members a piece's two sides could not agree on
   double seconds = 0.0;
 };
 

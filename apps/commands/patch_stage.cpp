@@ -135,7 +135,12 @@ json propagationSection(const propagation::LayoutPropagation& members, const pro
   }
   json gaps = json::array();
   for (const auto& g : tracing.gaps)
-    gaps.push_back({{"boundary", g.boundary}, {"patches", {g.patchA, g.patchB}}, {"max_gap_m", g.maxGapM}, {"kind", g.kind}});
+    gaps.push_back({{"boundary", g.boundary},
+                    {"patches", {g.patchA, g.patchB}},
+                    {"piece", g.piece},
+                    {"members", {g.membersA, g.membersB}},
+                    {"max_gap_m", g.maxGapM},
+                    {"kind", g.kind}});
   return {{"ran", true},
           {"c0_max_gap_m", tracing.c0MaxGapM},
           {"evenness_before", members.evennessBefore},
@@ -145,6 +150,10 @@ json propagationSection(const propagation::LayoutPropagation& members, const pro
           {"originals", members.originals},
           {"seconds", members.seconds},
           {"tracing_rounds", tracing.rounds},
+          {"matched_runs", tracing.matchedRuns},
+          {"held_runs", tracing.heldRuns},
+          {"member_traces", tracing.memberTraces},
+          {"notes", members.notes},
           {"propagated_chains", chains},
           {"per_patch_chains", fallbacks},
           {"sides", gaps}};

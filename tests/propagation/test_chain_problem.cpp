@@ -95,6 +95,62 @@ TEST(ChainProblem, MinimumSpacingHoldsOnEveryBoundary) {
       EXPECT_GE(s.positions[i][j] - s.positions[i][j - 1], problem.boundaries[i].minGap - 1e-9) << i << " " << j;
 }
 
+TEST(ChainProblem, AClosedRangeGetsNoFreeMember) {
+  // A neighbour across a T-junction has put its members at 0.2 and 0.5 on boundary 1 and owns
+  // [0, 0.5] there (Fig. 3.8): no member of ours may be added inside. F = 0.625 x up to the kink
+  // (0.8, 0.5), 2.5 x - 1.5 after it; pulled back, the originals lie at 0.32 and 0.8 on boundary 0,
+  // and both free members (6 - 4 fixed) go into the one open gap (0.8, 1). There F is affine, so
+  // the squared gaps on both boundaries are least with the free members at thirds of the gap.
+  const PiecewiseLinearMap f({{0, 0}, {0.8, 0.5}, {1, 1}});
+  auto problem = chainOf({&f}, 6);
+  problem.originals = {{1, 0.2}, {1, 0.5}};
+  problem.closed = {{1, 0.0, 0.5}};
+  std::vector<bool> closedGaps;
+  const auto fixed = fixedStarts(problem, &closedGaps);
+  ASSERT_EQ(fixed.size(), 4u);
+  EXPECT_NEAR(fixed[1], 0.32, 1e-15);
+  EXPECT_NEAR(fixed[2], 0.8, 1e-15);
+  EXPECT_EQ(closedGaps, (std::vector<bool>{true, true, false}));
+  std::vector<bool> isFixed;
+  const auto start = plainStart(problem, &isFixed);
+  ASSERT_EQ(start.size(), 6u);
+  EXPECT_EQ(isFixed, (std::vector<bool>{true, true, true, false, false, true}));
+  EXPECT_NEAR(start[3], 0.8 + 0.2 / 3, 1e-15);
+  EXPECT_NEAR(start[4], 0.8 + 0.4 / 3, 1e-15);
+  const auto s = solveChain(problem);
+  EXPECT_NEAR(s.start[3], 0.8 + 0.2 / 3, 1e-7);
+  EXPECT_NEAR(s.start[4], 0.8 + 0.4 / 3, 1e-7);
+  int insideClosed = 0;
+  for (double t : s.positions[1]) insideClosed += t > 1e-12 && t < 0.5 - 1e-12;
+  EXPECT_EQ(insideClosed, 1);  // the original at 0.2 alone
+  EXPECT_DOUBLE_EQ(s.positions[1][1], 0.2);
+  EXPECT_DOUBLE_EQ(s.positions[1][2], 0.5);
+  // Free members but every gap closed, or a range the wrong way round: bad input.
+  problem.closed = {{1, 0.0, 1.0}};
+  problem.originals = {{1, 0.5}};
+  problem.members = 4;
+  EXPECT_THROW(plainStart(problem), InvalidInput);
+  problem.closed = {{1, 0.6, 0.4}};
+  EXPECT_THROW(plainStart(problem), InvalidInput);
+}
+
+TEST(ChainProblem, AFootprintTooLargeForItsBoundaryIsCappedAtEqualSpacing) {
+  // Two gaps of at least 0.6 on boundary 1 cannot fit in [0, 1]: the footprint is capped at the
+  // equal spacing 0.5 there, which F (slopes 0.4 then 1.6, kink at (0.5, 0.2)) meets at one
+  // start only, F(t) = 1.6 t - 0.6 = 0.5: t = 0.6875. Evenness improves on the plain t = 0.5:
+  // J = t^2 + (1 - t)^2 + F^2 + (1 - F)^2 goes from 1.18 to 1.0703125.
+  const PiecewiseLinearMap f({{0, 0}, {0.5, 0.2}, {1, 1}});
+  auto problem = chainOf({&f}, 3);
+  problem.boundaries[1].minGap = 0.6;
+  const auto s = solveChain(problem);
+  EXPECT_TRUE(s.optimised) << s.status;
+  EXPECT_NE(s.status.find("capped"), std::string::npos) << s.status;
+  EXPECT_NEAR(s.start[1], 0.6875, 1e-7) << s.status;
+  EXPECT_NEAR(s.positions[1][1], 0.5, 1e-7);
+  EXPECT_NEAR(s.evennessBefore, 1.18, 1e-12);
+  EXPECT_NEAR(s.evennessAfter, 1.0703125, 1e-6);
+}
+
 TEST(ChainProblem, RejectsBadProblems) {
   const PiecewiseLinearMap identity;
   auto problem = chainOf({&identity}, 4);

@@ -126,24 +126,112 @@ TEST(LayoutPropagation, ARingOfFourPatchesNeedNotClose) {
   for (int j = 0; j < 5; ++j) mismatch = std::max(mismatch, std::abs(chain.solution.positions[4][j] - chain.solution.positions[0][j]));
   EXPECT_GT(mismatch, 1e-3);
   EXPECT_LE(result.evennessAfter, result.evennessBefore);
+  // The cut is a piece of its own, with no joints (its members are not paired); the three other
+  // shared sides of the u ring pair the inner members: 3 each.
+  int cuts = 0;
+  for (const auto& piece : result.pieces) {
+    if (piece.kind == "ring cut") {
+      ++cuts;
+      EXPECT_EQ(piece.boundary, chain.boundaries.front());
+      EXPECT_EQ(piece.chain, c);
+      EXPECT_TRUE(piece.joints.empty());
+    } else if (piece.patchA >= 0 && result.nodeOf[piece.patchA][0].first == c) {
+      EXPECT_EQ(piece.joints.size(), 3u) << piece.boundary;
+    }
+  }
+  EXPECT_EQ(cuts, 1);
 }
 
-TEST(LayoutPropagation, BranchingChainsAndInfeasiblePatchesFallBack) {
-  // A T-junction: patch 0 below two patches 1, 2 whose corner 7 lies on patch 0's top side.
-  //   corners 0 1 2 (bottom), 3 7 4 (top of patch 0, 7 a T), 5 8 6 (top of 1 and 2)
-  auto layout = layoutOf({{0, 2, 4, 3}, {3, 7, 8, 5}, {7, 4, 6, 8}});
+// A T-junction: patch 0 below two patches 1, 2 whose corner 7 lies half-way along patch 0's top side.
+//   corners 0 1 2 (bottom), 3 7 4 (top of patch 0, 7 a T), 5 8 6 (top of 1 and 2)
+// Patch 0's v members end on its side 2 and continue into patches 1 and 2 (their side 0).
+PatchLayout tJunctionLayout(const std::vector<std::array<int, 4>>& extra = {}) {
+  std::vector<std::array<int, 4>> quads{{0, 2, 4, 3}, {3, 7, 8, 5}, {7, 4, 6, 8}};
+  quads.insert(quads.end(), extra.begin(), extra.end());
+  auto layout = layoutOf(quads);
   // Patch 0's side 2 runs 4 -> 3 through 7: two segments.
   const int s37 = layout.patchSides[1][0][0].first, s74 = layout.patchSides[2][0][0].first;
   layout.patchSides[0][2] = {{s74, false}, {s37, true}};
-  layout.curves[layout.segments[s37].curve].corners = {3, 7};
-  const auto graph = patching::buildPatchGraph(layout);
-  std::vector<PatchSideData> patches(3, sideData());
-  const auto result = propagateLayout(graph, patches, withMembers(4));
-  bool branchingFallback = false;
-  for (const auto& f : result.fallbacks) branchingFallback = branchingFallback || f.reason.find("T-junction") != std::string::npos;
-  EXPECT_TRUE(branchingFallback);
-  EXPECT_TRUE(result.x1[0][1].empty());  // patch 0's v family places its own members
+  return layout;
+}
 
+TEST(LayoutPropagation, ATJunctionMemberIsKept) {
+  const auto graph = patching::buildPatchGraph(tJunctionLayout());
+  // F_v of patch 0 kinked at (0.4, 0.55): the member that ends at the T (x2 = 0.5) starts at
+  // x1 = 0.4 * 0.5 / 0.55. Patches 1 and 2 read identity maps.
+  const PiecewiseLinearMap f0({{0, 0}, {0.4, 0.55}, {1, 1}});
+  std::vector<PatchSideData> patches{sideData({}, f0), sideData(), sideData()};
+  const auto result = propagateLayout(graph, patches, withMembers(4));
+  for (const auto& f : result.fallbacks)
+    for (const auto& n : f.nodes) EXPECT_EQ(n.family, Family::U) << f.reason;  // only patch 0's lone u family
+  EXPECT_TRUE(result.notes.empty()) << result.notes.front();
+  const auto& x0 = result.x1[0][1];
+  // Patch 0 first (the sub-chains are single patches: the first is the lowest): the T is an
+  // original, and each half of its side (0.5 m on its end side) gets round(0.5 / (1/3)) - 1 = 1
+  // free member.
+  ASSERT_EQ(x0.size(), 5u);
+  int atT = -1;
+  for (int j = 0; j < 5; ++j)
+    if (std::abs(f0.value(x0[j]) - 0.5) < 1e-12) atT = j;
+  ASSERT_EQ(atT, 2);
+  EXPECT_NEAR(x0[2], 0.4 * 0.5 / 0.55, 1e-12);
+  // Patches 1 and 2 take patch 0's members on their halves. Patch 0's v parameter on its side 2
+  // runs 3 <- 7 <- 4, so x2 in [0, 0.5] lies on 3 -> 7, patch 1's side 0, at x = 2 x2; x2 in
+  // [0.5, 1] on 7 -> 4, patch 2's side 0, at x = 2 x2 - 1.
+  ASSERT_EQ(result.x1[1][1].size(), 3u);
+  ASSERT_EQ(result.x1[2][1].size(), 3u);
+  EXPECT_NEAR(result.x1[1][1][1], 2.0 * f0.value(x0[1]), 1e-12);
+  EXPECT_NEAR(result.x1[2][1][1], 2.0 * f0.value(x0[3]) - 1.0, 1e-12);
+  EXPECT_EQ(result.originals, 3);  // the T on patch 0, patch 0's members inside each half
+  // Both pieces: the same members on both sides, paired by joints of equal points.
+  int pieces = 0;
+  for (const auto& piece : result.pieces) {
+    if (piece.kind != "t_junction") continue;
+    ++pieces;
+    EXPECT_EQ(piece.membersA, 3);
+    EXPECT_EQ(piece.membersB, 3);
+    EXPECT_EQ(piece.joints.size(), 2u);  // the inner member, and the T member against a boundary member
+    for (int j : piece.joints) {
+      const auto& joint = result.joints[j];
+      const double xa = joint.a.atEnd ? f0.value(result.x1[joint.a.patch][1][joint.a.member]) : result.x1[joint.a.patch][1][joint.a.member];
+      const double xb = result.x1[joint.b.patch][1][joint.b.member];
+      EXPECT_NEAR(joint.offset + joint.scale * xa, xb, 1e-12);
+      EXPECT_TRUE(joint.a.atEnd);
+      EXPECT_FALSE(joint.b.atEnd);
+    }
+  }
+  EXPECT_EQ(pieces, 2);
+}
+
+TEST(LayoutPropagation, SubChainsAreSolvedBreadthFirstOverTheTJunctions) {
+  // Patches 1 and 2 continue their v members into 3 and 4 above (whole sides), so the sub-chains
+  // {1, 3} and {2, 4} are longer than {0}: {1, 3} goes first (equidistant thirds, identity maps),
+  // then its T-junction neighbour 0, whose half 3 -> 7 of side 2 is closed (patch 1's members at
+  // x = 0, 1/6, 1/3, 1/2) and whose other half gets one free member (at 3/4, the middle); then
+  // {2, 4}, which takes 0's members on 7 -> 4 and adds none.
+  //   top row corners 5 8 6, above them 11 12 13
+  const auto graph = patching::buildPatchGraph(tJunctionLayout({{5, 8, 12, 11}, {8, 6, 13, 12}}));
+  std::vector<PatchSideData> patches(5, sideData());
+  const auto result = propagateLayout(graph, patches, withMembers(4));
+  for (const auto& f : result.fallbacks)
+    for (const auto& n : f.nodes) EXPECT_EQ(n.family, Family::U) << f.reason;
+  EXPECT_TRUE(result.notes.empty()) << result.notes.front();
+  const std::vector<std::vector<double>> expected{{0, 1 / 6.0, 1 / 3.0, 0.5, 0.75, 1}, {0, 1 / 3.0, 2 / 3.0, 1}, {0, 0.5, 1},
+                                                  {0, 1 / 3.0, 2 / 3.0, 1}, {0, 0.5, 1}};
+  for (int p = 0; p < 5; ++p) {
+    ASSERT_EQ(result.x1[p][1].size(), expected[p].size()) << p;
+    for (size_t j = 0; j < expected[p].size(); ++j) EXPECT_NEAR(result.x1[p][1][j], expected[p][j], 1e-9) << p << " " << j;
+  }
+  int tPieces = 0;
+  for (const auto& piece : result.pieces) {
+    EXPECT_EQ(piece.membersA, piece.membersB) << piece.boundary;
+    tPieces += piece.kind == "t_junction";
+  }
+  EXPECT_EQ(tPieces, 2);
+  EXPECT_LE(result.evennessAfter, result.evennessBefore);
+}
+
+TEST(LayoutPropagation, InfeasiblePatchesCutChains) {
   // An infeasible patch in the middle of a chain of three cuts it: the others fall back too.
   const auto strip = patching::buildPatchGraph(layoutOf({{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}}));
   std::vector<PatchSideData> three(3, sideData());

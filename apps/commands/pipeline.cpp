@@ -216,6 +216,7 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
       if (!p.egg) continue;
       fabrication::FabricationPatch entry{p.id, &p.egg->grid, std::nullopt};
       if (p.simulation) entry.deployedCentrelines = p.simulation->deployed.centrelines;
+      entry.freeSides = freeSidesOf(patching.graph, p.id);  // supports only on the design boundary
       grids.push_back(std::move(entry));
     }
     // The grid decides whether its parts can be cut (a lamella whose slots leave no place for a
@@ -225,6 +226,7 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
       FabricationStageResult fab = runFabricationStage(scene, grids, out.staging(), sharedLamellae(patching, patches));
       report.stageRan("fabrication", secondsSince(fabStart));
       report.section("fabrication") = fab.report;
+      result.failures.insert(result.failures.end(), fab.failures.begin(), fab.failures.end());
     } catch (const InvalidInput& e) {
       report.stageSkipped("fabrication", std::string("the grid cannot be cut with these settings: ") + e.what());
       result.failures.push_back(std::string("fabrication: ") + e.what());

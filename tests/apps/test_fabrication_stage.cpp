@@ -33,7 +33,7 @@ TEST(FabricationStage, SceneKeysReachTheOptions) {
   const Scene scene = parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"},
       "lamella": {"width_m": 0.01, "thickness_m": 0.001, "material": "limewood"},
       "fabrication": {"sheet_mm": [1000, 600], "kerf_mm": 0.1, "stock_length_mm": 900, "end_overhang_mm": 6,
-                      "ground_height_m": 0.2},
+                      "ground_height_m": 0.2, "min_splice_clearance_mm": 7},
       "outputs": ["report", "stickers"]})"),
                                  "/scenes/test.json");
   const auto o = fabricationOptionsFromScene(scene);
@@ -45,6 +45,7 @@ TEST(FabricationStage, SceneKeysReachTheOptions) {
   EXPECT_DOUBLE_EQ(o.stock_length_mm, 900.0);
   EXPECT_DOUBLE_EQ(o.endOverhangMm(), 6.0);
   EXPECT_DOUBLE_EQ(*o.ground_height_m, 0.2);
+  EXPECT_DOUBLE_EQ(o.minSpliceClearanceMm(), 7.0);
   const auto outputs = fabricationOutputsFromScene(scene);
   EXPECT_FALSE(outputs.cutFiles);
   EXPECT_TRUE(outputs.stickers);

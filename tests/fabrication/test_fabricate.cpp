@@ -308,3 +308,30 @@ TEST(Fabricate, SolvedBumpPatchEndToEnd) {
 
 }  // namespace
 }  // namespace egg::fabrication
+
+namespace egg::fabrication {
+namespace {
+
+TEST(Fabricate, LamellasThatCannotBeSplicedAreListedAndTheRestIsCut) {
+  // 20 mm stock with 100 mm clear of every hole (holes 100 mm apart): no lamella can be spliced.
+  const EggGrid grid = testing::handGrid();
+  auto options = testing::handOptions();
+  options.stock_length_mm = 20.0;
+  options.splice_clearance_mm = 100.0;
+  options.min_splice_clearance_mm = 100.0;
+  const auto r = fabricate({{0, &grid, std::nullopt}}, options);
+  ASSERT_EQ(r.unspliceable.size(), r.lamellae.size());
+  for (size_t i = 0; i < r.lamellae.size(); ++i) {
+    EXPECT_NE(r.unspliceable[i].find("lamella " + r.lamellae[i].id + " "), std::string::npos) << r.unspliceable[i];
+    EXPECT_TRUE(r.lamellae[i].segments.empty());
+  }
+  EXPECT_EQ(r.lamellaNesting.sheets, 0);       // nothing to cut
+  EXPECT_FALSE(r.stickers.empty());            // the stickers and supports do not depend on it
+  EXPECT_EQ(fabricationReport(r)["unspliceable_lamellae"].size(), r.lamellae.size());
+  EXPECT_NE(bomCsv(r).find("NOT CUT: no splice position"), std::string::npos);
+  // With the hand options every lamella is one piece and none is listed.
+  EXPECT_TRUE(fabricate({{0, &grid, std::nullopt}}, testing::handOptions()).unspliceable.empty());
+}
+
+}  // namespace
+}  // namespace egg::fabrication

@@ -332,6 +332,16 @@ nlohmann::json fabricationReport(const FabricationResult& r, const std::vector<s
   j["max_torsion_stress_pa"] = r.maxTorsionStressPa;
   j["warnings"] = r.warnings;
   j["unspliceable_lamellae"] = r.unspliceable;
+  // Per lamella (in the BOM's order): the stress check behind max_stress_ratio.
+  nlohmann::json stress = nlohmann::json::array();
+  for (size_t i = 0; i < r.lamellae.size() && i < r.stress.size(); ++i) {
+    stress.push_back({{"id", r.lamellae[i].id},
+                      {"ratio", r.stress[i].stressRatio},
+                      {"bending_stress_pa", r.stress[i].maxBendingStress_pa},
+                      {"torsion_stress_pa", r.stress[i].maxTorsionStress_pa},
+                      {"from_simulation", r.stress[i].fromSimulation}});
+  }
+  j["lamella_stress"] = stress;
   j["files"] = files;
   j["seconds"] = r.seconds;
   return j;

@@ -76,7 +76,9 @@ std::vector<std::string> writeFabricationFiles(const FabricationResult& result, 
 std::string bomCsv(const FabricationResult& result);
 
 // report.json "fabrication": lamellae, notches, plain_holes, stickers, supports, sheets, yield,
-// max_stress_ratio, mass_kg, files[] and the details behind them (units in the keys).
+// max_stress_ratio, mass_kg, files[] and the details behind them (units in the keys), with
+// lamella_stress[] ({id, ratio, bending_stress_pa, torsion_stress_pa, from_simulation} per lamella)
+// and unspliceable_lamellae[] (why each lamella left out of the cut files cannot be spliced).
 nlohmann::json fabricationReport(const FabricationResult& result, const std::vector<std::string>& files = {});
 
 }  // namespace egg::fabrication

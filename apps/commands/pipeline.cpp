@@ -4,6 +4,7 @@
 #include "apps/commands/joined_stage.hpp"
 #include "apps/commands/patch_stage.hpp"
 #include "apps/commands/patching_stage.hpp"
+#include "apps/commands/report_html.hpp"
 #include "apps/commands/surface_loading.hpp"
 #include "core/errors.hpp"
 #include "core/geodesic/distance_solver.hpp"
@@ -246,7 +247,10 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   result.seconds = secondsSince(start);
   result.report = report.finish(result.seconds);
   if (!result.failures.empty()) result.report["failures"] = result.failures;
-  if (scene.wants("report")) writeFileAtomically(out.staging() / "report.json", result.report.dump(2) + "\n");
+  if (scene.wants("report")) {
+    writeFileAtomically(out.staging() / "report.json", result.report.dump(2) + "\n");
+    writeReportHtml(out.staging(), result.report);  // the same, for a person (issue 18)
+  }
   out.commit();
   result.out_dir = std::filesystem::absolute(options.out_dir);
   progress("done", 1.0);

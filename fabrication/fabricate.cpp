@@ -6,6 +6,7 @@
 #include "fabrication/pdf_writer.hpp"
 #include "fabrication/sheet_layout.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -203,7 +204,8 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
     s.blockMm = block;
     double drop = 0.0;
     r.supportSolids.push_back(supportSolid(s, block, options.bolt_diameter_mm, 3.0 * options.bolt_diameter_mm, &drop));
-    if (drop > 0.0) sunk.push_back(s.id + " (" + formatted("%.0f", drop) + " mm)");
+    s.belowGroundMm = drop;
+    if (drop > 0.0) sunk.push_back(s.id);
   }
   r.narrowedSupportBlocks = narrowed;
   auto list = [](const std::vector<std::string>& items) {
@@ -217,10 +219,20 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
                          "(kind bracket in supports/supports.csv, not drawn): " + list(brackets));
   }
   if (!sunk.empty()) {
+    // The deepest ten by name; every one in supports.csv (below_ground_mm).
+    std::vector<const Support*> deepest;
+    for (const auto& s : r.supports) {
+      if (s.belowGroundMm > 0.0) deepest.push_back(&s);
+    }
+    std::sort(deepest.begin(), deepest.end(), [](const Support* a, const Support* b) { return a->belowGroundMm > b->belowGroundMm; });
+    std::vector<std::string> named;
+    for (size_t i = 0; i < deepest.size() && i < 10; ++i) {
+      named.push_back(deepest[i]->id + " (" + formatted("%.0f", deepest[i]->belowGroundMm) + " mm)");
+    }
     r.warnings.push_back(std::to_string(sunk.size()) +
                          " support blocks stand on steep contact planes too close to the ground even at the lamella width: "
-                         "their tops fall below the ground (fabrication.ground_height_m) by the depth given; sink them that "
-                         "deep or use wall brackets: " + list(sunk));
+                         "their tops fall below the ground (fabrication.ground_height_m); sink them that deep or use wall "
+                         "brackets (below_ground_mm in supports/supports.csv); the deepest: " + list(named));
   }
   checkRules(patches, r);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -183,7 +183,7 @@ std::string toBinaryStl(const TriangleMesh& mesh, const std::string& header) {
 
 std::string supportsCsv(const std::vector<Support>& supports) {
   std::ostringstream s;
-  s << "id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind,block_mm\n";
+  s << "id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind,block_mm,below_ground_mm\n";
   char line[512];
   for (const auto& p : supports) {
     std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f,%.3f,%.6f,%s,", p.id.c_str(),
@@ -192,8 +192,10 @@ std::string supportsCsv(const std::vector<Support>& supports) {
                   p.block ? "block" : "bracket");
     s << line;
     if (p.block && p.blockMm > 0.0) {
-      std::snprintf(line, sizeof line, "%.0f", p.blockMm);
+      std::snprintf(line, sizeof line, "%.0f,%.1f", p.blockMm, p.belowGroundMm);
       s << line;
+    } else {
+      s << ",";
     }
     s << "\n";
   }

@@ -26,6 +26,7 @@ struct Support {
   // sit on a block: it needs a bracket fixed to the wall, which is listed but not drawn.
   bool block = true;
   double blockMm = 0.0;           // footprint side of its block (fabricate(); 0 for a bracket)
+  double belowGroundMm = 0.0;     // how far the block reaches below the ground (supportSolid's drop)
 };
 
 struct TriangleMesh {
@@ -52,7 +53,8 @@ TriangleMesh supportSolid(const Support& support, double blockMm, double holeDia
 std::string toBinaryStl(const TriangleMesh& mesh, const std::string& header);
 
 // The supports table: id, connection, reason, x_m, y_m, z_m, nx, ny, nz, inclination_deg,
-// direction_deg, height_m, kind (block | bracket), block_mm (footprint side; empty for a bracket).
+// direction_deg, height_m, kind (block | bracket), block_mm (footprint side; empty for a bracket),
+// below_ground_mm (how far the block reaches below the ground; empty for a bracket).
 std::string supportsCsv(const std::vector<Support>& supports);
 
 }  // namespace egg::fabrication

@@ -124,7 +124,7 @@ TEST(Supports, TooSteepIsABracketAndBelowGroundAnError) {
   EXPECT_FALSE(supports[0].block);
   EXPECT_NEAR(supports[0].inclinationDeg, 87.14, 0.01);
   EXPECT_TRUE(supports[1].block);
-  EXPECT_NE(supportsCsv(supports).find(",bracket,\n"), std::string::npos);
+  EXPECT_NE(supportsCsv(supports).find(",bracket,,\n"), std::string::npos);
   auto options = testing::handOptions();
   options.ground_height_m = 0.6;
   const EggGrid flat = testing::handGrid();
@@ -135,7 +135,7 @@ TEST(Supports, CsvHasOneRowPerSupport) {
   const EggGrid grid = testing::handGrid();
   const auto csv = supportsCsv(planSupports({{0, &grid, std::nullopt}}, testing::handOptions()));
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
-  EXPECT_EQ(csv.rfind("id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind,block_mm\n", 0), 0u);
+  EXPECT_EQ(csv.rfind("id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind,block_mm,below_ground_mm\n", 0), 0u);
   EXPECT_NE(csv.find("S001,P0-C0-0,anchor: corner,0.000000,0.000000,0.500000,0.000000,0.000000,1.000000,0.000,0.000,0.100000,block"),
             std::string::npos)
       << csv;

@@ -250,11 +250,11 @@ std::string bomCsv(const FabricationResult& r) {
     int holes = 0, slots = 0;
     for (const auto& f : p.features) (f.kind == FeatureKind::Slot ? slots : holes)++;
     const double volume = p.lengthMm * p.widthMm * o.lamella_thickness_mm * 1e-9;
-    std::snprintf(line, sizeof line, "lamella,%s,1,%.2f,%.2f,%.2f,,%.6g,%.6g,%s; %d holes; %d slots; %zu segments; stress ratio %.3f\n",
+    const char* notCut = p.unspliceable.empty() ? "" : "; NOT CUT: no splice position (report.json unspliceable_lamellae)";
+    std::snprintf(line, sizeof line, "lamella,%s,1,%.2f,%.2f,%.2f,,%.6g,%.6g,%s; %d holes; %d slots; %zu segments; stress ratio %.3f%s\n",
                   p.id.c_str(), p.lengthMm, p.widthMm, o.lamella_thickness_mm, volume, volume * rho,
-                  r.material.name.c_str(), holes, slots, p.segments.size(), r.stress[i].stressRatio);
+                  r.material.name.c_str(), holes, slots, p.segments.size(), r.stress[i].stressRatio, notCut);
     s << line;
-    if (!p.unspliceable.empty()) s.seekp(-1, std::ios_base::cur), s << "; NOT CUT: no splice position (report.json unspliceable_lamellae)\n";
   }
   s << "splice,," << r.splices << ",,,,,,,butt joints clear of holes by " << formatted("%.1f", o.spliceClearanceMm())
     << " mm where a stock length allows, else at least " << formatted("%.1f", o.minSpliceClearanceMm()) << " mm\n";

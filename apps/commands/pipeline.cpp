@@ -220,9 +220,9 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
       entry.freeSides = freeSidesOf(patching.graph, p.id);  // supports only on the design boundary
       grids.push_back(std::move(entry));
     }
-    // The grid decides whether its parts can be cut (a lamella whose slots leave no place for a
-    // splice, a part wider than the sheet): a failure of this run with its report, not bad input
-    // (the options themselves were checked when the scene was read).
+    // The grid decides whether its parts can be cut (a part wider than the sheet; a lamella whose
+    // slots leave no place for a splice is left out and listed, fab.failures): a failure of this
+    // run with its report, not bad input (the options themselves were checked when the scene was read).
     try {
       FabricationStageResult fab = runFabricationStage(scene, grids, out.staging(), sharedLamellae(patching, patches));
       report.stageRan("fabrication", secondsSince(fabStart));

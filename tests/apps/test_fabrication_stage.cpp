@@ -105,3 +105,23 @@ TEST(FabricationStage, SheetTooSmallIsBadInputNamingTheSceneField) {
 
 }  // namespace
 }  // namespace egg::app
+
+namespace egg::app {
+namespace {
+
+TEST(FabricationStage, FreeSidesFromThePatchGraph) {
+  // Patch 0: side 2 on the design boundary, side 1 shared with patch 1's side 3, side 0 half free
+  // and half a T-junction: free (a support may stand on its free part). Patch 7 is not in the
+  // graph (one patch, no graph): all four sides free.
+  patching::PatchGraph graph;
+  graph.boundaries.push_back({0, "free", {{0, 2, 0.0, 1.0, false}}, 10.0});
+  graph.boundaries.push_back({1, "shared", {{0, 1, 0.0, 1.0, false}, {1, 3, 0.0, 1.0, true}}, 8.0});
+  graph.boundaries.push_back({2, "free", {{0, 0, 0.0, 0.5, false}}, 4.0});
+  graph.boundaries.push_back({3, "t_junction", {{0, 0, 0.5, 1.0, false}, {2, 2, 0.0, 1.0, true}}, 4.0});
+  EXPECT_EQ(freeSidesOf(graph, 0), (std::array<bool, 4>{true, false, true, false}));
+  EXPECT_EQ(freeSidesOf(graph, 1), (std::array<bool, 4>{false, false, false, false}));
+  EXPECT_EQ(freeSidesOf(graph, 7), (std::array<bool, 4>{true, true, true, true}));
+}
+
+}  // namespace
+}  // namespace egg::app

@@ -202,12 +202,27 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
         const double hi = std::min(reach, k == merged.size() ? plan.lengthMm : merged[k].first);
         if (hi > lo) widest = std::max(widest, hi - lo);
       }
+      // The stock it would take: a splice has to jump every zone of cut-outs grown by the minimum
+      // clearance, so the longest such zone (from the strip's end where one reaches it).
+      double needed = 0.0, zoneLo = 0.0, zoneHi = 0.0;
+      bool open = false;
+      for (const auto& [lo, hi] : merged) {
+        const double a = std::max(0.0, lo - minClearanceMm), b = std::min(plan.lengthMm, hi + minClearanceMm);
+        if (open && a <= zoneHi) {
+          zoneHi = std::max(zoneHi, b);
+        } else {
+          if (open) needed = std::max(needed, zoneHi - zoneLo);
+          zoneLo = a, zoneHi = b, open = true;
+        }
+      }
+      if (open) needed = std::max(needed, zoneHi - zoneLo);
       std::ostringstream msg;
       msg << field << ": lamella " << plan.id << " (" << plan.lengthMm << " mm) cannot be spliced between " << start
           << " and " << reach << " mm (one stock length): its holes and slots leave gaps of at most "
-          << widest << " mm there, and a splice needs " << minClearanceMm
-          << " mm clear each side (fabrication.min_splice_clearance_mm; " << clearanceMm
-          << " mm preferred, fabrication.splice_clearance_mm)";
+          << widest << " mm there, and a splice needs a gap of 2 x " << minClearanceMm
+          << " mm (fabrication.min_splice_clearance_mm each side; " << clearanceMm
+          << " mm preferred, fabrication.splice_clearance_mm); it would take pieces of up to " << std::ceil(needed)
+          << " mm";
       throw InvalidInput(msg.str());
     }
     plan.splicesMm.push_back(cut);

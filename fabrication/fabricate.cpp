@@ -6,6 +6,7 @@
 #include "fabrication/pdf_writer.hpp"
 #include "fabrication/sheet_layout.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -66,6 +67,27 @@ void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult&
     r.warnings.push_back("lamella " + r.maxStressLamella + " is stressed to " + formatted("%.2f", r.maxStressRatio) +
                          " of the strength of " + r.material.name + " (Section 3.5.2: check sigma = E kappa t / 2)");
   }
+  // Splices that had to go closer to a hole or slot than splice_clearance_mm (placeSplices): the
+  // splice plate there can be at most twice that free length.
+  int tight = 0;
+  const LamellaPlan* tightest = nullptr;
+  size_t tightestIndex = 0;
+  for (const auto& plan : r.lamellae) {
+    for (size_t k = 0; k < plan.spliceClearancesMm.size(); ++k) {
+      if (plan.spliceClearancesMm[k] >= o.spliceClearanceMm() - 1e-9) continue;
+      ++tight;
+      if (!tightest || plan.spliceClearancesMm[k] < tightest->spliceClearancesMm[tightestIndex]) tightest = &plan, tightestIndex = k;
+    }
+  }
+  if (tightest) {
+    r.warnings.push_back(std::to_string(tight) + " splices lie closer than fabrication.splice_clearance_mm = " +
+                         formatted("%.0f", o.spliceClearanceMm()) +
+                         " mm to a hole or slot (no clearer position within a stock length); the tightest, " + tightest->id +
+                         " S" + std::to_string(tightestIndex + 1) + " at " + formatted("%.0f", tightest->splicesMm[tightestIndex]) +
+                         " mm, has " + formatted("%.0f", tightest->spliceClearancesMm[tightestIndex]) +
+                         " mm free each side: a splice plate there is at most " +
+                         formatted("%.0f", 2.0 * tightest->spliceClearancesMm[tightestIndex]) + " mm long (bom.csv splice_joint rows)");
+  }
   if (r.counts.droppedBoundary > 0) {
     r.warnings.push_back(std::to_string(r.counts.droppedBoundary) +
                          " notches on boundary members are cut as plain holes (no notches on boundaries, Section 3.5.3)");
@@ -83,6 +105,9 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
   r.material = materialByName(options.material);
   r.lamellae = planLamellae(patches, options, shared);
   r.counts = countFeatures(r.lamellae);
+  for (const auto& plan : r.lamellae) {
+    if (!plan.unspliceable.empty()) r.unspliceable.push_back(plan.unspliceable);
+  }
   const double t = options.lamella_thickness_mm / 1000.0, w = options.lamella_width_mm / 1000.0;
 
   // One bolt per connection, one for each group of connections merged on a shared lamella.
@@ -155,21 +180,59 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
   }
 
   // Supports.
-  r.supports = planSupports(patches, options, &r.groundHeightM);
-  for (const auto& s : r.supports) {
+  r.supports = planSupports(patches, options, &r.groundHeightM, &r.anchorsOnSharedSides);
+  std::vector<std::string> brackets, sunk;
+  int narrowed = 0;
+  for (auto& s : r.supports) {
     if (!s.block) {
       r.supportSolids.emplace_back();  // no block: listed in supports.csv as a bracket
-      r.warnings.push_back("support " + s.id + " at " + s.connectionId + ": the contact plane is inclined " +
-                           formatted("%.1f", s.inclinationDeg) + " deg, too steep for a block (more than 80): it needs a wall bracket");
+      brackets.push_back(s.id + " (" + formatted("%.1f", s.inclinationDeg) + " deg)");
       continue;
     }
-    double drop = 0.0;
-    r.supportSolids.push_back(supportSolid(s, options.supportBlockMm(), options.bolt_diameter_mm,
-                                           3.0 * options.bolt_diameter_mm, &drop));
-    if (drop > 0.0) {
-      r.warnings.push_back("support " + s.id + ": the contact plane comes within 5 mm of the ground; the block reaches " +
-                           formatted("%.1f", drop) + " mm below it");
+    // A steep contact plane close to the ground (the foot of a wall, as at the Lilium's base)
+    // falls below the ground over a wide footprint: the plane's lowest point over a square of side
+    // b is h - (b/2)(|nx| + |ny|)/nz. The default block narrows to the widest whose top stays 5 mm
+    // above the ground, but not below the lamella's width (it must still carry the lamella); a block
+    // that then still reaches below the ground is reported with its depth.
+    double block = options.supportBlockMm();
+    const double slope = (std::abs(s.normal.x()) + std::abs(s.normal.y())) / s.normal.z();
+    const double widest = slope > 0.0 ? 2.0 * (s.heightM * 1000.0 - 5.0) / slope : block;
+    if (!options.support_block_mm && widest < block) {
+      block = std::min(block, std::max(std::floor(widest), options.lamella_width_mm));
+      ++narrowed;
     }
+    s.blockMm = block;
+    double drop = 0.0;
+    r.supportSolids.push_back(supportSolid(s, block, options.bolt_diameter_mm, 3.0 * options.bolt_diameter_mm, &drop));
+    s.belowGroundMm = drop;
+    if (drop > 0.0) sunk.push_back(s.id);
+  }
+  r.narrowedSupportBlocks = narrowed;
+  auto list = [](const std::vector<std::string>& items) {
+    std::string text;
+    for (size_t i = 0; i < items.size(); ++i) text += (i ? ", " : "") + items[i];
+    return text;
+  };
+  if (!brackets.empty()) {
+    r.warnings.push_back(std::to_string(brackets.size()) +
+                         " supports have contact planes steeper than 80 deg, too steep for a block: they need wall brackets "
+                         "(kind bracket in supports/supports.csv, not drawn): " + list(brackets));
+  }
+  if (!sunk.empty()) {
+    // The deepest ten by name; every one in supports.csv (below_ground_mm).
+    std::vector<const Support*> deepest;
+    for (const auto& s : r.supports) {
+      if (s.belowGroundMm > 0.0) deepest.push_back(&s);
+    }
+    std::sort(deepest.begin(), deepest.end(), [](const Support* a, const Support* b) { return a->belowGroundMm > b->belowGroundMm; });
+    std::vector<std::string> named;
+    for (size_t i = 0; i < deepest.size() && i < 10; ++i) {
+      named.push_back(deepest[i]->id + " (" + formatted("%.0f", deepest[i]->belowGroundMm) + " mm)");
+    }
+    r.warnings.push_back(std::to_string(sunk.size()) +
+                         " support blocks stand on steep contact planes too close to the ground even at the lamella width: "
+                         "their tops fall below the ground (fabrication.ground_height_m); sink them that deep or use wall "
+                         "brackets (below_ground_mm in supports/supports.csv); the deepest: " + list(named));
   }
   checkRules(patches, r);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -187,18 +250,20 @@ std::string bomCsv(const FabricationResult& r) {
     int holes = 0, slots = 0;
     for (const auto& f : p.features) (f.kind == FeatureKind::Slot ? slots : holes)++;
     const double volume = p.lengthMm * p.widthMm * o.lamella_thickness_mm * 1e-9;
-    std::snprintf(line, sizeof line, "lamella,%s,1,%.2f,%.2f,%.2f,,%.6g,%.6g,%s; %d holes; %d slots; %zu segments; stress ratio %.3f\n",
+    const char* notCut = p.unspliceable.empty() ? "" : "; NOT CUT: no splice position (report.json unspliceable_lamellae)";
+    std::snprintf(line, sizeof line, "lamella,%s,1,%.2f,%.2f,%.2f,,%.6g,%.6g,%s; %d holes; %d slots; %zu segments; stress ratio %.3f%s\n",
                   p.id.c_str(), p.lengthMm, p.widthMm, o.lamella_thickness_mm, volume, volume * rho,
-                  r.material.name.c_str(), holes, slots, p.segments.size(), r.stress[i].stressRatio);
+                  r.material.name.c_str(), holes, slots, p.segments.size(), r.stress[i].stressRatio, notCut);
     s << line;
   }
   s << "splice,," << r.splices << ",,,,,,,butt joints clear of holes by " << formatted("%.1f", o.spliceClearanceMm())
-    << " mm\n";
+    << " mm where a stock length allows, else at least " << formatted("%.1f", o.minSpliceClearanceMm()) << " mm\n";
   // Every splice: where along its lamella (length_mm = the cut's distance from the strip's start).
   for (const auto& p : r.lamellae) {
     for (size_t k = 0; k < p.splicesMm.size(); ++k) {
-      std::snprintf(line, sizeof line, "splice_joint,%s S%zu,1,%.2f,%.2f,%.2f,,,,between pieces %zu and %zu\n", p.id.c_str(),
-                    k + 1, p.splicesMm[k], p.widthMm, o.lamella_thickness_mm, k + 1, k + 2);
+      std::snprintf(line, sizeof line, "splice_joint,%s S%zu,1,%.2f,%.2f,%.2f,,,,between pieces %zu and %zu; %.1f mm free each side\n",
+                    p.id.c_str(), k + 1, p.splicesMm[k], p.widthMm, o.lamella_thickness_mm, k + 1, k + 2,
+                    p.spliceClearancesMm[k]);
       s << line;
     }
   }
@@ -265,6 +330,8 @@ nlohmann::json fabricationReport(const FabricationResult& r, const std::vector<s
   j["sticker_sheets"] = r.stickerNesting.sheets;
   j["supports"] = r.supports.size();
   j["ground_height_m"] = r.groundHeightM;
+  j["anchors_on_shared_sides"] = r.anchorsOnSharedSides;
+  j["narrowed_support_blocks"] = r.narrowedSupportBlocks;
   j["sheets"] = r.lamellaNesting.sheets;
   j["yield"] = r.lamellaNesting.yield;
   j["material"] = r.material.name;
@@ -276,6 +343,17 @@ nlohmann::json fabricationReport(const FabricationResult& r, const std::vector<s
   j["max_bending_stress_pa"] = r.maxBendingStressPa;
   j["max_torsion_stress_pa"] = r.maxTorsionStressPa;
   j["warnings"] = r.warnings;
+  j["unspliceable_lamellae"] = r.unspliceable;
+  // Per lamella (in the BOM's order): the stress check behind max_stress_ratio.
+  nlohmann::json stress = nlohmann::json::array();
+  for (size_t i = 0; i < r.lamellae.size() && i < r.stress.size(); ++i) {
+    stress.push_back({{"id", r.lamellae[i].id},
+                      {"ratio", r.stress[i].stressRatio},
+                      {"bending_stress_pa", r.stress[i].maxBendingStress_pa},
+                      {"torsion_stress_pa", r.stress[i].maxTorsionStress_pa},
+                      {"from_simulation", r.stress[i].fromSimulation}});
+  }
+  j["lamella_stress"] = stress;
   j["files"] = files;
   j["seconds"] = r.seconds;
   return j;

@@ -30,6 +30,8 @@ struct FabricationResult {
   std::vector<Support> supports;
   std::vector<TriangleMesh> supportSolids;  // one per support, millimetres
   double groundHeightM = 0.0;
+  int anchorsOnSharedSides = 0;            // grid anchors without a support: held by the neighbouring patch
+  int narrowedSupportBlocks = 0;           // default blocks narrowed to keep their tops above the ground
   Nesting lamellaNesting, stickerNesting;
   std::vector<Drawing> sheets;             // lamella sheets
   std::vector<Drawing> stickerSheets;      // PTFE foil sheets
@@ -44,13 +46,15 @@ struct FabricationResult {
   double maxBendingStressPa = 0.0, maxTorsionStressPa = 0.0;
   std::string maxStressLamella;
   std::vector<std::string> warnings;       // Section 3.5.2 rules and other things to look at
+  std::vector<std::string> unspliceable;   // lamellas left out of the cut files: why each cannot be spliced
   double seconds = 0.0;
 };
 
 // Validates the options, plans the lamellas (one lamella for each shared side, holding the holes
-// of both patches), splices, stickers and supports, nests the parts and checks stresses. Throws
-// InvalidInput (bad option, a part larger than the sheet, a lamella that cannot be spliced clear
-// of its holes, a support that cannot be built, a shared side that does not match).
+// of both patches), splices, stickers and supports, nests the parts and checks stresses. A lamella
+// that cannot be spliced clear of its holes is left out of the sheets and listed in `unspliceable`
+// (a failure of the run, but the rest is cut). Throws InvalidInput (bad option, a part larger than
+// the sheet, a support that cannot be built, a shared side that does not match).
 FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
                             const std::vector<SharedBoundary>& shared = {});
 
@@ -72,7 +76,9 @@ std::vector<std::string> writeFabricationFiles(const FabricationResult& result, 
 std::string bomCsv(const FabricationResult& result);
 
 // report.json "fabrication": lamellae, notches, plain_holes, stickers, supports, sheets, yield,
-// max_stress_ratio, mass_kg, files[] and the details behind them (units in the keys).
+// max_stress_ratio, mass_kg, files[] and the details behind them (units in the keys), with
+// lamella_stress[] ({id, ratio, bending_stress_pa, torsion_stress_pa, from_simulation} per lamella)
+// and unspliceable_lamellae[] (why each lamella left out of the cut files cannot be spliced).
 nlohmann::json fabricationReport(const FabricationResult& result, const std::vector<std::string>& files = {});
 
 }  // namespace egg::fabrication

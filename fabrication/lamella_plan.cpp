@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace egg::fabrication {
@@ -113,7 +114,18 @@ std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patch
   const double piece = longestPieceMm(options);
   const std::string field = piece < options.stock_length_mm ? "fabrication.sheet_mm (the longest strip a sheet holds)"
                                                              : "fabrication.stock_length_mm";
-  for (auto& plan : plans) placeSplices(plan, piece, options.spliceClearanceMm(), options.bolt_diameter_mm, field);
+  for (auto& plan : plans) {
+    try {
+      placeSplices(plan, piece, options.spliceClearanceMm(), options.bolt_diameter_mm, field, options.minSpliceClearanceMm());
+    } catch (const InvalidInput& e) {
+      // Slots that leave no room for any splice within a stock length (overlapping slots on the
+      // Yas canopy's 45 m lamellas): no cut file can make it; the rest of the grid still can.
+      plan.splicesMm.clear();
+      plan.spliceClearancesMm.clear();
+      plan.segments.clear();
+      plan.unspliceable = e.what();
+    }
+  }
   return plans;
 }
 
@@ -122,43 +134,99 @@ double longestPieceMm(const FabricationOptions& options) {
 }
 
 void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
-                  const std::string& field) {
+                  const std::string& field, double minClearanceMm) {
   plan.splicesMm.clear();
+  plan.spliceClearancesMm.clear();
   plan.segments.clear();
-  // Forbidden intervals: every feature's extent grown by the clearance.
-  std::vector<std::pair<double, double>> forbidden;
-  for (const auto& f : plan.features) {
-    forbidden.emplace_back(f.minXMm(boltDiameterMm) - clearanceMm, f.maxXMm(boltDiameterMm) + clearanceMm);
+  if (minClearanceMm < 0.0) minClearanceMm = clearanceMm;
+  // What is cut out of the strip (holes, slots with their round ends), merged where they overlap.
+  std::vector<std::pair<double, double>> cutOut;
+  for (const auto& f : plan.features) cutOut.emplace_back(f.minXMm(boltDiameterMm), f.maxXMm(boltDiameterMm));
+  std::sort(cutOut.begin(), cutOut.end());
+  std::vector<std::pair<double, double>> merged;
+  for (const auto& e : cutOut) {
+    if (!merged.empty() && e.first <= merged.back().second) merged.back().second = std::max(merged.back().second, e.second);
+    else merged.push_back(e);
   }
-  auto clearAt = [&](double x) {
-    for (const auto& [lo, hi] : forbidden) {
-      if (x > lo && x < hi) return false;
-    }
-    return true;
+  // Free length from x to the nearest cut-out (zero inside one).
+  auto freeAt = [&](double x) {
+    double free = std::numeric_limits<double>::infinity();
+    for (const auto& [lo, hi] : merged) free = std::min(free, x < lo ? lo - x : x > hi ? x - hi : 0.0);
+    return free;
   };
-  double start = 0.0;
-  while (plan.lengthMm - start > stockLengthMm + 1e-9) {
-    // The furthest clear position within one stock length: either the stock end itself or the
-    // lower end of the forbidden interval that covers it (intervals may chain, so repeat).
+  // The furthest position in (start, start + stock] keeping `clear` from every cut-out: the stock
+  // end itself or the lower end of the zone around a cut-out that covers it (zones chain, so
+  // repeat); -1 when there is none.
+  auto furthest = [&](double start, double clear) {
     double cut = start + stockLengthMm;
     bool moved = true;
     while (moved && cut > start) {
       moved = false;
-      for (const auto& [lo, hi] : forbidden) {
-        if (cut > lo && cut < hi) {
-          cut = lo;
+      for (const auto& [lo, hi] : merged) {
+        if (cut > lo - clear && cut < hi + clear) {
+          cut = lo - clear;
           moved = true;
         }
       }
     }
-    if (cut <= start + 1e-9 || !clearAt(cut)) {
+    return cut > start + 1e-9 && freeAt(cut) >= clear - 1e-9 ? cut : -1.0;
+  };
+  double start = 0.0;
+  while (plan.lengthMm - start > stockLengthMm + 1e-9) {
+    const double reach = start + stockLengthMm;
+    // The furthest position within one stock length with the full clearance.
+    double cut = furthest(start, clearanceMm);
+    if (cut < 0.0) {
+      // None: the middle of the widest gap between cut-outs (or a cut-out and the previous
+      // splice) in this stock length, the most room a shorter splice can get here.
+      double best = -1.0;
+      for (size_t k = 0; k <= merged.size(); ++k) {
+        const double lo = std::max(start, k == 0 ? 0.0 : merged[k - 1].second);
+        const double hi = k == merged.size() ? plan.lengthMm : merged[k].first;
+        if (hi <= lo || lo >= reach) continue;
+        const double x = std::min((lo + hi) / 2.0, reach);
+        const double free = std::min(x - lo, hi - x);
+        if (free > best + 1e-9 || (std::abs(free - best) <= 1e-9 && x > cut)) best = free, cut = x;
+      }
+      // (The previous splice counts as a side of its gap; a position closer to it than the
+      // minimum but clear of the cut-outs still beats none.)
+      if (best < minClearanceMm - 1e-9) cut = furthest(start, minClearanceMm);
+    }
+    // No position keeps the minimum either: impossible (whichever earlier cuts: from any clear
+    // position the next clear one lies within a stock length when the strip can be cut at all, so
+    // this stretch fails for every choice).
+    if (cut < 0.0) {
+      double widest = 0.0;
+      for (size_t k = 0; k <= merged.size(); ++k) {
+        const double lo = std::max(start, k == 0 ? 0.0 : merged[k - 1].second);
+        const double hi = std::min(reach, k == merged.size() ? plan.lengthMm : merged[k].first);
+        if (hi > lo) widest = std::max(widest, hi - lo);
+      }
+      // The stock it would take: a splice has to jump every zone of cut-outs grown by the minimum
+      // clearance, so the longest such zone (from the strip's end where one reaches it).
+      double needed = 0.0, zoneLo = 0.0, zoneHi = 0.0;
+      bool open = false;
+      for (const auto& [lo, hi] : merged) {
+        const double a = std::max(0.0, lo - minClearanceMm), b = std::min(plan.lengthMm, hi + minClearanceMm);
+        if (open && a <= zoneHi) {
+          zoneHi = std::max(zoneHi, b);
+        } else {
+          if (open) needed = std::max(needed, zoneHi - zoneLo);
+          zoneLo = a, zoneHi = b, open = true;
+        }
+      }
+      if (open) needed = std::max(needed, zoneHi - zoneLo);
       std::ostringstream msg;
-      msg << field << ": lamella " << plan.id << " (" << plan.lengthMm
-          << " mm) cannot be spliced: no position within " << stockLengthMm << " mm of " << start
-          << " mm lies " << clearanceMm << " mm clear of its holes and slots (fabrication.splice_clearance_mm)";
+      msg << field << ": lamella " << plan.id << " (" << plan.lengthMm << " mm) cannot be spliced between " << start
+          << " and " << reach << " mm (one stock length): its holes and slots leave gaps of at most "
+          << widest << " mm there, and a splice needs a gap of 2 x " << minClearanceMm
+          << " mm (fabrication.min_splice_clearance_mm each side; " << clearanceMm
+          << " mm preferred, fabrication.splice_clearance_mm); it would take pieces of up to " << std::ceil(needed)
+          << " mm";
       throw InvalidInput(msg.str());
     }
     plan.splicesMm.push_back(cut);
+    plan.spliceClearancesMm.push_back(freeAt(cut));
     plan.segments.push_back({start, cut});
     start = cut;
   }

@@ -51,7 +51,10 @@ struct LamellaPlan {
   double overhangMm = 0.0;
   std::vector<LamellaFeature> features;  // sorted along the strip
   std::vector<double> splicesMm;         // cut positions of the splices, ascending
-  std::vector<LamellaSegment> segments;  // pieces between splices (at least one)
+  std::vector<double> spliceClearancesMm;  // per splice: the free length from the cut to the nearest hole or slot
+  std::vector<LamellaSegment> segments;  // pieces between splices (at least one; none when unspliceable)
+  // Why no splice positions exist (placeSplices' message): the lamella is planned but not cut.
+  std::string unspliceable;
 };
 
 // A patch side shared by two patches (Section 3.5.3: adjacent grids are joined along their common
@@ -69,8 +72,9 @@ struct SharedBoundary {
 
 // Strips of every member of every patch (u members first, then v, patch by patch) with holes and
 // slots, shared boundaries merged (mergeSharedBoundaries, 0.5 mm), spliced into pieces of at most
-// longestPieceMm(options). Throws InvalidInput naming the patch when a grid is missing or
-// inconsistent.
+// longestPieceMm(options); a lamella that cannot be spliced keeps no segments and the reason in
+// `unspliceable` (the others can still be cut). Throws InvalidInput naming the patch when a grid is
+// missing or inconsistent.
 std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
                                       const std::vector<SharedBoundary>& shared = {});
 
@@ -83,10 +87,14 @@ int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<Sha
 
 // Cut positions so that no segment exceeds `stockLengthMm` and every cut lies at least
 // `clearanceMm` from every hole and slot (Section 3.5: architectural lamellas of 20-40 m never come
-// in one piece). Fills plan.splicesMm and plan.segments. Throws InvalidInput naming the lamella and
-// `field` when no clear cut position exists.
+// in one piece): the furthest such position within each stock length. Where a stock length holds
+// none (slots as long as their spacing leave shorter gaps, as on the Yas canopy), the cut goes to
+// the middle of the widest gap there, provided that keeps `minClearanceMm` each side (a shorter
+// splice plate or a glued joint; fabricate() warns). Fills plan.splicesMm, spliceClearancesMm and
+// segments. Throws InvalidInput naming the lamella, the stretch, its widest gap and `field` when no
+// position keeps minClearanceMm. minClearanceMm < 0 (the default) means clearanceMm: no fallback.
 void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
-                  const std::string& field = "fabrication.stock_length_mm");
+                  const std::string& field = "fabrication.stock_length_mm", double minClearanceMm = -1.0);
 
 // The longest piece a lamella is cut in: the stock length, or the sheet's usable first side when
 // that is shorter (a strip cut from a sheet is no longer than the sheet).

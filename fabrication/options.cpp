@@ -63,6 +63,7 @@ void FabricationOptions::validate() const {
     }
   }
   if (splice_clearance_mm) requireNonNegative("fabrication.splice_clearance_mm", *splice_clearance_mm);
+  if (min_splice_clearance_mm) requireNonNegative("fabrication.min_splice_clearance_mm", *min_splice_clearance_mm);
   if (label_height_mm) requirePositive("fabrication.label_height_mm", *label_height_mm);
   requireNonNegative("fabrication.sticker_margin_mm", sticker_margin_mm);
   if (sticker_sheet_mm) {

@@ -5,6 +5,7 @@
 #include "core/egg/grid.hpp"
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <string>
@@ -19,6 +20,11 @@ struct FabricationPatch {
   int patchId = 0;
   const EggGrid* grid = nullptr;
   std::optional<std::vector<std::vector<Eigen::Vector3d>>> deployedCentrelines;  // metres
+  // Which sides lie on the design surface's boundary (side 0 = u member 0, 1 = the last v member,
+  // 2 = the last u member, 3 = v member 0). A side shared with another patch is held by that
+  // patch's lamellas, not by the ground: supports stand only on free sides (Section 3.5.3; Section
+  // 2.2: "appropriate support locations are along the boundary"). One patch: all four.
+  std::array<bool, 4> freeSides{true, true, true, true};
 };
 
 struct FabricationOptions {
@@ -33,6 +39,11 @@ struct FabricationOptions {
   double stock_length_mm = 6000.0;          // longest piece a lamella can be cut from (and at most the sheet's first side); longer ones are spliced
   std::optional<double> end_overhang_mm;    // strip beyond the end connections; default half the width
   std::optional<double> splice_clearance_mm;  // no hole or slot this close to a splice; default the width
+  // Where a stock length has no position that clear (slots nearly as long as their spacing), the
+  // splice goes to the middle of the widest gap if that keeps this much each side. Default 3.5 d:
+  // the new end is then 4 d from the nearest bolt centre, the least end distance of a bolt from an
+  // unloaded end in EN 1995-1-1 Table 8.4 (a3,c). Never more than the splice clearance.
+  std::optional<double> min_splice_clearance_mm;
   std::optional<double> label_height_mm;    // engraved text height; default 0.35 w (clamped to 1..30 mm)
   double sticker_margin_mm = 2.0;           // PTFE sticker beyond the swept contact area (3.5.1)
   std::optional<std::array<double, 2>> sticker_sheet_mm;  // PTFE foil sheet; default sheet_mm
@@ -45,6 +56,9 @@ struct FabricationOptions {
 
   double endOverhangMm() const { return end_overhang_mm.value_or(lamella_width_mm / 2.0); }
   double spliceClearanceMm() const { return splice_clearance_mm.value_or(lamella_width_mm); }
+  double minSpliceClearanceMm() const {
+    return std::min(min_splice_clearance_mm.value_or(3.5 * bolt_diameter_mm), spliceClearanceMm());
+  }
   double labelHeightMm() const;
   std::array<double, 2> stickerSheetMm() const { return sticker_sheet_mm.value_or(sheet_mm); }
   double supportBlockMm() const { return support_block_mm.value_or(3.0 * lamella_width_mm); }

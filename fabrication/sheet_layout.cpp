@@ -52,8 +52,12 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
     drawing.texts.push_back({Layer::Label, at(labelStart, w / 2.0), hc, text, TextAlign::Left});
     occupied.emplace_back(std::min(labelStart, f.minXMm(d)), std::max(labelStart + labelLength, f.maxXMm(d)));
   }
-  const double clearance = options.spliceClearanceMm();
-  for (double splice : plan.splicesMm) {
+  for (size_t k = 0; k < plan.splicesMm.size(); ++k) {
+    // The mark half the splice's clearance in from the cut (the clearance of the splice: a tight
+    // one keeps less than splice_clearance_mm, placeSplices).
+    const double splice = plan.splicesMm[k];
+    const double clearance = k < plan.spliceClearancesMm.size() ? std::min(plan.spliceClearancesMm[k], options.spliceClearanceMm())
+                                                                : options.spliceClearanceMm();
     const double x = splice == seg.startMm ? splice + clearance / 2.0 : splice == seg.endMm ? splice - clearance / 2.0 : -1;
     if (x < 0) continue;
     drawing.polylines.push_back({Layer::Engrave, {at(x, 0.0), at(x, w)}, false});

@@ -78,6 +78,14 @@ LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, cons
     // polyline inscribed in a circle still gives its exact curvature.
     std::vector<double> arc(n, 0.0);
     for (size_t i = 1; i < n; ++i) arc[i] = arc[i - 1] + (centreline[i] - centreline[i - 1]).norm();
+    // A lamella shorter than two windows (or a polyline whose vertices crowd at one end) has no
+    // vertex a window from both ends: the window shrinks to what its most central vertex allows,
+    // and the whole lamella is the window. Falling back to vertex by vertex there measured the
+    // Lilium's base side (vertices 1 mm apart whose mesh normals differ by 0.09 rad) at 41 rad/m,
+    // 197 times the shear strength.
+    double central = 0.0;
+    for (size_t i = 1; i + 1 < n; ++i) central = std::max(central, std::min(arc[i], arc[n - 1] - arc[i]));
+    if (central > 0.0) windowM = std::min(windowM, central);
     bool measured = false;
     size_t j = 0, k = 0;
     for (size_t i = 1; i + 1 < n; ++i) {

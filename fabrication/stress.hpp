@@ -36,7 +36,9 @@ struct LamellaStress {
 // through the points at s - window, s, s + window (still exact on a circle) and the turn of the
 // normal from s - window to s + window. A geodesic traced on a triangle mesh kinks at every edge it
 // crosses, and vertex-by-vertex curvature of such a polyline measures the mesh, not the lamella,
-// which cannot bend over less than about its width anyway.
+// which cannot bend over less than about its width anyway. A polyline with no vertex a window from
+// both ends is measured over the window its most central vertex allows (the whole lamella), never
+// vertex by vertex.
 LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, const std::vector<Eigen::Vector3d>* normals,
                             double thicknessM, const MaterialProperties& material, double windowM = 0.0);
 

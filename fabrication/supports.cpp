@@ -15,19 +15,32 @@
 namespace egg::fabrication {
 
 std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
-                                  double* groundHeightM) {
+                                  double* groundHeightM, int* innerAnchors) {
   std::vector<Support> supports;
+  if (innerAnchors) *innerAnchors = 0;
   for (const auto& patch : patches) {
     const EggGrid& grid = *patch.grid;
-    const int nv = static_cast<int>(grid.v.size());
+    const int nu = static_cast<int>(grid.u.size()), nv = static_cast<int>(grid.v.size());
+    // On a free side: row 0 (side 0) or the last row (side 2), column 0 (side 3) or the last (1).
+    auto onFreeSide = [&](int k) {
+      const int i = k / nv, j = k % nv;
+      return (i == 0 && patch.freeSides[0]) || (j == nv - 1 && patch.freeSides[1]) ||
+             (i == nu - 1 && patch.freeSides[2]) || (j == 0 && patch.freeSides[3]);
+    };
     std::set<int> chosen;
     std::vector<std::pair<int, std::string>> picks;
     for (const auto& a : grid.anchors) {
+      if (!onFreeSide(a.connection)) {
+        // A patch's anchor on a side it shares (a corner where patches meet, a curvature extremum
+        // of a seam): the neighbour's lamellas hold it, a block under it would stand in the air.
+        if (innerAnchors && chosen.insert(a.connection).second) ++*innerAnchors;
+        continue;
+      }
       if (chosen.insert(a.connection).second) picks.emplace_back(a.connection, "anchor: " + a.reason);
     }
     if (options.supports_at_boundary_connections) {
       for (int k = 0; k < static_cast<int>(grid.connections.size()); ++k) {
-        if (grid.connections[k].onBoundary && chosen.insert(k).second) picks.emplace_back(k, "boundary connection");
+        if (grid.connections[k].onBoundary && onFreeSide(k) && chosen.insert(k).second) picks.emplace_back(k, "boundary connection");
       }
     }
     std::sort(picks.begin(), picks.end());
@@ -170,14 +183,21 @@ std::string toBinaryStl(const TriangleMesh& mesh, const std::string& header) {
 
 std::string supportsCsv(const std::vector<Support>& supports) {
   std::ostringstream s;
-  s << "id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind\n";
+  s << "id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind,block_mm,below_ground_mm\n";
   char line[512];
   for (const auto& p : supports) {
-    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f,%.3f,%.6f,%s\n", p.id.c_str(),
+    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f,%.3f,%.6f,%s,", p.id.c_str(),
                   p.connectionId.c_str(), p.reason.c_str(), p.position.x(), p.position.y(), p.position.z(),
                   p.normal.x(), p.normal.y(), p.normal.z(), p.inclinationDeg, p.directionDeg, p.heightM,
                   p.block ? "block" : "bracket");
     s << line;
+    if (p.block && p.blockMm > 0.0) {
+      std::snprintf(line, sizeof line, "%.0f,%.1f", p.blockMm, p.belowGroundMm);
+      s << line;
+    } else {
+      s << ",";
+    }
+    s << "\n";
   }
   return s.str();
 }

@@ -25,6 +25,8 @@ struct Support {
   // A contact plane steeper than 80 degrees (a near-vertical wall, as at the Lilium's base) cannot
   // sit on a block: it needs a bracket fixed to the wall, which is listed but not drawn.
   bool block = true;
+  double blockMm = 0.0;           // footprint side of its block (fabricate(); 0 for a bracket)
+  double belowGroundMm = 0.0;     // how far the block reaches below the ground (supportSolid's drop)
 };
 
 struct TriangleMesh {
@@ -32,11 +34,13 @@ struct TriangleMesh {
   std::vector<Eigen::Vector3i> triangles;  // counter-clockwise seen from outside
 };
 
-// Supports at the anchors of every patch (and, with supports_at_boundary_connections, at every
-// boundary connection), sorted by patch and connection, one per point (within 1 mm) where patches meet, with the ground plane of the options (or
-// 0.1 m below the lowest). A support whose plane is steeper than 80° is a bracket (block = false).
+// Supports at the anchors of every patch that lie on one of its free sides (and, with
+// supports_at_boundary_connections, at every connection on a free side), sorted by patch and
+// connection, one per point (within 1 mm) where patches meet, with the ground plane of the options
+// (or 0.1 m below the lowest). A support whose plane is steeper than 80° is a bracket (block =
+// false). innerAnchors: how many anchors were left out because they lie on shared sides only.
 std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
-                                  double* groundHeightM = nullptr);
+                                  double* groundHeightM = nullptr, int* innerAnchors = nullptr);
 
 // The block of one support in millimetres, in a frame with the point above the origin and z = 0 at
 // the bottom face: a square footprint of `blockMm`, the top face on the contact plane, a blind bolt
@@ -49,7 +53,8 @@ TriangleMesh supportSolid(const Support& support, double blockMm, double holeDia
 std::string toBinaryStl(const TriangleMesh& mesh, const std::string& header);
 
 // The supports table: id, connection, reason, x_m, y_m, z_m, nx, ny, nz, inclination_deg,
-// direction_deg, height_m, kind (block | bracket).
+// direction_deg, height_m, kind (block | bracket), block_mm (footprint side; empty for a bracket),
+// below_ground_mm (how far the block reaches below the ground; empty for a bracket).
 std::string supportsCsv(const std::vector<Support>& supports);
 
 }  // namespace egg::fabrication

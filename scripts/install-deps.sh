@@ -13,6 +13,7 @@ PACKAGES=(
   libcairo2-dev libdxflib-dev
   python3-ezdxf librsvg2-bin poppler-utils admesh
   clang libclang-rt-14-dev   # scripts/fuzz.sh: libFuzzer targets (issue 17)
+  chromium                   # test_report_html: report.html rendered headless (skipped without it)
 )
 
 missing=()

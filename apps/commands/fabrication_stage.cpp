@@ -16,6 +16,7 @@ fabrication::FabricationOptions fabricationOptionsFromScene(const Scene& scene) 
   o.stock_length_mm = f.stock_length_mm;
   o.end_overhang_mm = f.end_overhang_mm;
   o.splice_clearance_mm = f.splice_clearance_mm;
+  o.min_splice_clearance_mm = f.min_splice_clearance_mm;
   o.label_height_mm = f.label_height_mm;
   o.sticker_margin_mm = f.sticker_margin_mm;
   o.sticker_sheet_mm = f.sticker_sheet_mm;
@@ -36,7 +37,25 @@ FabricationStageResult runFabricationStage(const Scene& scene, const std::vector
   stage.result = fabrication::fabricate(patches, fabricationOptionsFromScene(scene), shared);
   stage.files = fabrication::writeFabricationFiles(stage.result, runDir, fabricationOutputsFromScene(scene));
   stage.report = fabrication::fabricationReport(stage.result, stage.files);
+  if (!stage.result.unspliceable.empty()) {
+    stage.failures.push_back("fabrication: " + std::to_string(stage.result.unspliceable.size()) +
+                             " lamellas cannot be spliced and are not in the cut files; the first: " +
+                             stage.result.unspliceable.front());
+  }
   return stage;
+}
+
+std::array<bool, 4> freeSidesOf(const patching::PatchGraph& graph, int patch) {
+  std::array<bool, 4> free{false, false, false, false};
+  bool known = false;
+  for (const auto& b : graph.boundaries) {
+    for (const auto& use : b.uses) {
+      if (use.patch != patch || use.side < 0 || use.side > 3) continue;
+      known = true;
+      if (b.kind == "free") free[use.side] = true;
+    }
+  }
+  return known ? free : std::array<bool, 4>{true, true, true, true};
 }
 
 bool fabricationWanted(const Scene& scene) {

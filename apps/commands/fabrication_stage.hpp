@@ -6,6 +6,9 @@
 // with patches = {{patchId, &grid, deployed centrelines (u then v) or std::nullopt}, ...}.
 #include "apps/commands/scene.hpp"
 #include "fabrication/fabricate.hpp"
+#include "patching/patch_graph.hpp"
+
+#include <array>
 
 namespace egg::app {
 
@@ -15,6 +18,11 @@ fabrication::FabricationOptions fabricationOptionsFromScene(const Scene& scene);
 // The outputs "cut_files", "stickers" and "supports" of the scene.
 fabrication::FabricationOutputs fabricationOutputsFromScene(const Scene& scene);
 
+// The sides of `patch` the patch graph calls free (on the design surface's boundary, not shared
+// with another patch), for FabricationPatch::freeSides: supports stand only there. All four when
+// the graph does not know the patch (a single patch without a graph).
+std::array<bool, 4> freeSidesOf(const patching::PatchGraph& graph, int patch);
+
 // Whether the stage runs at all: fabrication.enabled and at least one of its outputs asked for.
 bool fabricationWanted(const Scene& scene);
 
@@ -22,6 +30,7 @@ struct FabricationStageResult {
   fabrication::FabricationResult result;
   std::vector<std::string> files;  // written, relative to the run folder
   nlohmann::json report;           // report.json "fabrication"
+  std::vector<std::string> failures;  // for the run's failures (exit 1): lamellas that could not be cut
 };
 
 // The whole stage in one call: fabricate with the scene's options, write what its outputs ask for

@@ -4,6 +4,7 @@
 #include "apps/commands/joined_stage.hpp"
 #include "apps/commands/patch_stage.hpp"
 #include "apps/commands/patching_stage.hpp"
+#include "apps/commands/report_html.hpp"
 #include "apps/commands/surface_loading.hpp"
 #include "core/errors.hpp"
 #include "core/geodesic/distance_solver.hpp"
@@ -216,15 +217,17 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
       if (!p.egg) continue;
       fabrication::FabricationPatch entry{p.id, &p.egg->grid, std::nullopt};
       if (p.simulation) entry.deployedCentrelines = p.simulation->deployed.centrelines;
+      entry.freeSides = freeSidesOf(patching.graph, p.id);  // supports only on the design boundary
       grids.push_back(std::move(entry));
     }
-    // The grid decides whether its parts can be cut (a lamella whose slots leave no place for a
-    // splice, a part wider than the sheet): a failure of this run with its report, not bad input
-    // (the options themselves were checked when the scene was read).
+    // The grid decides whether its parts can be cut (a part wider than the sheet; a lamella whose
+    // slots leave no place for a splice is left out and listed, fab.failures): a failure of this
+    // run with its report, not bad input (the options themselves were checked when the scene was read).
     try {
       FabricationStageResult fab = runFabricationStage(scene, grids, out.staging(), sharedLamellae(patching, patches));
       report.stageRan("fabrication", secondsSince(fabStart));
       report.section("fabrication") = fab.report;
+      result.failures.insert(result.failures.end(), fab.failures.begin(), fab.failures.end());
     } catch (const InvalidInput& e) {
       report.stageSkipped("fabrication", std::string("the grid cannot be cut with these settings: ") + e.what());
       result.failures.push_back(std::string("fabrication: ") + e.what());
@@ -244,7 +247,10 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   result.seconds = secondsSince(start);
   result.report = report.finish(result.seconds);
   if (!result.failures.empty()) result.report["failures"] = result.failures;
-  if (scene.wants("report")) writeFileAtomically(out.staging() / "report.json", result.report.dump(2) + "\n");
+  if (scene.wants("report")) {
+    writeFileAtomically(out.staging() / "report.json", result.report.dump(2) + "\n");
+    writeReportHtml(out.staging(), result.report);  // the same, for a person (issue 18)
+  }
   out.commit();
   result.out_dir = std::filesystem::absolute(options.out_dir);
   progress("done", 1.0);

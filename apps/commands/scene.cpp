@@ -348,6 +348,7 @@ void readFabrication(Section s, FabricationSpec& out) {
   };
   optionalNumber("end_overhang_mm", out.end_overhang_mm, 0.0, 1e4);
   optionalNumber("splice_clearance_mm", out.splice_clearance_mm, 0.0, 1e5);
+  optionalNumber("min_splice_clearance_mm", out.min_splice_clearance_mm, 0.0, 1e5);
   optionalNumber("label_height_mm", out.label_height_mm, 0.1, 1000.0);
   out.sticker_margin_mm = s.number("sticker_margin_mm", out.sticker_margin_mm, 0.0, 1000.0);
   if (s.has("sticker_sheet_mm")) out.sticker_sheet_mm = s.pair("sticker_sheet_mm", out.sheet_mm, 1.0, 1e5);
@@ -461,6 +462,7 @@ json sceneToJson(const Scene& scene) {
   // Unset optional keys are left out (their defaults derive from the lamella).
   if (f.end_overhang_mm) fabrication["end_overhang_mm"] = *f.end_overhang_mm;
   if (f.splice_clearance_mm) fabrication["splice_clearance_mm"] = *f.splice_clearance_mm;
+  if (f.min_splice_clearance_mm) fabrication["min_splice_clearance_mm"] = *f.min_splice_clearance_mm;
   if (f.label_height_mm) fabrication["label_height_mm"] = *f.label_height_mm;
   if (f.ground_height_m) fabrication["ground_height_m"] = *f.ground_height_m;
   if (f.support_block_mm) fabrication["support_block_mm"] = *f.support_block_mm;

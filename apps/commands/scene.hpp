@@ -91,6 +91,7 @@ struct FabricationSpec {
   double stock_length_mm = 6000.0;           // longer lamellas are spliced, clear of holes and slots
   std::optional<double> end_overhang_mm;     // strip beyond the end connections (default half the width)
   std::optional<double> splice_clearance_mm;  // no hole or slot this close to a splice (default the width)
+  std::optional<double> min_splice_clearance_mm;  // where no position is that clear: at least this (default 3.5 d)
   std::optional<double> label_height_mm;     // engraved text height (default 0.35 w, 1..30 mm)
   double sticker_margin_mm = 2.0;            // PTFE sticker beyond the swept contact area
   std::optional<std::array<double, 2>> sticker_sheet_mm;  // PTFE foil sheet (default sheet_mm)

@@ -33,7 +33,7 @@ TEST(FabricationStage, SceneKeysReachTheOptions) {
   const Scene scene = parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"},
       "lamella": {"width_m": 0.01, "thickness_m": 0.001, "material": "limewood"},
       "fabrication": {"sheet_mm": [1000, 600], "kerf_mm": 0.1, "stock_length_mm": 900, "end_overhang_mm": 6,
-                      "ground_height_m": 0.2},
+                      "ground_height_m": 0.2, "min_splice_clearance_mm": 7},
       "outputs": ["report", "stickers"]})"),
                                  "/scenes/test.json");
   const auto o = fabricationOptionsFromScene(scene);
@@ -45,6 +45,7 @@ TEST(FabricationStage, SceneKeysReachTheOptions) {
   EXPECT_DOUBLE_EQ(o.stock_length_mm, 900.0);
   EXPECT_DOUBLE_EQ(o.endOverhangMm(), 6.0);
   EXPECT_DOUBLE_EQ(*o.ground_height_m, 0.2);
+  EXPECT_DOUBLE_EQ(o.minSpliceClearanceMm(), 7.0);
   const auto outputs = fabricationOutputsFromScene(scene);
   EXPECT_FALSE(outputs.cutFiles);
   EXPECT_TRUE(outputs.stickers);
@@ -100,6 +101,26 @@ TEST(FabricationStage, SheetTooSmallIsBadInputNamingTheSceneField) {
   } catch (const InvalidInput& e) {
     EXPECT_EQ(std::string(e.what()).rfind("fabrication.sheet_mm:", 0), 0u) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace egg::app
+
+namespace egg::app {
+namespace {
+
+TEST(FabricationStage, FreeSidesFromThePatchGraph) {
+  // Patch 0: side 2 on the design boundary, side 1 shared with patch 1's side 3, side 0 half free
+  // and half a T-junction: free (a support may stand on its free part). Patch 7 is not in the
+  // graph (one patch, no graph): all four sides free.
+  patching::PatchGraph graph;
+  graph.boundaries.push_back({0, "free", {{0, 2, 0.0, 1.0, false}}, 10.0});
+  graph.boundaries.push_back({1, "shared", {{0, 1, 0.0, 1.0, false}, {1, 3, 0.0, 1.0, true}}, 8.0});
+  graph.boundaries.push_back({2, "free", {{0, 0, 0.0, 0.5, false}}, 4.0});
+  graph.boundaries.push_back({3, "t_junction", {{0, 0, 0.5, 1.0, false}, {2, 2, 0.0, 1.0, true}}, 4.0});
+  EXPECT_EQ(freeSidesOf(graph, 0), (std::array<bool, 4>{true, false, true, false}));
+  EXPECT_EQ(freeSidesOf(graph, 1), (std::array<bool, 4>{false, false, false, false}));
+  EXPECT_EQ(freeSidesOf(graph, 7), (std::array<bool, 4>{true, true, true, true}));
 }
 
 }  // namespace

@@ -66,7 +66,7 @@ TEST(Pipeline, SlowBumpPatchRunsEndToEnd) {
   EXPECT_FALSE(report["stages"]["propagation"]["ran"].get<bool>());
   EXPECT_TRUE(report["stages"]["grid"]["ran"].get<bool>());
 
-  for (const char* file : {"report.json", "patch_000/grid.json", "patch_000/grid.obj", "patch_000/planar.svg",
+  for (const char* file : {"report.json", "report.html", "patch_000/grid.json", "patch_000/grid.obj", "patch_000/planar.svg",
                            "patch_000/deployed.obj"}) {
     EXPECT_TRUE(fs::exists(out / file)) << file;
   }

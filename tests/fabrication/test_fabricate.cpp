@@ -308,3 +308,65 @@ TEST(Fabricate, SolvedBumpPatchEndToEnd) {
 
 }  // namespace
 }  // namespace egg::fabrication
+
+namespace egg::fabrication {
+namespace {
+
+TEST(Fabricate, LamellasThatCannotBeSplicedAreListedAndTheRestIsCut) {
+  // 20 mm stock with 100 mm clear of every hole (holes 100 mm apart): no lamella can be spliced.
+  const EggGrid grid = testing::handGrid();
+  auto options = testing::handOptions();
+  options.stock_length_mm = 20.0;
+  options.splice_clearance_mm = 100.0;
+  options.min_splice_clearance_mm = 100.0;
+  const auto r = fabricate({{0, &grid, std::nullopt}}, options);
+  ASSERT_EQ(r.unspliceable.size(), r.lamellae.size());
+  for (size_t i = 0; i < r.lamellae.size(); ++i) {
+    EXPECT_NE(r.unspliceable[i].find("lamella " + r.lamellae[i].id + " "), std::string::npos) << r.unspliceable[i];
+    EXPECT_TRUE(r.lamellae[i].segments.empty());
+  }
+  EXPECT_EQ(r.lamellaNesting.sheets, 0);       // nothing to cut
+  EXPECT_FALSE(r.stickers.empty());            // the stickers and supports do not depend on it
+  EXPECT_EQ(fabricationReport(r)["unspliceable_lamellae"].size(), r.lamellae.size());
+  EXPECT_NE(bomCsv(r).find("NOT CUT: no splice position"), std::string::npos);
+  // With the hand options every lamella is one piece and none is listed.
+  EXPECT_TRUE(fabricate({{0, &grid, std::nullopt}}, testing::handOptions()).unspliceable.empty());
+}
+
+}  // namespace
+}  // namespace egg::fabrication
+
+namespace egg::fabrication {
+namespace {
+
+TEST(Fabricate, DefaultSupportBlocksNarrowAboveSteepGround) {
+  // Corner P0-C0-0 on a plane inclined 60 deg (normal along x), the points 30 mm above the ground.
+  // The top of a block of side b falls (b / 2) tan 60 below the point: the widest that keeps 5 mm
+  // above the ground is 2 (30 - 5) / tan 60 = 28.9 mm, so the default 3 w = 30 mm narrows to 28.
+  EggGrid grid = testing::handGrid();
+  grid.connections[0].normal = Eigen::Vector3d(std::sin(M_PI / 3.0), 0.0, std::cos(M_PI / 3.0));
+  auto options = testing::handOptions();
+  options.support_block_mm.reset();
+  options.ground_height_m = 0.47;
+  const auto r = fabricate({{0, &grid, std::nullopt}}, options);
+  ASSERT_EQ(r.supports.size(), 4u);
+  EXPECT_EQ(r.supports[0].connectionId, "P0-C0-0");
+  EXPECT_DOUBLE_EQ(r.supports[0].blockMm, 28.0);
+  EXPECT_DOUBLE_EQ(r.supports[0].belowGroundMm, 0.0);
+  for (size_t i = 1; i < r.supports.size(); ++i) EXPECT_DOUBLE_EQ(r.supports[i].blockMm, 30.0);
+  EXPECT_EQ(r.narrowedSupportBlocks, 1);
+  for (const auto& w : r.warnings) EXPECT_EQ(w.find("below the ground"), std::string::npos) << w;
+  // 10 mm above the ground even a block of the lamella's width (10 mm) falls 5 tan 60 = 8.66 mm,
+  // to 1.34 mm above the ground; the bottom goes 5 mm below that: 3.66 mm below the ground.
+  options.ground_height_m = 0.49;
+  const auto low = fabricate({{0, &grid, std::nullopt}}, options);
+  EXPECT_DOUBLE_EQ(low.supports[0].blockMm, 10.0);
+  EXPECT_NEAR(low.supports[0].belowGroundMm, 5.0 + 5.0 * std::tan(M_PI / 3.0) - 10.0, 1e-9);
+  bool warned = false;
+  for (const auto& w : low.warnings) warned |= w.find("the deepest: S001 (4 mm)") != std::string::npos;
+  EXPECT_TRUE(warned);
+  EXPECT_NE(supportsCsv(low.supports).find(",block,10,3.7\n"), std::string::npos) << supportsCsv(low.supports);
+}
+
+}  // namespace
+}  // namespace egg::fabrication

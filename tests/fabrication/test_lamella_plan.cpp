@@ -101,6 +101,54 @@ TEST(LamellaPlan, NoClearSplicePositionIsAClearError) {
   }
 }
 
+// Slots nearly as long as their spacing (the Yas canopy: 3 m slides every 3.3 m): 2800 mm cut-outs
+// from 3000 k + 100 to 3000 k + 2900 leave 200 mm gaps. No position is 400 mm clear; the splices go
+// to the middles of the gaps, 100 mm from the slots each side, the furthest gap in each stock length.
+LamellaPlan slottedPlan() {
+  LamellaPlan plan;
+  plan.id = "P5-U5";
+  plan.lengthMm = 18000.0;
+  for (int k = 0; k < 6; ++k) {
+    LamellaFeature f;
+    f.kind = FeatureKind::Slot;
+    f.xMm = 3000.0 * k + 2892.0;  // the bolt slides 2784 mm back: extent 3000 k + 100 .. + 2900 with d = 16
+    f.slideMm = -2784.0;
+    plan.features.push_back(f);
+  }
+  return plan;
+}
+
+TEST(LamellaPlan, SlotsLeavingNoRoomForTheClearanceGetSplicesMidGap) {
+  LamellaPlan plan = slottedPlan();
+  placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 56.0);
+  ASSERT_EQ(plan.splicesMm.size(), 2u);
+  EXPECT_DOUBLE_EQ(plan.splicesMm[0], 6000.0);
+  EXPECT_DOUBLE_EQ(plan.splicesMm[1], 12000.0);
+  ASSERT_EQ(plan.spliceClearancesMm.size(), 2u);
+  EXPECT_DOUBLE_EQ(plan.spliceClearancesMm[0], 100.0);
+  EXPECT_DOUBLE_EQ(plan.spliceClearancesMm[1], 100.0);
+  for (const auto& seg : plan.segments) EXPECT_LE(seg.lengthMm(), 6000.0);
+  // Without a fallback (the minimum defaults to the clearance) it is impossible.
+  LamellaPlan strict = slottedPlan();
+  EXPECT_THROW(placeSplices(strict, 6000.0, 400.0, 16.0), InvalidInput);
+}
+
+TEST(LamellaPlan, SplicesTooTightForTheMinimumNameTheStretchAndItsWidestGap) {
+  LamellaPlan plan = slottedPlan();
+  try {
+    placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 120.0);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("fabrication.stock_length_mm: lamella P5-U5 (18000 mm) cannot be spliced between 0 and 6000 mm", 0), 0u)
+        << what;
+    EXPECT_NE(what.find("gaps of at most 200 mm"), std::string::npos) << what;
+    EXPECT_NE(what.find("needs a gap of 2 x 120 mm (fabrication.min_splice_clearance_mm"), std::string::npos) << what;
+    // Cut-outs grown by 120 mm overlap (gaps of 200 mm) from the strip's start to 17900 + 120 mm.
+    EXPECT_NE(what.find("it would take pieces of up to 18000 mm"), std::string::npos) << what;
+  }
+}
+
 TEST(LamellaPlan, SharedBoundaryLamellaCarriesTheHolesOfBothPatches) {
   // Patch 1 continues patch 0 along +x: patch 0's v2 and patch 1's v0 are the same side.
   const EggGrid left = handGrid(), right = handGrid(0.2);

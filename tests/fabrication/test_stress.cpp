@@ -110,3 +110,58 @@ TEST(Stress, WindowedTwistRate) {
 
 }  // namespace
 }  // namespace egg::fabrication
+
+namespace egg::fabrication {
+namespace {
+
+// A helix of radius a and pitch 2 pi b is a geodesic of its cylinder: curvature a / (a^2 + b^2),
+// all of it normal curvature, and geodesic torsion b / (a^2 + b^2) (the cylinder's normal turns
+// about the tangent at that rate). 5 mm steps, measured over a 0.3 m window.
+TEST(Stress, HelixGivesItsAnalyticCurvatureAndTorsion) {
+  const double a = 2.0, b = 0.5, speed = std::hypot(a, b);
+  std::vector<Eigen::Vector3d> points, normals;
+  for (int k = 0; k <= 1200; ++k) {
+    const double phi = 0.005 * k / speed;
+    points.emplace_back(a * std::cos(phi), a * std::sin(phi), b * phi);
+    normals.emplace_back(std::cos(phi), std::sin(phi), 0.0);
+  }
+  const auto& poplar = materialByName("poplar_plywood");
+  const double t = 0.01;
+  const LamellaStress s = lamellaStress(points, &normals, t, poplar, 0.3);
+  const double kappa = a / (a * a + b * b), torsion = b / (a * a + b * b);  // 0.4706 and 0.1176 1/m
+  EXPECT_NEAR(s.maxCurvature_1_m, kappa, 1e-3 * kappa);
+  // The turn of the chord-projected normal carries an error of the order (kappa window)^2 = 2 %.
+  EXPECT_NEAR(s.maxTwistRate_rad_m, torsion, 0.02 * torsion);
+  EXPECT_NEAR(s.maxBendingStress_pa, poplar.youngs_modulus_pa * kappa * t / 2.0, 1e-3 * s.maxBendingStress_pa);
+  EXPECT_NEAR(s.maxTorsionStress_pa, poplar.shear_modulus_pa * s.maxTwistRate_rad_m * t, 1e-9 * s.maxTorsionStress_pa);
+}
+
+// The Lilium's base side P8-U0 (a patch side on the mesh): 9 vertices over 4.25 m, three pairs of
+// them 1-4 mm apart whose vertex normals differ by about 0.09 rad. The window (three median
+// segments, 2.25 m) leaves no vertex a window from both ends; measured vertex by vertex instead the
+// twist was 41 rad/m (tau = 984 MPa, ratio 197). The twist the normals describe end to end is what
+// counts: here the frame turns by a known 0.4 rad about the straight side, 0.094 rad/m.
+TEST(Stress, ShortLamellaWithCrowdedVerticesIsMeasuredOverItsLength) {
+  const std::vector<double> x{0.0, 0.5, 0.504, 1.5, 1.504, 2.5, 2.501, 3.4, 4.25};
+  std::vector<Eigen::Vector3d> points, normals;
+  for (size_t k = 0; k < x.size(); ++k) {
+    // The frame's smooth turn, plus a 0.09 rad jump inside every crowded pair (mesh normals).
+    const double jump = (k == 1 || k == 3 || k == 5) ? 0.09 : 0.0;
+    const double angle = 0.4 * x[k] / 4.25 + jump;
+    points.emplace_back(x[k], 0.0, 0.0);
+    normals.emplace_back(0.0, -std::sin(angle), std::cos(angle));
+  }
+  const auto& poplar = materialByName("poplar_plywood");
+  const double window = curvatureWindowM(points, 0.5);
+  EXPECT_NEAR(window, 3.0 * 0.85, 1e-12);  // three median segments (0.85 m) > twice the width
+  const LamellaStress s = lamellaStress(points, &normals, 0.05, poplar, window);
+  // Only the most central vertex (x = 2.5) lies 1.75 m from both ends: measured from x = 0.504 to
+  // 4.25, where the frame turns at its mean rate.
+  EXPECT_NEAR(s.maxTwistRate_rad_m, 0.4 / 4.25, 1e-9);
+  EXPECT_LT(s.stressRatio, 1.0);
+  // Vertex by vertex (no window) the jumps dominate: 0.09 rad over 1 mm.
+  EXPECT_GT(lamellaStress(points, &normals, 0.05, poplar).maxTwistRate_rad_m, 80.0);
+}
+
+}  // namespace
+}  // namespace egg::fabrication

@@ -124,7 +124,7 @@ TEST(Supports, TooSteepIsABracketAndBelowGroundAnError) {
   EXPECT_FALSE(supports[0].block);
   EXPECT_NEAR(supports[0].inclinationDeg, 87.14, 0.01);
   EXPECT_TRUE(supports[1].block);
-  EXPECT_NE(supportsCsv(supports).find(",bracket\n"), std::string::npos);
+  EXPECT_NE(supportsCsv(supports).find(",bracket,,\n"), std::string::npos);
   auto options = testing::handOptions();
   options.ground_height_m = 0.6;
   const EggGrid flat = testing::handGrid();
@@ -135,10 +135,45 @@ TEST(Supports, CsvHasOneRowPerSupport) {
   const EggGrid grid = testing::handGrid();
   const auto csv = supportsCsv(planSupports({{0, &grid, std::nullopt}}, testing::handOptions()));
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
-  EXPECT_EQ(csv.rfind("id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind\n", 0), 0u);
+  EXPECT_EQ(csv.rfind("id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind,block_mm,below_ground_mm\n", 0), 0u);
   EXPECT_NE(csv.find("S001,P0-C0-0,anchor: corner,0.000000,0.000000,0.500000,0.000000,0.000000,1.000000,0.000,0.000,0.100000,block"),
             std::string::npos)
       << csv;
+}
+
+}  // namespace
+}  // namespace egg::fabrication
+
+namespace egg::fabrication {
+namespace {
+
+TEST(Supports, OnlyOnFreeSides) {
+  // The hand grid's anchors are its four corners 0, 2, 6, 8 (connection i * 3 + j). With only side
+  // 0 (u member 0: connections 0, 1, 2) on the design boundary, the corners 6 and 8 lie on sides
+  // shared with other patches: their lamellas hold them, no block stands under them (the Lilium's
+  // apex anchors got 37 m blocks).
+  const EggGrid grid = testing::handGrid();
+  FabricationPatch patch{0, &grid, std::nullopt};
+  patch.freeSides = {true, false, false, false};
+  int inner = -1;
+  const auto supports = planSupports({patch}, testing::handOptions(), nullptr, &inner);
+  ASSERT_EQ(supports.size(), 2u);
+  EXPECT_EQ(supports[0].connectionId, "P0-C0-0");
+  EXPECT_EQ(supports[1].connectionId, "P0-C0-2");
+  EXPECT_EQ(inner, 2);
+  // Side 3 (v member 0: connections 0, 3, 6) free, every boundary connection there supported.
+  patch.freeSides = {false, false, false, true};
+  auto options = testing::handOptions();
+  options.supports_at_boundary_connections = true;
+  const auto column = planSupports({patch}, options, nullptr, &inner);
+  ASSERT_EQ(column.size(), 3u);
+  EXPECT_EQ(column[0].connectionId, "P0-C0-0");
+  EXPECT_EQ(column[1].connectionId, "P0-C1-0");
+  EXPECT_EQ(column[2].connectionId, "P0-C2-0");
+  EXPECT_EQ(inner, 2);  // anchors 2 and 8
+  // No free side: no support at all.
+  patch.freeSides = {false, false, false, false};
+  EXPECT_TRUE(planSupports({patch}, testing::handOptions()).empty());
 }
 
 }  // namespace

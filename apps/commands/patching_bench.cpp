@@ -30,8 +30,8 @@ int runPatchingBench(const PatchingBenchArgs& args) {
   if (!args.json) {
     fmt::print("egg bench patching: Workflow 2 + Workflow 1 on the sample scenes (samples/<name>.json), median of {} run(s)\n",
                args.repeats);
-    fmt::print("{:<12} {:>8} {:>8} {:>7} {:>9} {:>7} {:>9} {:>9}\n", "sample", "wall_s", "patches", "paper", "feasible", "splits",
-               "evaluated", "coverage");
+    fmt::print("{:<12} {:>8} {:>8} {:>7} {:>9} {:>7} {:>9} {:>9} {:>9}\n", "sample", "wall_s", "patches", "paper", "feasible", "splits",
+               "screened", "evaluated", "coverage");
   }
   for (const auto& name : args.samples) {
     // A name is a sample scene of the repository (run from its root, as `egg run`'s default), or a scene file.
@@ -60,11 +60,12 @@ int runPatchingBench(const PatchingBenchArgs& args) {
                     {"paper_patches", paperCount},
                     {"feasible", feasible},
                     {"splits", run.layout.splits.size()},
+                    {"screened", run.initial ? run.initial->candidatesScreened : 0},
                     {"evaluated", run.layout.evaluations},
                     {"coverage", run.coverage.fraction}});
     if (!args.json)
-      fmt::print("{:<12} {:>8.2f} {:>8} {:>7} {:>9} {:>7} {:>9} {:>9.3f}\n", name, wall, patches, paperCount, feasible,
-                 run.layout.splits.size(), run.layout.evaluations, run.coverage.fraction);
+      fmt::print("{:<12} {:>8.2f} {:>8} {:>7} {:>9} {:>7} {:>9} {:>9} {:>9.3f}\n", name, wall, patches, paperCount, feasible,
+                 run.layout.splits.size(), run.initial ? run.initial->candidatesScreened : 0, run.layout.evaluations, run.coverage.fraction);
   }
   if (args.json) std::cout << rows.dump(2) << "\n";
   return kExitOk;

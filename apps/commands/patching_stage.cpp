@@ -108,6 +108,7 @@ void addPatchingReport(const PatchingRun& run, json& report) {
                         {"patches", L.patches.size()},
                         {"splits", L.splits.size()},
                         {"merges", 0},
+                        {"candidates_screened", run.initial ? run.initial->candidatesScreened : 0},
                         {"candidates_evaluated", L.evaluations},
                         {"rounds", L.rounds},
                         {"corners", L.layout.corners.size()},

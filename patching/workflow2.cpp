@@ -5,6 +5,7 @@
 #include "core/geodesic/distance_solver.hpp"
 #include "patching/injectivity.hpp"
 #include "patching/footprint.hpp"
+#include "patching/hole_box.hpp"
 #include "patching/layout.hpp"
 
 #include <fmt/core.h>
@@ -13,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <optional>
 
 namespace egg::patching {
@@ -59,8 +61,26 @@ struct PlanPeak {
 // interior node nearest a peak moves onto it when within `snapFraction` of its cells), and the
 // largest cell diagonal in space (chords between the nodes lifted onto the surface: a steep cell
 // is measured as it is, not through a mean stretch of the plan).
+// A hole's box in plan: its centre and half sizes (the tangent box, inflated a little).
+struct HoleBox {
+  Vec2 centre, half;
+  Vec2 corner(int k, double scale = 1.0) const;
+};
+
+const std::array<Vec2, 4> kQuadrant{Vec2(-1, -1), Vec2(1, -1), Vec2(1, 1), Vec2(-1, 1)};
+
+Vec2 HoleBox::corner(int k, double scale) const { return centre + scale * kQuadrant[k].cwiseProduct(half); }
+
+HoleBox holeBoxOf(const Polygon& hole, double margin) {
+  Vec2 lo = hole.front(), hi = hole.front();
+  for (const auto& p : hole) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  return {0.5 * (lo + hi), 0.5 * (hi - lo) * (1.0 + margin)};
+}
+
 struct GridTrial {
   std::vector<std::vector<Vec2>> plan;  // [i][j]
+  std::vector<std::array<int, 2>> holeCells;  // per hole: the cell (i, j) holding its box
+  bool holesFit = true;                       // every hole's box inside a cell of its own
   double worstDiagonalM = 0.0;
   bool worstAlongU = true;        // the worst cell is longer along u
   std::vector<std::vector<char>> onPeak;  // [i][j]: the node moved onto a peak
@@ -81,7 +101,8 @@ bool snapAllowed(const std::vector<std::vector<Vec2>>& g, int i, int j, const Ve
   return std::abs(move.dot(du.normalized())) <= fraction * su && std::abs(move.dot(dv.normalized())) <= fraction * sv;
 }
 
-GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, const std::vector<PlanPeak>& peaks, double snapFraction) {
+GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, const std::vector<PlanPeak>& peaks, double snapFraction,
+                  const std::vector<HoleBox>& holes = {}) {
   GridTrial t;
   t.plan.assign(nu + 1, std::vector<Vec2>(nv + 1));
   for (int i = 0; i <= nu; ++i)
@@ -136,67 +157,25 @@ GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, cons
         t.worstDiagonalM = diag,
         t.worstAlongU = overSurface(i, j, i + 1, j) + overSurface(i, j + 1, i + 1, j + 1) >= overSurface(i, j, i, j + 1) + overSurface(i + 1, j, i + 1, j + 1);
     }
+  // Holes: each box must lie inside one cell, which becomes a ring of four patches round it.
+  for (const auto& hole : holes) {
+    std::array<int, 2> cell{-1, -1};
+    for (int i = 0; i < nu && cell[0] < 0; ++i)
+      for (int j = 0; j < nv && cell[0] < 0; ++j) {
+        const Polygon quad{t.plan[i][j], t.plan[i + 1][j], t.plan[i + 1][j + 1], t.plan[i][j + 1]};
+        bool inside = true;
+        for (int k = 0; k < 4; ++k) inside = inside && insidePolygon(quad, hole.corner(k, 1.25));  // room for the ring
+        if (inside) cell = {i, j};
+      }
+    if (cell[0] < 0 || std::count(t.holeCells.begin(), t.holeCells.end(), cell)) t.holesFit = false;
+    t.holeCells.push_back(cell);
+  }
   // Expression 3.1 is "only useful as a quick check" (3.4.1): members cross a cell in about its
   // diagonal, and a 1.5 x 2 m cell of a bump whose circle is 2.51 m already fails η; hence the margin.
   const double peakReach = 1.5;
   for (size_t k = 0; k < peaks.size(); ++k)
     if (!onNode[k] && peaks[k].radiusM < peakReach * t.worstDiagonalM) ++t.peaksLeftInside;
   return t;
-}
-
-// How far the geodesic between two plan points stays outside the hole: the least signed plan
-// distance of the traced path to the hole's outline (negative inside), -infinity when the path
-// bends round a boundary vertex (it wraps the hole or hugs the boundary).
-double holeClearance(const Vec2& from, const Vec2& to, const Polygon& hole, const Plan& plan, const PlanLifter& lifter,
-                     const TriMesh& surface, const geodesic::DistanceSolver& solver) {
-  const auto path = solver.path(geodesic::snapToSurface(surface, lifter.lift(from)), geodesic::snapToSurface(surface, lifter.lift(to)));
-  if (boundaryWrapTurning(surface, path.positions, path.bendVertices) > PatchOptions{}.boundaryWrapToleranceRad)
-    return -std::numeric_limits<double>::infinity();
-  double clearance = std::numeric_limits<double>::infinity();
-  for (const auto& x : path.positions) {
-    const Vec2 q = plan(x);
-    clearance = std::min(clearance, insidePolygon(hole, q) ? -distanceToPolygon(hole, q) : distanceToPolygon(hole, q));
-  }
-  return clearance;
-}
-
-// Tangent sides round a hole (Section 3.4.3): the corners of the box round the hole move towards
-// its centre until the traced sides just clear it, by `target`: first all four by one factor, then
-// each alone. Geodesics bow away from the hole where K < 0 around it (the Great Court), so the
-// plan's tangent box leaves more than the unavoidable ring between a square and its circle.
-// Returns the final least clearance.
-double tightenHoleBox(std::array<double, 4>& scale, const std::function<Vec2(int)>& cornerAt, const Polygon& hole, const Plan& plan,
-                      const PlanLifter& lifter, const TriMesh& surface, const geodesic::DistanceSolver& solver, double target) {
-  const auto sideClearance = [&](int k) { return holeClearance(cornerAt(k), cornerAt((k + 1) % 4), hole, plan, lifter, surface, solver); };
-  const auto feasible = [&](std::initializer_list<int> sides) {
-    for (int k : sides)
-      if (!(sideClearance(k) >= target)) return false;
-    return true;
-  };
-  const double floor = 0.5;  // half the box: its sides cut through the hole
-  for (int pass = 0; pass < 2; ++pass) {
-    for (int k = 0; k < (pass == 0 ? 1 : 4); ++k) {
-      const auto set = [&](double s) {
-        if (pass == 0) scale.fill(s);
-        else scale[k] = s;
-      };
-      const std::initializer_list<int> all{0, 1, 2, 3};
-      const auto ok = [&] { return pass == 0 ? feasible(all) : feasible({(k + 3) % 4, k}); };
-      double hi = scale[k], lo = floor;
-      set(hi);
-      if (!ok()) return -1.0;  // the inflated box itself does not clear the hole: leave it as it is
-      for (int it = 0; it < 10; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        set(mid);
-        if (ok()) hi = mid;
-        else lo = mid;
-      }
-      set(hi);
-    }
-  }
-  double least = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 4; ++k) least = std::min(least, sideClearance(k));
-  return least;
 }
 
 }  // namespace
@@ -210,10 +189,6 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   const Footprint foot = footprintOf(surface, plan);
   const PlanLifter lifter(surface, plan);
   out.holes = static_cast<int>(foot.holes.size());
-  if (foot.holes.size() > 1)
-    throw InvalidInput(fmt::format("workflow 2: the surface has {} holes; the automatic layout handles at most one so far "
-                                   "(give patching.patches, or close the holes)",
-                                   foot.holes.size()));
 
   // Outer corners: the boundary points extreme in the four diagonal directions of its box. Only
   // convex points of the boundary may be block corners (its convex hull's vertices): a corner in a
@@ -221,7 +196,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   Vec2 lo = foot.outer.front(), hi = foot.outer.front();
   for (const auto& p : foot.outer) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const Vec2 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
-  const std::array<Vec2, 4> quadrant{Vec2(-1, -1), Vec2(1, -1), Vec2(1, 1), Vec2(-1, 1)};
+  const auto& quadrant = kQuadrant;
   const std::vector<char> onHull = convexHullMarks(foot.outer);
   std::array<size_t, 4> cornerIndex{};
   for (int k = 0; k < 4; ++k) {
@@ -236,7 +211,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   for (int k = 0; k < 4; ++k) arcs[k] = arcOf(foot, cornerIndex[k], cornerIndex[(k + 1) % 4]);
 
   std::vector<Block> blocks;
-  if (foot.holes.empty()) {
+  if (foot.holes.size() != 1) {
     Block b;
     b.bottom = [a = arcs[0]](double u) { return a.at(u); };
     b.right = [a = arcs[1]](double v) { return a.at(v); };
@@ -248,15 +223,16 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     b.left3d = [a = arcs[3]](double v) { return a.at3d(1.0 - v); };
     b.bottomOnBoundary = b.topOnBoundary = b.leftOnBoundary = b.rightOnBoundary = true;
     blocks.push_back(b);
-    out.notes.push_back("one block between the four outer corners");
+    out.notes.push_back(foot.holes.empty() ? "one block between the four outer corners"
+                                           : fmt::format("one block between the four outer corners, each of its {} holes in a cell of its own "
+                                                         "cut into a ring of four patches round the hole's box",
+                                                         foot.holes.size()));
   } else {
     // The box tangent to the hole, inflated a little so that its sides clear the hole; with the
     // solver, its corners then move in until the traced sides just clear it.
-    Vec2 hlo = foot.holes[0].front(), hhi = foot.holes[0].front();
-    for (const auto& p : foot.holes[0]) hlo = hlo.cwiseMin(p), hhi = hhi.cwiseMax(p);
-    const Vec2 hc = 0.5 * (hlo + hhi), hh = 0.5 * (hhi - hlo) * (1.0 + options.holeMarginRelative);
+    const HoleBox box = holeBoxOf(foot.holes[0], options.holeMarginRelative);
     std::array<double, 4> scale{1.0, 1.0, 1.0, 1.0};
-    const auto cornerAt = [&](int k) { return Vec2(hc + scale[k] * quadrant[k].cwiseProduct(hh)); };
+    const auto cornerAt = [&](int k) { return box.corner(k, scale[k]); };
     if (solver) {
       const double clearance = tightenHoleBox(scale, cornerAt, foot.holes[0], plan, lifter, surface, *solver, foot.tolerance);
       if (clearance >= 0)
@@ -281,18 +257,24 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   }
   out.blocks = static_cast<int>(blocks.size());
 
+  std::vector<HoleBox> holeBoxes;
+  if (foot.holes.size() > 1)
+    for (const auto& hole : foot.holes) holeBoxes.push_back(holeBoxOf(hole, options.holeMarginRelative));
+
+  // Peaks for corners: not on the boundary, nor next to a hole (twice its box): the ring round the
+  // hole has its sides there already, and a corner moved there would cut through the hole's cell.
   const auto surfacePeaks = findSurfacePeaks(surface);
   std::vector<PlanPeak> peaks;
-  for (const auto& peak : surfacePeaks)
-    if (!peak.onBoundary) {
-      peaks.push_back({plan(peak.position), peak.radiusM});
-    }
+  for (const auto& peak : surfacePeaks) {
+    const Vec2 at = plan(peak.position);
+    const bool byHole = std::any_of(holeBoxes.begin(), holeBoxes.end(), [&](const HoleBox& h) {
+      return std::abs(at.x() - h.centre.x()) <= 2 * h.half.x() && std::abs(at.y() - h.centre.y()) <= 2 * h.half.y();
+    });
+    if (!peak.onBoundary && !byHole) peaks.push_back({at, peak.radiusM});
+  }
 
-  // Counts. One block: every grid up to a bound is screened and the one predicting the fewest
-  // patches kept, a peak left inside a cell larger than its circle counting as the three more
-  // patches Workflow 1's corner split will make (ties: the smaller cells). Around a hole the count
-  // along the worst cell grows until every cell fits, the radial count (v) shared by the ring.
-  if (foot.holes.empty()) {
+  GridTrial chosen;
+  if (foot.holes.size() != 1) {
     Block& b = blocks.front();
     const int bound = 16;
     int bestPredicted = std::numeric_limits<int>::max();
@@ -300,16 +282,17 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     for (int nu = 1; nu <= bound; ++nu)
       for (int nv = 1; nv <= bound; ++nv) {
         if (nu * nv > bestPredicted) continue;  // cannot win
-        const GridTrial t = tryGrid(b, nu, nv, lifter, peaks, options.peakSnapFraction);
+        GridTrial t = tryGrid(b, nu, nv, lifter, peaks, options.peakSnapFraction, holeBoxes);
         ++out.candidatesScreened;
-        if (t.worstDiagonalM > options.maxPatchSizeM * (1 + 1e-9)) continue;  // a cell of exactly the size fits
-        const int predicted = nu * nv + 3 * t.peaksLeftInside;
+        if (t.worstDiagonalM > options.maxPatchSizeM * (1 + 1e-9) || !t.holesFit) continue;  // a cell of exactly the size fits
+        const int predicted = nu * nv + 3 * t.peaksLeftInside + 3 * static_cast<int>(holeBoxes.size());
         if (predicted < bestPredicted || (predicted == bestPredicted && t.worstDiagonalM < bestDiagonal))
-          bestPredicted = predicted, bestDiagonal = t.worstDiagonalM, b.nu = nu, b.nv = nv;
+          bestPredicted = predicted, bestDiagonal = t.worstDiagonalM, b.nu = nu, b.nv = nv, chosen = std::move(t);
       }
     if (bestPredicted == std::numeric_limits<int>::max())
-      throw InvalidInput(fmt::format("workflow 2: no grid of up to {} x {} patches has cells within patching.max_patch_size_m = {} m", bound, bound,
-                                     options.maxPatchSizeM));
+      throw InvalidInput(fmt::format("workflow 2: no grid of up to {} x {} patches has cells within patching.max_patch_size_m = {} m{}", bound,
+                                     bound, options.maxPatchSizeM,
+                                     holeBoxes.empty() ? "" : " and each hole in a cell of its own (holes too close together or too large)"));
   } else {
     for (int guard = 0; guard < 200; ++guard) {
       bool changed = false;
@@ -350,6 +333,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     interiorOf.push_back({-1, -1, -1});
     return static_cast<int>(nodes.size()) - 1;
   };
+  const bool singleBlock = foot.holes.size() != 1;
   std::vector<std::vector<std::vector<int>>> grid(blocks.size());
   std::vector<std::vector<std::vector<Vec2>>> plainGrids;
   std::vector<std::pair<int, int>> boundaryChords;  // consecutive boundary nodes
@@ -357,15 +341,17 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   for (size_t bi = 0; bi < blocks.size(); ++bi) {
     const Block& b = blocks[bi];
     plainGrids.push_back(tryGrid(b, b.nu, b.nv, lifter, {}, 0.0).plan);
-    const auto& plain = plainGrids.back();
+    // One block: the screened grid as it was chosen (its peaks on nodes, the others evened out).
+    const auto& plain = singleBlock ? chosen.plan : plainGrids.back();
     grid[bi].assign(b.nu + 1, std::vector<int>(b.nv + 1));
     for (int i = 0; i <= b.nu; ++i)
       for (int j = 0; j <= b.nv; ++j) {
         const auto boundaryPoint = b.boundaryPoint(i, j, b.nu, b.nv);
         const int id = grid[bi][i][j] = nodeId(plain[i][j], boundaryPoint.has_value());
         if (boundaryPoint) onSurface[id] = startedOn[id] = boundaryPoint;
-        const bool onHoleBox = !foot.holes.empty() && j == b.nv;
-        if (boundaryPoint || onHoleBox) fixedNode[id] = 1;
+        const bool onHoleBox = !singleBlock && j == b.nv;
+        if (boundaryPoint || onHoleBox || (singleBlock && chosen.onPeak[i][j])) fixedNode[id] = 1;
+        if (singleBlock && chosen.onPeak[i][j]) ++out.peaksSnapped;
         if (i > 0 && i < b.nu && j > 0 && j < b.nv && interiorOf[id][0] < 0) interiorOf[id] = {static_cast<int>(bi), i, j};
       }
     const auto& g = grid[bi];
@@ -385,6 +371,20 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
           const int to = (b.nu >= 2 || b.nv >= 2) ? g[std::min(ii, b.nu)][std::min(jj, b.nv)] : -1;
           inwards.emplace_back(g[i][j], to);
         }
+  }
+  // Each hole's cell becomes a ring of four patches round the hole's box (its corners moved in
+  // until the traced sides just clear the hole, with the solver).
+  std::map<std::array<int, 2>, std::array<int, 4>> ringOfCell;  // cell -> its box's corner nodes
+  for (size_t h = 0; h < holeBoxes.size(); ++h) {
+    std::array<double, 4> scale{1.0, 1.0, 1.0, 1.0};
+    const auto cornerAt = [&](int k) { return holeBoxes[h].corner(k, scale[k]); };
+    if (solver && tightenHoleBox(scale, cornerAt, foot.holes[h], plan, lifter, surface, *solver, foot.tolerance) >= 0) ++out.holeBoxesTightened;
+    std::array<int, 4> ring{};
+    for (int k = 0; k < 4; ++k) {
+      ring[k] = nodeId(cornerAt(k), false);
+      fixedNode[ring[k]] = 1;
+    }
+    ringOfCell[chosen.holeCells[h]] = ring;
   }
   const Vec2 blockCentre = [&] {
     Vec2 c = Vec2::Zero();
@@ -418,9 +418,10 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     if (!pullIn(bad)) break;
   }
 
-  // High K first (Algorithm 2): an interior node near a K peak becomes a corner at p_max.
+  // High K first (Algorithm 2): an interior node near a K peak becomes a corner at p_max (one
+  // block: done while screening).
   std::vector<char> snapped(nodes.size(), 0);
-  for (const auto& peak : peaks) {
+  for (const auto& peak : singleBlock ? std::vector<PlanPeak>{} : peaks) {
     int best = -1;
     double bestDistance = std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < nodes.size(); ++i) {
@@ -529,7 +530,14 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     for (int i = 0; i < blocks[bi].nu; ++i)
       for (int j = 0; j < blocks[bi].nv; ++j) {
         const auto& g = grid[bi];
-        out.quads.push_back({g[i][j], g[i + 1][j], g[i + 1][j + 1], g[i][j + 1]});
+        const std::array<int, 4> cell{g[i][j], g[i + 1][j], g[i + 1][j + 1], g[i][j + 1]};
+        const auto ring = singleBlock ? ringOfCell.find({i, j}) : ringOfCell.end();
+        if (ring == ringOfCell.end()) {
+          out.quads.push_back(cell);
+          continue;
+        }
+        for (int k = 0; k < 4; ++k)  // the patch between cell side k and box side k
+          out.quads.push_back({cell[k], cell[(k + 1) % 4], ring->second[(k + 1) % 4], ring->second[k]});
       }
   std::string counts;
   for (const auto& b : blocks) counts += fmt::format("{}{}x{}", counts.empty() ? "" : ", ", b.nu, b.nv);

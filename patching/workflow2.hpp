@@ -44,6 +44,7 @@ struct Workflow2Layout {
   int peaksSnapped = 0;
   int nodesPulledIn = 0;
   int cornersMovedOffStraightBoundary = 0;
+  int holeBoxesTightened = 0;             // boxes round holes whose traced sides were moved in to just clear them
   int candidatesScreened = 0;             // grids tried (cheap: plan nodes lifted, cell chords measured)
   std::vector<std::string> notes;          // how the layout was made, for the report
   double seconds = 0.0;

@@ -126,6 +126,36 @@ TEST(Workflow2, ACapLargerThanItsCircleIsSplitHoweverLargePatchesMayBe) {
   EXPECT_EQ(layout.peaksSnapped, 1);
 }
 
+TEST(Workflow2, EachOfTwoHolesGetsARingOfFourPatches) {
+  // The Yas canopy with its two tower holes cut (20 x 12 m ellipses at (-55, -15) and (55, 15)):
+  // each hole's box lies in a cell of its own, which becomes four patches round it; no patch
+  // holds a hole (its centre is inside no quad's outline in plan).
+  const TriMesh surface = samples::generateSample("yas", {{"holes", 1}}, 4.0);
+  Workflow2Options options;
+  options.maxPatchSizeM = 120.0;
+  const Workflow2Layout layout = proposeLayout(surface, options);
+  EXPECT_EQ(layout.holes, 2);
+  EXPECT_EQ(layout.blocks, 1);
+  for (const Eigen::Vector2d centre : {Eigen::Vector2d(-55, -15), Eigen::Vector2d(55, 15)}) {
+    int round = 0;
+    for (const auto& q : layout.quads) {
+      std::vector<Eigen::Vector2d> outline;
+      for (int k : q) outline.push_back(layout.corners[k].head<2>());
+      double winding = 0.0;  // the angle the outline sweeps round the centre: 2 pi inside, 0 outside
+      for (size_t k = 0; k < 4; ++k) {
+        const Eigen::Vector2d a = outline[k] - centre, b = outline[(k + 1) % 4] - centre;
+        winding += std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+      }
+      EXPECT_LT(std::abs(winding), 1e-6) << "a patch holds the hole at " << centre.transpose();
+      // A patch of the ring has two corners within 15 m of the hole's centre (its box's corners).
+      int near = 0;
+      for (const auto& c : outline) near += (c - centre).norm() < 15.0;
+      round += near == 2;
+    }
+    EXPECT_EQ(round, 4) << "the ring round the hole at " << centre.transpose();
+  }
+}
+
 TEST(Workflow2, TheSameLayoutOnAnyThreadCount) {
   const TriMesh surface = samples::generateSample("great_court", {}, 2.0);
   Workflow2Options options;

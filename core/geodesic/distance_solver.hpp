@@ -64,6 +64,15 @@ struct DistanceSolverOptions {
   double minWindowWidthRelative = 1e-11;
   // Worker threads of the batch call; 0 = TBB's default (all cores). Results do not depend on it.
   int threads = 0;
+  // How distance fields are propagated (window_propagation.cpp). StoredWindows keeps every window
+  // (memory O(windows)) and trims each new one against all earlier ones on its edge. FrontOnly
+  // keeps only the queued windows (memory O(front), as VTP, Qin et al. 2016): a window's slot is
+  // freed once it has crossed its face, a new window is trimmed only against the queued windows
+  // of its edge (and they against it) and re-pruned against its edge's endpoints when it is
+  // taken from the queue. Same distances to rounding (tests/core/geodesic/test_window_propagation.cpp).
+  // path() always keeps the windows it traces back through.
+  enum class Engine { StoredWindows, FrontOnly };
+  Engine engine = Engine::StoredWindows;
 
   void validate() const;  // throws InvalidInput naming the field
 };
@@ -81,6 +90,8 @@ struct DistanceField {
   std::vector<double> vertexDistances;  // per vertex (OpenMesh index), metres; +inf if unreachable
   std::vector<double> targetDistances;  // per requested target point, same order; +inf if unreachable
   long windowsCreated = 0;              // diagnostics: windows pushed during the propagation
+  long peakWindows = 0;                 // diagnostics: most windows held at once (all of them when stored)
+  double peakBytes = 0.0;               // diagnostics: the propagation's working memory at its peak, counted
   double seconds = 0.0;                 // wall time of this field
 };
 

@@ -21,15 +21,15 @@ void Propagator::reset(const std::vector<SurfacePoint>& targets) {
   s_.splitCrossing.assign(t_.halfedgeCount, 0.0);
   s_.windows.clear();
   s_.blocks.clear();
+  s_.firstBlock.assign(t_.halfedgeCount, -1);
   s_.freeSlots.clear();
   s_.slotState.clear();
-  s_.liveNext.clear();
-  s_.livePrev.clear();
-  if (s_.storeWindows) {
-    s_.firstBlock.assign(t_.halfedgeCount, -1);
-  } else {
-    s_.liveFirst.assign(t_.halfedgeCount, -1);
-    if (static_cast<int>(s_.predecessorWindow.size()) != t_.vertexCount) s_.predecessorWindow.resize(t_.vertexCount);
+  s_.slotSpan.clear();
+  s_.blockLive.clear();
+  s_.blockPrev.clear();
+  s_.freeBlocks.clear();
+  if (!s_.storeWindows && static_cast<int>(s_.predecessorWindow.size()) != t_.vertexCount) {
+    s_.predecessorWindow.resize(t_.vertexCount);
   }
   s_.windowsCreated = 0;
   // Buckets of 1/1024 edge: a handful of queued windows each (see bucket_queue.hpp); measured
@@ -291,8 +291,10 @@ double peakBytes(const MeshTables& t, const Propagation& s) {
   if (s.storeWindows) {
     bytes += windows * sizeof(Window) + static_cast<double>(s.blocks.size()) * sizeof(Propagation::SpanBlock);
   } else {
-    // Slots (window, state, two links, a free-list entry) and the pseudo-sources' window copies.
-    bytes += windows * (sizeof(Window) + 1 + 3 * sizeof(int)) + v * sizeof(Window);
+    // Slots (window, state, span, a free-list entry), blocks (with live count, back link and a
+    // free-list entry) and the pseudo-sources' window copies.
+    bytes += windows * (sizeof(Window) + 1 + 2 * sizeof(int)) + v * sizeof(Window) +
+             static_cast<double>(s.blocks.size()) * (sizeof(Propagation::SpanBlock) + 3 * sizeof(int));
   }
   const double nt = static_cast<double>(s.targetFace.size());
   bytes += nt * (2 * sizeof(int) + sizeof(Eigen::Vector3d) + sizeof(double) + sizeof(Predecessor));

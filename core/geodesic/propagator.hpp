@@ -73,7 +73,7 @@ class Propagator {
   void addStoredWindow(Window& w);
   void addFrontWindow(Window& w);
   bool takeFrontWindow(int slot);
-  void unlinkFront(int slot);
+  void clearSpan(int slot);
   void propagateWindow(int index);
 };
 

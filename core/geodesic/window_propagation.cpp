@@ -173,32 +173,44 @@ void Propagator::addStoredWindow(Window& w) {
   push(windowKey(w), index);
 }
 
-// Front mode: a new window meets only the queued windows of its halfedge (a few; the propagated
-// ones are gone). Each pair is trimmed both ways - the part of either where the other is shorter
-// carries no shortest path (Mitchell-Mount-Papadimitriou's overlap rule; VTP lets either of a
-// pair die) - and a queued window trimmed to nothing is marked Dead: its queue entry is skipped
-// when popped, and its slot freed then. A queued window's key stays its old, smaller minimum: a
-// lower bound still, so it pops a little early, which changes no distance.
+// Front mode: a new window meets only the queued windows of its halfedge (the propagated ones are
+// gone), kept as spans in blocks as in stored mode: a walk over a halfedge's live windows reads a
+// few contiguous lines, where a list through the window slots cost a cache miss per window (a
+// third of the time at 100k vertices). Each overlapping pair is trimmed both ways - the part of
+// either where the other is shorter carries no shortest path (Mitchell-Mount-Papadimitriou's
+// overlap rule; VTP lets either of a pair die) - and a queued window trimmed to nothing is marked
+// Dead: its queue entry is skipped when popped, and its slot freed then. A queued window's key
+// stays its old, smaller minimum: a lower bound still, so it pops a little early, which changes
+// no distance.
 void Propagator::addFrontWindow(Window& w) {
   const double b0In = w.b0, b1In = w.b1;
   if (!prune(w)) return;
-  const auto& e = t_.he[w.halfedge];
+  const int h = w.halfedge;
+  const auto& e = t_.he[h];
   const double minWidth = o_.minWindowWidthRelative * e.length;
-  int& first = s_.liveFirst[w.halfedge];
-  for (int o = first; o >= 0;) {
-    const int next = s_.liveNext[o];
-    Window& other = s_.windows[o];
-    if (std::min(w.b1, other.b1) > std::max(w.b0, other.b0)) {
-      if (!trimAgainst(w, other) || w.b1 - w.b0 <= minWidth) return;
-      const double o0 = other.b0, o1 = other.b1;
-      if (!trimAgainst(other, w) || other.b1 - other.b0 <= minWidth) {
-        unlinkFront(o);
-        s_.slotState[o] = Propagation::Dead;
-      } else if (other.b0 != o0 || other.b1 != o1) {
-        markEndVertices(other, o0, o1, e);
+  for (int b = s_.firstBlock[h]; b >= 0;) {
+    auto& block = s_.blocks[b];
+    const int next = block.next;
+    if (std::min(w.b1, block.hi) > std::max(w.b0, block.lo)) {
+      for (int k = 0; k < block.count; ++k) {
+        auto& span = block.spans[k];
+        if (!(std::min(w.b1, span.b1) > std::max(w.b0, span.b0))) continue;  // disjoint, or a cleared span
+        Window& other = s_.windows[span.window];
+        const double o0 = other.b0, o1 = other.b1;
+        bool wLeft, otherLeft;
+        trimPair(w, other, wLeft, otherLeft);
+        if (!wLeft || w.b1 - w.b0 <= minWidth) return;
+        if (!otherLeft || other.b1 - other.b0 <= minWidth) {
+          s_.slotState[span.window] = Propagation::Dead;
+          clearSpan(span.window);  // may recycle this block: its spans are all cleared then
+        } else if (other.b0 != o0 || other.b1 != o1) {
+          markEndVertices(other, o0, o1, e);
+          span.b0 = other.b0;
+          span.b1 = other.b1;
+        }
       }
     }
-    o = next;
+    b = next;
   }
   markEndVertices(w, b0In, b1In, e);
   int slot;
@@ -210,38 +222,66 @@ void Propagator::addFrontWindow(Window& w) {
     slot = static_cast<int>(s_.windows.size());
     s_.windows.push_back(w);
     s_.slotState.push_back(Propagation::Free);
-    s_.liveNext.push_back(-1);
-    s_.livePrev.push_back(-1);
+    s_.slotSpan.push_back(-1);
   }
   s_.slotState[slot] = Propagation::Live;
-  s_.livePrev[slot] = -1;
-  s_.liveNext[slot] = first;
-  if (first >= 0) s_.livePrev[first] = slot;
-  first = slot;
+  using SpanBlock = Propagation::SpanBlock;
+  int first = s_.firstBlock[h];
+  if (first < 0 || s_.blocks[first].count == SpanBlock::kCapacity) {
+    int b;
+    if (!s_.freeBlocks.empty()) {
+      b = s_.freeBlocks.back();
+      s_.freeBlocks.pop_back();
+    } else {
+      b = static_cast<int>(s_.blocks.size());
+      s_.blocks.emplace_back();
+      s_.blockLive.push_back(0);
+      s_.blockPrev.push_back(-1);
+    }
+    SpanBlock& block = s_.blocks[b];
+    block.lo = kInfinity;
+    block.hi = -kInfinity;
+    block.count = 0;
+    block.next = first;
+    s_.blockLive[b] = 0;
+    s_.blockPrev[b] = -1;
+    if (first >= 0) s_.blockPrev[first] = b;
+    s_.firstBlock[h] = first = b;
+  }
+  SpanBlock& block = s_.blocks[first];
+  s_.slotSpan[slot] = first * 8 + block.count;
+  block.spans[block.count] = {w.b0, w.b1, slot};
+  block.lo = std::min(block.lo, w.b0);
+  block.hi = std::max(block.hi, w.b1);
+  ++block.count;
+  ++s_.blockLive[first];
   ++s_.windowsCreated;
   push(windowKey(w), slot);
 }
 
-void Propagator::unlinkFront(int slot) {
-  const int prev = s_.livePrev[slot], next = s_.liveNext[slot];
-  if (prev >= 0) s_.liveNext[prev] = next;
-  else s_.liveFirst[s_.windows[slot].halfedge] = next;
-  if (next >= 0) s_.livePrev[next] = prev;
+// Front mode: takes a window off its halfedge's spans; a block left without live spans goes back
+// to the pool at once, so the blocks stay O(front) too.
+void Propagator::clearSpan(int slot) {
+  const int ref = s_.slotSpan[slot];
+  const int b = ref / 8;
+  auto& block = s_.blocks[b];
+  block.spans[ref % 8] = {kInfinity, -kInfinity, -1};
+  if (--s_.blockLive[b] > 0) return;
+  const int prev = s_.blockPrev[b], next = block.next;
+  if (prev >= 0) s_.blocks[prev].next = next;
+  else s_.firstBlock[s_.windows[slot].halfedge] = next;
+  if (next >= 0) s_.blockPrev[next] = prev;
+  s_.freeBlocks.push_back(b);
 }
 
-// Front mode, a window taken from the queue: off its halfedge's list, and pruned once more
-// against its edge's endpoints, whose distances may have dropped since it was queued (with no
-// stored windows to trim against, that is where the later, shorter paths show). False if it was
-// trimmed away (its slot is then free again).
+// Front mode, a window taken from the queue: off its halfedge's spans. False if it was trimmed
+// away while queued (its slot is then free again). (Re-pruning against the edge's endpoints here,
+// whose distances may have dropped since the window was queued, killed 41 of 158k windows on the
+// 4.4k bench bump, 0 on the plane, for two square roots per window: left out, as in stored mode.)
 bool Propagator::takeFrontWindow(int slot) {
   if (s_.slotState[slot] == Propagation::Live) {
-    unlinkFront(slot);
-    Window& w = s_.windows[slot];
-    const double b0In = w.b0, b1In = w.b1;
-    if (prune(w)) {
-      markEndVertices(w, b0In, b1In, t_.he[w.halfedge]);
-      return true;
-    }
+    clearSpan(slot);
+    return true;
   }
   s_.slotState[slot] = Propagation::Free;
   s_.freeSlots.push_back(slot);

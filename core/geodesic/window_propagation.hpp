@@ -128,15 +128,16 @@ struct Propagation {
   // Stored mode: every window, in creation order. Front mode: slots, reused once a window has
   // crossed its face (freeSlots); only the queued windows are held.
   std::vector<Window> windows;
-  // Front mode (DistanceSolverOptions::Engine::FrontOnly). Per slot: Live (queued, on its
-  // halfedge's list), Dead (queued, trimmed away by a later window: skipped when popped) or Free;
-  // the queued windows of each halfedge form a doubly linked list (liveFirst per halfedge,
-  // liveNext/livePrev per slot), the only windows a new one is trimmed against.
+  // Front mode (DistanceSolverOptions::Engine::FrontOnly). Per slot: Live (queued, a span on its
+  // halfedge), Dead (queued, trimmed away by a later window: skipped when popped) or Free, and
+  // where its span is (block * 8 + index). The blocks hold only the queued windows' spans: a block
+  // whose spans are all gone is unlinked (blockPrev) and reused (freeBlocks).
   enum SlotState : char { Free, Live, Dead };
   bool storeWindows = true;
   std::vector<int> freeSlots;
   std::vector<SlotState> slotState;
-  std::vector<int> liveFirst, liveNext, livePrev;
+  std::vector<int> slotSpan;
+  std::vector<int> blockLive, blockPrev, freeBlocks;
   // Per pseudo-source vertex, a copy of the window its best path so far came through: the cone it
   // fires into is aimed from that path (incomingAngle), and the window's slot may be reused.
   std::vector<Window> predecessorWindow;

@@ -48,13 +48,17 @@ struct GeodesicArgs {
   std::string surface;
   std::string source;
   std::string out;
+  std::string engine;  // empty: the solver's default
   bool json = false;
 };
 
 int runGeodesic(const GeodesicArgs& args) {
   const TriMesh mesh = loadSurfaceArgument(args.surface);
   const Eigen::Vector3d requested = parsePoint(args.source);
-  const geodesic::DistanceSolver solver(mesh);
+  geodesic::DistanceSolverOptions options;
+  if (args.engine == "stored") options.engine = geodesic::DistanceSolverOptions::Engine::StoredWindows;
+  if (args.engine == "front") options.engine = geodesic::DistanceSolverOptions::Engine::FrontOnly;
+  const geodesic::DistanceSolver solver(mesh, options);
   const SurfacePoint source = geodesic::snapToSurface(mesh, requested);
   const Eigen::Vector3d snapped = position(mesh, source);
   const auto field = solver.distances(source);
@@ -82,6 +86,8 @@ int runGeodesic(const GeodesicArgs& args) {
                             {"max_distance_m", maxDistance},
                             {"unreachable_vertices", unreachable},
                             {"windows", field.windowsCreated},
+                            {"peak_windows", field.peakWindows},
+                            {"peak_working_memory_mb", field.peakBytes / 1e6},
                             {"precompute_seconds", solver.precomputeSeconds()},
                             {"seconds", field.seconds},
                             {"out", args.out}};
@@ -234,10 +240,11 @@ nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
   table << "\nstored-window engine against front-only (issue 19): median thread CPU ms per vertex source; ratio ="
            " front / stored; peak MB = counted working memory of one field;\nerr = max relative difference at the"
            " vertices against the exact mode (tolerance 0, stored; skipped above 50k vertices), front-stored ="
-           " between the engines\n";
-  table << fmt::format("{:>7} {:>8} {:>8} {:>9} {:>9} {:>6} {:>10} {:>10} {:>9} {:>9} {:>10} {:>10} {:>10}\n", "sample",
-                       "verts", "faces", "stored ms", "front ms", "ratio", "stored win", "front win", "stored MB",
-                       "front MB", "stored err", "front err", "front-strd");
+           " between the engines;\nRSS MB = the process's peak RSS before the row's first stored field (mesh,"
+           " tables, the front field, and all earlier rows)\n";
+  table << fmt::format("{:>7} {:>8} {:>8} {:>9} {:>9} {:>6} {:>10} {:>10} {:>9} {:>9} {:>10} {:>10} {:>10} {:>8}\n",
+                       "sample", "verts", "faces", "stored ms", "front ms", "ratio", "stored win", "front win",
+                       "stored MB", "front MB", "stored err", "front err", "front-strd", "RSS MB");
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& row : meshes) {
     const TriMesh mesh = samples::generateSample(row.sample, {}, row.edge);
@@ -252,7 +259,7 @@ nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
     const int count = large ? 1 : std::max(1, args.engineSources);
     std::vector<double> storedMs, frontMs;
     double storedWindows = 0, frontWindows = 0, storedPeak = 0, frontPeak = 0, storedBytes = 0, frontBytes = 0;
-    double storedErr = 0, frontErr = 0, between = 0;
+    double storedErr = 0, frontErr = 0, between = 0, rssBeforeStored = 0;
     auto worst = [&](const std::vector<double>& a, const std::vector<double>& ref, double& into) {
       for (size_t v = 0; v < ref.size(); ++v) {
         if (ref[v] > 2.0 * stored.meanEdgeLength() && std::isfinite(ref[v])) {
@@ -262,12 +269,15 @@ nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
     };
     for (int i = 0; i < count; ++i) {
       const int v = static_cast<int>((2LL * i + 1) * nv / (2LL * count));
+      // Front first: the process's peak RSS before the row's first stored field bounds what a
+      // front-only process needs (mesh, tables and one field; earlier rows count too).
       double t0 = threadCpuSeconds();
-      const auto a = stored.distancesFromVertex(v);
-      storedMs.push_back(1e3 * (threadCpuSeconds() - t0));
-      t0 = threadCpuSeconds();
       const auto b = front.distancesFromVertex(v);
       frontMs.push_back(1e3 * (threadCpuSeconds() - t0));
+      if (i == 0) rssBeforeStored = peakRssMb();
+      t0 = threadCpuSeconds();
+      const auto a = stored.distancesFromVertex(v);
+      storedMs.push_back(1e3 * (threadCpuSeconds() - t0));
       storedWindows += a.windowsCreated;
       frontWindows += b.windowsCreated;
       storedPeak = std::max(storedPeak, double(a.peakWindows));
@@ -283,9 +293,10 @@ nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
     }
     const double sm = median(storedMs), fm = median(frontMs);
     auto errText = [&](double e) { return exact ? fmt::format("{:.2e}", e) : std::string("-"); };
-    table << fmt::format("{:>7} {:>8} {:>8} {:>9.1f} {:>9.1f} {:>6.2f} {:>10.0f} {:>10.0f} {:>9.1f} {:>9.1f} {:>10} {:>10} {:>10.2e}\n",
-                         row.sample, nv, mesh.n_faces(), sm, fm, fm / sm, storedWindows / count, frontWindows / count,
-                         storedBytes / 1e6, frontBytes / 1e6, errText(storedErr), errText(frontErr), between);
+    table << fmt::format(
+        "{:>7} {:>8} {:>8} {:>9.1f} {:>9.1f} {:>6.2f} {:>10.0f} {:>10.0f} {:>9.1f} {:>9.1f} {:>10} {:>10} {:>10.2e} {:>8.0f}\n",
+        row.sample, nv, mesh.n_faces(), sm, fm, fm / sm, storedWindows / count, frontWindows / count, storedBytes / 1e6,
+        frontBytes / 1e6, errText(storedErr), errText(frontErr), between, rssBeforeStored);
     table.flush();
     auto orNull = [&](double e) { return exact ? nlohmann::json(e) : nlohmann::json(nullptr); };
     rows.push_back({{"sample", row.sample},
@@ -304,7 +315,9 @@ nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
                     {"front_peak_mb", frontBytes / 1e6},
                     {"stored_max_relative_error_vs_exact", orNull(storedErr)},
                     {"front_max_relative_error_vs_exact", orNull(frontErr)},
-                    {"front_vs_stored_max_relative_difference", between}});
+                    {"front_vs_stored_max_relative_difference", between},
+                    {"process_peak_rss_mb_before_stored", rssBeforeStored},
+                    {"process_peak_rss_mb_after_stored", peakRssMb()}});
   }
   return rows;
 }
@@ -450,6 +463,10 @@ void registerGeodesicCommand(CLI::App& parent, Action& action) {
   cmd->add_option("SURFACE", args->surface, "sample name, mesh file, or scene file (its surface)")->required();
   cmd->add_option("--source", args->source, "source point x,y,z in metres (snapped to the surface)")->required();
   cmd->add_option("--out", args->out, "output CSV (x,y,z,distance per vertex; inf if unreachable)")->required();
+  cmd->add_option("--engine", args->engine,
+                  "stored (every window kept) or front (only the wavefront, far less memory); default: the "
+                  "solver's")
+      ->check(CLI::IsMember({"stored", "front"}));
   cmd->add_flag("--json", args->json, "print the summary as JSON");
   cmd->callback([args, &action] { action = [args] { return runGeodesic(*args); }; });
 }

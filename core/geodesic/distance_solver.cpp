@@ -32,6 +32,9 @@ void DistanceSolverOptions::validate() const {
     throw InvalidInput("DistanceSolverOptions.minWindowWidthRelative must be in [0, 1e-3)");
   }
   if (threads < 0) throw InvalidInput("DistanceSolverOptions.threads must be >= 0 (0 = all cores)");
+  if (engine != Engine::StoredWindows && engine != Engine::FrontOnly) {
+    throw InvalidInput("DistanceSolverOptions.engine must be StoredWindows or FrontOnly");
+  }
 }
 
 DistanceSolver::DistanceSolver(const TriMesh& mesh, const DistanceSolverOptions& options) : options_(options) {

@@ -67,10 +67,13 @@ struct DistanceSolverOptions {
   // How distance fields are propagated (window_propagation.cpp). StoredWindows keeps every window
   // (memory O(windows)) and trims each new one against all earlier ones on its edge. FrontOnly
   // keeps only the queued windows (memory O(front), as VTP, Qin et al. 2016): a window's slot is
-  // freed once it has crossed its face, a new window is trimmed only against the queued windows
-  // of its edge (and they against it) and re-pruned against its edge's endpoints when it is
-  // taken from the queue. Same distances to rounding (tests/core/geodesic/test_window_propagation.cpp).
-  // path() always keeps the windows it traces back through.
+  // freed once it has crossed its face, and a new window is trimmed against the queued windows of
+  // its edge, and they against it. Same distances to rounding (tests/core/geodesic/
+  // test_window_propagation.cpp). `egg bench geodesic`, thread CPU per field, front / stored:
+  // 1.0-1.1 on the 4.5k bump and cap, 0.9-1.1 on the 17-18k cap and plane (the machine's noise),
+  // 0.58 on the 418k-triangle bump, whose working memory drops from 3.6 GB to 53 MB. Not the
+  // default, as it is not faster on the small meshes. path() keeps the windows it traces back
+  // through whatever the engine.
   enum class Engine { StoredWindows, FrontOnly };
   Engine engine = Engine::StoredWindows;
 

@@ -23,7 +23,7 @@ void Propagator::reset(const std::vector<SurfacePoint>& targets) {
   s_.blocks.clear();
   s_.firstBlock.assign(t_.halfedgeCount, -1);
   s_.freeSlots.clear();
-  s_.slotState.clear();
+  s_.freeHead = 0;
   s_.slotSpan.clear();
   s_.blockLive.clear();
   s_.blockPrev.clear();
@@ -291,9 +291,9 @@ double peakBytes(const MeshTables& t, const Propagation& s) {
   if (s.storeWindows) {
     bytes += windows * sizeof(Window) + static_cast<double>(s.blocks.size()) * sizeof(Propagation::SpanBlock);
   } else {
-    // Slots (window, state, span, a free-list entry), blocks (with live count, back link and a
+    // Slots (window, span, a free-list entry), blocks (with live count, back link and a
     // free-list entry) and the pseudo-sources' window copies.
-    bytes += windows * (sizeof(Window) + 1 + 2 * sizeof(int)) + v * sizeof(Window) +
+    bytes += windows * (sizeof(Window) + 2 * sizeof(int)) + v * sizeof(Window) +
              static_cast<double>(s.blocks.size()) * (sizeof(Propagation::SpanBlock) + 3 * sizeof(int));
   }
   const double nt = static_cast<double>(s.targetFace.size());

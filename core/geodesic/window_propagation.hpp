@@ -128,14 +128,13 @@ struct Propagation {
   // Stored mode: every window, in creation order. Front mode: slots, reused once a window has
   // crossed its face (freeSlots); only the queued windows are held.
   std::vector<Window> windows;
-  // Front mode (DistanceSolverOptions::Engine::FrontOnly). Per slot: Live (queued, a span on its
-  // halfedge), Dead (queued, trimmed away by a later window: skipped when popped) or Free, and
-  // where its span is (block * 8 + index). The blocks hold only the queued windows' spans: a block
-  // whose spans are all gone is unlinked (blockPrev) and reused (freeBlocks).
-  enum SlotState : char { Free, Live, Dead };
+  // Front mode (DistanceSolverOptions::Engine::FrontOnly). Per slot, where its span is (block * 8
+  // + index): -1 once the window has been trimmed away while queued (its queue entry is then
+  // skipped) or taken from the queue. The blocks hold only the queued windows' spans: a block whose
+  // spans are all gone is unlinked (blockPrev) and reused (freeBlocks).
   bool storeWindows = true;
-  std::vector<int> freeSlots;
-  std::vector<SlotState> slotState;
+  std::vector<int> freeSlots;  // a queue: [freeHead, end) are free
+  std::size_t freeHead = 0;
   std::vector<int> slotSpan;
   std::vector<int> blockLive, blockPrev, freeBlocks;
   // Per pseudo-source vertex, a copy of the window its best path so far came through: the cone it

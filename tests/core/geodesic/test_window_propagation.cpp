@@ -3,6 +3,8 @@
 // and L-shaped meshes with vertex, edge and face sources; its memory (only the front is held),
 // directed queries, paths and thread-count determinism.
 #include "core/geodesic/distance_solver.hpp"
+
+#include "core/errors.hpp"
 #include "core/geodesic/exact_reference.hpp"
 #include "tests/core/geodesic/geodesic_test_meshes.hpp"
 
@@ -149,6 +151,17 @@ TEST(FrontEngine, BatchIsBitIdenticalForAnyThreadCount) {
     EXPECT_EQ(one[i].targetDistances, two[i].targetDistances);
     stored.distances(sources[(i + 1) % sources.size()], targets);
     EXPECT_EQ(one[i].vertexDistances, single.distances(sources[i], targets).vertexDistances);
+  }
+}
+
+TEST(FrontEngine, AnUnknownEngineIsRefusedByName) {
+  DistanceSolverOptions o;
+  o.engine = static_cast<Engine>(7);
+  try {
+    DistanceSolver(testing::gridMesh(2, 2, 1.0, 1.0, testing::flat), o);
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("DistanceSolverOptions.engine"), std::string::npos) << e.what();
   }
 }
 

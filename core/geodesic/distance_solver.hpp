@@ -69,11 +69,12 @@ struct DistanceSolverOptions {
   // keeps only the queued windows (memory O(front), as VTP, Qin et al. 2016): a window's slot is
   // freed once it has crossed its face, and a new window is trimmed against the queued windows of
   // its edge, and they against it. Same distances to rounding (tests/core/geodesic/
-  // test_window_propagation.cpp). `egg bench geodesic`, thread CPU per field, front / stored:
-  // 1.0-1.1 on the 4.5k bump and cap, 0.9-1.1 on the 17-18k cap and plane (the machine's noise),
-  // 0.58 on the 418k-triangle bump, whose working memory drops from 3.6 GB to 53 MB. Not the
-  // default, as it is not faster on the small meshes. path() keeps the windows it traces back
-  // through whatever the engine.
+  // test_window_propagation.cpp). Time per field, front / stored (2026-12, `egg bench geodesic
+  // --engine-rows large`, thread CPU; and `egg geodesic --engine`): 1.05-1.10 on the 4.5k bump and
+  // cap, 0.84-1.02 on the 18k cap, 0.88-0.97 on the 17k plane, 0.55-0.90 on the 418k-triangle bump,
+  // whose process peak RSS drops from 5.0 GB to 0.27 GB (working memory 3.6 GB -> 53 MB). Not the
+  // default: slower on the small meshes. path() keeps the windows it traces back through whatever
+  // the engine.
   enum class Engine { StoredWindows, FrontOnly };
   Engine engine = Engine::StoredWindows;
 

@@ -71,7 +71,7 @@ struct DistanceSolverOptions {
   // its edge, and they against it. Same distances to rounding (tests/core/geodesic/
   // test_window_propagation.cpp). Time per field, front / stored (2026-12, `egg bench geodesic
   // --engine-rows large`, thread CPU; and `egg geodesic --engine`): 1.05-1.10 on the 4.5k bump and
-  // cap, 0.84-1.02 on the 18k cap, 0.88-0.97 on the 17k plane, 0.55-0.90 on the 418k-triangle bump,
+  // cap, 0.84-1.02 on the 18k cap, 0.88-0.97 on the 17k plane, 0.55-1.02 on the 418k-triangle bump,
   // whose process peak RSS drops from 5.0 GB to 0.27 GB (working memory 3.6 GB -> 53 MB). Not the
   // default: slower on the small meshes. path() keeps the windows it traces back through whatever
   // the engine.

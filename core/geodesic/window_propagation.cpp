@@ -23,7 +23,7 @@
 //    its face, and a new window is trimmed against the queued windows of its edge, both ways
 //    (addFrontWindow). The same dominated parts go, found in a different order: the distances
 //    agree to rounding (1.5e-11 on the bench bump), the memory is the front's, not the windows'
-//    (53 MB against 3.6 GB at 418k triangles). Time: within +-10 % up to 18k vertices, 0.55-0.9
+//    (53 MB against 3.6 GB at 418k triangles). Time: within +-10 % up to 18k vertices, 0.55-1.02
 //    of the stored engine's at 418k triangles (DistanceSolverOptions::engine).
 // A strictly dominated part never carries a shortest path, so the result is the exact polyhedral
 // distance (to rounding) when every saddle is a pseudo-source (saddleAngleTolerance = 0); by

@@ -48,13 +48,17 @@ struct GeodesicArgs {
   std::string surface;
   std::string source;
   std::string out;
+  std::string engine;  // empty: the solver's default
   bool json = false;
 };
 
 int runGeodesic(const GeodesicArgs& args) {
   const TriMesh mesh = loadSurfaceArgument(args.surface);
   const Eigen::Vector3d requested = parsePoint(args.source);
-  const geodesic::DistanceSolver solver(mesh);
+  geodesic::DistanceSolverOptions options;
+  if (args.engine == "stored") options.engine = geodesic::DistanceSolverOptions::Engine::StoredWindows;
+  if (args.engine == "front") options.engine = geodesic::DistanceSolverOptions::Engine::FrontOnly;
+  const geodesic::DistanceSolver solver(mesh, options);
   const SurfacePoint source = geodesic::snapToSurface(mesh, requested);
   const Eigen::Vector3d snapped = position(mesh, source);
   const auto field = solver.distances(source);
@@ -82,6 +86,8 @@ int runGeodesic(const GeodesicArgs& args) {
                             {"max_distance_m", maxDistance},
                             {"unreachable_vertices", unreachable},
                             {"windows", field.windowsCreated},
+                            {"peak_windows", field.peakWindows},
+                            {"peak_working_memory_mb", field.peakBytes / 1e6},
                             {"precompute_seconds", solver.precomputeSeconds()},
                             {"seconds", field.seconds},
                             {"out", args.out}};
@@ -108,6 +114,8 @@ struct BenchArgs {
   int timedSources = 8;
   std::vector<int> cgalSources = {3, 2, 1};
   std::vector<double> saddleTolerances;  // error-against-time table over these; empty = none
+  std::string engineRows = "standard";   // stored vs front engine table: none, standard, large
+  int engineSources = 5;                 // vertex sources per row of that table (the large row: 1)
   std::string csv;
   bool json = false;
 };
@@ -211,6 +219,105 @@ nlohmann::json toleranceTable(const TriMesh& mesh, const std::vector<SurfacePoin
                     {"max_relative_error_vertices", worstVertex},
                     {"mean_relative_error_vertices", counted ? sumVertex / static_cast<double>(counted) : 0.0},
                     {"max_relative_error_side_to_side", worstSide}});
+  }
+  return rows;
+}
+
+// Stored-window engine against the front-only one (DistanceSolverOptions::Engine) on the meshes of
+// issue 19 (each exported by `egg surface NAME --edge-length E`), from the same vertex sources,
+// interleaved source by source: median thread CPU time per field, windows, the most windows held
+// at once and the counted working memory at the peak (DistanceField::peakBytes), and the largest
+// relative difference at the vertices (farther than two mean edges) of each against the exact
+// mode (tolerance 0, stored windows) and of the two engines against each other.
+struct EngineRow {
+  std::string sample;
+  double edge;
+};
+
+nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
+  std::vector<EngineRow> meshes = {{"bump", 0.1699}, {"sphere", 0.2567}, {"sphere", 0.12835}, {"plane", 0.08495}};
+  if (args.engineRows == "large") meshes.push_back({"bump", 0.02459});
+  table << "\nstored-window engine against front-only (issue 19): median thread CPU ms per vertex source; ratio ="
+           " front / stored; peak MB = counted working memory of one field;\nerr = max relative difference at the"
+           " vertices against the exact mode (tolerance 0, stored; skipped above 50k vertices), front-stored ="
+           " between the engines;\nRSS MB = the process's peak RSS before the row's first stored field (mesh,"
+           " tables, the front field, and all earlier rows)\n";
+  table << fmt::format("{:>7} {:>8} {:>8} {:>9} {:>9} {:>6} {:>10} {:>10} {:>9} {:>9} {:>10} {:>10} {:>10} {:>8}\n",
+                       "sample", "verts", "faces", "stored ms", "front ms", "ratio", "stored win", "front win",
+                       "stored MB", "front MB", "stored err", "front err", "front-strd", "RSS MB");
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& row : meshes) {
+    const TriMesh mesh = samples::generateSample(row.sample, {}, row.edge);
+    geodesic::DistanceSolverOptions storedOptions, frontOptions, exactOptions;
+    frontOptions.engine = geodesic::DistanceSolverOptions::Engine::FrontOnly;
+    exactOptions.saddleAngleTolerance = 0.0;
+    const geodesic::DistanceSolver stored(mesh, storedOptions), front(mesh, frontOptions);
+    const int nv = static_cast<int>(mesh.n_vertices());
+    const bool large = nv > 50000;
+    std::unique_ptr<geodesic::DistanceSolver> exact;
+    if (!large) exact = std::make_unique<geodesic::DistanceSolver>(mesh, exactOptions);
+    const int count = large ? 1 : std::max(1, args.engineSources);
+    std::vector<double> storedMs, frontMs;
+    double storedWindows = 0, frontWindows = 0, storedPeak = 0, frontPeak = 0, storedBytes = 0, frontBytes = 0;
+    double storedErr = 0, frontErr = 0, between = 0, rssBeforeStored = 0;
+    auto worst = [&](const std::vector<double>& a, const std::vector<double>& ref, double& into) {
+      for (size_t v = 0; v < ref.size(); ++v) {
+        if (ref[v] > 2.0 * stored.meanEdgeLength() && std::isfinite(ref[v])) {
+          into = std::max(into, std::abs(a[v] - ref[v]) / ref[v]);
+        }
+      }
+    };
+    for (int i = 0; i < count; ++i) {
+      const int v = static_cast<int>((2LL * i + 1) * nv / (2LL * count));
+      // Front first: the process's peak RSS before the row's first stored field bounds what a
+      // front-only process needs (mesh, tables and one field; earlier rows count too).
+      double t0 = threadCpuSeconds();
+      const auto b = front.distancesFromVertex(v);
+      frontMs.push_back(1e3 * (threadCpuSeconds() - t0));
+      if (i == 0) rssBeforeStored = peakRssMb();
+      t0 = threadCpuSeconds();
+      const auto a = stored.distancesFromVertex(v);
+      storedMs.push_back(1e3 * (threadCpuSeconds() - t0));
+      storedWindows += a.windowsCreated;
+      frontWindows += b.windowsCreated;
+      storedPeak = std::max(storedPeak, double(a.peakWindows));
+      frontPeak = std::max(frontPeak, double(b.peakWindows));
+      storedBytes = std::max(storedBytes, a.peakBytes);
+      frontBytes = std::max(frontBytes, b.peakBytes);
+      worst(b.vertexDistances, a.vertexDistances, between);
+      if (exact) {
+        const auto e = exact->distancesFromVertex(v);
+        worst(a.vertexDistances, e.vertexDistances, storedErr);
+        worst(b.vertexDistances, e.vertexDistances, frontErr);
+      }
+    }
+    const double sm = median(storedMs), fm = median(frontMs);
+    auto errText = [&](double e) { return exact ? fmt::format("{:.2e}", e) : std::string("-"); };
+    table << fmt::format(
+        "{:>7} {:>8} {:>8} {:>9.1f} {:>9.1f} {:>6.2f} {:>10.0f} {:>10.0f} {:>9.1f} {:>9.1f} {:>10} {:>10} {:>10.2e} {:>8.0f}\n",
+        row.sample, nv, mesh.n_faces(), sm, fm, fm / sm, storedWindows / count, frontWindows / count, storedBytes / 1e6,
+        frontBytes / 1e6, errText(storedErr), errText(frontErr), between, rssBeforeStored);
+    table.flush();
+    auto orNull = [&](double e) { return exact ? nlohmann::json(e) : nlohmann::json(nullptr); };
+    rows.push_back({{"sample", row.sample},
+                    {"edge_length_m", row.edge},
+                    {"vertices", nv},
+                    {"faces", mesh.n_faces()},
+                    {"sources", count},
+                    {"stored_ms_per_source", sm},
+                    {"front_ms_per_source", fm},
+                    {"front_over_stored", fm / sm},
+                    {"stored_windows_per_source", storedWindows / count},
+                    {"front_windows_per_source", frontWindows / count},
+                    {"stored_peak_windows", storedPeak},
+                    {"front_peak_windows", frontPeak},
+                    {"stored_peak_mb", storedBytes / 1e6},
+                    {"front_peak_mb", frontBytes / 1e6},
+                    {"stored_max_relative_error_vs_exact", orNull(storedErr)},
+                    {"front_max_relative_error_vs_exact", orNull(frontErr)},
+                    {"front_vs_stored_max_relative_difference", between},
+                    {"process_peak_rss_mb_before_stored", rssBeforeStored},
+                    {"process_peak_rss_mb_after_stored", peakRssMb()}});
   }
   return rows;
 }
@@ -333,9 +440,15 @@ int runBench(const BenchArgs& args) {
     }
     writeFileAtomically(args.csv, file.str());
   }
+  const nlohmann::json engineRows = args.engineRows == "none" ? nlohmann::json::array() : engineTable(args, table);
   if (args.json) {
-    std::cout << (args.saddleTolerances.empty() ? rows : nlohmann::json{{"sizes", rows}, {"saddle_tolerance", toleranceRows}}).dump(2)
-              << "\n";
+    nlohmann::json out = rows;
+    if (!args.saddleTolerances.empty() || args.engineRows != "none") {
+      out = {{"sizes", rows}};
+      if (!args.saddleTolerances.empty()) out["saddle_tolerance"] = toleranceRows;
+      if (args.engineRows != "none") out["engines"] = engineRows;
+    }
+    std::cout << out.dump(2) << "\n";
   }
   return kExitOk;
 }
@@ -350,6 +463,10 @@ void registerGeodesicCommand(CLI::App& parent, Action& action) {
   cmd->add_option("SURFACE", args->surface, "sample name, mesh file, or scene file (its surface)")->required();
   cmd->add_option("--source", args->source, "source point x,y,z in metres (snapped to the surface)")->required();
   cmd->add_option("--out", args->out, "output CSV (x,y,z,distance per vertex; inf if unreachable)")->required();
+  cmd->add_option("--engine", args->engine,
+                  "stored (every window kept) or front (only the wavefront, far less memory); default: the "
+                  "solver's")
+      ->check(CLI::IsMember({"stored", "front"}));
   cmd->add_flag("--json", args->json, "print the summary as JSON");
   cmd->callback([args, &action] { action = [args] { return runGeodesic(*args); }; });
 }
@@ -375,6 +492,12 @@ void registerGeodesicBench(CLI::App& bench, Action& action) {
                   "reference: the exact mode of the same run")
       ->delimiter(',')
       ->check(finiteRange(0.0, 0.0999));
+  cmd->add_option("--engine-rows", args->engineRows,
+                  "stored-window against front-only engine on the bump, sphere cap and plane of issue 19: none, "
+                  "standard, or large (adds the 418k-triangle bump: minutes, gigabytes for the stored engine)")
+      ->check(CLI::IsMember({"none", "standard", "large"}));
+  cmd->add_option("--engine-sources", args->engineSources, "vertex sources per row of the engine table (large row: 1)")
+      ->check(CLI::Range(1, 1000));
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_flag("--json", args->json, "also print the table as JSON");
   cmd->callback([args, &action] { action = [args] { return runBench(*args); }; });

@@ -38,7 +38,10 @@ class BucketQueue {
     current_ = 0;
     currentIsHeap_ = false;
     bucketed_ = 0;
+    peakSize_ = 0;
   }
+  // The most entries held at once since reset() (the queue's share of a field's peak memory).
+  std::size_t peakSize() const { return peakSize_; }
   bool empty() const { return bucketed_ == 0 && overflow_.empty(); }
 
   [[gnu::always_inline]] inline void push(double key, int item) {
@@ -52,6 +55,7 @@ class BucketQueue {
       overflow_.push_back({key, item});
       std::push_heap(overflow_.begin(), overflow_.end(), greater);
     }
+    peakSize_ = std::max(peakSize_, bucketed_ + overflow_.size());
   }
 
   // Removes and returns the entry with the smallest (key, item). Precondition: !empty().
@@ -133,6 +137,7 @@ class BucketQueue {
   long long current_ = 0;
   bool currentIsHeap_ = false;  // the current bucket is heap-ordered (by `greater`)
   std::size_t bucketed_ = 0;
+  std::size_t peakSize_ = 0;
 };
 
 }  // namespace egg::geodesic::detail

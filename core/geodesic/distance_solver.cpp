@@ -32,6 +32,9 @@ void DistanceSolverOptions::validate() const {
     throw InvalidInput("DistanceSolverOptions.minWindowWidthRelative must be in [0, 1e-3)");
   }
   if (threads < 0) throw InvalidInput("DistanceSolverOptions.threads must be >= 0 (0 = all cores)");
+  if (engine != Engine::StoredWindows && engine != Engine::FrontOnly) {
+    throw InvalidInput("DistanceSolverOptions.engine must be StoredWindows or FrontOnly");
+  }
 }
 
 DistanceSolver::DistanceSolver(const TriMesh& mesh, const DistanceSolverOptions& options) : options_(options) {
@@ -54,28 +57,34 @@ detail::Propagation& threadScratch() {
   return state;
 }
 
-DistanceField fieldFrom(const detail::Propagation& state, double seconds) {
+DistanceField fieldFrom(const detail::MeshTables& tables, const detail::Propagation& state, double seconds) {
   DistanceField field;
   field.vertexDistances = state.vertexDistance;
   field.targetDistances = state.targetDistance;
-  field.windowsCreated = static_cast<long>(state.windows.size());
+  field.windowsCreated = state.windowsCreated;
+  field.peakWindows = static_cast<long>(state.windows.size());
+  field.peakBytes = detail::peakBytes(tables, state);
   field.seconds = seconds;
   return field;
+}
+
+bool storesWindows(const DistanceSolverOptions& options) {
+  return options.engine == DistanceSolverOptions::Engine::StoredWindows;
 }
 }  // namespace
 
 DistanceField DistanceSolver::distances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const {
   const auto start = std::chrono::steady_clock::now();
   detail::Propagation& state = threadScratch();
-  detail::propagate(*tables_, options_, source, targets, state);
-  return fieldFrom(state, secondsSince(start));
+  detail::propagate(*tables_, options_, source, targets, state, false, storesWindows(options_));
+  return fieldFrom(*tables_, state, secondsSince(start));
 }
 
 DistanceField DistanceSolver::directedDistances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const {
   const auto start = std::chrono::steady_clock::now();
   detail::Propagation& state = threadScratch();
-  detail::propagate(*tables_, options_, source, targets, state, /*directedAtTargets=*/true);
-  return fieldFrom(state, secondsSince(start));
+  detail::propagate(*tables_, options_, source, targets, state, /*directedAtTargets=*/true, storesWindows(options_));
+  return fieldFrom(*tables_, state, secondsSince(start));
 }
 
 DistanceField DistanceSolver::distancesFromVertex(int vertex, const std::vector<SurfacePoint>& targets) const {
@@ -101,8 +110,8 @@ std::vector<DistanceField> DistanceSolver::distances(const std::vector<SurfacePo
     auto& state = threadScratch();
     for (size_t i = range.begin(); i < range.end(); ++i) {
       const auto start = std::chrono::steady_clock::now();
-      detail::propagate(*tables_, options_, sources[i], targets, state);
-      fields[i] = fieldFrom(state, secondsSince(start));
+      detail::propagate(*tables_, options_, sources[i], targets, state, false, storesWindows(options_));
+      fields[i] = fieldFrom(*tables_, state, secondsSince(start));
     }
   };
   // One source per task: each field depends only on its source, never on the scheduling.
@@ -118,14 +127,15 @@ std::vector<DistanceField> DistanceSolver::distances(const std::vector<SurfacePo
 
 double DistanceSolver::distance(const SurfacePoint& from, const SurfacePoint& to) const {
   detail::Propagation& state = threadScratch();
-  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true);
+  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true, storesWindows(options_));
   return state.targetDistance[0];
 }
 
 GeodesicPath DistanceSolver::path(const SurfacePoint& from, const SurfacePoint& to) const {
   // The thread's scratch, as for distances(): a fresh state would fault in megabytes per path.
   detail::Propagation& state = threadScratch();
-  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true);
+  // Traced back through Window::parent: the windows are kept whatever the engine.
+  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true, /*storeWindows=*/true);
   return detail::tracePath(*tables_, state, 0, from, to);
 }
 

@@ -206,22 +206,27 @@ inline double windowMinDistance(const Window& w) {
   return w.sigma + std::min(d0, d1);
 }
 
-// Trims `w` where an earlier window `o` on the same halfedge is strictly shorter (the
-// Mitchell-Mount-Papadimitriou overlap rule, applied one way). g(x) = (o.sigma + |o.s - x|) -
-// (w.sigma + |w.s - x|) changes sign at most twice on the edge; the roots come from squaring
-// |o.s - x| - |w.s - x| = w.sigma - o.sigma twice (a quadratic), spurious ones are dropped.
-// Returns false if nothing of w is left.
-inline bool trimAgainst(Window& w, const Window& o) {
+// Where two windows on the same halfedge compare: g(x) = (o.sigma + |o.s - x|) - (w.sigma +
+// |w.s - x|) changes sign at most twice on the edge; the roots come from squaring |o.s - x| -
+// |w.s - x| = w.sigma - o.sigma twice (a quadratic), spurious ones are dropped. The overlap
+// [cuts[0], cuts[count - 1]] is cut there into count - 1 pieces, and sign[i] is the sign of g on
+// piece i (from its midpoint). False if the windows do not overlap.
+struct OverlapPieces {
+  double cuts[4];
+  int count = 0;
+  double sign[3];
+};
+
+inline bool comparePieces(const Window& w, const Window& o, OverlapPieces& p) {
   const double lo = std::max(w.b0, o.b0), hi = std::min(w.b1, o.b1);
-  if (!(hi > lo)) return true;
+  if (!(hi > lo)) return false;
   auto g = [&](double x) {
     double lengthO, lengthW;
     planarLengths(x - o.sx, o.sy, x - w.sx, w.sy, lengthO, lengthW);
     return (o.sigma + lengthO) - (w.sigma + lengthW);
   };
-  double cuts[4];
-  int count = 0;
-  cuts[count++] = lo;
+  p.count = 0;
+  p.cuts[p.count++] = lo;
   {
     const double k = w.sigma - o.sigma;
     const double a = 2.0 * (w.sx - o.sx);
@@ -231,8 +236,17 @@ inline bool trimAgainst(Window& w, const Window& o) {
     const double qc = c * c - 4.0 * k * k * (w.sx * w.sx + w.sy * w.sy);
     double roots[2];
     int nroots = 0;
-    if (std::abs(qa) > 1e-300) {
-      const double disc = qb * qb - 4.0 * qa * qc;
+    if (k == 0.0) {
+      // Equal sigmas (every window of the source, or of one pseudo-source): |o.s - x| = |w.s - x|
+      // is linear, a x + c = 0. Squared twice it is (a x + c)^2 = 0, whose discriminant, zero in
+      // exact arithmetic, rounds below zero about half the time: the root was lost, and the one
+      // piece left, of mixed sign, was cut by its midpoint's (measured: 7e-6 too long at the far
+      // side of a sphere from a source on an edge, with both-way trimming).
+      if (a != 0.0) roots[nroots++] = -c / a;
+    } else if (std::abs(qa) > 1e-300) {
+      double disc = qb * qb - 4.0 * qa * qc;
+      // A double root rounded below zero: kept (a spurious cut only splits a piece in two).
+      if (disc < 0.0 && disc > -1e-12 * qb * qb) disc = 0.0;
       if (disc >= 0.0) {
         const double sq = std::sqrt(disc);
         roots[nroots++] = (-qb - sq) / (2.0 * qa);
@@ -243,31 +257,56 @@ inline bool trimAgainst(Window& w, const Window& o) {
     }
     if (nroots == 2 && roots[0] > roots[1]) std::swap(roots[0], roots[1]);
     for (int i = 0; i < nroots; ++i) {
-      if (roots[i] > lo && roots[i] < hi) cuts[count++] = roots[i];
+      if (roots[i] > lo && roots[i] < hi) p.cuts[p.count++] = roots[i];
     }
   }
-  cuts[count++] = hi;
-  // Sign of g on each piece, from its midpoint; a piece where o is shorter is cut off if it
-  // touches an end of w (a middle piece would split w in two, so it stays).
-  double newB0 = w.b0, newB1 = w.b1;
-  bool dominated[3];  // per piece, evaluated once (two square roots each)
+  p.cuts[p.count++] = hi;
+  for (int i = 0; i + 1 < p.count; ++i) p.sign[i] = g(0.5 * (p.cuts[i] + p.cuts[i + 1]));  // two square roots each
+  return true;
+}
+
+// Cuts off `x` the pieces where the other window is strictly shorter (dominated: sign < 0 when x
+// is the comparePieces' w, > 0 when it is o), if they touch an end of x (a middle piece would split
+// x in two, so it stays). Returns false if nothing of x is left.
+inline bool cutDominated(Window& x, const OverlapPieces& p, double orientation) {
+  bool dominated[3];
   bool allDominated = true;
-  for (int i = 0; i + 1 < count; ++i) {
-    dominated[i] = g(0.5 * (cuts[i] + cuts[i + 1])) < 0.0;
+  for (int i = 0; i + 1 < p.count; ++i) {
+    dominated[i] = orientation * p.sign[i] < 0.0;
     allDominated = allDominated && dominated[i];
   }
-  if (allDominated && lo <= w.b0 && hi >= w.b1) return false;
-  for (int i = 0; i + 1 < count; ++i) {
+  if (allDominated && p.cuts[0] <= x.b0 && p.cuts[p.count - 1] >= x.b1) return false;
+  double newB0 = x.b0, newB1 = x.b1;
+  for (int i = 0; i + 1 < p.count; ++i) {
     if (!dominated[i]) break;
-    if (cuts[i] <= newB0) newB0 = std::max(newB0, cuts[i + 1]);
+    if (p.cuts[i] <= newB0) newB0 = std::max(newB0, p.cuts[i + 1]);
   }
-  for (int i = count - 2; i >= 0; --i) {
+  for (int i = p.count - 2; i >= 0; --i) {
     if (!dominated[i]) break;
-    if (cuts[i + 1] >= newB1) newB1 = std::min(newB1, cuts[i]);
+    if (p.cuts[i + 1] >= newB1) newB1 = std::min(newB1, p.cuts[i]);
   }
-  w.b0 = newB0;
-  w.b1 = newB1;
-  return w.b1 > w.b0;
+  x.b0 = newB0;
+  x.b1 = newB1;
+  return x.b1 > x.b0;
+}
+
+// Trims `w` where an earlier window `o` on the same halfedge is strictly shorter (the
+// Mitchell-Mount-Papadimitriou overlap rule, applied one way). Returns false if nothing of w is
+// left.
+inline bool trimAgainst(Window& w, const Window& o) {
+  OverlapPieces p;
+  if (!comparePieces(w, o, p)) return true;
+  return cutDominated(w, p, 1.0);
+}
+
+// Both ways at once (front mode): w where o is shorter, o where w is shorter - the same roots and
+// signs, so the pair costs what one trim does. Returns whether each is left.
+inline void trimPair(Window& w, Window& o, bool& wLeft, bool& oLeft) {
+  OverlapPieces p;
+  wLeft = oLeft = true;
+  if (!comparePieces(w, o, p)) return;
+  wLeft = cutDominated(w, p, 1.0);
+  oLeft = cutDominated(o, p, -1.0);
 }
 
 }  // namespace egg::geodesic::detail

@@ -125,7 +125,22 @@ struct Propagation {
   };
   std::vector<int> firstBlock;      // per halfedge, its newest block; -1 if none
   std::vector<SpanBlock> blocks;
+  // Stored mode: every window, in creation order. Front mode: slots, reused once a window has
+  // crossed its face (freeSlots); only the queued windows are held.
   std::vector<Window> windows;
+  // Front mode (DistanceSolverOptions::Engine::FrontOnly). Per slot, where its span is (block * 8
+  // + index): -1 once the window has been trimmed away while queued (its queue entry is then
+  // skipped) or taken from the queue. The blocks hold only the queued windows' spans: a block whose
+  // spans are all gone is unlinked (blockPrev) and reused (freeBlocks).
+  bool storeWindows = true;
+  std::vector<int> freeSlots;  // a queue: [freeHead, end) are free
+  std::size_t freeHead = 0;
+  std::vector<int> slotSpan;
+  std::vector<int> blockLive, blockPrev, freeBlocks;
+  // Per pseudo-source vertex, a copy of the window its best path so far came through: the cone it
+  // fires into is aimed from that path (incomingAngle), and the window's slot may be reused.
+  std::vector<Window> predecessorWindow;
+  long windowsCreated = 0;  // windows queued by the last propagation (the slots are fewer in front mode)
   // Items >= 0: window index; < 0: vertex event for vertex -item-1.
   BucketQueue queue;
   // Targets of this query, bucketed by face.
@@ -141,12 +156,18 @@ struct Propagation {
   Eigen::Vector3d sourcePosition = Eigen::Vector3d::Zero();
 };
 
-// Runs the exact propagation from `source` with `targets`. Leaves the windows in `state` for
-// backtracing. directedAtTargets (with targets): queued by distance plus the chord to the nearest
+// The working memory of the last propagation at its peak (the arrays it used, windows and queue
+// entries at their most), in bytes.
+double peakBytes(const MeshTables& tables, const Propagation& state);
+
+// Runs the exact propagation from `source` with `targets`. With storeWindows (path() needs it, or
+// Engine::StoredWindows) it leaves the windows in `state` for backtracing; otherwise only the
+// distances and targets' values are meaningful. directedAtTargets (with targets): queued by distance plus the chord to the nearest
 // target and stopped once every target is final (goal_bound.hpp); the target distances and paths
 // are the full field's (exact mode; see goal_bound.hpp), the vertex distances only upper bounds.
 void propagate(const MeshTables& tables, const DistanceSolverOptions& options, const SurfacePoint& source,
-               const std::vector<SurfacePoint>& targets, Propagation& state, bool directedAtTargets = false);
+               const std::vector<SurfacePoint>& targets, Propagation& state, bool directedAtTargets = false,
+               bool storeWindows = true);
 
 // Traces the shortest path from the source of `state` to its target `targetIndex`, returned from
 // source to target.

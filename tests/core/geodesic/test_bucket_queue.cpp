@@ -89,5 +89,23 @@ TEST(BucketQueue, PopJustAcrossABucketBoundaryThenPushBelowIt) {
   EXPECT_TRUE(queue.empty());
 }
 
+TEST(BucketQueue, PeakSizeCountsTheMostEntriesHeldAtOnceInBucketsAndOverflow) {
+  BucketQueue queue;
+  queue.reset(1.0);
+  queue.push(3.0, 0);
+  queue.push(1e9, 1);  // beyond the calendar: the overflow heap
+  queue.push(2.0, 2);
+  EXPECT_EQ(queue.peakSize(), 3u);
+  EXPECT_EQ(queue.pop().item, 2);
+  queue.push(4.0, 3);  // three again, not four
+  EXPECT_EQ(queue.peakSize(), 3u);
+  queue.push(5.0, 4);
+  EXPECT_EQ(queue.peakSize(), 4u);
+  while (!queue.empty()) queue.pop();
+  EXPECT_EQ(queue.peakSize(), 4u);
+  queue.reset(1.0);
+  EXPECT_EQ(queue.peakSize(), 0u);
+}
+
 }  // namespace
 }  // namespace egg::geodesic::detail

@@ -172,5 +172,60 @@ TEST(WindowGeometry, EndVerticesFollowTheEdgeEndpointsAndAreLostWhereAnEndMoves)
   EXPECT_EQ(w.endVertex[1], -1);  // trimmed: no vertex on the new end's ray
 }
 
+Window edgeWindow(double sx, double sy, double sigma, double b0, double b1) {
+  Window w;
+  w.halfedge = 0;
+  w.sx = sx;
+  w.sy = sy;
+  w.sigma = sigma;
+  w.b0 = b0;
+  w.b1 = b1;
+  return w;
+}
+
+TEST(WindowGeometry, TrimPairCutsEachWindowWhereTheOtherIsShorter) {
+  // Mirror images (0,-1) and (2,-1) over the edge [0, 2]: equally far at x = 1, each shorter on
+  // its own side.
+  Window w = edgeWindow(0.0, -1.0, 0.0, 0.0, 2.0), o = edgeWindow(2.0, -1.0, 0.0, 0.0, 2.0);
+  bool wLeft, oLeft;
+  trimPair(w, o, wLeft, oLeft);
+  ASSERT_TRUE(wLeft && oLeft);
+  EXPECT_NEAR(w.b0, 0.0, 1e-15);
+  EXPECT_NEAR(w.b1, 1.0, 1e-12);
+  EXPECT_NEAR(o.b0, 1.0, 1e-12);
+  EXPECT_NEAR(o.b1, 2.0, 1e-15);
+  // The same cuts as trimming one way, then the other against the untrimmed first.
+  Window w1 = edgeWindow(0.0, -1.0, 0.0, 0.0, 2.0), o1 = edgeWindow(2.0, -1.0, 0.0, 0.0, 2.0);
+  const Window w1Before = w1;
+  ASSERT_TRUE(trimAgainst(w1, o1));
+  ASSERT_TRUE(trimAgainst(o1, w1Before));
+  EXPECT_EQ(w1.b1, w.b1);
+  EXPECT_EQ(o1.b0, o.b0);
+}
+
+TEST(WindowGeometry, TrimPairDropsAWindowShorterNowhereAndLeavesTheOtherWhole) {
+  // o's image (1,-0.5) is nearer every point of the edge than w's (1,-1), and o covers w.
+  Window w = edgeWindow(1.0, -1.0, 0.0, 0.5, 1.5), o = edgeWindow(1.0, -0.5, 0.0, 0.0, 2.0);
+  bool wLeft, oLeft;
+  trimPair(w, o, wLeft, oLeft);
+  EXPECT_FALSE(wLeft);
+  EXPECT_TRUE(oLeft);
+  EXPECT_EQ(o.b0, 0.0);
+  EXPECT_EQ(o.b1, 2.0);
+  // With sigma 0.6 on o, w is shorter everywhere (0.6 + sqrt(d^2 + 0.25) > sqrt(d^2 + 1)): o goes.
+  Window w2 = edgeWindow(1.0, -1.0, 0.0, 0.0, 2.0), o2 = edgeWindow(1.0, -0.5, 0.6, 0.5, 1.5);
+  trimPair(w2, o2, wLeft, oLeft);
+  EXPECT_TRUE(wLeft);
+  EXPECT_FALSE(oLeft);
+  EXPECT_EQ(w2.b0, 0.0);
+  EXPECT_EQ(w2.b1, 2.0);
+  // Disjoint windows are left alone.
+  Window a = edgeWindow(0.0, -1.0, 0.0, 0.0, 0.5), b = edgeWindow(2.0, -1.0, 0.0, 0.6, 2.0);
+  trimPair(a, b, wLeft, oLeft);
+  EXPECT_TRUE(wLeft && oLeft);
+  EXPECT_EQ(a.b1, 0.5);
+  EXPECT_EQ(b.b0, 0.6);
+}
+
 }  // namespace
 }  // namespace egg::geodesic::detail

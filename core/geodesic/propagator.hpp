@@ -1,0 +1,80 @@
+#pragma once
+// Internal: the window propagation's state machine, shared by its two translation units:
+// window_propagation.cpp (the hot loop: queue, pruning, trimming, crossing a face) and
+// propagation_setup.cpp (per-query reset, the source, pseudo-source firing, the targets' vertex
+// paths). Not part of the public API.
+#include "core/geodesic/goal_bound.hpp"
+#include "core/geodesic/window_propagation.hpp"
+
+#include <string>
+#include <vector>
+
+namespace egg::geodesic::detail {
+
+class Propagator {
+ public:
+  Propagator(const MeshTables& t, const DistanceSolverOptions& o, Propagation& s) : t_(t), o_(o), s_(s) {}
+
+  void run(const SurfacePoint& source, const std::vector<SurfacePoint>& targets, bool directed);
+
+ private:
+  const MeshTables& t_;
+  const DistanceSolverOptions& o_;
+  Propagation& s_;
+  DirectedTargets directed_;  // empty (a full field) unless the query is directed at its targets
+  const GoalBound& goal_ = directed_.goal;
+  std::vector<int> fan_;
+
+  double vertexKey(int v) const {
+    return s_.vertexDistance[v] + (goal_.active() ? goal_.toPoint(t_.positions[v]) : 0.0);
+  }
+  double windowKey(const Window& w) const;
+
+  // propagation_setup.cpp
+  void reset(const std::vector<SurfacePoint>& targets);
+  static Eigen::Vector3d normalisedWeights(const SurfacePoint& p, const std::string& what);
+  void seed(const SurfacePoint& source);
+  void seedTargetsInFaces();
+  void fire(int v);
+  double incomingAngle(int v) const;
+  void finishTargets();
+
+  void push(double key, int item) { s_.queue.push(key, item); }
+
+  // `via`: the window the path came through (none for vertex and source paths). Front mode keeps
+  // a copy for a pseudo-source, whose cone is aimed from it when it fires (incomingAngle).
+  void relaxVertex(int v, double d, Predecessor pred, const Window* via = nullptr) {
+    if (!(d < s_.vertexDistance[v])) return;
+    s_.vertexDistance[v] = d;
+    s_.vertexPredecessor[v] = pred;
+    if (t_.pseudoSource[v] && !s_.fired[v]) {
+      if (via && !s_.storeWindows) s_.predecessorWindow[v] = *via;
+      push(vertexKey(v), -v - 1);
+    }
+  }
+
+  // Position of barycentric weights (in face circulator order) in the frame of halfedge h of face f.
+  void frameCoordinates(int f, int h, const Eigen::Vector3d& w, double& x, double& y) const {
+    const auto& fv = t_.faceVerts[f];
+    const int a = t_.he[h].fromVertex, b = t_.he[h].toVertex;
+    double wb = 0, wc = 0;  // the from-vertex sits at the frame's origin
+    for (int i = 0; i < 3; ++i) {
+      if (fv[i] == b) wb = w[i];
+      else if (fv[i] != a) wc = w[i];
+    }
+    x = wb * t_.he[h].length + wc * t_.he[h].oppositeX;
+    y = wc * t_.he[h].oppositeY;
+  }
+
+  // window_propagation.cpp
+  bool prune(Window& w) const;
+  double bentDistance(const Window& w, int side, double px, double py, bool& atVertex) const;
+  void addWindow(Window& w);
+  void addStoredWindow(Window& w);
+  void addFrontWindow(Window& w);
+  bool takeFrontWindow(int slot);
+  void clearSpan(int slot);
+  void propagateWindow(int index);
+};
+
+}  // namespace egg::geodesic::detail

@@ -26,6 +26,7 @@ struct JoinedRun {
   std::vector<char> swapped;     // per patch: u members on top
   int sidesJoined = 0;           // shared sides carrying at least one bolt
   int sidesSkipped = 0;          // shared sides whose lamellas fell in one layer
+  bool warmStart = false;        // started from the converged patch-by-patch equilibria
   std::string failure;           // an error of the joined run (not non-convergence)
   double seconds = 0.0;
 };

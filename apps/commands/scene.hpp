@@ -69,7 +69,10 @@ struct SimulationSpec {
   bool enabled = true;
   bool gravity = true;                       // self-weight from the material density (Section 3.5.2)
   double friction_mu = 0.1;                  // pseudo-friction coefficient of E_p (Section 2.5)
-  bool notches = true;                       // simulate with notches (RMS1) as well as without (RMS2)
+  bool notches = true;                       // bolts slide in their notches (RMS2 of Section 2.6.2)
+  // Also simulate every patch with plain holes (RMS1 of Section 2.6.2): a second full run per
+  // patch, only for the comparison, so off unless the scene asks for it.
+  bool compare_without_notches = false;
   // Where the grid is held: "anchors" (corners and boundary curvature extrema, Section 2.4.6),
   // "design_boundary" (those plus every connection on a side of the layout no other patch shares,
   // 3.5.3), "auto" = anchors for one patch, design_boundary for several.

@@ -56,6 +56,10 @@ TEST(JoinedStage, SlowTwoPatchesSharingASideConvergeBoltedTogether) {
   EXPECT_GT(joined["rmse_m"].get<double>(), 0.0);
   EXPECT_LT(joined["rmse_m"].get<double>(), 0.05);
   EXPECT_GE(joined["max_error_m"].get<double>(), joined["rmse_m"].get<double>());
+  // Started from the converged patch-by-patch equilibria and stopped by its Newton decrement.
+  EXPECT_EQ(joined["start"], "patch_by_patch_equilibria");
+  EXPECT_EQ(joined["status"], "converged");
+  EXPECT_LT(joined["decrement_j"].get<double>(), 1e-6 * joined["energy_j"].get<double>());
   EXPECT_EQ(sim["patch_by_patch"]["rmse_m"], sim["rmse_m"]);
   EXPECT_EQ(sim["patch_by_patch"]["max_error_m"], sim["max_error_m"]);
 }

@@ -179,7 +179,8 @@ nlohmann::json joinedSection(const JoinedRun& joined) {
   j["energy_j"] = run.solver.energy;
   j["gradient_norm_n_nm"] = run.solver.gradientNorm;  // over positions (N) and twists (N m)
   j["decrement_j"] = run.solver.decrement;            // last Newton decrement g^T H^-1 g
-  j["max_sag_m"] = run.maxSag_m;
+  j["max_sag_m"] = run.maxSag_m;  // under self-weight, from the start state (warm) or the weightless equilibrium
+  j["max_sag_from"] = joined.warmStart ? "patch_by_patch_equilibria" : "weightless_equilibrium";
   j["unknowns"] = run.unknowns;
   j["status"] = rods::toString(run.solver.status);
   if (!joined.simulation->converged) j["reason"] = joined.simulation->reason;

@@ -189,7 +189,7 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     if (boundarySupports) report.document()["supports"] = {{"design_boundary_anchors", supportDesignBoundary(patches, patching.graph)}};
     // Patch by patch, each patch is held along all its sides, as the thesis simulated them (Fig.
     // 3.17); the joined run holds the design boundary only and its bolts do the rest.
-    simulatePatches(patches, surface.mesh, scene, boundarySupports);
+    simulatePatches(patches, surface.mesh, scene, boundarySupports && scene.simulation.hold_shared_sides);
     report.section("simulation") = simulationSection(patches, scene);
     addJoinedSimulation(patching, patches, surface.mesh, scene, members.has_value(), solved, report.section("simulation"));
     report.stageRan("simulation", secondsSince(simStart));  // both runs, patch by patch and joined

@@ -331,6 +331,7 @@ void readSimulation(Section s, SimulationSpec& out) {
   out.supports = s.text("supports", out.supports);
   if (out.supports != "auto" && out.supports != "anchors" && out.supports != "design_boundary")
     s.fail("supports", "must be \"auto\", \"anchors\" or \"design_boundary\", got \"" + out.supports + "\"");
+  out.hold_shared_sides = s.boolean("hold_shared_sides", out.hold_shared_sides);
   out.join_patches = s.boolean("join_patches", out.join_patches);
   s.rejectUnknownKeys();
 }
@@ -490,6 +491,7 @@ json sceneToJson(const Scene& scene) {
         {"notches", scene.simulation.notches},
         {"compare_without_notches", scene.simulation.compare_without_notches},
         {"supports", scene.simulation.supports},
+        {"hold_shared_sides", scene.simulation.hold_shared_sides},
         {"join_patches", scene.simulation.join_patches}}},
       {"fabrication", fabrication},
       {"outputs", scene.outputs},

@@ -77,6 +77,10 @@ struct SimulationSpec {
   // "design_boundary" (those plus every connection on a side of the layout no other patch shares,
   // 3.5.3), "auto" = anchors for one patch, design_boundary for several.
   std::string supports = "auto";
+  // With design_boundary supports, patch by patch: also hold each patch at every connection of the
+  // sides it shares with a neighbour (the thesis' patches were simulated apart on supports along
+  // their boundaries, Fig. 3.17). false: those sides are free, as nothing holds them alone.
+  bool hold_shared_sides = true;
   // With propagated members (several patches): also simulate the whole structure with the shared
   // boundary lamellas of neighbouring patches bolted at their coinciding member ends (3.5.3).
   bool join_patches = true;

@@ -46,6 +46,7 @@ TEST(Scene, DefaultsFillEverythingButTheSurface) {
   EXPECT_DOUBLE_EQ(s.simulation.friction_mu, 0.1);
   EXPECT_TRUE(s.simulation.join_patches);
   EXPECT_FALSE(s.simulation.compare_without_notches);  // a second full run only when asked for
+  EXPECT_TRUE(s.simulation.hold_shared_sides);
   EXPECT_TRUE(s.wants("cut_files"));
 }
 
@@ -59,7 +60,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
              "min_planar_angle_rad": 0.3, "map_proxy_vertices": 450},
     "lamella": {"width_m": 0.5, "thickness_m": 0.05, "material": "birch_plywood"},
     "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false, "join_patches": false,
-                   "compare_without_notches": true},
+                   "compare_without_notches": true, "hold_shared_sides": false},
     "fabrication": {"enabled": false, "sheet_mm": [3000, 1500], "bolt_diameter_mm": 10, "kerf_mm": 0.3,
                     "margin_mm": 12, "min_notch_mm": 2, "stock_length_mm": 5000, "end_overhang_mm": 40,
                     "splice_clearance_mm": 300, "label_height_mm": 12, "sticker_margin_mm": 3,
@@ -82,6 +83,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_FALSE(s.simulation.enabled);
   EXPECT_FALSE(s.simulation.join_patches);
   EXPECT_TRUE(s.simulation.compare_without_notches);
+  EXPECT_FALSE(s.simulation.hold_shared_sides);
   EXPECT_DOUBLE_EQ(s.fabrication.sheet_mm[1], 1500.0);
   EXPECT_DOUBLE_EQ(s.fabrication.kerf_mm, 0.3);
   EXPECT_DOUBLE_EQ(s.fabrication.margin_mm, 12.0);
@@ -107,6 +109,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_EQ(back.grid.map_proxy_vertices, 450);
   EXPECT_FALSE(back.simulation.join_patches);
   EXPECT_TRUE(back.simulation.compare_without_notches);
+  EXPECT_FALSE(back.simulation.hold_shared_sides);
   EXPECT_EQ(back.patching.patches.size(), 1u);
   EXPECT_DOUBLE_EQ(*back.fabrication.end_overhang_mm, 40.0);
   EXPECT_DOUBLE_EQ(back.fabrication.stock_length_mm, 5000.0);

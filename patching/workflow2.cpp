@@ -4,6 +4,7 @@
 #include "core/errors.hpp"
 #include "core/geodesic/distance_solver.hpp"
 #include "patching/injectivity.hpp"
+#include "patching/footprint.hpp"
 #include "patching/layout.hpp"
 
 #include <fmt/core.h>
@@ -12,7 +13,6 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
-#include <map>
 #include <optional>
 
 namespace egg::patching {
@@ -24,159 +24,6 @@ void Workflow2Options::validate() const {
 }
 
 namespace {
-
-using Vec2 = Eigen::Vector2d;
-using Polygon = std::vector<Vec2>;
-
-// The plan: the surface seen along its least-variance direction (z for a roof given z up).
-struct Plan {
-  Eigen::Vector3d origin, e1, e2, normal;
-  Vec2 operator()(const Eigen::Vector3d& p) const { return {(p - origin).dot(e1), (p - origin).dot(e2)}; }
-};
-
-Plan planOf(const TriMesh& mesh) {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (auto vh : mesh.vertices()) mean += toEigen(mesh.point(vh));
-  mean /= static_cast<double>(mesh.n_vertices());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (auto vh : mesh.vertices()) {
-    const Eigen::Vector3d d = toEigen(mesh.point(vh)) - mean;
-    cov += d * d.transpose();
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  Eigen::Vector3d n = eig.eigenvectors().col(0);
-  Plan plan;
-  plan.origin = mean;
-  // A roof given z up keeps its x and y (so the layout reads in the model's own axes).
-  if (std::abs(n.z()) > 0.9) {
-    plan.normal = Eigen::Vector3d::UnitZ(), plan.e1 = Eigen::Vector3d::UnitX(), plan.e2 = Eigen::Vector3d::UnitY();
-  } else {
-    plan.normal = n.normalized();
-    plan.e1 = eig.eigenvectors().col(2).normalized();
-    plan.e2 = plan.normal.cross(plan.e1);
-  }
-  return plan;
-}
-
-double signedArea(const Polygon& p) {
-  double a = 0.0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    const Vec2 &u = p[i], &v = p[(i + 1) % p.size()];
-    a += u.x() * v.y() - v.x() * u.y();
-  }
-  return 0.5 * a;
-}
-
-bool insidePolygon(const Polygon& poly, const Vec2& q) {
-  bool in = false;
-  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Vec2 &a = poly[i], &b = poly[j];
-    if ((a.y() > q.y()) != (b.y() > q.y()) && q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x()) in = !in;
-  }
-  return in;
-}
-
-double distanceToPolygon(const Polygon& poly, const Vec2& q) {
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Vec2 &a = poly[i], &b = poly[(i + 1) % poly.size()];
-    const Vec2 d = b - a;
-    const double t = d.squaredNorm() > 0 ? std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-    best = std::min(best, (a + t * d - q).norm());
-  }
-  return best;
-}
-
-struct Footprint {
-  Polygon outer;               // counter-clockwise
-  std::vector<Eigen::Vector3d> outer3d;  // the same boundary vertices in space
-  std::vector<Polygon> holes;
-  double tolerance = 0.0;      // "on the boundary" (half a mean edge length)
-  bool contains(const Vec2& q) const {
-    const bool inOuter = insidePolygon(outer, q) || distanceToPolygon(outer, q) <= tolerance;
-    if (!inOuter) return false;
-    for (const auto& h : holes)
-      if (insidePolygon(h, q) && distanceToPolygon(h, q) > tolerance) return false;
-    return true;
-  }
-  // The segment stays on the footprint (sampled), and off the holes.
-  bool containsSegment(const Vec2& a, const Vec2& b) const {
-    const int samples = 24;
-    for (int k = 0; k <= samples; ++k)
-      if (!contains(a + (b - a) * (static_cast<double>(k) / samples))) return false;
-    return true;
-  }
-};
-
-Footprint footprintOf(const TriMesh& mesh, const Plan& plan) {
-  std::vector<Polygon> loops;
-  std::vector<std::vector<Eigen::Vector3d>> loops3d;
-  std::vector<char> seen(mesh.n_halfedges(), 0);
-  for (auto heh : mesh.halfedges()) {
-    if (!mesh.is_boundary(heh) || seen[heh.idx()]) continue;
-    Polygon loop;
-    std::vector<Eigen::Vector3d> loop3d;
-    auto h = heh;
-    do {
-      seen[h.idx()] = 1;
-      loop3d.push_back(toEigen(mesh.point(mesh.from_vertex_handle(h))));
-      loop.push_back(plan(loop3d.back()));
-      h = mesh.next_halfedge_handle(h);
-    } while (h != heh && !seen[h.idx()]);
-    loops.push_back(std::move(loop));
-    loops3d.push_back(std::move(loop3d));
-  }
-  if (loops.empty()) throw InvalidInput("workflow 2: the surface has no boundary (a closed surface cannot be laid out in plan)");
-  std::vector<size_t> order(loops.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return std::abs(signedArea(loops[a])) > std::abs(signedArea(loops[b])); });
-  Footprint f;
-  f.outer = loops[order[0]];
-  f.outer3d = loops3d[order[0]];
-  if (signedArea(f.outer) < 0) std::reverse(f.outer.begin(), f.outer.end()), std::reverse(f.outer3d.begin(), f.outer3d.end());
-  for (size_t i = 1; i < order.size(); ++i) f.holes.push_back(loops[order[i]]);
-  f.tolerance = 0.5 * meanEdgeLength(mesh);
-  return f;
-}
-
-// A piece of the outer boundary between two of its vertices, counter-clockwise, by arc length.
-struct Arc {
-  std::vector<Vec2> points;
-  std::vector<Eigen::Vector3d> points3d;
-  std::vector<double> s;
-  // Where arc parameter u falls: the segment's end index and the fraction along it.
-  std::pair<size_t, double> locate(double u) const {
-    const double target = std::clamp(u, 0.0, 1.0) * s.back();
-    size_t hi = std::upper_bound(s.begin(), s.end(), target) - s.begin();
-    hi = std::clamp<size_t>(hi, 1, s.size() - 1);
-    const double span = s[hi] - s[hi - 1];
-    return {hi, span > 0 ? (target - s[hi - 1]) / span : 0.0};
-  }
-  // The boundary point in space at u (the loop is the mesh's own boundary), and in the plan.
-  Eigen::Vector3d at3d(double u) const {
-    const auto [hi, t] = locate(u);
-    return (1.0 - t) * points3d[hi - 1] + t * points3d[hi];
-  }
-  Vec2 at(double u) const {
-    const auto [hi, t] = locate(u);
-    return (1.0 - t) * points[hi - 1] + t * points[hi];
-  }
-};
-
-Arc arcOf(const Footprint& foot, size_t from, size_t to) {
-  const Polygon& loop = foot.outer;
-  Arc arc;
-  for (size_t i = from;; i = (i + 1) % loop.size()) {
-    arc.points.push_back(loop[i]);
-    arc.points3d.push_back(foot.outer3d[i]);
-    if (i == to) break;
-  }
-  arc.s.push_back(0.0);
-  for (size_t i = 1; i < arc.points.size(); ++i) arc.s.push_back(arc.s.back() + (arc.points[i] - arc.points[i - 1]).norm());
-  return arc;
-}
-
-Vec2 lerp(const Vec2& a, const Vec2& b, double t) { return (1.0 - t) * a + t * b; }
 
 // One block: four plan curves (side 0 corner0 -> corner1, side 1 corner1 -> corner2, side 2
 // corner3 -> corner2 and side 3 corner0 -> corner3, i.e. the Coons patch's u and v directions) and
@@ -191,19 +38,154 @@ struct Block {
     return (1 - v) * bottom(u) + v * top(u) + (1 - u) * left(v) + u * right(v) -
            ((1 - u) * (1 - v) * p00 + u * (1 - v) * p10 + (1 - u) * v * p01 + u * v * p11);
   }
-  double maxCellDiagonal(double stretch, bool& alongU) const {
-    double worst = 0.0;
-    alongU = true;
-    for (int i = 0; i < nu; ++i)
-      for (int j = 0; j < nv; ++j) {
-        const Vec2 a = coons(double(i) / nu, double(j) / nv), b = coons(double(i + 1) / nu, double(j) / nv);
-        const Vec2 c = coons(double(i + 1) / nu, double(j + 1) / nv), d = coons(double(i) / nu, double(j + 1) / nv);
-        const double diag = stretch * std::max((c - a).norm(), (d - b).norm());
-        if (diag > worst) worst = diag, alongU = (b - a).norm() + (c - d).norm() >= (d - a).norm() + (c - b).norm();
-      }
-    return worst;
+  // Node (i, j) of an nu x nv grid in space, when it lies on a boundary side of the design surface.
+  std::optional<Eigen::Vector3d> boundaryPoint(int i, int j, int nu_, int nv_) const {
+    const double u = double(i) / nu_, v = double(j) / nv_;
+    if (j == 0 && bottomOnBoundary) return bottom3d(u);
+    if (j == nv_ && topOnBoundary) return top3d(u);
+    if (i == 0 && leftOnBoundary) return left3d(v);
+    if (i == nu_ && rightOnBoundary) return right3d(v);
+    return std::nullopt;
   }
 };
+
+// A peak of K as the grid sees it: its plan point and injectivity radius.
+struct PlanPeak {
+  Vec2 at;
+  double radiusM;
+};
+
+// An nu x nv grid of one block tried before it is built: Algorithm 2's high-K regions first (the
+// interior node nearest a peak moves onto it when within `snapFraction` of its cells), and the
+// largest cell diagonal in space (chords between the nodes lifted onto the surface: a steep cell
+// is measured as it is, not through a mean stretch of the plan).
+struct GridTrial {
+  std::vector<std::vector<Vec2>> plan;  // [i][j]
+  double worstDiagonalM = 0.0;
+  bool worstAlongU = true;        // the worst cell is longer along u
+  std::vector<std::vector<char>> onPeak;  // [i][j]: the node moved onto a peak
+  std::vector<char> peakOnNode;           // per peak
+  int snapped = 0;
+  int peaksLeftInside = 0;        // peaks not on a node whose circle is smaller than the cells
+};
+
+// Whether interior node (i, j) of plan grid g may move to `to`: its move along each grid direction
+// stays within `fraction` of the shorter grid line from it in that direction, so that the four
+// cells round it stay convex and none shrinks to a sliver.
+bool snapAllowed(const std::vector<std::vector<Vec2>>& g, int i, int j, const Vec2& to, double fraction) {
+  const Vec2 du = g[i + 1][j] - g[i - 1][j], dv = g[i][j + 1] - g[i][j - 1];
+  const double su = std::min((g[i + 1][j] - g[i][j]).norm(), (g[i][j] - g[i - 1][j]).norm());
+  const double sv = std::min((g[i][j + 1] - g[i][j]).norm(), (g[i][j] - g[i][j - 1]).norm());
+  if (!(du.norm() > 0 && dv.norm() > 0)) return false;
+  const Vec2 move = to - g[i][j];
+  return std::abs(move.dot(du.normalized())) <= fraction * su && std::abs(move.dot(dv.normalized())) <= fraction * sv;
+}
+
+GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, const std::vector<PlanPeak>& peaks, double snapFraction) {
+  GridTrial t;
+  t.plan.assign(nu + 1, std::vector<Vec2>(nv + 1));
+  for (int i = 0; i <= nu; ++i)
+    for (int j = 0; j <= nv; ++j) t.plan[i][j] = b.coons(double(i) / nu, double(j) / nv);
+  t.onPeak.assign(nu + 1, std::vector<char>(nv + 1, 0));
+  t.peakOnNode.assign(peaks.size(), 0);
+  auto& taken = t.onPeak;
+  auto& onNode = t.peakOnNode;
+  for (size_t k = 0; k < peaks.size(); ++k) {
+    int bi = -1, bj = -1;
+    double best = std::numeric_limits<double>::infinity();
+    for (int i = 1; i < nu; ++i)
+      for (int j = 1; j < nv; ++j)
+        if (!taken[i][j] && (t.plan[i][j] - peaks[k].at).norm() < best) best = (t.plan[i][j] - peaks[k].at).norm(), bi = i, bj = j;
+    if (bi >= 0 && snapAllowed(t.plan, bi, bj, peaks[k].at, snapFraction)) {
+      t.plan[bi][bj] = peaks[k].at;
+      taken[bi][bj] = 1;
+      onNode[k] = 1;
+      ++t.snapped;
+    }
+  }
+  // The other interior nodes even out the cells round the moved ones (Gauss-Seidel sweeps of the
+  // grid Laplacian, in a fixed order: the same grid on any thread count).
+  if (t.snapped)
+    for (int sweep = 0; sweep < 40; ++sweep)
+      for (int i = 1; i < nu; ++i)
+        for (int j = 1; j < nv; ++j)
+          if (!taken[i][j]) t.plan[i][j] = 0.25 * (t.plan[i - 1][j] + t.plan[i + 1][j] + t.plan[i][j - 1] + t.plan[i][j + 1]);
+  std::vector<std::vector<Eigen::Vector3d>> space(nu + 1, std::vector<Eigen::Vector3d>(nv + 1));
+  for (int i = 0; i <= nu; ++i)
+    for (int j = 0; j <= nv; ++j) {
+      const auto onBoundary = taken[i][j] ? std::nullopt : b.boundaryPoint(i, j, nu, nv);
+      space[i][j] = onBoundary ? *onBoundary : lifter.lift(t.plan[i][j]);
+    }
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const auto &a = space[i][j], &c = space[i + 1][j + 1], &bb = space[i + 1][j], &d = space[i][j + 1];
+      const double diag = std::max((c - a).norm(), (d - bb).norm());
+      if (diag > t.worstDiagonalM)
+        t.worstDiagonalM = diag, t.worstAlongU = (bb - a).norm() + (c - d).norm() >= (d - a).norm() + (c - bb).norm();
+    }
+  // Expression 3.1 is "only useful as a quick check" (3.4.1): members cross a cell in about its
+  // diagonal, and a 1.5 x 2 m cell of a bump whose circle is 2.51 m already fails η; hence the margin.
+  const double peakReach = 1.5;
+  for (size_t k = 0; k < peaks.size(); ++k)
+    if (!onNode[k] && peaks[k].radiusM < peakReach * t.worstDiagonalM) ++t.peaksLeftInside;
+  return t;
+}
+
+// How far the geodesic between two plan points stays outside the hole: the least signed plan
+// distance of the traced path to the hole's outline (negative inside), -infinity when the path
+// bends round a boundary vertex (it wraps the hole or hugs the boundary).
+double holeClearance(const Vec2& from, const Vec2& to, const Polygon& hole, const Plan& plan, const PlanLifter& lifter,
+                     const TriMesh& surface, const geodesic::DistanceSolver& solver) {
+  const auto path = solver.path(geodesic::snapToSurface(surface, lifter.lift(from)), geodesic::snapToSurface(surface, lifter.lift(to)));
+  for (int v : path.bendVertices)
+    if (surface.is_boundary(TriMesh::VertexHandle(v)) && polylineTurnsAt(path.positions, toEigen(surface.point(TriMesh::VertexHandle(v))), 1e-3))
+      return -std::numeric_limits<double>::infinity();
+  double clearance = std::numeric_limits<double>::infinity();
+  for (const auto& x : path.positions) {
+    const Vec2 q = plan(x);
+    clearance = std::min(clearance, insidePolygon(hole, q) ? -distanceToPolygon(hole, q) : distanceToPolygon(hole, q));
+  }
+  return clearance;
+}
+
+// Tangent sides round a hole (Section 3.4.3): the corners of the box round the hole move towards
+// its centre until the traced sides just clear it, by `target`: first all four by one factor, then
+// each alone. Geodesics bow away from the hole where K < 0 around it (the Great Court), so the
+// plan's tangent box leaves more than the unavoidable ring between a square and its circle.
+// Returns the final least clearance.
+double tightenHoleBox(std::array<double, 4>& scale, const std::function<Vec2(int)>& cornerAt, const Polygon& hole, const Plan& plan,
+                      const PlanLifter& lifter, const TriMesh& surface, const geodesic::DistanceSolver& solver, double target) {
+  const auto sideClearance = [&](int k) { return holeClearance(cornerAt(k), cornerAt((k + 1) % 4), hole, plan, lifter, surface, solver); };
+  const auto feasible = [&](std::initializer_list<int> sides) {
+    for (int k : sides)
+      if (!(sideClearance(k) >= target)) return false;
+    return true;
+  };
+  const double floor = 0.5;  // half the box: its sides cut through the hole
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int k = 0; k < (pass == 0 ? 1 : 4); ++k) {
+      const auto set = [&](double s) {
+        if (pass == 0) scale.fill(s);
+        else scale[k] = s;
+      };
+      const std::initializer_list<int> all{0, 1, 2, 3};
+      const auto ok = [&] { return pass == 0 ? feasible(all) : feasible({(k + 3) % 4, k}); };
+      double hi = scale[k], lo = floor;
+      set(hi);
+      if (!ok()) return -1.0;  // the inflated box itself does not clear the hole: leave it as it is
+      for (int it = 0; it < 10; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        set(mid);
+        if (ok()) hi = mid;
+        else lo = mid;
+      }
+      set(hi);
+    }
+  }
+  double least = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 4; ++k) least = std::min(least, sideClearance(k));
+  return least;
+}
 
 }  // namespace
 
@@ -214,55 +196,27 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   Workflow2Layout out;
   const Plan plan = planOf(surface);
   const Footprint foot = footprintOf(surface, plan);
+  const PlanLifter lifter(surface, plan);
   out.holes = static_cast<int>(foot.holes.size());
   if (foot.holes.size() > 1)
     throw InvalidInput(fmt::format("workflow 2: the surface has {} holes; the automatic layout handles at most one so far "
                                    "(give patching.patches, or close the holes)",
                                    foot.holes.size()));
 
-  // Plan lengths understate surface lengths on a steep surface: scale by the square root of the
-  // area ratio (a fair mean stretch).
-  double planArea = std::abs(signedArea(foot.outer));
-  for (const auto& h : foot.holes) planArea -= std::abs(signedArea(h));
-  const double stretch = std::sqrt(std::max(1.0, surfaceArea(surface) / std::max(planArea, 1e-300)));
-
-  // Outer corners: the boundary points extreme in the four diagonal directions of its box.
+  // Outer corners: the boundary points extreme in the four diagonal directions of its box. Only
+  // convex points of the boundary may be block corners (its convex hull's vertices): a corner in a
+  // concave neck, as between the Lilium's lobes, would make its patch reflex there.
   Vec2 lo = foot.outer.front(), hi = foot.outer.front();
   for (const auto& p : foot.outer) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const Vec2 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
   const std::array<Vec2, 4> quadrant{Vec2(-1, -1), Vec2(1, -1), Vec2(1, 1), Vec2(-1, 1)};
-  // Only convex points of the boundary may be block corners (its convex hull's vertices): a corner
-  // in a concave neck, as between the Lilium's lobes, would make its patch reflex there.
-  std::vector<char> onHull(foot.outer.size(), 0);
-  {
-    std::vector<size_t> order(foot.outer.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-      return foot.outer[a].x() < foot.outer[b].x() || (foot.outer[a].x() == foot.outer[b].x() && foot.outer[a].y() < foot.outer[b].y());
-    });
-    const auto cross = [&](size_t o, size_t a, size_t b) {
-      const Vec2 u = foot.outer[a] - foot.outer[o], w = foot.outer[b] - foot.outer[o];
-      return u.x() * w.y() - u.y() * w.x();
-    };
-    std::vector<size_t> hull;
-    for (int pass = 0; pass < 2; ++pass) {
-      const size_t start = hull.size();
-      for (size_t k = 0; k < order.size(); ++k) {
-        const size_t i = pass == 0 ? order[k] : order[order.size() - 1 - k];
-        while (hull.size() >= start + 2 && cross(hull[hull.size() - 2], hull.back(), i) <= 0) hull.pop_back();
-        hull.push_back(i);
-      }
-      hull.pop_back();
-    }
-    for (size_t i : hull) onHull[i] = 1;
-  }
+  const std::vector<char> onHull = convexHullMarks(foot.outer);
   std::array<size_t, 4> cornerIndex{};
   for (int k = 0; k < 4; ++k) {
     double best = -std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < foot.outer.size(); ++i) {
       if (!onHull[i]) continue;
-      const Vec2 d = (foot.outer[i] - centre).cwiseQuotient(half);
-      const double score = quadrant[k].dot(d);
+      const double score = quadrant[k].dot((foot.outer[i] - centre).cwiseQuotient(half));
       if (score > best) best = score, cornerIndex[k] = i;
     }
   }
@@ -284,12 +238,22 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     blocks.push_back(b);
     out.notes.push_back("one block between the four outer corners");
   } else {
-    // The box tangent to the hole, inflated a little so that its sides clear the hole.
+    // The box tangent to the hole, inflated a little so that its sides clear the hole; with the
+    // solver, its corners then move in until the traced sides just clear it.
     Vec2 hlo = foot.holes[0].front(), hhi = foot.holes[0].front();
     for (const auto& p : foot.holes[0]) hlo = hlo.cwiseMin(p), hhi = hhi.cwiseMax(p);
     const Vec2 hc = 0.5 * (hlo + hhi), hh = 0.5 * (hhi - hlo) * (1.0 + options.holeMarginRelative);
+    std::array<double, 4> scale{1.0, 1.0, 1.0, 1.0};
+    const auto cornerAt = [&](int k) { return Vec2(hc + scale[k] * quadrant[k].cwiseProduct(hh)); };
+    if (solver) {
+      const double clearance = tightenHoleBox(scale, cornerAt, foot.holes[0], plan, lifter, surface, *solver, foot.tolerance);
+      if (clearance >= 0)
+        out.notes.push_back(fmt::format("box round the hole tightened to sides {:.2f} m clear of it (corners at {:.3f}, {:.3f}, {:.3f}, {:.3f} of the "
+                                        "tangent box)",
+                                        clearance, scale[0], scale[1], scale[2], scale[3]));
+    }
     std::array<Vec2, 4> inner;
-    for (int k = 0; k < 4; ++k) inner[k] = hc + quadrant[k].cwiseProduct(hh);
+    for (int k = 0; k < 4; ++k) inner[k] = cornerAt(k);
     for (int k = 0; k < 4; ++k) {
       const Vec2 o0 = arcs[k].points.front(), o1 = arcs[k].points.back(), i0 = inner[k], i1 = inner[(k + 1) % 4];
       Block b;
@@ -305,22 +269,52 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   }
   out.blocks = static_cast<int>(blocks.size());
 
-  // Counts: grow the count along the longer direction of the worst cell until every cell's
-  // diagonal fits. Around a hole the radial count (v) is shared by the ring's blocks.
-  for (int guard = 0; guard < 200; ++guard) {
-    bool changed = false;
-    for (auto& b : blocks) {
-      bool alongU = true;
-      if (b.maxCellDiagonal(stretch, alongU) <= options.maxPatchSizeM) continue;
-      if (alongU) ++b.nu;
-      else {
-        const int nv = b.nv + 1;
-        for (auto& other : blocks)
-          if (foot.holes.empty() ? &other == &b : true) other.nv = nv;
-      }
-      changed = true;
+  const auto surfacePeaks = findSurfacePeaks(surface);
+  std::vector<PlanPeak> peaks;
+  for (const auto& peak : surfacePeaks)
+    if (!peak.onBoundary) {
+      peaks.push_back({plan(peak.position), peak.radiusM});
     }
-    if (!changed) break;
+
+  // Counts. One block: every grid up to a bound is screened and the one predicting the fewest
+  // patches kept, a peak left inside a cell larger than its circle counting as the three more
+  // patches Workflow 1's corner split will make (ties: the smaller cells). Around a hole the count
+  // along the worst cell grows until every cell fits, the radial count (v) shared by the ring.
+  if (foot.holes.empty()) {
+    Block& b = blocks.front();
+    const int bound = 16;
+    int bestPredicted = std::numeric_limits<int>::max();
+    double bestDiagonal = std::numeric_limits<double>::infinity();
+    for (int nu = 1; nu <= bound; ++nu)
+      for (int nv = 1; nv <= bound; ++nv) {
+        if (nu * nv > bestPredicted) continue;  // cannot win
+        const GridTrial t = tryGrid(b, nu, nv, lifter, peaks, options.peakSnapFraction);
+        ++out.candidatesScreened;
+        if (t.worstDiagonalM > options.maxPatchSizeM) continue;
+        const int predicted = nu * nv + 3 * t.peaksLeftInside;
+        if (predicted < bestPredicted || (predicted == bestPredicted && t.worstDiagonalM < bestDiagonal))
+          bestPredicted = predicted, bestDiagonal = t.worstDiagonalM, b.nu = nu, b.nv = nv;
+      }
+    if (bestPredicted == std::numeric_limits<int>::max())
+      throw InvalidInput(fmt::format("workflow 2: no grid of up to {} x {} patches has cells within patching.max_patch_size_m = {} m", bound, bound,
+                                     options.maxPatchSizeM));
+  } else {
+    for (int guard = 0; guard < 200; ++guard) {
+      bool changed = false;
+      for (auto& b : blocks) {
+        const GridTrial t = tryGrid(b, b.nu, b.nv, lifter, {}, 0.0);
+        ++out.candidatesScreened;
+        if (t.worstDiagonalM <= options.maxPatchSizeM) continue;
+        if (t.worstAlongU) {
+          ++b.nu;
+        } else {
+          const int nv = b.nv + 1;
+          for (auto& other : blocks) other.nv = nv;
+        }
+        changed = true;
+      }
+      if (!changed) break;
+    }
   }
 
   // Nodes, shared where blocks meet (same plan point to rounding).
@@ -329,6 +323,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   std::vector<char> onBoundary, fixedNode;  // fixed: on the boundary or on the box around the hole
   std::vector<std::optional<Eigen::Vector3d>> onSurface;  // boundary nodes: their point of the boundary in space
   std::vector<std::optional<Eigen::Vector3d>> startedOn;  // boundary nodes: where they were before being pulled in
+  std::vector<std::array<int, 3>> interiorOf;             // interior nodes: (block, i, j) in the plain grids below
   const auto nodeId = [&](const Vec2& p, bool boundary) {
     for (size_t i = 0; i < nodes.size(); ++i)
       if ((nodes[i] - p).norm() <= mergeTolerance) {
@@ -340,27 +335,26 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     fixedNode.push_back(0);
     onSurface.emplace_back();
     startedOn.emplace_back();
+    interiorOf.push_back({-1, -1, -1});
     return static_cast<int>(nodes.size()) - 1;
   };
   std::vector<std::vector<std::vector<int>>> grid(blocks.size());
+  std::vector<std::vector<std::vector<Vec2>>> plainGrids;
   std::vector<std::pair<int, int>> boundaryChords;  // consecutive boundary nodes
   std::vector<std::pair<int, int>> inwards;         // boundary node -> its neighbour one step inside
   for (size_t bi = 0; bi < blocks.size(); ++bi) {
     const Block& b = blocks[bi];
+    plainGrids.push_back(tryGrid(b, b.nu, b.nv, lifter, {}, 0.0).plan);
+    const auto& plain = plainGrids.back();
     grid[bi].assign(b.nu + 1, std::vector<int>(b.nv + 1));
     for (int i = 0; i <= b.nu; ++i)
       for (int j = 0; j <= b.nv; ++j) {
-        const bool boundary = (j == 0 && b.bottomOnBoundary) || (j == b.nv && b.topOnBoundary) || (i == 0 && b.leftOnBoundary) ||
-                              (i == b.nu && b.rightOnBoundary);
-        const double u = double(i) / b.nu, v = double(j) / b.nv;
-        const int id = grid[bi][i][j] = nodeId(b.coons(u, v), boundary);
-        if (j == 0 && b.bottomOnBoundary) onSurface[id] = b.bottom3d(u);
-        else if (j == b.nv && b.topOnBoundary) onSurface[id] = b.top3d(u);
-        else if (i == 0 && b.leftOnBoundary) onSurface[id] = b.left3d(v);
-        else if (i == b.nu && b.rightOnBoundary) onSurface[id] = b.right3d(v);
-        if (onSurface[id]) startedOn[id] = onSurface[id];
+        const auto boundaryPoint = b.boundaryPoint(i, j, b.nu, b.nv);
+        const int id = grid[bi][i][j] = nodeId(plain[i][j], boundaryPoint.has_value());
+        if (boundaryPoint) onSurface[id] = startedOn[id] = boundaryPoint;
         const bool onHoleBox = !foot.holes.empty() && j == b.nv;
-        if (boundary || onHoleBox) fixedNode[grid[bi][i][j]] = 1;
+        if (boundaryPoint || onHoleBox) fixedNode[id] = 1;
+        if (i > 0 && i < b.nu && j > 0 && j < b.nv && interiorOf[id][0] < 0) interiorOf[id] = {static_cast<int>(bi), i, j};
       }
     const auto& g = grid[bi];
     for (int i = 0; i < b.nu; ++i) {
@@ -403,7 +397,9 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   };
 
   // A chord along a concave stretch leaves the footprint: pull its ends inwards until it does not.
-  for (int round = 0; round < 10; ++round) {
+  // With the solver the traced test below decides instead: a plan test is wrong where the wall is
+  // vertical (the Lilium's base: its outline is a geodesic there, concave in plan or not).
+  for (int round = 0; round < (solver ? 0 : 10); ++round) {
     std::vector<char> bad(nodes.size(), 0);
     for (const auto& [a, b] : boundaryChords)
       if (!foot.containsSegment(nodes[a], nodes[b])) bad[a] = bad[b] = 1;
@@ -411,62 +407,33 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   }
 
   // High K first (Algorithm 2): an interior node near a K peak becomes a corner at p_max.
-  const auto peaks = findSurfacePeaks(surface);
   std::vector<char> snapped(nodes.size(), 0);
-  double cell = std::numeric_limits<double>::infinity();
-  for (const auto& [a, b] : boundaryChords) cell = std::min(cell, (nodes[a] - nodes[b]).norm());
   for (const auto& peak : peaks) {
-    if (peak.onBoundary) continue;
-    const Vec2 p = plan(peak.position);
     int best = -1;
     double bestDistance = std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < nodes.size(); ++i) {
       if (fixedNode[i] || snapped[i]) continue;
-      const double d = (nodes[i] - p).norm();
+      const double d = (nodes[i] - peak.at).norm();
       if (d < bestDistance) bestDistance = d, best = static_cast<int>(i);
     }
-    if (best >= 0 && bestDistance <= options.peakSnapFraction * cell) {
-      nodes[best] = p;
+    const auto [block, gi, gj] = best >= 0 ? interiorOf[best] : std::array<int, 3>{-1, -1, -1};
+    if (block >= 0 && snapAllowed(plainGrids[block], gi, gj, peak.at, options.peakSnapFraction)) {
+      nodes[best] = peak.at;
       snapped[best] = 1;
       ++out.peaksSnapped;
     }
   }
 
   // Lift the nodes onto the surface. A node on the boundary is its point of the boundary in space;
-  // any other the highest point of the surface over its plan point (the roof seen from above:
-  // near a vertical wall, as at the Lilium's base, the plan can see the surface twice).
+  // a node pulled in from it stays on the sheet it came from (not up an overhanging wall, as at the
+  // Lilium's base); any other is the highest point over its plan point (the roof seen from above).
   int overhangs = 0;
   const auto lift = [&](size_t i) -> Eigen::Vector3d {
     if (onSurface[i]) return *onSurface[i];
-    const Vec2& q = nodes[i];
-    double bestOutside = std::numeric_limits<double>::infinity(), bestHeight = -std::numeric_limits<double>::infinity();
-    Eigen::Vector3d best = Eigen::Vector3d::Zero();
-    int containing = 0;
-    for (auto fh : surface.faces()) {
-      const auto ids = faceVertices(surface, fh.idx());
-      std::array<Eigen::Vector3d, 3> p;
-      std::array<Vec2, 3> r;
-      for (int k = 0; k < 3; ++k) p[k] = toEigen(surface.point(TriMesh::VertexHandle(ids[k]))), r[k] = plan(p[k]);
-      const Vec2 e1 = r[1] - r[0], e2 = r[2] - r[0], d = q - r[0];
-      const double det = e1.x() * e2.y() - e1.y() * e2.x();
-      if (std::abs(det) < 1e-300) continue;
-      const double b1 = (d.x() * e2.y() - d.y() * e2.x()) / det, b2 = (e1.x() * d.y() - e1.y() * d.x()) / det, b0 = 1 - b1 - b2;
-      const double outside = std::max({-b0, -b1, -b2, 0.0});
-      if (outside <= 1e-9) {
-        const Eigen::Vector3d point = b0 * p[0] + b1 * p[1] + b2 * p[2];
-        // A corner pulled in from the boundary stays on the sheet of surface it came from (nearest
-        // to its boundary point: not up an overhanging wall); any other takes the upper sheet.
-        const double height = startedOn[i] ? -(point - *startedOn[i]).norm() : (point - plan.origin).dot(plan.normal);
-        ++containing;
-        if (height > bestHeight) bestHeight = height, best = point;
-      } else if (containing == 0 && outside < bestOutside) {
-        bestOutside = outside;
-        const double c0 = std::max(b0, 0.0), c1 = std::max(b1, 0.0), c2 = std::max(b2, 0.0);
-        best = (c0 * p[0] + c1 * p[1] + c2 * p[2]) / (c0 + c1 + c2);
-      }
-    }
-    if (containing > 1) ++overhangs;
-    return best;
+    int sheets = 0;
+    const Eigen::Vector3d x = lifter.lift(nodes[i], startedOn[i], &sheets);
+    if (sheets > 1) ++overhangs;
+    return x;
   };
   std::vector<Eigen::Vector3d> lifted(nodes.size());
   for (size_t i = 0; i < nodes.size(); ++i) lifted[i] = lift(i);
@@ -481,7 +448,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
       for (const auto& [a, b] : boundaryChords) {
         const auto path = solver->path(geodesic::snapToSurface(surface, lifted[a]), geodesic::snapToSurface(surface, lifted[b]));
         for (int v : path.bendVertices)
-          if (surface.is_boundary(TriMesh::VertexHandle(v)) &&
+          if (surface.is_boundary(TriMesh::VertexHandle(v)) && vertexAngleSum(surface, TriMesh::VertexHandle(v)) > M_PI + turnTolerance &&
               polylineTurnsAt(path.positions, toEigen(surface.point(TriMesh::VertexHandle(v))), turnTolerance))
             bad[a] = bad[b] = 1;
       }
@@ -492,7 +459,7 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     }
   }
   out.corners = lifted;
-  if (overhangs) out.notes.push_back(fmt::format("{} corner(s) over a part of the surface that the plan sees twice: the upper one taken", overhangs));
+  if (overhangs) out.notes.push_back(fmt::format("{} corner(s) over a part of the surface that the plan sees twice", overhangs));
   for (size_t bi = 0; bi < blocks.size(); ++bi)
     for (int i = 0; i < blocks[bi].nu; ++i)
       for (int j = 0; j < blocks[bi].nv; ++j) {
@@ -501,8 +468,8 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
       }
   std::string counts;
   for (const auto& b : blocks) counts += fmt::format("{}{}x{}", counts.empty() ? "" : ", ", b.nu, b.nv);
-  out.notes.push_back(fmt::format("patches per block: {} (cells up to {:.3g} m across, plan lengths stretched by {:.3f})", counts,
-                                  options.maxPatchSizeM, stretch));
+  out.notes.push_back(fmt::format("patches per block: {} (cells up to {:.3g} m across in space; {} grids screened)", counts, options.maxPatchSizeM,
+                                  out.candidatesScreened));
   if (out.peaksSnapped) out.notes.push_back(fmt::format("{} grid corner(s) moved onto K peaks", out.peaksSnapped));
   if (out.nodesPulledIn) out.notes.push_back(fmt::format("boundary corners pulled inwards {} time(s) off concave stretches", out.nodesPulledIn));
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -30,7 +30,7 @@ namespace egg::patching {
 struct Workflow2Options {
   double maxPatchSizeM = 40.0;     // largest patch diagonal proposed (handling on site, 3.5.3)
   double holeMarginRelative = 0.03;  // the box around a hole, inflated by this fraction of its size
-  double peakSnapFraction = 0.35;  // a grid node within this fraction of a cell of a K peak moves onto it
+  double peakSnapFraction = 0.45;  // a grid node moves onto a K peak within this fraction of its cells along each grid direction
   void validate() const;
 };
 
@@ -41,6 +41,7 @@ struct Workflow2Layout {
   int holes = 0;
   int peaksSnapped = 0;
   int nodesPulledIn = 0;
+  int candidatesScreened = 0;             // grids tried (cheap: plan nodes lifted, cell chords measured)
   std::vector<std::string> notes;          // how the layout was made, for the report
   double seconds = 0.0;
 };

@@ -70,7 +70,7 @@ TEST(Workflow2, ACornerMovesOntoAPeak) {
   EXPECT_EQ(layout.quads.size(), 9u);
   // The bump is centred: no interior node of a 3 x 3 grid is near it, none moves.
   EXPECT_EQ(layout.peaksSnapped, 0);
-  options.maxPatchSizeM = 4.3;  // 2 x 2 cells: the centre node is a grid node at the peak
+  options.maxPatchSizeM = 4.4;  // 2 x 2 cells (4.32 m across in space): the centre node is a grid node at the peak
   const Workflow2Layout two = proposeLayout(bump, options);
   EXPECT_EQ(two.quads.size(), 4u);
   EXPECT_EQ(two.peaksSnapped, 1);

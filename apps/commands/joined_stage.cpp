@@ -195,7 +195,11 @@ nlohmann::json joinedSection(const JoinedRun& joined) {
 
 void addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene,
                          bool propagated, int solved, nlohmann::json& simulation) {
-  simulation["patch_by_patch"] = {{"rmse_m", simulation["rmse_m"]}, {"max_error_m", simulation["max_error_m"]}};
+  simulation["patch_by_patch"] = {{"rmse_m", simulation["rmse_m"]},
+                                  {"max_error_m", simulation["max_error_m"]},
+                                  {"converged", simulation["converged"]},
+                                  {"iterations", simulation["iterations"]},  // summed over patches
+                                  {"seconds", simulation.value("seconds", 0.0)}};
   std::string skipped;
   if (!scene.simulation.join_patches) skipped = "the scene does not join patches (simulation.join_patches = false)";
   else if (!propagated) skipped = "no propagated members: one patch, or no neighbours' member ends to bolt together";

@@ -191,6 +191,7 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     // 3.17); the joined run holds the design boundary only and its bolts do the rest.
     simulatePatches(patches, surface.mesh, scene, boundarySupports && scene.simulation.hold_shared_sides);
     report.section("simulation") = simulationSection(patches, scene);
+    report.section("simulation")["seconds"] = secondsSince(simStart);  // patch by patch (wall, patches in parallel)
     addJoinedSimulation(patching, patches, surface.mesh, scene, members.has_value(), solved, report.section("simulation"));
     report.stageRan("simulation", secondsSince(simStart));  // both runs, patch by patch and joined
     // A deployment that did not reach equilibrium is a failure of the run (exit 1), whose report

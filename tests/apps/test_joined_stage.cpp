@@ -62,6 +62,10 @@ TEST(JoinedStage, SlowTwoPatchesSharingASideConvergeBoltedTogether) {
   EXPECT_LT(joined["decrement_j"].get<double>(), 1e-6 * joined["energy_j"].get<double>());
   EXPECT_EQ(sim["patch_by_patch"]["rmse_m"], sim["rmse_m"]);
   EXPECT_EQ(sim["patch_by_patch"]["max_error_m"], sim["max_error_m"]);
+  EXPECT_EQ(sim["patch_by_patch"]["iterations"], sim["iterations"]);
+  EXPECT_TRUE(sim["patch_by_patch"]["converged"].get<bool>());
+  EXPECT_GT(sim["patch_by_patch"]["seconds"].get<double>(), 0.0);
+  EXPECT_GT(joined["seconds"].get<double>(), 0.0);
 }
 
 TEST(JoinedStage, SlowTheSceneCanKeepPatchesApart) {

@@ -4,6 +4,8 @@
 #include "core/errors.hpp"
 #include "core/materials/materials.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -193,8 +195,21 @@ nlohmann::json joinedSection(const JoinedRun& joined) {
   return j;
 }
 
+std::string collapsedWhileHeld(const std::vector<SolvedPatch>& patches) {
+  for (const auto& p : patches) {
+    if (p.simulation && p.deployedStatus() == rods::SolverStatus::Collapsed) {
+      return fmt::format(
+          "patch {} collapses under its own weight even held at every connection of its four sides; the joined "
+          "structure holds it on less (a neighbour instead of supports along the shared sides), so it cannot stand "
+          "near the design either and is not simulated",
+          p.id);
+    }
+  }
+  return {};
+}
+
 void addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene,
-                         bool propagated, int solved, nlohmann::json& simulation) {
+                         bool propagated, int solved, nlohmann::json& simulation, bool patchesHeldAllRound) {
   simulation["patch_by_patch"] = {{"rmse_m", simulation["rmse_m"]},
                                   {"max_error_m", simulation["max_error_m"]},
                                   {"converged", simulation["converged"]},
@@ -204,6 +219,7 @@ void addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>&
   if (!scene.simulation.join_patches) skipped = "the scene does not join patches (simulation.join_patches = false)";
   else if (!propagated) skipped = "no propagated members: one patch, or no neighbours' member ends to bolt together";
   else if (solved < 2) skipped = "fewer than two solved patches";
+  else if (patchesHeldAllRound) skipped = collapsedWhileHeld(patches);
   if (!skipped.empty()) {
     simulation["joined"] = {{"ran", false}, {"skipped_reason", skipped}};
     return;

@@ -25,6 +25,7 @@ struct SolvedPatch {
   std::string failure;           // why not (InfeasiblePatch / SolverFailure message)
   std::optional<rods::SimulationResult> simulation;
   std::string simulationFailure;  // why the simulation could not run (an error, not non-convergence)
+  rods::SolverStatus deployedStatus() const { return simulation->deployed.solver.status; }  // needs simulation
 };
 
 // The propagation stage (Problem 3.3, Section 3.4.4): the members of every chain of patches,

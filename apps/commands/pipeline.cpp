@@ -192,7 +192,8 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     simulatePatches(patches, surface.mesh, scene, boundarySupports && scene.simulation.hold_shared_sides);
     report.section("simulation") = simulationSection(patches, scene);
     report.section("simulation")["seconds"] = secondsSince(simStart);  // patch by patch (wall, patches in parallel)
-    addJoinedSimulation(patching, patches, surface.mesh, scene, members.has_value(), solved, report.section("simulation"));
+    addJoinedSimulation(patching, patches, surface.mesh, scene, members.has_value(), solved, report.section("simulation"),
+                        boundarySupports && scene.simulation.hold_shared_sides);
     report.stageRan("simulation", secondsSince(simStart));  // both runs, patch by patch and joined
     // A deployment that did not reach equilibrium is a failure of the run (exit 1), whose report
     // still carries every figure.

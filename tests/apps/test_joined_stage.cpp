@@ -68,6 +68,23 @@ TEST(JoinedStage, SlowTwoPatchesSharingASideConvergeBoltedTogether) {
   EXPECT_GT(joined["seconds"].get<double>(), 0.0);
 }
 
+TEST(JoinedStage, APatchThatCollapsesHeldAllRoundSkipsTheJoinedRun) {
+  std::vector<SolvedPatch> patches(3);
+  for (int i = 0; i < 3; ++i) {
+    patches[i].id = i;
+    patches[i].simulation.emplace();
+    patches[i].simulation->deployed.solver.status = rods::SolverStatus::Converged;
+  }
+  EXPECT_EQ(collapsedWhileHeld(patches), "");
+  patches[2].simulation->deployed.solver.status = rods::SolverStatus::IterationLimit;  // slow is not collapsed
+  EXPECT_EQ(collapsedWhileHeld(patches), "");
+  patches[1].simulation->deployed.solver.status = rods::SolverStatus::Collapsed;
+  const std::string reason = collapsedWhileHeld(patches);
+  EXPECT_NE(reason.find("patch 1 collapses under its own weight"), std::string::npos) << reason;
+  patches[1].simulation.reset();  // no simulation (a failure of its own): nothing to say
+  EXPECT_EQ(collapsedWhileHeld(patches), "");
+}
+
 TEST(JoinedStage, SlowTheSceneCanKeepPatchesApart) {
   const auto report = run(twoPatchScene(false), "egg_unjoined");
   EXPECT_FALSE(report["simulation"]["joined"]["ran"].get<bool>());

@@ -168,8 +168,9 @@ rods::SimulationOptions simulationOptions(const Scene& scene, const EggResult& e
   options.model.notches = scene.simulation.notches;
   options.model.gravity = scene.simulation.gravity;
   options.model.frictionMu = scene.simulation.friction_mu;
-  // RMS1 (plain holes) beside RMS2 (notches), Section 2.6.2; only meaningful with notches.
-  options.compareWithoutNotches = scene.simulation.notches;
+  // RMS1 (plain holes) beside RMS2 (notches), Section 2.6.2: a second full run per patch, only
+  // when the scene asks for the comparison (and only meaningful with notches).
+  options.compareWithoutNotches = scene.simulation.notches && scene.simulation.compare_without_notches;
   // NRMSE of Section 3.5.2 divides by a scale; we use the patch's bounding-box diagonal so that
   // the figure compares patches and scenes of any size.
   options.scaleFactor = patchDiagonal(egg);
@@ -178,7 +179,23 @@ rods::SimulationOptions simulationOptions(const Scene& scene, const EggResult& e
 
 }  // namespace
 
-void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene) {
+rods::RodNetwork holdEverySide(rods::RodNetwork network, const EggGrid& grid) {
+  std::vector<char> anchored(grid.connections.size(), 0);
+  for (const auto& a : grid.anchors) anchored.at(a.connection) = 1;
+  for (size_t c = 0; c < grid.connections.size(); ++c) {
+    const GridConnection& connection = grid.connections[c];
+    if (!connection.onBoundary || anchored[c]) continue;
+    rods::Anchor anchor;
+    anchor.rod = connection.memberU;
+    anchor.s_m = std::clamp(connection.sBarU, 0.0, network.rods[anchor.rod].length_m);
+    anchor.position = connection.spatial;
+    anchor.normal = connection.normal.normalized();
+    network.anchors.push_back(anchor);
+  }
+  return network;
+}
+
+void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene, bool holdSharedSides) {
   GridToRodsOptions convert;
   convert.section.width_m = scene.lamella.width_m;
   convert.section.thickness_m = scene.lamella.thickness_m;
@@ -192,7 +209,8 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
     if (!patch.egg) return;
     // One patch's failure must not discard the others' results: record it and go on.
     try {
-      const rods::RodNetwork network = rodNetworkFromGrid(patch.egg->grid, convert);
+      rods::RodNetwork network = rodNetworkFromGrid(patch.egg->grid, convert);
+      if (holdSharedSides) network = holdEverySide(std::move(network), patch.egg->grid);
       rods::SimulationOptions options = simulationOptions(scene, *patch.egg);
       if (solved > 1) options.solver.threads = 1;
       patch.simulation = rods::simulateGrid(network, surface, options);
@@ -298,6 +316,8 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
                {"status", rods::toString(sim.deployed.solver.status)},
                {"energy_j", sim.deployed.solver.energy},
                {"gradient_norm_n_nm", sim.deployed.solver.gradientNorm},  // over positions (N) and twists (N m)
+               {"decrement_j", sim.deployed.solver.decrement},            // last Newton decrement g^T H^-1 g
+               {"unknowns", sim.deployed.unknowns},
                {"seconds", sim.seconds}};
     // Under self-weight, how far the grid sagged from its weightless equilibrium (a "collapsed"
     // status means it fell through: Section 3.5.2, Fig. 3.11).

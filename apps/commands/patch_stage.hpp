@@ -25,6 +25,7 @@ struct SolvedPatch {
   std::string failure;           // why not (InfeasiblePatch / SolverFailure message)
   std::optional<rods::SimulationResult> simulation;
   std::string simulationFailure;  // why the simulation could not run (an error, not non-convergence)
+  rods::SolverStatus deployedStatus() const { return simulation->deployed.solver.status; }  // needs simulation
 };
 
 // The propagation stage (Problem 3.3, Section 3.4.4): the members of every chain of patches,
@@ -50,10 +51,19 @@ nlohmann::json propagationSection(const propagation::LayoutPropagation& members,
 // held by the neighbouring grid, not by supports. Returns the anchors added.
 int supportDesignBoundary(std::vector<SolvedPatch>& patches, const patching::PatchGraph& graph);
 
-// Simulates the grid of every solved patch (with notches and, when the scene wants notches,
-// also without, for RMS1/RMS2 of Section 2.6.2) against the design surface, patches in parallel
-// (each simulation then on one thread: results do not depend on the thread count).
-void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene);
+// The patch's rod network with a support at every connection on its four sides that is not an
+// anchor already (Section 3.5.2, strategy iv: "a support at every connection on the boundary").
+rods::RodNetwork holdEverySide(rods::RodNetwork network, const EggGrid& grid);
+
+// Simulates the grid of every solved patch (with notches and, when the scene asks for
+// simulation.compare_without_notches, also without, for RMS1/RMS2 of Section 2.6.2) against the
+// design surface, patches in parallel (each simulation then on one thread: results do not depend
+// on the thread count). `holdSharedSides`: each patch alone is also held along the sides it
+// shares with a neighbour, as the thesis simulated its multi-patch designs (patches apart, on
+// supports along all their boundaries: Fig. 3.17, 3.7.1). Without, a patch's lamellas end in free
+// cantilevers at a shared side, where in the built structure the neighbour holds them: a 20 m
+// cantilever of 25 x 4 cm poplar sags w L^4 / (8 EI) ~ 80 m in linear theory, i.e. it hangs down.
+void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene, bool holdSharedSides = false);
 
 // report.json entries (DESIGN.md "Report").
 nlohmann::json patchEntry(const SolvedPatch& patch);

@@ -188,10 +188,14 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     const bool boundarySupports = scene.simulation.supports == "design_boundary" ||
                                   (scene.simulation.supports == "auto" && patching.layout.patches.size() > 1);
     if (boundarySupports) report.document()["supports"] = {{"design_boundary_anchors", supportDesignBoundary(patches, patching.graph)}};
-    simulatePatches(patches, surface.mesh, scene);
-    report.stageRan("simulation", secondsSince(simStart));
+    // Patch by patch, each patch is held along all its sides, as the thesis simulated them (Fig.
+    // 3.17); the joined run holds the design boundary only and its bolts do the rest.
+    simulatePatches(patches, surface.mesh, scene, boundarySupports && scene.simulation.hold_shared_sides);
     report.section("simulation") = simulationSection(patches, scene);
-    addJoinedSimulation(patching, patches, surface.mesh, scene, members.has_value(), solved, report.section("simulation"));
+    report.section("simulation")["seconds"] = secondsSince(simStart);  // patch by patch (wall, patches in parallel)
+    addJoinedSimulation(patching, patches, surface.mesh, scene, members.has_value(), solved, report.section("simulation"),
+                        boundarySupports && scene.simulation.hold_shared_sides);
+    report.stageRan("simulation", secondsSince(simStart));  // both runs, patch by patch and joined
     // A deployment that did not reach equilibrium is a failure of the run (exit 1), whose report
     // still carries every figure.
     if (!report.section("simulation")["converged"].get<bool>()) {

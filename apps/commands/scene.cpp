@@ -327,9 +327,11 @@ void readSimulation(Section s, SimulationSpec& out) {
   out.gravity = s.boolean("gravity", out.gravity);
   out.friction_mu = s.number("friction_mu", out.friction_mu, 0.0, 2.0);
   out.notches = s.boolean("notches", out.notches);
+  out.compare_without_notches = s.boolean("compare_without_notches", out.compare_without_notches);
   out.supports = s.text("supports", out.supports);
   if (out.supports != "auto" && out.supports != "anchors" && out.supports != "design_boundary")
     s.fail("supports", "must be \"auto\", \"anchors\" or \"design_boundary\", got \"" + out.supports + "\"");
+  out.hold_shared_sides = s.boolean("hold_shared_sides", out.hold_shared_sides);
   out.join_patches = s.boolean("join_patches", out.join_patches);
   s.rejectUnknownKeys();
 }
@@ -489,7 +491,9 @@ json sceneToJson(const Scene& scene) {
         {"gravity", scene.simulation.gravity},
         {"friction_mu", scene.simulation.friction_mu},
         {"notches", scene.simulation.notches},
+        {"compare_without_notches", scene.simulation.compare_without_notches},
         {"supports", scene.simulation.supports},
+        {"hold_shared_sides", scene.simulation.hold_shared_sides},
         {"join_patches", scene.simulation.join_patches}}},
       {"fabrication", fabrication},
       {"outputs", scene.outputs},

@@ -69,11 +69,18 @@ struct SimulationSpec {
   bool enabled = true;
   bool gravity = true;                       // self-weight from the material density (Section 3.5.2)
   double friction_mu = 0.1;                  // pseudo-friction coefficient of E_p (Section 2.5)
-  bool notches = true;                       // simulate with notches (RMS1) as well as without (RMS2)
+  bool notches = true;                       // bolts slide in their notches (RMS2 of Section 2.6.2)
+  // Also simulate every patch with plain holes (RMS1 of Section 2.6.2): a second full run per
+  // patch, only for the comparison, so off unless the scene asks for it.
+  bool compare_without_notches = false;
   // Where the grid is held: "anchors" (corners and boundary curvature extrema, Section 2.4.6),
   // "design_boundary" (those plus every connection on a side of the layout no other patch shares,
   // 3.5.3), "auto" = anchors for one patch, design_boundary for several.
   std::string supports = "auto";
+  // With design_boundary supports, patch by patch: also hold each patch at every connection of the
+  // sides it shares with a neighbour (the thesis' patches were simulated apart on supports along
+  // their boundaries, Fig. 3.17). false: those sides are free, as nothing holds them alone.
+  bool hold_shared_sides = true;
   // With propagated members (several patches): also simulate the whole structure with the shared
   // boundary lamellas of neighbouring patches bolted at their coinciding member ends (3.5.3).
   bool join_patches = true;

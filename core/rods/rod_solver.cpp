@@ -187,7 +187,8 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     }
     if (result.seconds > options.timeLimit_s) {
       result.status = SolverStatus::TimeLimit;
-      result.reason = format("time limit %.3g s reached after %d iterations", options.timeLimit_s, result.iterations);
+      result.reason = format("wall-clock hang guard of %.3g s reached after %d iterations (the run is stopped, not "
+                             "converged: raise the guard or find the hang)", options.timeLimit_s, result.iterations);
       return result;
     }
 

@@ -23,9 +23,23 @@ std::string format(const char* pattern, Args... args) {
 void SimulationOptions::validate() const {
   model.validate();
   solver.validate();
-  if (gravitySteps < 1) throw InvalidInput("SimulationOptions.gravitySteps must be >= 1");
+  if (gravitySteps < 0) throw InvalidInput("SimulationOptions.gravitySteps must be >= 0");
   if (!(collapseFraction >= 0.0)) throw InvalidInput("SimulationOptions.collapseFraction must be >= 0");
   if (!(scaleFactor > 0.0)) throw InvalidInput("SimulationOptions.scaleFactor must be > 0");
+}
+
+void startFrom(RodNetwork& network, const SimulationRun& run) {
+  if (run.contactPoints.size() != network.rods.size() || run.normals.size() != network.rods.size()) {
+    throw InvalidInput("startFrom: the run has " + std::to_string(run.contactPoints.size()) + " rods, the network " +
+                       std::to_string(network.rods.size()));
+  }
+  for (size_t r = 0; r < network.rods.size(); ++r) {
+    if (run.contactPoints[r].size() < 2 || run.contactPoints[r].size() != run.normals[r].size()) {
+      throw InvalidInput("startFrom: rod " + std::to_string(r) + " of the run has mismatched or too few vertices");
+    }
+    network.rods[r].guess = run.contactPoints[r];
+    network.rods[r].guessNormals = run.normals[r];
+  }
 }
 
 SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* surface, const SimulationOptions& options) {
@@ -38,10 +52,24 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   // Self-weight is applied in steps after a weightless solve: a large or soft grid may sag far
   // from the deployed guess (Section 3.5.2), and Newton is reliable only from nearby states.
   const int steps = options.model.gravity ? options.gravitySteps : 0;
+  const bool fromStart = options.model.gravity && steps == 0;  // sag measured from the start state
   SolverOptions solverOptions = options.solver;
   int iterations = 0, switches = 0;
-  std::vector<Eigen::Vector3d> weightless;  // vertices at the weightless equilibrium
+  std::vector<Eigen::Vector3d> weightless;  // vertices at the weightless equilibrium (or the start)
   double extent = 0.0;                      // its bounding-box diagonal
+  auto recordReference = [&]() {
+    Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d high = -low;
+    for (int r = 0; r < model.rodCount(); ++r) {
+      for (int i = 0; i < model.vertexCount(r); ++i) {
+        weightless.push_back(model.vertex(r, i));
+        low = low.cwiseMin(weightless.back());
+        high = high.cwiseMax(weightless.back());
+      }
+    }
+    extent = (high - low).norm();
+  };
+  if (fromStart) recordReference();
   auto largestDisplacement = [&]() {
     double largest = 0.0;
     size_t k = 0;
@@ -67,29 +95,19 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     // going down: the grid is falling through, not converging slowly.
     const bool outOfBudget =
         run.solver.status == SolverStatus::IterationLimit || run.solver.status == SolverStatus::TimeLimit;
-    if (step > 0 && outOfBudget && options.collapseFraction > 0.0) {
+    if ((step > 0 || fromStart) && outOfBudget && options.collapseFraction > 0.0) {
       const double moved = largestDisplacement();
       if (moved > options.collapseFraction * extent) {
         run.solver.status = SolverStatus::Collapsed;
         run.solver.reason = format(
             "collapses under its own weight: after %d iterations a vertex has moved %.3g m (%.1f %% of the grid's "
-            "extent %.3g m) from the weightless equilibrium and the energy is still decreasing (decrement %.3g J): "
+            "extent %.3g m) from the %s and the energy is still decreasing (decrement %.3g J): "
             "no equilibrium near the design shape (Section 3.5.2, Fig. 3.11)",
-            iterations, moved, 100.0 * moved / extent, extent, run.solver.decrement);
+            iterations, moved, 100.0 * moved / extent, extent, fromStart ? "start state" : "weightless equilibrium",
+            run.solver.decrement);
       }
     }
-    if (step == 0 && steps > 0) {
-      Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-      Eigen::Vector3d high = -low;
-      for (int r = 0; r < model.rodCount(); ++r) {
-        for (int i = 0; i < model.vertexCount(r); ++i) {
-          weightless.push_back(model.vertex(r, i));
-          low = low.cwiseMin(weightless.back());
-          high = high.cwiseMax(weightless.back());
-        }
-      }
-      extent = (high - low).norm();
-    }
+    if (step == 0 && steps > 0) recordReference();
     if (!run.solver.converged) {
       if (step < steps) {
         run.solver.reason = "at load step " + std::to_string(step) + " of " + std::to_string(steps) + ": " +
@@ -105,12 +123,14 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   std::vector<Eigen::Vector3d> contact;
   for (int r = 0; r < model.rodCount(); ++r) {
     run.centrelines.push_back(model.centreline(r));
-    std::vector<Eigen::Vector3d> normals;
+    std::vector<Eigen::Vector3d> normals, points;
     for (int i = 0; i < model.vertexCount(r); ++i) {
       normals.push_back(model.vertexNormal(r, i));
-      contact.push_back(model.contactPoint(r, i));
+      points.push_back(model.contactPoint(r, i));
+      contact.push_back(points.back());
     }
     run.normals.push_back(std::move(normals));
+    run.contactPoints.push_back(std::move(points));
     run.vertices += model.vertexCount(r);
   }
   for (int c = 0; c < model.boltCount(); ++c) {

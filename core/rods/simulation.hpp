@@ -17,7 +17,10 @@ namespace egg::rods {
 struct SimulationOptions {
   ModelOptions model;                  // discretisation, notches, gravity, friction, penalty weights
   SolverOptions solver;                // Newton limits and tolerance
-  int gravitySteps = 2;                // load steps for self-weight (first a weightless solve)
+  // Load steps for self-weight after a first weightless solve; 0: the full weight at once, for a
+  // start that is an equilibrium under self-weight already (the joined run started from the
+  // patch-by-patch equilibria). Sag and collapse are then measured from the start state.
+  int gravitySteps = 2;
   // A self-weight load step that runs out of iterations or time with some vertex farther than
   // collapseFraction x the grid's extent (bounding-box diagonal) from the weightless equilibrium
   // is reported as Collapsed rather than as slow: the grid is falling through (Section 3.5.2,
@@ -37,6 +40,7 @@ struct SimulationRun {
   int unknowns = 0;                                       // Newton unknowns
   std::vector<std::vector<Eigen::Vector3d>> centrelines;  // per rod, vertices (m)
   std::vector<std::vector<Eigen::Vector3d>> normals;      // per rod vertex, lamella normal
+  std::vector<std::vector<Eigen::Vector3d>> contactPoints;  // per rod vertex, on the contact surface between the layers
   std::vector<std::array<double, 2>> boltPositions_m;     // per connection: s along rod a, rod b
   std::optional<DeviationStats> deviation;                // contact points vs surface (when given)
   double maxSag_m = 0.0;  // self-weight runs: largest vertex displacement from the weightless equilibrium
@@ -49,6 +53,12 @@ struct SimulationResult {
   std::string reason;                          // first non-convergence reason, if any
   double seconds = 0.0;
 };
+
+// Sets every rod's initial guess to the deployed state of `run` (its contact points and lamella
+// normals: what a guess is, rod_network.hpp), so that a further run starts from that equilibrium
+// whichever layer each rod lies in now. Throws InvalidInput when the rods or their vertex counts
+// do not match.
+void startFrom(RodNetwork& network, const SimulationRun& run);
 
 // One run; `surface` may be null (no error measure).
 SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* surface, const SimulationOptions& options);

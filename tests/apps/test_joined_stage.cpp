@@ -56,8 +56,33 @@ TEST(JoinedStage, SlowTwoPatchesSharingASideConvergeBoltedTogether) {
   EXPECT_GT(joined["rmse_m"].get<double>(), 0.0);
   EXPECT_LT(joined["rmse_m"].get<double>(), 0.05);
   EXPECT_GE(joined["max_error_m"].get<double>(), joined["rmse_m"].get<double>());
+  // Started from the converged patch-by-patch equilibria and stopped by its Newton decrement.
+  EXPECT_EQ(joined["start"], "patch_by_patch_equilibria");
+  EXPECT_EQ(joined["status"], "converged");
+  EXPECT_LT(joined["decrement_j"].get<double>(), 1e-6 * joined["energy_j"].get<double>());
   EXPECT_EQ(sim["patch_by_patch"]["rmse_m"], sim["rmse_m"]);
   EXPECT_EQ(sim["patch_by_patch"]["max_error_m"], sim["max_error_m"]);
+  EXPECT_EQ(sim["patch_by_patch"]["iterations"], sim["iterations"]);
+  EXPECT_TRUE(sim["patch_by_patch"]["converged"].get<bool>());
+  EXPECT_GT(sim["patch_by_patch"]["seconds"].get<double>(), 0.0);
+  EXPECT_GT(joined["seconds"].get<double>(), 0.0);
+}
+
+TEST(JoinedStage, APatchThatCollapsesHeldAllRoundSkipsTheJoinedRun) {
+  std::vector<SolvedPatch> patches(3);
+  for (int i = 0; i < 3; ++i) {
+    patches[i].id = i;
+    patches[i].simulation.emplace();
+    patches[i].simulation->deployed.solver.status = rods::SolverStatus::Converged;
+  }
+  EXPECT_EQ(collapsedWhileHeld(patches), "");
+  patches[2].simulation->deployed.solver.status = rods::SolverStatus::IterationLimit;  // slow is not collapsed
+  EXPECT_EQ(collapsedWhileHeld(patches), "");
+  patches[1].simulation->deployed.solver.status = rods::SolverStatus::Collapsed;
+  const std::string reason = collapsedWhileHeld(patches);
+  EXPECT_NE(reason.find("patch 1 collapses under its own weight"), std::string::npos) << reason;
+  patches[1].simulation.reset();  // no simulation (a failure of its own): nothing to say
+  EXPECT_EQ(collapsedWhileHeld(patches), "");
 }
 
 TEST(JoinedStage, SlowTheSceneCanKeepPatchesApart) {

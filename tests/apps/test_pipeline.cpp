@@ -188,8 +188,9 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
 }
 
 TEST(PipelineMultiPatch, SlowResultsDoNotDependOnTheThreadCount) {
+  // With the simulation: patch by patch (patches in parallel) and joined (two assembly threads),
+  // both limited by iterations, not by a clock, so the numbers are the same bit for bit.
   Scene scene = twoByTwoScene(R"(["report"])");
-  scene.simulation.enabled = false;
   const auto runWith = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     PipelineOptions options;
@@ -203,6 +204,14 @@ TEST(PipelineMultiPatch, SlowResultsDoNotDependOnTheThreadCount) {
   for (size_t i = 0; i < one["patches"].size(); ++i)
     for (const char* key : {"area_m2", "eta_u", "eta_v", "alpha_bar_rad", "max_notch_m", "members_u", "members_v"})
       EXPECT_EQ(one["patches"][i][key], two["patches"][i][key]) << i << " " << key;
+  const auto &simOne = one["simulation"], &simTwo = two["simulation"];
+  ASSERT_TRUE(simOne["ran"].get<bool>());
+  for (const char* key : {"rmse_m", "max_error_m", "iterations", "converged"}) {
+    EXPECT_EQ(simOne[key], simTwo[key]) << key;
+    EXPECT_EQ(simOne["joined"][key], simTwo["joined"][key]) << "joined " << key;
+  }
+  for (size_t i = 0; i < simOne["patches"].size(); ++i)
+    EXPECT_EQ(simOne["patches"][i]["energy_j"], simTwo["patches"][i]["energy_j"]) << i;
 }
 
 TEST(PipelineMultiPatch, OutputsDecideWhatRuns) {

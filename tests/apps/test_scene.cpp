@@ -45,6 +45,8 @@ TEST(Scene, DefaultsFillEverythingButTheSurface) {
   EXPECT_DOUBLE_EQ(s.lamella.width_m, 0.25);
   EXPECT_DOUBLE_EQ(s.simulation.friction_mu, 0.1);
   EXPECT_TRUE(s.simulation.join_patches);
+  EXPECT_FALSE(s.simulation.compare_without_notches);  // a second full run only when asked for
+  EXPECT_TRUE(s.simulation.hold_shared_sides);
   EXPECT_TRUE(s.wants("cut_files"));
 }
 
@@ -57,7 +59,8 @@ TEST(Scene, ReadsEveryDocumentedKey) {
     "grid": {"members_per_family": 12, "map_resolution": 64, "map_tolerance_relative": 0.002, "alpha_bar": 1.2,
              "min_planar_angle_rad": 0.3, "map_proxy_vertices": 450},
     "lamella": {"width_m": 0.5, "thickness_m": 0.05, "material": "birch_plywood"},
-    "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false, "join_patches": false},
+    "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false, "join_patches": false,
+                   "compare_without_notches": true, "hold_shared_sides": false},
     "fabrication": {"enabled": false, "sheet_mm": [3000, 1500], "bolt_diameter_mm": 10, "kerf_mm": 0.3,
                     "margin_mm": 12, "min_notch_mm": 2, "stock_length_mm": 5000, "end_overhang_mm": 40,
                     "splice_clearance_mm": 300, "label_height_mm": 12, "sticker_margin_mm": 3,
@@ -79,6 +82,8 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_EQ(s.lamella.material, "birch_plywood");
   EXPECT_FALSE(s.simulation.enabled);
   EXPECT_FALSE(s.simulation.join_patches);
+  EXPECT_TRUE(s.simulation.compare_without_notches);
+  EXPECT_FALSE(s.simulation.hold_shared_sides);
   EXPECT_DOUBLE_EQ(s.fabrication.sheet_mm[1], 1500.0);
   EXPECT_DOUBLE_EQ(s.fabrication.kerf_mm, 0.3);
   EXPECT_DOUBLE_EQ(s.fabrication.margin_mm, 12.0);
@@ -103,6 +108,8 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_DOUBLE_EQ(back.grid.map_tolerance_relative, 0.002);
   EXPECT_EQ(back.grid.map_proxy_vertices, 450);
   EXPECT_FALSE(back.simulation.join_patches);
+  EXPECT_TRUE(back.simulation.compare_without_notches);
+  EXPECT_FALSE(back.simulation.hold_shared_sides);
   EXPECT_EQ(back.patching.patches.size(), 1u);
   EXPECT_DOUBLE_EQ(*back.fabrication.end_overhang_mm, 40.0);
   EXPECT_DOUBLE_EQ(back.fabrication.stock_length_mm, 5000.0);
@@ -196,7 +203,7 @@ TEST(Scene, ShippedScenesParse) {
     ++parsed;
   }
   EXPECT_EQ(loadScene(dir / "great_court.json").surface.sample, "great_court");
-  EXPECT_DOUBLE_EQ(loadScene(dir / "great_court.json").lamella.width_m, 0.25);  // paper's 25 x 4 cm section
+  EXPECT_DOUBLE_EQ(loadScene(dir / "great_court.json").lamella.width_m, 0.40);  // 40 x 8 cm: 25 x 4 cm collapses (README)
   EXPECT_DOUBLE_EQ(loadScene(dir / "lilium.json").lamella.width_m, 0.50);       // 50 x 5 cm
   EXPECT_DOUBLE_EQ(loadScene(dir / "yas.json").lamella.width_m, 0.40);          // 40 x 5 cm
   EXPECT_EQ(parsed, 7);

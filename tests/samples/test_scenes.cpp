@@ -65,9 +65,11 @@ TriMesh generateScene(const json& scene) {
 }
 
 TEST(SceneFiles, ArchitecturalScenesUseThePapersSections) {
-  // Table 3.3: w x t = 25 x 4, 50 x 5, 40 x 5 cm; Table 3.2: poplar plywood.
+  // Table 3.3: w x t = 50 x 5, 40 x 5 cm; Table 3.2: poplar plywood. The Great Court's 25 x 4 cm
+  // of Table 3.3 collapses under its own weight in poplar (README, "The Great Court's section"):
+  // the scene uses 40 x 8 cm, which stands.
   const std::map<std::string, std::pair<double, double>> sections{
-      {"great_court", {0.25, 0.04}}, {"lilium", {0.50, 0.05}}, {"yas", {0.40, 0.05}}};
+      {"great_court", {0.40, 0.08}}, {"lilium", {0.50, 0.05}}, {"yas", {0.40, 0.05}}};
   for (const auto& [name, section] : sections) {
     SCOPED_TRACE(name);
     const json scene = readScene(kSamples / (name + ".json"));

@@ -2,18 +2,21 @@
 // Workflow 2, automatic (Algorithm 2, Section 3.4.3): an initial layout of the whole design
 // surface with no hand input, which Workflow 1 then splits where a patch is infeasible. The thesis
 // split its three architectural examples by hand ("some hours each") and names automating it
-// future work (3.7.2); this is a first automatic version for surfaces that are height fields over
-// a plane with at most one hole:
+// future work (3.7.2); this version is for surfaces that are height fields over a plane:
 //   - the footprint (the surface seen along its least-variance direction) gives blocks: one quad
 //     block between four outer corners (the boundary points extreme in the diagonal directions:
-//     the rectangle's corners, a superellipse's shoulders), or, around a hole, a ring of four
-//     blocks between the outer corners and the corners of the box tangent to the hole;
-//   - each block is cut into a grid of patches (Coons interpolation of its sides in the plan)
-//     with cells no larger than max_patch_size_m, its neighbours' counts matching on shared sides;
-//   - the high-K regions first: an interior grid node near a K peak moves onto p_max (Algorithm 2:
-//     "introduce a corner at p_max");
-//   - boundary nodes lie on the design boundary, and patch sides along it are chords; a node whose
-//     chord would leave the footprint (a concave stretch) is pulled inwards, leaving a cut-off.
+//     the rectangle's corners, a superellipse's shoulders), or, around a single hole, a ring of
+//     four blocks between the outer corners and the box round the hole;
+//   - each block is cut into a grid of patches (Coons interpolation of its sides in the plan) with
+//     cells no larger than max_patch_size_m measured along the surface. One block: every grid up to
+//     16 x 16 is screened and the one predicting the fewest patches kept, the high-K regions first
+//     (Algorithm 2: "introduce a corner at p_max": interior nodes move onto nearby peaks; a peak
+//     left inside a large cell counts as Workflow 1's split), several holes each in a cell of its
+//     own that becomes a ring of four patches round the hole;
+//   - the box round a hole shrinks until its traced sides just clear the hole (tangent sides);
+//   - boundary nodes lie on the design boundary and sides along it are its geodesics or chords;
+//     a node whose traced side would wrap round the boundary is pulled inwards, leaving a cut-off,
+//     and an outer corner on a straight (geodesic) boundary has its neighbours moved in.
 #include "core/egg/patch.hpp"
 #include "core/mesh/mesh.hpp"
 
@@ -52,7 +55,7 @@ struct Workflow2Layout {
 
 // With `solver` (on `surface`) every boundary chord is traced, and a chord that bends round a
 // boundary vertex (hugging a wall the plan view cannot see) has its ends pulled in further.
-// Throws InvalidInput when the surface has no boundary or more than one hole.
+// Throws InvalidInput when the surface has no boundary, or no screened grid fits (the size, the holes).
 Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& options = {},
                               const geodesic::DistanceSolver* solver = nullptr);
 

@@ -28,6 +28,7 @@ int runCli(int argc, char** argv) {
   registerGridBench(*bench, action);
   registerLayoutBench(*bench, action);
   registerPatchingBench(*bench, action);
+  registerPipelineBench(*bench, action);
   registerSimBench(*bench, action);
 
   try {

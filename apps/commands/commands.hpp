@@ -28,6 +28,7 @@ void registerSimBench(CLI::App& bench, Action& action);          // sim_commands
 void registerGridBench(CLI::App& bench, Action& action);         // grid_commands.cpp (egg bench grid)
 void registerLayoutBench(CLI::App& bench, Action& action);       // layout_bench.cpp (egg bench layout)
 void registerPatchingBench(CLI::App& bench, Action& action);     // patching_bench.cpp (egg bench patching)
+void registerPipelineBench(CLI::App& bench, Action& action);     // pipeline_bench.cpp (egg bench pipeline)
 void registerStressCommand(CLI::App& parent, Action& action);    // sim_commands.cpp (egg stress)
 
 // A CLI11 check for a floating-point option: a finite number in [lo, hi]. CLI11's own Range and

@@ -247,7 +247,7 @@ TEST_F(Cli, PatchingBenchDecomposesTheGreatCourtUnattended) {
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0]["patches"], 4);
   EXPECT_EQ(rows[0]["feasible"], 4);
-  EXPECT_GT(rows[0]["coverage"].get<double>(), 0.85);
+  EXPECT_GE(rows[0]["coverage"].get<double>(), 0.90);  // issue 14: hole and boundary cut-offs only
   EXPECT_LT(rows[0]["coverage"].get<double>(), 1.0);
 }
 

@@ -1,0 +1,84 @@
+#include "apps/commands/pipeline_bench.hpp"
+
+#include "core/errors.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace egg::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(PipelineBench, ParetoFrontKeepsWhatNothingBeatsInBoth) {
+  // (time, error): (3, 0.1) is beaten by (2, 0.05), (5, 0.01) by the faster (4, 0.01); (1, 0.2)
+  // is the fastest; NaN never counts.
+  const std::vector<std::pair<double, double>> points{{3, 0.1}, {1, 0.2}, {2, 0.05}, {4, 0.01}, {0.5, NAN}, {5, 0.01}};
+  EXPECT_EQ(paretoFront(points), (std::vector<size_t>{1, 2, 3}));  // by time
+  EXPECT_TRUE(paretoFront({}).empty());
+}
+
+TEST(PipelineBench, SweepsASmallSceneIntoACsvAndAPlot) {
+  const fs::path out = fs::temp_directory_path() / ("egg_pipeline_bench_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  PipelineBenchOptions options;
+  options.scenes = {(fs::path(EGG_SOURCE_DIR) / "samples" / "scenes" / "bump_small.json").string()};
+  options.edgeFactors = {1.0, 2.0};
+  options.out = out;
+  options.json = true;
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(runPipelineBench(options), 0);
+  testing::internal::GetCapturedStdout();
+  std::ifstream csv(out / "pipeline.csv");
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("scene,edge_factor,edge_length_m,map_proxy_vertices,wall_s,", 0), 0u) << header;
+  std::vector<std::string> rows;
+  while (std::getline(csv, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 2u);
+  // The coarser mesh (edge x2: 0.8 m) has fewer vertices; both runs converge and give an RMSE.
+  std::vector<std::vector<std::string>> cells;
+  for (const auto& r : rows) {
+    std::vector<std::string> c;
+    std::stringstream ss(r);
+    for (std::string cell; std::getline(ss, cell, ',');) c.push_back(cell);
+    cells.push_back(c);
+  }
+  EXPECT_EQ(cells[0][2], "0.4");
+  EXPECT_EQ(cells[1][2], "0.8");
+  EXPECT_GT(std::stoi(cells[0][5]), std::stoi(cells[1][5]));
+  EXPECT_GT(std::stod(cells[0][7]), 0.0);
+  EXPECT_EQ(cells[0][11], "1");
+  EXPECT_TRUE(fs::exists(out / "runs" / "bump_small-edge1-proxy600" / "report.json"));
+  // The plot is an SVG a real renderer reads.
+  ASSERT_TRUE(fs::exists(out / "pipeline.svg"));
+  if (std::system("command -v rsvg-convert > /dev/null 2>&1") == 0) {
+    const std::string png = (out / "pipeline.png").string();
+    EXPECT_EQ(std::system(("rsvg-convert '" + (out / "pipeline.svg").string() + "' -o '" + png + "'").c_str()), 0);
+    EXPECT_GT(fs::file_size(png), 1000u);
+  }
+  fs::remove_all(out);
+}
+
+TEST(PipelineBench, BadInputIsNamed) {
+  PipelineBenchOptions options;
+  options.scenes = {"/nonexistent/scene.json"};
+  EXPECT_THROW(runPipelineBench(options), Error);
+  options.scenes = {(fs::path(EGG_SOURCE_DIR) / "samples" / "scenes" / "bump_small.json").string()};
+  options.edgeFactors = {0.0};
+  try {
+    runPipelineBench(options);
+    FAIL() << "an edge factor of 0 ran";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("--edge-factors"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace egg::app

@@ -127,8 +127,8 @@ void writeSvg(const std::filesystem::path& file, const std::vector<Row>& rows) {
     if (!front.empty()) svg += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\"/>\n", front, colour);
     for (const Row* r : mine)
       if (std::isfinite(r->error()) && r->wallS > 0)
-        svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{}\" fill=\"{}\" stroke=\"black\"><title>{} edge x{} proxy {}: {:.2f} s, RMSE {:.3f} m</title></circle>\n",
-                           x(r->wallS), y(r->error()), r->pareto ? 5 : 3.5, r->pareto ? colour : "white", escapeXml(r->scene), r->edgeFactor,
+        svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{}\" fill=\"{}\" stroke=\"{}\" stroke-width=\"1.5\"><title>{} edge x{} proxy {}: {:.2f} s, RMSE {:.3f} m</title></circle>\n",
+                           x(r->wallS), y(r->error()), r->pareto ? 5 : 3.5, r->pareto ? colour : "white", r->pareto ? "black" : colour, escapeXml(r->scene), r->edgeFactor,
                            r->proxy, r->wallS, r->error());
     if (const auto paper = kPaper.find(scenes[s]); paper != kPaper.end())
       svg += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"{3}\" stroke-dasharray=\"6 4\"/>\n", left, y(paper->second.first),

@@ -136,7 +136,7 @@ TEST(Workflow2, EachOfTwoHolesGetsARingOfFourPatches) {
   const Workflow2Layout layout = proposeLayout(surface, options);
   EXPECT_EQ(layout.holes, 2);
   EXPECT_EQ(layout.blocks, 1);
-  for (const Eigen::Vector2d centre : {Eigen::Vector2d(-55, -15), Eigen::Vector2d(55, 15)}) {
+  for (const Eigen::Vector2d& centre : {Eigen::Vector2d(-55, -15), Eigen::Vector2d(55, 15)}) {
     int round = 0;
     for (const auto& q : layout.quads) {
       std::vector<Eigen::Vector2d> outline;

@@ -35,9 +35,7 @@ int runPatchingBench(const PatchingBenchArgs& args) {
   }
   for (const auto& name : args.samples) {
     // A name is a sample scene of the repository (run from its root, as `egg run`'s default), or a scene file.
-    const std::filesystem::path file = name.size() > 5 && name.substr(name.size() - 5) == ".json"
-                                           ? std::filesystem::path(name)
-                                           : std::filesystem::path("samples") / (name + ".json");
+    const std::filesystem::path file = benchSceneFile(name);
     const Scene scene = loadScene(file);
     const LoadedSurface surface = loadSurface(scene.surface);
     std::vector<double> times;

@@ -157,8 +157,7 @@ int runPipelineBench(const PipelineBenchOptions& options) {
   // Every scene is read first: a bad one stops the bench before anything runs.
   std::vector<Scene> scenes;
   for (const auto& name : options.scenes) {
-    const std::filesystem::path file = name.size() > 5 && name.substr(name.size() - 5) == ".json" ? std::filesystem::path(name)
-                                                                                                     : std::filesystem::path("samples") / (name + ".json");
+    const std::filesystem::path file = benchSceneFile(name);
     scenes.push_back(loadScene(file));
   }
   std::filesystem::create_directories(options.out / "runs");

@@ -2,6 +2,7 @@
 
 #include "apps/commands/report.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/io/xml_text.hpp"
 
 #include <fmt/core.h>
 
@@ -15,30 +16,14 @@ namespace {
 
 using nlohmann::json;
 
-std::string esc(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 // A report value as text: numbers with `digits` significant digits, null as a dash.
 std::string text(const json& value, int digits = 4) {
   if (value.is_null()) return "&ndash;";
   if (value.is_boolean()) return value.get<bool>() ? "yes" : "no";
   if (value.is_number_integer() || value.is_number_unsigned()) return fmt::format("{}", value.get<long long>());
   if (value.is_number()) return fmt::format("{:.{}g}", value.get<double>(), digits);
-  if (value.is_string()) return esc(value.get<std::string>());
-  return esc(value.dump());
+  if (value.is_string()) return escapeXml(value.get<std::string>());
+  return escapeXml(value.dump());
 }
 
 json at(const json& j, const std::string& key) { return j.is_object() && j.contains(key) ? j[key] : json(); }
@@ -51,7 +36,7 @@ double number(const json& j, const std::string& key, double fallback = 0.0) {
 // A table of key figures: (label, value) rows.
 std::string figures(const std::vector<std::pair<std::string, std::string>>& rows) {
   std::string out = "<table class=\"figures\">\n";
-  for (const auto& [label, value] : rows) out += "<tr><th>" + esc(label) + "</th><td>" + value + "</td></tr>\n";
+  for (const auto& [label, value] : rows) out += "<tr><th>" + escapeXml(label) + "</th><td>" + value + "</td></tr>\n";
   return out + "</table>\n";
 }
 
@@ -72,11 +57,11 @@ std::string barChart(const std::string& id, const std::vector<std::pair<std::str
     const double value = std::isfinite(bars[i].second) ? std::max(0.0, bars[i].second) : 0.0;
     const double w = plotWidth * value / largest;
     svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"end\" font-size=\"12\">{}</text>", labelWidth - 6.0,
-                       y + 13.0, esc(bars[i].first));
+                       y + 13.0, escapeXml(bars[i].first));
     svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.2f}\" height=\"{:.1f}\" fill=\"#4a7fb5\" data-value=\"{:.6g}\"/>",
                        labelWidth, y + 3.0, w, rowHeight - 5.0, value);
     svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\">{:.3g} {}</text>\n", labelWidth + w + 4.0, y + 13.0,
-                       value, esc(unit));
+                       value, escapeXml(unit));
   }
   if (marker > 0.0) {
     const double x = labelWidth + plotWidth * marker / largest;
@@ -95,7 +80,7 @@ std::string stageTimes(const json& report) {
   for (const auto& stage : pipelineStages()) {
     const json s = at(stages, stage);
     const bool ran = at(s, "ran").is_boolean() && s["ran"].get<bool>();
-    out += "<tr><td>" + esc(stage) + "</td><td>" + (ran ? "yes" : "no") + "</td><td>" + text(at(s, "seconds")) + "</td><td>" +
+    out += "<tr><td>" + escapeXml(stage) + "</td><td>" + (ran ? "yes" : "no") + "</td><td>" + text(at(s, "seconds")) + "</td><td>" +
            text(at(s, "skipped_reason")) + "</td></tr>\n";
     bars.emplace_back(stage, number(s, "seconds"));
   }
@@ -237,13 +222,13 @@ std::string bomSection(const std::string& bom) {
   // Everything but the individual lamellas and splice joints up front; those in a fold.
   auto tableOf = [&](bool detail) {
     std::string t = "<table class=\"list bom\"><tr>";
-    for (const auto& h : rows.front()) t += "<th>" + esc(h) + "</th>";
+    for (const auto& h : rows.front()) t += "<th>" + escapeXml(h) + "</th>";
     t += "</tr>\n";
     for (size_t r = 1; r < rows.size(); ++r) {
       const bool isDetail = rows[r][0] == "lamella" || rows[r][0] == "splice_joint";
       if (isDetail != detail) continue;
       t += "<tr>";
-      for (const auto& c : rows[r]) t += "<td>" + esc(c) + "</td>";
+      for (const auto& c : rows[r]) t += "<td>" + escapeXml(c) + "</td>";
       t += "</tr>\n";
     }
     return t + "</table>\n";
@@ -266,9 +251,9 @@ svg.chart{display:block;margin:8px 0}.figure{border:1px solid #ddd;display:inlin
 std::string reportHtml(const json& report, const std::string& planSvg, const std::string& bomCsv) {
   const json scene = at(report, "scene");
   const std::string name = at(scene, "name").is_string() ? scene["name"].get<std::string>() : "eggshell run";
-  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + esc(name) +
+  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escapeXml(name) +
                      " &ndash; eggshell report</title>\n<style>\n" + kStyle + "\n</style>\n</head>\n<body>\n";
-  html += "<h1>" + esc(name) + "</h1>\n<p>Scene " + text(at(scene, "path")) +
+  html += "<h1>" + escapeXml(name) + "</h1>\n<p>Scene " + text(at(scene, "path")) +
           "; everything below is report.json of this run (metres, radians and seconds; cut files in millimetres).</p>\n";
   const json failures = at(report, "failures");
   if (failures.is_array() && !failures.empty()) {
@@ -282,7 +267,7 @@ std::string reportHtml(const json& report, const std::string& planSvg, const std
   if (!warnings.empty()) {
     html += "<div class=\"warnings\" id=\"warnings\"><details><summary>" + std::to_string(warnings.size()) +
             " warnings</summary><ul>\n";
-    for (const auto& w : warnings) html += "<li>" + esc(w) + "</li>\n";
+    for (const auto& w : warnings) html += "<li>" + escapeXml(w) + "</li>\n";
     html += "</ul></details></div>\n";
   }
   html += stageTimes(report) + planSection(planSvg) + patchesSection(report) + simulationSection(report) +

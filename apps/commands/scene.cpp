@@ -428,6 +428,11 @@ Scene parseSceneText(const std::string& text, const std::filesystem::path& origi
   return parseScene(document, origin);
 }
 
+std::filesystem::path benchSceneFile(const std::string& name) {
+  const bool file = name.size() > 5 && name.substr(name.size() - 5) == ".json";
+  return file ? std::filesystem::path(name) : std::filesystem::path("samples") / (name + ".json");
+}
+
 Scene loadScene(const std::filesystem::path& path) {
   // A folder, a FIFO or a device is refused before any read (a FIFO would block forever).
   return parseSceneText(readRegularFile(path, kMaxSceneBytes, "scene file"), path);

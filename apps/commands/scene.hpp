@@ -127,6 +127,8 @@ double defaultSampleEdgeLength(const std::string& sample);
 // Reads and validates a scene file. Throws IoError (missing/unreadable file) or InvalidInput
 // naming the file and the field ("scene.json: grid.alpha_bar: ...").
 Scene loadScene(const std::filesystem::path& path);
+// A bench's scene argument: a scene file (*.json) as given, else samples/<name>.json (from the repository root).
+std::filesystem::path benchSceneFile(const std::string& name);
 
 // Same from the text of a scene file (what loadScene reads): JSON nested at most 64 levels, a
 // number that overflows a double named by its field. `origin` names it in messages.

@@ -148,6 +148,7 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
     options.model.notches = scene.simulation.notches;
     options.model.gravity = scene.simulation.gravity;
     options.model.frictionMu = scene.simulation.friction_mu;
+    options.solver.tolerance = scene.simulation.newton_tolerance;
     options.compareWithoutNotches = false;  // RMS1/RMS2 stay a per-patch figure
     options.scaleFactor = boundingBox(surface).size().norm();
     if (out.warmStart) {

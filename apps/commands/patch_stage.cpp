@@ -55,7 +55,7 @@ std::optional<propagation::LayoutPropagation> propagateMembers(const PatchingRun
   propagation::PropagationOptions options;
   options.members = scene.grid.members_per_family;
   options.lamellaWidthM = scene.lamella.width_m;
-  options.spacingFactor = MemberOptions{}.spacingFactor;
+  options.spacingFactor = scene.grid.member_spacing_factor;
   return propagation::propagateLayout(run.graph, sides, options);
 }
 
@@ -168,6 +168,7 @@ rods::SimulationOptions simulationOptions(const Scene& scene, const EggResult& e
   options.model.notches = scene.simulation.notches;
   options.model.gravity = scene.simulation.gravity;
   options.model.frictionMu = scene.simulation.friction_mu;
+  options.solver.tolerance = scene.simulation.newton_tolerance;
   // RMS1 (plain holes) beside RMS2 (notches), Section 2.6.2: a second full run per patch, only
   // when the scene asks for the comparison (and only meaningful with notches).
   options.compareWithoutNotches = scene.simulation.notches && scene.simulation.compare_without_notches;

@@ -33,6 +33,7 @@ EggOptions eggOptionsFromScene(const Scene& scene) {
   }
   options.members.count = scene.grid.members_per_family.value_or(0);
   options.members.lamellaWidthM = scene.lamella.width_m;
+  options.members.spacingFactor = scene.grid.member_spacing_factor;
   options.alphaBar.minPlanarAngle = scene.grid.min_planar_angle_rad;
   // Splitting replaces smoothing in the workflows (Section 3.1: smoothing alters the design).
   options.uniqueness.smooth = scene.patching.smoothing.value_or(layoutIsGiven(scene));

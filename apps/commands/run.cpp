@@ -1,5 +1,6 @@
 #include "apps/commands/commands.hpp"
 #include "apps/commands/pipeline.hpp"
+#include "apps/commands/progress.hpp"
 
 #include <fmt/core.h>
 
@@ -8,7 +9,6 @@
 #include <iostream>
 #include <optional>
 #include <memory>
-#include <unistd.h>
 
 namespace egg::app {
 
@@ -36,17 +36,10 @@ void registerRunCommand(CLI::App& parent, Action& action) {
       if (args->threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(args->threads));
       PipelineOptions options;
       options.out_dir = args->out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args->out);
-      const bool terminal = isatty(STDERR_FILENO) && !args->quiet;
-      if (terminal) {
-        options.progress = [](const std::string& stage, double fraction) {
-          const int width = 30;
-          const int filled = static_cast<int>(fraction * width + 0.5);
-          std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
-                    << fmt::format("{:<12}", stage) << std::flush;
-          if (fraction >= 1.0) std::cerr << "\n";
-        };
-      }
+      ProgressLine bar(!args->quiet);  // drawn only on a terminal
+      if (bar.shown()) options.progress = [&bar](const std::string& stage, double fraction) { bar.update(fraction, stage); };
       const PipelineResult result = runPipeline(scene, options);
+      bar.finish();
       if (result.nothingRequested) {
         std::cout << fmt::format("egg run: {}: the scene asks for no outputs (\"outputs\": []): nothing to do\n", scene.name);
         return kExitOk;

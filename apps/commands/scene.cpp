@@ -283,6 +283,7 @@ void readGrid(Section s, GridSpec& out) {
       s.fail("members_per_family", "must be \"auto\" or an integer in [2, 10000], got " + brief(v));
     }
   }
+  out.member_spacing_factor = s.number("member_spacing_factor", out.member_spacing_factor, 2.0, 1000.0);
   out.map_resolution = s.integer("map_resolution", out.map_resolution, 8, 2000);
   out.map_tolerance_relative = s.number("map_tolerance_relative", out.map_tolerance_relative, 0.0, 0.1);
   out.map_proxy_vertices = s.integer("map_proxy_vertices", out.map_proxy_vertices, 0, 10000000);
@@ -333,6 +334,7 @@ void readSimulation(Section s, SimulationSpec& out) {
     s.fail("supports", "must be \"auto\", \"anchors\" or \"design_boundary\", got \"" + out.supports + "\"");
   out.hold_shared_sides = s.boolean("hold_shared_sides", out.hold_shared_sides);
   out.join_patches = s.boolean("join_patches", out.join_patches);
+  out.newton_tolerance = s.number("newton_tolerance", out.newton_tolerance, 1e-16, 1e-2);
   s.rejectUnknownKeys();
 }
 
@@ -453,7 +455,8 @@ json sceneToJson(const Scene& scene) {
   json grid{{"map_resolution", scene.grid.map_resolution},
             {"map_tolerance_relative", scene.grid.map_tolerance_relative},
             {"map_proxy_vertices", scene.grid.map_proxy_vertices},
-            {"min_planar_angle_rad", scene.grid.min_planar_angle_rad}};
+            {"min_planar_angle_rad", scene.grid.min_planar_angle_rad},
+            {"member_spacing_factor", scene.grid.member_spacing_factor}};
   grid["members_per_family"] = scene.grid.members_per_family ? json(*scene.grid.members_per_family) : json("auto");
   grid["alpha_bar"] = scene.grid.alpha_bar == "value" ? json(scene.grid.alpha_bar_rad) : json(scene.grid.alpha_bar);
   const FabricationSpec& f = scene.fabrication;
@@ -499,7 +502,8 @@ json sceneToJson(const Scene& scene) {
         {"compare_without_notches", scene.simulation.compare_without_notches},
         {"supports", scene.simulation.supports},
         {"hold_shared_sides", scene.simulation.hold_shared_sides},
-        {"join_patches", scene.simulation.join_patches}}},
+        {"join_patches", scene.simulation.join_patches},
+        {"newton_tolerance", scene.simulation.newton_tolerance}}},
       {"fabrication", fabrication},
       {"outputs", scene.outputs},
   };

@@ -43,6 +43,9 @@ struct PatchingSpec {
 
 struct GridSpec {
   std::optional<int> members_per_family;     // empty = "auto" (Section 2.4.4)
+  // "auto" members: target spacing between members = this x the lamella width (Section 2.4.4;
+  // default = MemberOptions::spacingFactor, test_scene checks that the two agree).
+  double member_spacing_factor = 8.0;
   int map_resolution = 100;                  // samples per boundary of the distance maps
   // Adaptive distance-map rows (core/egg/map_refinement.hpp): the largest miss allowed of a row
   // interpolated between exact source fields, as a fraction of the family's shorter side;
@@ -84,6 +87,10 @@ struct SimulationSpec {
   // With propagated members (several patches): also simulate the whole structure with the shared
   // boundary lamellas of neighbouring patches bolted at their coinciding member ends (3.5.3).
   bool join_patches = true;
+  // Newton stops when its decrement g^T H^-1 g falls below this x the energy scale (default =
+  // rods::SolverOptions::tolerance; test_scene checks that the two agree). Larger is faster and
+  // less exact: one of `egg bench pipeline`'s knobs.
+  double newton_tolerance = 1e-10;
 };
 
 // Defaults as fabrication::FabricationOptions (fabrication/options.hpp); the `std::optional` ones

@@ -30,6 +30,9 @@ TEST(PipelineBench, SweepsASmallSceneIntoACsvAndAPlot) {
   PipelineBenchOptions options;
   options.scenes = {(fs::path(EGG_SOURCE_DIR) / "samples" / "scenes" / "bump_small.json").string()};
   options.edgeFactors = {1.0, 2.0};
+  options.mapProxyVertices = {600};
+  options.newtonTolerances = {};
+  options.spacingFactors = {};
   options.out = out;
   options.json = true;
   testing::internal::CaptureStdout();
@@ -55,7 +58,9 @@ TEST(PipelineBench, SweepsASmallSceneIntoACsvAndAPlot) {
   EXPECT_GT(std::stoi(cells[0][5]), std::stoi(cells[1][5]));
   EXPECT_GT(std::stod(cells[0][7]), 0.0);
   EXPECT_EQ(cells[0][11], "1");
-  EXPECT_TRUE(fs::exists(out / "runs" / "bump_small-edge1-proxy600" / "report.json"));
+  EXPECT_EQ(cells[0][16], "base");
+  EXPECT_EQ(cells[1][16], "edge_x2");
+  EXPECT_TRUE(fs::exists(out / "runs" / "bump_small-00-base" / "report.json"));
   // The plot is an SVG a real renderer reads.
   ASSERT_TRUE(fs::exists(out / "pipeline.svg"));
   if (std::system("command -v rsvg-convert > /dev/null 2>&1") == 0) {
@@ -64,6 +69,34 @@ TEST(PipelineBench, SweepsASmallSceneIntoACsvAndAPlot) {
     EXPECT_GT(fs::file_size(png), 1000u);
   }
   fs::remove_all(out);
+}
+
+TEST(PipelineBench, VariesOneKnobAtATimeFromTheFirstValues) {
+  PipelineBenchOptions options;  // defaults: edge {1, 1.5, 2}, proxy {600, 0}, Newton {1e-10, 1e-6}, spacing {8, 12}
+  options.mapTolerances = {1e-4, 1e-2};
+  const auto variants = pipelineVariants(options, "great_court");
+  std::vector<std::string> varied;
+  for (const auto& v : variants) varied.push_back(v.varied);
+  EXPECT_EQ(varied, (std::vector<std::string>{"base", "edge_x1.5", "edge_x2", "proxy_0", "map_tol_0.01", "newton_tol_1e-06",
+                                              "spacing_x12", "paper_section_25x4cm"}));
+  // Each variant changes its own knob only; the row tolerance needs the maps on the patch.
+  EXPECT_DOUBLE_EQ(variants[0].edgeFactor, 1.0);
+  EXPECT_EQ(variants[0].mapProxyVertices, 600);
+  EXPECT_DOUBLE_EQ(variants[0].newtonTolerance, 1e-10);
+  EXPECT_DOUBLE_EQ(variants[2].edgeFactor, 2.0);
+  EXPECT_EQ(variants[2].mapProxyVertices, 600);
+  EXPECT_EQ(variants[4].mapProxyVertices, 0);
+  EXPECT_DOUBLE_EQ(variants[4].mapTolerance, 1e-2);
+  EXPECT_DOUBLE_EQ(variants[5].newtonTolerance, 1e-6);
+  EXPECT_DOUBLE_EQ(variants[5].spacingFactor, 8.0);
+  EXPECT_DOUBLE_EQ(variants[6].spacingFactor, 12.0);
+  EXPECT_DOUBLE_EQ(variants[7].widthM, 0.25);
+  EXPECT_DOUBLE_EQ(variants[7].thicknessM, 0.04);
+  // A scene that is not one of the paper's gets no paper section; --product runs 3 x 2 x 2 x 2 x 2.
+  EXPECT_EQ(pipelineVariants(options, "bump").size(), 7u);
+  options.product = true;
+  options.paperSection = false;
+  EXPECT_EQ(pipelineVariants(options, "lilium").size(), 48u);
 }
 
 TEST(PipelineBench, BadInputIsNamed) {

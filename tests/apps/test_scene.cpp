@@ -1,6 +1,8 @@
 #include "apps/commands/scene.hpp"
 
+#include "core/egg/members.hpp"
 #include "core/egg/patch_maps.hpp"
+#include "core/rods/rod_solver.hpp"
 #include "core/errors.hpp"
 
 #include <gtest/gtest.h>
@@ -47,6 +49,8 @@ TEST(Scene, DefaultsFillEverythingButTheSurface) {
   EXPECT_TRUE(s.simulation.join_patches);
   EXPECT_FALSE(s.simulation.compare_without_notches);  // a second full run only when asked for
   EXPECT_TRUE(s.simulation.hold_shared_sides);
+  EXPECT_DOUBLE_EQ(s.grid.member_spacing_factor, egg::MemberOptions{}.spacingFactor);
+  EXPECT_DOUBLE_EQ(s.simulation.newton_tolerance, egg::rods::SolverOptions{}.tolerance);
   EXPECT_TRUE(s.wants("cut_files"));
 }
 
@@ -57,10 +61,10 @@ TEST(Scene, ReadsEveryDocumentedKey) {
     "patching": {"workflow": 1, "eta_max": 1.002, "slope_bounds": [0.2, 5], "max_patch_size_m": 30,
                  "patches": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]},
     "grid": {"members_per_family": 12, "map_resolution": 64, "map_tolerance_relative": 0.002, "alpha_bar": 1.2,
-             "min_planar_angle_rad": 0.3, "map_proxy_vertices": 450},
+             "min_planar_angle_rad": 0.3, "map_proxy_vertices": 450, "member_spacing_factor": 11},
     "lamella": {"width_m": 0.5, "thickness_m": 0.05, "material": "birch_plywood"},
     "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false, "join_patches": false,
-                   "compare_without_notches": true, "hold_shared_sides": false},
+                   "compare_without_notches": true, "hold_shared_sides": false, "newton_tolerance": 1e-6},
     "fabrication": {"enabled": false, "sheet_mm": [3000, 1500], "bolt_diameter_mm": 10, "kerf_mm": 0.3,
                     "margin_mm": 12, "min_notch_mm": 2, "stock_length_mm": 5000, "end_overhang_mm": 40,
                     "splice_clearance_mm": 300, "label_height_mm": 12, "sticker_margin_mm": 3,
@@ -107,6 +111,8 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_EQ(back.grid.alpha_bar_rad, 1.2);
   EXPECT_DOUBLE_EQ(back.grid.map_tolerance_relative, 0.002);
   EXPECT_EQ(back.grid.map_proxy_vertices, 450);
+  EXPECT_DOUBLE_EQ(back.grid.member_spacing_factor, 11.0);
+  EXPECT_DOUBLE_EQ(back.simulation.newton_tolerance, 1e-6);
   EXPECT_FALSE(back.simulation.join_patches);
   EXPECT_TRUE(back.simulation.compare_without_notches);
   EXPECT_FALSE(back.simulation.hold_shared_sides);
@@ -132,6 +138,10 @@ TEST(Scene, BadValuesAreErrorsNamingTheFieldAndFile) {
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "grid": {"alpha_bar": 4.0}})").find("grid.alpha_bar"),
             std::string::npos);
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "grid": {"map_tolerance_relative": -0.001}})").find("grid.map_tolerance_relative"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "simulation": {"newton_tolerance": 0}})").find("simulation.newton_tolerance"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "grid": {"member_spacing_factor": 1}})").find("grid.member_spacing_factor"),
             std::string::npos);
   // 0 (no proxy) or at least 8 vertices (corners plus a vertex per side); integers only.
   for (const char* bad : {"5", "-1", "300.5", "\"auto\""}) {

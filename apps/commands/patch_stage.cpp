@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -196,7 +197,8 @@ rods::RodNetwork holdEverySide(rods::RodNetwork network, const EggGrid& grid) {
   return network;
 }
 
-void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene, bool holdSharedSides) {
+void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene, bool holdSharedSides,
+                     const std::function<void(int, int)>& patchDone) {
   GridToRodsOptions convert;
   convert.section.width_m = scene.lamella.width_m;
   convert.section.thickness_m = scene.lamella.thickness_m;
@@ -205,6 +207,7 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
   // Patches in parallel, each simulation on one thread when there are several (the rods code's
   // own threads would only compete with TBB's); the simulation is bit-identical for any count.
   const int solved = static_cast<int>(std::count_if(patches.begin(), patches.end(), [](const auto& p) { return p.egg.has_value(); }));
+  std::atomic<int> done{0};
   tbb::parallel_for(size_t(0), patches.size(), [&](size_t i) {
     auto& patch = patches[i];
     if (!patch.egg) return;
@@ -218,6 +221,7 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
     } catch (const Error& e) {
       patch.simulationFailure = e.what();
     }
+    if (patchDone) patchDone(++done, solved);
   });
 }
 

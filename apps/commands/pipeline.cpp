@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <mutex>
 #include <optional>
 
 namespace egg::app {
@@ -190,7 +191,12 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     if (boundarySupports) report.document()["supports"] = {{"design_boundary_anchors", supportDesignBoundary(patches, patching.graph)}};
     // Patch by patch, each patch is held along all its sides, as the thesis simulated them (Fig.
     // 3.17); the joined run holds the design boundary only and its bolts do the rest.
-    simulatePatches(patches, surface.mesh, scene, boundarySupports && scene.simulation.hold_shared_sides);
+    std::mutex progressMutex;  // patches finish on TBB's threads
+    simulatePatches(patches, surface.mesh, scene, boundarySupports && scene.simulation.hold_shared_sides, [&](int done, int total) {
+      const std::lock_guard<std::mutex> lock(progressMutex);
+      progress(fmt::format("simulation: patch {} of {}", done, total), 0.6 + 0.12 * done / std::max(total, 1));
+    });
+    if (scene.simulation.join_patches && members.has_value()) progress("simulation: joined", 0.72);
     report.section("simulation") = simulationSection(patches, scene);
     report.section("simulation")["seconds"] = secondsSince(simStart);  // patch by patch (wall, patches in parallel)
     addJoinedSimulation(patching, patches, surface.mesh, scene, members.has_value(), solved, report.section("simulation"),

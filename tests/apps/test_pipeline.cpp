@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <tbb/global_control.h>
 
 #include <filesystem>
@@ -139,9 +141,17 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   const fs::path out = scratch("egg_pipeline_2x2");
   PipelineOptions options;
   options.out_dir = out;
+  std::vector<std::pair<std::string, double>> progress;  // the progress bar's feed
+  options.progress = [&](const std::string& stage, double fraction) { progress.emplace_back(stage, fraction); };
   const PipelineResult result = runPipeline(twoByTwoScene(R"(["report", "plan", "cut_files"])"), options);
   const auto& report = result.report;
   EXPECT_TRUE(result.failures.empty()) << nlohmann::json(result.failures).dump(1);
+  // Stages in order, never going back, one step per simulated patch, ending at 1.
+  ASSERT_FALSE(progress.empty());
+  for (size_t i = 1; i < progress.size(); ++i) EXPECT_GE(progress[i].second, progress[i - 1].second) << progress[i].first;
+  EXPECT_EQ(progress.back(), std::make_pair(std::string("done"), 1.0));
+  EXPECT_EQ(std::count_if(progress.begin(), progress.end(), [](const auto& p) { return p.first.rfind("simulation: patch ", 0) == 0; }), 4);
+  EXPECT_NE(std::find_if(progress.begin(), progress.end(), [](const auto& p) { return p.first == "simulation: patch 4 of 4"; }), progress.end());
   EXPECT_EQ(report["patching"]["workflow"], "given");
   EXPECT_EQ(report["patching"]["corners"], 9);  // shared corners given twice are one
   EXPECT_EQ(report["patching"]["sides"], 12);

@@ -22,7 +22,9 @@
 //    edge. Front only (after VTP, Qin et al. 2016): a window's slot is freed once it has crossed
 //    its face, and a new window is trimmed against the queued windows of its edge, both ways
 //    (addFrontWindow), and queued windows of one source image that touch are merged into one (on
-//    a plane: windows ~n instead of ~n^1.5, 9x fewer at 6.5k vertices). The same dominated parts go, found in a different order: the distances
+//    a plane: windows ~n instead of ~n^1.5; bench plane, 17k vertices: 65k windows against 956k,
+//    0.06 of the stored engine's time; on the bump and the caps one image's pieces differ by more
+//    than rounding, so nothing merges there and the time is unchanged). The same dominated parts go, found in a different order: the distances
 //    agree to rounding (1.5e-11 on the bench bump), the memory is the front's, not the windows'
 //    (53 MB against 3.6 GB at 418k triangles). Time: within +-10 % up to 18k vertices, 0.55-1.02
 //    of the stored engine's at 418k triangles (DistanceSolverOptions::engine).

@@ -21,7 +21,10 @@
 //    (paths trace back through it) and a new one is trimmed against all earlier windows on its
 //    edge. Front only (after VTP, Qin et al. 2016): a window's slot is freed once it has crossed
 //    its face, and a new window is trimmed against the queued windows of its edge, both ways
-//    (addFrontWindow). The same dominated parts go, found in a different order: the distances
+//    (addFrontWindow), and queued windows of one source image that touch are merged into one (on
+//    a plane: windows ~n instead of ~n^1.5; bench plane, 17k vertices: 65k windows against 956k,
+//    0.06 of the stored engine's time; on the bump and the caps one image's pieces differ by more
+//    than rounding, so nothing merges there and the time is unchanged). The same dominated parts go, found in a different order: the distances
 //    agree to rounding (1.5e-11 on the bench bump), the memory is the front's, not the windows'
 //    (53 MB against 3.6 GB at 418k triangles). Time: within +-10 % up to 18k vertices, 0.55-1.02
 //    of the stored engine's at 418k triangles (DistanceSolverOptions::engine).
@@ -189,20 +192,44 @@ void Propagator::addStoredWindow(Window& w) {
 // span (slotSpan -1): its queue entry is skipped when popped, and its slot freed then. A queued
 // window's key stays its old, smaller minimum: a lower bound still, so it pops a little early,
 // which changes no distance.
+//
+// Merging: a queued window with the same source image and sigma (to 1e-9 of the edge length) that
+// overlaps or touches the new one carries the same distance function sigma + |s - x|, so the two
+// are one window: the new one takes over the union and the queued one dies. On a plane every
+// window splits at each vertex its rays pass and, unmerged, the pieces never join again: an edge
+// at r edges from the source then holds ~r windows (n^1.5 in all, measured); merged, ~1. Exact:
+// the union's rays are the two windows' rays. Front mode only: the stored engine's paths trace
+// back through Window::parent, which a merged window has two of (paths always use stored mode).
 void Propagator::addFrontWindow(Window& w) {
-  const double b0In = w.b0, b1In = w.b1;
+  double b0In = w.b0, b1In = w.b1;
   if (!prune(w)) return;
   const int h = w.halfedge;
   const auto& e = t_.he[h];
   const double minWidth = o_.minWindowWidthRelative * e.length;
+  const double same = 1e-9 * e.length;
+restart:
   for (int b = s_.firstBlock[h]; b >= 0;) {
     auto& block = s_.blocks[b];
     const int next = block.next;
-    if (std::min(w.b1, block.hi) > std::max(w.b0, block.lo)) {
+    if (std::min(w.b1, block.hi) + same >= std::max(w.b0, block.lo)) {
       for (int k = 0; k < block.count; ++k) {
         auto& span = block.spans[k];
-        if (!(std::min(w.b1, span.b1) > std::max(w.b0, span.b0))) continue;  // disjoint, or a cleared span
+        if (span.window < 0) continue;  // a cleared span
         Window& other = s_.windows[span.window];
+        if (std::min(w.b1, span.b1) + same >= std::max(w.b0, span.b0) && std::abs(other.sx - w.sx) <= same &&
+            std::abs(other.sy - w.sy) <= same && std::abs(other.sigma - w.sigma) <= same) {
+          if (other.b0 < w.b0) {
+            w.b0 = b0In = other.b0;
+            w.endVertex[0] = other.endVertex[0];
+          }
+          if (other.b1 > w.b1) {
+            w.b1 = b1In = other.b1;
+            w.endVertex[1] = other.endVertex[1];
+          }
+          clearSpan(span.window);  // may recycle this block
+          goto restart;  // w has grown: spans it missed may overlap it now
+        }
+        if (!(std::min(w.b1, span.b1) > std::max(w.b0, span.b0))) continue;  // disjoint
         const double o0 = other.b0, o1 = other.b1;
         bool wLeft, otherLeft;
         trimPair(w, other, wLeft, otherLeft);

@@ -300,7 +300,9 @@ std::string reportHtml(const json& report, const std::string& planSvg, const std
 std::vector<std::pair<std::string, std::string>> reportFigures(const std::string& html, const std::string& planSvg) {
   std::vector<std::pair<std::string, std::string>> out;
   const size_t planStart = planSvg.find("<svg");
-  if (planStart != std::string::npos) out.emplace_back("plan", planSvg.substr(planStart));
+  const size_t planEnd = planSvg.rfind("</svg>");
+  if (planStart != std::string::npos && planEnd != std::string::npos && planEnd > planStart)
+    out.emplace_back("plan", planSvg.substr(planStart, planEnd + 6 - planStart));
   // The page's own charts: each an <svg id="..."> without nesting. The inline copy needs no
   // namespace inside HTML; a stand-alone SVG does, so librsvg reads it as SVG.
   for (size_t at = html.find("<svg id=\""); at != std::string::npos; at = html.find("<svg id=\"", at + 1)) {

@@ -258,8 +258,9 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   result.report = report.finish(result.seconds);
   if (!result.failures.empty()) result.report["failures"] = result.failures;
   if (scene.wants("report")) {
+    // The same, for a person (issue 18), with PNG previews of its figures named in report.json.
+    result.report["outputs"]["previews"] = writeReportHtml(out.staging(), result.report);
     writeFileAtomically(out.staging() / "report.json", result.report.dump(2) + "\n");
-    writeReportHtml(out.staging(), result.report);  // the same, for a person (issue 18)
   }
   out.commit();
   result.out_dir = std::filesystem::absolute(options.out_dir);

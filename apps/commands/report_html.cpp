@@ -1,6 +1,8 @@
 #include "apps/commands/report_html.hpp"
 
 #include "apps/commands/report.hpp"
+#include "apps/commands/svg_png.hpp"
+#include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/io/xml_text.hpp"
 
@@ -114,6 +116,25 @@ std::string patchesSection(const json& report) {
            "</td></tr>\n";
   }
   return out + "</table>\n";
+}
+
+// Each patch's flat scissor grid (Section 2.4, writePlanarSvg: U members blue, V orange, boundary
+// members thick): the patch_NNN/planar.svg files of the run, inlined small side by side.
+std::string patchGridsSection(const std::vector<std::pair<int, std::string>>& planarSvgs) {
+  std::string out = "<h2 id=\"patch-grids\">Planar grids of the patches</h2>\n";
+  if (planarSvgs.empty())
+    return out + "<p class=\"missing\">No planar grids: the scene's outputs do not contain \"previews\" (patch_NNN/planar.svg).</p>\n";
+  out += "<p>The flat grid of each patch before deployment: U members blue, V members orange, boundary members thick.</p>\n";
+  for (const auto& [id, text] : planarSvgs) {
+    const size_t start = text.find("<svg");
+    const size_t end = text.rfind("</svg>");
+    if (start == std::string::npos || end == std::string::npos) continue;
+    std::string svg = text.substr(start, end + 6 - start);
+    svg.insert(4, fmt::format(" id=\"patch-grid-{}\" style=\"width:280px;height:auto\"", id));
+    out += fmt::format("<figure class=\"figure\" style=\"display:inline-block;margin:4px\">{}<figcaption>patch {}</figcaption></figure>\n",
+                       svg, id);
+  }
+  return out;
 }
 
 std::string simulationSection(const json& report) {
@@ -248,7 +269,8 @@ svg.chart{display:block;margin:8px 0}.figure{border:1px solid #ddd;display:inlin
 
 }  // namespace
 
-std::string reportHtml(const json& report, const std::string& planSvg, const std::string& bomCsv) {
+std::string reportHtml(const json& report, const std::string& planSvg, const std::string& bomCsv,
+                       const std::vector<std::pair<int, std::string>>& planarSvgs) {
   const json scene = at(report, "scene");
   const std::string name = at(scene, "name").is_string() ? scene["name"].get<std::string>() : "eggshell run";
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escapeXml(name) +
@@ -270,19 +292,61 @@ std::string reportHtml(const json& report, const std::string& planSvg, const std
     for (const auto& w : warnings) html += "<li>" + escapeXml(w) + "</li>\n";
     html += "</ul></details></div>\n";
   }
-  html += stageTimes(report) + planSection(planSvg) + patchesSection(report) + simulationSection(report) +
+  html += stageTimes(report) + planSection(planSvg) + patchesSection(report) + patchGridsSection(planarSvgs) + simulationSection(report) +
           fabricationSection(report) + bomSection(bomCsv);
   return html + "</body>\n</html>\n";
 }
 
-void writeReportHtml(const std::filesystem::path& runDir, const json& report) {
+std::vector<std::pair<std::string, std::string>> reportFigures(const std::string& html, const std::string& planSvg) {
+  std::vector<std::pair<std::string, std::string>> out;
+  const size_t planStart = planSvg.find("<svg");
+  const size_t planEnd = planSvg.rfind("</svg>");
+  if (planStart != std::string::npos && planEnd != std::string::npos && planEnd > planStart)
+    out.emplace_back("plan", planSvg.substr(planStart, planEnd + 6 - planStart));
+  // The page's own charts: each an <svg id="..."> without nesting. The inline copy needs no
+  // namespace inside HTML; a stand-alone SVG does, so librsvg reads it as SVG.
+  for (size_t at = html.find("<svg id=\""); at != std::string::npos; at = html.find("<svg id=\"", at + 1)) {
+    const size_t idStart = at + 9, idEnd = html.find('"', idStart), end = html.find("</svg>", at);
+    if (idEnd == std::string::npos || end == std::string::npos) break;
+    std::string svg = html.substr(at, end + 6 - at);
+    if (svg.find("xmlns=") == std::string::npos) svg.insert(4, " xmlns=\"http://www.w3.org/2000/svg\"");
+    out.emplace_back(html.substr(idStart, idEnd - idStart), std::move(svg));
+  }
+  return out;
+}
+
+std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, const json& report) {
   auto readIfThere = [&](const char* file) -> std::string {
     const auto path = runDir / file;
     std::error_code error;
     if (!std::filesystem::is_regular_file(path, error)) return "";
     return readRegularFile(path, std::size_t{1} << 30, file);
   };
-  writeFileAtomically(runDir / "report.html", reportHtml(report, readIfThere("plan.svg"), readIfThere("bom.csv")));
+  const std::string planSvg = readIfThere("plan.svg");
+  std::vector<std::pair<int, std::string>> planar;
+  for (const auto& p : at(report, "patches")) {
+    if (!at(p, "id").is_number_integer()) continue;
+    const int id = p["id"].get<int>();
+    const std::string file = fmt::format("patch_{:03d}/planar.svg", id);
+    const std::string text = readIfThere(file.c_str());
+    if (!text.empty()) planar.emplace_back(id, text);
+  }
+  const std::string html = reportHtml(report, planSvg, readIfThere("bom.csv"), planar);
+  writeFileAtomically(runDir / "report.html", html);
+  // PNG previews of the same figures (issue 18): the plan wide enough to read, the charts at their size.
+  std::vector<std::string> previews;
+  const auto dir = runDir / "preview";
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) throw WriteError("cannot create " + dir.string() + ": " + error.message());
+  for (const auto& [id, svg] : reportFigures(html, planSvg)) {
+    std::string file = id;
+    std::replace(file.begin(), file.end(), '-', '_');
+    file = "preview/" + file + ".png";
+    writePngFromSvg(svg, runDir / file, id == "plan" ? kPlanPreviewPx : kChartPreviewPx);
+    previews.push_back(file);
+  }
+  return previews;
 }
 
 }  // namespace egg::app

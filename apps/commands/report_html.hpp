@@ -9,15 +9,28 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace egg::app {
 
 // The page from the report document (report.json), the text of plan.svg and of bom.csv (either
 // may be empty: that section then says why it is missing). Every text from the report is escaped.
-std::string reportHtml(const nlohmann::json& report, const std::string& planSvg, const std::string& bomCsv);
+// `planarSvgs` are (patch id, patch_NNN/planar.svg text), inlined as the planar-grids section.
+std::string reportHtml(const nlohmann::json& report, const std::string& planSvg, const std::string& bomCsv,
+                       const std::vector<std::pair<int, std::string>>& planarSvgs = {});
 
-// Reads `runDir`/plan.svg and `runDir`/bom.csv when present and writes `runDir`/report.html
-// atomically. Throws WriteError naming the file.
-void writeReportHtml(const std::filesystem::path& runDir, const nlohmann::json& report);
+// The figures of the page as stand-alone SVG texts, (id, svg): plan.svg when given, then every
+// chart of `html` (the output of reportHtml), each with the SVG namespace so it renders alone.
+std::vector<std::pair<std::string, std::string>> reportFigures(const std::string& html, const std::string& planSvg);
+
+// Widths of the PNG previews in pixels.
+inline constexpr int kPlanPreviewPx = 1200;
+inline constexpr int kChartPreviewPx = 800;
+
+// Reads `runDir`/plan.svg and `runDir`/bom.csv when present, writes `runDir`/report.html
+// atomically and a PNG of each figure under `runDir`/preview/ (svg_png.hpp). Returns the PNGs'
+// paths relative to `runDir` (report.json's outputs.previews). Throws WriteError naming the file.
+std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, const nlohmann::json& report);
 
 }  // namespace egg::app

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace egg::app {
 namespace {
@@ -121,6 +122,7 @@ TEST(ReportHtml, MissingPartsSayWhy) {
   EXPECT_NE(html.find("Not run: the scene disables it (simulation.enabled = false)"), std::string::npos);
   EXPECT_NE(html.find("Not run: no requested output needs it"), std::string::npos);
   EXPECT_NE(html.find("No bom.csv"), std::string::npos);
+  EXPECT_NE(html.find("No planar grids: the scene's outputs do not contain \"previews\""), std::string::npos);
   EXPECT_EQ(html.find("id=\"stress-histogram\""), std::string::npos);
 }
 
@@ -145,6 +147,57 @@ std::pair<int, int> pngSize(const std::string& png) {
   return {static_cast<int>(be(16)), static_cast<int>(be(20))};
 }
 
+// writeReportHtml writes a PNG preview of every figure of the page (the plan and each chart), at
+// the widths it promises, and names them relative to the run folder for report.json.
+TEST(ReportHtml, WritesAPngPreviewOfEveryFigure) {
+  const auto dir = std::filesystem::temp_directory_path() / ("egg_report_previews_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "plan.svg") << kPlan;
+  std::ofstream(dir / "bom.csv") << kBom;
+  // Patch 0's flat grid as writePlanarSvg writes it.
+  std::filesystem::create_directories(dir / "patch_000");
+  std::ofstream(dir / "patch_000" / "planar.svg")
+      << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200\" height=\"200\" viewBox=\"0 0 200 200\">\n"
+         "<line x1=\"10\" y1=\"10\" x2=\"190\" y2=\"190\" stroke=\"#1f77b4\" stroke-width=\"3\"/>\n</svg>\n";
+  const std::vector<std::string> previews = writeReportHtml(dir, sampleReport());
+  const std::vector<std::string> expected = {"preview/plan.png",           "preview/stage_time_chart.png",
+                                             "preview/patch_grid_0.png",   "preview/simulation_error_chart.png",
+                                             "preview/stress_histogram.png", "preview/stress_top.png"};
+  std::ifstream page(dir / "report.html");
+  std::ostringstream pageText;
+  pageText << page.rdbuf();
+  EXPECT_NE(pageText.str().find("<h2 id=\"patch-grids\">"), std::string::npos);
+  EXPECT_NE(pageText.str().find("<svg id=\"patch-grid-0\" style=\"width:280px;height:auto\" xmlns="), std::string::npos);
+  EXPECT_EQ(previews, expected);
+  for (const auto& file : previews) {
+    std::ifstream in(dir / file, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    const auto [width, height] = pngSize(bytes.str());
+    EXPECT_EQ(width, file == "preview/plan.png" ? kPlanPreviewPx : kChartPreviewPx) << file;
+    EXPECT_GT(height, 0) << file;
+  }
+  // The plan is 400 x 300: 1200 px wide keeps its aspect.
+  std::ifstream plan(dir / "preview/plan.png", std::ios::binary);
+  std::ostringstream planBytes;
+  planBytes << plan.rdbuf();
+  EXPECT_EQ(pngSize(planBytes.str()), std::make_pair(kPlanPreviewPx, 900));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ReportHtml, FiguresStandAloneWithTheSvgNamespace) {
+  const std::string html = reportHtml(sampleReport(), kPlan, kBom);
+  const auto figures = reportFigures(html, kPlan);
+  ASSERT_EQ(figures.size(), 5u);
+  EXPECT_EQ(figures[0].first, "plan");
+  EXPECT_EQ(figures[0].second.rfind("<svg xmlns=", 0), 0u) << "plan.svg without its XML declaration";
+  for (const auto& [id, svg] : figures) {
+    EXPECT_NE(svg.find("xmlns=\"http://www.w3.org/2000/svg\""), std::string::npos) << id;
+    EXPECT_EQ(svg.substr(svg.size() - 6), "</svg>") << id;
+  }
+  EXPECT_EQ(figures[1].first, "stage-time-chart");
+}
+
 // A real browser opens the page offline: headless Chromium parses it (the inline SVG charts become
 // SVG elements in its DOM) and renders it to a screenshot with far more ink than an empty page of
 // the same size rendered in the same run.
@@ -163,7 +216,9 @@ TEST(ReportHtml, HeadlessChromiumRendersThePage) {
                                "--user-data-dir=" + (dir / "profile").string() + " ";
   const auto [dom, domStatus] = run(chromium + "--dump-dom file://" + (dir / "report.html").string() + " 2>/dev/null");
   ASSERT_EQ(domStatus, 0) << dom;
-  EXPECT_NE(dom.find("<h2 id=\"stage-times\">"), std::string::npos);
+  for (const char* section : {"stage-times", "plan", "patches", "patch-grids", "simulation", "fabrication", "bom"}) {
+    EXPECT_NE(dom.find(std::string("<h2 id=\"") + section + "\">"), std::string::npos) << section;
+  }
   EXPECT_GE(count(dom, "<svg"), 5u) << "plan, stage times, simulation error, stress histogram, highest stresses";
   EXPECT_NE(dom.find("id=\"patch-0\""), std::string::npos);
   for (const char* page : {"report", "empty"}) {

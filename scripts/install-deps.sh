@@ -12,6 +12,7 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libcairo2-dev libdxflib-dev
   python3-ezdxf librsvg2-bin poppler-utils admesh
+  parallel                   # egg sweep: jobs.txt on one machine (issue 18, test_sweep)
   clang libclang-rt-14-dev   # scripts/fuzz.sh: libFuzzer targets (issue 17)
   chromium                   # test_report_html: report.html rendered headless (skipped without it)
 )

@@ -149,11 +149,11 @@ int collectSweep(const fs::path& dir) {
   for (size_t i : paretoFront(points))
     if (std::isfinite(points[i].first)) rows[i].pareto = true;
   std::string csv = "variant";
-  for (size_t k = 1; k < header.size(); ++k) csv += "," + field(header[k]);
+  for (size_t k = 1; k < header.size(); ++k) csv.append(1, ',').append(field(header[k]));
   csv += ",status,patches,joined_rmse_m,joined_max_error_m,rmse_m,max_error_m,mass_kg,max_stress_ratio,lamellas,wall_s,pareto\n";
   for (const auto& r : rows) {
     csv += r.variant;
-    for (const auto& v : r.values) csv += "," + field(v);
+    for (const auto& v : r.values) csv.append(1, ',').append(field(v));
     csv += fmt::format(",{},{},{},{},{},{},{},{},{},{},{}\n", r.status, csvNumber(r.patches), csvNumber(r.joinedRmse), csvNumber(r.joinedMax), csvNumber(r.rmse),
                        csvNumber(r.maxError), csvNumber(r.mass), csvNumber(r.stress), csvNumber(r.lamellas), csvNumber(r.wall), r.pareto ? 1 : 0);
     if (r.status != "ok") std::cerr << fmt::format("egg sweep: {}: {} ({})\n", r.variant, r.status, (dir / "runs" / r.variant / "report.json").string());

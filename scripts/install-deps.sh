@@ -13,6 +13,7 @@ PACKAGES=(
   libcairo2-dev libdxflib-dev
   librsvg2-dev               # apps/commands/svg_png.cpp: PNG previews of report.html's figures
   python3-ezdxf librsvg2-bin poppler-utils admesh
+  parallel                   # egg sweep: jobs.txt on one machine (issue 18, test_sweep)
   clang libclang-rt-14-dev   # scripts/fuzz.sh: libFuzzer targets (issue 17)
   chromium                   # test_report_html: report.html rendered headless (skipped without it)
 )

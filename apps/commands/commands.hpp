@@ -30,6 +30,7 @@ void registerLayoutBench(CLI::App& bench, Action& action);       // layout_bench
 void registerPatchingBench(CLI::App& bench, Action& action);     // patching_bench.cpp (egg bench patching)
 void registerPipelineBench(CLI::App& bench, Action& action);     // pipeline_bench.cpp (egg bench pipeline)
 void registerStressCommand(CLI::App& parent, Action& action);    // sim_commands.cpp (egg stress)
+void registerSweepCommand(CLI::App& parent, Action& action);     // sweep.cpp (egg sweep)
 
 // A CLI11 check for a floating-point option: a finite number in [lo, hi]. CLI11's own Range and
 // PositiveNumber let NaN through (every comparison with NaN is false).

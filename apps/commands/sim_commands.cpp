@@ -5,6 +5,10 @@
 #include "core/rods/sample_grids.hpp"
 #include "core/rods/simulation.hpp"
 #include "core/rods/stress_cases.hpp"
+#include "apps/commands/stress_suite.hpp"
+
+#include <unistd.h>
+#include <filesystem>
 
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
@@ -155,12 +159,54 @@ struct StressArgs {
   double timeLimit = 20.0;
   int maxIterations = 1000;
   bool json = false;
+  std::string suite = "all";
+  bool keep = false;
 };
+
+// The pipeline suite (stress_suite.hpp): each case is `egg run` (or surface + geodesic) in a child.
+bool runPipelineSuite(const StressArgs& args, nlohmann::json& rows) {
+  namespace fs = std::filesystem;
+  const fs::path work = fs::temp_directory_path() / fmt::format("egg-stress-{}", ::getpid());
+  fs::create_directories(work);
+  const fs::path exe = fs::read_symlink("/proc/self/exe");
+  const EggCommand command = [exe](const std::vector<std::string>& a) {
+    std::vector<std::string> all{exe.string()};
+    all.insert(all.end(), a.begin(), a.end());
+    std::vector<char*> argv;
+    for (auto& s : all) argv.push_back(s.data());
+    argv.push_back(nullptr);
+    ::execv(exe.c_str(), argv.data());
+    return 127;
+  };
+  std::FILE* out = tableStream(args.json);
+  fmt::print(out, "\negg stress --suite pipeline: fixed scenes and meshes through the real pipeline, one child process\n"
+                  "per case (time limit each; peak memory = the child's VmHWM); ok = converged or a stated reason\n");
+  fmt::print(out, "{:<17} {:<21} {:>6} {:>9} {:>9} {:>8} {:>8}  {:<4} {} [{}]\n", "case", "class", "iters", "rmse_m", "max_err_m",
+             "seconds", "peak_MB", "ok", "result", "stages");
+  bool ok = true;
+  for (const PipelineStressCase& c : pipelineStressCases()) {
+    const PipelineStressRow r = runPipelineStressCase(c, command, work);
+    ok = ok && r.ok;
+    fmt::print(out, "{:<17} {:<21} {:>6} {:>9.3g} {:>9.3g} {:>8.2f} {:>8.0f}  {:<4} {} [{}]\n", r.name, r.kind, r.iterations,
+               r.rmse_m, r.maxError_m, r.seconds, r.peakRss_mb, r.ok ? "yes" : "NO", r.result, r.stages);
+    std::fflush(out);
+    rows.push_back(r.toJson());
+  }
+  if (!args.keep) fs::remove_all(work);
+  else fmt::print(out, "case folders kept in {}\n", work.string());
+  return ok;
+}
 
 int runStress(const StressArgs& args) {
   if (!(args.timeLimit > 0.0)) throw InvalidInput("--time-limit must be > 0");
   nlohmann::json rows = nlohmann::json::array();
   bool allFinite = true;
+  if (args.suite == "pipeline") {
+    nlohmann::json prow = nlohmann::json::array();
+    const bool ok = runPipelineSuite(args, prow);
+    if (args.json) std::cout << nlohmann::json{{"pipeline", prow}}.dump(2) << "\n";
+    return ok ? kExitOk : kExitFailure;
+  }
   fmt::print(tableStream(args.json), "egg stress: cylinder vault (radius = length = 3 f, spacing 0.75 f, width 0.05 f) under self-weight;\n"
              "every case converges or says why, never NaN (limits: {} s, {} iterations)\n",
              args.timeLimit, args.maxIterations);
@@ -194,8 +240,13 @@ int runStress(const StressArgs& args) {
                     {"extent_m", o.extent_m},
                     {"max_error_m", o.maxError_m}});
   }
-  if (args.json) std::cout << rows.dump(2) << "\n";
-  return allFinite ? kExitOk : kExitFailure;
+  bool pipelineOk = true;
+  nlohmann::json prow = nlohmann::json::array();
+  if (args.suite == "all") pipelineOk = runPipelineSuite(args, prow);
+  // --suite rods keeps the rod table's JSON array as before; all: both tables under their names.
+  if (args.json && args.suite == "rods") std::cout << rows.dump(2) << "\n";
+  else if (args.json) std::cout << nlohmann::json{{"rods", rows}, {"pipeline", prow}}.dump(2) << "\n";
+  return allFinite && pipelineOk ? kExitOk : kExitFailure;
 }
 
 }  // namespace
@@ -228,8 +279,14 @@ void registerSimBench(CLI::App& bench, Action& action) {
 void registerStressCommand(CLI::App& parent, Action& action) {
   auto args = std::make_shared<StressArgs>();
   auto* cmd = parent.add_subcommand(
-      "stress", "Stiff and extreme simulation cases (width:thickness 5-100, E 0.5-210 GPa, 0.1-220 m, "
-                "400-7850 kg/m3): each converges or reports why; exit 1 if any result is not finite");
+      "stress", "Stiff and extreme cases. Suite 'rods': the simulation on a cylinder vault (width:thickness 5-100, "
+                "E 0.5-210 GPa, 0.1-220 m, 400-7850 kg/m3). Suite 'pipeline' (fixed, egg run per case in a child "
+                "with a time limit): wt_5, wt_100, E_4GPa_birch, E_210GPa_steel, scale_0.1m, scale_220m, nearly_flat, "
+                "sharp_k_peak, alpha_bar_max, alpha_bar_0.05 (near-collapsed quads), sliver_triangles, holes, "
+                "disconnected, non_manifold (typed error expected), million_faces (surface + curvature + one geodesic "
+                "field only). Each case converges or reports why; exit 1 on a non-finite result, a crash or a timeout");
+  cmd->add_option("--suite", args->suite, "rods, pipeline or all")->check(CLI::IsMember({"rods", "pipeline", "all"}));
+  cmd->add_flag("--keep", args->keep, "keep the pipeline cases' folders (scenes, meshes, logs, reports)");
   cmd->add_option("--time-limit", args->timeLimit, "seconds per case")->check(finiteRange(1e-3, 86400.0));
   cmd->add_option("--max-iterations", args->maxIterations, "Newton iterations per case")->check(CLI::Range(1, 1000000));
   cmd->add_flag("--json", args->json, "also print the table as JSON");

@@ -1,0 +1,60 @@
+#pragma once
+// `egg stress --suite pipeline` (issue 18, "Stiff and extreme cases over the whole pipeline"): a
+// fixed suite of scenes and meshes run through the real pipeline, each in its own child process
+// with a time limit, so a hang is caught, a crash does not take the suite down, and peak memory is
+// per case. A case passes when it converges or stops with a stated reason (a typed error from
+// core/errors.hpp is the right answer for a non-manifold or disconnected mesh); it fails on a
+// non-finite number, a crash, a timeout, or a non-zero exit without a message.
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace egg::app {
+
+struct ChildOutcome {
+  bool timedOut = false;
+  int exitCode = -1;     // valid when signal == 0 and !timedOut
+  int signal = 0;        // the signal that ended the child (a crash), 0 if it exited
+  double seconds = 0.0;
+  double peakRss_mb = 0.0;  // the child's own peak resident set (wait4 rusage)
+  std::string output;    // the child's stdout and stderr, interleaved
+};
+
+// Forks; the child sends stdout and stderr to a file, runs `body` and exits with its return code
+// (an escaping exception: code 3 with its message). Killed (with its process group) after
+// timeLimit_s. Never throws for what the child does.
+ChildOutcome runChild(const std::function<int()>& body, double timeLimit_s, const std::filesystem::path& logFile);
+
+struct PipelineStressCase {
+  std::string name;
+  std::string kind;         // the issue's class: width_thickness, youngs_modulus, scale, ...
+  std::string description;
+  nlohmann::json scene;     // an `egg run` scene; surface.file "mesh.obj" when writeMesh is set
+  std::function<void(const std::filesystem::path&)> writeMesh;  // writes the case's OBJ
+  bool surfaceOnly = false; // `egg surface --stats` + `egg geodesic` instead of `egg run`
+  double timeLimit_s = 60.0;
+};
+
+// The fixed suite (same cases every run, in this order).
+std::vector<PipelineStressCase> pipelineStressCases();
+
+struct PipelineStressRow {
+  std::string name, kind, stages, result;
+  bool ok = false;          // converged or a stated reason; false: NaN, crash, timeout
+  int iterations = 0;
+  double rmse_m = 0.0, maxError_m = 0.0, seconds = 0.0, peakRss_mb = 0.0;
+  nlohmann::json toJson() const;
+};
+
+// Interprets one child's outcome plus the report it wrote (null if none).
+PipelineStressRow classify(const PipelineStressCase& c, const ChildOutcome& o, const nlohmann::json& report);
+
+// Runs a case; `command` runs `egg` with the given arguments (exec in `egg stress`).
+using EggCommand = std::function<int(const std::vector<std::string>& args)>;
+PipelineStressRow runPipelineStressCase(const PipelineStressCase& c, const EggCommand& command,
+                                        const std::filesystem::path& workDir);
+
+}  // namespace egg::app

@@ -209,8 +209,9 @@ std::string collapsedWhileHeld(const std::vector<SolvedPatch>& patches) {
   return {};
 }
 
-void addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene,
-                         bool propagated, int solved, nlohmann::json& simulation, bool patchesHeldAllRound) {
+std::optional<rods::SimulationRun> addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
+                                                       const Scene& scene, bool propagated, int solved, nlohmann::json& simulation,
+                                                       bool patchesHeldAllRound) {
   simulation["patch_by_patch"] = {{"rmse_m", simulation["rmse_m"]},
                                   {"max_error_m", simulation["max_error_m"]},
                                   {"converged", simulation["converged"]},
@@ -223,9 +224,12 @@ void addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>&
   else if (patchesHeldAllRound) skipped = collapsedWhileHeld(patches);
   if (!skipped.empty()) {
     simulation["joined"] = {{"ran", false}, {"skipped_reason", skipped}};
-    return;
+    return std::nullopt;
   }
-  simulation["joined"] = joinedSection(simulateJoined(run, patches, surface, scene));
+  JoinedRun joined = simulateJoined(run, patches, surface, scene);
+  simulation["joined"] = joinedSection(joined);
+  if (!joined.simulation) return std::nullopt;
+  return std::move(joined.simulation->deployed);
 }
 
 }  // namespace egg::app

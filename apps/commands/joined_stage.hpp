@@ -50,8 +50,10 @@ nlohmann::json joinedSection(const JoinedRun& joined);
 // `patchesHeldAllRound`: the patch-by-patch runs held every patch along all its sides; then a
 // patch that collapsed there skips the joined run (collapsedWhileHeld), which would only spend its
 // whole iteration budget falling (Yas: 500 iterations, ~8 minutes on 142k unknowns).
-void addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene,
-                         bool propagated, int solved, nlohmann::json& simulation, bool patchesHeldAllRound = false);
+// Returns the joined run's deployed state when it ran (for the report's deviation figure).
+std::optional<rods::SimulationRun> addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
+                                                       const Scene& scene, bool propagated, int solved, nlohmann::json& simulation,
+                                                       bool patchesHeldAllRound = false);
 
 // Why the joined run is pointless, or empty: the first patch whose patch-by-patch run (held along
 // all its sides) collapsed under its own weight (Section 3.5.2, Fig. 3.11).

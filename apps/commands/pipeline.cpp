@@ -1,5 +1,6 @@
 #include "apps/commands/pipeline.hpp"
 
+#include "apps/commands/deviation_plan.hpp"
 #include "apps/commands/fabrication_stage.hpp"
 #include "apps/commands/joined_stage.hpp"
 #include "apps/commands/patch_stage.hpp"
@@ -8,6 +9,8 @@
 #include "apps/commands/surface_loading.hpp"
 #include "core/errors.hpp"
 #include "core/geodesic/distance_solver.hpp"
+#include "core/io/atomic_file.hpp"
+#include "core/rods/surface_distance.hpp"
 
 #include <fmt/core.h>
 
@@ -18,6 +21,28 @@
 
 namespace egg::app {
 namespace {
+
+// deployed.svg: the joined structure when it ran, else every patch's own deployment (Section 3.5.2).
+void writeDeployedPlan(const rods::SimulationRun* joined, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
+                       const std::filesystem::path& file) {
+  std::vector<const rods::SimulationRun*> runs;
+  if (joined) runs.push_back(joined);
+  else
+    for (const auto& p : patches)
+      if (p.simulation) runs.push_back(&p.simulation->deployed);
+  if (runs.empty()) return;
+  const rods::SurfaceDistance distance(surface);
+  std::vector<DeployedRod> rods;
+  for (const rods::SimulationRun* run : runs)
+    for (const auto& points : run->contactPoints) {
+      DeployedRod rod;
+      rod.points = points;
+      for (const auto& p : points) rod.distance_m.push_back(distance.distance(p));
+      rods.push_back(std::move(rod));
+    }
+  writeFileAtomically(file, deployedPlanSvg(rods, joined ? "Deployed grid (joined structure), seen from above, coloured by the distance to the design surface"
+                                                         : "Deployed grid (each patch on its own supports), seen from above, coloured by the distance to the design surface"));
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -199,17 +224,20 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     if (scene.simulation.join_patches && members.has_value()) progress("simulation: joined", 0.72);
     report.section("simulation") = simulationSection(patches, scene);
     report.section("simulation")["seconds"] = secondsSince(simStart);  // patch by patch (wall, patches in parallel)
-    addJoinedSimulation(patching, patches, surface.mesh, scene, members.has_value(), solved, report.section("simulation"),
-                        boundarySupports && scene.simulation.hold_shared_sides);
+    const std::optional<rods::SimulationRun> joined = addJoinedSimulation(
+        patching, patches, surface.mesh, scene, members.has_value(), solved, report.section("simulation"),
+        boundarySupports && scene.simulation.hold_shared_sides);
+    if (scene.wants("report")) writeDeployedPlan(joined ? &*joined : nullptr, patches, surface.mesh, out.staging() / "deployed.svg");
     report.stageRan("simulation", secondsSince(simStart));  // both runs, patch by patch and joined
     // A deployment that did not reach equilibrium is a failure of the run (exit 1), whose report
     // still carries every figure.
     if (!report.section("simulation")["converged"].get<bool>()) {
       result.failures.push_back("simulation: " + report.section("simulation").value("reason", std::string("did not converge")));
     }
-    const auto& joined = report.section("simulation")["joined"];
-    if (joined["ran"].get<bool>() && !joined["converged"].get<bool>())
-      result.failures.push_back("joined simulation: " + joined.value("failure", joined.value("reason", std::string("did not converge"))));
+    const auto& joinedReport = report.section("simulation")["joined"];
+    if (joinedReport["ran"].get<bool>() && !joinedReport["converged"].get<bool>())
+      result.failures.push_back("joined simulation: " +
+                                joinedReport.value("failure", joinedReport.value("reason", std::string("did not converge"))));
   }
   // Fabrication (Section 3.5): cut files, stickers, supports and the BOM of the traced grids, with
   // stresses from the deployed centrelines where the simulation ran.

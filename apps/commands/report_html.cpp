@@ -267,10 +267,19 @@ table.figures th{font-weight:normal;color:#555}.failures{background:#fdecea;bord
 .warnings{background:#fff8e1;border:1px solid #f9a825;padding:4px 12px}.missing{color:#777;font-style:italic}
 svg.chart{display:block;margin:8px 0}.figure{border:1px solid #ddd;display:inline-block;max-width:100%})";
 
+// deployed.svg inlined (it is an <svg id="deployed">, so it also gets its PNG preview).
+std::string deployedSection(const std::string& deployedSvg) {
+  std::string out = "<h2 id=\"deployed-grid\">Deployed grid: deviation from the design surface</h2>\n";
+  const size_t start = deployedSvg.find("<svg");
+  if (start == std::string::npos)
+    return out + "<p class=\"missing\">No deployed grid: the simulation did not run (deployed.svg).</p>\n";
+  return out + "<div class=\"figure\">\n" + deployedSvg.substr(start) + "</div>\n";
+}
+
 }  // namespace
 
 std::string reportHtml(const json& report, const std::string& planSvg, const std::string& bomCsv,
-                       const std::vector<std::pair<int, std::string>>& planarSvgs) {
+                       const std::vector<std::pair<int, std::string>>& planarSvgs, const std::string& deployedSvg) {
   const json scene = at(report, "scene");
   const std::string name = at(scene, "name").is_string() ? scene["name"].get<std::string>() : "eggshell run";
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escapeXml(name) +
@@ -293,6 +302,7 @@ std::string reportHtml(const json& report, const std::string& planSvg, const std
     html += "</ul></details></div>\n";
   }
   html += stageTimes(report) + planSection(planSvg) + patchesSection(report) + patchGridsSection(planarSvgs) + simulationSection(report) +
+          deployedSection(deployedSvg) +
           fabricationSection(report) + bomSection(bomCsv);
   return html + "</body>\n</html>\n";
 }
@@ -331,7 +341,7 @@ std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, co
     const std::string text = readIfThere(file.c_str());
     if (!text.empty()) planar.emplace_back(id, text);
   }
-  const std::string html = reportHtml(report, planSvg, readIfThere("bom.csv"), planar);
+  const std::string html = reportHtml(report, planSvg, readIfThere("bom.csv"), planar, readIfThere("deployed.svg"));
   writeFileAtomically(runDir / "report.html", html);
   // PNG previews of the same figures (issue 18): the plan wide enough to read, the charts at their size.
   std::vector<std::string> previews;

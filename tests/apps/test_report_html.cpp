@@ -1,5 +1,7 @@
 #include "apps/commands/report_html.hpp"
 
+#include "apps/commands/deviation_plan.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -159,14 +161,21 @@ TEST(ReportHtml, WritesAPngPreviewOfEveryFigure) {
   std::ofstream(dir / "patch_000" / "planar.svg")
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200\" height=\"200\" viewBox=\"0 0 200 200\">\n"
          "<line x1=\"10\" y1=\"10\" x2=\"190\" y2=\"190\" stroke=\"#1f77b4\" stroke-width=\"3\"/>\n</svg>\n";
+  // The deployed grid as the pipeline writes it (deviation_plan.hpp): one rod rising off the surface.
+  DeployedRod rod;
+  for (int i = 0; i < 5; ++i) rod.points.emplace_back(i, 0.3 * i, 0.0), rod.distance_m.push_back(0.05 * i);
+  std::ofstream(dir / "deployed.svg") << deployedPlanSvg({rod}, "test rod");
   const std::vector<std::string> previews = writeReportHtml(dir, sampleReport());
   const std::vector<std::string> expected = {"preview/plan.png",           "preview/stage_time_chart.png",
                                              "preview/patch_grid_0.png",   "preview/simulation_error_chart.png",
-                                             "preview/stress_histogram.png", "preview/stress_top.png"};
+                                             "preview/deployed.png",       "preview/stress_histogram.png",
+                                             "preview/stress_top.png"};
   std::ifstream page(dir / "report.html");
   std::ostringstream pageText;
   pageText << page.rdbuf();
   EXPECT_NE(pageText.str().find("<h2 id=\"patch-grids\">"), std::string::npos);
+  EXPECT_NE(pageText.str().find("<h2 id=\"deployed-grid\">"), std::string::npos);
+  EXPECT_NE(pageText.str().find("<svg id=\"deployed\""), std::string::npos);
   EXPECT_NE(pageText.str().find("<svg id=\"patch-grid-0\" style=\"width:280px;height:auto\" xmlns="), std::string::npos);
   EXPECT_EQ(previews, expected);
   for (const auto& file : previews) {
@@ -216,7 +225,7 @@ TEST(ReportHtml, HeadlessChromiumRendersThePage) {
                                "--user-data-dir=" + (dir / "profile").string() + " ";
   const auto [dom, domStatus] = run(chromium + "--dump-dom file://" + (dir / "report.html").string() + " 2>/dev/null");
   ASSERT_EQ(domStatus, 0) << dom;
-  for (const char* section : {"stage-times", "plan", "patches", "patch-grids", "simulation", "fabrication", "bom"}) {
+  for (const char* section : {"stage-times", "plan", "patches", "patch-grids", "simulation", "deployed-grid", "fabrication", "bom"}) {
     EXPECT_NE(dom.find(std::string("<h2 id=\"") + section + "\">"), std::string::npos) << section;
   }
   EXPECT_GE(count(dom, "<svg"), 5u) << "plan, stage times, simulation error, stress histogram, highest stresses";

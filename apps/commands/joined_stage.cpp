@@ -149,6 +149,7 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
     options.model.gravity = scene.simulation.gravity;
     options.model.frictionMu = scene.simulation.friction_mu;
     options.solver.tolerance = scene.simulation.newton_tolerance;
+    options.solver.timeLimit_s = scene.simulation.time_limit_s;
     options.compareWithoutNotches = false;  // RMS1/RMS2 stay a per-patch figure
     options.scaleFactor = boundingBox(surface).size().norm();
     if (out.warmStart) {

@@ -170,6 +170,7 @@ rods::SimulationOptions simulationOptions(const Scene& scene, const EggResult& e
   options.model.gravity = scene.simulation.gravity;
   options.model.frictionMu = scene.simulation.friction_mu;
   options.solver.tolerance = scene.simulation.newton_tolerance;
+  options.solver.timeLimit_s = scene.simulation.time_limit_s;
   // RMS1 (plain holes) beside RMS2 (notches), Section 2.6.2: a second full run per patch, only
   // when the scene asks for the comparison (and only meaningful with notches).
   options.compareWithoutNotches = scene.simulation.notches && scene.simulation.compare_without_notches;

@@ -335,6 +335,7 @@ void readSimulation(Section s, SimulationSpec& out) {
   out.hold_shared_sides = s.boolean("hold_shared_sides", out.hold_shared_sides);
   out.join_patches = s.boolean("join_patches", out.join_patches);
   out.newton_tolerance = s.number("newton_tolerance", out.newton_tolerance, 1e-16, 1e-2);
+  out.time_limit_s = s.number("time_limit_s", out.time_limit_s, 0.1, 1e6);
   s.rejectUnknownKeys();
 }
 
@@ -503,7 +504,8 @@ json sceneToJson(const Scene& scene) {
         {"supports", scene.simulation.supports},
         {"hold_shared_sides", scene.simulation.hold_shared_sides},
         {"join_patches", scene.simulation.join_patches},
-        {"newton_tolerance", scene.simulation.newton_tolerance}}},
+        {"newton_tolerance", scene.simulation.newton_tolerance},
+        {"time_limit_s", scene.simulation.time_limit_s}}},
       {"fabrication", fabrication},
       {"outputs", scene.outputs},
   };

@@ -91,6 +91,9 @@ struct SimulationSpec {
   // rods::SolverOptions::tolerance; test_scene checks that the two agree). Larger is faster and
   // less exact: one of `egg bench pipeline`'s knobs.
   double newton_tolerance = 1e-10;
+  // Wall-clock hang guard of each solve, seconds (default = rods::SolverOptions::timeLimit_s): a
+  // solve that reaches it fails with that reason. The iteration limit, not this, decides results.
+  double time_limit_s = 900.0;
 };
 
 // Defaults as fabrication::FabricationOptions (fabrication/options.hpp); the `std::optional` ones

@@ -51,6 +51,7 @@ TEST(Scene, DefaultsFillEverythingButTheSurface) {
   EXPECT_TRUE(s.simulation.hold_shared_sides);
   EXPECT_DOUBLE_EQ(s.grid.member_spacing_factor, egg::MemberOptions{}.spacingFactor);
   EXPECT_DOUBLE_EQ(s.simulation.newton_tolerance, egg::rods::SolverOptions{}.tolerance);
+  EXPECT_DOUBLE_EQ(s.simulation.time_limit_s, egg::rods::SolverOptions{}.timeLimit_s);
   EXPECT_TRUE(s.wants("cut_files"));
 }
 
@@ -64,7 +65,8 @@ TEST(Scene, ReadsEveryDocumentedKey) {
              "min_planar_angle_rad": 0.3, "map_proxy_vertices": 450, "member_spacing_factor": 11},
     "lamella": {"width_m": 0.5, "thickness_m": 0.05, "material": "birch_plywood"},
     "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false, "join_patches": false,
-                   "compare_without_notches": true, "hold_shared_sides": false, "newton_tolerance": 1e-6},
+                   "compare_without_notches": true, "hold_shared_sides": false, "newton_tolerance": 1e-6,
+                   "time_limit_s": 30},
     "fabrication": {"enabled": false, "sheet_mm": [3000, 1500], "bolt_diameter_mm": 10, "kerf_mm": 0.3,
                     "margin_mm": 12, "min_notch_mm": 2, "stock_length_mm": 5000, "end_overhang_mm": 40,
                     "splice_clearance_mm": 300, "label_height_mm": 12, "sticker_margin_mm": 3,
@@ -113,6 +115,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_EQ(back.grid.map_proxy_vertices, 450);
   EXPECT_DOUBLE_EQ(back.grid.member_spacing_factor, 11.0);
   EXPECT_DOUBLE_EQ(back.simulation.newton_tolerance, 1e-6);
+  EXPECT_DOUBLE_EQ(back.simulation.time_limit_s, 30.0);
   EXPECT_FALSE(back.simulation.join_patches);
   EXPECT_TRUE(back.simulation.compare_without_notches);
   EXPECT_FALSE(back.simulation.hold_shared_sides);

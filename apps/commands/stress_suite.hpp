@@ -35,6 +35,7 @@ struct PipelineStressCase {
   nlohmann::json scene;     // an `egg run` scene; surface.file "mesh.obj" when writeMesh is set
   std::function<void(const std::filesystem::path&)> writeMesh;  // writes the case's OBJ
   bool surfaceOnly = false; // `egg surface --stats` + `egg geodesic` instead of `egg run`
+  bool geodesic = true;     // surfaceOnly: also the geodesic field (`egg stress --large-mesh-stages surface` drops it)
   double timeLimit_s = 60.0;
 };
 

@@ -58,7 +58,8 @@ TEST(StressSuite, CrashingChildIsReportedAsCrash) {
     return 0;
   }, 10.0, scratch("crash") / "log.txt");
   EXPECT_FALSE(o.timedOut);
-  EXPECT_EQ(o.signal, SIGSEGV);
+  // Under AddressSanitizer (.ci/run's second build) its handler catches the SIGSEGV and aborts.
+  EXPECT_TRUE(o.signal == SIGSEGV || o.signal == SIGABRT) << o.signal;
   PipelineStressCase c;
   c.name = "crash";
   const PipelineStressRow row = classify(c, o, nlohmann::json());

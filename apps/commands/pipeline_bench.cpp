@@ -205,38 +205,20 @@ std::vector<PipelineVariant> pipelineVariants(const PipelineBenchOptions& o, con
             }
   } else {
     out.push_back(base);
-    for (size_t i = 1; i < o.edgeFactors.size(); ++i) {
-      PipelineVariant v = base;
-      v.edgeFactor = o.edgeFactors[i];
-      v.varied = fmt::format("edge_x{:g}", v.edgeFactor);
-      out.push_back(v);
-    }
-    for (size_t i = 1; i < o.mapProxyVertices.size(); ++i) {
-      PipelineVariant v = base;
-      v.mapProxyVertices = o.mapProxyVertices[i];
-      v.varied = fmt::format("proxy_{}", v.mapProxyVertices);
-      out.push_back(v);
-    }
+    // Each knob alone: its values after the first, the others at the base.
+    const auto vary = [&](const auto& values, const auto& set) {
+      for (size_t i = 1; i < values.size(); ++i) {
+        PipelineVariant v = base;
+        v.varied = set(v, values[i]);
+        out.push_back(v);
+      }
+    };
+    vary(o.edgeFactors, [](PipelineVariant& v, double f) { return v.edgeFactor = f, fmt::format("edge_x{:g}", f); });
+    vary(o.mapProxyVertices, [](PipelineVariant& v, int p) { return v.mapProxyVertices = p, fmt::format("proxy_{}", p); });
     // The row tolerance acts only on maps computed on the patch itself (grid.map_tolerance_relative).
-    for (size_t i = 1; i < o.mapTolerances.size(); ++i) {
-      PipelineVariant v = base;
-      v.mapTolerance = o.mapTolerances[i];
-      v.mapProxyVertices = 0;
-      v.varied = fmt::format("map_tol_{:g}", v.mapTolerance);
-      out.push_back(v);
-    }
-    for (size_t i = 1; i < o.newtonTolerances.size(); ++i) {
-      PipelineVariant v = base;
-      v.newtonTolerance = o.newtonTolerances[i];
-      v.varied = fmt::format("newton_tol_{:g}", v.newtonTolerance);
-      out.push_back(v);
-    }
-    for (size_t i = 1; i < o.spacingFactors.size(); ++i) {
-      PipelineVariant v = base;
-      v.spacingFactor = o.spacingFactors[i];
-      v.varied = fmt::format("spacing_x{:g}", v.spacingFactor);
-      out.push_back(v);
-    }
+    vary(o.mapTolerances, [](PipelineVariant& v, double t) { return v.mapTolerance = t, v.mapProxyVertices = 0, fmt::format("map_tol_{:g}", t); });
+    vary(o.newtonTolerances, [](PipelineVariant& v, double t) { return v.newtonTolerance = t, fmt::format("newton_tol_{:g}", t); });
+    vary(o.spacingFactors, [](PipelineVariant& v, double f) { return v.spacingFactor = f, fmt::format("spacing_x{:g}", f); });
   }
   if (o.paperSection)
     if (const auto paper = kPaper.find(sample); paper != kPaper.end()) {

@@ -74,6 +74,7 @@ void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult&
   size_t tightestIndex = 0;
   for (const auto& plan : r.lamellae) {
     for (size_t k = 0; k < plan.spliceClearancesMm.size(); ++k) {
+      if (k < plan.spliceIsScarf.size() && plan.spliceIsScarf[k]) continue;  // glued, checked in checkScarfs
       if (plan.spliceClearancesMm[k] >= o.spliceClearanceMm() - 1e-9) continue;
       ++tight;
       if (!tightest || plan.spliceClearancesMm[k] < tightest->spliceClearancesMm[tightestIndex]) tightest = &plan, tightestIndex = k;
@@ -88,9 +89,40 @@ void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult&
                          " mm free each side: a splice plate there is at most " +
                          formatted("%.0f", 2.0 * tightest->spliceClearancesMm[tightestIndex]) + " mm long (bom.csv splice_joint rows)");
   }
+  if (r.maxScarfRatio > 1.0) {
+    r.warnings.push_back("scarf joint " + r.maxScarfJoint + " is stressed to " + formatted("%.2f", r.maxScarfRatio) +
+                         " of its strength (fabrication.scarf_efficiency " + formatted("%.2f", o.scarf_efficiency) +
+                         " of " + r.material.name + ", net of the holes and slots it crosses): move it or use plates");
+  }
   if (r.counts.droppedBoundary > 0) {
     r.warnings.push_back(std::to_string(r.counts.droppedBoundary) +
                          " notches on boundary members are cut as plain holes (no notches on boundaries, Section 3.5.3)");
+  }
+}
+
+// Every scarf of `plan` (Section 3.5.2's check over the joint): the largest bending and torsion
+// stress over the scarf's length against scarf_efficiency x the strength, on the net width
+// w - d where a hole or slot runs through the joint. A lamella is as strong as its weakest scarf.
+void checkScarfs(const LamellaPlan& plan, FabricationResult& r, LamellaStress& s) {
+  const auto& o = r.options;
+  s.scarfRatios.assign(plan.splicesMm.size(), 0.0);
+  const double d = o.bolt_diameter_mm;
+  for (size_t k = 0; k < plan.splicesMm.size(); ++k) {
+    if (k >= plan.spliceIsScarf.size() || !plan.spliceIsScarf[k]) continue;
+    const double from = plan.segments[k + 1].startMm, to = plan.segments[k].endMm;
+    bool crossed = false;
+    for (const auto& f : plan.features) crossed = crossed || (f.maxXMm(d) > from && f.minXMm(d) < to);
+    const double net = crossed ? (plan.widthMm - d) / plan.widthMm : 1.0;
+    // Strip coordinates (mm from the strip's start) to arc length along the member (m).
+    const double a = (from - plan.overhangMm) / 1000.0, b = (to - plan.overhangMm) / 1000.0;
+    const double sigma = maxStressOver(s.bendingArc_m, s.bending_pa, a, b);
+    const double tau = maxStressOver(s.torsionArc_m, s.torsion_pa, a, b);
+    const double ratio = std::max(sigma / r.material.bending_strength_pa, tau / r.material.shear_strength_pa) /
+                         (o.scarf_efficiency * net);
+    s.scarfRatios[k] = ratio;
+    s.stressRatio = std::max(s.stressRatio, ratio);
+    ++r.scarfJoints;
+    if (ratio > r.maxScarfRatio) r.maxScarfRatio = ratio, r.maxScarfJoint = plan.id + " S" + std::to_string(k + 1);
   }
 }
 
@@ -130,10 +162,13 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
       const LamellaStress deployed = lamellaStress(centreline, nullptr, t, r.material, curvatureWindowM(centreline, w));
       s.maxCurvature_1_m = deployed.maxCurvature_1_m;
       s.maxBendingStress_pa = deployed.maxBendingStress_pa;
+      s.bendingArc_m = deployed.bendingArc_m;
+      s.bending_pa = deployed.bending_pa;
       s.stressRatio = std::max(s.maxBendingStress_pa / r.material.bending_strength_pa,
                                s.maxTorsionStress_pa / r.material.shear_strength_pa);
       s.fromSimulation = true;
     }
+    checkScarfs(plan, r, s);
     r.stress.push_back(s);
     if (s.stressRatio > r.maxStressRatio) r.maxStressRatio = s.stressRatio, r.maxStressLamella = plan.id;
     r.maxBendingStressPa = std::max(r.maxBendingStressPa, s.maxBendingStress_pa);
@@ -256,14 +291,29 @@ std::string bomCsv(const FabricationResult& r) {
                   r.material.name.c_str(), holes, slots, p.segments.size(), r.stress[i].stressRatio, notCut);
     s << line;
   }
-  s << "splice,," << r.splices << ",,,,,,,butt joints clear of holes by " << formatted("%.1f", o.spliceClearanceMm())
-    << " mm where a stock length allows, else at least " << formatted("%.1f", o.minSpliceClearanceMm()) << " mm\n";
+  s << "splice,," << r.splices - r.scarfJoints << ",,,,,,,butt joints with bolted plates clear of holes by "
+    << formatted("%.1f", o.spliceClearanceMm()) << " mm where a stock length allows, else at least "
+    << formatted("%.1f", o.minSpliceClearanceMm()) << " mm\n";
+  if (r.scarfJoints > 0) {
+    s << "scarf,," << r.scarfJoints << "," << formatted("%.1f", o.scarfLengthMm()) << ",,,,,,glued scarf joints 1:"
+      << formatted("%g", o.scarf_slope) << " to 1:" << formatted("%g", 2.0 * o.scarf_slope)
+      << " (length_mm: the shortest), glued before assembly; the pieces overlap on the slope\n";
+  }
   // Every splice: where along its lamella (length_mm = the cut's distance from the strip's start).
-  for (const auto& p : r.lamellae) {
+  for (size_t i = 0; i < r.lamellae.size(); ++i) {
+    const auto& p = r.lamellae[i];
     for (size_t k = 0; k < p.splicesMm.size(); ++k) {
-      std::snprintf(line, sizeof line, "splice_joint,%s S%zu,1,%.2f,%.2f,%.2f,,,,between pieces %zu and %zu; %.1f mm free each side\n",
-                    p.id.c_str(), k + 1, p.splicesMm[k], p.widthMm, o.lamella_thickness_mm, k + 1, k + 2,
-                    p.spliceClearancesMm[k]);
+      if (k < p.spliceIsScarf.size() && p.spliceIsScarf[k]) {
+        std::snprintf(line, sizeof line,
+                      "splice_joint,%s S%zu,1,%.2f,%.2f,%.2f,,,,scarf between pieces %zu and %zu; feather ends %.1f mm from "
+                      "the nearest hole or slot; %.0f mm long; stress ratio %.3f\n",
+                      p.id.c_str(), k + 1, p.splicesMm[k], p.widthMm, o.lamella_thickness_mm, k + 1, k + 2,
+                      p.spliceClearancesMm[k], p.segments[k].endMm - p.segments[k + 1].startMm, r.stress[i].scarfRatios[k]);
+      } else {
+        std::snprintf(line, sizeof line, "splice_joint,%s S%zu,1,%.2f,%.2f,%.2f,,,,between pieces %zu and %zu; %.1f mm free each side\n",
+                      p.id.c_str(), k + 1, p.splicesMm[k], p.widthMm, o.lamella_thickness_mm, k + 1, k + 2,
+                      p.spliceClearancesMm[k]);
+      }
       s << line;
     }
   }
@@ -338,6 +388,9 @@ nlohmann::json fabricationReport(const FabricationResult& r, const std::vector<s
   j["total_length_m"] = r.totalLengthM;
   j["volume_m3"] = r.volumeM3;
   j["mass_kg"] = r.massKg;
+  j["scarf_joints"] = r.scarfJoints;
+  j["max_scarf_stress_ratio"] = r.maxScarfRatio;
+  if (!r.maxScarfJoint.empty()) j["max_scarf_joint"] = r.maxScarfJoint;
   j["max_stress_ratio"] = r.maxStressRatio;
   j["max_stress_lamella"] = r.maxStressLamella;
   j["max_bending_stress_pa"] = r.maxBendingStressPa;
@@ -352,6 +405,11 @@ nlohmann::json fabricationReport(const FabricationResult& r, const std::vector<s
                       {"bending_stress_pa", r.stress[i].maxBendingStress_pa},
                       {"torsion_stress_pa", r.stress[i].maxTorsionStress_pa},
                       {"from_simulation", r.stress[i].fromSimulation}});
+    double scarf = 0.0;
+    for (size_t k = 0; k < r.stress[i].scarfRatios.size(); ++k) {
+      if (k < r.lamellae[i].spliceIsScarf.size() && r.lamellae[i].spliceIsScarf[k]) scarf = std::max(scarf, r.stress[i].scarfRatios[k]);
+    }
+    if (scarf > 0.0) stress.back()["max_scarf_ratio"] = scarf;
   }
   j["lamella_stress"] = stress;
   j["files"] = files;

@@ -37,7 +37,10 @@ struct FabricationResult {
   std::vector<Drawing> stickerSheets;      // PTFE foil sheets
   FeatureCounts counts;
   int connections = 0;                     // bolts: connections, those merged on a shared lamella once
-  int splices = 0;
+  int splices = 0;                         // all joints, scarfs included
+  int scarfJoints = 0;                     // glued scarfs among them (fabrication.splice_joint)
+  double maxScarfRatio = 0.0;              // the most stressed scarf over its strength
+  std::string maxScarfJoint;               // "<lamella> S<k>"
   double totalLengthM = 0.0;               // all strips, overhangs included
   double volumeM3 = 0.0;
   double massKg = 0.0;

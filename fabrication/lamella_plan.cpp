@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace egg::fabrication {
@@ -116,12 +117,14 @@ std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patch
                                                              : "fabrication.stock_length_mm";
   for (auto& plan : plans) {
     try {
-      placeSplices(plan, piece, options.spliceClearanceMm(), options.bolt_diameter_mm, field, options.minSpliceClearanceMm());
+      placeSplices(plan, piece, options.spliceClearanceMm(), options.bolt_diameter_mm, field, options.minSpliceClearanceMm(),
+                   options.splice_joint, options.scarfLengthMm());
     } catch (const InvalidInput& e) {
       // Slots that leave no room for any splice within a stock length (overlapping slots on the
       // Yas canopy's 45 m lamellas): no cut file can make it; the rest of the grid still can.
       plan.splicesMm.clear();
       plan.spliceClearancesMm.clear();
+      plan.spliceIsScarf.clear();
       plan.segments.clear();
       plan.unspliceable = e.what();
     }
@@ -134,10 +137,17 @@ double longestPieceMm(const FabricationOptions& options) {
 }
 
 void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
-                  const std::string& field, double minClearanceMm) {
+                  const std::string& field, double minClearanceMm, const std::string& joint, double scarfLengthMm) {
   plan.splicesMm.clear();
   plan.spliceClearancesMm.clear();
+  plan.spliceIsScarf.clear();
   plan.segments.clear();
+  if (joint != "plate" && joint != "scarf" && joint != "plate_or_scarf")
+    throw InvalidInput("fabrication.splice_joint: unknown joint \"" + joint + "\"");
+  const bool plates = joint != "scarf", scarfs = joint != "plate";
+  if (scarfs && !(scarfLengthMm > 0.0 && scarfLengthMm < stockLengthMm))
+    throw InvalidInput("fabrication.scarf_slope: a scarf of " + std::to_string(scarfLengthMm) +
+                       " mm does not fit a piece of at most " + std::to_string(stockLengthMm) + " mm");
   if (minClearanceMm < 0.0) minClearanceMm = clearanceMm;
   // What is cut out of the strip (holes, slots with their round ends), merged where they overlap.
   std::vector<std::pair<double, double>> cutOut;
@@ -171,9 +181,56 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
     }
     return cut > start + 1e-9 && freeAt(cut) >= clear - 1e-9 ? cut : -1.0;
   };
+  // A scarf joint: piece A ends at `end`, piece B starts at `begin` before it; they overlap by
+  // end - begin, glued on the slope. The holes and slots are cut in the pieces before gluing, so
+  // the two feather ends must lie between cut-outs, a bolt radius clear (no hole or slot cut open
+  // at a piece's end); those inside the overlap go through both pieces. The overlap is at least
+  // the scarf length (the steepest slope allowed) and at most twice it (a flatter scarf is as
+  // strong, only longer to machine): between slots metres long the two gaps are rarely exactly one
+  // scarf length apart. The furthest end within one stock length from `start`, with the shortest
+  // overlap there; nullopt when there is none.
+  const double endClear = boltDiameterMm / 2.0, longestScarf = 2.0 * scarfLengthMm;
+  std::vector<std::pair<double, double>> gaps;  // where a feather end may lie
+  for (size_t k = 0; k <= merged.size(); ++k) {
+    const double lo = (k == 0 ? 0.0 : merged[k - 1].second) + endClear;
+    const double hi = (k == merged.size() ? plan.lengthMm : merged[k].first) - endClear;
+    if (hi >= lo) gaps.emplace_back(lo, hi);
+  }
+  auto furthestScarf = [&](double start) -> std::optional<std::pair<double, double>> {
+    std::optional<std::pair<double, double>> best;
+    for (const auto& [aLo, aHi] : gaps) {
+      for (const auto& [bLo, bHi] : gaps) {
+        const double hi = std::min({aHi, bHi + longestScarf, start + stockLengthMm});
+        const double lo = std::max({aLo, bLo + scarfLengthMm, start + scarfLengthMm + 1e-6});
+        if (hi < lo) continue;
+        const double begin = std::max(bLo, std::min(bHi, hi - scarfLengthMm));
+        if (begin <= start || hi - begin > longestScarf + 1e-9 || hi - begin < scarfLengthMm - 1e-9) continue;
+        if (!best || hi > best->first + 1e-9 || (std::abs(hi - best->first) <= 1e-9 && begin > best->second))
+          best = std::make_pair(hi, begin);
+      }
+    }
+    return best;
+  };
+  auto addScarf = [&](double& start, const std::pair<double, double>& scarf) {
+    const auto [end, begin] = scarf;
+    plan.splicesMm.push_back((end + begin) / 2.0);
+    plan.spliceClearancesMm.push_back(std::min(freeAt(end), freeAt(begin)));
+    plan.spliceIsScarf.push_back(true);
+    plan.segments.push_back({start, end});
+    start = begin;
+  };
   double start = 0.0;
   while (plan.lengthMm - start > stockLengthMm + 1e-9) {
     const double reach = start + stockLengthMm;
+    // Slots that overlap into one slit for metres (notches longer than the connection spacing,
+    // as on the Yas canopy's 60 m patches) leave no gap for a feather end either: the scarf then
+    // ends where the stock does, its ends cutting through the slit (drawn clipped to each piece,
+    // sheet_layout.cpp), and is checked on the net width.
+    auto slitScarf = [&]() { return std::make_pair(reach, reach - scarfLengthMm); };
+    if (!plates) {
+      addScarf(start, furthestScarf(start).value_or(slitScarf()));
+      continue;
+    }
     // The furthest position within one stock length with the full clearance.
     double cut = furthest(start, clearanceMm);
     if (cut < 0.0) {
@@ -195,6 +252,11 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
     // No position keeps the minimum either: impossible (whichever earlier cuts: from any clear
     // position the next clear one lies within a stock length when the strip can be cut at all, so
     // this stretch fails for every choice).
+    if (cut < 0.0 && scarfs) {
+      // No room for a plate here: a glued scarf, where its feather ends find gaps.
+      addScarf(start, furthestScarf(start).value_or(slitScarf()));
+      continue;
+    }
     if (cut < 0.0) {
       double widest = 0.0;
       for (size_t k = 0; k <= merged.size(); ++k) {
@@ -223,10 +285,12 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
           << " mm (fabrication.min_splice_clearance_mm each side; " << clearanceMm
           << " mm preferred, fabrication.splice_clearance_mm); it would take pieces of up to " << std::ceil(needed)
           << " mm";
+      msg << "; fabrication.splice_joint \"plate_or_scarf\" glues a scarf where no plate fits";
       throw InvalidInput(msg.str());
     }
     plan.splicesMm.push_back(cut);
     plan.spliceClearancesMm.push_back(freeAt(cut));
+    plan.spliceIsScarf.push_back(false);
     plan.segments.push_back({start, cut});
     start = cut;
   }

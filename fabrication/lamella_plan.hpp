@@ -51,7 +51,10 @@ struct LamellaPlan {
   double overhangMm = 0.0;
   std::vector<LamellaFeature> features;  // sorted along the strip
   std::vector<double> splicesMm;         // cut positions of the splices, ascending
-  std::vector<double> spliceClearancesMm;  // per splice: the free length from the cut to the nearest hole or slot
+  std::vector<double> spliceClearancesMm;  // per splice: the free length from the cut (a scarf: its nearer feather end) to the nearest hole or slot
+  // Per splice: a glued scarf (true) or a butt joint with bolted plates. At scarf k the pieces
+  // overlap on the slope: from segments[k + 1].startMm to segments[k].endMm; splicesMm is its middle.
+  std::vector<bool> spliceIsScarf;
   std::vector<LamellaSegment> segments;  // pieces between splices (at least one; none when unspliceable)
   // Why no splice positions exist (placeSplices' message): the lamella is planned but not cut.
   std::string unspliceable;
@@ -93,8 +96,14 @@ int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<Sha
 // splice plate or a glued joint; fabricate() warns). Fills plan.splicesMm, spliceClearancesMm and
 // segments. Throws InvalidInput naming the lamella, the stretch, its widest gap and `field` when no
 // position keeps minClearanceMm. minClearanceMm < 0 (the default) means clearanceMm: no fallback.
+// joint (fabrication.splice_joint): "plate" as above; "scarf": every splice a glued scarf of
+// scarfLengthMm to twice that, whose two feather ends lie between cut-outs (half a bolt diameter
+// clear), the furthest such within each stock length, else (slots merged into a slit) one scarf
+// length ending at the stock length, through the slit; "plate_or_scarf": plates, and a scarf where
+// a stretch has no position for a plate. With scarfs allowed it does not throw for want of room.
 void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
-                  const std::string& field = "fabrication.stock_length_mm", double minClearanceMm = -1.0);
+                  const std::string& field = "fabrication.stock_length_mm", double minClearanceMm = -1.0,
+                  const std::string& joint = "plate", double scarfLengthMm = 0.0);
 
 // The longest piece a lamella is cut in: the stock length, or the sheet's usable first side when
 // that is shorter (a strip cut from a sheet is no longer than the sheet).

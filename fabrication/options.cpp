@@ -64,6 +64,19 @@ void FabricationOptions::validate() const {
   }
   if (splice_clearance_mm) requireNonNegative("fabrication.splice_clearance_mm", *splice_clearance_mm);
   if (min_splice_clearance_mm) requireNonNegative("fabrication.min_splice_clearance_mm", *min_splice_clearance_mm);
+  if (splice_joint != "plate" && splice_joint != "scarf" && splice_joint != "plate_or_scarf") {
+    fail("fabrication.splice_joint", "must be \"plate\", \"scarf\" or \"plate_or_scarf\", got \"" + splice_joint + "\"");
+  }
+  if (!std::isfinite(scarf_slope) || scarf_slope < 4.0 || scarf_slope > 40.0) {
+    std::ostringstream msg;
+    msg << "must lie in [4, 40] (the run of the scarf per unit of thickness), got " << scarf_slope;
+    fail("fabrication.scarf_slope", msg.str());
+  }
+  if (!std::isfinite(scarf_efficiency) || scarf_efficiency <= 0.0 || scarf_efficiency > 1.0) {
+    std::ostringstream msg;
+    msg << "must lie in (0, 1], got " << scarf_efficiency;
+    fail("fabrication.scarf_efficiency", msg.str());
+  }
   if (label_height_mm) requirePositive("fabrication.label_height_mm", *label_height_mm);
   requireNonNegative("fabrication.sticker_margin_mm", sticker_margin_mm);
   if (sticker_sheet_mm) {

@@ -44,6 +44,18 @@ struct FabricationOptions {
   // the new end is then 4 d from the nearest bolt centre, the least end distance of a bolt from an
   // unloaded end in EN 1995-1-1 Table 8.4 (a3,c). Never more than the splice clearance.
   std::optional<double> min_splice_clearance_mm;
+  // How pieces are joined into a lamella longer than a piece. "plate": bolted splice plates, in a
+  // gap clear of holes and slots (above). "scarf": glued scarf joints of slope 1:scarf_slope
+  // (to 1:2 scarf_slope) through the thickness, the pieces cut with their holes and slots and glued
+  // before assembly; a scarf may cross holes and slots (only its two feather ends must lie
+  // between them), so it also joins strips whose
+  // slots leave no gap for a plate (the 8 m notches of a 60 m Yas patch). "plate_or_scarf": plates
+  // where a stock length has room for one, scarfs where it has not. Every scarf is checked: the
+  // stress over its length against scarf_efficiency x the strength, on the net width where it
+  // crosses a hole or slot.
+  std::string splice_joint = "plate";
+  double scarf_slope = 12.0;        // 1:12, the usual slope for structural scarfs in plywood and LVL
+  double scarf_efficiency = 0.85;   // strength of the glued joint over that of the plain strip
   std::optional<double> label_height_mm;    // engraved text height; default 0.35 w (clamped to 1..30 mm)
   double sticker_margin_mm = 2.0;           // PTFE sticker beyond the swept contact area (3.5.1)
   std::optional<std::array<double, 2>> sticker_sheet_mm;  // PTFE foil sheet; default sheet_mm
@@ -60,6 +72,7 @@ struct FabricationOptions {
     return std::min(min_splice_clearance_mm.value_or(3.5 * bolt_diameter_mm), spliceClearanceMm());
   }
   double labelHeightMm() const;
+  double scarfLengthMm() const { return scarf_slope * lamella_thickness_mm; }
   std::array<double, 2> stickerSheetMm() const { return sticker_sheet_mm.value_or(sheet_mm); }
   double supportBlockMm() const { return support_block_mm.value_or(3.0 * lamella_width_mm); }
 };

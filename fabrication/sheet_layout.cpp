@@ -24,6 +24,39 @@ void drawArrow(Drawing& drawing, const Eigen::Vector2d& from, double length, dou
 
 }  // namespace
 
+std::vector<Eigen::Vector2d> clippedStadium(double x0, double x1, double radius, double lo, double hi) {
+  // The stadium's outline (convex: two half circles joined by straight sides), 32 segments per
+  // half circle, then clipped to lo <= x <= hi (Sutherland-Hodgman against the two lines).
+  const double a = std::min(x0, x1), b = std::max(x0, x1);
+  std::vector<Eigen::Vector2d> poly;
+  const int steps = 32;
+  for (int k = 0; k <= steps; ++k) {
+    const double phi = -M_PI / 2.0 + M_PI * k / steps;
+    poly.emplace_back(b + radius * std::cos(phi), radius * std::sin(phi));
+  }
+  for (int k = 0; k <= steps; ++k) {
+    const double phi = M_PI / 2.0 + M_PI * k / steps;
+    poly.emplace_back(a + radius * std::cos(phi), radius * std::sin(phi));
+  }
+  auto clip = [](const std::vector<Eigen::Vector2d>& in, double bound, bool keepAbove) {
+    std::vector<Eigen::Vector2d> out;
+    const size_t n = in.size();
+    for (size_t i = 0; i < n; ++i) {
+      const Eigen::Vector2d &p = in[i], &q = in[(i + 1) % n];
+      const bool pIn = keepAbove ? p.x() >= bound : p.x() <= bound, qIn = keepAbove ? q.x() >= bound : q.x() <= bound;
+      if (pIn) out.push_back(p);
+      if (pIn != qIn) {
+        const double t = (bound - p.x()) / (q.x() - p.x());
+        out.emplace_back(bound, p.y() + t * (q.y() - p.y()));
+      }
+    }
+    return out;
+  };
+  poly = clip(poly, lo, true);
+  if (!poly.empty()) poly = clip(poly, hi, false);
+  return poly;
+}
+
 void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vector2d& origin,
                         const FabricationOptions& options, Drawing& drawing) {
   const LamellaSegment& seg = plan.segments[segment];
@@ -35,7 +68,16 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
   // Occupied stretches along the strip (features and their labels), for the lamella label.
   std::vector<std::pair<double, double>> occupied;
   for (const auto& f : plan.features) {
-    if (f.xMm < seg.startMm || f.xMm > seg.endMm) continue;
+    // A plate keeps clear of every feature, and a scarf's feather ends lie between them where they
+    // can; inside a scarf's overlap a feature is cut in both pieces. A scarf through a slit cuts
+    // the slots it crosses: each piece gets the part of the slot inside it.
+    if (f.maxXMm(d) <= seg.startMm + 1e-6 || f.minXMm(d) >= seg.endMm - 1e-6) continue;
+    if (f.minXMm(d) < seg.startMm - 1e-6 || f.maxXMm(d) > seg.endMm + 1e-6) {
+      std::vector<Eigen::Vector2d> outline;
+      for (const auto& p : clippedStadium(f.xMm, f.xMm + f.slideMm, r, seg.startMm, seg.endMm)) outline.push_back(at(p.x(), w / 2.0 + p.y()));
+      if (outline.size() >= 3) drawing.polylines.push_back({Layer::Cut, outline, true});
+      continue;
+    }
     const Eigen::Vector2d centre = at(f.xMm, w / 2.0);
     if (f.kind == FeatureKind::Slot) {
       drawing.slots.push_back({Layer::Cut, centre, centre + Eigen::Vector2d(f.slideMm, 0.0), r});
@@ -53,6 +95,13 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
     occupied.emplace_back(std::min(labelStart, f.minXMm(d)), std::max(labelStart + labelLength, f.maxXMm(d)));
   }
   for (size_t k = 0; k < plan.splicesMm.size(); ++k) {
+    if (k < plan.spliceIsScarf.size() && plan.spliceIsScarf[k]) {
+      // A scarf: the line where the slope starts, the other piece's feather end.
+      const double begin = plan.segments[k + 1].startMm, end = plan.segments[k].endMm;
+      const double x = segment == static_cast<int>(k) ? begin : segment == static_cast<int>(k) + 1 ? end : -1.0;
+      if (x >= 0.0) drawing.polylines.push_back({Layer::Engrave, {at(x, 0.0), at(x, w)}, false});
+      continue;
+    }
     // The mark half the splice's clearance in from the cut (the clearance of the splice: a tight
     // one keeps less than splice_clearance_mm, placeSplices).
     const double splice = plan.splicesMm[k];

@@ -10,7 +10,10 @@
 //    with a two-stroke head at its tip;
 //  - lamella id (with "k/n" when spliced): LABEL text of height h centred in the longest stretch of
 //    the strip free of features and their labels;
-//  - splice: ENGRAVE line across the strip at clearance/2 inside every spliced end.
+//  - splice: ENGRAVE line across the strip at clearance/2 inside every spliced end; a scarf: at
+//    the other piece's feather end (where the slope begins);
+//  - a slot or hole a scarf cuts through (a slit of overlapping slots): a closed CUT polygon, the
+//    part of its stadium inside the piece.
 #include "fabrication/drawing.hpp"
 #include "fabrication/lamella_plan.hpp"
 #include "fabrication/stickers.hpp"
@@ -23,6 +26,10 @@ double textLengthMm(const std::string& text, double heightMm);
 // Draws segment `segment` of `plan` with the part's lower left corner at `origin`.
 void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vector2d& origin,
                         const FabricationOptions& options, Drawing& drawing);
+
+// The outline of the stadium from (x0, 0) to (x1, 0) of the given radius clipped to lo <= x <= hi:
+// a convex polygon (empty when they do not overlap).
+std::vector<Eigen::Vector2d> clippedStadium(double x0, double x1, double radius, double lo, double hi);
 
 // The text engraved as a segment's lamella label: the id, plus " k/n" when the lamella is spliced.
 std::string segmentLabel(const LamellaPlan& plan, int segment);

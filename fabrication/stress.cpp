@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace egg::fabrication {
 
@@ -95,15 +96,20 @@ LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, cons
       while (k + 1 < n && arc[k] - arc[i] < windowM) ++k;
       const Eigen::Vector3d kappa = polylineCurvature({centreline[j], centreline[i], centreline[k]})[1];
       measured = true;
+      double curvature = kappa.norm();
       if (useNormals) {
-        s.maxCurvature_1_m = std::max(s.maxCurvature_1_m, std::abs(kappa.dot((*normals)[i].normalized())));
+        curvature = std::abs(kappa.dot((*normals)[i].normalized()));
         // The turn of the normal from j to k about the chord, over the arc between them.
         const double rate = polylineTwistRate({centreline[j], centreline[k]}, {(*normals)[j], (*normals)[k]})[0];
         const double chord = (centreline[k] - centreline[j]).norm();
-        s.maxTwistRate_rad_m = std::max(s.maxTwistRate_rad_m, std::abs(rate) * chord / (arc[k] - arc[j]));
-      } else {
-        s.maxCurvature_1_m = std::max(s.maxCurvature_1_m, kappa.norm());
+        const double twist = std::abs(rate) * chord / (arc[k] - arc[j]);
+        s.maxTwistRate_rad_m = std::max(s.maxTwistRate_rad_m, twist);
+        s.torsionArc_m.push_back(arc[i]);
+        s.torsion_pa.push_back(material.shear_modulus_pa * twist * thicknessM);
       }
+      s.maxCurvature_1_m = std::max(s.maxCurvature_1_m, curvature);
+      s.bendingArc_m.push_back(arc[i]);
+      s.bending_pa.push_back(material.youngs_modulus_pa * curvature * thicknessM / 2.0);
     }
     if (measured) {
       finish(s, thicknessM, material);
@@ -111,15 +117,38 @@ LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, cons
     }
   }
   const auto kappa = polylineCurvature(centreline);
+  double along = 0.0;
   for (size_t i = 0; i < kappa.size(); ++i) {
+    if (i > 0) along += (centreline[i] - centreline[i - 1]).norm();
     const double k = useNormals ? std::abs(kappa[i].dot((*normals)[i].normalized())) : kappa[i].norm();
     s.maxCurvature_1_m = std::max(s.maxCurvature_1_m, k);
+    s.bendingArc_m.push_back(along);
+    s.bending_pa.push_back(material.youngs_modulus_pa * k * thicknessM / 2.0);
   }
   if (useNormals) {
-    for (double r : polylineTwistRate(centreline, *normals)) s.maxTwistRate_rad_m = std::max(s.maxTwistRate_rad_m, std::abs(r));
+    const auto rates = polylineTwistRate(centreline, *normals);
+    along = 0.0;
+    for (size_t i = 0; i < rates.size(); ++i) {
+      const double length = (centreline[i + 1] - centreline[i]).norm();
+      s.maxTwistRate_rad_m = std::max(s.maxTwistRate_rad_m, std::abs(rates[i]));
+      s.torsionArc_m.push_back(along + length / 2.0);
+      s.torsion_pa.push_back(material.shear_modulus_pa * std::abs(rates[i]) * thicknessM);
+      along += length;
+    }
   }
   finish(s, thicknessM, material);
   return s;
+}
+
+double maxStressOver(const std::vector<double>& arc, const std::vector<double>& values, double from, double to) {
+  double best = 0.0, nearest = 0.0, nearestGap = std::numeric_limits<double>::infinity();
+  bool inside = false;
+  const double middle = (from + to) / 2.0;
+  for (size_t i = 0; i < arc.size() && i < values.size(); ++i) {
+    if (arc[i] >= from && arc[i] <= to) best = std::max(best, values[i]), inside = true;
+    if (std::abs(arc[i] - middle) < nearestGap) nearestGap = std::abs(arc[i] - middle), nearest = values[i];
+  }
+  return inside ? best : nearest;
 }
 
 }  // namespace egg::fabrication

@@ -27,7 +27,15 @@ struct LamellaStress {
   double maxTorsionStress_pa = 0.0;    // G theta' t
   double stressRatio = 0.0;            // max(sigma / f_m, tau / f_v)
   bool fromSimulation = false;         // bending from the deployed centreline (else the traced geodesic)
+  // Where along the lamella (arc length from its first point, m) each stress was measured: the
+  // splice checks read them over a joint's length (maxStressOver).
+  std::vector<double> bendingArc_m, bending_pa, torsionArc_m, torsion_pa;
+  std::vector<double> scarfRatios;     // per splice (fabricate): a scarf's stress over its strength, 0 for a plate
 };
+
+// The largest of `values` measured at arc lengths within [from, to]; with none there, the one
+// measured nearest to the middle (0 when nothing was measured).
+double maxStressOver(const std::vector<double>& arc, const std::vector<double>& values, double from, double to);
 
 // Bending: with `normals` (one per point) the normal curvature kappa . n, else the whole curvature
 // (a deployed lamella is a geodesic: its curvature is normal curvature). Torsion: from `normals`

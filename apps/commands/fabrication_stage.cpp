@@ -18,6 +18,9 @@ fabrication::FabricationOptions fabricationOptionsFromScene(const Scene& scene) 
   o.splice_clearance_mm = f.splice_clearance_mm;
   o.min_splice_clearance_mm = f.min_splice_clearance_mm;
   o.label_height_mm = f.label_height_mm;
+  o.splice_joint = f.splice_joint;
+  o.scarf_slope = f.scarf_slope;
+  o.scarf_efficiency = f.scarf_efficiency;
   o.sticker_margin_mm = f.sticker_margin_mm;
   o.sticker_sheet_mm = f.sticker_sheet_mm;
   o.ground_height_m = f.ground_height_m;

@@ -355,6 +355,11 @@ void readFabrication(Section s, FabricationSpec& out) {
   optionalNumber("splice_clearance_mm", out.splice_clearance_mm, 0.0, 1e5);
   optionalNumber("min_splice_clearance_mm", out.min_splice_clearance_mm, 0.0, 1e5);
   optionalNumber("label_height_mm", out.label_height_mm, 0.1, 1000.0);
+  out.splice_joint = s.text("splice_joint", out.splice_joint);
+  if (out.splice_joint != "plate" && out.splice_joint != "scarf" && out.splice_joint != "plate_or_scarf")
+    s.fail("splice_joint", "must be \"plate\", \"scarf\" or \"plate_or_scarf\", got \"" + out.splice_joint + "\"");
+  out.scarf_slope = s.number("scarf_slope", out.scarf_slope, 4.0, 40.0);
+  out.scarf_efficiency = s.number("scarf_efficiency", out.scarf_efficiency, 0.01, 1.0);
   out.sticker_margin_mm = s.number("sticker_margin_mm", out.sticker_margin_mm, 0.0, 1000.0);
   if (s.has("sticker_sheet_mm")) out.sticker_sheet_mm = s.pair("sticker_sheet_mm", out.sheet_mm, 1.0, 1e5);
   optionalNumber("ground_height_m", out.ground_height_m, -1e5, 1e5);
@@ -469,6 +474,9 @@ json sceneToJson(const Scene& scene) {
                    {"min_notch_mm", f.min_notch_mm},
                    {"stock_length_mm", f.stock_length_mm},
                    {"sticker_margin_mm", f.sticker_margin_mm},
+                   {"splice_joint", f.splice_joint},
+                   {"scarf_slope", f.scarf_slope},
+                   {"scarf_efficiency", f.scarf_efficiency},
                    {"supports_at_boundary_connections", f.supports_at_boundary_connections}};
   // Unset optional keys are left out (their defaults derive from the lamella).
   if (f.end_overhang_mm) fabrication["end_overhang_mm"] = *f.end_overhang_mm;

@@ -110,6 +110,9 @@ struct FabricationSpec {
   std::optional<double> splice_clearance_mm;  // no hole or slot this close to a splice (default the width)
   std::optional<double> min_splice_clearance_mm;  // where no position is that clear: at least this (default 3.5 d)
   std::optional<double> label_height_mm;     // engraved text height (default 0.35 w, 1..30 mm)
+  std::string splice_joint = "plate";        // "plate", "scarf" or "plate_or_scarf" (glued where no plate fits)
+  double scarf_slope = 12.0;                 // scarf run per unit of thickness (1:12)
+  double scarf_efficiency = 0.85;            // glued joint strength over the plain strip's
   double sticker_margin_mm = 2.0;            // PTFE sticker beyond the swept contact area
   std::optional<std::array<double, 2>> sticker_sheet_mm;  // PTFE foil sheet (default sheet_mm)
   std::optional<double> ground_height_m;     // ground plane z of the supports (default 0.1 m below the lowest)

@@ -24,6 +24,9 @@ TEST(FabricationStage, SceneDefaultsAreTheLibraryDefaults) {
   EXPECT_DOUBLE_EQ(o.sticker_margin_mm, library.sticker_margin_mm);
   EXPECT_EQ(o.stickerSheetMm(), library.sheet_mm);
   EXPECT_EQ(o.supports_at_boundary_connections, library.supports_at_boundary_connections);
+  EXPECT_EQ(o.splice_joint, library.splice_joint);
+  EXPECT_DOUBLE_EQ(o.scarf_slope, library.scarf_slope);
+  EXPECT_DOUBLE_EQ(o.scarf_efficiency, library.scarf_efficiency);
   EXPECT_FALSE(o.end_overhang_mm.has_value());
   EXPECT_NO_THROW(o.validate());
   EXPECT_TRUE(fabricationWanted(scene));
@@ -33,7 +36,8 @@ TEST(FabricationStage, SceneKeysReachTheOptions) {
   const Scene scene = parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"},
       "lamella": {"width_m": 0.01, "thickness_m": 0.001, "material": "limewood"},
       "fabrication": {"sheet_mm": [1000, 600], "kerf_mm": 0.1, "stock_length_mm": 900, "end_overhang_mm": 6,
-                      "ground_height_m": 0.2, "min_splice_clearance_mm": 7},
+                      "ground_height_m": 0.2, "min_splice_clearance_mm": 7,
+                      "splice_joint": "plate_or_scarf", "scarf_slope": 10, "scarf_efficiency": 0.9},
       "outputs": ["report", "stickers"]})"),
                                  "/scenes/test.json");
   const auto o = fabricationOptionsFromScene(scene);
@@ -46,6 +50,9 @@ TEST(FabricationStage, SceneKeysReachTheOptions) {
   EXPECT_DOUBLE_EQ(o.endOverhangMm(), 6.0);
   EXPECT_DOUBLE_EQ(*o.ground_height_m, 0.2);
   EXPECT_DOUBLE_EQ(o.minSpliceClearanceMm(), 7.0);
+  EXPECT_EQ(o.splice_joint, "plate_or_scarf");
+  EXPECT_DOUBLE_EQ(o.scarfLengthMm(), 10.0);  // 1:10 over 1 mm
+  EXPECT_DOUBLE_EQ(o.scarf_efficiency, 0.9);
   const auto outputs = fabricationOutputsFromScene(scene);
   EXPECT_FALSE(outputs.cutFiles);
   EXPECT_TRUE(outputs.stickers);

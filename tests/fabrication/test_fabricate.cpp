@@ -141,6 +141,56 @@ TEST(Fabricate, StripsLongerThanTheSheetAreSplicedToFitIt) {
   for (const auto& plan : r.lamellae) EXPECT_DOUBLE_EQ(plan.splicesMm.at(0), 150.0) << plan.id;
 }
 
+// Scarf joints carry the stress over their length against scarf_efficiency x the strength, on
+// the net width where a hole or slot runs through them (member u1 bent to R = 0.5 m: sigma =
+// E t / (2 R) everywhere).
+TEST(Fabricate, ScarfJointsAreCheckedAgainstTheirEfficiencyAndNetWidth) {
+  const EggGrid grid = handGrid();
+  std::vector<std::vector<Eigen::Vector3d>> deployed;
+  for (const auto* family : {&grid.u, &grid.v}) {
+    for (const auto& m : *family) deployed.push_back(m.spatial);
+  }
+  deployed[1].clear();
+  for (int k = 0; k <= 8; ++k) {
+    const double phi = -0.2 + 0.05 * k;
+    deployed[1].emplace_back(0.5 * std::sin(phi), 0.1, 0.5 * std::cos(phi));
+  }
+  const auto& lime = materialByName("limewood");
+  const double sigmaRatio = lime.youngs_modulus_pa * 0.001 / (2.0 * 0.5) / lime.bending_strength_pa;
+  auto options = handOptions();
+  options.splice_joint = "scarf";
+  options.scarf_efficiency = 0.8;
+  // 150 mm pieces: u1's scarf ends at 150 and begins at 138 (1:12 over 1 mm), between the slot
+  // (103.5..111.5) and the end hole: the full width carries it.
+  options.sheet_mm = {160.0, 300.0};
+  auto r = fabricate({{0, &grid, deployed}}, options);
+  EXPECT_EQ(r.scarfJoints, 6);
+  EXPECT_EQ(r.splices, 6);
+  const auto& u1 = r.lamellae[1];
+  ASSERT_EQ(u1.segments.size(), 2u);
+  EXPECT_DOUBLE_EQ(u1.segments[0].endMm, 150.0);
+  EXPECT_DOUBLE_EQ(u1.segments[1].startMm, 138.0);
+  EXPECT_NEAR(r.stress[1].scarfRatios[0], sigmaRatio / 0.8, 1e-6);
+  EXPECT_NEAR(r.maxScarfRatio, sigmaRatio / 0.8, 1e-6);
+  EXPECT_EQ(r.maxScarfJoint, "P0-U1 S1");
+  EXPECT_NEAR(r.stress[1].stressRatio, sigmaRatio / 0.8, 1e-6);  // the joint is the weakest place
+  EXPECT_NE(bomCsv(r).find("splice_joint,P0-U1 S1,1,144.00"), std::string::npos) << bomCsv(r);
+  // 120 mm pieces: the scarf runs from the gap before the slot (102) to 120, across the slot: the
+  // net width 10 - 3 mm carries it.
+  options.sheet_mm = {130.0, 300.0};
+  r = fabricate({{0, &grid, deployed}}, options);
+  ASSERT_EQ(r.lamellae[1].segments.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.lamellae[1].segments[0].endMm, 120.0);
+  EXPECT_DOUBLE_EQ(r.lamellae[1].segments[1].startMm, 102.0);
+  EXPECT_NEAR(r.stress[1].scarfRatios[0], sigmaRatio / (0.8 * 0.7), 1e-6);
+  // Plates: no scarf, nothing checked there.
+  options.splice_joint = "plate";
+  r = fabricate({{0, &grid, deployed}}, options);
+  EXPECT_EQ(r.scarfJoints, 0);
+  EXPECT_DOUBLE_EQ(r.stress[1].scarfRatios.at(0), 0.0);
+  EXPECT_NEAR(r.stress[1].stressRatio, sigmaRatio, 1e-6);
+}
+
 TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
   for (const char* tool : {"rsvg-convert", "pdfinfo", "admesh"}) {
     ASSERT_TRUE(testing::haveTool(tool)) << tool << " missing: run scripts/install-deps.sh";

@@ -223,5 +223,93 @@ TEST(LamellaPlan, OverhangTooShortForAnEndSlotIsAnError) {
   EXPECT_THROW(planLamellae({{0, &grid, std::nullopt}}, handOptions()), InvalidInput);
 }
 
+
+// A slot whose cut-out (bolt diameter 16 mm included) runs from lo to hi.
+LamellaFeature slotBetween(double lo, double hi) {
+  LamellaFeature f;
+  f.kind = FeatureKind::Slot;
+  f.xMm = lo + 8.0;
+  f.slideMm = hi - lo - 16.0;
+  return f;
+}
+
+// Gaps of 100 mm between slots (a plate needs 2 x 120): at 5000, 5800, 7250, 8000 and the ends.
+LamellaPlan densePlan() {
+  LamellaPlan plan;
+  plan.id = "P6-U5";
+  plan.lengthMm = 12000.0;
+  for (const auto& [lo, hi] : std::vector<std::pair<double, double>>{
+           {100, 5000}, {5100, 5800}, {5900, 7250}, {7350, 8000}, {8100, 11900}}) {
+    plan.features.push_back(slotBetween(lo, hi));
+  }
+  return plan;
+}
+
+TEST(LamellaPlan, ScarfsJoinStripsWhoseSlotsLeaveNoRoomForAPlate) {
+  LamellaPlan plates = densePlan();
+  EXPECT_THROW(placeSplices(plates, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 120.0), InvalidInput);
+  // 1:12 over 50 mm: scarfs of 600 to 1200 mm whose feather ends lie in gaps (8 mm clear of the
+  // slots). The furthest end within 6000 mm is 5892 (gap 5808..5892), the slope beginning in the
+  // gap 5008..5092 (800 mm); from there, 8092 with the slope from 7342 (750 mm); 4658 mm remain.
+  LamellaPlan plan = densePlan();
+  placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 120.0, "plate_or_scarf", 600.0);
+  ASSERT_EQ(plan.splicesMm.size(), 2u);
+  ASSERT_EQ(plan.segments.size(), 3u);
+  EXPECT_TRUE(plan.spliceIsScarf[0] && plan.spliceIsScarf[1]);
+  EXPECT_DOUBLE_EQ(plan.segments[0].endMm, 5892.0);
+  EXPECT_DOUBLE_EQ(plan.segments[1].startMm, 5092.0);
+  EXPECT_DOUBLE_EQ(plan.segments[1].endMm, 8092.0);
+  EXPECT_DOUBLE_EQ(plan.segments[2].startMm, 7342.0);
+  EXPECT_DOUBLE_EQ(plan.segments[2].endMm, 12000.0);
+  EXPECT_DOUBLE_EQ(plan.splicesMm[0], 5492.0);
+  EXPECT_DOUBLE_EQ(plan.splicesMm[1], 7717.0);
+  EXPECT_DOUBLE_EQ(plan.spliceClearancesMm[0], 8.0);
+  for (const auto& seg : plan.segments) EXPECT_LE(seg.lengthMm(), 6000.0);
+  // No feather end inside a cut-out.
+  for (const auto& seg : plan.segments) {
+    for (const auto& f : plan.features) {
+      for (double end : {seg.startMm, seg.endMm}) EXPECT_FALSE(end > f.minXMm(16.0) && end < f.maxXMm(16.0)) << end;
+    }
+  }
+}
+
+TEST(LamellaPlan, ScarfModeScarfsEverySpliceAndPlateOrScarfKeepsPlatesWhereTheyFit) {
+  LamellaPlan plan;
+  plan.id = "P0-U0";
+  plan.lengthMm = 9000.0;
+  for (double x : {100.0, 4500.0, 8900.0}) {
+    LamellaFeature hole;
+    hole.xMm = x;
+    plan.features.push_back(hole);
+  }
+  LamellaPlan mixed = plan;
+  placeSplices(mixed, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 56.0, "plate_or_scarf", 600.0);
+  ASSERT_EQ(mixed.splicesMm.size(), 1u);
+  EXPECT_FALSE(mixed.spliceIsScarf[0]);
+  EXPECT_DOUBLE_EQ(mixed.splicesMm[0], 6000.0);
+  placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 56.0, "scarf", 600.0);
+  ASSERT_EQ(plan.splicesMm.size(), 1u);
+  EXPECT_TRUE(plan.spliceIsScarf[0]);
+  EXPECT_DOUBLE_EQ(plan.segments[0].endMm, 6000.0);
+  EXPECT_DOUBLE_EQ(plan.segments[1].startMm, 5400.0);  // the shortest scarf: 600 mm
+  EXPECT_THROW(placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 56.0, "glue", 600.0), InvalidInput);
+}
+
+TEST(LamellaPlan, ScarfsThroughASlitEndAtTheStockLength) {
+  // The Yas-like slots 3 m apart leave gaps 3 m apart: no scarf of 600-1200 mm has both ends in
+  // one, so each scarf ends at the stock length (6000, then 11400) and begins 600 mm before it,
+  // through the slots, its clearance zero.
+  LamellaPlan plan = slottedPlan();
+  placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 120.0, "plate_or_scarf", 600.0);
+  ASSERT_EQ(plan.segments.size(), 4u);
+  EXPECT_DOUBLE_EQ(plan.segments[0].endMm, 6000.0);
+  EXPECT_DOUBLE_EQ(plan.segments[1].startMm, 5400.0);
+  EXPECT_DOUBLE_EQ(plan.segments[1].endMm, 11400.0);
+  EXPECT_DOUBLE_EQ(plan.segments[2].startMm, 10800.0);
+  EXPECT_DOUBLE_EQ(plan.segments[2].endMm, 16800.0);
+  EXPECT_DOUBLE_EQ(plan.segments[3].startMm, 16200.0);
+  EXPECT_DOUBLE_EQ(plan.spliceClearancesMm[0], 0.0);  // 6000 sits in a gap (5900..6100) but 5400 in a slot
+}
+
 }  // namespace
 }  // namespace egg::fabrication

@@ -52,6 +52,15 @@ TEST(FabricationOptions, EachBadFieldIsNamed) {
   o.material = "balsa";
   expectFieldError(o, "lamella.material");
   o = {};
+  o.splice_joint = "glue";
+  expectFieldError(o, "fabrication.splice_joint");
+  o = {};
+  o.scarf_slope = 2.0;
+  expectFieldError(o, "fabrication.scarf_slope");
+  o = {};
+  o.scarf_efficiency = 1.5;
+  expectFieldError(o, "fabrication.scarf_efficiency");
+  o = {};
   o.support_block_mm = 10.0;
   expectFieldError(o, "fabrication.support_block_mm");
   o = {};

@@ -92,5 +92,26 @@ TEST(SheetLayout, StickerWithItsSlotCutOut) {
   EXPECT_NEAR(d.texts[0].height, 3.0, 1e-12);
 }
 
+TEST(SheetLayout, StadiumClippedToAPieceIsTheConvexPartInsideIt) {
+  // Slot from x = 0 to 100, radius 8, clipped to 50 .. 200: a U open at x = 50, from -8 to +8.
+  const auto poly = clippedStadium(0.0, 100.0, 8.0, 50.0, 200.0);
+  ASSERT_GE(poly.size(), 4u);
+  double minX = 1e9, maxX = -1e9, minY = 1e9, maxY = -1e9;
+  for (const auto& p : poly) minX = std::min(minX, p.x()), maxX = std::max(maxX, p.x()), minY = std::min(minY, p.y()), maxY = std::max(maxY, p.y());
+  EXPECT_DOUBLE_EQ(minX, 50.0);
+  EXPECT_NEAR(maxX, 108.0, 1e-9);
+  EXPECT_NEAR(minY, -8.0, 1e-9);
+  EXPECT_NEAR(maxY, 8.0, 1e-9);
+  // Area: the 50 x 16 rectangle plus the half disc.
+  double area = 0.0;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const auto& p = poly[i];
+    const auto& q = poly[(i + 1) % poly.size()];
+    area += p.x() * q.y() - q.x() * p.y();
+  }
+  EXPECT_NEAR(std::abs(area) / 2.0, 50.0 * 16.0 + M_PI * 64.0 / 2.0, 0.5);  // 32-gon half circle
+  EXPECT_TRUE(clippedStadium(0.0, 100.0, 8.0, 200.0, 300.0).empty());
+}
+
 }  // namespace
 }  // namespace egg::fabrication

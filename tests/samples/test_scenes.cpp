@@ -39,10 +39,11 @@ void expectDesignKeys(const json& scene) {
       {"patching", {"workflow", "eta_max", "slope_bounds", "max_patch_size_m", "patches"}},
       {"grid", {"members_per_family", "map_resolution", "alpha_bar", "min_planar_angle_rad"}},
       {"lamella", {"width_m", "thickness_m", "material"}},
-      {"simulation", {"enabled", "gravity", "friction_mu", "notches"}},
-      // stock_length_mm: beyond DESIGN.md, documented in the README (architectural lamellas are
-      // spliced from long stock, Section 3.5).
-      {"fabrication", {"enabled", "sheet_mm", "bolt_diameter_mm", "stock_length_mm"}}};
+      // join_patches, stock_length_mm, splice_joint: beyond DESIGN.md, documented in the README
+      // (architectural lamellas are spliced from long stock, Section 3.5; the Yas canopy's slots
+      // merge into slits that only a glued scarf can join, and its joined run is too large).
+      {"simulation", {"enabled", "gravity", "friction_mu", "notches", "join_patches"}},
+      {"fabrication", {"enabled", "sheet_mm", "bolt_diameter_mm", "stock_length_mm", "splice_joint"}}};
   ASSERT_TRUE(scene.contains("surface"));
   for (const auto& [section, keys] : sections) {
     if (scene.contains(section)) expectOnlyKeys(scene[section], keys, section);

@@ -186,6 +186,8 @@ nlohmann::json joinedSection(const JoinedRun& joined) {
   j["max_sag_m"] = run.maxSag_m;  // under self-weight, from the start state (warm) or the weightless equilibrium
   j["max_sag_from"] = joined.warmStart ? "patch_by_patch_equilibria" : "weightless_equilibrium";
   j["unknowns"] = run.unknowns;
+  j["factorisations"] = run.solver.factorisations;        // Cholesky, shift trials included
+  j["energy_evaluations"] = run.solver.energyEvaluations;  // line-search trials
   j["status"] = rods::toString(run.solver.status);
   if (!joined.simulation->converged) j["reason"] = joined.simulation->reason;
   if (run.deviation) {

@@ -324,6 +324,8 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
                {"gradient_norm_n_nm", sim.deployed.solver.gradientNorm},  // over positions (N) and twists (N m)
                {"decrement_j", sim.deployed.solver.decrement},            // last Newton decrement g^T H^-1 g
                {"unknowns", sim.deployed.unknowns},
+               {"factorisations", sim.deployed.solver.factorisations},      // Cholesky, shift trials included
+               {"energy_evaluations", sim.deployed.solver.energyEvaluations},  // line-search trials
                {"seconds", sim.seconds}};
     // Under self-weight, how far the grid sagged from its weightless equilibrium (a "collapsed"
     // status means it fell through: Section 3.5.2, Fig. 3.11).

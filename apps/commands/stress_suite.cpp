@@ -129,16 +129,20 @@ json meshScene(const std::string& name) {
   s["surface"] = {{"file", "mesh.obj"}};
   return s;
 }
-// A bump at span f metres: every length scales, the lamella too (w:t stays 10).
+// A bump at span 10 f metres: every length scales, the lamella too (w:t stays 10). Eight members
+// per family at every scale: "auto" spaces members 8 widths apart, so this 20 mm lamella would
+// get ~60 per family (30k unknowns per patch: tens of seconds at any scale, which an earlier
+// session took for a scale effect; 1.5k unknowns here, 3-5 s for the whole run at 0.1, 10 and
+// 220 m alike, 1.4-1.8 factorisations per Newton iteration at each).
 json scaledScene(const std::string& name, double f) {
   json s = baseScene(name);
+  s["grid"]["members_per_family"] = 8;
   s["surface"]["params"] = {{"length", 10 * f}, {"width", 10 * f}, {"height", 2 * f}, {"sigma", 2 * f}};
   s["surface"]["edge_length_m"] = 0.4 * f;
   s["patching"]["max_patch_size_m"] = 15 * f;
   s["lamella"]["width_m"] = 0.02 * f;
   s["lamella"]["thickness_m"] = 0.002 * f;
   s["fabrication"] = {{"enabled", false}};  // an 8 mm bolt does not fit a 2 mm lamella
-  s["simulation"]["time_limit_s"] = 20.0;
   s["outputs"] = {"report"};
   return s;
 }
@@ -169,11 +173,8 @@ std::vector<PipelineStressCase> pipelineStressCases() {
     s["lamella"]["material"] = "steel_s235";
     add("E_210GPa_steel", "youngs_modulus", "bump 10 m, steel S235 E 210 GPa", s);
   }
-  // The scaled bumps are slow to simulate (0.1 m: 100 s against 1 s at 10 m on 2 loaded cores;
-  // 220 m: over 400 s, not yet understood): each solve gets the scene's own hang guard of 20 s
-  // (simulation.time_limit_s), which then stops it with that reason, within the case's limit.
-  add("scale_0.1m", "scale", "bump 0.1 m, lamella 0.2 x 0.02 mm (all lengths x 0.01)", scaledScene("s01", 0.01)).timeLimit_s = 240.0;
-  add("scale_220m", "scale", "bump 220 m, lamella 440 x 44 mm (all lengths x 22)", scaledScene("s220", 22.0)).timeLimit_s = 240.0;
+  add("scale_0.1m", "scale", "bump 0.1 m, lamella 0.2 x 0.02 mm (all lengths x 0.01)", scaledScene("s01", 0.01));
+  add("scale_220m", "scale", "bump 220 m, lamella 440 x 44 mm (all lengths x 22)", scaledScene("s220", 22.0));
   {
     json s = baseScene("flat");
     s["surface"]["params"]["height"] = 0.01;

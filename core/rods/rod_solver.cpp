@@ -231,6 +231,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
         Eigen::VectorXd second;
         // std::async, not a bare thread: an exception on either side propagates (get() rethrows
         // the worker's; if the first attempt throws, the future's destructor waits for the worker).
+        result.factorisations += 2;
         auto other = std::async(std::launch::async, [&]() { return attempt(1, trials[k + 1], second); });
         const bool firstOk = attempt(0, trials[k], direction);
         const bool secondOk = other.get();
@@ -244,6 +245,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
         }
         k += 2;
       } else {
+        ++result.factorisations;
         if (attempt(0, trials[k], direction)) {
           factored = true;
           shift = trials[k];
@@ -280,6 +282,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     Eigen::VectorXd candidate;
     for (int tries = 0; tries < 60 && alpha > 1e-14; ++tries) {
       candidate = z + alpha * step;
+      ++result.energyEvaluations;
       const double e = model.energy(candidate);
       if (std::isfinite(e) && e <= energy - 1e-4 * alpha * result.decrement) {
         accepted = true;
@@ -306,7 +309,7 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
   options.validate();
   const auto start = Clock::now();
   const double finalFactor = model.stiffTermsFactor();
-  int iterations = 0, switches = 0;
+  int iterations = 0, switches = 0, factorisations = 0, evaluations = 0;
   if (options.stiffnessContinuation) {
     SolverOptions stage = options;
     stage.tolerance = std::max(options.tolerance, 1e-6);  // warm starts only: no need to be exact
@@ -315,12 +318,17 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
       const SolverResult r = newton(model, stage, start, iterations);
       iterations = r.iterations;
       switches += r.boltEdgeSwitches;
+      factorisations += r.factorisations;
+      evaluations += r.energyEvaluations;
       if (r.status == SolverStatus::TimeLimit || r.status == SolverStatus::NonFinite ||
           iterations >= options.maxIterations) {
         model.setStiffTermsFactor(finalFactor);
         SolverResult out = r;
         out.converged = false;
         out.reason = "during stiffness continuation: " + r.reason;
+        out.boltEdgeSwitches = switches;
+        out.factorisations = factorisations;
+        out.energyEvaluations = evaluations;
         return out;
       }
     }
@@ -328,6 +336,8 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
   }
   SolverResult result = newton(model, options, start, iterations);
   result.boltEdgeSwitches += switches;
+  result.factorisations += factorisations;
+  result.energyEvaluations += evaluations;
   return result;
 }
 

@@ -43,6 +43,8 @@ struct SolverResult {
   double decrement = 0.0;      // last Newton decrement, J
   double seconds = 0.0;
   int boltEdgeSwitches = 0;    // reprojections of sliding bolts onto neighbouring edges
+  int factorisations = 0;      // Cholesky factorisations (shift trials included)
+  int energyEvaluations = 0;   // line-search trials
 };
 
 // Runs Newton from the model's current state and leaves the model at the last accepted state

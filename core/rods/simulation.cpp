@@ -54,7 +54,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   const int steps = options.model.gravity ? options.gravitySteps : 0;
   const bool fromStart = options.model.gravity && steps == 0;  // sag measured from the start state
   SolverOptions solverOptions = options.solver;
-  int iterations = 0, switches = 0;
+  int iterations = 0, switches = 0, factorisations = 0, evaluations = 0;
   std::vector<Eigen::Vector3d> weightless;  // vertices at the weightless equilibrium (or the start)
   double extent = 0.0;                      // its bounding-box diagonal
   auto recordReference = [&]() {
@@ -88,6 +88,8 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     solverOptions.stiffnessContinuation = false;
     iterations = run.solver.iterations += iterations;
     switches = run.solver.boltEdgeSwitches += switches;
+    factorisations = run.solver.factorisations += factorisations;
+    evaluations = run.solver.energyEvaluations += evaluations;
     if (run.solver.status == SolverStatus::IterationLimit) {
       run.solver.reason = format("no convergence in %d iterations (decrement %.3g J)", iterations, run.solver.decrement);
     }

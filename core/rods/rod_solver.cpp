@@ -34,6 +34,7 @@ void SolverOptions::validate() const {
   if (!(continuationStart > 0.0 && continuationStart <= 1.0)) {
     throw InvalidInput("SolverOptions.continuationStart must be in (0, 1]");
   }
+  if (observeEvery < 1) throw InvalidInput("SolverOptions.observeEvery must be >= 1");
 }
 
 const char* toString(SolverStatus status) {
@@ -133,8 +134,38 @@ class FreeHessian {
   std::vector<double> base_;
 };
 
+// The calls of SolverOptions::observer of one minimiseEnergy, with their count and cost (which the
+// progress' seconds leave out, so that an error-against-time record does not count its own measuring).
+class Observation {
+ public:
+  Observation(const SolverObserver& observer, Clock::time_point start) : observer_(observer), start_(start) {}
+  void operator()(const RodModel& model, int iteration, double energy, bool last) {
+    if (!observer_) return;
+    const auto before = Clock::now();
+    SolverProgress progress;
+    progress.iteration = iteration;
+    progress.seconds = std::chrono::duration<double>(before - start_).count() - seconds_;
+    progress.energy = energy;
+    progress.last = last;
+    observer_(progress, model);
+    ++calls_;
+    seconds_ += std::chrono::duration<double>(Clock::now() - before).count();
+  }
+  void record(SolverResult& result) const {
+    result.observations = calls_;
+    result.observerSeconds = seconds_;
+  }
+
+ private:
+  const SolverObserver& observer_;
+  Clock::time_point start_;
+  int calls_ = 0;
+  double seconds_ = 0.0;
+};
+
 // Newton with line search on the model as it is (one stage of the continuation).
-SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_point start, int iterationsBefore) {
+SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_point start, int iterationsBefore,
+                    Observation& observe) {
   auto elapsed = [&]() { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
   const int n = model.dofCount();
@@ -269,6 +300,10 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       return result;
     }
 
+    // This state is left by a step: the observer sees it now (states returned with are seen by
+    // minimiseEnergy), so every state is reported once.
+    if (result.iterations % options.observeEvery == 0) observe(model, result.iterations, energy, false);
+
     // Backtracking line search (Armijo), first limited so sliding bolts stay inside their
     // barriers (fraction to the boundary).
     Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
@@ -305,6 +340,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
 SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
   options.validate();
   const auto start = Clock::now();
+  Observation observe(options.observer, start);
   const double finalFactor = model.stiffTermsFactor();
   int iterations = 0, switches = 0;
   if (options.stiffnessContinuation) {
@@ -312,7 +348,7 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
     stage.tolerance = std::max(options.tolerance, 1e-6);  // warm starts only: no need to be exact
     for (double factor = options.continuationStart; factor < 0.99; factor *= 10.0) {
       model.setStiffTermsFactor(factor * finalFactor);
-      const SolverResult r = newton(model, stage, start, iterations);
+      const SolverResult r = newton(model, stage, start, iterations, observe);
       iterations = r.iterations;
       switches += r.boltEdgeSwitches;
       if (r.status == SolverStatus::TimeLimit || r.status == SolverStatus::NonFinite ||
@@ -321,13 +357,17 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
         SolverResult out = r;
         out.converged = false;
         out.reason = "during stiffness continuation: " + r.reason;
+        observe(model, out.iterations, out.energy, true);
+        observe.record(out);
         return out;
       }
     }
     model.setStiffTermsFactor(finalFactor);
   }
-  SolverResult result = newton(model, options, start, iterations);
+  SolverResult result = newton(model, options, start, iterations, observe);
   result.boltEdgeSwitches += switches;
+  observe(model, result.iterations, result.energy, true);
+  observe.record(result);
   return result;
 }
 

@@ -87,6 +87,11 @@ std::string errorTimeSvg(const std::string& id, const std::string& title, const 
         points += fmt::format("{}{:.2f},{:.2f}", points.empty() ? "" : " ", f.px(p.seconds), f.py(panel == 0 ? p.rmse_m : p.max_m));
       svg += fmt::format("<polyline id=\"{}-{}-{}\" points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", escapeXml(id),
                          panel == 0 ? "rmse" : "max", k, points, kPalette[k % 10]);
+      // The samples themselves: the line between them is no measurement.
+      for (const auto& p : drawn[k]->samples)
+        svg += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"1.8\" fill=\"{}\"/>", f.px(p.seconds),
+                           f.py(panel == 0 ? p.rmse_m : p.max_m), kPalette[k % 10]);
+      svg += "\n";
     }
   }
   for (size_t k = 0; k < drawn.size(); ++k) {

@@ -60,6 +60,11 @@ TEST(ErrorTimePlot, KnownSamplesPlotToKnownCoordinates) {
             fmt::format("64.00,240.00 214.00,{:.2f} 364.00,{:.2f}", 240.0 - 200.0 * 0.05 / 0.108, 240.0 - 200.0 * 0.1 / 0.108));
   EXPECT_EQ(attribute(svg, "error-time-test-max-0", "points"),
             fmt::format("454.00,240.00 604.00,{:.2f} 754.00,{:.2f}", 240.0 - 200.0 * 0.2 / 0.54, 40.0 + 200.0 * (1.0 - 0.5 / 0.54)));
+  // Each sample a dot, in both panels: (1 s, 0.2 m) in the max panel.
+  size_t dots = 0;
+  for (size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) ++dots;
+  EXPECT_EQ(dots, 6u);
+  EXPECT_NE(svg.find(fmt::format("<circle cx=\"604.00\" cy=\"{:.2f}\"", 240.0 - 200.0 * 0.2 / 0.54)), std::string::npos);
   // The empty series is not drawn and not in the legend.
   EXPECT_EQ(attribute(svg, "error-time-test-rmse-1", "points"), "<none>");
   EXPECT_EQ(svg.find("patch 1"), std::string::npos);

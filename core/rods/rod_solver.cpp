@@ -139,17 +139,21 @@ class FreeHessian {
 class Observation {
  public:
   Observation(const SolverObserver& observer, Clock::time_point start) : observer_(observer), start_(start) {}
-  void operator()(const RodModel& model, int iteration, double energy, bool last) {
+  // `reached`: when the model got to this state (seconds since start, observer calls included).
+  void operator()(const RodModel& model, int iteration, double energy, bool last, double reached) {
     if (!observer_) return;
     const auto before = Clock::now();
     SolverProgress progress;
     progress.iteration = iteration;
-    progress.seconds = std::chrono::duration<double>(before - start_).count() - seconds_;
+    progress.seconds = reached - seconds_;
     progress.energy = energy;
     progress.last = last;
     observer_(progress, model);
     ++calls_;
     seconds_ += std::chrono::duration<double>(Clock::now() - before).count();
+  }
+  void last(const RodModel& model, const SolverResult& result) {
+    (*this)(model, result.iterations, result.energy, true, std::chrono::duration<double>(Clock::now() - start_).count());
   }
   void record(SolverResult& result) const {
     result.observations = calls_;
@@ -187,6 +191,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
   double shift = 0.0;  // relative diagonal shift that last made the Hessian positive definite
 
   for (int iteration = 0;; ++iteration) {
+    const double reached = elapsed();
     const Eigen::VectorXd z = model.state();
     const double energy = model.derivatives(z, gradient, triplets, options.threads);
     Eigen::VectorXd g(freeCount);
@@ -300,10 +305,6 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       return result;
     }
 
-    // This state is left by a step: the observer sees it now (states returned with are seen by
-    // minimiseEnergy), so every state is reported once.
-    if (result.iterations % options.observeEvery == 0) observe(model, result.iterations, energy, false);
-
     // Backtracking line search (Armijo), first limited so sliding bolts stay inside their
     // barriers (fraction to the boundary).
     Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
@@ -331,6 +332,9 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
                                   result.decrement, energyScale);
       return result;
     }
+    // The state z is left by this step: the observer sees it now, before the model moves on (the
+    // state a call returns with is seen by minimiseEnergy), so every state is reported once.
+    if (result.iterations % options.observeEvery == 0) observe(model, result.iterations, energy, false, reached);
     result.boltEdgeSwitches += model.accept(candidate);
   }
 }
@@ -357,7 +361,7 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
         SolverResult out = r;
         out.converged = false;
         out.reason = "during stiffness continuation: " + r.reason;
-        observe(model, out.iterations, out.energy, true);
+        observe.last(model, out);
         observe.record(out);
         return out;
       }
@@ -366,7 +370,7 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
   }
   SolverResult result = newton(model, options, start, iterations, observe);
   result.boltEdgeSwitches += switches;
-  observe(model, result.iterations, result.energy, true);
+  observe.last(model, result);
   observe.record(result);
   return result;
 }

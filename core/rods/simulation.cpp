@@ -59,6 +59,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   // Error against run time: the solver's observer, shifted to the run's iterations and clock (a
   // load step's minimiseEnergy counts from zero), measures the contact points when asked.
   double observing = 0.0;  // seconds spent in the observer so far, left out of the samples' clock
+  double callStart = 0.0;  // the current load step's minimiseEnergy started then (run clock, measuring left out)
   int lastObserved = -1;   // a load step starts at the state the previous one ended with: seen already
   const bool recordHistory = options.historyEvery > 0 && surface;
   if (recordHistory || options.solver.observer) {
@@ -69,7 +70,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
       const auto before = std::chrono::steady_clock::now();
       SolverProgress shifted = progress;
       shifted.iteration += iterations;
-      shifted.seconds = std::chrono::duration<double>(before - start).count() - observing;
+      shifted.seconds = callStart + progress.seconds;
       if (recordHistory) {
         std::vector<Eigen::Vector3d> contact;
         for (int r = 0; r < observed.rodCount(); ++r)
@@ -111,6 +112,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     solverOptions.timeLimit_s = std::max(1e-3, options.solver.timeLimit_s - spent);
     solverOptions.maxIterations = std::max(1, options.solver.maxIterations - iterations);
+    callStart = spent - observing;
     run.solver = minimiseEnergy(model, solverOptions);
     // Later load steps start next to an equilibrium: no need to soften the stiff terms again.
     solverOptions.stiffnessContinuation = false;

@@ -65,7 +65,7 @@ CladdingCurve curveFrom(const json& j, const std::string& family, const std::str
 }
 
 const char* kColours[2] = {"#1f77b4", "#ff7f0e"};  // u blue, v orange, as the planar grids (writePlanarSvg)
-constexpr double kColumn = 340.0, kLeft = 58.0, kCurveTop = 40.0, kCurveSize = 250.0, kSlopeTop = 340.0, kSlopeHeight = 110.0;
+constexpr double kColumn = 320.0, kLeft = 58.0, kCurveTop = 40.0, kCurveSize = 250.0, kSlopeTop = 340.0, kSlopeHeight = 110.0;
 constexpr double kWidth = 2 * kColumn + 20.0, kHeight = 500.0;
 
 }  // namespace

@@ -44,7 +44,7 @@ TEST(CladdingPlot, FramesMapMetresAndLogSlopesToKnownPixels) {
   EXPECT_DOUBLE_EQ(u.px(10.0), 308.0);
   EXPECT_DOUBLE_EQ(u.py(0.0), 290.0);
   EXPECT_DOUBLE_EQ(u.py(20.0), 40.0);
-  EXPECT_DOUBLE_EQ(v.px(0.0), 58.0 + 340.0);  // the v panel one column to the right
+  EXPECT_DOUBLE_EQ(v.px(0.0), 58.0 + 320.0);  // the v panel one column to the right
   // The slope strip: log axis from k_min / 4 to 4 k_max, 110 px high from y = 340; slope 1 sits
   // in the middle of the symmetric range [0.025, 40] (log10: -1.602 .. 1.602).
   const PlotFrame s = slopeFrame(plot.u, 0, 0.1, 10.0);
@@ -61,7 +61,7 @@ TEST(CladdingPlot, KnownPiecewiseLinearFunctionPlotsToKnownCoordinates) {
   EXPECT_EQ(svg.rfind("<svg id=\"cladding-patch-7\" class=\"chart\"", 0), 0u);
   // (0,0) (5 m, 5 m) (5 m, 10 m) (10 m, 20 m): x = 58 + 25 x, y = 290 - 12.5 y.
   EXPECT_EQ(attribute(svg, "patch-7-u-curve", "points"), "58.00,290.00 183.00,227.50 183.00,165.00 308.00,40.00");
-  EXPECT_EQ(attribute(svg, "patch-7-v-curve", "points"), "398.00,290.00 648.00,40.00");
+  EXPECT_EQ(attribute(svg, "patch-7-v-curve", "points"), "378.00,290.00 628.00,40.00");
   // Slopes 0.5 on [0, 5 m] and 1 on [5 m, 10 m] inside the band; the vertical segment (c dx2 =
   // 2500) outside it, in the violations path at the strip's top.
   const PlotFrame s = slopeFrame(plot.u, 0, 0.1, 10.0);

@@ -40,6 +40,11 @@ std::vector<rods::DeviationSample> historyFromJson(const json& history, const st
 namespace {
 constexpr double kPanelLeft = 64.0, kPanelWidth = 300.0, kPanelGap = 90.0, kTop = 40.0, kHeight = 200.0;
 const char* kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+// Ten colours, then the same dashed, then dotted: 30 series stay apart (Yas and Lilium have 12-16 patches).
+const char* dashes(size_t series) {
+  static const char* kDashes[] = {"", " stroke-dasharray=\"6 3\"", " stroke-dasharray=\"2 2\""};
+  return kDashes[(series / 10) % 3];
+}
 }  // namespace
 
 PlotFrame errorTimeFrame(int panel, const std::vector<ErrorTimeSeries>& series) {
@@ -85,8 +90,8 @@ std::string errorTimeSvg(const std::string& id, const std::string& title, const 
       std::string points;
       for (const auto& p : drawn[k]->samples)
         points += fmt::format("{}{:.2f},{:.2f}", points.empty() ? "" : " ", f.px(p.seconds), f.py(panel == 0 ? p.rmse_m : p.max_m));
-      svg += fmt::format("<polyline id=\"{}-{}-{}\" points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", escapeXml(id),
-                         panel == 0 ? "rmse" : "max", k, points, kPalette[k % 10]);
+      svg += fmt::format("<polyline id=\"{}-{}-{}\" points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{}/>\n", escapeXml(id),
+                         panel == 0 ? "rmse" : "max", k, points, kPalette[k % 10], dashes(k));
       // The samples themselves: the line between them is no measurement.
       for (const auto& p : drawn[k]->samples)
         svg += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"1.8\" fill=\"{}\"/>", f.px(p.seconds),
@@ -96,9 +101,9 @@ std::string errorTimeSvg(const std::string& id, const std::string& title, const 
   }
   for (size_t k = 0; k < drawn.size(); ++k) {
     const double x = kPanelLeft + 110.0 * static_cast<double>(k % 6), y = kTop + kHeight + 50.0 + 16.0 * static_cast<double>(k / 6);
-    svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"{3}\" stroke-width=\"2\"/>"
+    svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"{3}\" stroke-width=\"2\"{7}/>"
                        "<text x=\"{4:.1f}\" y=\"{5:.1f}\">{6}</text>\n",
-                       x, y - 4.0, x + 18.0, kPalette[k % 10], x + 22.0, y, escapeXml(drawn[k]->label));
+                       x, y - 4.0, x + 18.0, kPalette[k % 10], x + 22.0, y, escapeXml(drawn[k]->label), dashes(k));
   }
   return svg + "</svg>\n";
 }

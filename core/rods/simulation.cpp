@@ -181,6 +181,7 @@ SimulationResult simulateGrid(const RodNetwork& network, const TriMesh& surface,
   if (options.compareWithoutNotches && options.model.notches) {
     SimulationOptions plain = options;
     plain.model.notches = false;
+    plain.historyEvery = 0;  // the error against run time is the deployed run's (a comparison needs only its end)
     result.withoutNotches = simulateRods(network, &distance, plain);
     if (!result.withoutNotches->solver.converged) {
       if (result.converged) result.reason = "run without notches: " + result.withoutNotches->solver.reason;

@@ -66,7 +66,7 @@ struct SimulationRun {
 
 struct SimulationResult {
   SimulationRun deployed;                      // with notches as options.model.notches says
-  std::optional<SimulationRun> withoutNotches; // plain holes (when compareWithoutNotches)
+  std::optional<SimulationRun> withoutNotches; // plain holes (when compareWithoutNotches), without history
   bool converged = false;                      // every run converged
   std::string reason;                          // first non-convergence reason, if any
   double seconds = 0.0;

@@ -71,5 +71,15 @@ TEST(ErrorTimePlot, KnownSamplesPlotToKnownCoordinates) {
   EXPECT_NE(svg.find(">patch 0<"), std::string::npos);
 }
 
+TEST(ErrorTimePlot, SeriesBeyondTenColoursAreDashed) {
+  std::vector<ErrorTimeSeries> series;
+  for (int k = 0; k < 12; ++k) series.push_back({"patch " + std::to_string(k), samples()});
+  const std::string svg = errorTimeSvg("e", "twelve", series);
+  const std::regex first("id=\"e-rmse-0\"[^>]*stroke=\"#1f77b4\" stroke-width=\"1.5\"/>");
+  const std::regex eleventh("id=\"e-rmse-10\"[^>]*stroke=\"#1f77b4\" stroke-width=\"1.5\" stroke-dasharray=\"6 3\"/>");
+  EXPECT_TRUE(std::regex_search(svg, first));
+  EXPECT_TRUE(std::regex_search(svg, eleventh));
+}
+
 }  // namespace
 }  // namespace egg::app

@@ -237,6 +237,20 @@ TEST(Simulation, HistoryRecordsTheErrorFromTheGuessToTheFinalState) {
   EXPECT_LT(run.historySeconds, run.solver.seconds);
 }
 
+// The stage keeps the history of the deployed run only: the run without notches is a comparison of ends.
+TEST(Simulation, HistoryIsTheDeployedRunsOnly) {
+  const SampleGrid grid = smallVault();
+  SimulationOptions options;
+  options.compareWithoutNotches = true;
+  options.historyEvery = 5;
+  const SimulationResult result = simulateGrid(grid.network, grid.surface, options);
+  ASSERT_TRUE(result.withoutNotches.has_value());
+  ASSERT_GE(result.deployed.history.size(), 2u);
+  EXPECT_EQ(result.deployed.history.back().rmse_m, result.deployed.deviation->rmse_m);
+  EXPECT_TRUE(result.withoutNotches->history.empty());
+  EXPECT_EQ(result.withoutNotches->solver.observations, 0);
+}
+
 // Under self-weight in two load steps: the load steps' ends are sampled, a step's start (the state
 // the previous one ended with) is not sampled twice, and the last sample is still the final state.
 TEST(Simulation, HistoryAcrossLoadStepsSamplesEachStateOnce) {

@@ -160,9 +160,10 @@ std::string panel(const CladdingCurve& curve, int column, const CladdingPlot& pl
                        s.left + s.width, bound ? "#2e7d32" : "#bbb", bound ? " stroke-dasharray=\"5 3\"" : "");
     svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.2f}\" text-anchor=\"end\">{:g}</text>\n", s.left - 5.0, s.py(k) + 4.0, k);
   }
-  svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"#2e7d32\">k_max</text>"
-                     "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"#2e7d32\">k_min</text>\n",
-                     s.left + s.width + 3.0, s.py(plot.slopeMax) + 4.0, s.left + s.width + 3.0, s.py(plot.slopeMin) + 4.0);
+  // Labels inside the strip, just above their lines (the right column has no margin beyond it).
+  svg += fmt::format("<text x=\"{0:.1f}\" y=\"{1:.1f}\" font-size=\"10\" fill=\"#2e7d32\" text-anchor=\"end\">k_max</text>"
+                     "<text x=\"{0:.1f}\" y=\"{2:.1f}\" font-size=\"10\" fill=\"#2e7d32\" text-anchor=\"end\">k_min</text>\n",
+                     s.left + s.width - 3.0, s.py(plot.slopeMax) - 3.0, s.py(plot.slopeMin) - 3.0);
   std::string inside, outside;
   for (const auto& [a, b, k] : claddingSlopes(curve, plot.infiniteSlopeFactor)) {
     const bool ok = k > plot.slopeMin && k < plot.slopeMax;

@@ -1,5 +1,6 @@
 #include "apps/commands/joined_stage.hpp"
 
+#include "apps/commands/error_time_plot.hpp"
 #include "apps/commands/grid_to_rods.hpp"
 #include "core/errors.hpp"
 #include "core/materials/materials.hpp"
@@ -152,6 +153,7 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
     options.solver.timeLimit_s = scene.simulation.time_limit_s;
     options.compareWithoutNotches = false;  // RMS1/RMS2 stay a per-patch figure
     options.scaleFactor = boundingBox(surface).size().norm();
+    options.historyEvery = kErrorHistoryEvery;
     if (out.warmStart) {
       options.gravitySteps = 0;                        // the start carries its weight already
       options.solver.stiffnessContinuation = false;   // and is no far-off guess to soften towards
@@ -196,6 +198,8 @@ nlohmann::json joinedSection(const JoinedRun& joined) {
     j["nrmse"] = run.deviation->nrmse;
     j["nrmse_normalised_by"] = "surface bounding-box diagonal";
   }
+  j["history"] = historyJson(run.history);  // error against run time (issue 18)
+  j["history_measuring_s"] = run.historySeconds;
   return j;
 }
 

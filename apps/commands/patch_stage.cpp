@@ -1,5 +1,6 @@
 #include "apps/commands/patch_stage.hpp"
 
+#include "apps/commands/error_time_plot.hpp"
 #include "apps/commands/grid_to_rods.hpp"
 #include "apps/commands/report.hpp"
 #include "core/egg/grid_io.hpp"
@@ -177,6 +178,7 @@ rods::SimulationOptions simulationOptions(const Scene& scene, const EggResult& e
   // NRMSE of Section 3.5.2 divides by a scale; we use the patch's bounding-box diagonal so that
   // the figure compares patches and scenes of any size.
   options.scaleFactor = patchDiagonal(egg);
+  options.historyEvery = kErrorHistoryEvery;
   return options;
 }
 
@@ -338,6 +340,9 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
       nrmseWorst = std::max(nrmseWorst, d.nrmse);
       entry.update({{"rmse_m", d.rmse_m}, {"max_error_m", d.max_m}, {"nrmse", d.nrmse}});
     }
+    // Error against run time (issue 18): the deployed run's deviation every few iterations.
+    entry["history"] = historyJson(sim.deployed.history);
+    entry["history_measuring_s"] = sim.deployed.historySeconds;
     if (sim.withoutNotches && sim.withoutNotches->deviation) {
       const auto& d = *sim.withoutNotches->deviation;
       sumSquaresPlain += d.rmse_m * d.rmse_m * d.points;

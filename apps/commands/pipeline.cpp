@@ -1,5 +1,6 @@
 #include "apps/commands/pipeline.hpp"
 
+#include "apps/commands/cladding_plot.hpp"
 #include "apps/commands/deviation_plan.hpp"
 #include "apps/commands/fabrication_stage.hpp"
 #include "apps/commands/joined_stage.hpp"
@@ -194,6 +195,16 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
       entry["eta_v"] = designed.design->uniqueness.etaV;
       entry["alpha_bar_rad"] = designed.design->alphaBar.alphaBar;
       entry["area_m2"] = designed.design->patch.area;
+    }
+    if (p.egg && designed.design) {
+      // F_u, F_v with their members and the slope band they were kept in (Sections 2.4.3, 2.4.4).
+      const EggResult& egg = *p.egg;
+      const AlphaBarOptions& bounds = designed.design->options.alphaBar;
+      const auto sides = [&](Family f) {
+        return std::array<double, 2>{familySideLength(egg.patch, f, false), familySideLength(egg.patch, f, true)};
+      };
+      entry["cladding"] = claddingEntry(egg.alphaBar.claddingU, egg.alphaBar.claddingV, egg.membersU, egg.membersV, sides(Family::U),
+                                        sides(Family::V), bounds.slopeMin, bounds.slopeMax, bounds.cladding.infiniteSlopeFactor);
     }
     report.section("patches").push_back(entry);
     if (!designed.feasible() || (needs.grid && !p.egg))

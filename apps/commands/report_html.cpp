@@ -1,5 +1,7 @@
 #include "apps/commands/report_html.hpp"
 
+#include "apps/commands/cladding_plot.hpp"
+#include "apps/commands/error_time_plot.hpp"
 #include "apps/commands/report.hpp"
 #include "apps/commands/svg_png.hpp"
 #include "core/errors.hpp"
@@ -134,6 +136,45 @@ std::string patchGridsSection(const std::vector<std::pair<int, std::string>>& pl
     out += fmt::format("<figure class=\"figure\" style=\"display:inline-block;margin:4px\">{}<figcaption>patch {}</figcaption></figure>\n",
                        svg, id);
   }
+  return out;
+}
+
+// Each traced patch's F_u and F_v (Sections 2.4.3, 2.4.4) from report.json patches[].cladding.
+std::string claddingSection(const json& report) {
+  std::string out = "<h2 id=\"cladding\">Cladding functions</h2>\n";
+  std::string figures;
+  for (const auto& p : at(report, "patches")) {
+    const auto plot = claddingFromReport(p);
+    if (plot) figures += "<div class=\"figure\" style=\"margin:4px\">\n" + claddingSvg(*plot) + "</div>\n";
+  }
+  if (figures.empty()) return out + "<p class=\"missing\">No cladding functions: no patch grid was traced.</p>\n";
+  return out +
+         "<p>F pairs a member's start on one side of the patch with its end on the opposite side (Section 2.4.3); the dots are the "
+         "members. Below each, the slopes of F's segments (dx<sub>2</sub>/dx<sub>1</sub> of the side parameters, log scale) against "
+         "the band (k<sub>min</sub>, k<sub>max</sub>) of patching.slope_bounds that Problem 2.3 keeps them in; red: outside.</p>\n" +
+         figures;
+}
+
+// The error of each simulation run against its wall time (simulation.patches[].history, joined.history).
+std::string errorTimeSection(const json& report) {
+  std::string out = "<h2 id=\"error-time\">Simulation: error against run time</h2>\n";
+  const json sim = at(report, "simulation");
+  std::vector<ErrorTimeSeries> patches;
+  for (const auto& p : at(sim, "patches"))
+    if (at(p, "history").is_array() && !p["history"].empty())
+      patches.push_back({"patch " + at(p, "patch").dump(), historyFromJson(p["history"], "simulation.patches[].history")});
+  const json joined = at(sim, "joined");
+  const bool joinedHistory = at(joined, "history").is_array() && !joined["history"].empty();
+  if (patches.empty() && !joinedHistory)
+    return out + "<p class=\"missing\">No error history: the simulation did not run.</p>\n";
+  out += fmt::format("<p>RMSE and largest distance of the contact points from the design surface while Newton runs (every {} "
+                     "iteration{} and at the end of every load step), against the run's wall time without the time spent measuring.</p>\n",
+                     kErrorHistoryEvery, kErrorHistoryEvery == 1 ? "" : "s");
+  if (!patches.empty())
+    out += errorTimeSvg("error-time-patches", "Patch by patch (each patch's own clock; the patches run in parallel)", patches);
+  if (joinedHistory)
+    out += errorTimeSvg("error-time-joined", "Joined structure (from the patch-by-patch equilibria when they converged)",
+                        {{"joined", historyFromJson(joined["history"], "simulation.joined.history")}});
   return out;
 }
 
@@ -301,8 +342,8 @@ std::string reportHtml(const json& report, const std::string& planSvg, const std
     for (const auto& w : warnings) html += "<li>" + escapeXml(w) + "</li>\n";
     html += "</ul></details></div>\n";
   }
-  html += stageTimes(report) + planSection(planSvg) + patchesSection(report) + patchGridsSection(planarSvgs) + simulationSection(report) +
-          deployedSection(deployedSvg) +
+  html += stageTimes(report) + planSection(planSvg) + patchesSection(report) + patchGridsSection(planarSvgs) + claddingSection(report) +
+          simulationSection(report) + errorTimeSection(report) + deployedSection(deployedSvg) +
           fabricationSection(report) + bomSection(bomCsv);
   return html + "</body>\n</html>\n";
 }

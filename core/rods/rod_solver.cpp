@@ -34,6 +34,7 @@ void SolverOptions::validate() const {
   if (!(continuationStart > 0.0 && continuationStart <= 1.0)) {
     throw InvalidInput("SolverOptions.continuationStart must be in (0, 1]");
   }
+  if (observeEvery < 1) throw InvalidInput("SolverOptions.observeEvery must be >= 1");
 }
 
 const char* toString(SolverStatus status) {
@@ -133,8 +134,42 @@ class FreeHessian {
   std::vector<double> base_;
 };
 
+// The calls of SolverOptions::observer of one minimiseEnergy, with their count and cost (which the
+// progress' seconds leave out, so that an error-against-time record does not count its own measuring).
+class Observation {
+ public:
+  Observation(const SolverObserver& observer, Clock::time_point start) : observer_(observer), start_(start) {}
+  // `reached`: when the model got to this state (seconds since start, observer calls included).
+  void operator()(const RodModel& model, int iteration, double energy, bool last, double reached) {
+    if (!observer_) return;
+    const auto before = Clock::now();
+    SolverProgress progress;
+    progress.iteration = iteration;
+    progress.seconds = reached - seconds_;
+    progress.energy = energy;
+    progress.last = last;
+    observer_(progress, model);
+    ++calls_;
+    seconds_ += std::chrono::duration<double>(Clock::now() - before).count();
+  }
+  void last(const RodModel& model, const SolverResult& result) {
+    (*this)(model, result.iterations, result.energy, true, std::chrono::duration<double>(Clock::now() - start_).count());
+  }
+  void record(SolverResult& result) const {
+    result.observations = calls_;
+    result.observerSeconds = seconds_;
+  }
+
+ private:
+  const SolverObserver& observer_;
+  Clock::time_point start_;
+  int calls_ = 0;
+  double seconds_ = 0.0;
+};
+
 // Newton with line search on the model as it is (one stage of the continuation).
-SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_point start, int iterationsBefore) {
+SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_point start, int iterationsBefore,
+                    Observation& observe) {
   auto elapsed = [&]() { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
   const int n = model.dofCount();
@@ -156,6 +191,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
   double shift = 0.0;  // relative diagonal shift that last made the Hessian positive definite
 
   for (int iteration = 0;; ++iteration) {
+    const double reached = elapsed();
     const Eigen::VectorXd z = model.state();
     const double energy = model.derivatives(z, gradient, triplets, options.threads);
     Eigen::VectorXd g(freeCount);
@@ -299,6 +335,9 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
                                   result.decrement, energyScale);
       return result;
     }
+    // The state z is left by this step: the observer sees it now, before the model moves on (the
+    // state a call returns with is seen by minimiseEnergy), so every state is reported once.
+    if (result.iterations % options.observeEvery == 0) observe(model, result.iterations, energy, false, reached);
     result.boltEdgeSwitches += model.accept(candidate);
   }
 }
@@ -308,6 +347,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
 SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
   options.validate();
   const auto start = Clock::now();
+  Observation observe(options.observer, start);
   const double finalFactor = model.stiffTermsFactor();
   int iterations = 0, switches = 0, factorisations = 0, evaluations = 0;
   if (options.stiffnessContinuation) {
@@ -315,7 +355,7 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
     stage.tolerance = std::max(options.tolerance, 1e-6);  // warm starts only: no need to be exact
     for (double factor = options.continuationStart; factor < 0.99; factor *= 10.0) {
       model.setStiffTermsFactor(factor * finalFactor);
-      const SolverResult r = newton(model, stage, start, iterations);
+      const SolverResult r = newton(model, stage, start, iterations, observe);
       iterations = r.iterations;
       switches += r.boltEdgeSwitches;
       factorisations += r.factorisations;
@@ -329,15 +369,19 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
         out.boltEdgeSwitches = switches;
         out.factorisations = factorisations;
         out.energyEvaluations = evaluations;
+        observe.last(model, out);
+        observe.record(out);
         return out;
       }
     }
     model.setStiffTermsFactor(finalFactor);
   }
-  SolverResult result = newton(model, options, start, iterations);
+  SolverResult result = newton(model, options, start, iterations, observe);
   result.boltEdgeSwitches += switches;
   result.factorisations += factorisations;
   result.energyEvaluations += evaluations;
+  observe.last(model, result);
+  observe.record(result);
   return result;
 }
 

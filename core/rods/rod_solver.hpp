@@ -7,9 +7,20 @@
 // converges quadratically near the equilibrium with one sparse Cholesky per iteration.
 #include "core/rods/rod_model.hpp"
 
+#include <functional>
 #include <string>
 
 namespace egg::rods {
+
+// Where a Newton run is, for an observer (SolverOptions::observer).
+struct SolverProgress {
+  int iteration = 0;     // Newton iterations taken so far (all continuation stages of this call)
+  double seconds = 0.0;  // wall time from minimiseEnergy's start to reaching this state, the observer's own calls left out
+  double energy = 0.0;   // J, as Newton evaluated it at this state (stiff terms softened during the continuation)
+  bool last = false;     // the state minimiseEnergy returns with
+};
+// Called with the model at the state `progress` describes (read only: the solver continues from it).
+using SolverObserver = std::function<void(const SolverProgress& progress, const RodModel& model)>;
 
 struct SolverOptions {
   int maxIterations = 500;    // Newton iterations before giving up: the limit that decides results
@@ -24,6 +35,13 @@ struct SolverOptions {
   // reaches the same equilibrium in ~10-20 iterations.
   bool stiffnessContinuation = true;
   double continuationStart = 1e-4;  // first softening factor; factors grow tenfold up to 1
+  // Optional, e.g. the error against run time of the simulation stage (simulation.hpp history):
+  // called on the state of every iteration whose number is a multiple of observeEvery when the
+  // step leaving it is accepted (iteration 0 is the start), and on the state the call returns with
+  // (last = true). Each state is reported once. Empty: no call, no cost. The solver knows nothing
+  // of what is measured.
+  SolverObserver observer;
+  int observeEvery = 1;
   void validate() const;      // throws InvalidInput naming the field
 };
 
@@ -45,6 +63,8 @@ struct SolverResult {
   int boltEdgeSwitches = 0;    // reprojections of sliding bolts onto neighbouring edges
   int factorisations = 0;      // Cholesky factorisations (shift trials included)
   int energyEvaluations = 0;   // line-search trials
+  int observations = 0;        // calls of options.observer
+  double observerSeconds = 0.0;  // wall time spent in them
 };
 
 // Runs Newton from the model's current state and leaves the model at the last accepted state

@@ -26,6 +26,7 @@ void SimulationOptions::validate() const {
   if (gravitySteps < 0) throw InvalidInput("SimulationOptions.gravitySteps must be >= 0");
   if (!(collapseFraction >= 0.0)) throw InvalidInput("SimulationOptions.collapseFraction must be >= 0");
   if (!(scaleFactor > 0.0)) throw InvalidInput("SimulationOptions.scaleFactor must be > 0");
+  if (historyEvery < 0) throw InvalidInput("SimulationOptions.historyEvery must be >= 0");
 }
 
 void startFrom(RodNetwork& network, const SimulationRun& run) {
@@ -54,7 +55,35 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   const int steps = options.model.gravity ? options.gravitySteps : 0;
   const bool fromStart = options.model.gravity && steps == 0;  // sag measured from the start state
   SolverOptions solverOptions = options.solver;
-  int iterations = 0, switches = 0, factorisations = 0, evaluations = 0;
+  int iterations = 0, switches = 0, step = 0, factorisations = 0, evaluations = 0;
+  // Error against run time: the solver's observer, shifted to the run's iterations and clock (a
+  // load step's minimiseEnergy counts from zero), measures the contact points when asked.
+  double observing = 0.0;  // seconds spent in the observer so far, left out of the samples' clock
+  double callStart = 0.0;  // the current load step's minimiseEnergy started then (run clock, measuring left out)
+  int lastObserved = -1;   // a load step starts at the state the previous one ended with: seen already
+  const bool recordHistory = options.historyEvery > 0 && surface;
+  if (recordHistory || options.solver.observer) {
+    if (recordHistory) solverOptions.observeEvery = options.historyEvery;
+    solverOptions.observer = [&](const SolverProgress& progress, const RodModel& observed) {
+      if (progress.iteration + iterations == lastObserved) return;
+      lastObserved = progress.iteration + iterations;
+      const auto before = std::chrono::steady_clock::now();
+      SolverProgress shifted = progress;
+      shifted.iteration += iterations;
+      shifted.seconds = callStart + progress.seconds;
+      if (recordHistory) {
+        std::vector<Eigen::Vector3d> contact;
+        for (int r = 0; r < observed.rodCount(); ++r)
+          for (int i = 0; i < observed.vertexCount(r); ++i) contact.push_back(observed.contactPoint(r, i));
+        const DeviationStats d = measureDeviation(contact, *surface, options.scaleFactor);
+        run.history.push_back({shifted.iteration, step, shifted.seconds, d.rmse_m, d.max_m});
+      }
+      if (options.solver.observer) options.solver.observer(shifted, observed);
+      const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - before).count();
+      observing += spent;
+      if (recordHistory) run.historySeconds += spent;
+    };
+  }
   std::vector<Eigen::Vector3d> weightless;  // vertices at the weightless equilibrium (or the start)
   double extent = 0.0;                      // its bounding-box diagonal
   auto recordReference = [&]() {
@@ -78,11 +107,12 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     }
     return largest;
   };
-  for (int step = 0; step <= steps; ++step) {
+  for (step = 0; step <= steps; ++step) {
     model.setLoadFactor(steps == 0 ? 1.0 : static_cast<double>(step) / steps);
     const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     solverOptions.timeLimit_s = std::max(1e-3, options.solver.timeLimit_s - spent);
     solverOptions.maxIterations = std::max(1, options.solver.maxIterations - iterations);
+    callStart = spent - observing;
     run.solver = minimiseEnergy(model, solverOptions);
     // Later load steps start next to an equilibrium: no need to soften the stiff terms again.
     solverOptions.stiffnessContinuation = false;
@@ -153,6 +183,7 @@ SimulationResult simulateGrid(const RodNetwork& network, const TriMesh& surface,
   if (options.compareWithoutNotches && options.model.notches) {
     SimulationOptions plain = options;
     plain.model.notches = false;
+    plain.historyEvery = 0;  // the error against run time is the deployed run's (a comparison needs only its end)
     result.withoutNotches = simulateRods(network, &distance, plain);
     if (!result.withoutNotches->solver.converged) {
       if (result.converged) result.reason = "run without notches: " + result.withoutNotches->solver.reason;

@@ -29,7 +29,21 @@ struct SimulationOptions {
   double collapseFraction = 0.05;
   double scaleFactor = 1.0;            // f of the NRMSE (Section 3.5.2)
   bool compareWithoutNotches = false;  // also run with plain holes (RMS1 of Section 2.6.2)
+  // Error against run time (issue 18): with a surface, every historyEvery-th Newton iteration and
+  // the end of every load step measure the contact points' deviation into SimulationRun::history,
+  // through solver.observer (it is called on the same schedule; its progress then counts the run's
+  // iterations and seconds). 0: no history, no measuring.
+  int historyEvery = 0;
   void validate() const;               // throws InvalidInput naming the field
+};
+
+// One point of the error-against-time record of a run.
+struct DeviationSample {
+  int iteration = 0;    // Newton iterations of the run so far (all load steps)
+  int loadStep = 0;     // 0: the weightless solve (or the single full-weight one), then 1..gravitySteps
+  double seconds = 0.0; // wall time since the run started (model set-up included), measuring excluded
+  double rmse_m = 0.0;  // contact points vs the design surface, as SimulationRun::deviation
+  double max_m = 0.0;
 };
 
 // One deployed state and its error.
@@ -44,11 +58,15 @@ struct SimulationRun {
   std::vector<std::array<double, 2>> boltPositions_m;     // per connection: s along rod a, rod b
   std::optional<DeviationStats> deviation;                // contact points vs surface (when given)
   double maxSag_m = 0.0;  // self-weight runs: largest vertex displacement from the weightless equilibrium
+  // options.historyEvery > 0 and a surface: the deviation from the start to the final state (the
+  // last sample is `deviation`), and the wall time the measuring took (inside solver.seconds).
+  std::vector<DeviationSample> history;
+  double historySeconds = 0.0;
 };
 
 struct SimulationResult {
   SimulationRun deployed;                      // with notches as options.model.notches says
-  std::optional<SimulationRun> withoutNotches; // plain holes (when compareWithoutNotches)
+  std::optional<SimulationRun> withoutNotches; // plain holes (when compareWithoutNotches), without history
   bool converged = false;                      // every run converged
   std::string reason;                          // first non-convergence reason, if any
   double seconds = 0.0;

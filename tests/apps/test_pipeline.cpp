@@ -67,9 +67,28 @@ TEST(Pipeline, SlowBumpPatchRunsEndToEnd) {
   EXPECT_GE(sim["max_error_m"].get<double>(), sim["rmse_m"].get<double>());
   EXPECT_FALSE(report["stages"]["propagation"]["ran"].get<bool>());
   EXPECT_TRUE(report["stages"]["grid"]["ran"].get<bool>());
+  // The cladding functions with their members (report.html's cladding section): F from (0,0) to
+  // (1,1), the 5 members on it, the scene's slope bounds, the patch's side lengths.
+  const auto& cladding = patch["cladding"];
+  EXPECT_EQ(cladding["slope_bounds"], nlohmann::json({0.1, 10.0}));
+  for (const char* family : {"u", "v"}) {
+    const auto& f = cladding[family];
+    EXPECT_EQ(f["members_x1"].size(), 5u) << family;
+    EXPECT_EQ(f["points_x1"].front(), 0.0) << family;
+    EXPECT_EQ(f["points_x2"].back(), 1.0) << family;
+    EXPECT_TRUE(f["bijective"].get<bool>()) << family;
+    EXPECT_GT(f["start_side_m"].get<double>(), 6.0) << family;  // a side of the 6 x 6 m footprint, lifted by the bump
+  }
+  // Error against run time: from the start (the guess on the surface) to the final state.
+  const auto& history = sim["patches"][0]["history"];
+  ASSERT_GE(history.size(), 2u);
+  EXPECT_EQ(history.front()["iteration"], 0);
+  EXPECT_EQ(history.back()["iteration"], sim["patches"][0]["iterations"]);
+  EXPECT_EQ(history.back()["rmse_m"], sim["rmse_m"]);
+  EXPECT_EQ(history.back()["max_error_m"], sim["max_error_m"]);
 
   for (const char* file : {"report.json", "report.html", "patch_000/grid.json", "patch_000/grid.obj", "patch_000/planar.svg",
-                           "patch_000/deployed.obj"}) {
+                           "patch_000/deployed.obj", "preview/cladding_patch_0.png", "preview/error_time_patches.png"}) {
     EXPECT_TRUE(fs::exists(out / file)) << file;
   }
   fs::remove_all(out);
@@ -186,6 +205,9 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   EXPECT_EQ(joined["bolts"], 16);
   EXPECT_EQ(joined["patches_swapped"], 2);
   EXPECT_TRUE(report["simulation"]["patch_by_patch"].contains("rmse_m"));
+  ASSERT_GE(joined["history"].size(), 2u);
+  EXPECT_EQ(joined["history"].back()["rmse_m"], joined["rmse_m"]);
+  EXPECT_EQ(joined["history"].back()["iteration"], joined["iterations"]);
   EXPECT_TRUE(fs::exists(out / "patches.json"));
   EXPECT_TRUE(fs::exists(out / "plan.svg"));
   EXPECT_TRUE(fs::exists(out / "report.json"));

@@ -37,11 +37,22 @@ nlohmann::json sampleReport() {
     "warnings": ["surface: a <b>bold</b> claim & more"],
     "failures": ["fabrication: 1 lamellas cannot be spliced"],
     "patches": [{"id": 0, "feasible": true, "area_m2": 12.5, "members_u": 7, "members_v": 9, "eta_u": 1.0001,
-                 "eta_v": 1.0002, "max_notch_m": 0.012}],
+                 "eta_v": 1.0002, "max_notch_m": 0.012,
+                 "cladding": {"slope_bounds": [0.1, 10.0], "infinite_slope_factor": 10000.0,
+                              "u": {"start_side_m": 4.0, "end_side_m": 5.0, "points_x1": [0, 0.5, 1], "points_x2": [0, 0.3, 1],
+                                    "members_x1": [0, 0.5, 1], "members_x2": [0, 0.3, 1], "bijective": true},
+                              "v": {"start_side_m": 3.0, "end_side_m": 3.5, "points_x1": [0, 1], "points_x2": [0, 1],
+                                    "members_x1": [0, 1], "members_x2": [0, 1], "bijective": true}}},
+                {"id": 1, "feasible": false, "reason": "eta"}],
     "simulation": {"ran": true, "converged": true, "rmse_m": 0.021, "max_error_m": 0.093, "nrmse": 0.004,
                    "rmse_no_notches_m": 0.05, "iterations": 321,
                    "patches": [{"patch": 0, "converged": true, "iterations": 321, "rmse_m": 0.021, "max_error_m": 0.093,
-                                "seconds": 4.0}]},
+                                "seconds": 4.0,
+                                "history": [{"seconds": 0.1, "iteration": 0, "load_step": 0, "rmse_m": 0.001, "max_error_m": 0.004},
+                                            {"seconds": 3.9, "iteration": 321, "load_step": 2, "rmse_m": 0.021, "max_error_m": 0.093}]}],
+                   "joined": {"ran": true, "converged": true,
+                              "history": [{"seconds": 0.2, "iteration": 0, "load_step": 0, "rmse_m": 0.02, "max_error_m": 0.09},
+                                          {"seconds": 2.0, "iteration": 12, "load_step": 0, "rmse_m": 0.025, "max_error_m": 0.1}]}},
     "fabrication": {"ran": true, "material": "poplar_plywood", "lamellae": 4, "total_length_m": 40.0, "mass_kg": 215.0,
                     "sheets": 3, "yield": 0.61, "bolts": 63, "notches": 40, "splices": 2, "supports": 6,
                     "max_stress_ratio": 1.25, "max_stress_lamella": "P0-V3", "max_bending_stress_pa": 5.0e7,
@@ -77,6 +88,13 @@ TEST(ReportHtml, SelfContainedPageWithEverySection) {
   EXPECT_EQ(html.find("<?xml"), std::string::npos);
   EXPECT_NE(html.find("<svg class=\"plan\" style=\"max-width:100%;height:auto\" xmlns="), std::string::npos);
   EXPECT_NE(html.find("id=\"patch-0\""), std::string::npos);
+  // The cladding functions of the traced patch only, and both error-against-time charts.
+  EXPECT_NE(html.find("<svg id=\"cladding-patch-0\""), std::string::npos);
+  EXPECT_EQ(html.find("cladding-patch-1"), std::string::npos);
+  EXPECT_LT(html.find("<h2 id=\"cladding\">"), html.find("<h2 id=\"simulation\">"));
+  EXPECT_LT(html.find("<h2 id=\"simulation\">"), html.find("<h2 id=\"error-time\">"));
+  EXPECT_NE(html.find("<svg id=\"error-time-patches\""), std::string::npos);
+  EXPECT_NE(html.find("<svg id=\"error-time-joined\""), std::string::npos);
   // Report text is escaped.
   EXPECT_NE(html.find("<title>court &lt;test&gt; &ndash; eggshell report</title>"), std::string::npos);
   EXPECT_NE(html.find("a &lt;b&gt;bold&lt;/b&gt; claim &amp; more"), std::string::npos);
@@ -126,6 +144,9 @@ TEST(ReportHtml, MissingPartsSayWhy) {
   EXPECT_NE(html.find("No bom.csv"), std::string::npos);
   EXPECT_NE(html.find("No planar grids: the scene's outputs do not contain \"previews\""), std::string::npos);
   EXPECT_EQ(html.find("id=\"stress-histogram\""), std::string::npos);
+  EXPECT_NE(html.find("No error history: the simulation did not run."), std::string::npos);
+  report["patches"] = nlohmann::json::array();
+  EXPECT_NE(reportHtml(report, "", "").find("No cladding functions: no patch grid was traced."), std::string::npos);
 }
 
 // Output of a command (stdout) and its exit status.
@@ -167,14 +188,17 @@ TEST(ReportHtml, WritesAPngPreviewOfEveryFigure) {
   std::ofstream(dir / "deployed.svg") << deployedPlanSvg({rod}, "test rod");
   const std::vector<std::string> previews = writeReportHtml(dir, sampleReport());
   const std::vector<std::string> expected = {"preview/plan.png",           "preview/stage_time_chart.png",
-                                             "preview/patch_grid_0.png",   "preview/simulation_error_chart.png",
-                                             "preview/deployed.png",       "preview/stress_histogram.png",
-                                             "preview/stress_top.png"};
+                                             "preview/patch_grid_0.png",   "preview/cladding_patch_0.png",
+                                             "preview/simulation_error_chart.png", "preview/error_time_patches.png",
+                                             "preview/error_time_joined.png",      "preview/deployed.png",
+                                             "preview/stress_histogram.png",       "preview/stress_top.png"};
   std::ifstream page(dir / "report.html");
   std::ostringstream pageText;
   pageText << page.rdbuf();
   EXPECT_NE(pageText.str().find("<h2 id=\"patch-grids\">"), std::string::npos);
   EXPECT_NE(pageText.str().find("<h2 id=\"deployed-grid\">"), std::string::npos);
+  EXPECT_NE(pageText.str().find("<h2 id=\"cladding\">"), std::string::npos);
+  EXPECT_NE(pageText.str().find("<h2 id=\"error-time\">"), std::string::npos);
   EXPECT_NE(pageText.str().find("<svg id=\"deployed\""), std::string::npos);
   EXPECT_NE(pageText.str().find("<svg id=\"patch-grid-0\" style=\"width:280px;height:auto\" xmlns="), std::string::npos);
   EXPECT_EQ(previews, expected);
@@ -197,7 +221,9 @@ TEST(ReportHtml, WritesAPngPreviewOfEveryFigure) {
 TEST(ReportHtml, FiguresStandAloneWithTheSvgNamespace) {
   const std::string html = reportHtml(sampleReport(), kPlan, kBom);
   const auto figures = reportFigures(html, kPlan);
-  ASSERT_EQ(figures.size(), 5u);
+  // plan, stage times, the cladding functions of patch 0 (patch 1 has none), simulation error,
+  // error against time patch by patch and joined, stress histogram, highest stresses.
+  ASSERT_EQ(figures.size(), 8u);
   EXPECT_EQ(figures[0].first, "plan");
   EXPECT_EQ(figures[0].second.rfind("<svg xmlns=", 0), 0u) << "plan.svg without its XML declaration";
   for (const auto& [id, svg] : figures) {
@@ -225,10 +251,13 @@ TEST(ReportHtml, HeadlessChromiumRendersThePage) {
                                "--user-data-dir=" + (dir / "profile").string() + " ";
   const auto [dom, domStatus] = run(chromium + "--dump-dom file://" + (dir / "report.html").string() + " 2>/dev/null");
   ASSERT_EQ(domStatus, 0) << dom;
-  for (const char* section : {"stage-times", "plan", "patches", "patch-grids", "simulation", "deployed-grid", "fabrication", "bom"}) {
+  for (const char* section :
+       {"stage-times", "plan", "patches", "patch-grids", "cladding", "simulation", "error-time", "deployed-grid", "fabrication", "bom"}) {
     EXPECT_NE(dom.find(std::string("<h2 id=\"") + section + "\">"), std::string::npos) << section;
   }
-  EXPECT_GE(count(dom, "<svg"), 5u) << "plan, stage times, simulation error, stress histogram, highest stresses";
+  EXPECT_GE(count(dom, "<svg"), 8u) << "plan, stage times, cladding, simulation error, error against time (2), stress histogram, highest stresses";
+  EXPECT_NE(dom.find("id=\"patch-0-u-curve\""), std::string::npos);
+  EXPECT_NE(dom.find("id=\"error-time-joined-rmse-0\""), std::string::npos);
   EXPECT_NE(dom.find("id=\"patch-0\""), std::string::npos);
   for (const char* page : {"report", "empty"}) {
     const auto png = dir / (std::string(page) + ".png");

@@ -2,11 +2,14 @@
 // tables), pinned elastica, a rod rolled into a circle by an end moment, and self-weight.
 #include "core/rods/rod_solver.hpp"
 
+#include "core/errors.hpp"
 #include "tests/core/rods/rod_test_networks.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <vector>
 
 namespace egg::rods {
 namespace {
@@ -183,6 +186,59 @@ TEST(RodSolver, IterationLimitIsReportedWithAReason) {
   EXPECT_EQ(result.status, SolverStatus::IterationLimit);
   EXPECT_FALSE(result.reason.empty());
   EXPECT_TRUE(c.model.state().allFinite());
+}
+
+// The observer sees the start, every observeEvery-th state a step leaves, and the state returned
+// with, each once and in order, and watching does not change the solve. A tip-loaded cantilever
+// through the stiffness continuation (several Newton stages, one iteration count).
+TEST(RodSolver, ObserverSeesEveryNthIterationAndTheFinalStateOnce) {
+  auto loaded = []() {
+    auto c = std::make_unique<Cantilever>();
+    c->model.addPointLoad(0, c->n, Eigen::Vector3d(0, 0, -2.0 * c->model.stiffness(0).bendingWeak));
+    return c;
+  };
+  auto plain = loaded();
+  const SolverResult reference = minimiseEnergy(plain->model, tight());
+  ASSERT_TRUE(reference.converged) << reference.reason;
+  ASSERT_GE(reference.iterations, 6);  // enough iterations for sampling to matter
+  EXPECT_EQ(reference.observations, 0);
+
+  for (int every : {1, 3}) {
+    auto watched = loaded();
+    SolverOptions options = tight();
+    options.observeEvery = every;
+    std::vector<SolverProgress> seen;
+    std::vector<Eigen::Vector3d> tips;
+    options.observer = [&](const SolverProgress& p, const RodModel& m) {
+      seen.push_back(p);
+      tips.push_back(m.vertex(0, watched->n));
+    };
+    const SolverResult result = minimiseEnergy(watched->model, options);
+    // Bit-identical to the run nobody watched.
+    EXPECT_EQ(result.iterations, reference.iterations);
+    EXPECT_EQ(result.energy, reference.energy);
+    EXPECT_EQ(watched->tip(), plain->tip());
+    // Steps leave the states of iterations 0 .. K-1; those divisible by `every`, then the final one.
+    const int k = result.iterations;
+    const int expected = (k - 1) / every + 1 + 1;
+    ASSERT_EQ(static_cast<int>(seen.size()), expected) << "every " << every << ", " << k << " iterations";
+    EXPECT_EQ(result.observations, expected);
+    EXPECT_GE(result.observerSeconds, 0.0);
+    for (size_t i = 0; i + 1 < seen.size(); ++i) {
+      EXPECT_EQ(seen[i].iteration, static_cast<int>(i) * every);
+      EXPECT_FALSE(seen[i].last);
+      EXPECT_LE(seen[i].seconds, seen[i + 1].seconds);
+    }
+    EXPECT_EQ(seen.front().iteration, 0);
+    EXPECT_EQ(tips.front(), loaded()->tip());  // the start, before any step
+    EXPECT_TRUE(seen.back().last);
+    EXPECT_EQ(seen.back().iteration, k);
+    EXPECT_EQ(seen.back().energy, result.energy);
+    EXPECT_EQ(tips.back(), watched->tip());  // the state returned with
+  }
+  SolverOptions bad;
+  bad.observeEvery = 0;
+  EXPECT_THROW(bad.validate(), InvalidInput);
 }
 
 }  // namespace

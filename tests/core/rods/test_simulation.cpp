@@ -194,6 +194,81 @@ TEST(Simulation, AWarmStartFromAnEquilibriumUnderSelfWeightStaysThere) {
   EXPECT_THROW(startFrom(other, first), InvalidInput);
 }
 
+// Error against run time (SimulationOptions::historyEvery): the start (the guess on the surface),
+// every n-th iteration and the final state, whose sample is the run's own deviation; watching
+// changes nothing of the run.
+TEST(Simulation, HistoryRecordsTheErrorFromTheGuessToTheFinalState) {
+  const SampleGrid grid = smallVault();
+  const SurfaceDistance surface(grid.surface);
+  SimulationOptions options;
+  options.scaleFactor = 2.0;
+  const SimulationRun reference = simulateRods(grid.network, &surface, options);
+  ASSERT_TRUE(reference.solver.converged) << reference.solver.reason;
+  EXPECT_TRUE(reference.history.empty());
+  EXPECT_EQ(reference.solver.observations, 0);
+  options.historyEvery = 3;
+  int userCalls = 0, lastIteration = -1;
+  options.solver.observer = [&](const SolverProgress& p, const RodModel&) {
+    ++userCalls;
+    EXPECT_GT(p.iteration, lastIteration);  // the run's count, each state once
+    lastIteration = p.iteration;
+  };
+  const SimulationRun run = simulateRods(grid.network, &surface, options);
+  ASSERT_TRUE(run.deviation.has_value());
+  EXPECT_EQ(run.solver.iterations, reference.solver.iterations);
+  EXPECT_EQ(run.deviation->rmse_m, reference.deviation->rmse_m);
+  const int k = run.solver.iterations;
+  ASSERT_GE(k, 4);
+  // One load step (no gravity): iterations 0, 3, 6, ... below k, then the final state.
+  ASSERT_EQ(static_cast<int>(run.history.size()), (k - 1) / 3 + 2);
+  EXPECT_EQ(userCalls, static_cast<int>(run.history.size()));
+  for (size_t i = 0; i + 1 < run.history.size(); ++i) {
+    EXPECT_EQ(run.history[i].iteration, 3 * static_cast<int>(i));
+    EXPECT_LE(run.history[i].seconds, run.history[i + 1].seconds);
+  }
+  // The start is the guess: only the chordal error of the mesh (ContactPointsOfTheGuessLieOnTheSurface).
+  EXPECT_LT(run.history.front().max_m, 0.05 * 0.05 / (8.0 * 3.0) * 1.01);
+  EXPECT_EQ(run.history.back().iteration, k);
+  EXPECT_EQ(run.history.back().rmse_m, run.deviation->rmse_m);
+  EXPECT_EQ(run.history.back().max_m, run.deviation->max_m);
+  EXPECT_GT(run.history.back().rmse_m, 10.0 * run.history.front().rmse_m);  // the deployment moved it
+  EXPECT_LE(run.history.back().seconds, run.solver.seconds);
+  EXPECT_GT(run.historySeconds, 0.0);
+  EXPECT_LT(run.historySeconds, run.solver.seconds);
+}
+
+// The stage keeps the history of the deployed run only: the run without notches is a comparison of ends.
+TEST(Simulation, HistoryIsTheDeployedRunsOnly) {
+  const SampleGrid grid = smallVault();
+  SimulationOptions options;
+  options.compareWithoutNotches = true;
+  options.historyEvery = 5;
+  const SimulationResult result = simulateGrid(grid.network, grid.surface, options);
+  ASSERT_TRUE(result.withoutNotches.has_value());
+  ASSERT_GE(result.deployed.history.size(), 2u);
+  EXPECT_EQ(result.deployed.history.back().rmse_m, result.deployed.deviation->rmse_m);
+  EXPECT_TRUE(result.withoutNotches->history.empty());
+  EXPECT_EQ(result.withoutNotches->solver.observations, 0);
+}
+
+// Under self-weight in two load steps: the load steps' ends are sampled, a step's start (the state
+// the previous one ended with) is not sampled twice, and the last sample is still the final state.
+TEST(Simulation, HistoryAcrossLoadStepsSamplesEachStateOnce) {
+  const SampleGrid grid = cylinderGrid(symmetricVault());
+  const SurfaceDistance surface(grid.surface);
+  SimulationOptions options;
+  options.model.gravity = true;
+  options.historyEvery = 1000;  // only the start and the ends of the load steps
+  const SimulationRun run = simulateRods(grid.network, &surface, options);
+  ASSERT_TRUE(run.solver.converged) << run.solver.reason;
+  ASSERT_EQ(run.history.size(), 4u);  // start, end of the weightless solve, of load step 1, of 2
+  for (int step = 0; step <= 2; ++step) EXPECT_EQ(run.history[step + 1].loadStep, step);
+  EXPECT_EQ(run.history[0].iteration, 0);
+  for (size_t i = 0; i + 1 < run.history.size(); ++i) EXPECT_LT(run.history[i].iteration, run.history[i + 1].iteration);
+  EXPECT_EQ(run.history.back().iteration, run.solver.iterations);
+  EXPECT_EQ(run.history.back().rmse_m, run.deviation->rmse_m);
+}
+
 TEST(Simulation, TimeLimitIsAResultWithAReason) {
   const SampleGrid grid = smallVault();
   SimulationOptions options;

@@ -42,4 +42,11 @@ void ProgressLine::finish() {
   lastLength_ = 0;
 }
 
+void ProgressLine::clear() {
+  if (!drawn_) return;
+  std::cerr << '\r' << std::string(lastLength_, ' ') << '\r' << std::flush;
+  drawn_ = false;
+  lastLength_ = 0;
+}
+
 }  // namespace egg::app

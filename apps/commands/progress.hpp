@@ -19,6 +19,7 @@ class ProgressLine {
 
   void update(double fraction, const std::string& what);
   void finish();  // ends the line; later updates start a new one
+  void clear();   // wipes the line (for output that takes its place); later updates draw it again
   bool shown() const { return enabled_; }
 
   static bool stderrIsTerminal();

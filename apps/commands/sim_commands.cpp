@@ -5,6 +5,7 @@
 #include "core/rods/sample_grids.hpp"
 #include "core/rods/simulation.hpp"
 #include "core/rods/stress_cases.hpp"
+#include "apps/commands/progress.hpp"
 #include "apps/commands/stress_suite.hpp"
 
 #include <unistd.h>
@@ -185,9 +186,15 @@ bool runPipelineSuite(const StressArgs& args, nlohmann::json& rows) {
   fmt::print(out, "{:<17} {:<21} {:>6} {:>9} {:>9} {:>8} {:>8}  {:<4} {} [{}]\n", "case", "class", "iters", "rmse_m", "max_err_m",
              "seconds", "peak_MB", "ok", "result", "stages");
   bool ok = true;
-  for (PipelineStressCase c : pipelineStressCases()) {
+  // On a terminal, which case is running (the row appears when it ends; cases take up to minutes).
+  ProgressLine bar(!args.json);
+  const auto cases = pipelineStressCases();
+  for (size_t k = 0; k < cases.size(); ++k) {
+    PipelineStressCase c = cases[k];
     if (c.surfaceOnly && args.largeMeshStages == "surface") c.geodesic = false;
+    bar.update(static_cast<double>(k) / cases.size(), fmt::format("case {} of {}: {}", k + 1, cases.size(), c.name));
     const PipelineStressRow r = runPipelineStressCase(c, command, work);
+    bar.clear();
     ok = ok && r.ok;
     fmt::print(out, "{:<17} {:<21} {:>6} {:>9.3g} {:>9.3g} {:>8.2f} {:>8.0f}  {:<4} {} [{}]\n", r.name, r.kind, r.iterations,
                r.rmse_m, r.maxError_m, r.seconds, r.peakRss_mb, r.ok ? "yes" : "NO", r.result, r.stages);

@@ -211,6 +211,12 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
     }
     return best;
   };
+  // A scarf with clean ends is worth a shorter piece, down to 40 % of the stock length; below
+  // that the pieces (and joints) would multiply, and the scarf through the slit is preferred.
+  auto cleanOrSlit = [&](double start, const std::pair<double, double>& slit) {
+    const auto clean = furthestScarf(start);
+    return clean && clean->first >= start + 0.4 * stockLengthMm ? *clean : slit;
+  };
   auto addScarf = [&](double& start, const std::pair<double, double>& scarf) {
     const auto [end, begin] = scarf;
     plan.splicesMm.push_back((end + begin) / 2.0);
@@ -228,7 +234,7 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
     // sheet_layout.cpp), and is checked on the net width.
     auto slitScarf = [&]() { return std::make_pair(reach, reach - scarfLengthMm); };
     if (!plates) {
-      addScarf(start, furthestScarf(start).value_or(slitScarf()));
+      addScarf(start, cleanOrSlit(start, slitScarf()));
       continue;
     }
     // The furthest position within one stock length with the full clearance.
@@ -254,7 +260,7 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
     // this stretch fails for every choice).
     if (cut < 0.0 && scarfs) {
       // No room for a plate here: a glued scarf, where its feather ends find gaps.
-      addScarf(start, furthestScarf(start).value_or(slitScarf()));
+      addScarf(start, cleanOrSlit(start, slitScarf()));
       continue;
     }
     if (cut < 0.0) {

@@ -98,7 +98,8 @@ int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<Sha
 // position keeps minClearanceMm. minClearanceMm < 0 (the default) means clearanceMm: no fallback.
 // joint (fabrication.splice_joint): "plate" as above; "scarf": every splice a glued scarf of
 // scarfLengthMm to twice that, whose two feather ends lie between cut-outs (half a bolt diameter
-// clear), the furthest such within each stock length, else (slots merged into a slit) one scarf
+// clear), the furthest such within each stock length if it ends at least 0.4 stock lengths on, else
+// (slots merged into a slit) one scarf
 // length ending at the stock length, through the slit; "plate_or_scarf": plates, and a scarf where
 // a stretch has no position for a plate. With scarfs allowed it does not throw for want of room.
 void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,

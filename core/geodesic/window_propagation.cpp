@@ -59,6 +59,7 @@ void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>
   if (directed) directed_.set(t_, s_);
   seed(source);
   while (!s_.queue.empty()) {
+    s_.queue.prefetchRecords(s_.windows.data(), sizeof(Window));
     const auto entry = s_.queue.pop();
     if (goal_.active() && entry.key >= directed_.farthestBound(t_, s_)) break;  // targets final
     if (entry.item < 0) {

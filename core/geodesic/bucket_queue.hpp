@@ -51,9 +51,11 @@ class BucketQueue {
   // of the pops (nullptr: none). Call again whenever the records move. A popped window's record
   // was written long before and is a cache miss: on the 18k-vertex cap of issue 19 a quarter of
   // propagateWindow's samples sat on its first load. Prefetching the next bucket's records when
-  // the calendar reaches a bucket measured 0.95 of the time per front field there (4 of 4
-  // interleaved pairs) and 0.76-0.84 per stored field on the 17k plane; no change on the 4.5k
-  // meshes, whose records stay in cache. Two buckets ahead was slower.
+  // the calendar reaches a bucket (with the inlined heap comparison), against no prefetch, same
+  // thread CPU time per field, interleaved runs of 7 fields: 18k cap, front engine 0.78-0.98
+  // (mean 0.88, faster in 6 of 6), stored 0.68-1.12 (mean 0.90, 4 of 6); 17k plane, stored
+  // 0.76-0.84; no change beyond the noise on the 4.5k meshes, whose records stay in cache. Two
+  // buckets ahead was slower.
   void prefetchRecords(const void* base, std::size_t stride) {
     prefetchBase_ = static_cast<const char*>(base);
     prefetchStride_ = stride;

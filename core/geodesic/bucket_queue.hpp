@@ -51,11 +51,11 @@ class BucketQueue {
   // of the pops (nullptr: none). Call again whenever the records move. A popped window's record
   // was written long before and is a cache miss: on the 18k-vertex cap of issue 19 a quarter of
   // propagateWindow's samples sat on its first load. Prefetching the next bucket's records when
-  // the calendar reaches a bucket (with the inlined heap comparison), against no prefetch, same
+  // the calendar reaches a bucket (with the inlined heap comparison), against no prefetch,
   // thread CPU time per field, interleaved runs of 7 fields: 18k cap, front engine 0.78-0.98
-  // (mean 0.88, faster in 6 of 6), stored 0.68-1.12 (mean 0.90, 4 of 6); 17k plane, stored
-  // 0.76-0.84; no change beyond the noise on the 4.5k meshes, whose records stay in cache. Two
-  // buckets ahead was slower.
+  // (mean 0.88, faster in 6 of 6); no change beyond the noise on the 4.5k meshes, whose records
+  // stay in cache. Two buckets ahead was slower. The propagation asks for it in front mode only
+  // (window_propagation.cpp, run).
   void prefetchRecords(const void* base, std::size_t stride) {
     prefetchBase_ = static_cast<const char*>(base);
     prefetchStride_ = stride;
@@ -138,10 +138,12 @@ class BucketQueue {
     current_ = index;
     currentIsHeap_ = false;
     refillFromOverflow();
-    if (prefetchBase_) {
+    const auto& ahead = buckets_[(current_ + 1) & kMask];
+    if (prefetchBase_ && ahead.size() <= kScanLimit) {
       // The next bucket's items are popped soon after this one's: ask for their records now, so
-      // their cache misses overlap instead of stalling one pop each.
-      for (const Entry& e : buckets_[(current_ + 1) & kMask]) {
+      // their cache misses overlap instead of stalling one pop each. Not for a crowded bucket
+      // (a fine mesh's): its hundreds of records would evict each other before their pops.
+      for (const Entry& e : ahead) {
         if (e.item >= 0) __builtin_prefetch(prefetchBase_ + static_cast<std::size_t>(e.item) * prefetchStride_);
       }
     }

@@ -59,6 +59,9 @@ void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>
   if (directed) directed_.set(t_, s_);
   seed(source);
   while (!s_.queue.empty()) {
+    // Front mode only: its slots are a small pool; prefetching into the stored engine's array
+    // made the 418k-triangle bump's stored field 1.2x slower (51 s against 40-42 s, twice each).
+    if (!s_.storeWindows) s_.queue.prefetchRecords(s_.windows.data(), sizeof(Window));
     const auto entry = s_.queue.pop();
     if (goal_.active() && entry.key >= directed_.farthestBound(t_, s_)) break;  // targets final
     if (entry.item < 0) {
@@ -128,6 +131,12 @@ bool Propagator::prune(Window& w) const {
   // Xin-Wang's other two tests (the vertex ahead, the one behind the edge) are not made: they
   // killed 0 and 264 of 185k windows on a 3.6k-vertex bump (397, 930 of 15M on the Great Court)
   // for a lookup and two square roots per window; one-split and trimming do that work already.
+  // Nor would any vertex filter (VTP's per-triangle pruning included) help where this engine is
+  // slowest, the sphere caps of issue 19: even against the final distances of all four vertices
+  // of the edge's two faces, 0 of the 191k windows kept at 4.6k vertices (stored engine) and 0 of
+  // 1.02M at 18k (front engine) are beaten everywhere, 16 of 159k on the bench bump; the cap's
+  // windows are its exact field's, and only cheaper windows make it faster (test_window_
+  // propagation.cpp, WindowPruning). Switched off, this pruning changes the windows kept there by 2.
   return true;
 }
 

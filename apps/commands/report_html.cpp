@@ -9,6 +9,7 @@
 #include "core/io/xml_text.hpp"
 
 #include <fmt/core.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -390,13 +391,17 @@ std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, co
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error) throw WriteError("cannot create " + dir.string() + ": " + error.message());
-  for (const auto& [id, svg] : reportFigures(html, planSvg)) {
+  const auto figures = reportFigures(html, planSvg);
+  for (const auto& [id, svg] : figures) {
     std::string file = id;
     std::replace(file.begin(), file.end(), '-', '_');
-    file = "preview/" + file + ".png";
-    writePngFromSvg(svg, runDir / file, id == "plan" ? kPlanPreviewPx : kChartPreviewPx);
-    previews.push_back(file);
+    previews.push_back("preview/" + file + ".png");
   }
+  // Rasterised side by side (each with its own librsvg handle and cairo surface): 16 figures of
+  // the Great Court took ~0.6 s one after the other. An exception in any is rethrown here.
+  tbb::parallel_for(size_t{0}, figures.size(), [&](size_t k) {
+    writePngFromSvg(figures[k].second, runDir / previews[k], figures[k].first == "plan" ? kPlanPreviewPx : kChartPreviewPx);
+  });
   return previews;
 }
 

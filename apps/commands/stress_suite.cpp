@@ -133,7 +133,7 @@ json meshScene(const std::string& name) {
 // per family at every scale: "auto" spaces members 8 widths apart, so this 20 mm lamella would
 // get ~60 per family (30k unknowns per patch: tens of seconds at any scale, which an earlier
 // session took for a scale effect; 1.5k unknowns here, 3-5 s for the whole run at 0.1, 10 and
-// 220 m alike, 1.4-1.8 factorisations per Newton iteration at each).
+// 220 m alike, 1.7-2.0 factorisations per Newton iteration at each).
 json scaledScene(const std::string& name, double f) {
   json s = baseScene(name);
   s["grid"]["members_per_family"] = 8;

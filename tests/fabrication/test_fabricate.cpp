@@ -86,18 +86,23 @@ TEST(Fabricate, TwoPatchesSharingASideCountOneLamellaAndOneBoltThere) {
   EXPECT_NE(bom.find("\nbolt,,15,"), std::string::npos) << bom;
 }
 
-TEST(Fabricate, SimulatedCentrelinesDriveTheBendingStress) {
-  const EggGrid grid = handGrid();
+// The hand grid's members as traced, but member u1 deployed onto a circle of radius 0.5 m.
+std::vector<std::vector<Eigen::Vector3d>> deployedWithU1OnACircle(const EggGrid& grid) {
   std::vector<std::vector<Eigen::Vector3d>> deployed;
   for (const auto* family : {&grid.u, &grid.v}) {
     for (const auto& m : *family) deployed.push_back(m.spatial);
   }
-  // Member u1 deployed onto a circle of radius 0.5 m.
   deployed[1].clear();
   for (int k = 0; k <= 8; ++k) {
     const double phi = -0.2 + 0.05 * k;
     deployed[1].emplace_back(0.5 * std::sin(phi), 0.1, 0.5 * std::cos(phi));
   }
+  return deployed;
+}
+
+TEST(Fabricate, SimulatedCentrelinesDriveTheBendingStress) {
+  const EggGrid grid = handGrid();
+  const auto deployed = deployedWithU1OnACircle(grid);
   const auto r = fabricate({{0, &grid, deployed}}, handOptions());
   const auto& lime = materialByName("limewood");
   EXPECT_TRUE(r.stress[1].fromSimulation);
@@ -146,15 +151,7 @@ TEST(Fabricate, StripsLongerThanTheSheetAreSplicedToFitIt) {
 // E t / (2 R) everywhere).
 TEST(Fabricate, ScarfJointsAreCheckedAgainstTheirEfficiencyAndNetWidth) {
   const EggGrid grid = handGrid();
-  std::vector<std::vector<Eigen::Vector3d>> deployed;
-  for (const auto* family : {&grid.u, &grid.v}) {
-    for (const auto& m : *family) deployed.push_back(m.spatial);
-  }
-  deployed[1].clear();
-  for (int k = 0; k <= 8; ++k) {
-    const double phi = -0.2 + 0.05 * k;
-    deployed[1].emplace_back(0.5 * std::sin(phi), 0.1, 0.5 * std::cos(phi));
-  }
+  const auto deployed = deployedWithU1OnACircle(grid);
   const auto& lime = materialByName("limewood");
   const double sigmaRatio = lime.youngs_modulus_pa * 0.001 / (2.0 * 0.5) / lime.bending_strength_pa;
   auto options = handOptions();

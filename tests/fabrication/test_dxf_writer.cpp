@@ -24,6 +24,7 @@ TEST(DxfWriter, R2000InMillimetresWithThreeLayersPassesEzdxfAudit) {
   const auto dxf = testing::readDxf(dir / "sample.dxf");
   ASSERT_TRUE(dxf.contains("entities"));
   EXPECT_EQ(dxf["audit_errors"], 0);
+  EXPECT_EQ(dxf["audit_fixes"], 0);
   EXPECT_EQ(dxf["insunits"], 4);  // millimetres
   EXPECT_EQ(dxf["version"], "AC1015");
   for (const char* layer : {"CUT", "ENGRAVE", "LABEL"}) {
@@ -78,6 +79,7 @@ TEST(DxfWriter, EmptyDrawingIsStillAValidFile) {
   std::ofstream(dir / "empty.dxf") << toDxf(d);
   const auto dxf = testing::readDxf(dir / "empty.dxf");
   EXPECT_EQ(dxf["audit_errors"], 0);
+  EXPECT_EQ(dxf["audit_fixes"], 0);
   EXPECT_EQ(dxf["entities"].size(), 0u);
 }
 

@@ -234,6 +234,7 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
   // DXF: the same, through ezdxf; the audit finds nothing.
   const auto dxf = testing::readDxf(dir / "cut/sheet_01.dxf");
   EXPECT_EQ(dxf["audit_errors"], 0);
+  EXPECT_EQ(dxf["audit_fixes"], 0);
   EXPECT_EQ(dxf["insunits"], 4);
   int circles = 0, slotsFound = 0;
   bool labelU1 = false, labelC10 = false;
@@ -261,7 +262,11 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
   for (const auto& f : files) {
     const auto path = dir / f;
     if (path.extension() == ".dxf") {
-      EXPECT_EQ(testing::readDxf(path)["audit_errors"], 0) << f;
+      {
+        const auto dxf = testing::readDxf(path);
+        EXPECT_EQ(dxf["audit_errors"], 0) << f;
+        EXPECT_EQ(dxf["audit_fixes"], 0) << f;
+      }
     } else if (path.extension() == ".svg") {
       const auto run = testing::runTool("rsvg-convert --format=png --output " + path.string() + ".png " + path.string());
       EXPECT_EQ(run.status, 0) << f << ": " << run.output;
@@ -347,7 +352,11 @@ TEST(Fabricate, SolvedBumpPatchEndToEnd) {
   const auto files = writeFabricationFiles(r, dir);
   for (const auto& f : files) {
     if (f.size() > 4 && f.substr(f.size() - 4) == ".dxf") {
-      EXPECT_EQ(testing::readDxf(dir / f)["audit_errors"], 0) << f;
+      {
+        const auto dxf = testing::readDxf(dir / f);
+        EXPECT_EQ(dxf["audit_errors"], 0) << f;
+        EXPECT_EQ(dxf["audit_fixes"], 0) << f;
+      }
     }
   }
   std::cout << "bump patch: " << fabricationReport(r, files).dump() << "\n";

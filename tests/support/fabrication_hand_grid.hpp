@@ -122,7 +122,7 @@ inline std::filesystem::path scratchDir(const std::string& name) {
   return dir;
 }
 
-// Reads a DXF with ezdxf: {"audit_errors": n, "insunits": u, "version": "AC1015", "layers": [...],
+// Reads a DXF with ezdxf: {"audit_errors": n, "audit_fixes": n (what the audit had to repair), "insunits": u, "version": "AC1015", "layers": [...],
 // "entities": [{"type", "layer", ...}]} (circles: centre, radius; lwpolylines: points [x, y, bulge],
 // closed; text: text, insert, align, halign, valign, height).
 inline nlohmann::json readDxf(const std::filesystem::path& path) {
@@ -130,7 +130,7 @@ inline nlohmann::json readDxf(const std::filesystem::path& path) {
 import json, sys, ezdxf
 doc = ezdxf.readfile(sys.argv[1])
 auditor = doc.audit()
-out = {"audit_errors": len(auditor.errors), "insunits": doc.header.get("$INSUNITS", 0),
+out = {"audit_errors": len(auditor.errors), "audit_fixes": len(auditor.fixes), "insunits": doc.header.get("$INSUNITS", 0),
        "version": doc.dxfversion, "layers": [l.dxf.name for l in doc.layers], "entities": []}
 for e in doc.modelspace():
     d = {"type": e.dxftype(), "layer": e.dxf.layer}

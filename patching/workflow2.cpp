@@ -23,6 +23,9 @@ void Workflow2Options::validate() const {
   if (!(maxPatchSizeM > 0.0)) throw InvalidInput("patching.max_patch_size_m must be positive");
   if (!(holeMarginRelative >= 0.0 && holeMarginRelative < 1.0)) throw InvalidInput("workflow 2: hole margin must lie in [0, 1)");
   if (!(peakSnapFraction >= 0.0 && peakSnapFraction <= 0.5)) throw InvalidInput("workflow 2: peak snap fraction must lie in [0, 0.5]");
+  const bool screened = blockGrid[0] == 0 && blockGrid[1] == 0;
+  if (!screened && (blockGrid[0] < 1 || blockGrid[0] > 16 || blockGrid[1] < 1 || blockGrid[1] > 16))
+    throw InvalidInput(fmt::format("patching.block_grid must be two patch counts in 1..16, got [{}, {}]", blockGrid[0], blockGrid[1]));
 }
 
 namespace {
@@ -279,8 +282,9 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     const int bound = 16;
     int bestPredicted = std::numeric_limits<int>::max();
     double bestDiagonal = std::numeric_limits<double>::infinity();
-    for (int nu = 1; nu <= bound; ++nu)
-      for (int nv = 1; nv <= bound; ++nv) {
+    const bool given = options.blockGrid[0] > 0;
+    for (int nu = given ? options.blockGrid[0] : 1; nu <= (given ? options.blockGrid[0] : bound); ++nu)
+      for (int nv = given ? options.blockGrid[1] : 1; nv <= (given ? options.blockGrid[1] : bound); ++nv) {
         if (nu * nv > bestPredicted) continue;  // cannot win
         GridTrial t = tryGrid(b, nu, nv, lifter, peaks, options.peakSnapFraction, holeBoxes);
         ++out.candidatesScreened;
@@ -289,11 +293,18 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
         if (predicted < bestPredicted || (predicted == bestPredicted && t.worstDiagonalM < bestDiagonal))
           bestPredicted = predicted, bestDiagonal = t.worstDiagonalM, b.nu = nu, b.nv = nv, chosen = std::move(t);
       }
+    if (bestPredicted == std::numeric_limits<int>::max() && given)
+      throw InvalidInput(fmt::format("patching.block_grid [{}, {}]: a cell is larger than patching.max_patch_size_m = {} m across{}",
+                                     options.blockGrid[0], options.blockGrid[1], options.maxPatchSizeM,
+                                     holeBoxes.empty() ? "" : ", or a hole does not sit in a cell of its own"));
     if (bestPredicted == std::numeric_limits<int>::max())
       throw InvalidInput(fmt::format("workflow 2: no grid of up to {} x {} patches has cells within patching.max_patch_size_m = {} m{}", bound,
                                      bound, options.maxPatchSizeM,
                                      holeBoxes.empty() ? "" : " and each hole in a cell of its own (holes too close together or too large)"));
   } else {
+    if (options.blockGrid[0] > 0)
+      throw InvalidInput("patching.block_grid applies to a surface with no hole or several; around a single hole Workflow 2 "
+                         "lays a ring of four blocks whose grids follow from max_patch_size_m");
     for (int guard = 0; guard < 200; ++guard) {
       bool changed = false;
       for (auto& b : blocks) {

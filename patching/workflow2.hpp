@@ -36,6 +36,10 @@ struct Workflow2Options {
   double holeMarginRelative = 0.03;  // the box around a hole, inflated by this fraction of its size
   double boundaryWrapToleranceRad = PatchOptions{}.boundaryWrapToleranceRad;  // a traced side along the boundary may turn this much round it
   double peakSnapFraction = 0.45;  // a grid node moves onto a K peak within this fraction of its cells along each grid direction
+  // The architect's grid of patches for a surface with no hole or several ({0, 0}: screen every
+  // grid up to 16 x 16 and keep the one predicting the fewest patches). Its cells must still fit
+  // maxPatchSizeM; Workflow 1 may split its patches further.
+  std::array<int, 2> blockGrid{0, 0};
   void validate() const;
 };
 

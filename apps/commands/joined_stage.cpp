@@ -148,6 +148,7 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
     rods::SimulationOptions options;
     options.model.notches = scene.simulation.notches;
     options.model.gravity = scene.simulation.gravity;
+  options.fastenBoltsUnderLoad = scene.simulation.fasten_bolts;
     options.model.frictionMu = scene.simulation.friction_mu;
     options.solver.tolerance = scene.simulation.newton_tolerance;
     options.solver.timeLimit_s = scene.simulation.time_limit_s;

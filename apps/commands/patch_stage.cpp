@@ -169,6 +169,7 @@ rods::SimulationOptions simulationOptions(const Scene& scene, const EggResult& e
   rods::SimulationOptions options;
   options.model.notches = scene.simulation.notches;
   options.model.gravity = scene.simulation.gravity;
+  options.fastenBoltsUnderLoad = scene.simulation.fasten_bolts;
   options.model.frictionMu = scene.simulation.friction_mu;
   options.solver.tolerance = scene.simulation.newton_tolerance;
   options.solver.timeLimit_s = scene.simulation.time_limit_s;
@@ -359,6 +360,7 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
                {"nrmse_normalised_by", "patch bounding-box diagonal (worst patch)"},
                {"rmse_no_notches_m", pointsPlain ? json(std::sqrt(sumSquaresPlain / pointsPlain)) : json(nullptr)},
                {"gravity", scene.simulation.gravity},
+               {"bolts_fastened_under_load", scene.simulation.gravity && scene.simulation.fasten_bolts},
                {"notches", scene.simulation.notches},
                {"friction_mu", scene.simulation.friction_mu},
                {"iterations", iterations},

@@ -70,6 +70,7 @@ PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& 
   if (workflow2) {
     patching::Workflow2Options w2;
     w2.maxPatchSizeM = scene.patching.max_patch_size_m;
+    w2.blockGrid = scene.patching.block_grid;
     try {
       run.initial = patching::proposeLayout(surface, w2, &surfaceSolver);
     } catch (const InvalidInput& e) {

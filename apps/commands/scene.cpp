@@ -222,6 +222,13 @@ void readPatching(Section s, PatchingSpec& out) {
     s.fail("slope_bounds", "must be [k_min, k_max] with k_min < 1 < k_max (Problem 2.3)");
   }
   out.max_patch_size_m = s.positive("max_patch_size_m", out.max_patch_size_m, 1e5);
+  if (s.has("block_grid")) {
+    const json& v = s.raw("block_grid");
+    if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer() || v[0].get<int>() < 1 ||
+        v[0].get<int>() > 16 || v[1].get<int>() < 1 || v[1].get<int>() > 16)
+      s.fail("block_grid", "must be two patch counts [along u, along v], each 1..16, got " + brief(v));
+    out.block_grid = {v[0].get<int>(), v[1].get<int>()};
+  }
   out.max_splits = s.integer("max_splits", out.max_splits, 0, 10000);
   if (s.has("smoothing")) out.smoothing = s.boolean("smoothing", true);
   out.min_patch_size_m = s.number("min_patch_size_m", out.min_patch_size_m, 0.0, 1e5);
@@ -269,6 +276,8 @@ void readPatching(Section s, PatchingSpec& out) {
   }
   if (out.workflow_given && out.workflow == 1 && out.quads.empty())
     s.fail("workflow", "Workflow 1 splits an initial layout: give it as \"patches\"");
+  if (out.block_grid[0] > 0 && !out.quads.empty())
+    s.fail("block_grid", "sets Workflow 2's grid of patches; this scene gives its layout as \"patches\"");
   s.rejectUnknownKeys();
 }
 
@@ -334,6 +343,7 @@ void readSimulation(Section s, SimulationSpec& out) {
     s.fail("supports", "must be \"auto\", \"anchors\" or \"design_boundary\", got \"" + out.supports + "\"");
   out.hold_shared_sides = s.boolean("hold_shared_sides", out.hold_shared_sides);
   out.join_patches = s.boolean("join_patches", out.join_patches);
+  out.fasten_bolts = s.boolean("fasten_bolts", out.fasten_bolts);
   out.newton_tolerance = s.number("newton_tolerance", out.newton_tolerance, 1e-16, 1e-2);
   out.time_limit_s = s.number("time_limit_s", out.time_limit_s, 0.1, 1e6);
   s.rejectUnknownKeys();
@@ -512,6 +522,7 @@ json sceneToJson(const Scene& scene) {
         {"supports", scene.simulation.supports},
         {"hold_shared_sides", scene.simulation.hold_shared_sides},
         {"join_patches", scene.simulation.join_patches},
+        {"fasten_bolts", scene.simulation.fasten_bolts},
         {"newton_tolerance", scene.simulation.newton_tolerance},
         {"time_limit_s", scene.simulation.time_limit_s}}},
       {"fabrication", fabrication},
@@ -519,6 +530,7 @@ json sceneToJson(const Scene& scene) {
   };
   // A layout without a workflow is taken as given: the echo leaves the key out, as the scene did.
   if (scene.patching.workflow_given || scene.patching.quads.empty()) echo["patching"]["workflow"] = scene.patching.workflow;
+  if (scene.patching.block_grid[0] > 0) echo["patching"]["block_grid"] = scene.patching.block_grid;
   if (scene.patching.smoothing) echo["patching"]["smoothing"] = *scene.patching.smoothing;
   return echo;
 }

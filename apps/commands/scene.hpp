@@ -28,6 +28,7 @@ struct PatchingSpec {
   double eta_max = 1.0015;                   // uniqueness threshold of Section 2.3.3 / 3.4.1
   std::array<double, 2> slope_bounds{0.1, 10.0};  // k_min, k_max of Problem 2.3
   double max_patch_size_m = 40.0;            // largest patch diagonal Workflow 2 may propose
+  std::array<int, 2> block_grid{0, 0};       // Workflow 2's grid of patches, given ({0, 0}: screened)
   // A given layout, in either form of the scene file: four corners [x, y, z] per patch (corners that
   // coincide are one corner), or "corners" plus patches as quads of corner indices (which can say
   // that a corner lies on another patch's side: a T-junction). Both forms fill all three fields.
@@ -87,6 +88,9 @@ struct SimulationSpec {
   // With propagated members (several patches): also simulate the whole structure with the shared
   // boundary lamellas of neighbouring patches bolted at their coinciding member ends (3.5.3).
   bool join_patches = true;
+  // Self-weight runs: bolts tightened at the weightless equilibrium before the grid carries its
+  // weight (rods::SimulationOptions::fastenBoltsUnderLoad).
+  bool fasten_bolts = true;
   // Newton stops when its decrement g^T H^-1 g falls below this x the energy scale (default =
   // rods::SolverOptions::tolerance; test_scene checks that the two agree). Larger is faster and
   // less exact: one of `egg bench pipeline`'s knobs.

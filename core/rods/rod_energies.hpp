@@ -131,6 +131,22 @@ inline S connectionEnergy(const V3<S>& g0, const V3<S>& g1, const S& thetaG, con
                           materialFrame(h1 - h0, thetaH, referenceH).normal, betaH, offset, positionWeight, angleWeight);
 }
 
+// A fastened bolt (thesis 5.1, "fastening the connections of members after deployment ultimately
+// fixes interior grid angles"): the crossing angle of the two edges that hold it is held at its
+// value when it was fastened, by a rotational spring on the unit tangents' cosine and sine,
+// weight * ((cos - cos0)^2 + (sin - sin0)^2) ~ weight * (alpha - alpha0)^2 for small changes, the
+// same stiffness at any crossing angle.
+template <class S>
+inline S fastenedJointEnergy(const V3<S>& g0, const V3<S>& g1, const V3<S>& h0, const V3<S>& h1, double cos0,
+                             double sin0, double weight) {
+  using std::sqrt;
+  const V3<S> eg = g1 - g0, eh = h1 - h0;
+  const S scale = 1.0 / sqrt(squaredNorm(eg) * squaredNorm(eh));
+  const S c = dot(eg, eh) * scale;
+  const S sn = norm(cross(eg, eh)) * scale;
+  return weight * ((c - cos0) * (c - cos0) + (sn - sin0) * (sn - sin0));
+}
+
 // E_a (Section 2.5): a rod point held at `target` with its material normal along `targetNormal`.
 template <class S>
 inline S anchorEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& m, double beta, const Eigen::Vector3d& target,

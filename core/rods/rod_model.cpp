@@ -2,6 +2,8 @@
 
 #include "core/errors.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -31,6 +33,7 @@ void ModelOptions::validate() const {
   if (!(connectionAngleWeight > 0.0)) throw InvalidInput("ModelOptions.connectionAngleWeight must be > 0");
   if (!(anchorWeight > 0.0)) throw InvalidInput("ModelOptions.anchorWeight must be > 0");
   if (!(anchorAngleWeight > 0.0)) throw InvalidInput("ModelOptions.anchorAngleWeight must be > 0");
+  if (!(fastenedJointWeight > 0.0)) throw InvalidInput("ModelOptions.fastenedJointWeight must be > 0");
 }
 
 RodStiffness stiffnessOf(const Rod& rod) {
@@ -281,6 +284,23 @@ void RodModel::fixVertex(int rod, int vertex, bool x, bool y, bool z) {
 }
 
 void RodModel::fixTwist(int rod, int edge) { fixed_[thetaDof(rod, edge)] = true; }
+
+void RodModel::fastenBolts() {
+  for (Bolt& b : bolts_) {
+    for (const BoltSide* s : {&b.lower, &b.upper})
+      if (s->betaDof >= 0) fixed_[s->betaDof] = true;
+    const Eigen::Vector3d eg = (vertex(b.lower.point.rod, b.lower.point.edge + 1) - vertex(b.lower.point.rod, b.lower.point.edge)).normalized();
+    const Eigen::Vector3d eh = (vertex(b.upper.point.rod, b.upper.point.edge + 1) - vertex(b.upper.point.rod, b.upper.point.edge)).normalized();
+    b.fastenedCos = eg.dot(eh);
+    b.fastenedSin = eg.cross(eh).norm();
+    const RodData& lower = rods_[b.lower.point.rod];
+    const RodData& upper = rods_[b.upper.point.rod];
+    const double softer = std::min(lower.stiffness.bendingStrong / lower.h, upper.stiffness.bendingStrong / upper.h);
+    // E ~ weight (alpha - alpha0)^2 is a spring of stiffness 2 weight.
+    b.fastenedWeight = 0.5 * options_.fastenedJointWeight * softer;
+  }
+  fastened_ = true;
+}
 
 void RodModel::setVertex(int rod, int vertex, const Eigen::Vector3d& p) {
   Eigen::VectorXd z = state_;

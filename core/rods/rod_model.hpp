@@ -27,6 +27,9 @@ struct ModelOptions {
   double connectionAngleWeight = 1.0;  // lambda_q2 in units of GJ/h of the softer rod
   double anchorWeight = 10.0;       // lambda_a1 in units of EA/h
   double anchorAngleWeight = 10.0;  // lambda_a2 in units of GJ/h
+  // Rotational stiffness of a fastened bolt (fastenBolts), in units of E I_strong / h of the
+  // softer rod: the joint is as stiff in its plane as one edge of the lamella.
+  double fastenedJointWeight = 1.0;
   void validate() const;            // throws InvalidInput naming the field
 };
 
@@ -75,6 +78,11 @@ class RodModel {
   void addPointLoad(int rod, int vertex, const Eigen::Vector3d& force);
   // Moment about `axis` on the rod's last edge (potential -M * rotation angle, unwrapped).
   void addEndMoment(int rod, const Eigen::Vector3d& axis, double moment);
+  // Fastens every bolt where it is now (the deployed grid is bolted tight before it carries load,
+  // thesis 5.1): no more sliding in the notches (the bolts' beta unknowns are fixed) and
+  // the crossing angles held by a rotational spring (fastenedJointEnergy, rod_energies.hpp).
+  void fastenBolts();
+  bool boltsFastened() const { return fastened_; }
   // Multiplies gravity, point loads and end moments (load stepping for large deformations).
   void setLoadFactor(double factor);
   double loadFactor() const { return loadFactor_; }
@@ -131,6 +139,8 @@ class RodModel {
     bool aIsLower = true;   // the connection's rod a is the lower one
     double offset = 0.0;    // (t_lower + t_upper)/2
     double positionWeight = 0.0, angleWeight = 0.0;
+    double fastenedWeight = 0.0;  // 0 until fastenBolts()
+    double fastenedCos = 0.0, fastenedSin = 0.0;
   };
   struct AnchorData {
     RodPoint point;
@@ -174,6 +184,7 @@ class RodModel {
   Eigen::VectorXd constantGradient_;       // the same times loadFactor_
   double loadFactor_ = 1.0;
   double stiffFactor_ = 1.0;
+  bool fastened_ = false;
   std::vector<bool> fixed_;
   int dofCount_ = 0;
   double forceScale_ = 0.0;

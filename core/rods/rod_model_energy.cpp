@@ -231,6 +231,19 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
         });
   }
   for (const Bolt& b : bolts_) {
+    if (b.fastenedWeight <= 0.0 || !mine()) continue;
+    // The vertices of the two edges only: a subset of the bolt stencil's, so the sparsity pattern
+    // is the same fastened or not.
+    std::array<int, 12> dofs;
+    std::array<double, 12> values;
+    for (int c = 0; c < 6; ++c) dofs[c] = vertexDof(b.lower.point.rod, b.lower.point.edge) + c;
+    for (int c = 0; c < 6; ++c) dofs[6 + c] = vertexDof(b.upper.point.rod, b.upper.point.edge) + c;
+    for (int c = 0; c < 12; ++c) values[c] = z[dofs[c]];
+    visit(dofs, values, [&](const auto& v) {
+      return fastenedJointEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v3(v, 9), b.fastenedCos, b.fastenedSin, b.fastenedWeight);
+    });
+  }
+  for (const Bolt& b : bolts_) {
     for (const BoltSide* s : {&b.lower, &b.upper}) {
       if (s->betaDof < 0 || !mine()) continue;
       const SliderParameters p = sliderParameters(*s);

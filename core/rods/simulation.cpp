@@ -99,6 +99,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     extent = (high - low).norm();
   };
   if (fromStart) recordReference();
+  if (fromStart && options.fastenBoltsUnderLoad) model.fastenBolts();
   auto largestDisplacement = [&]() {
     double largest = 0.0;
     size_t k = 0;
@@ -139,7 +140,10 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
             run.solver.decrement);
       }
     }
-    if (step == 0 && steps > 0) recordReference();
+    if (step == 0 && steps > 0) {
+      recordReference();
+      if (options.fastenBoltsUnderLoad && run.solver.converged) model.fastenBolts();
+    }
     if (!run.solver.converged) {
       if (step < steps) {
         run.solver.reason = "at load step " + std::to_string(step) + " of " + std::to_string(steps) + ": " +

@@ -27,6 +27,10 @@ struct SimulationOptions {
   // Fig. 3.11). Example: the 8 m vault of `egg bench sim --gravity` (50 x 5 mm strips) with
   // sliding bolts needs ~760 iterations to reach its collapsed equilibrium 1.7 m down. 0: off.
   double collapseFraction = 0.05;
+  // Self-weight runs: the bolts are tightened at the weightless equilibrium (or at the start
+  // state of a run from one), before the grid carries its weight, as on site (RodModel::
+  // fastenBolts): no sliding, crossing angles held. false: the bolts stay loose under load.
+  bool fastenBoltsUnderLoad = false;
   double scaleFactor = 1.0;            // f of the NRMSE (Section 3.5.2)
   bool compareWithoutNotches = false;  // also run with plain holes (RMS1 of Section 2.6.2)
   // Error against run time (issue 18): with a surface, every historyEvery-th Newton iteration and

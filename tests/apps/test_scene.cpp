@@ -3,6 +3,7 @@
 #include "core/egg/members.hpp"
 #include "core/egg/patch_maps.hpp"
 #include "core/rods/rod_solver.hpp"
+#include "core/rods/simulation.hpp"
 #include "core/errors.hpp"
 
 #include <gtest/gtest.h>
@@ -49,6 +50,8 @@ TEST(Scene, DefaultsFillEverythingButTheSurface) {
   EXPECT_TRUE(s.simulation.join_patches);
   EXPECT_FALSE(s.simulation.compare_without_notches);  // a second full run only when asked for
   EXPECT_TRUE(s.simulation.hold_shared_sides);
+  EXPECT_TRUE(s.simulation.fasten_bolts);  // the scene's bolts are tightened before loading; the rod library's are loose
+  EXPECT_FALSE(egg::rods::SimulationOptions{}.fastenBoltsUnderLoad);
   EXPECT_DOUBLE_EQ(s.grid.member_spacing_factor, egg::MemberOptions{}.spacingFactor);
   EXPECT_DOUBLE_EQ(s.simulation.newton_tolerance, egg::rods::SolverOptions{}.tolerance);
   EXPECT_DOUBLE_EQ(s.simulation.time_limit_s, egg::rods::SolverOptions{}.timeLimit_s);
@@ -153,6 +156,15 @@ TEST(Scene, BadValuesAreErrorsNamingTheFieldAndFile) {
   }
   EXPECT_EQ(parse(R"({"surface": {"sample": "bump"}, "grid": {"map_proxy_vertices": 0}})").grid.map_proxy_vertices, 0);
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"eta_max": 0.9}})").find("patching.eta_max"),
+            std::string::npos);
+  for (const char* bad : {"[4]", "[0, 2]", "[2, 17]", "[2.5, 2]", "\"4x4\""}) {
+    const std::string e = errorOf(std::string(R"({"surface": {"sample": "bump"}, "patching": {"block_grid": )") + bad + "}}");
+    EXPECT_NE(e.find("patching.block_grid"), std::string::npos) << bad << ": " << e;
+  }
+  EXPECT_EQ(parse(R"({"surface": {"sample": "bump"}, "patching": {"block_grid": [4, 3]}})").patching.block_grid,
+            (std::array<int, 2>{4, 3}));
+  EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"block_grid": [2, 2], "patches": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]}})")
+                .find("patching.block_grid"),
             std::string::npos);
   for (const char* bad : {R"("kerf_mm": -1)", R"("stock_length_mm": 0)", R"("margin_mm": 900)", R"("min_notch_mm": "1")",
                           R"("sticker_sheet_mm": [10])", R"("end_overhang_mm": -2)"}) {

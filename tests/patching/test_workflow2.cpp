@@ -171,6 +171,32 @@ TEST(Workflow2, TheSameLayoutOnAnyThreadCount) {
   EXPECT_GT(one.quads.size(), 4u);  // 50 m cells: the ring's blocks are subdivided
 }
 
+TEST(Workflow2, AGivenBlockGridIsLaidOutAsGiven) {
+  // The same 12 x 6 m plane: screening picks 3 x 2 (6 patches, above); the architect's 4 x 2 gives
+  // 8 patches of 3 x 3 m, each 4.24 m across, and the corners of a 5 x 3 grid.
+  const TriMesh plane = samples::generateSample("plane", {{"length", 12}, {"width", 6}}, 0.5);
+  Workflow2Options options;
+  options.maxPatchSizeM = 5.0;
+  options.blockGrid = {4, 2};
+  const Workflow2Layout layout = proposeLayout(plane, options);
+  ASSERT_EQ(layout.quads.size(), 8u);
+  EXPECT_EQ(layout.corners.size(), 15u);
+  EXPECT_EQ(layout.candidatesScreened, 1);
+  for (const auto& q : layout.quads) EXPECT_NEAR((layout.corners[q[2]] - layout.corners[q[0]]).norm(), std::sqrt(18.0), 1e-6);
+  // Along the other direction: 2 x 4 cells are 6 x 1.5 m, 6.2 m across: larger than 5 m.
+  options.blockGrid = {1, 4};
+  try {
+    proposeLayout(plane, options);
+    ADD_FAILURE() << "a 12 m cell passed a 5 m limit";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("patching.block_grid [1, 4]"), std::string::npos) << e.what();
+  }
+  options.blockGrid = {0, 3};
+  EXPECT_THROW(proposeLayout(plane, options), InvalidInput);
+  options.blockGrid = {17, 1};
+  EXPECT_THROW(proposeLayout(plane, options), InvalidInput);
+}
+
 TEST(Workflow2, BadInputIsNamed) {
   const TriMesh plane = samples::generateSample("plane", {{"length", 4}, {"width", 4}}, 0.5);
   Workflow2Options options;

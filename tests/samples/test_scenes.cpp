@@ -36,10 +36,10 @@ void expectDesignKeys(const json& scene) {
   expectOnlyKeys(scene, {"name", "surface", "patching", "grid", "lamella", "simulation", "fabrication", "outputs"}, "");
   const std::map<std::string, std::set<std::string>> sections{
       {"surface", {"sample", "params", "edge_length_m"}},
-      {"patching", {"workflow", "eta_max", "slope_bounds", "max_patch_size_m", "patches"}},
+      {"patching", {"workflow", "eta_max", "slope_bounds", "max_patch_size_m", "block_grid", "patches"}},
       {"grid", {"members_per_family", "map_resolution", "alpha_bar", "min_planar_angle_rad"}},
       {"lamella", {"width_m", "thickness_m", "material"}},
-      // join_patches, stock_length_mm, splice_joint: beyond DESIGN.md, documented in the README
+      // block_grid, join_patches, stock_length_mm, splice_joint: beyond DESIGN.md, documented in the README
       // (architectural lamellas are spliced from long stock, Section 3.5; the Yas canopy's slots
       // merge into slits that only a glued scarf can join, and its joined run is too large).
       {"simulation", {"enabled", "gravity", "friction_mu", "notches", "join_patches"}},

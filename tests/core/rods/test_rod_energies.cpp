@@ -133,6 +133,27 @@ TEST(RodEnergies, ConnectionIsZeroForStackedRodsWithParallelNormals) {
   EXPECT_NEAR(connectionEnergy(g0, g1, 0.0, 0.5, rg, h0, h1, 0.0, 0.55, rh, t, 1e6, 1e3), 2e6 * 0.01, 1e-6);
 }
 
+TEST(RodEnergies, FastenedJointGradientAndHessianMatchFiniteDifferences) {
+  const std::array<double, 12> x{0.1, 0.0, 0.05, 1.1, 0.2, -0.1, 0.4, -0.6, 0.1, 0.7, 0.5, 0.0};
+  expectExactDerivatives(x, [&](const auto& v) {
+    return fastenedJointEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v3(v, 9), std::cos(1.2), std::sin(1.2), 40.0);
+  });
+}
+
+TEST(RodEnergies, FastenedJointCostsTwoWeightOneMinusCosOfTheAngleTurned) {
+  // Fastened at 1.1 rad between two edges in the xy plane; the upper one turned by delta (and
+  // lengthened, which changes nothing): (cos - cos0)^2 + (sin - sin0)^2 = 2 (1 - cos delta).
+  const double alpha0 = 1.1, weight = 7.0;
+  const V3<double> g0{0, 0, 0}, g1{0.5, 0, 0}, h0{0.2, 0.1, 0.04};
+  for (double delta : {0.0, 1e-3, 0.05, 0.4, -0.3}) {
+    const double a = alpha0 + delta;
+    const V3<double> h1{h0.x + 2.0 * std::cos(a), h0.y + 2.0 * std::sin(a), h0.z};
+    EXPECT_NEAR(fastenedJointEnergy(g0, g1, h0, h1, std::cos(alpha0), std::sin(alpha0), weight),
+                2.0 * weight * (1.0 - std::cos(delta)), 1e-12)
+        << delta;
+  }
+}
+
 TEST(RodEnergies, AnchorGradientAndHessianMatchFiniteDifferences) {
   std::mt19937 rng(5);
   const std::array<double, 7> x{0.1, 0.2, -0.1, 0.9, 0.3, 0.2, 0.3};

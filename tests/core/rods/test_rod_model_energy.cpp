@@ -36,36 +36,40 @@ TEST(RodModelEnergy, WholeModelDerivativesMatchFiniteDifferences) {
   model.addEndMoment(1, Eigen::Vector3d::UnitX(), 0.3);
   model.addPointLoad(0, 6, Eigen::Vector3d(0.1, 0.2, -0.3));
 
-  // A perturbed state (reference frames stay those of the unperturbed one, as within a step).
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> noise(-0.01, 0.01);
-  Eigen::VectorXd z = model.state();
-  for (int i = 0; i < z.size(); ++i) z[i] += noise(rng);
-  const int n = model.dofCount();
-  Eigen::VectorXd gradient;
-  std::vector<Eigen::Triplet<double>> triplets;
-  const double energy = model.derivatives(z, gradient, triplets, 2);
-  EXPECT_NEAR(energy, model.energy(z), 1e-10 * std::abs(energy));
-  Eigen::SparseMatrix<double> lower(n, n);
-  lower.setFromTriplets(triplets.begin(), triplets.end());
-  const Eigen::MatrixXd hessian = Eigen::MatrixXd(lower).selfadjointView<Eigen::Lower>();
+  // Loose bolts, then fastened ones (RodModel::fastenBolts: their joint term on top).
+  for (const bool fastened : {false, true}) {
+    if (fastened) model.fastenBolts();
+    // A perturbed state (reference frames stay those of the unperturbed one, as within a step).
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> noise(-0.01, 0.01);
+    Eigen::VectorXd z = model.state();
+    for (int i = 0; i < z.size(); ++i) z[i] += noise(rng);
+    const int n = model.dofCount();
+    Eigen::VectorXd gradient;
+    std::vector<Eigen::Triplet<double>> triplets;
+    const double energy = model.derivatives(z, gradient, triplets, 2);
+    EXPECT_NEAR(energy, model.energy(z), 1e-10 * std::abs(energy));
+    Eigen::SparseMatrix<double> lower(n, n);
+    lower.setFromTriplets(triplets.begin(), triplets.end());
+    const Eigen::MatrixXd hessian = Eigen::MatrixXd(lower).selfadjointView<Eigen::Lower>();
 
-  const double gradientScale = gradient.cwiseAbs().maxCoeff();
-  const double hessianScale = hessian.cwiseAbs().maxCoeff();
-  for (int i = 0; i < n; ++i) {
-    const double step = 1e-6;
-    Eigen::VectorXd plus = z, minus = z;
-    plus[i] += step;
-    minus[i] -= step;
-    const double fd = (model.energy(plus) - model.energy(minus)) / (2.0 * step);
-    EXPECT_NEAR(gradient[i], fd, 1e-5 * gradientScale) << "dof " << i;
-    Eigen::VectorXd gp, gm;
-    model.derivatives(plus, gp, triplets);
-    model.derivatives(minus, gm, triplets);
-    const Eigen::VectorXd column = (gp - gm) / (2.0 * step);
-    for (int j = 0; j < n; ++j) {
-      // Round-off in the differenced gradient (entries up to EA/h) limits the attainable accuracy.
-      EXPECT_NEAR(hessian(j, i), column[j], 1e-8 * hessianScale + 1e-5 * std::abs(hessian(j, i))) << j << "," << i;
+    const double gradientScale = gradient.cwiseAbs().maxCoeff();
+    const double hessianScale = hessian.cwiseAbs().maxCoeff();
+    for (int i = 0; i < n; ++i) {
+      const double step = 1e-6;
+      Eigen::VectorXd plus = z, minus = z;
+      plus[i] += step;
+      minus[i] -= step;
+      const double fd = (model.energy(plus) - model.energy(minus)) / (2.0 * step);
+      EXPECT_NEAR(gradient[i], fd, 1e-5 * gradientScale) << "dof " << i;
+      Eigen::VectorXd gp, gm;
+      model.derivatives(plus, gp, triplets);
+      model.derivatives(minus, gm, triplets);
+      const Eigen::VectorXd column = (gp - gm) / (2.0 * step);
+      for (int j = 0; j < n; ++j) {
+        // Round-off in the differenced gradient (entries up to EA/h) limits the attainable accuracy.
+        EXPECT_NEAR(hessian(j, i), column[j], 1e-8 * hessianScale + 1e-5 * std::abs(hessian(j, i))) << j << "," << i;
+      }
     }
   }
 }

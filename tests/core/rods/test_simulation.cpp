@@ -158,6 +158,30 @@ TEST(Simulation, SlowSlidingBoltsLetAThinLargeVaultCollapseUnderItsWeight) {
   }
 }
 
+TEST(Simulation, FasteningTheBoltsBeforeLoadingHoldsTheVaultThatCollapsesWithLooseOnes) {
+  // The same vault whose sliding bolts let it fall through (above): tightened at the weightless
+  // equilibrium, the scissor grid can no longer shear nor slide, and it carries its weight.
+  CylinderGridParameters parameters;
+  parameters.meshEdge_m = 0.1;
+  const SampleGrid grid = cylinderGrid(parameters);
+  SimulationOptions options;
+  options.model.gravity = true;
+  options.collapseFraction = 0.01;
+  options.solver.maxIterations = 200;
+  options.fastenBoltsUnderLoad = true;
+  const SimulationRun fastened = simulateRods(grid.network, nullptr, options);
+  ASSERT_TRUE(fastened.solver.converged) << fastened.solver.reason;
+  EXPECT_LT(fastened.maxSag_m, 0.05);
+  // Fastened bolts do not slide under load: each bolt is where the weightless run left it.
+  options.model.gravity = false;
+  const SimulationRun weightless = simulateRods(grid.network, nullptr, options);
+  ASSERT_TRUE(weightless.solver.converged) << weightless.solver.reason;
+  ASSERT_EQ(fastened.boltPositions_m.size(), weightless.boltPositions_m.size());
+  for (size_t b = 0; b < fastened.boltPositions_m.size(); ++b)
+    for (int side = 0; side < 2; ++side)
+      EXPECT_NEAR(fastened.boltPositions_m[b][side], weightless.boltPositions_m[b][side], 1e-9) << b;
+}
+
 // The joined run's warm start (startFrom, gravitySteps = 0): a run started from an equilibrium
 // under self-weight is at that equilibrium already, with the rods in either layer order.
 TEST(Simulation, AWarmStartFromAnEquilibriumUnderSelfWeightStaysThere) {

@@ -61,7 +61,7 @@ void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>
   while (!s_.queue.empty()) {
     // Front mode only: its slots are a small pool; prefetching into the stored engine's array
     // made the 418k-triangle bump's stored field 1.2x slower (51 s against 40-42 s, twice each).
-    if (!s_.storeWindows) s_.queue.prefetchRecords(s_.windows.data(), sizeof(Window));
+    if (!s_.storeWindows && !s_.wavefront) s_.queue.prefetchRecords(s_.windows.data(), sizeof(Window));
     const auto entry = s_.queue.pop();
     if (goal_.active() && entry.key >= directed_.farthestBound(t_, s_)) break;  // targets final
     if (entry.item < 0) {
@@ -70,6 +70,8 @@ void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>
       fire(v);
     } else if (s_.storeWindows) {
       propagateWindow(entry.item);
+    } else if (s_.wavefront) {
+      propagateHalfedge(entry.item, entry.key);
     } else if (takeFrontWindow(entry.item)) {
       propagateWindow(entry.item);
       s_.freeSlots.push_back(entry.item);
@@ -151,6 +153,7 @@ double Propagator::bentDistance(const Window& w, int side, double px, double py,
 
 void Propagator::addWindow(Window& w) {
   if (s_.storeWindows) addStoredWindow(w);
+  else if (s_.wavefront) addWavefrontWindow(w);
   else addFrontWindow(w);
 }
 
@@ -456,8 +459,9 @@ void Propagator::propagateWindow(int index) {
 
 void propagate(const MeshTables& tables, const DistanceSolverOptions& options, const SurfacePoint& source,
                const std::vector<SurfacePoint>& targets, Propagation& state, bool directedAtTargets,
-               bool storeWindows) {
+               bool storeWindows, bool wavefront) {
   state.storeWindows = storeWindows;
+  state.wavefront = wavefront && !storeWindows;
   Propagator(tables, options, state).run(source, targets, directedAtTargets && !targets.empty());
 }
 

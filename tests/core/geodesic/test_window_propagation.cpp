@@ -117,12 +117,22 @@ TEST_P(FrontEngine, HoldsOnlyTheFront) {
   EXPECT_LT(b.peakWindows * 10, b.windowsCreated) << b.peakWindows << " of " << b.windowsCreated;
   EXPECT_LT(b.peakBytes * 5, a.peakBytes) << b.peakBytes << " vs " << a.peakBytes;
   EXPECT_GT(b.peakBytes, 0.0);
-  // Default mode: where a skipped saddle's shadow is reached by bending (pathBentAt), the bend uses
-  // the vertex's distance at that moment, and the wavefront engine propagates a halfedge's windows
-  // in batches, out of key order: measured 3.0e-8 here against the stored engine (the front engine:
-  // 1e-9; both engines' exact modes agree to 1e-9, SameDistancesAsStoredWindowsInExactAndDefaultModes).
-  const double bound = GetParam() == Engine::Wavefront ? 1e-7 : 1e-9;
-  EXPECT_LT(maxRelativeDifference(b.vertexDistances, a.vertexDistances, 1e-9), bound);
+  if (GetParam() == Engine::FrontOnly) {
+    EXPECT_LT(maxRelativeDifference(b.vertexDistances, a.vertexDistances, 1e-9), 1e-9);
+    return;
+  }
+  // The wavefront engine trims against fewer windows (addWavefrontWindow): other window ends, so
+  // other bends at skipped saddles (pathBentAt), by default. Its exact mode equals the stored
+  // engine's (SameDistancesAsStoredWindowsInExactAndDefaultModes); here its default mode's error
+  // against the exact mode is held to the stored engine's. Measured: both 1.41e-6, wavefront
+  // against stored 3.2e-7.
+  const auto exact = DistanceSolver(mesh, withEngine(Engine::StoredWindows, 0.0)).distances(s).vertexDistances;
+  const double waveError = maxRelativeDifference(b.vertexDistances, exact, 1e-9);
+  const double storedError = maxRelativeDifference(a.vertexDistances, exact, 1e-9);
+  std::printf("20k bump, default mode against exact: wavefront %.2e, stored %.2e, between %.2e\n", waveError,
+              storedError, maxRelativeDifference(b.vertexDistances, a.vertexDistances, 1e-9));
+  EXPECT_LE(waveError, 1.1 * storedError);
+  EXPECT_GT(storedError, 0.0);
 }
 
 TEST_P(FrontEngine, MergesWindowsOfOneImageOnAPlane) {

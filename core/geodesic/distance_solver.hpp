@@ -79,9 +79,10 @@ struct DistanceSolverOptions {
   // cheaper. Exact mode: the stored engine's distances to 1e-9; default mode: differences up to
   // 3e-7 where bends at skipped saddles see other window ends, with the same error against the
   // exact mode (tests: test_window_propagation.cpp, test_wavefront_engine.cpp). Time per field
-  // against stored / front, one interleaved run, 5 vertex sources (2026-12, thread CPU): 4.4k bump
-  // 0.69 / 0.65, 4.6k cap 0.65 / 0.59, 18k cap 0.44 / 0.48, 17k plane 0.06 / 1.01, 418k-triangle
-  // bump (1 source) 0.22 / 0.31 (13.7 s; process peak RSS 0.39 GB). Not the default yet: the full
+  // against stored / front, one interleaved run, 5 vertex sources (2026-12, thread CPU, `egg bench
+  // geodesic --engine-rows large`): 4.4k bump 0.69 / 0.64, 4.6k cap 0.57 / 0.55, 18k cap 0.46 /
+  // 0.46, 17k plane 0.06 / 0.93, 418k-triangle bump (1 source) 0.29 / 0.31 (14.9 s; 0.22 / 0.31 in
+  // a second run; peak RSS of a wavefront-only process 0.39 GB). Not the default yet: the full
   // ctest has not been run with it. path() keeps the windows it traces back through whatever the
   // engine.
   enum class Engine { StoredWindows, FrontOnly, Wavefront };

@@ -58,6 +58,7 @@ int runGeodesic(const GeodesicArgs& args) {
   geodesic::DistanceSolverOptions options;
   if (args.engine == "stored") options.engine = geodesic::DistanceSolverOptions::Engine::StoredWindows;
   if (args.engine == "front") options.engine = geodesic::DistanceSolverOptions::Engine::FrontOnly;
+  if (args.engine == "wavefront") options.engine = geodesic::DistanceSolverOptions::Engine::Wavefront;
   const geodesic::DistanceSolver solver(mesh, options);
   const SurfacePoint source = geodesic::snapToSurface(mesh, requested);
   const Eigen::Vector3d snapped = position(mesh, source);
@@ -223,43 +224,50 @@ nlohmann::json toleranceTable(const TriMesh& mesh, const std::vector<SurfacePoin
   return rows;
 }
 
-// Stored-window engine against the front-only one (DistanceSolverOptions::Engine) on the meshes of
-// issue 19 (each exported by `egg surface NAME --edge-length E`), from the same vertex sources,
-// interleaved source by source: median thread CPU time per field, windows, the most windows held
-// at once and the counted working memory at the peak (DistanceField::peakBytes), and the largest
-// relative difference at the vertices (farther than two mean edges) of each against the exact
-// mode (tolerance 0, stored windows) and of the two engines against each other.
+// The three engines (DistanceSolverOptions::Engine: stored windows, front only, wavefront) on the
+// meshes of issue 19 (each exported by `egg surface NAME --edge-length E`), from the same vertex
+// sources, interleaved source by source: median thread CPU time per field, windows, the counted
+// working memory at the peak (DistanceField::peakBytes), and the largest relative difference at the
+// vertices (farther than two mean edges) of each against the exact mode (tolerance 0, stored
+// windows) and of the front and wavefront engines against the stored one.
 struct EngineRow {
   std::string sample;
   double edge;
 };
 
 nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
+  using Engine = geodesic::DistanceSolverOptions::Engine;
   std::vector<EngineRow> meshes = {{"bump", 0.1699}, {"sphere", 0.2567}, {"sphere", 0.12835}, {"plane", 0.08495}};
   if (args.engineRows == "large") meshes.push_back({"bump", 0.02459});
-  table << "\nstored-window engine against front-only (issue 19): median thread CPU ms per vertex source; ratio ="
-           " front / stored; peak MB = counted working memory of one field;\nerr = max relative difference at the"
-           " vertices against the exact mode (tolerance 0, stored; skipped above 50k vertices), front-stored ="
-           " between the engines;\nRSS MB = the process's peak RSS before the row's first stored field (mesh,"
-           " tables, the front field, and all earlier rows)\n";
-  table << fmt::format("{:>7} {:>8} {:>8} {:>9} {:>9} {:>6} {:>10} {:>10} {:>9} {:>9} {:>10} {:>10} {:>10} {:>8}\n",
-                       "sample", "verts", "faces", "stored ms", "front ms", "ratio", "stored win", "front win",
-                       "stored MB", "front MB", "stored err", "front err", "front-strd", "RSS MB");
+  table << "\nengines (issue 19): median thread CPU ms per vertex source of the stored-window, front-only and"
+           " wavefront engines; f/s, w/s, w/f = time ratios;\nwin = windows created; MB = counted working memory"
+           " of one field; err = max relative difference at the vertices against the exact mode\n(tolerance 0,"
+           " stored; skipped above 50k vertices); f-s, w-s = against the stored engine; RSS MB = the process's"
+           " peak RSS\nbefore the row's first stored field (mesh, tables, the front and wavefront fields, earlier"
+           " rows)\n";
+  table << fmt::format(
+      "{:>7} {:>8} {:>9} {:>9} {:>9} {:>5} {:>5} {:>5} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} "
+      "{:>7}\n",
+      "sample", "verts", "stored ms", "front ms", "wave ms", "f/s", "w/s", "w/f", "strd win", "front win", "wave win",
+      "strd MB", "frntMB", "waveMB", "strd err", "wave err", "f-s", "w-s", "RSS MB");
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& row : meshes) {
     const TriMesh mesh = samples::generateSample(row.sample, {}, row.edge);
-    geodesic::DistanceSolverOptions storedOptions, frontOptions, exactOptions;
-    frontOptions.engine = geodesic::DistanceSolverOptions::Engine::FrontOnly;
+    geodesic::DistanceSolverOptions storedOptions, frontOptions, waveOptions, exactOptions;
+    storedOptions.engine = Engine::StoredWindows;
+    frontOptions.engine = Engine::FrontOnly;
+    waveOptions.engine = Engine::Wavefront;
+    exactOptions.engine = Engine::StoredWindows;
     exactOptions.saddleAngleTolerance = 0.0;
-    const geodesic::DistanceSolver stored(mesh, storedOptions), front(mesh, frontOptions);
+    const geodesic::DistanceSolver stored(mesh, storedOptions), front(mesh, frontOptions), wave(mesh, waveOptions);
     const int nv = static_cast<int>(mesh.n_vertices());
     const bool large = nv > 50000;
     std::unique_ptr<geodesic::DistanceSolver> exact;
     if (!large) exact = std::make_unique<geodesic::DistanceSolver>(mesh, exactOptions);
     const int count = large ? 1 : std::max(1, args.engineSources);
-    std::vector<double> storedMs, frontMs;
-    double storedWindows = 0, frontWindows = 0, storedPeak = 0, frontPeak = 0, storedBytes = 0, frontBytes = 0;
-    double storedErr = 0, frontErr = 0, between = 0, rssBeforeStored = 0;
+    std::vector<double> storedMs, frontMs, waveMs;
+    double storedWindows = 0, frontWindows = 0, waveWindows = 0, storedBytes = 0, frontBytes = 0, waveBytes = 0;
+    double storedErr = 0, waveErr = 0, frontBetween = 0, waveBetween = 0, rssBeforeStored = 0;
     auto worst = [&](const std::vector<double>& a, const std::vector<double>& ref, double& into) {
       for (size_t v = 0; v < ref.size(); ++v) {
         if (ref[v] > 2.0 * stored.meanEdgeLength() && std::isfinite(ref[v])) {
@@ -267,36 +275,42 @@ nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
         }
       }
     };
+    auto timed = [](const geodesic::DistanceSolver& solver, int v, std::vector<double>& ms) {
+      const double t0 = threadCpuSeconds();
+      auto field = solver.distancesFromVertex(v);
+      ms.push_back(1e3 * (threadCpuSeconds() - t0));
+      return field;
+    };
     for (int i = 0; i < count; ++i) {
       const int v = static_cast<int>((2LL * i + 1) * nv / (2LL * count));
-      // Front first: the process's peak RSS before the row's first stored field bounds what a
-      // front-only process needs (mesh, tables and one field; earlier rows count too).
-      double t0 = threadCpuSeconds();
-      const auto b = front.distancesFromVertex(v);
-      frontMs.push_back(1e3 * (threadCpuSeconds() - t0));
+      // Front and wavefront first: the process's peak RSS before the row's first stored field
+      // bounds what a process without stored windows needs (earlier rows count too).
+      const auto b = timed(front, v, frontMs);
+      const auto c = timed(wave, v, waveMs);
       if (i == 0) rssBeforeStored = peakRssMb();
-      t0 = threadCpuSeconds();
-      const auto a = stored.distancesFromVertex(v);
-      storedMs.push_back(1e3 * (threadCpuSeconds() - t0));
+      const auto a = timed(stored, v, storedMs);
       storedWindows += a.windowsCreated;
       frontWindows += b.windowsCreated;
-      storedPeak = std::max(storedPeak, double(a.peakWindows));
-      frontPeak = std::max(frontPeak, double(b.peakWindows));
+      waveWindows += c.windowsCreated;
       storedBytes = std::max(storedBytes, a.peakBytes);
       frontBytes = std::max(frontBytes, b.peakBytes);
-      worst(b.vertexDistances, a.vertexDistances, between);
+      waveBytes = std::max(waveBytes, c.peakBytes);
+      worst(b.vertexDistances, a.vertexDistances, frontBetween);
+      worst(c.vertexDistances, a.vertexDistances, waveBetween);
       if (exact) {
         const auto e = exact->distancesFromVertex(v);
         worst(a.vertexDistances, e.vertexDistances, storedErr);
-        worst(b.vertexDistances, e.vertexDistances, frontErr);
+        worst(c.vertexDistances, e.vertexDistances, waveErr);
       }
     }
-    const double sm = median(storedMs), fm = median(frontMs);
-    auto errText = [&](double e) { return exact ? fmt::format("{:.2e}", e) : std::string("-"); };
+    const double sm = median(storedMs), fm = median(frontMs), wm = median(waveMs);
+    auto errText = [&](double e) { return exact ? fmt::format("{:.1e}", e) : std::string("-"); };
     table << fmt::format(
-        "{:>7} {:>8} {:>8} {:>9.1f} {:>9.1f} {:>6.2f} {:>10.0f} {:>10.0f} {:>9.1f} {:>9.1f} {:>10} {:>10} {:>10.2e} {:>8.0f}\n",
-        row.sample, nv, mesh.n_faces(), sm, fm, fm / sm, storedWindows / count, frontWindows / count, storedBytes / 1e6,
-        frontBytes / 1e6, errText(storedErr), errText(frontErr), between, rssBeforeStored);
+        "{:>7} {:>8} {:>9.1f} {:>9.1f} {:>9.1f} {:>5.2f} {:>5.2f} {:>5.2f} {:>9.0f} {:>9.0f} {:>9.0f} {:>8.1f} {:>7.1f} "
+        "{:>7.1f} {:>8} {:>8} {:>8.1e} {:>8.1e} {:>7.0f}\n",
+        row.sample, nv, sm, fm, wm, fm / sm, wm / sm, wm / fm, storedWindows / count, frontWindows / count,
+        waveWindows / count, storedBytes / 1e6, frontBytes / 1e6, waveBytes / 1e6, errText(storedErr),
+        errText(waveErr), frontBetween, waveBetween, rssBeforeStored);
     table.flush();
     auto orNull = [&](double e) { return exact ? nlohmann::json(e) : nlohmann::json(nullptr); };
     rows.push_back({{"sample", row.sample},
@@ -306,16 +320,20 @@ nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
                     {"sources", count},
                     {"stored_ms_per_source", sm},
                     {"front_ms_per_source", fm},
+                    {"wavefront_ms_per_source", wm},
                     {"front_over_stored", fm / sm},
+                    {"wavefront_over_stored", wm / sm},
+                    {"wavefront_over_front", wm / fm},
                     {"stored_windows_per_source", storedWindows / count},
                     {"front_windows_per_source", frontWindows / count},
-                    {"stored_peak_windows", storedPeak},
-                    {"front_peak_windows", frontPeak},
+                    {"wavefront_windows_per_source", waveWindows / count},
                     {"stored_peak_mb", storedBytes / 1e6},
                     {"front_peak_mb", frontBytes / 1e6},
+                    {"wavefront_peak_mb", waveBytes / 1e6},
                     {"stored_max_relative_error_vs_exact", orNull(storedErr)},
-                    {"front_max_relative_error_vs_exact", orNull(frontErr)},
-                    {"front_vs_stored_max_relative_difference", between},
+                    {"wavefront_max_relative_error_vs_exact", orNull(waveErr)},
+                    {"front_vs_stored_max_relative_difference", frontBetween},
+                    {"wavefront_vs_stored_max_relative_difference", waveBetween},
                     {"process_peak_rss_mb_before_stored", rssBeforeStored},
                     {"process_peak_rss_mb_after_stored", peakRssMb()}});
   }
@@ -464,9 +482,9 @@ void registerGeodesicCommand(CLI::App& parent, Action& action) {
   cmd->add_option("--source", args->source, "source point x,y,z in metres (snapped to the surface)")->required();
   cmd->add_option("--out", args->out, "output CSV (x,y,z,distance per vertex; inf if unreachable)")->required();
   cmd->add_option("--engine", args->engine,
-                  "stored (every window kept) or front (only the wavefront, far less memory); default: the "
-                  "solver's")
-      ->check(CLI::IsMember({"stored", "front"}));
+                  "stored (every window kept), front (only the queued windows, far less memory) or wavefront "
+                  "(the same, queued per edge, VTP-style); default: the solver's")
+      ->check(CLI::IsMember({"stored", "front", "wavefront"}));
   cmd->add_flag("--json", args->json, "print the summary as JSON");
   cmd->callback([args, &action] { action = [args] { return runGeodesic(*args); }; });
 }
@@ -493,7 +511,7 @@ void registerGeodesicBench(CLI::App& bench, Action& action) {
       ->delimiter(',')
       ->check(finiteRange(0.0, 0.0999));
   cmd->add_option("--engine-rows", args->engineRows,
-                  "stored-window against front-only engine on the bump, sphere cap and plane of issue 19: none, "
+                  "stored-window, front-only and wavefront engines on the bump, sphere cap and plane of issue 19: none, "
                   "standard, or large (adds the 418k-triangle bump: minutes, gigabytes for the stored engine)")
       ->check(CLI::IsMember({"none", "standard", "large"}));
   cmd->add_option("--engine-sources", args->engineSources, "vertex sources per row of the engine table (large row: 1)")

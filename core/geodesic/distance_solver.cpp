@@ -32,8 +32,8 @@ void DistanceSolverOptions::validate() const {
     throw InvalidInput("DistanceSolverOptions.minWindowWidthRelative must be in [0, 1e-3)");
   }
   if (threads < 0) throw InvalidInput("DistanceSolverOptions.threads must be >= 0 (0 = all cores)");
-  if (engine != Engine::StoredWindows && engine != Engine::FrontOnly) {
-    throw InvalidInput("DistanceSolverOptions.engine must be StoredWindows or FrontOnly");
+  if (engine != Engine::StoredWindows && engine != Engine::FrontOnly && engine != Engine::Wavefront) {
+    throw InvalidInput("DistanceSolverOptions.engine must be StoredWindows, FrontOnly or Wavefront");
   }
 }
 
@@ -71,19 +71,22 @@ DistanceField fieldFrom(const detail::MeshTables& tables, const detail::Propagat
 bool storesWindows(const DistanceSolverOptions& options) {
   return options.engine == DistanceSolverOptions::Engine::StoredWindows;
 }
+bool wavefront(const DistanceSolverOptions& options) {
+  return options.engine == DistanceSolverOptions::Engine::Wavefront;
+}
 }  // namespace
 
 DistanceField DistanceSolver::distances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const {
   const auto start = std::chrono::steady_clock::now();
   detail::Propagation& state = threadScratch();
-  detail::propagate(*tables_, options_, source, targets, state, false, storesWindows(options_));
+  detail::propagate(*tables_, options_, source, targets, state, false, storesWindows(options_), wavefront(options_));
   return fieldFrom(*tables_, state, secondsSince(start));
 }
 
 DistanceField DistanceSolver::directedDistances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const {
   const auto start = std::chrono::steady_clock::now();
   detail::Propagation& state = threadScratch();
-  detail::propagate(*tables_, options_, source, targets, state, /*directedAtTargets=*/true, storesWindows(options_));
+  detail::propagate(*tables_, options_, source, targets, state, /*directedAtTargets=*/true, storesWindows(options_), wavefront(options_));
   return fieldFrom(*tables_, state, secondsSince(start));
 }
 
@@ -110,7 +113,7 @@ std::vector<DistanceField> DistanceSolver::distances(const std::vector<SurfacePo
     auto& state = threadScratch();
     for (size_t i = range.begin(); i < range.end(); ++i) {
       const auto start = std::chrono::steady_clock::now();
-      detail::propagate(*tables_, options_, sources[i], targets, state, false, storesWindows(options_));
+      detail::propagate(*tables_, options_, sources[i], targets, state, false, storesWindows(options_), wavefront(options_));
       fields[i] = fieldFrom(*tables_, state, secondsSince(start));
     }
   };
@@ -127,7 +130,7 @@ std::vector<DistanceField> DistanceSolver::distances(const std::vector<SurfacePo
 
 double DistanceSolver::distance(const SurfacePoint& from, const SurfacePoint& to) const {
   detail::Propagation& state = threadScratch();
-  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true, storesWindows(options_));
+  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true, storesWindows(options_), wavefront(options_));
   return state.targetDistance[0];
 }
 

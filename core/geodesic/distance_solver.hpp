@@ -72,10 +72,20 @@ struct DistanceSolverOptions {
   // test_window_propagation.cpp). Time per field, front / stored (2026-12, `egg bench geodesic
   // --engine-rows large`, thread CPU; and `egg geodesic --engine`): 1.05-1.10 on the 4.5k bump and
   // cap, 0.84-1.02 on the 18k cap, 0.88-0.97 on the 17k plane, 0.55-1.02 on the 418k-triangle bump,
-  // whose process peak RSS drops from 5.0 GB to 0.27 GB (working memory 3.6 GB -> 53 MB). Not the
-  // default: slower on the small meshes. path() keeps the windows it traces back through whatever
-  // the engine.
-  enum class Engine { StoredWindows, FrontOnly };
+  // whose process peak RSS drops from 5.0 GB to 0.27 GB (working memory 3.6 GB -> 53 MB).
+  // Wavefront (wavefront_engine.cpp, after VTP): the front engine's windows queued per halfedge
+  // (first-in-first-out lists, one queue entry per halfedge, a halfedge's windows propagated as one
+  // batch) and trimmed against the first two of their edge's list only: a few % more windows, each
+  // cheaper. Exact mode: the stored engine's distances to 1e-9; default mode: differences up to
+  // 3e-7 where bends at skipped saddles see other window ends, with the same error against the
+  // exact mode (tests: test_window_propagation.cpp, test_wavefront_engine.cpp). Time per field
+  // against stored / front, one interleaved run, 5 vertex sources (2026-12, thread CPU, `egg bench
+  // geodesic --engine-rows large`): 4.4k bump 0.69 / 0.64, 4.6k cap 0.57 / 0.55, 18k cap 0.46 /
+  // 0.46, 17k plane 0.06 / 0.93, 418k-triangle bump (1 source) 0.29 / 0.31 (14.9 s; 0.22 / 0.31 in
+  // a second run; peak RSS of a wavefront-only process 0.39 GB). Not the default yet: the full
+  // ctest has not been run with it. path() keeps the windows it traces back through whatever the
+  // engine.
+  enum class Engine { StoredWindows, FrontOnly, Wavefront };
   Engine engine = Engine::StoredWindows;
 
   void validate() const;  // throws InvalidInput naming the field

@@ -28,6 +28,13 @@ void Propagator::reset(const std::vector<SurfacePoint>& targets) {
   s_.blockLive.clear();
   s_.blockPrev.clear();
   s_.freeBlocks.clear();
+  s_.halfedgePops = 0;
+  s_.slotNext.clear();
+  if (s_.wavefront) {
+    s_.listHead.assign(t_.halfedgeCount, -1);
+    s_.listTail.assign(t_.halfedgeCount, -1);
+    s_.listKey.assign(t_.halfedgeCount, kInfinity);
+  }
   if (!s_.storeWindows && static_cast<int>(s_.predecessorWindow.size()) != t_.vertexCount) {
     s_.predecessorWindow.resize(t_.vertexCount);
   }
@@ -290,6 +297,11 @@ double peakBytes(const MeshTables& t, const Propagation& s) {
   double bytes = v * (sizeof(double) + sizeof(Predecessor) + 1) + h * (2 * sizeof(double) + sizeof(int));
   if (s.storeWindows) {
     bytes += windows * sizeof(Window) + static_cast<double>(s.blocks.size()) * sizeof(Propagation::SpanBlock);
+  } else if (s.wavefront) {
+    // Slots (window, list link, a free-list entry), per halfedge a list's head, tail and key, and
+    // the pseudo-sources' window copies.
+    bytes += windows * (sizeof(Window) + 2 * sizeof(int)) + h * (2 * sizeof(int) + sizeof(double)) +
+             v * sizeof(Window);
   } else {
     // Slots (window, span, a free-list entry), blocks (with live count, back link and a
     // free-list entry) and the pseudo-sources' window copies.

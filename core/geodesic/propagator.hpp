@@ -75,6 +75,11 @@ class Propagator {
   bool takeFrontWindow(int slot);
   void clearSpan(int slot);
   void propagateWindow(int index);
+
+  // wavefront_engine.cpp
+  void addWavefrontWindow(Window& w);
+  void unlinkWavefrontSlot(int h, int slot, int previous);
+  void propagateHalfedge(int h, double key);
 };
 
 }  // namespace egg::geodesic::detail

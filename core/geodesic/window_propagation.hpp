@@ -137,6 +137,16 @@ struct Propagation {
   std::size_t freeHead = 0;
   std::vector<int> slotSpan;
   std::vector<int> blockLive, blockPrev, freeBlocks;
+  // Wavefront mode (DistanceSolverOptions::Engine::Wavefront, wavefront_engine.cpp): the queued
+  // windows of each halfedge form one first-in-first-out list through the slots (slotNext), and
+  // the queue holds halfedges, not windows: listKey is the key of a halfedge's live queue entry
+  // (the smallest key of its windows when it was pushed; +inf if none). Slots are reused as a stack
+  // (freeSlots from the back): the slot just freed is the one still in cache.
+  bool wavefront = false;
+  std::vector<int> listHead, listTail;
+  std::vector<double> listKey;
+  std::vector<int> slotNext;
+  long halfedgePops = 0;  // diagnostics: batches propagated (live queue entries popped)
   // Per pseudo-source vertex, a copy of the window its best path so far came through: the cone it
   // fires into is aimed from that path (incomingAngle), and the window's slot may be reused.
   std::vector<Window> predecessorWindow;
@@ -160,14 +170,15 @@ struct Propagation {
 // entries at their most), in bytes.
 double peakBytes(const MeshTables& tables, const Propagation& state);
 
-// Runs the exact propagation from `source` with `targets`. With storeWindows (path() needs it, or
+// Runs the exact propagation from `source` with `targets`. `wavefront` (without storeWindows)
+// selects Engine::Wavefront, otherwise storeWindows false is Engine::FrontOnly. With storeWindows (path() needs it, or
 // Engine::StoredWindows) it leaves the windows in `state` for backtracing; otherwise only the
 // distances and targets' values are meaningful. directedAtTargets (with targets): queued by distance plus the chord to the nearest
 // target and stopped once every target is final (goal_bound.hpp); the target distances and paths
 // are the full field's (exact mode; see goal_bound.hpp), the vertex distances only upper bounds.
 void propagate(const MeshTables& tables, const DistanceSolverOptions& options, const SurfacePoint& source,
                const std::vector<SurfacePoint>& targets, Propagation& state, bool directedAtTargets = false,
-               bool storeWindows = true);
+               bool storeWindows = true, bool wavefront = false);
 
 // Traces the shortest path from the source of `state` to its target `targetIndex`, returned from
 // source to target.

@@ -82,11 +82,10 @@ struct DistanceSolverOptions {
   // against stored / front, one interleaved run, 5 vertex sources (2026-12, thread CPU, `egg bench
   // geodesic --engine-rows large`): 4.4k bump 0.69 / 0.64, 4.6k cap 0.57 / 0.55, 18k cap 0.46 /
   // 0.46, 17k plane 0.06 / 0.93, 418k-triangle bump (1 source) 0.29 / 0.31 (14.9 s; 0.22 / 0.31 in
-  // a second run; peak RSS of a wavefront-only process 0.39 GB). Not the default yet: the full
-  // ctest has not been run with it. path() keeps the windows it traces back through whatever the
-  // engine.
+  // a second run; peak RSS of a wavefront-only process 0.39 GB). The default: faster than both
+  // on every row. path() keeps the windows it traces back through whatever the engine.
   enum class Engine { StoredWindows, FrontOnly, Wavefront };
-  Engine engine = Engine::StoredWindows;
+  Engine engine = Engine::Wavefront;
 
   void validate() const;  // throws InvalidInput naming the field
 };

@@ -298,7 +298,7 @@ void registerStressCommand(CLI::App& parent, Action& action) {
   cmd->add_flag("--keep", args->keep, "keep the pipeline cases' folders (scenes, meshes, logs, reports)");
   cmd->add_option("--large-mesh-stages", args->largeMeshStages,
                   "the 1M-face case: surface (load + curvature) or geodesic (also one exact field over 500k vertices, "
-                  "~150-250 s on 2 cores)")
+                  "~55 s on 2 cores with the wavefront engine)")
       ->check(CLI::IsMember({"surface", "geodesic"}));
   cmd->add_option("--time-limit", args->timeLimit, "seconds per case")->check(finiteRange(1e-3, 86400.0));
   cmd->add_option("--max-iterations", args->maxIterations, "Newton iterations per case")->check(CLI::Range(1, 1000000));

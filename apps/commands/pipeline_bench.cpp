@@ -291,7 +291,20 @@ int runPipelineBench(const PipelineBenchOptions& options) {
       row.spacingFactor = scene.grid.member_spacing_factor;
       row.widthM = scene.lamella.width_m, row.thicknessM = scene.lamella.thickness_m;
       const auto started = std::chrono::steady_clock::now();
-      const PipelineResult result = runPipeline(scene, run);
+      PipelineResult result;
+      try {
+        result = runPipeline(scene, run);
+      } catch (const InvalidInput& e) {
+        // A knob can take a scene out of its own bounds (a coarser mesh measures a given block
+        // grid's cells larger): that variant is a failed row with the reason, the others still run.
+        row.wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        row.failures = 1;
+        rows.push_back(row);
+        bar.finish();
+        if (!options.json) fmt::print("{:<12} {:<24} not run: {}\n", row.scene, row.varied, e.what());
+        std::fflush(stdout);
+        continue;
+      }
       row.wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       const auto& report = result.report;
       row.vertices = report.contains("surface") ? report["surface"].value("vertices", 0) : 0;
@@ -323,7 +336,7 @@ int runPipelineBench(const PipelineBenchOptions& options) {
     std::vector<size_t> index;
     std::vector<std::pair<double, double>> points;
     for (size_t i = 0; i < rows.size(); ++i)
-      if (rows[i].scene == scene.name) index.push_back(i), points.emplace_back(rows[i].wallS, rows[i].error());
+      if (rows[i].scene == scene.name && std::isfinite(rows[i].error())) index.push_back(i), points.emplace_back(rows[i].wallS, rows[i].error());
     for (size_t k : paretoFront(points)) rows[index[k]].pareto = true;
   }
   writeCsv(options.out / "pipeline.csv", rows);

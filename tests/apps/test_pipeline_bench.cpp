@@ -2,6 +2,8 @@
 
 #include "core/errors.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -68,6 +70,46 @@ TEST(PipelineBench, SweepsASmallSceneIntoACsvAndAPlot) {
     EXPECT_EQ(std::system(("rsvg-convert '" + (out / "pipeline.svg").string() + "' -o '" + png + "'").c_str()), 0);
     EXPECT_GT(fs::file_size(png), 1000u);
   }
+  fs::remove_all(out);
+}
+
+TEST(PipelineBench, AVariantOutsideItsScenesBoundsIsAFailedRowAndTheOthersRun) {
+  // bump_small with a 1 x 1 block grid under a 5 m patch limit: no variant can lay it out. Each is
+  // a row with its failure, none stops the bench.
+  const fs::path out = fs::temp_directory_path() / ("egg_pipeline_bench_bad_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  fs::create_directories(out);
+  nlohmann::json scene;
+  std::ifstream(fs::path(EGG_SOURCE_DIR) / "samples" / "scenes" / "bump_small.json") >> scene;
+  scene["patching"]["block_grid"] = {1, 1};
+  scene["patching"]["max_patch_size_m"] = 5;
+  std::ofstream(out / "bump_small.json") << scene.dump();
+  PipelineBenchOptions options;
+  options.scenes = {(out / "bump_small.json").string()};
+  options.edgeFactors = {1.0, 2.0};
+  options.mapProxyVertices = {600};
+  options.newtonTolerances = {};
+  options.spacingFactors = {};
+  options.out = out / "bench";
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(runPipelineBench(options), 0);
+  const std::string printed = testing::internal::GetCapturedStdout();
+  EXPECT_NE(printed.find("not run: "), std::string::npos) << printed;
+  EXPECT_NE(printed.find("patching.block_grid [1, 1]"), std::string::npos) << printed;
+  std::ifstream csv(out / "bench" / "pipeline.csv");
+  std::string line;
+  std::getline(csv, line);
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    std::vector<std::string> c;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) c.push_back(cell);
+    ASSERT_GT(c.size(), 13u) << line;
+    EXPECT_EQ(c[12], "1") << line;  // failures
+    EXPECT_EQ(c[13], "0") << line;  // not on the Pareto front
+  }
+  EXPECT_EQ(rows, 2);
   fs::remove_all(out);
 }
 

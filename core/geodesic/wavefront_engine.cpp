@@ -61,17 +61,8 @@ restart:
       slot = next;
       continue;
     }
-    if (std::abs(other.sx - w.sx) <= same && std::abs(other.sy - w.sy) <= same &&
-        std::abs(other.sigma - w.sigma) <= same) {
-      // One source image: one distance function, one window (addFrontWindow: why this is exact).
-      if (other.b0 < w.b0) {
-        w.b0 = b0In = other.b0;
-        w.endVertex[0] = other.endVertex[0];
-      }
-      if (other.b1 > w.b1) {
-        w.b1 = b1In = other.b1;
-        w.endVertex[1] = other.endVertex[1];
-      }
+    if (sameSourceImage(other, w, same)) {
+      absorbSameImage(w, other, b0In, b1In);
       unlinkWavefrontSlot(h, slot, previous);
       goto restart;  // w has grown: windows it missed may overlap it now
     }

@@ -139,6 +139,25 @@ inline void markEndVertices(Window& w, double b0In, double b1In, const MeshTable
   else if (w.b1 != b1In) w.endVertex[1] = -1;
 }
 
+// Two windows of one source image and sigma (to `same`, a length) carry one distance function,
+// sigma + |s - x|: where they touch, they are one window (addFrontWindow: why merging is exact).
+inline bool sameSourceImage(const Window& a, const Window& b, double same) {
+  return std::abs(a.sx - b.sx) <= same && std::abs(a.sy - b.sy) <= same && std::abs(a.sigma - b.sigma) <= same;
+}
+
+// w takes over the union of itself and a touching window of its source image, with that window's
+// end vertices where it reaches further; b0In, b1In (markEndVertices) follow the grown ends.
+inline void absorbSameImage(Window& w, const Window& other, double& b0In, double& b1In) {
+  if (other.b0 < w.b0) {
+    w.b0 = b0In = other.b0;
+    w.endVertex[0] = other.endVertex[0];
+  }
+  if (other.b1 > w.b1) {
+    w.b1 = b1In = other.b1;
+    w.endVertex[1] = other.endVertex[1];
+  }
+}
+
 // The vertex a window end's boundary ray runs through (Window::endVertex): its distance so far and
 // the widest bend behind it that pathBentAt takes (MeshTables::shadowCone; 0 = none).
 struct BendVertex {

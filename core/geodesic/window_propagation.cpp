@@ -235,16 +235,8 @@ restart:
         auto& span = block.spans[k];
         if (span.window < 0) continue;  // a cleared span
         Window& other = s_.windows[span.window];
-        if (std::min(w.b1, span.b1) + same >= std::max(w.b0, span.b0) && std::abs(other.sx - w.sx) <= same &&
-            std::abs(other.sy - w.sy) <= same && std::abs(other.sigma - w.sigma) <= same) {
-          if (other.b0 < w.b0) {
-            w.b0 = b0In = other.b0;
-            w.endVertex[0] = other.endVertex[0];
-          }
-          if (other.b1 > w.b1) {
-            w.b1 = b1In = other.b1;
-            w.endVertex[1] = other.endVertex[1];
-          }
+        if (std::min(w.b1, span.b1) + same >= std::max(w.b0, span.b0) && sameSourceImage(other, w, same)) {
+          absorbSameImage(w, other, b0In, b1In);
           clearSpan(span.window);  // may recycle this block
           goto restart;  // w has grown: spans it missed may overlap it now
         }

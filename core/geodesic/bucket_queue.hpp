@@ -54,11 +54,14 @@ class BucketQueue {
   // the calendar reaches a bucket (with the inlined heap comparison), against no prefetch,
   // thread CPU time per field, interleaved runs of 7 fields: 18k cap, front engine 0.78-0.98
   // (mean 0.88, faster in 6 of 6); no change beyond the noise on the 4.5k meshes, whose records
-  // stay in cache. Two buckets ahead was slower. The propagation asks for it in front mode only
-  // (window_propagation.cpp, run).
-  void prefetchRecords(const void* base, std::size_t stride) {
+  // stay in cache. Two buckets ahead was slower. The propagation asks for it in front and
+  // wavefront mode (window_propagation.cpp, run). `recordOfItem` (if given) maps an item to its
+  // record (-1: none): the wavefront engine queues halfedges, whose first queued window is the
+  // record its pop reads first.
+  void prefetchRecords(const void* base, std::size_t stride, const int* recordOfItem = nullptr) {
     prefetchBase_ = static_cast<const char*>(base);
     prefetchStride_ = stride;
+    recordOfItem_ = recordOfItem;
   }
   bool empty() const { return bucketed_ == 0 && overflow_.empty(); }
 
@@ -144,7 +147,9 @@ class BucketQueue {
       // their cache misses overlap instead of stalling one pop each. Not for a crowded bucket
       // (a fine mesh's): its hundreds of records would evict each other before their pops.
       for (const Entry& e : ahead) {
-        if (e.item >= 0) __builtin_prefetch(prefetchBase_ + static_cast<std::size_t>(e.item) * prefetchStride_);
+        if (e.item < 0) continue;
+        const int record = recordOfItem_ ? recordOfItem_[e.item] : e.item;
+        if (record >= 0) __builtin_prefetch(prefetchBase_ + static_cast<std::size_t>(record) * prefetchStride_);
       }
     }
   }
@@ -166,6 +171,7 @@ class BucketQueue {
   std::vector<std::vector<Entry>> buckets_;
   const char* prefetchBase_ = nullptr;
   std::size_t prefetchStride_ = 0;
+  const int* recordOfItem_ = nullptr;
   std::vector<Entry> overflow_;  // min-heap by (key, item)
   double width_ = 1.0, inverseWidth_ = 1.0;
   long long current_ = 0;

@@ -82,7 +82,13 @@ struct DistanceSolverOptions {
   // against stored / front, one interleaved run, 5 vertex sources (2026-12, thread CPU, `egg bench
   // geodesic --engine-rows large`): 4.4k bump 0.69 / 0.64, 4.6k cap 0.57 / 0.55, 18k cap 0.46 /
   // 0.46, 17k plane 0.06 / 0.93, 418k-triangle bump (1 source) 0.29 / 0.31 (14.9 s; 0.22 / 0.31 in
-  // a second run; peak RSS of a wavefront-only process 0.39 GB). The default: faster than both
+  // a second run; peak RSS of a wavefront-only process 0.39 GB). Prefetching each halfedge's first
+  // queued window a bucket ahead of its pop, and the next window of a list while one crosses
+  // (wavefront_engine.cpp), cut the 418k-triangle field to 0.65-0.75 of that (`egg geodesic` on the
+  // exported mesh, interleaved, 8.4-9.6 s against 12.5-12.9 s; `egg bench geodesic --engine-rows
+  // large`: 8.7 s, 0.13 of the stored engine's 65 s in the same run; peak RSS of a wavefront-only
+  // process 0.28 GB); up to 18k vertices, whose fronts stay in cache, the change is within the
+  // noise (+-20 %, three interleaved bench runs). The default: faster than both
   // on every row. path() keeps the windows it traces back through whatever the engine.
   enum class Engine { StoredWindows, FrontOnly, Wavefront };
   Engine engine = Engine::Wavefront;

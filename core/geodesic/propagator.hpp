@@ -29,6 +29,9 @@ class Propagator {
     return s_.vertexDistance[v] + (goal_.active() ? goal_.toPoint(t_.positions[v]) : 0.0);
   }
   double windowKey(const Window& w) const;
+  // The same from |s - b0| and |s - b1| already known (bit-identical: sqrt is correctly rounded).
+  double windowKey(const Window& w, const double* endLengths) const;
+  double keyOfNearest(const Window& w, double nearest) const;  // + the goal bound of a directed query
 
   // propagation_setup.cpp
   void reset(const std::vector<SurfacePoint>& targets);
@@ -67,7 +70,8 @@ class Propagator {
   }
 
   // window_propagation.cpp
-  bool prune(Window& w) const;
+  // endLengths (if given): |s - b0| and |s - b1| of the pruned window, which windowKey needs too.
+  bool prune(Window& w, double* endLengths = nullptr) const;
   double bentDistance(const Window& w, int side, double px, double py, bool& atVertex) const;
   void addWindow(Window& w);
   void addStoredWindow(Window& w);

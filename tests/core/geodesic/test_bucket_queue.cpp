@@ -107,5 +107,35 @@ TEST(BucketQueue, PeakSizeCountsTheMostEntriesHeldAtOnceInBucketsAndOverflow) {
   EXPECT_EQ(queue.peakSize(), 0u);
 }
 
+// The wavefront engine prefetches through a map from items (halfedges) to records (their first
+// queued window, -1 for an empty list): the pop order is the heap's, and no record is touched for
+// an item mapped to -1 or a vertex event (negative item). Under the sanitizer build a read through
+// -1 (before the records) or past them would fail this test.
+TEST(BucketQueue, PrefetchThroughAnItemToRecordMapKeepsTheOrderAndSkipsItemsWithoutARecord) {
+  std::vector<double> records(4, 0.0);
+  std::vector<int> recordOfItem(64);
+  for (int i = 0; i < 64; ++i) recordOfItem[i] = i % 3 == 0 ? -1 : i % 4;
+  BucketQueue queue;
+  queue.reset(0.5);
+  queue.prefetchRecords(records.data(), sizeof(double), recordOfItem.data());
+  Reference reference;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> key(0.0, 40.0);
+  for (int i = 0; i < 64; ++i) {
+    const double k = key(rng);
+    const int item = i % 5 == 0 ? -i - 1 : i;  // some vertex events
+    queue.push(k, item);
+    reference.push({k, item});
+  }
+  while (!reference.empty()) {
+    ASSERT_FALSE(queue.empty());
+    const auto e = queue.pop();
+    EXPECT_EQ(e.key, reference.top().first);
+    EXPECT_EQ(e.item, reference.top().second);
+    reference.pop();
+  }
+  EXPECT_TRUE(queue.empty());
+}
+
 }  // namespace
 }  // namespace egg::geodesic::detail

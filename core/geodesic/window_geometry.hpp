@@ -218,11 +218,17 @@ inline double pathBentAt(const Window& w, int side, double px, double py, double
   return w.sigma + planarLength(end - w.sx, w.sy) + planarLength(px - end, py);
 }
 
+// The nearest distance a window offers on its edge, given |s - b0| and |s - b1| (its ends'
+// distances from the image): at the foot of the image if it lies within, else at the nearer end.
+inline double windowMinDistance(const Window& w, double toB0, double toB1) {
+  return w.sx >= w.b0 && w.sx <= w.b1 ? w.sigma - w.sy : w.sigma + std::min(toB0, toB1);
+}
+
 inline double windowMinDistance(const Window& w) {
   if (w.sx >= w.b0 && w.sx <= w.b1) return w.sigma - w.sy;
   double d0, d1;
   planarLengths(w.b0 - w.sx, w.sy, w.b1 - w.sx, w.sy, d0, d1);
-  return w.sigma + std::min(d0, d1);
+  return windowMinDistance(w, d0, d1);
 }
 
 // Where two windows on the same halfedge compare: g(x) = (o.sigma + |o.s - x|) - (w.sigma +

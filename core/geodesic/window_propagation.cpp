@@ -66,11 +66,11 @@ void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>
   if (directed) directed_.set(t_, s_);
   seed(source);
   while (!s_.queue.empty()) {
-    // Front mode only: its slots are a small pool; prefetching into the stored engine's array
+    // Front and wavefront mode: their slots are a small pool (the wavefront queues halfedges,
+    // whose record is the first window of the list); prefetching into the stored engine's array
     // made the 418k-triangle bump's stored field 1.2x slower (51 s against 40-42 s, twice each).
-    // Wavefront mode: the queue's items are halfedges, the record is the first window of the list.
-    if (!s_.storeWindows && !s_.wavefront) s_.queue.prefetchRecords(s_.windows.data(), sizeof(Window));
     if (s_.wavefront) s_.queue.prefetchRecords(s_.windows.data(), sizeof(Window), s_.listHead.data());
+    else if (!s_.storeWindows) s_.queue.prefetchRecords(s_.windows.data(), sizeof(Window));
     const auto entry = s_.queue.pop();
     if (goal_.active() && entry.key >= directed_.farthestBound(t_, s_)) break;  // targets final
     if (entry.item < 0) {
@@ -92,8 +92,7 @@ void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>
 double Propagator::windowKey(const Window& w) const { return keyOfNearest(w, windowMinDistance(w)); }
 
 double Propagator::windowKey(const Window& w, const double* endLengths) const {
-  const bool footInside = w.sx >= w.b0 && w.sx <= w.b1;
-  return keyOfNearest(w, footInside ? w.sigma - w.sy : w.sigma + std::min(endLengths[0], endLengths[1]));
+  return keyOfNearest(w, windowMinDistance(w, endLengths[0], endLengths[1]));
 }
 
 double Propagator::keyOfNearest(const Window& w, double nearest) const {

@@ -194,6 +194,11 @@ inline void bendPoint(const Window& w, int side, double distanceToX, double& bx,
   by = w.sy + f * ey;
 }
 
+// |s - end| of end `side` of w (0: b0, 1: b1).
+inline double distanceToEnd(const Window& w, int side) {
+  return planarLength((side ? w.b1 : w.b0) - w.sx, w.sy);
+}
+
 // Sets atVertex when the path bends at X rather than round the end.
 // The segment must also cross w's own edge within it (edgeLength): a point next to a vertex of the
 // face could otherwise be reached past that vertex, which no surface path does (measured before
@@ -215,7 +220,7 @@ inline double pathBentAt(const Window& w, int side, double px, double py, double
       return x->distance + planarLength(vx, vy);
     }
   }
-  return w.sigma + planarLength(end - w.sx, w.sy) + planarLength(px - end, py);
+  return w.sigma + distanceToEnd(w, side) + planarLength(px - end, py);
 }
 
 // The nearest distance a window offers on its edge, given |s - b0| and |s - b1| (its ends'

@@ -51,6 +51,17 @@ inline void planarLengths(double dx0, double dy0, double dx1, double dy1, double
 #endif
 }
 
+// x, loaded on its own. A child window is written field by field and read back a moment later by
+// its pruning; where the compiler pairs the reads of b0 and b1 into one 16-byte load, that load
+// spans two 8-byte stores still in the store buffer, cannot be forwarded from them and waits until
+// they reach the cache (18k cap of issue 19: a third of prune's samples sat on that load).
+inline double loadAlone(const double& x) {
+  double v = x;
+#if defined(__GNUC__) && defined(__SSE2__)
+  asm("" : "+x"(v));  // v must now sit in a register of its own: no wider load can produce it
+#endif
+  return v;
+}
 
 // The directions in which a shortest path may leave a pseudo-source vertex v through one face of
 // its fan, the face spanning fan angles [a0, a1] (counter-clockwise around v). A path through v is

@@ -111,8 +111,11 @@ bool Propagator::prune(Window& w, double* endLengths) const {
   const double dB = s_.vertexDistance[t_.he[h].toVertex];
   // |s - b0| and |s - b1|, recomputed only when an end moves: every test below needs them and
   // the square roots were the bulk of this function.
+  // The window was just written field by field (propagateWindow): its fields are read one by
+  // one (loadAlone). Perf samples of the 18k cap: prune 9.1-9.4 % of the run before, 7.2 % after.
+  const double sx = loadAlone(w.sx), sy = loadAlone(w.sy);
   double r0, r1;
-  planarLengths(w.b0 - w.sx, w.sy, w.b1 - w.sx, w.sy, r0, r1);
+  planarLengths(loadAlone(w.b0) - sx, sy, loadAlone(w.b1) - sx, sy, r0, r1);
   // Endpoint A at (0,0): f(x) = sigma + |s - x| - dA - x is non-increasing in x.
   if (dA < kInfinity) {
     const double k = dA - w.sigma;
@@ -120,11 +123,11 @@ bool Propagator::prune(Window& w, double* endLengths) const {
     if (f1 > 0.0) return false;
     const double f0 = r0 - k - w.b0;
     if (f0 > 0.0) {
-      const double denom = 2.0 * (k + w.sx);
+      const double denom = 2.0 * (k + sx);
       if (denom > 0.0) {
-        const double root = (w.sx * w.sx + w.sy * w.sy - k * k) / denom;
+        const double root = (sx * sx + sy * sy - k * k) / denom;
         w.b0 = std::clamp(root, w.b0, w.b1);
-        r0 = planarLength(w.b0 - w.sx, w.sy);
+        r0 = planarLength(w.b0 - sx, sy);
       }
     }
   }
@@ -135,12 +138,12 @@ bool Propagator::prune(Window& w, double* endLengths) const {
     if (g0 > 0.0) return false;
     const double g1 = r1 - k - (L - w.b1);
     if (g1 > 0.0) {
-      const double mx = L - w.sx;
+      const double mx = L - sx;
       const double denom = 2.0 * (k + mx);
       if (denom > 0.0) {
-        const double root = L - (mx * mx + w.sy * w.sy - k * k) / denom;
+        const double root = L - (mx * mx + sy * sy - k * k) / denom;
         w.b1 = std::clamp(root, w.b0, w.b1);
-        r1 = planarLength(w.b1 - w.sx, w.sy);
+        r1 = planarLength(w.b1 - sx, sy);
       }
     }
   }

@@ -88,7 +88,7 @@ restart:
   if (!s_.freeSlots.empty()) {
     slot = s_.freeSlots.back();
     s_.freeSlots.pop_back();
-    s_.windows[slot] = w;
+    copyJustWritten(s_.windows[slot], w);
   } else {
     slot = static_cast<int>(s_.windows.size());
     s_.windows.push_back(w);

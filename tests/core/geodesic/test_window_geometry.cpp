@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
+#include <random>
 
 namespace egg::geodesic::detail {
 namespace {
@@ -225,6 +227,55 @@ TEST(WindowGeometry, TrimPairDropsAWindowShorterNowhereAndLeavesTheOtherWhole) {
   EXPECT_TRUE(wLeft && oLeft);
   EXPECT_EQ(a.b1, 0.5);
   EXPECT_EQ(b.b0, 0.6);
+}
+
+// propagateWindow waits with the second square root of a bend round an end until sigma + |s - end|
+// + py, with a margin of 1e-12, is below the vertex's distance: the bent length computed in full
+// must never fall below that bound, or a relaxation that would have been taken is skipped. Random
+// windows and points, near-degenerate ones included (the point almost on the edge or straight
+// above the end, the end almost under the source image, lengths over twelve orders of magnitude).
+TEST(WindowGeometry, ABendRoundAnEndIsNeverBelowTheBoundThatDefersIt) {
+  std::mt19937_64 random(19);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int nearDegenerate = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const double scale = std::pow(10.0, -6.0 + 12.0 * unit(random));
+    Window w;
+    w.b0 = scale * unit(random);
+    w.b1 = w.b0 + scale * unit(random);
+    w.sx = i % 3 == 0 ? w.b1 * (1.0 + 1e-15 * unit(random)) : scale * (4.0 * unit(random) - 2.0);
+    w.sy = -scale * (i % 5 == 0 ? 1e-9 * unit(random) : unit(random)) - 1e-300;
+    w.sigma = i % 2 ? 0.0 : scale * 10.0 * unit(random);
+    const int side = i % 2;
+    const double end = side ? w.b1 : w.b0;
+    // One in four straight above the end, where |end - p| = py and the bound is tight.
+    const double px = i % 4 == 1 ? end + scale * 1e-9 * unit(random) : scale * (4.0 * unit(random) - 2.0);
+    const double py = scale * (i % 7 == 0 ? 1e-10 * unit(random) : unit(random));
+    bool atVertex = true;
+    const double bent = pathBentAt(w, side, px, py, 4.0 * scale, nullptr, atVertex);
+    EXPECT_FALSE(atVertex);
+    const double bound = (w.sigma + distanceToEnd(w, side) + py) * (1.0 - 1e-12);
+    ASSERT_GE(bent, bound) << "window " << i;
+    if (bent < bound * (1.0 + 2e-12)) ++nearDegenerate;
+  }
+  EXPECT_GT(nearDegenerate, 1000);  // the bound is tight there: the margin is what is tested
+}
+
+// copyJustWritten must copy every field (a field added to Window and left out would be lost).
+TEST(WindowGeometry, CopyJustWrittenCopiesEveryField) {
+  Window from;
+  from.halfedge = 7;
+  from.parent = Window::fromVertex(11);
+  from.b0 = 0.125;
+  from.b1 = 0.75;
+  from.sx = -1.5;
+  from.sy = -2.25;
+  from.sigma = 3.5;
+  from.endVertex[0] = 13;
+  from.endVertex[1] = 17;
+  Window to;
+  copyJustWritten(to, from);
+  EXPECT_EQ(std::memcmp(&to, &from, sizeof(Window)), 0);
 }
 
 }  // namespace

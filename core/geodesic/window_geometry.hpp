@@ -54,7 +54,7 @@ inline void planarLengths(double dx0, double dy0, double dx1, double dy1, double
 // x, loaded on its own. A child window is written field by field and read back a moment later by
 // its pruning; where the compiler pairs the reads of b0 and b1 into one 16-byte load, that load
 // spans two 8-byte stores still in the store buffer, cannot be forwarded from them and waits until
-// they reach the cache (18k cap of issue 19: a third of prune's samples sat on that load).
+// they reach the cache: a stall on every window (measured: the commit that added this).
 inline double loadAlone(const double& x) {
   double v = x;
 #if defined(__GNUC__) && defined(__SSE2__)
@@ -71,8 +71,7 @@ inline int loadAlone(const int& x) {
 }
 
 // to = from, field by field (loadAlone): `from` is a child window its creator has just written, and
-// the plain struct copy's 16-byte loads stalled as prune's did (18k cap: a sixth of
-// addWavefrontWindow's samples on them).
+// the plain struct copy's 16-byte loads stalled as prune's did.
 inline void copyJustWritten(Window& to, const Window& from) {
   to.halfedge = loadAlone(from.halfedge);
   to.parent = loadAlone(from.parent);

@@ -4,6 +4,7 @@
 // propagation_setup.cpp (per-query reset, the source, pseudo-source firing, the targets' vertex
 // paths). Not part of the public API.
 #include "core/geodesic/goal_bound.hpp"
+#include "core/geodesic/window_geometry.hpp"
 #include "core/geodesic/window_propagation.hpp"
 
 #include <string>
@@ -78,7 +79,17 @@ class Propagator {
   void addFrontWindow(Window& w);
   bool takeFrontWindow(int slot);
   void clearSpan(int slot);
-  void propagateWindow(int index);
+  // What every window crossing the face of halfedge h shares: the wavefront engine builds it once
+  // per batch (propagateHalfedge), the other engines once per window.
+  struct FaceCrossing {
+    int h, f, c;  // the halfedge, its face, the face's vertex opposite it
+    double length, cx, cy;  // the edge's length, the opposite vertex in its frame
+    int leftChild, rightChild;  // halfedges A->C and C->B seen from the next faces; -1 at a boundary
+    double leftLength, rightLength;
+    FrameChange leftFrame, rightFrame;  // from h's frame into each child's
+  };
+  FaceCrossing faceCrossing(int h) const;
+  void propagateWindow(int index, const FaceCrossing& face);
 
   // wavefront_engine.cpp
   void addWavefrontWindow(Window& w);

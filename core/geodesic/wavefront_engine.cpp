@@ -117,13 +117,14 @@ void Propagator::propagateHalfedge(int h, double key) {
   int slot = s_.listHead[h];
   s_.listHead[h] = s_.listTail[h] = -1;
   ++s_.halfedgePops;
+  const FaceCrossing face = faceCrossing(h);  // once per batch: the child frames divide once, not per window
   // The children go to other halfedges (the face's other two edges, seen from their far side), so
   // the detached list is not touched while it is walked; each slot is freed once its window has
   // crossed the face (propagateWindow copies the window first).
   while (slot >= 0) {
     const int next = s_.slotNext[slot];
     if (next >= 0) __builtin_prefetch(&s_.windows[next]);  // its cache miss overlaps this crossing
-    propagateWindow(slot);
+    propagateWindow(slot, face);
     s_.freeSlots.push_back(slot);
     slot = next;
   }

@@ -56,12 +56,15 @@ class BucketQueue {
   // (mean 0.88, faster in 6 of 6); no change beyond the noise on the 4.5k meshes, whose records
   // stay in cache. Two buckets ahead was slower. The propagation asks for it in front and
   // wavefront mode (window_propagation.cpp, run). `recordOfItem` (if given) maps an item to its
-  // record (-1: none): the wavefront engine queues halfedges, whose first queued window is the
-  // record its pop reads first.
-  void prefetchRecords(const void* base, std::size_t stride, const int* recordOfItem = nullptr) {
+  // record (-1: none), `mapStride` bytes from one item's entry to the next: the wavefront engine
+  // queues halfedges, whose first queued window is the record its pop reads first, and its map is
+  // the head field of its per-halfedge list records (which reading it brings into cache too).
+  void prefetchRecords(const void* base, std::size_t stride, const int* recordOfItem = nullptr,
+                       std::size_t mapStride = sizeof(int)) {
     prefetchBase_ = static_cast<const char*>(base);
     prefetchStride_ = stride;
-    recordOfItem_ = recordOfItem;
+    recordOfItem_ = reinterpret_cast<const char*>(recordOfItem);
+    mapStride_ = mapStride;
   }
   bool empty() const { return bucketed_ == 0 && overflow_.empty(); }
 
@@ -148,7 +151,9 @@ class BucketQueue {
       // (a fine mesh's): its hundreds of records would evict each other before their pops.
       for (const Entry& e : ahead) {
         if (e.item < 0) continue;
-        const int record = recordOfItem_ ? recordOfItem_[e.item] : e.item;
+        const int record = recordOfItem_ ? *reinterpret_cast<const int*>(
+                                               recordOfItem_ + static_cast<std::size_t>(e.item) * mapStride_)
+                                         : e.item;
         if (record >= 0) __builtin_prefetch(prefetchBase_ + static_cast<std::size_t>(record) * prefetchStride_);
       }
     }
@@ -171,7 +176,8 @@ class BucketQueue {
   std::vector<std::vector<Entry>> buckets_;
   const char* prefetchBase_ = nullptr;
   std::size_t prefetchStride_ = 0;
-  const int* recordOfItem_ = nullptr;
+  const char* recordOfItem_ = nullptr;
+  std::size_t mapStride_ = sizeof(int);
   std::vector<Entry> overflow_;  // min-heap by (key, item)
   double width_ = 1.0, inverseWidth_ = 1.0;
   long long current_ = 0;

@@ -62,7 +62,7 @@ DistanceField fieldFrom(const detail::MeshTables& tables, const detail::Propagat
   field.vertexDistances = state.vertexDistance;
   field.targetDistances = state.targetDistance;
   field.windowsCreated = state.windowsCreated;
-  field.peakWindows = static_cast<long>(state.windows.size());
+  field.peakWindows = static_cast<long>(state.wavefront ? state.slots.size() : state.windows.size());
   field.peakBytes = detail::peakBytes(tables, state);
   field.seconds = seconds;
   return field;

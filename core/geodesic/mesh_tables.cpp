@@ -109,6 +109,7 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
   t.boundaryVertex.assign(t.vertexCount, 0);
   t.pseudoSource.assign(t.vertexCount, 0);
   t.shadowCone.assign(t.vertexCount, 0.0);
+  t.hasShadowCone.assign(t.vertexCount, 0);
   for (auto vh : mesh.vertices()) {
     const int v = vh.idx();
     t.boundaryVertex[v] = mesh.is_boundary(vh) ? 1 : 0;
@@ -126,7 +127,10 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
       const double cone = excess + options.saddleAngleTolerance;
       const bool skipped = excess <= options.saddleAngleTolerance && excess * reach <= 0.25 * shortestEdge[v];
       t.pseudoSource[v] = excess > 0.0 && !skipped ? 1 : 0;
-      if (excess > 0.0 && skipped) t.shadowCone[v] = cone;
+      if (excess > 0.0 && skipped) {
+        t.shadowCone[v] = cone;
+        t.hasShadowCone[v] = 1;
+      }
     }
   }
   return t;

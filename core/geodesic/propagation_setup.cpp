@@ -17,8 +17,7 @@ void Propagator::reset(const std::vector<SurfacePoint>& targets) {
   s_.vertexDistance.assign(t_.vertexCount, kInfinity);
   s_.vertexPredecessor.assign(t_.vertexCount, Predecessor{});
   s_.fired.assign(t_.vertexCount, 0);
-  s_.splitDistance.assign(t_.halfedgeCount, kInfinity);
-  s_.splitCrossing.assign(t_.halfedgeCount, 0.0);
+  s_.split.assign(t_.halfedgeCount, {kInfinity, 0.0});
   s_.windows.clear();
   s_.blocks.clear();
   s_.firstBlock.assign(t_.halfedgeCount, -1);
@@ -29,11 +28,9 @@ void Propagator::reset(const std::vector<SurfacePoint>& targets) {
   s_.blockPrev.clear();
   s_.freeBlocks.clear();
   s_.halfedgePops = 0;
-  s_.slotNext.clear();
+  s_.slots.clear();
   if (s_.wavefront) {
-    s_.listHead.assign(t_.halfedgeCount, -1);
-    s_.listTail.assign(t_.halfedgeCount, -1);
-    s_.listKey.assign(t_.halfedgeCount, kInfinity);
+    s_.lists.assign(t_.halfedgeCount, {kInfinity, -1, -1});
   }
   if (!s_.storeWindows && static_cast<int>(s_.predecessorWindow.size()) != t_.vertexCount) {
     s_.predecessorWindow.resize(t_.vertexCount);
@@ -298,9 +295,10 @@ double peakBytes(const MeshTables& t, const Propagation& s) {
   if (s.storeWindows) {
     bytes += windows * sizeof(Window) + static_cast<double>(s.blocks.size()) * sizeof(Propagation::SpanBlock);
   } else if (s.wavefront) {
-    // Slots (window, list link, a free-list entry), per halfedge a list's head, tail and key, and
+    // Slots (window and list link, a free-list entry), per halfedge a list's head, tail and key, and
     // the pseudo-sources' window copies.
-    bytes += windows * (sizeof(Window) + 2 * sizeof(int)) + h * (2 * sizeof(int) + sizeof(double)) +
+    bytes += static_cast<double>(s.slots.size()) * (sizeof(Propagation::Slot) + sizeof(int)) +
+             h * sizeof(Propagation::EdgeList) +
              v * sizeof(Window);
   } else {
     // Slots (window, span, a free-list entry), blocks (with live count, back link and a

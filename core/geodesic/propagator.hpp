@@ -89,7 +89,8 @@ class Propagator {
     FrameChange leftFrame, rightFrame;  // from h's frame into each child's
   };
   FaceCrossing faceCrossing(int h) const;
-  void propagateWindow(int index, const FaceCrossing& face);
+  // w: a copy of the window in slot `index` (its children may move the array it lies in).
+  void propagateWindow(const Window& w, int index, const FaceCrossing& face);
 
   // wavefront_engine.cpp
   void addWavefrontWindow(Window& w);

@@ -24,10 +24,11 @@ namespace egg::geodesic::detail {
 
 // Takes `slot` (after `previous`, -1 if first) out of halfedge h's list and frees it.
 void Propagator::unlinkWavefrontSlot(int h, int slot, int previous) {
-  const int next = s_.slotNext[slot];
-  if (previous >= 0) s_.slotNext[previous] = next;
-  else s_.listHead[h] = next;
-  if (s_.listTail[h] == slot) s_.listTail[h] = previous;
+  const int next = s_.slots[slot].next;
+  auto& list = s_.lists[h];
+  if (previous >= 0) s_.slots[previous].next = next;
+  else list.head = next;
+  if (list.tail == slot) list.tail = previous;
   s_.freeSlots.push_back(slot);
 }
 
@@ -54,9 +55,9 @@ void Propagator::addWavefrontWindow(Window& w) {
   constexpr int kCompared = 2;
   int compared = 0;
 restart:
-  for (int slot = s_.listHead[h], previous = -1; slot >= 0 && compared < kCompared; ++compared) {
-    Window& other = s_.windows[slot];
-    const int next = s_.slotNext[slot];
+  for (int slot = s_.lists[h].head, previous = -1; slot >= 0 && compared < kCompared; ++compared) {
+    Window& other = s_.slots[slot].window;
+    const int next = s_.slots[slot].next;
     const bool touches = std::min(w.b1, other.b1) + same >= std::max(w.b0, other.b0);
     if (!touches) {
       previous = slot;
@@ -88,23 +89,24 @@ restart:
   if (!s_.freeSlots.empty()) {
     slot = s_.freeSlots.back();
     s_.freeSlots.pop_back();
-    copyJustWritten(s_.windows[slot], w);
+    copyJustWritten(s_.slots[slot].window, w);
   } else {
-    slot = static_cast<int>(s_.windows.size());
-    s_.windows.push_back(w);
-    s_.slotNext.push_back(-1);
+    slot = static_cast<int>(s_.slots.size());
+    s_.slots.emplace_back();
+    copyJustWritten(s_.slots[slot].window, w);
   }
-  s_.slotNext[slot] = -1;
-  if (s_.listTail[h] >= 0) s_.slotNext[s_.listTail[h]] = slot;
-  else s_.listHead[h] = slot;
-  s_.listTail[h] = slot;
+  s_.slots[slot].next = -1;
+  auto& list = s_.lists[h];
+  if (list.tail >= 0) s_.slots[list.tail].next = slot;
+  else list.head = slot;
+  list.tail = slot;
   ++s_.windowsCreated;
   // Untrimmed since pruning (the usual case), the key reuses prune's end lengths: two square roots
   // fewer per window.
   const double key = w.b0 == prunedB0 && w.b1 == prunedB1 ? windowKey(w, endLengths) : windowKey(w);
-  if (key < s_.listKey[h]) {
-    // The earlier entry of h (larger key) goes stale: it no longer matches listKey when popped.
-    s_.listKey[h] = key;
+  if (key < list.key) {
+    // The earlier entry of h (larger key) goes stale: it no longer matches list.key when popped.
+    list.key = key;
     push(key, h);
   }
 }
@@ -112,19 +114,20 @@ restart:
 // A popped halfedge: all its windows cross its face, in the order they arrived. A stale entry (a
 // smaller key was pushed for h since, or h has been propagated since) is skipped.
 void Propagator::propagateHalfedge(int h, double key) {
-  if (s_.listKey[h] != key) return;
-  s_.listKey[h] = kInfinity;
-  int slot = s_.listHead[h];
-  s_.listHead[h] = s_.listTail[h] = -1;
+  auto& list = s_.lists[h];
+  if (list.key != key) return;
+  int slot = list.head;
+  list = {kInfinity, -1, -1};
   ++s_.halfedgePops;
   const FaceCrossing face = faceCrossing(h);  // once per batch: the child frames divide once, not per window
   // The children go to other halfedges (the face's other two edges, seen from their far side), so
   // the detached list is not touched while it is walked; each slot is freed once its window has
-  // crossed the face (propagateWindow copies the window first).
+  // crossed the face.
   while (slot >= 0) {
-    const int next = s_.slotNext[slot];
-    if (next >= 0) __builtin_prefetch(&s_.windows[next]);  // its cache miss overlaps this crossing
-    propagateWindow(slot, face);
+    const Window w = s_.slots[slot].window;  // children may move the slots (a new one at the end)
+    const int next = s_.slots[slot].next;
+    if (next >= 0) __builtin_prefetch(&s_.slots[next]);  // its cache miss overlaps this crossing
+    propagateWindow(w, slot, face);
     s_.freeSlots.push_back(slot);
     slot = next;
   }

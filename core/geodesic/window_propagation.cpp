@@ -69,7 +69,10 @@ void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>
     // Front and wavefront mode: their slots are a small pool (the wavefront queues halfedges,
     // whose record is the first window of the list); prefetching into the stored engine's array
     // made the 418k-triangle bump's stored field 1.2x slower (51 s against 40-42 s, twice each).
-    if (s_.wavefront) s_.queue.prefetchRecords(s_.windows.data(), sizeof(Window), s_.listHead.data());
+    if (s_.wavefront) {
+      s_.queue.prefetchRecords(s_.slots.data(), sizeof(Propagation::Slot), &s_.lists.data()->head,
+                               sizeof(Propagation::EdgeList));
+    }
     else if (!s_.storeWindows) s_.queue.prefetchRecords(s_.windows.data(), sizeof(Window));
     const auto entry = s_.queue.pop();
     if (goal_.active() && entry.key >= directed_.farthestBound(t_, s_)) break;  // targets final
@@ -78,11 +81,13 @@ void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>
       if (s_.fired[v]) continue;  // a stale event: a later, no larger key for v popped first
       fire(v);
     } else if (s_.storeWindows) {
-      propagateWindow(entry.item, faceCrossing(s_.windows[entry.item].halfedge));
+      const Window w = s_.windows[entry.item];  // its children may move the array
+      propagateWindow(w, entry.item, faceCrossing(w.halfedge));
     } else if (s_.wavefront) {
       propagateHalfedge(entry.item, entry.key);
     } else if (takeFrontWindow(entry.item)) {
-      propagateWindow(entry.item, faceCrossing(s_.windows[entry.item].halfedge));
+      const Window w = s_.windows[entry.item];
+      propagateWindow(w, entry.item, faceCrossing(w.halfedge));
       s_.freeSlots.push_back(entry.item);
     }
   }
@@ -369,11 +374,10 @@ Propagator::FaceCrossing Propagator::faceCrossing(int h) const {
   return face;
 }
 
-void Propagator::propagateWindow(int index, const FaceCrossing& face) {
+void Propagator::propagateWindow(const Window& w, int index, const FaceCrossing& face) {
   // No second pruning here (pruned when added): on a 3.6k-vertex bump re-pruning at the pop would
   // kill 24 of 183k windows for ~10 % of the time. An unpruned window is still a real path, so
   // what it offers and the pruning it feeds stay valid: it only costs its own propagation.
-  const Window w = s_.windows[index];
   const int h = face.h;
   const int f = face.f;
   const double L = face.length;
@@ -385,18 +389,16 @@ void Propagator::propagateWindow(int index, const FaceCrossing& face) {
   bool leftChild = xc > w.b0, rightChild = xc < w.b1;
   if (xc >= w.b0 - slack && xc <= w.b1 + slack) {
     const double dc = w.sigma + planarLength(cx - w.sx, cy - w.sy);
-    if (dc > s_.splitDistance[h] * (1.0 + 1e-10)) {
+    auto& split = s_.split[h];
+    if (dc > split.distance * (1.0 + 1e-10)) {
       // One angle, one split (Chen & Han 1990): a shorter path to C already enters this face
-      // through this edge at splitCrossing. It and this window's ray to C bound a region; this
+      // through this edge at split.crossing. It and this window's ray to C bound a region; this
       // window's rays on that path's side must cross it and are beaten there, so only the
       // child on the far side can carry shortest paths.
-      if (s_.splitCrossing[h] < xc) leftChild = false;
+      if (split.crossing < xc) leftChild = false;
       else rightChild = false;
     } else {
-      if (dc < s_.splitDistance[h]) {
-        s_.splitDistance[h] = dc;
-        s_.splitCrossing[h] = xc;
-      }
+      if (dc < split.distance) split = {dc, xc};
       relaxVertex(c, dc, {Predecessor::ThroughWindow, index}, &w);
     }
   } else {
@@ -405,13 +407,13 @@ void Propagator::propagateWindow(int index, const FaceCrossing& face) {
     // near-flat saddle that is not a pseudo-source (see pathBentAt).
     const int side = xc < w.b0 ? 0 : 1;
     const int x = w.endVertex[side];
-    // The cone is read whatever x (vertex 0's when there is none), and the two tests joined without
+    // Whether x has a cone is read whatever x (vertex 0's when there is none), and the two tests joined without
     // a branch: x >= 0 is a coin toss along the wavefront, and its branch was a tenth of the
     // propagation's mispredictions (cachegrind --branch-sim, 18k cap, whose cones are all 0).
     // With the face's data read once per batch (faceCrossing), interleaved runs on the 18k cap:
     // 0.88-0.98 of the earlier time (medians of 25-40 runs each); the 4.5k meshes within noise.
-    const double cone = t_.shadowCone[x >= 0 ? x : 0];
-    if ((x >= 0) & (cone > 0.0)) {
+    const char bendsAtX = t_.hasShadowCone[x >= 0 ? x : 0];
+    if ((x >= 0) & (bendsAtX != 0)) {
       bool atVertex;
       const double d = bentDistance(w, side, cx, cy, atVertex);
       relaxVertex(c, d, Predecessor::throughWindow(index, side, atVertex), &w);

@@ -30,18 +30,18 @@ TEST(WavefrontEngine, EverySlotIsFreedOnceAndHalfedgesPopInBatches) {
   // The queue ran empty, so every list was emptied: each slot is on the free stack exactly once.
   std::vector<int> freed = state.freeSlots;
   std::sort(freed.begin(), freed.end());
-  ASSERT_EQ(freed.size(), state.windows.size());
+  ASSERT_EQ(freed.size(), state.slots.size());
   for (size_t i = 0; i < freed.size(); ++i) ASSERT_EQ(freed[i], static_cast<int>(i));
   for (int h = 0; h < t.halfedgeCount; ++h) {
-    ASSERT_EQ(state.listHead[h], -1) << h;
-    ASSERT_EQ(state.listTail[h], -1) << h;
-    ASSERT_EQ(state.listKey[h], detail::kInfinity) << h;
+    ASSERT_EQ(state.lists[h].head, -1) << h;
+    ASSERT_EQ(state.lists[h].tail, -1) << h;
+    ASSERT_EQ(state.lists[h].key, detail::kInfinity) << h;
   }
   // One batch per popped halfedge, several windows each; the slots are the front's, not all.
   EXPECT_GT(state.halfedgePops, 0);
   EXPECT_LT(state.halfedgePops * 3, state.windowsCreated * 2) << state.halfedgePops << " pops, "
                                                               << state.windowsCreated << " windows";
-  EXPECT_LT(static_cast<long>(state.windows.size()) * 5, state.windowsCreated);
+  EXPECT_LT(static_cast<long>(state.slots.size()) * 5, state.windowsCreated);
 }
 
 TEST(WavefrontEngine, SameDistancesAsStoredWindowsOnTheBenchSamples) {

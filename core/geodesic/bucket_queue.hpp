@@ -7,7 +7,8 @@
 // windows all lie within a few edge lengths of the front, so buckets of width ~ edge/1024 hold a
 // handful of entries each: a push is an append and a pop scans the current bucket; should the
 // current bucket hold more than a few entries, it becomes a binary heap until it is empty. Entries beyond the calendar's horizon wait in an overflow heap. The pop
-// order is exactly (key, item), as a heap's, so every bit of the result is the same. On a graded
+// order is exactly (key, item), as a heap's, so every bit of the result is the same (unless reset
+// unordered: then only the buckets are in order). On a graded
 // mesh (edges much shorter than the mean somewhere) a bucket can hold thousands of entries; it
 // then costs what one heap of that size costs, not a linear scan per pop.
 // Keys below the current bucket (by rounding in a full field, where a child window never lies
@@ -32,8 +33,11 @@ class BucketQueue {
     int item;
   };
 
-  // Starts empty with buckets of `width` (> 0, finite) beginning at key 0.
-  void reset(double width) {
+  // Starts empty with buckets of `width` (> 0, finite) beginning at key 0. `unordered`: pop()
+  // takes any entry of the earliest bucket (the newest), not the smallest: no scan, no heap; the
+  // wavefront engine's halfedges (why that stays exact: window_propagation.cpp, run).
+  void reset(double width, bool unordered = false) {
+    unordered_ = unordered;
     for (auto& b : buckets_) b.clear();
     if (buckets_.size() != kBuckets) buckets_.assign(kBuckets, {});
     overflow_.clear();
@@ -68,6 +72,30 @@ class BucketQueue {
   }
   bool empty() const { return bucketed_ == 0 && overflow_.empty(); }
 
+  // The bucket a key falls in (a key below the calendar's start counts as its first bucket).
+  long long bucketOf(double key) const { return bucketIndex(key); }
+  static constexpr long long kNoBucket = (1LL << 60) + 1;  // beyond bucketOf(+inf), kFar
+
+  // The earliest non-empty bucket, if it is no later than `limit`; kNoBucket otherwise. The
+  // calendar advances to that bucket, or to `limit` at most: entries pushed later with smaller
+  // keys land in bucket max(bucket, current), so a caller that still holds events at `limit`
+  // must not let the calendar pass it.
+  long long earliestBucket(long long limit) {
+    for (;;) {
+      if (current_ > limit) return kNoBucket;
+      if (bucketed_ == 0) {
+        if (overflow_.empty()) return kNoBucket;
+        const long long next = std::max(current_, bucketIndex(overflow_.front().key));
+        if (next > limit) return kNoBucket;
+        advanceTo(next);
+        continue;
+      }
+      if (!buckets_[current_ & kMask].empty()) return current_;
+      if (current_ >= limit) return kNoBucket;
+      advanceTo(current_ + 1);
+    }
+  }
+
   [[gnu::always_inline]] inline void push(double key, int item) {
     const long long index = std::max(current_, bucketIndex(key));
     if (index - current_ < static_cast<long long>(kBuckets)) {
@@ -93,6 +121,11 @@ class BucketQueue {
       auto& bucket = buckets_[current_ & kMask];
       if (!bucket.empty()) {
         --bucketed_;
+        if (unordered_) {
+          const Entry e = bucket.back();
+          bucket.pop_back();
+          return e;
+        }
         if (!currentIsHeap_ && bucket.size() <= kScanLimit) {
           // The usual case: a handful of entries, a scan is cheaper than heap upkeep.
           std::size_t best = 0;
@@ -182,6 +215,7 @@ class BucketQueue {
   double width_ = 1.0, inverseWidth_ = 1.0;
   long long current_ = 0;
   bool currentIsHeap_ = false;  // the current bucket is heap-ordered (by `greater`)
+  bool unordered_ = false;
   std::size_t bucketed_ = 0;
   std::size_t peakSize_ = 0;
 };

@@ -36,9 +36,20 @@ void Propagator::reset(const std::vector<SurfacePoint>& targets) {
     s_.predecessorWindow.resize(t_.vertexCount);
   }
   s_.windowsCreated = 0;
-  // Buckets of 1/1024 edge: a handful of queued windows each (see bucket_queue.hpp); measured
-  // on the 3.6k bump, 1/256 left crowded buckets (8 % more instructions).
-  s_.queue.reset(t_.meanEdgeLength / 1024.0);
+  // Exact (key, item) order (the stored and front engines, directed queries): buckets of 1/1024
+  // edge, a handful of queued windows each (see bucket_queue.hpp); measured on the 3.6k bump,
+  // 1/256 left crowded buckets (8 % more instructions).
+  // A full field of the wavefront engine pops a bucket's halfedges in any order (Propagator::
+  // runSplitQueues), so its buckets can be wide: one mean edge. A halfedge whose key drops within
+  // its bucket is not queued again, and the newest halfedge of a bucket, popped first, is the one
+  // still in cache. Against 1/1024 edge (18k-vertex cap of issue 19, one field): 74k queue entries
+  // instead of 256k for 54-59k batches, simulated first-level misses 2.35M -> 1.05M, branch misses
+  // 2.76M -> 1.95M; the windows within 0.1 % and the distances equal. 1/16, 1/4, 1/2 and 4 edges
+  // were all costlier in that count, on the cap and on the 4.4k bump.
+  const double bucketWidth = s_.splitQueues ? t_.meanEdgeLength : t_.meanEdgeLength / 1024.0;
+  s_.queue.reset(bucketWidth, /*unordered=*/s_.splitQueues);
+  s_.vertexEvents.clear();
+  s_.vertexEventsPeak = 0;
   if (static_cast<int>(s_.faceFirstTarget.size()) != t_.faceCount) s_.faceFirstTarget.assign(t_.faceCount, -1);
   const int nt = static_cast<int>(targets.size());
   s_.nextTarget.assign(nt, -1);
@@ -308,7 +319,7 @@ double peakBytes(const MeshTables& t, const Propagation& s) {
   }
   const double nt = static_cast<double>(s.targetFace.size());
   bytes += nt * (2 * sizeof(int) + sizeof(Eigen::Vector3d) + sizeof(double) + sizeof(Predecessor));
-  return bytes + static_cast<double>(s.queue.peakSize()) * sizeof(BucketQueue::Entry);
+  return bytes + static_cast<double>(s.queue.peakSize() + s.vertexEventsPeak) * sizeof(BucketQueue::Entry);
 }
 
 }  // namespace egg::geodesic::detail

@@ -43,7 +43,12 @@ class Propagator {
   double incomingAngle(int v) const;
   void finishTargets();
 
-  void push(double key, int item) { s_.queue.push(key, item); }
+  void push(double key, int item) {
+    if (item < 0 && s_.splitQueues) pushVertexEvent(key, item);
+    else s_.queue.push(key, item);
+  }
+  void pushVertexEvent(double key, int item);
+  BucketQueue::Entry popVertexEvent();
 
   // `via`: the window the path came through (none for vertex and source paths). Front mode keeps
   // a copy for a pseudo-source, whose cone is aimed from it when it fires (incomingAngle).
@@ -96,6 +101,7 @@ class Propagator {
   void addWavefrontWindow(Window& w);
   void unlinkWavefrontSlot(int h, int slot, int previous);
   void propagateHalfedge(int h, double key);
+  void runSplitQueues();
 };
 
 }  // namespace egg::geodesic::detail

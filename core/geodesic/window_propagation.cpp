@@ -53,6 +53,7 @@
 namespace egg::geodesic::detail {
 
 void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>& targets, bool directed) {
+  s_.splitQueues = s_.wavefront && !directed;
   reset(targets);  // cleans up after itself if a target is invalid
   // The scratch is reused by the thread's next query (thread_local): whatever happens below
   // (bad source, bad_alloc), leave its per-face target buckets clean, or that query would
@@ -65,6 +66,11 @@ void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>
   } clean{s_};
   if (directed) directed_.set(t_, s_);
   seed(source);
+  if (s_.splitQueues) {
+    runSplitQueues();
+    finishTargets();
+    return;
+  }
   while (!s_.queue.empty()) {
     // Front and wavefront mode: their slots are a small pool (the wavefront queues halfedges,
     // whose record is the first window of the list); prefetching into the stored engine's array

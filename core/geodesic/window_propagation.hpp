@@ -171,8 +171,14 @@ struct Propagation {
   // fires into is aimed from that path (incomingAngle), and the window's slot may be reused.
   std::vector<Window> predecessorWindow;
   long windowsCreated = 0;  // windows queued by the last propagation (the slots are fewer in front mode)
-  // Items >= 0: window index; < 0: vertex event for vertex -item-1.
+  // Items >= 0: window index (the wavefront engine: halfedge); < 0: vertex event for vertex -item-1.
   BucketQueue queue;
+  // A full field of the wavefront engine (window_propagation.cpp, run): the queue holds halfedges
+  // only, popped in any order within a bucket, and the vertex events wait in this heap by
+  // (key, item).
+  bool splitQueues = false;
+  std::vector<BucketQueue::Entry> vertexEvents;
+  std::size_t vertexEventsPeak = 0;
   // Targets of this query, bucketed by face.
   std::vector<int> faceFirstTarget;  // -1 if none (reset after each query)
   std::vector<int> nextTarget;

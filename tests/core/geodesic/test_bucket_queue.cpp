@@ -1,6 +1,8 @@
 // The propagation's bucket queue must pop in exactly the (key, item) order of a heap: across bucket
 // boundaries, beyond the calendar's horizon (overflow), for equal keys, for keys pushed below the
-// front (rounding in the propagation), for crowded buckets (graded meshes) and for +inf.
+// front (rounding in the propagation), for crowded buckets (graded meshes) and for +inf. Unordered
+// (the wavefront engine's halfedges): every entry once, buckets in order, and earliestBucket never
+// takes the calendar past its limit.
 #include "core/geodesic/bucket_queue.hpp"
 
 #include <gtest/gtest.h>
@@ -143,6 +145,61 @@ void popsInOrderWithAPrefetchMap(bool mapInRecords) {
     reference.pop();
   }
   EXPECT_TRUE(queue.empty());
+}
+
+TEST(BucketQueue, UnorderedPopsEveryEntryOnceWithTheBucketsInOrder) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> key(0.0, 300.0), step(0.0, 3.0);
+  BucketQueue queue;
+  const double width = 1.0;
+  queue.reset(width, /*unordered=*/true);
+  std::vector<int> pushed(20000, 0), popped(20000, 0);
+  int next = 0;
+  for (; next < 400; ++next) {
+    queue.push(key(rng), next);  // some beyond the horizon (4096 buckets of 1): the overflow heap
+    ++pushed[next];
+  }
+  queue.push(1e5, next);  // far beyond
+  ++pushed[next++];
+  long long lastBucket = 0;
+  while (!queue.empty()) {
+    const long long bucket = queue.earliestBucket(BucketQueue::kNoBucket);
+    ASSERT_NE(bucket, BucketQueue::kNoBucket);
+    const auto e = queue.pop();
+    ASSERT_LE(queue.bucketOf(e.key), bucket) << "popped from a later bucket than announced";
+    EXPECT_GE(bucket, lastBucket);  // children never lie below their parent here
+    lastBucket = bucket;
+    ++popped[e.item];
+    if (next + 2 < static_cast<int>(pushed.size()) && e.key < 250.0) {
+      for (int c = 0; c < 2; ++c, ++next) {
+        queue.push(e.key + step(rng), next);
+        ++pushed[next];
+      }
+    }
+  }
+  EXPECT_GT(next, 10000);
+  EXPECT_EQ(popped, pushed);
+}
+
+TEST(BucketQueue, EarliestBucketStopsAtItsLimitSoLaterPushesKeepTheirBucket) {
+  BucketQueue queue;
+  queue.reset(1.0, /*unordered=*/true);
+  queue.push(5.5, 1);
+  queue.push(9.5, 2);
+  EXPECT_EQ(queue.earliestBucket(7), 5);
+  EXPECT_EQ(queue.pop().item, 1);
+  // Nothing up to 7: the calendar waits at 7, so a key in bucket 6 pushed now still pops before 9.
+  EXPECT_EQ(queue.earliestBucket(7), BucketQueue::kNoBucket);
+  queue.push(6.5, 3);
+  EXPECT_EQ(queue.earliestBucket(6), BucketQueue::kNoBucket);  // the calendar is at 7 already
+  EXPECT_EQ(queue.earliestBucket(7), 7);                      // 6.5 waits in the current bucket
+  EXPECT_EQ(queue.pop().item, 3);
+  EXPECT_EQ(queue.earliestBucket(8), BucketQueue::kNoBucket);
+  EXPECT_EQ(queue.earliestBucket(BucketQueue::kNoBucket), 9);
+  EXPECT_EQ(queue.pop().item, 2);
+  EXPECT_TRUE(queue.empty());
+  EXPECT_EQ(queue.earliestBucket(BucketQueue::kNoBucket), BucketQueue::kNoBucket);
+  EXPECT_LT(queue.bucketOf(std::numeric_limits<double>::infinity()), BucketQueue::kNoBucket);
 }
 
 TEST(BucketQueue, PrefetchThroughAnItemToRecordMapKeepsTheOrderAndSkipsItemsWithoutARecord) {

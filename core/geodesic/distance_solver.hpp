@@ -88,7 +88,11 @@ struct DistanceSolverOptions {
   // exported mesh, interleaved, 8.4-9.6 s against 12.5-12.9 s; `egg bench geodesic --engine-rows
   // large`: 8.7 s, 0.13 of the stored engine's 65 s in the same run; peak RSS of a wavefront-only
   // process 0.28 GB); up to 18k vertices, whose fronts stay in cache, the change is within the
-  // noise (+-20 %, three interleaved bench runs). The default: faster than both
+  // noise (+-20 %, three interleaved bench runs). Full fields pop a bucket's halfedges in any
+  // order, in buckets one edge wide, with vertex events held back until their bucket is clear
+  // (wavefront_engine.cpp, runSplitQueues): 418k-triangle bump 3.3 s against 8.0 s, 18k cap
+  // 0.88, 4.4k bump 0.78 of the time before (interleaved `egg geodesic` runs; numbers of this and
+  // the authors' VTP on the same meshes: issue 19's note). The default: faster than both
   // on every row. path() keeps the windows it traces back through whatever the engine.
   enum class Engine { StoredWindows, FrontOnly, Wavefront };
   Engine engine = Engine::Wavefront;

@@ -139,10 +139,6 @@ void Propagator::propagateHalfedge(int h, double key) {
   }
 }
 
-}  // namespace egg::geodesic::detail
-
-namespace egg::geodesic::detail {
-
 namespace {
 // Orders a heap of vertex events by (key, item), smallest on top.
 bool laterEvent(const BucketQueue::Entry& a, const BucketQueue::Entry& b) {

@@ -78,8 +78,9 @@ void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>
     if (s_.wavefront) {
       s_.queue.prefetchRecords(s_.slots.data(), sizeof(Propagation::Slot), &s_.lists.data()->head,
                                sizeof(Propagation::EdgeList));
+    } else if (!s_.storeWindows) {
+      s_.queue.prefetchRecords(s_.windows.data(), sizeof(Window));
     }
-    else if (!s_.storeWindows) s_.queue.prefetchRecords(s_.windows.data(), sizeof(Window));
     const auto entry = s_.queue.pop();
     if (goal_.active() && entry.key >= directed_.farthestBound(t_, s_)) break;  // targets final
     if (entry.item < 0) {
@@ -413,9 +414,9 @@ void Propagator::propagateWindow(const Window& w, int index, const FaceCrossing&
     // near-flat saddle that is not a pseudo-source (see pathBentAt).
     const int side = xc < w.b0 ? 0 : 1;
     const int x = w.endVertex[side];
-    // Whether x has a cone is read whatever x (vertex 0's when there is none), and the two tests joined without
-    // a branch: x >= 0 is a coin toss along the wavefront, and its branch was a tenth of the
-    // propagation's mispredictions (cachegrind --branch-sim, 18k cap, whose cones are all 0).
+    // Whether x has a cone is read whatever x (vertex 0's when there is none), and the two tests
+    // joined without a branch: x >= 0 is a coin toss along the wavefront, and its branch was a
+    // tenth of the propagation's mispredictions (cachegrind --branch-sim, 18k cap, no cones).
     // With the face's data read once per batch (faceCrossing), interleaved runs on the 18k cap:
     // 0.88-0.98 of the earlier time (medians of 25-40 runs each); the 4.5k meshes within noise.
     const char bendsAtX = t_.hasShadowCone[x >= 0 ? x : 0];

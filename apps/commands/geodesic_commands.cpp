@@ -49,6 +49,8 @@ struct GeodesicArgs {
   std::string source;
   std::string out;
   std::string engine;  // empty: the solver's default
+  bool exact = false;
+  double mergeTolerance = geodesic::DistanceSolverOptions{}.imageMergeTolerance;
   bool json = false;
 };
 
@@ -56,6 +58,8 @@ int runGeodesic(const GeodesicArgs& args) {
   const TriMesh mesh = loadSurfaceArgument(args.surface);
   const Eigen::Vector3d requested = parsePoint(args.source);
   geodesic::DistanceSolverOptions options;
+  if (args.exact) options = geodesic::DistanceSolverOptions::exact();
+  else options.imageMergeTolerance = args.mergeTolerance;
   if (args.engine == "stored") options.engine = geodesic::DistanceSolverOptions::Engine::StoredWindows;
   if (args.engine == "front") options.engine = geodesic::DistanceSolverOptions::Engine::FrontOnly;
   if (args.engine == "wavefront") options.engine = geodesic::DistanceSolverOptions::Engine::Wavefront;
@@ -185,6 +189,7 @@ nlohmann::json toleranceTable(const TriMesh& mesh, const std::vector<SurfacePoin
                               const std::vector<SurfacePoint>& targets, const std::vector<double>& tolerances) {
   geodesic::DistanceSolverOptions exactOptions;
   exactOptions.saddleAngleTolerance = 0.0;
+  exactOptions.imageMergeTolerance = 0.0;
   const geodesic::DistanceSolver exact(mesh, exactOptions);
   std::vector<geodesic::DistanceField> reference;
   for (const auto& s : sources) reference.push_back(exact.distances(s, targets));
@@ -259,6 +264,7 @@ nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
     waveOptions.engine = Engine::Wavefront;
     exactOptions.engine = Engine::StoredWindows;
     exactOptions.saddleAngleTolerance = 0.0;
+    exactOptions.imageMergeTolerance = 0.0;
     const geodesic::DistanceSolver stored(mesh, storedOptions), front(mesh, frontOptions), wave(mesh, waveOptions);
     const int nv = static_cast<int>(mesh.n_vertices());
     const bool large = nv > 50000;
@@ -485,6 +491,13 @@ void registerGeodesicCommand(CLI::App& parent, Action& action) {
                   "stored (every window kept), front (only the queued windows, far less memory) or wavefront "
                   "(the same, queued per edge, VTP-style); default: the solver's")
       ->check(CLI::IsMember({"stored", "front", "wavefront"}));
+  cmd->add_flag("--exact", args->exact,
+               "the exact polyhedral distance: every saddle a pseudo-source, no near images merged");
+  cmd->add_option("--merge-tolerance", args->mergeTolerance,
+                  "near images merged within this fraction of the edge length (DistanceSolverOptions::"
+                  "imageMergeTolerance; 0: off)")
+      ->capture_default_str()
+      ->excludes("--exact");
   cmd->add_flag("--json", args->json, "print the summary as JSON");
   cmd->callback([args, &action] { action = [args] { return runGeodesic(*args); }; });
 }

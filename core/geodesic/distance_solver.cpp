@@ -31,10 +31,20 @@ void DistanceSolverOptions::validate() const {
   if (!(minWindowWidthRelative >= 0.0) || !(minWindowWidthRelative < 1e-3)) {
     throw InvalidInput("DistanceSolverOptions.minWindowWidthRelative must be in [0, 1e-3)");
   }
+  if (!(imageMergeTolerance >= 0.0) || !(imageMergeTolerance < 1e-3)) {
+    throw InvalidInput("DistanceSolverOptions.imageMergeTolerance must be in [0, 1e-3) (a fraction of the edge length)");
+  }
   if (threads < 0) throw InvalidInput("DistanceSolverOptions.threads must be >= 0 (0 = all cores)");
   if (engine != Engine::StoredWindows && engine != Engine::FrontOnly && engine != Engine::Wavefront) {
     throw InvalidInput("DistanceSolverOptions.engine must be StoredWindows, FrontOnly or Wavefront");
   }
+}
+
+DistanceSolverOptions DistanceSolverOptions::exact() {
+  DistanceSolverOptions options;
+  options.saddleAngleTolerance = 0.0;
+  options.imageMergeTolerance = 0.0;
+  return options;
 }
 
 DistanceSolver::DistanceSolver(const TriMesh& mesh, const DistanceSolverOptions& options) : options_(options) {

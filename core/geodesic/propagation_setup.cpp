@@ -28,6 +28,7 @@ void Propagator::reset(const std::vector<SurfacePoint>& targets) {
   s_.blockPrev.clear();
   s_.freeBlocks.clear();
   s_.halfedgePops = 0;
+  s_.nearImagesMerged = 0;
   s_.slots.clear();
   if (s_.wavefront) {
     s_.lists.assign(t_.halfedgeCount, {kInfinity, -1, -1});

@@ -48,6 +48,9 @@ void Propagator::addWavefrontWindow(Window& w) {
   const auto& e = t_.he[h];
   const double minWidth = o_.minWindowWidthRelative * e.length;
   const double same = 1e-9 * e.length;
+  // A full field merges near images too (DistanceSolverOptions::imageMergeTolerance); directed
+  // queries stay exact, so distance() agrees with the paths traced through stored windows.
+  const double merge = s_.splitQueues ? o_.imageMergeTolerance : 0.0;
   // Only the first kCompared windows of the list (the oldest queued) are compared with: constant
   // time per window, as VTP's neighbour checks. Trimming less keeps more windows, every one a real
   // path, so the distances do not change (exact mode: equal to the full walk's), only the work.
@@ -71,6 +74,11 @@ restart:
       absorbSameImage(w, other, b0In, b1In);
       unlinkWavefrontSlot(h, slot, previous);
       goto restart;  // w has grown: windows it missed may overlap it now
+    }
+    if (merge > 0.0 && absorbNearImage(w, other, merge, e.length, b0In, b1In)) {
+      unlinkWavefrontSlot(h, slot, previous);
+      ++s_.nearImagesMerged;
+      goto restart;
     }
     if (std::min(w.b1, other.b1) > std::max(w.b0, other.b0)) {
       const double o0 = other.b0, o1 = other.b1;

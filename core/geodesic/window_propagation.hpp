@@ -167,6 +167,7 @@ struct Propagation {
   };
   std::vector<Slot> slots;
   long halfedgePops = 0;  // diagnostics: batches propagated (live queue entries popped)
+  long nearImagesMerged = 0;  // diagnostics: windows merged into a near image (imageMergeTolerance)
   // Per pseudo-source vertex, a copy of the window its best path so far came through: the cone it
   // fires into is aimed from that path (incomingAngle), and the window's slot may be reused.
   std::vector<Window> predecessorWindow;

@@ -169,6 +169,32 @@ TEST_F(Cli, GeodesicCommandRejectsABadSourceWithoutWriting) {
   EXPECT_FALSE(fs::exists(csv));
 }
 
+// --exact and --merge-tolerance reach the solver: on the sphere cap sample merging near images
+// makes fewer windows than --merge-tolerance 0, which gives --exact's distances (the cap has no
+// saddles to skip); a tolerance out of range is bad input naming the field, with nothing written.
+TEST_F(Cli, GeodesicCommandTakesTheExactModeAndTheMergeTolerance) {
+  auto run = [&](const std::string& name, std::vector<std::string> extra) {
+    std::vector<std::string> args{"geodesic", "sphere", "--source", "1,2,9.7", "--out", (root / name).string(), "--json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto o = runEgg(args);
+    EXPECT_EQ(o.code, kExitOk) << o.err;
+    return nlohmann::json::parse(o.out);
+  };
+  const auto merged = run("merged.csv", {});
+  const auto unmerged = run("unmerged.csv", {"--merge-tolerance", "0"});
+  const auto exact = run("exact.csv", {"--exact"});
+  EXPECT_LT(merged["windows"].get<long>(), unmerged["windows"].get<long>());
+  EXPECT_EQ(unmerged["windows"], exact["windows"]);
+  std::ifstream a(root / "unmerged.csv"), b(root / "exact.csv");
+  const std::string textA((std::istreambuf_iterator<char>(a)), {}), textB((std::istreambuf_iterator<char>(b)), {});
+  EXPECT_EQ(textA, textB);
+  const auto csv = root / "bad.csv";
+  const auto bad = runEgg({"geodesic", "sphere", "--source", "1,2,9.7", "--out", csv.string(), "--merge-tolerance", "-1"});
+  EXPECT_EQ(bad.code, kExitBadInput);
+  EXPECT_NE(bad.err.find("imageMergeTolerance"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(csv));
+}
+
 }  // namespace
 }  // namespace egg::app
 

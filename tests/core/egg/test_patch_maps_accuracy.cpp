@@ -24,6 +24,7 @@ TEST(PatchMapsAccuracy, DefaultGeodesicToleranceKeepsSideToSideDistancesWithinTh
   const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
   geodesic::DistanceSolverOptions exactOptions;
   exactOptions.saddleAngleTolerance = 0.0;
+  exactOptions.imageMergeTolerance = 0.0;
   const geodesic::DistanceSolver solver(patch.mesh), exact(patch.mesh, exactOptions);
   double worst = 0.0;
   for (const Family family : {Family::U, Family::V}) {

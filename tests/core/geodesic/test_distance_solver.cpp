@@ -205,6 +205,7 @@ TEST(DistanceSolver, DistancesAreSymmetricAmongNearFlatSaddles) {
   const TriMesh mesh = steepBump(2.0, 0.2);
   DistanceSolverOptions exactOptions;
   exactOptions.saddleAngleTolerance = 0.0;
+  exactOptions.imageMergeTolerance = 0.0;
   const DistanceSolver exact(mesh, exactOptions), solver(mesh);
   std::vector<SurfacePoint> points;
   for (int k = 0; k < 12; ++k) points.push_back(snapToSurface(mesh, {-3.8 + 0.69 * k, 3.8 * std::sin(1.7 * k), 0.0}));
@@ -230,6 +231,7 @@ TEST(DistanceSolver, DefaultStaysWithinItsErrorFromAnySource) {
   const TriMesh mesh = steepBump(3.0, 0.2);
   DistanceSolverOptions exactOptions;
   exactOptions.saddleAngleTolerance = 0.0;
+  exactOptions.imageMergeTolerance = 0.0;
   const DistanceSolver exact(mesh, exactOptions), solver(mesh);
   const int n = solver.vertexCount();
   double over = 0.0, under = 0.0;
@@ -264,14 +266,18 @@ TEST(DistanceSolver, DirectedQueriesEqualTheFullField) {
   for (const auto& c : cases) {
     DistanceSolverOptions exactOptions;
     exactOptions.saddleAngleTolerance = 0.0;
-    const DistanceSolver exact(c.mesh, exactOptions), solver(c.mesh);
+    exactOptions.imageMergeTolerance = 0.0;
+    // Directed queries merge no near images (imageMergeTolerance): against full fields without.
+    DistanceSolverOptions unmergedOptions;
+    unmergedOptions.imageMergeTolerance = 0.0;
+    const DistanceSolver exact(c.mesh, exactOptions), solver(c.mesh), unmerged(c.mesh, unmergedOptions);
     const int faces = solver.faceCount(), n = solver.vertexCount();
     double exactWorst = 0.0, defaultWorst = 0.0, pathWorst = 0.0;
     for (int k = 0; k < 12; ++k) {
       const SurfacePoint from = k % 3 ? facePoint((k * 7919 + 5) % faces, 0.2, 0.3, 0.5) : vertexPoint(c.mesh, (k * 104729) % n);
       const SurfacePoint to = k % 2 ? facePoint((k * 3571 + 11) % faces, 0.6, 0.1, 0.3) : vertexPoint(c.mesh, (k * 613 + 7) % n);
       const double fullExact = exact.distances(from, {to}).targetDistances[0];
-      const double fullDefault = solver.distances(from, {to}).targetDistances[0];
+      const double fullDefault = unmerged.distances(from, {to}).targetDistances[0];
       if (!(fullExact > 1e-9)) continue;
       exactWorst = std::max(exactWorst, relativeError(exact.distance(from, to), fullExact));
       defaultWorst = std::max(defaultWorst, relativeError(solver.distance(from, to), fullDefault));
@@ -283,7 +289,7 @@ TEST(DistanceSolver, DirectedQueriesEqualTheFullField) {
         if (full[i] > 1e-9) exactWorst = std::max(exactWorst, relativeError(directed[i], full[i]));
       // The default with several targets: a bend at a skipped saddle may lie below its window's
       // key, so the directed value may be a little longer (goal_bound.hpp), never shorter.
-      const auto fullDefaults = solver.distances(from, several).targetDistances;
+      const auto fullDefaults = unmerged.distances(from, several).targetDistances;
       const auto directedDefaults = solver.directedDistances(from, several).targetDistances;
       for (size_t i = 0; i < several.size(); ++i) {
         if (!(fullDefaults[i] > 1e-9)) continue;
@@ -401,6 +407,7 @@ TEST(DistanceSolver, SkippedSaddlesKeepSideToSideDistancesAcrossASteepBump) {
   const TriMesh mesh = steepBump(2.0, 0.25);
   DistanceSolverOptions exactOptions;
   exactOptions.saddleAngleTolerance = 0.0;
+  exactOptions.imageMergeTolerance = 0.0;
   const DistanceSolver solver(mesh), exact(mesh, exactOptions);
   int skipped = 0;
   for (int v = 0; v < solver.vertexCount(); ++v) {

@@ -121,6 +121,7 @@ TEST(ExactReference, ExactModeAgreesWithCgalToRounding) {
   const TriMesh mesh = testing::gridMesh(20, 20, 1.0, 1.0, testing::bump(0.4, 0.6, 0.3, 0.2), 0.25, 3);
   DistanceSolverOptions exact;
   exact.saddleAngleTolerance = 0.0;
+  exact.imageMergeTolerance = 0.0;
   const DistanceSolver solver(mesh, exact);
   for (const SurfacePoint& source : {vertexPoint(mesh, 200), facePoint(300, 0.2, 0.3, 0.5)}) {
     const auto ours = solver.distances(source).vertexDistances;
@@ -135,6 +136,7 @@ TEST(ExactReference, ExactModeAgreesWithCgalOnRemeshedSamples) {
   // find every shortest path.
   DistanceSolverOptions exact;
   exact.saddleAngleTolerance = 0.0;
+  exact.imageMergeTolerance = 0.0;
   for (const auto& [name, edge] : std::vector<std::pair<std::string, double>>{{"bump", 0.35}, {"hypar", 0.4}}) {
     const TriMesh mesh = samples::generateSample(name, {}, edge);
     const DistanceSolver solver(mesh, exact);
@@ -155,6 +157,7 @@ TEST(ExactReference, ExactModeAgreesWithCgalAroundAReflexCorner) {
   const TriMesh mesh = testing::lShapeMesh(10, testing::hypar(1.0, 1.0, 0.4));
   DistanceSolverOptions exact;
   exact.saddleAngleTolerance = 0.0;
+  exact.imageMergeTolerance = 0.0;
   const DistanceSolver solver(mesh, exact);
   for (const Eigen::Vector3d& requested :
        {Eigen::Vector3d(1.7, 0.0, 0.0), Eigen::Vector3d(0.0, 1.7, 0.0), Eigen::Vector3d(1.6, 0.4, 0.0),

@@ -278,5 +278,81 @@ TEST(WindowGeometry, CopyJustWrittenCopiesEveryField) {
   EXPECT_EQ(std::memcmp(&to, &from, sizeof(Window)), 0);
 }
 
+
+// distanceGapBound and rayTurnBound (DistanceSolverOptions::imageMergeTolerance) are bounds: never
+// below the gap and the ray angle sampled densely over the interval, for random image pairs, wide
+// intervals (where the curvature term matters) and narrow ones. Known answers: one image with its
+// sigma raised by c has the gap c (up to the curvature term, W^2 / 8 of it) and no turn; an image
+// on the edge's line with its foot inside has a kink and no bound.
+Window imageAt(double sx, double sy, double sigma) {
+  Window w;
+  w.sx = sx;
+  w.sy = sy;
+  w.sigma = sigma;
+  return w;
+}
+
+TEST(WindowGeometry, GapAndTurnBoundsAreNeverBelowTheSampledValues) {
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> x(-1.0, 2.0), y(-2.0, -0.01), sigma(0.0, 0.5), unit(0.0, 1.0);
+  int tight = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const Window a = imageAt(x(rng), y(rng), sigma(rng));
+    // Half the pairs are near images: b a small rotation of a about a point on the edge.
+    Window b = imageAt(x(rng), y(rng), sigma(rng));
+    if (k % 2) {
+      const double turn = 1e-3 * unit(rng), px = unit(rng), c = std::cos(turn), s = std::sin(turn);
+      b = imageAt(px + c * (a.sx - px) - s * a.sy, s * (a.sx - px) + c * a.sy, a.sigma);
+    }
+    const double x0 = unit(rng), x1 = x0 + (k % 4 < 2 ? 1.0 : 1e-3) * unit(rng);
+    double gap = 0.0, sine = 0.0;
+    for (int i = 0; i <= 400; ++i) {
+      const double t = x0 + (x1 - x0) * i / 400.0;
+      const double ra = std::hypot(t - a.sx, a.sy), rb = std::hypot(t - b.sx, b.sy);
+      gap = std::max(gap, std::abs(a.sigma + ra - b.sigma - rb));
+      sine = std::max(sine, std::abs((t - a.sx) * b.sy - a.sy * (t - b.sx)) / (ra * rb));
+    }
+    const double gapBound = distanceGapBound(a, b, x0, x1), turnBound = rayTurnBound(a, b, x0, x1);
+    ASSERT_GE(gapBound, gap * (1.0 - 1e-12) - 1e-15) << k;
+    ASSERT_GE(turnBound, sine * (1.0 - 1e-12) - 1e-15) << k;
+    if (gapBound <= 1.5 * gap + 1e-12) ++tight;
+  }
+  EXPECT_GT(tight, 1000);  // a bound, but not a loose one: within 1.5x of the gap on many pairs
+}
+
+TEST(WindowGeometry, GapBoundKnownAnswers) {
+  const Window a = imageAt(0.3, -1.0, 0.2), raised = imageAt(0.3, -1.0, 0.2 + 1e-6);
+  EXPECT_NEAR(distanceGapBound(a, raised, 0.4, 0.401), 1e-6, 1e-10);  // + the curvature term, 4e-11
+  EXPECT_DOUBLE_EQ(rayTurnBound(a, raised, 0.0, 1.0), 0.0);
+  const Window onTheLine = imageAt(0.5, 0.0, 0.0);
+  EXPECT_EQ(distanceGapBound(onTheLine, a, 0.0, 1.0), kInfinity);
+  // Merging: the union takes the wider window's image, only within both bounds.
+  Window w = imageAt(0.3, -1.0, 0.2), wider = imageAt(0.3, -1.0, 0.2 + 1e-7);
+  w.b0 = 0.40;
+  w.b1 = 0.41;
+  wider.b0 = 0.41;
+  wider.b1 = 0.9;
+  double b0In = w.b0, b1In = w.b1;
+  Window merged = w;
+  ASSERT_TRUE(absorbNearImage(merged, wider, 2e-6, 1.0, b0In, b1In));
+  EXPECT_EQ(merged.sigma, wider.sigma);
+  EXPECT_EQ(merged.b0, 0.40);
+  EXPECT_EQ(merged.b1, 0.9);
+  // A sliver whose function meets a far image's where they touch: the gap is within the
+  // tolerance, but the rays are 76 degrees apart, so downstream the two part ways (the turn test).
+  Window sliver = imageAt(0.3, -1.0, 0.2);
+  sliver.b0 = 0.41 - 1e-9;
+  sliver.b1 = 0.41;
+  Window far = imageAt(5.0, -1.0, 0.2 + std::hypot(0.11, 1.0) - std::hypot(0.41 - 5.0, 1.0));
+  far.b0 = 0.41;
+  far.b1 = 0.9;
+  ASSERT_LT(distanceGapBound(sliver, far, sliver.b0, sliver.b1), 2e-6);
+  Window unchanged = sliver;
+  EXPECT_FALSE(absorbNearImage(unchanged, far, 2e-6, 1.0, b0In, b1In));
+  w = sliver;
+  EXPECT_EQ(unchanged.sx, w.sx);
+  EXPECT_EQ(unchanged.b1, w.b1);
+}
+
 }  // namespace
 }  // namespace egg::geodesic::detail

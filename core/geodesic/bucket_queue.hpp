@@ -35,7 +35,7 @@ class BucketQueue {
 
   // Starts empty with buckets of `width` (> 0, finite) beginning at key 0. `unordered`: pop()
   // takes any entry of the earliest bucket (the newest), not the smallest: no scan, no heap; the
-  // wavefront engine's halfedges (why that stays exact: window_propagation.cpp, run).
+  // wavefront engine's halfedges (why that stays exact: wavefront_engine.cpp, runSplitQueues).
   void reset(double width, bool unordered = false) {
     unordered_ = unordered;
     for (auto& b : buckets_) b.clear();
@@ -59,7 +59,7 @@ class BucketQueue {
   // thread CPU time per field, interleaved runs of 7 fields: 18k cap, front engine 0.78-0.98
   // (mean 0.88, faster in 6 of 6); no change beyond the noise on the 4.5k meshes, whose records
   // stay in cache. Two buckets ahead was slower. The propagation asks for it in front and
-  // wavefront mode (window_propagation.cpp, run). `recordOfItem` (if given) maps an item to its
+  // wavefront mode (window_propagation.cpp, run; wavefront_engine.cpp, runSplitQueues). `recordOfItem` (if given) maps an item to its
   // record (-1: none), `mapStride` bytes from one item's entry to the next: the wavefront engine
   // queues halfedges, whose first queued window is the record its pop reads first, and its map is
   // the head field of its per-halfedge list records (which reading it brings into cache too).
@@ -156,6 +156,8 @@ class BucketQueue {
   static constexpr long long kFar = 1LL << 60;
   static constexpr std::size_t kScanLimit = 16;  // larger current buckets become heaps
 
+ public:
+  // The order of entries, (key, item): also the wavefront engine's vertex-event heap's.
   static bool less(const Entry& a, const Entry& b) { return a.key < b.key || (a.key == b.key && a.item < b.item); }
   // A function object, not a function: the heap algorithms then inline the comparison (through a
   // function pointer it was a call per sift step).
@@ -163,6 +165,8 @@ class BucketQueue {
     bool operator()(const Entry& a, const Entry& b) const { return less(b, a); }
   };
   static constexpr Greater greater{};
+
+ private:
 
   // Bucket of `key`, clamped to [0, kFar]: negative keys (never pushed) count as 0, and far keys
   // (+inf included) as kFar, which stays beyond the horizon until the calendar gets there.

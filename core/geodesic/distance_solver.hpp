@@ -73,16 +73,21 @@ struct DistanceSolverOptions {
   // moves the distance over the narrower piece by at most tolerance x edge length, and a path
   // meets such a change at most once per edge it crosses, so the error stays of the order of the
   // tolerance relative to the distance, whatever the mesh size (measured: a tenth of it).
-  // Error study (max relative error against exact(); windows per field, issue 19's meshes; the
-  // rows at 0 are the default saddle skipping alone):
+  // A merged pair must also have rays within sqrt(2 x tolerance) of each other (absorbNearImage:
+  // why; without it a pseudo-source's wide fan went to a far image's sliver).
+  // Error study (2026-12; max relative error against exact() at the vertices; windows per field;
+  // issue 19's meshes and vertex sources, `egg geodesic --merge-tolerance T` against `--exact`;
+  // the rows at 0 are the saddle skipping's alone):
   //   tolerance   cap 4.6k          cap 18k           bump 4.4k         bump 418k triangles
   //   0           0       132.5k    0       1062k     5.9e-8  121.7k    1.2e-10 39.0M
-  //   1e-6        2.3e-8  125.3k    4.4e-8  752k      6.4e-8  116.2k    5.1e-8  26.8M
-  //   2e-6        5.8e-8  118.9k    1.2e-7  607k      6.6e-8  113.7k    2.1e-7  26.5M
-  //   5e-6        2.9e-7  104.8k    6.7e-7  407k      2.6e-7  108.1k    4.9e-7  26.6M
-  //   1e-5        4.9e-7  88.5k     1.2e-6  293k      5.0e-7  103.1k
-  // The default keeps the error within 1e-6 of the exact distance with a margin of 5 on these,
-  // and the saddle skipping's own (up to 8e-6, above) well clear. 0 switches merging off.
+  //   1e-6        2.3e-8  125.3k    4.4e-8  752k      5.9e-8  117.7k    5.1e-8  26.8M
+  //   2e-6        5.8e-8  119.6k    1.2e-7  609k      6.6e-8  115.6k    2.1e-7  26.6M
+  //   5e-6        2.9e-7  104.8k    6.7e-7  407k      2.6e-7  110.0k    4.9e-7  26.6M
+  //   1e-5        4.9e-7  88.5k     1.2e-6  293k      5.0e-7  105.1k
+  // Time at the default against 0 (interleaved pinned runs; instructions by callgrind): 18k cap
+  // 0.81 (instructions 0.64), 418k-triangle bump 0.58-0.77, 4.6k cap and 4.4k bump within the
+  // noise (instructions 0.98). The default keeps the error within 1e-6 of the exact distance with
+  // a margin of 5 on these, well below the saddle skipping's own (up to 8e-6, above). 0: off.
   double imageMergeTolerance = 2e-6;
   // Worker threads of the batch call; 0 = TBB's default (all cores). Results do not depend on it.
   int threads = 0;
@@ -114,8 +119,8 @@ struct DistanceSolverOptions {
   // order, in buckets one edge wide, with vertex events held back until their bucket is clear
   // (wavefront_engine.cpp, runSplitQueues): 418k-triangle bump 3.3 s against 8.0 s, 18k cap
   // 0.88, 4.4k bump 0.78 of the time before (interleaved `egg geodesic` runs; numbers of this and
-  // the authors' VTP on the same meshes: issue 19's note). The default: faster than both
-  // on every row. path() keeps the windows it traces back through whatever the engine.
+  // the authors' VTP on the same meshes: issue 19's note). Full fields also merge near images
+  // (imageMergeTolerance). The default: faster than both on every row. path() keeps the windows it traces back through whatever the engine.
   enum class Engine { StoredWindows, FrontOnly, Wavefront };
   Engine engine = Engine::Wavefront;
 

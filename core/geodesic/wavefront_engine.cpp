@@ -147,21 +147,15 @@ void Propagator::propagateHalfedge(int h, double key) {
   }
 }
 
-namespace {
-// Orders a heap of vertex events by (key, item), smallest on top.
-bool laterEvent(const BucketQueue::Entry& a, const BucketQueue::Entry& b) {
-  return b.key < a.key || (b.key == a.key && b.item < a.item);
-}
-}  // namespace
-
+// The vertex events: a heap by the queue's own (key, item) order, smallest on top.
 void Propagator::pushVertexEvent(double key, int item) {
   s_.vertexEvents.push_back({key, item});
-  std::push_heap(s_.vertexEvents.begin(), s_.vertexEvents.end(), laterEvent);
+  std::push_heap(s_.vertexEvents.begin(), s_.vertexEvents.end(), BucketQueue::greater);
   s_.vertexEventsPeak = std::max(s_.vertexEventsPeak, s_.vertexEvents.size());
 }
 
 BucketQueue::Entry Propagator::popVertexEvent() {
-  std::pop_heap(s_.vertexEvents.begin(), s_.vertexEvents.end(), laterEvent);
+  std::pop_heap(s_.vertexEvents.begin(), s_.vertexEvents.end(), BucketQueue::greater);
   const BucketQueue::Entry e = s_.vertexEvents.back();
   s_.vertexEvents.pop_back();
   return e;

@@ -217,21 +217,18 @@ inline void absorbSameImage(Window& w, const Window& other, double& b0In, double
   }
 }
 
-// An upper bound on the sine of the angle between the rays of images a and b through any point of
-// [x0, x1]: |s_a - s_b| over the nearest the point comes to either image (law of sines).
-inline double rayTurnBound(const Window& a, const Window& b, double x0, double x1) {
-  auto nearest = [x0, x1](const Window& w) {
-    if (w.sx >= x0 && w.sx <= x1) return std::abs(w.sy);
-    double r0, r1;
-    planarLengths(x0 - w.sx, w.sy, x1 - w.sx, w.sy, r0, r1);
-    return std::min(r0, r1);
-  };
-  return planarLength(a.sx - b.sx, a.sy - b.sy) / std::min(nearest(a), nearest(b));
+// The square of an upper bound on the sine of the angle between the rays of images a and b
+// through any point of the edge: |s_a - s_b| over the nearer image's distance from the edge's line
+// (law of sines; no point of the edge is nearer). No square root: it is asked of every pair of
+// touching windows, and most pairs fail it.
+inline double rayTurnBoundSquared(const Window& a, const Window& b) {
+  const double dx = a.sx - b.sx, dy = a.sy - b.sy;
+  return (dx * dx + dy * dy) / std::min(a.sy * a.sy, b.sy * b.sy);
 }
 
 // As absorbSameImage for two images whose distance functions differ by at most `tolerance` x
 // `length` over the narrower window's interval (distanceGapBound), with rays no more than
-// sqrt(2 tolerance) apart there (rayTurnBound): the union takes the wider window's image. Beyond
+// sqrt(2 tolerance) apart (rayTurnBoundSquared): the union takes the wider window's image. Beyond
 // the edge, a point on the narrower window's ray at distance t is then offered a value off by
 // at most the gap plus t (1 - cos turn) <= t x tolerance more: the relative error stays of the
 // order of the tolerance however far the front runs. Without the turn test a narrow window close
@@ -240,10 +237,9 @@ inline double rayTurnBound(const Window& a, const Window& b, double x0, double x
 // Returns false, and changes nothing, if either may be larger.
 inline bool absorbNearImage(Window& w, const Window& other, double tolerance, double length, double& b0In,
                             double& b1In) {
+  if (!(rayTurnBoundSquared(w, other) <= 2.0 * tolerance)) return false;
   const bool keepOther = other.b1 - other.b0 > w.b1 - w.b0;
   const Window& narrower = keepOther ? w : other;
-  const double turn = rayTurnBound(w, other, narrower.b0, narrower.b1);
-  if (!(turn * turn <= 2.0 * tolerance)) return false;
   if (!(distanceGapBound(w, other, narrower.b0, narrower.b1) <= tolerance * length)) return false;
   if (keepOther) {
     w.sx = other.sx;

@@ -36,8 +36,10 @@
 //    0.4-0.6 of the stored engine's time on the bump and caps, exact mode unchanged (numbers:
 //    DistanceSolverOptions::engine).
 // A strictly dominated part never carries a shortest path, so the result is the exact polyhedral
-// distance (to rounding) when every saddle is a pseudo-source (saddleAngleTolerance = 0); by
-// default near-flat saddles are bent at instead (pathBentAt): 2-3x faster, 8e-6 at worst.
+// distance (to rounding) when every saddle is a pseudo-source (saddleAngleTolerance = 0) and no
+// near images merge (DistanceSolverOptions::exact()); by default near-flat saddles are bent at
+// instead (pathBentAt): 2-3x faster, 8e-6 at worst; and full wavefront fields merge windows of
+// near images (imageMergeTolerance: 0.6x the windows of an 18k-vertex cap, 1.2e-7).
 // Targets: every window entering a target's face offers sigma + |s q| if its ray to q crosses
 // it, every vertex v of the face d(v) + |v q| at the end; paths are traced back through
 // Window::parent. A directed query queues by d + chord to the targets and stops once they are

@@ -174,7 +174,7 @@ struct Propagation {
   long windowsCreated = 0;  // windows queued by the last propagation (the slots are fewer in front mode)
   // Items >= 0: window index (the wavefront engine: halfedge); < 0: vertex event for vertex -item-1.
   BucketQueue queue;
-  // A full field of the wavefront engine (window_propagation.cpp, run): the queue holds halfedges
+  // A full field of the wavefront engine (wavefront_engine.cpp, runSplitQueues): the queue holds halfedges
   // only, popped in any order within a bucket, and the vertex events wait in this heap by
   // (key, item).
   bool splitQueues = false;

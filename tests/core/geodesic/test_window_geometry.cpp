@@ -279,7 +279,7 @@ TEST(WindowGeometry, CopyJustWrittenCopiesEveryField) {
 }
 
 
-// distanceGapBound and rayTurnBound (DistanceSolverOptions::imageMergeTolerance) are bounds: never
+// distanceGapBound and rayTurnBoundSquared (DistanceSolverOptions::imageMergeTolerance) are bounds: never
 // below the gap and the ray angle sampled densely over the interval, for random image pairs, wide
 // intervals (where the curvature term matters) and narrow ones. Known answers: one image with its
 // sigma raised by c has the gap c (up to the curvature term, W^2 / 8 of it) and no turn; an image
@@ -312,7 +312,7 @@ TEST(WindowGeometry, GapAndTurnBoundsAreNeverBelowTheSampledValues) {
       gap = std::max(gap, std::abs(a.sigma + ra - b.sigma - rb));
       sine = std::max(sine, std::abs((t - a.sx) * b.sy - a.sy * (t - b.sx)) / (ra * rb));
     }
-    const double gapBound = distanceGapBound(a, b, x0, x1), turnBound = rayTurnBound(a, b, x0, x1);
+    const double gapBound = distanceGapBound(a, b, x0, x1), turnBound = std::sqrt(rayTurnBoundSquared(a, b));
     ASSERT_GE(gapBound, gap * (1.0 - 1e-12) - 1e-15) << k;
     ASSERT_GE(turnBound, sine * (1.0 - 1e-12) - 1e-15) << k;
     if (gapBound <= 1.5 * gap + 1e-12) ++tight;
@@ -323,7 +323,7 @@ TEST(WindowGeometry, GapAndTurnBoundsAreNeverBelowTheSampledValues) {
 TEST(WindowGeometry, GapBoundKnownAnswers) {
   const Window a = imageAt(0.3, -1.0, 0.2), raised = imageAt(0.3, -1.0, 0.2 + 1e-6);
   EXPECT_NEAR(distanceGapBound(a, raised, 0.4, 0.401), 1e-6, 1e-10);  // + the curvature term, 4e-11
-  EXPECT_DOUBLE_EQ(rayTurnBound(a, raised, 0.0, 1.0), 0.0);
+  EXPECT_DOUBLE_EQ(rayTurnBoundSquared(a, raised), 0.0);
   const Window onTheLine = imageAt(0.5, 0.0, 0.0);
   EXPECT_EQ(distanceGapBound(onTheLine, a, 0.0, 1.0), kInfinity);
   // Merging: the union takes the wider window's image, only within both bounds.

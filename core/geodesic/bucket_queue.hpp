@@ -59,8 +59,9 @@ class BucketQueue {
   // thread CPU time per field, interleaved runs of 7 fields: 18k cap, front engine 0.78-0.98
   // (mean 0.88, faster in 6 of 6); no change beyond the noise on the 4.5k meshes, whose records
   // stay in cache. Two buckets ahead was slower. The propagation asks for it in front and
-  // wavefront mode (window_propagation.cpp, run; wavefront_engine.cpp, runSplitQueues). `recordOfItem` (if given) maps an item to its
-  // record (-1: none), `mapStride` bytes from one item's entry to the next: the wavefront engine
+  // wavefront mode (window_propagation.cpp, run; wavefront_engine.cpp, runSplitQueues).
+  // `recordOfItem` (if given) maps an item to its record (-1: none), `mapStride` bytes from one
+  // item's entry to the next: the wavefront engine
   // queues halfedges, whose first queued window is the record its pop reads first, and its map is
   // the head field of its per-halfedge list records (which reading it brings into cache too).
   void prefetchRecords(const void* base, std::size_t stride, const int* recordOfItem = nullptr,
@@ -167,7 +168,6 @@ class BucketQueue {
   static constexpr Greater greater{};
 
  private:
-
   // Bucket of `key`, clamped to [0, kFar]: negative keys (never pushed) count as 0, and far keys
   // (+inf included) as kFar, which stays beyond the horizon until the calendar gets there.
   // (Truncation is floor here, the value being positive: no call to floor per push.)

@@ -230,8 +230,8 @@ inline double rayTurnBoundSquared(const Window& a, const Window& b) {
 // `length` over the narrower window's interval (distanceGapBound), with rays no more than
 // sqrt(2 tolerance) apart (rayTurnBoundSquared): the union takes the wider window's image. Beyond
 // the edge, a point on the narrower window's ray at distance t is then offered a value off by
-// at most the gap plus t (1 - cos turn) <= t x tolerance more: the relative error stays of the
-// order of the tolerance however far the front runs. Without the turn test a narrow window close
+// at most the gap plus t (1 - cos turn) <= 2 t x tolerance more (1 - cos = sin^2 / (1 + cos)):
+// the relative error stays of the order of the tolerance however far the front runs. Without the turn test a narrow window close
 // to its image (a pseudo-source's, a wide fan) would hand its whole fan to a far image's thin
 // sliver: measured 0.5 relative and unreached vertices on a grid with boundary-corner sources.
 // Returns false, and changes nothing, if either may be larger.

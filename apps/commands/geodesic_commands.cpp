@@ -187,9 +187,7 @@ SurfacePoint intoFace(SurfacePoint p) {
 // two mean edges) and at the opposite side's points (side-to-side, as the distance maps use them).
 nlohmann::json toleranceTable(const TriMesh& mesh, const std::vector<SurfacePoint>& sources,
                               const std::vector<SurfacePoint>& targets, const std::vector<double>& tolerances) {
-  geodesic::DistanceSolverOptions exactOptions;
-  exactOptions.saddleAngleTolerance = 0.0;
-  exactOptions.imageMergeTolerance = 0.0;
+  geodesic::DistanceSolverOptions exactOptions = geodesic::DistanceSolverOptions::exact();
   const geodesic::DistanceSolver exact(mesh, exactOptions);
   std::vector<geodesic::DistanceField> reference;
   for (const auto& s : sources) reference.push_back(exact.distances(s, targets));

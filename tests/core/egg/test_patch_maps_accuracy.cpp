@@ -22,9 +22,7 @@ TEST(PatchMapsAccuracy, DefaultGeodesicToleranceKeepsSideToSideDistancesWithinTh
   const TriMesh mesh =
       samples::generateSample("bump", {{"height", 2.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.12);
   const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
-  geodesic::DistanceSolverOptions exactOptions;
-  exactOptions.saddleAngleTolerance = 0.0;
-  exactOptions.imageMergeTolerance = 0.0;
+  geodesic::DistanceSolverOptions exactOptions = geodesic::DistanceSolverOptions::exact();
   const geodesic::DistanceSolver solver(patch.mesh), exact(patch.mesh, exactOptions);
   double worst = 0.0;
   for (const Family family : {Family::U, Family::V}) {

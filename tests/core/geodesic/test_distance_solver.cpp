@@ -203,9 +203,7 @@ TEST(DistanceSolver, DistancesAreSymmetricAmongNearFlatSaddles) {
   // saddleAngleTolerance), so in principle it is symmetric only within its error (~1e-6); measured
   // over these 66 pairs it is symmetric to rounding as well (1.9e-15), and must stay within 1e-9.
   const TriMesh mesh = steepBump(2.0, 0.2);
-  DistanceSolverOptions exactOptions;
-  exactOptions.saddleAngleTolerance = 0.0;
-  exactOptions.imageMergeTolerance = 0.0;
+  DistanceSolverOptions exactOptions = DistanceSolverOptions::exact();
   const DistanceSolver exact(mesh, exactOptions), solver(mesh);
   std::vector<SurfacePoint> points;
   for (int k = 0; k < 12; ++k) points.push_back(snapToSurface(mesh, {-3.8 + 0.69 * k, 3.8 * std::sin(1.7 * k), 0.0}));
@@ -229,9 +227,7 @@ TEST(DistanceSolver, DefaultStaysWithinItsErrorFromAnySource) {
   // every vertex as a target, against the exact mode. Measured: +2e-8 / -1.1e-6. Where a saddle's
   // distance came from bending at another, its cone was once aimed from the wrong place: +2.3e-5.
   const TriMesh mesh = steepBump(3.0, 0.2);
-  DistanceSolverOptions exactOptions;
-  exactOptions.saddleAngleTolerance = 0.0;
-  exactOptions.imageMergeTolerance = 0.0;
+  DistanceSolverOptions exactOptions = DistanceSolverOptions::exact();
   const DistanceSolver exact(mesh, exactOptions), solver(mesh);
   const int n = solver.vertexCount();
   double over = 0.0, under = 0.0;
@@ -264,9 +260,7 @@ TEST(DistanceSolver, DirectedQueriesEqualTheFullField) {
   cases.push_back({"sphere", testing::sphereMesh(1.0, 24, 48)});
   cases.push_back({"reflex corner", testing::lShapeMesh(16, flat)});
   for (const auto& c : cases) {
-    DistanceSolverOptions exactOptions;
-    exactOptions.saddleAngleTolerance = 0.0;
-    exactOptions.imageMergeTolerance = 0.0;
+    DistanceSolverOptions exactOptions = DistanceSolverOptions::exact();
     // Directed queries merge no near images (imageMergeTolerance): against full fields without.
     DistanceSolverOptions unmergedOptions;
     unmergedOptions.imageMergeTolerance = 0.0;
@@ -405,9 +399,7 @@ TEST(DistanceSolver, RejectsBadInput) {
 // test_exact_reference.cpp) the default must stay well inside the 1e-4 bar.
 TEST(DistanceSolver, SkippedSaddlesKeepSideToSideDistancesAcrossASteepBump) {
   const TriMesh mesh = steepBump(2.0, 0.25);
-  DistanceSolverOptions exactOptions;
-  exactOptions.saddleAngleTolerance = 0.0;
-  exactOptions.imageMergeTolerance = 0.0;
+  DistanceSolverOptions exactOptions = DistanceSolverOptions::exact();
   const DistanceSolver solver(mesh), exact(mesh, exactOptions);
   int skipped = 0;
   for (int v = 0; v < solver.vertexCount(); ++v) {

@@ -119,9 +119,7 @@ TEST(ExactReference, MatchesCgalOnRemeshedSamples) {
 TEST(ExactReference, ExactModeAgreesWithCgalToRounding) {
   // With saddleAngleTolerance = 0 every saddle is a pseudo-source: the exact polyhedral distance.
   const TriMesh mesh = testing::gridMesh(20, 20, 1.0, 1.0, testing::bump(0.4, 0.6, 0.3, 0.2), 0.25, 3);
-  DistanceSolverOptions exact;
-  exact.saddleAngleTolerance = 0.0;
-  exact.imageMergeTolerance = 0.0;
+  DistanceSolverOptions exact = DistanceSolverOptions::exact();
   const DistanceSolver solver(mesh, exact);
   for (const SurfacePoint& source : {vertexPoint(mesh, 200), facePoint(300, 0.2, 0.3, 0.5)}) {
     const auto ours = solver.distances(source).vertexDistances;
@@ -134,9 +132,7 @@ TEST(ExactReference, ExactModeAgreesWithCgalOnRemeshedSamples) {
   // Remeshed samples are full of saddles with a tiny excess, whose pseudo-source windows cover only
   // the narrow cone where shortest paths may leave them (Propagator::fire): exact mode must still
   // find every shortest path.
-  DistanceSolverOptions exact;
-  exact.saddleAngleTolerance = 0.0;
-  exact.imageMergeTolerance = 0.0;
+  DistanceSolverOptions exact = DistanceSolverOptions::exact();
   for (const auto& [name, edge] : std::vector<std::pair<std::string, double>>{{"bump", 0.35}, {"hypar", 0.4}}) {
     const TriMesh mesh = samples::generateSample(name, {}, edge);
     const DistanceSolver solver(mesh, exact);
@@ -155,9 +151,7 @@ TEST(ExactReference, ExactModeAgreesWithCgalAroundAReflexCorner) {
   // A curved L-shaped patch: paths between the arms bend at the reflex boundary corner (either way
   // round, from sources in both arms) and at the saddles of the surface.
   const TriMesh mesh = testing::lShapeMesh(10, testing::hypar(1.0, 1.0, 0.4));
-  DistanceSolverOptions exact;
-  exact.saddleAngleTolerance = 0.0;
-  exact.imageMergeTolerance = 0.0;
+  DistanceSolverOptions exact = DistanceSolverOptions::exact();
   const DistanceSolver solver(mesh, exact);
   for (const Eigen::Vector3d& requested :
        {Eigen::Vector3d(1.7, 0.0, 0.0), Eigen::Vector3d(0.0, 1.7, 0.0), Eigen::Vector3d(1.6, 0.4, 0.0),

@@ -72,6 +72,14 @@ class BucketQueue {
     mapStride_ = mapStride;
   }
   bool empty() const { return bucketed_ == 0 && overflow_.empty(); }
+  // Unordered only: the item that the (after + 1)-th pop() from now returns if nothing is pushed
+  // before it and the current bucket holds it; -1 if the current bucket holds fewer entries. A
+  // hint for prefetching the records of the next pops (the calendar is not moved).
+  int nextInCurrentBucket(std::size_t after = 0) const {
+    if (buckets_.empty()) return -1;  // before reset()
+    const auto& bucket = buckets_[current_ & kMask];
+    return bucket.size() > after ? bucket[bucket.size() - 1 - after].item : -1;
+  }
 
   // The bucket a key falls in (a key below the calendar's start counts as its first bucket).
   long long bucketOf(double key) const { return bucketIndex(key); }

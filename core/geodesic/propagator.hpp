@@ -96,11 +96,16 @@ class Propagator {
   FaceCrossing faceCrossing(int h) const;
   // w: a copy of the window in slot `index` (its children may move the array it lies in).
   void propagateWindow(const Window& w, int index, const FaceCrossing& face);
+  // propagateWindow's work, each child window handed to addChild(Window&) (face_crossing.hpp).
+  template <class AddChild>
+  void crossFace(const Window& w, int index, const FaceCrossing& face, AddChild&& addChild);
 
   // wavefront_engine.cpp
   void addWavefrontWindow(Window& w);
+  void insertWavefrontWindow(Window& w);  // addWavefrontWindow's body, inline in the batch loop
   void unlinkWavefrontSlot(int h, int slot, int previous);
   void propagateHalfedge(int h, double key);
+  void prefetchNextBatches() const;
   void runSplitQueues();
 };
 

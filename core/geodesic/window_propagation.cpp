@@ -16,7 +16,7 @@
 //    earlier window on the same edge is shorter (window_geometry.hpp); and Xin-Wang filtering by
 //    the edge's own endpoints (a part where d(A) + |A p| < sigma + |s p| is cut, at a root since
 //    the difference is monotone along the edge; the opposite-vertex tests are left out, prune()).
-//  * Each window is pruned once, when it is added (see propagateWindow()).
+//  * Each window is pruned once, when it is added (see Propagator::crossFace, face_crossing.hpp).
 //  * Two engines (DistanceSolverOptions::Engine). Stored windows: every window stays in one array
 //    (paths trace back through it) and a new one is trimmed against all earlier windows on its
 //    edge. Front only (after VTP, Qin et al. 2016): a window's slot is freed once it has crossed
@@ -44,6 +44,7 @@
 // it, every vertex v of the face d(v) + |v q| at the end; paths are traced back through
 // Window::parent. A directed query queues by d + chord to the targets and stops once they are
 // final (goal_bound.hpp); a stale vertex event is recognised by its vertex having fired.
+#include "core/geodesic/face_crossing.hpp"
 #include "core/geodesic/propagator.hpp"
 #include "core/geodesic/window_geometry.hpp"
 
@@ -114,68 +115,6 @@ double Propagator::keyOfNearest(const Window& w, double nearest) const {
   const auto& e = t_.he[w.halfedge];
   return nearest + goal_.toSegment(t_.positions[e.fromVertex], t_.positions[e.toVertex], w.b0 / e.length,
                                    w.b1 / e.length);
-}
-
-// Trims the parts of `w` dominated by the paths through the endpoints of its edge. Returns false
-// if nothing is left.
-bool Propagator::prune(Window& w, double* endLengths) const {
-  const int h = w.halfedge;
-  const double L = t_.he[h].length;
-  const double dA = s_.vertexDistance[t_.he[h].fromVertex];
-  const double dB = s_.vertexDistance[t_.he[h].toVertex];
-  // |s - b0| and |s - b1|, recomputed only when an end moves: every test below needs them and
-  // the square roots were the bulk of this function.
-  // The window was just written field by field (propagateWindow): its fields are read one by
-  // one (loadAlone). Perf samples of the 18k cap: prune 9.1-9.4 % of the run before, 7.2 % after.
-  const double sx = loadAlone(w.sx), sy = loadAlone(w.sy);
-  double r0, r1;
-  planarLengths(loadAlone(w.b0) - sx, sy, loadAlone(w.b1) - sx, sy, r0, r1);
-  // Endpoint A at (0,0): f(x) = sigma + |s - x| - dA - x is non-increasing in x.
-  if (dA < kInfinity) {
-    const double k = dA - w.sigma;
-    const double f1 = r1 - k - w.b1;
-    if (f1 > 0.0) return false;
-    const double f0 = r0 - k - w.b0;
-    if (f0 > 0.0) {
-      const double denom = 2.0 * (k + sx);
-      if (denom > 0.0) {
-        const double root = (sx * sx + sy * sy - k * k) / denom;
-        w.b0 = std::clamp(root, w.b0, w.b1);
-        r0 = planarLength(w.b0 - sx, sy);
-      }
-    }
-  }
-  // Endpoint B at (L,0): g(x) = sigma + |s - x| - dB - (L - x) is non-decreasing in x.
-  if (dB < kInfinity) {
-    const double k = dB - w.sigma;
-    const double g0 = r0 - k - (L - w.b0);
-    if (g0 > 0.0) return false;
-    const double g1 = r1 - k - (L - w.b1);
-    if (g1 > 0.0) {
-      const double mx = L - sx;
-      const double denom = 2.0 * (k + mx);
-      if (denom > 0.0) {
-        const double root = L - (mx * mx + sy * sy - k * k) / denom;
-        w.b1 = std::clamp(root, w.b0, w.b1);
-        r1 = planarLength(w.b1 - sx, sy);
-      }
-    }
-  }
-  if (w.b1 - w.b0 <= o_.minWindowWidthRelative * L) return false;
-  if (endLengths) {
-    endLengths[0] = r0;
-    endLengths[1] = r1;
-  }
-  // Xin-Wang's other two tests (the vertex ahead, the one behind the edge) are not made: they
-  // killed 0 and 264 of 185k windows on a 3.6k-vertex bump (397, 930 of 15M on the Great Court)
-  // for a lookup and two square roots per window; one-split and trimming do that work already.
-  // Nor would any vertex filter (VTP's per-triangle pruning included) help where this engine is
-  // slowest, the sphere caps of issue 19: even against the final distances of all four vertices
-  // of the edge's two faces, 0 of the 191k windows kept at 4.6k vertices (stored engine) and 0 of
-  // 1.02M at 18k (front engine) are beaten everywhere, 16 of 159k on the bench bump; the cap's
-  // windows are its exact field's, and only cheaper windows make it faster (test_window_
-  // propagation.cpp, WindowPruning). Switched off, this pruning changes the windows kept there by 2.
-  return true;
 }
 
 // A path to (px, py) (frame of w's edge, in the face w enters) whose ray from the source image
@@ -383,133 +322,9 @@ Propagator::FaceCrossing Propagator::faceCrossing(int h) const {
   return face;
 }
 
+// The stored and front engines, one window at a time (the wavefront engine batches: propagateHalfedge).
 void Propagator::propagateWindow(const Window& w, int index, const FaceCrossing& face) {
-  // No second pruning here (pruned when added): on a 3.6k-vertex bump re-pruning at the pop would
-  // kill 24 of 183k windows for ~10 % of the time. An unpruned window is still a real path, so
-  // what it offers and the pruning it feeds stay valid: it only costs its own propagation.
-  const int h = face.h;
-  const int f = face.f;
-  const double L = face.length;
-  const double cx = face.cx, cy = face.cy;
-  const int c = face.c;
-  const double slack = 1e-9 * L;
-  // Where the ray through the opposite vertex crosses the edge.
-  const double xc = rayCrossing(w.sx, w.sy, cx, cy);
-  bool leftChild = xc > w.b0, rightChild = xc < w.b1;
-  if (xc >= w.b0 - slack && xc <= w.b1 + slack) {
-    const double dc = w.sigma + planarLength(cx - w.sx, cy - w.sy);
-    auto& split = s_.split[h];
-    if (dc > split.distance * (1.0 + 1e-10)) {
-      // One angle, one split (Chen & Han 1990): a shorter path to C already enters this face
-      // through this edge at split.crossing. It and this window's ray to C bound a region; this
-      // window's rays on that path's side must cross it and are beaten there, so only the
-      // child on the far side can carry shortest paths.
-      if (split.crossing < xc) leftChild = false;
-      else rightChild = false;
-    } else {
-      if (dc < split.distance) split = {dc, xc};
-      relaxVertex(c, dc, {Predecessor::ThroughWindow, index}, &w);
-    }
-  } else {
-    // C lies just outside the window: a path bent round the window's end (a valid upper bound),
-    // or at the vertex its boundary ray runs through - the only way into the shadow of a
-    // near-flat saddle that is not a pseudo-source (see pathBentAt).
-    const int side = xc < w.b0 ? 0 : 1;
-    const int x = w.endVertex[side];
-    // Whether x has a cone is read whatever x (vertex 0's when there is none), and the two tests
-    // joined without a branch: x >= 0 is a coin toss along the wavefront, and its branch was a
-    // tenth of the propagation's mispredictions (cachegrind --branch-sim, 18k cap, no cones).
-    // With the face's data read once per batch (faceCrossing), interleaved runs on the 18k cap:
-    // 0.88-0.98 of the earlier time (medians of 25-40 runs each); the 4.5k meshes within noise.
-    const char bendsAtX = t_.hasShadowCone[x >= 0 ? x : 0];
-    if ((x >= 0) & (bendsAtX != 0)) {
-      bool atVertex;
-      const double d = bentDistance(w, side, cx, cy, atVertex);
-      relaxVertex(c, d, Predecessor::throughWindow(index, side, atVertex), &w);
-    } else {
-      // Round the end (bentDistance's value here): sigma + |s - end| + |end - C|, where
-      // |end - C| >= cy. Most of these paths improve nothing (18k cap of issue 19: C lies outside
-      // 98 % of the windows and 90 % of those bends were refused), so the second square root
-      // waits for the bound; its margin, far above rounding, means a spared relaxation would
-      // have been refused: the distances are bit-identical. Instructions per field (cachegrind):
-      // 18k cap -6.7 %, 4.6k cap -6.2 %, 4.4k bump -1.0 %.
-      const double toEnd = w.sigma + distanceToEnd(w, side);
-      if ((toEnd + cy) * (1.0 - 1e-12) < s_.vertexDistance[c]) {
-        const double d = toEnd + planarLength(cx - (side ? w.b1 : w.b0), cy);
-        relaxVertex(c, d, Predecessor::throughWindow(index, side, false), &w);
-      }
-    }
-  }
-  // Targets inside the face the window enters.
-  for (int i = s_.faceFirstTarget[f]; i >= 0; i = s_.nextTarget[i]) {
-    double qx, qy;
-    frameCoordinates(f, h, s_.targetWeights[i], qx, qy);
-    const double xq = rayCrossing(w.sx, w.sy, qx, qy);
-    double d;
-    Predecessor pred{Predecessor::ThroughWindow, index};
-    if (xq >= w.b0 - slack && xq <= w.b1 + slack) {
-      d = w.sigma + planarLength(qx - w.sx, qy - w.sy);
-    } else {
-      const int side = xq < w.b0 ? 0 : 1;
-      bool atVertex;
-      d = bentDistance(w, side, qx, qy, atVertex);
-      pred = Predecessor::throughWindow(index, side, atVertex);
-    }
-    if (d < s_.targetDistance[i]) {
-      s_.targetDistance[i] = d;
-      s_.targetPredecessor[i] = pred;
-    }
-  }
-  // Child on edge A-C (rays left of the opposite vertex), on the halfedge A->C of the next face.
-  if (leftChild && face.leftChild >= 0) {
-    const double lac = face.leftLength;
-    const FrameChange& frame = face.leftFrame;
-    Window cw;
-    cw.halfedge = face.leftChild;
-    cw.parent = index;
-    cw.sigma = w.sigma;
-    std::copy_n(w.endVertex, 2, cw.endVertex);
-    frame.apply(w.sx, w.sy, cw.sx, cw.sy);
-    if (cw.sy < 0.0) {
-      double px, py;
-      frame.apply(w.b0, 0.0, px, py);
-      cw.b0 = (w.b0 == 0.0) ? 0.0 : rayCrossing(cw.sx, cw.sy, px, py);
-      if (xc < w.b1) {
-        cw.b1 = lac;
-      } else {
-        frame.apply(w.b1, 0.0, px, py);
-        cw.b1 = rayCrossing(cw.sx, cw.sy, px, py);
-      }
-      cw.b0 = std::clamp(cw.b0, 0.0, lac);
-      cw.b1 = std::clamp(cw.b1, 0.0, lac);
-      if (cw.b1 > cw.b0) addWindow(cw);
-    }
-  }
-  // Child on edge C-B (rays right of the opposite vertex), on the halfedge C->B of the next face.
-  if (rightChild && face.rightChild >= 0) {
-    const double lbc = face.rightLength;
-    const FrameChange& frame = face.rightFrame;
-    Window cw;
-    cw.halfedge = face.rightChild;
-    cw.parent = index;
-    cw.sigma = w.sigma;
-    std::copy_n(w.endVertex, 2, cw.endVertex);
-    frame.apply(w.sx, w.sy, cw.sx, cw.sy);
-    if (cw.sy < 0.0) {
-      double px, py;
-      if (xc > w.b0) {
-        cw.b0 = 0.0;
-      } else {
-        frame.apply(w.b0, 0.0, px, py);
-        cw.b0 = rayCrossing(cw.sx, cw.sy, px, py);
-      }
-      frame.apply(w.b1, 0.0, px, py);
-      cw.b1 = (w.b1 == L) ? lbc : rayCrossing(cw.sx, cw.sy, px, py);
-      cw.b0 = std::clamp(cw.b0, 0.0, lbc);
-      cw.b1 = std::clamp(cw.b1, 0.0, lbc);
-      if (cw.b1 > cw.b0) addWindow(cw);
-    }
-  }
+  crossFace(w, index, face, [this](Window& child) { addWindow(child); });
 }
 
 void propagate(const MeshTables& tables, const DistanceSolverOptions& options, const SurfacePoint& source,

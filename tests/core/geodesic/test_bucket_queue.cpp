@@ -165,7 +165,9 @@ TEST(BucketQueue, UnorderedPopsEveryEntryOnceWithTheBucketsInOrder) {
   while (!queue.empty()) {
     const long long bucket = queue.earliestBucket(BucketQueue::kNoBucket);
     ASSERT_NE(bucket, BucketQueue::kNoBucket);
+    const int announced = queue.nextInCurrentBucket();
     const auto e = queue.pop();
+    ASSERT_EQ(e.item, announced);
     ASSERT_LE(queue.bucketOf(e.key), bucket) << "popped from a later bucket than announced";
     EXPECT_GE(bucket, lastBucket);  // children never lie below their parent here
     lastBucket = bucket;
@@ -200,6 +202,34 @@ TEST(BucketQueue, EarliestBucketStopsAtItsLimitSoLaterPushesKeepTheirBucket) {
   EXPECT_TRUE(queue.empty());
   EXPECT_EQ(queue.earliestBucket(BucketQueue::kNoBucket), BucketQueue::kNoBucket);
   EXPECT_LT(queue.bucketOf(std::numeric_limits<double>::infinity()), BucketQueue::kNoBucket);
+}
+
+// The wavefront engine prefetches the records of the next two batches by these announcements
+// (wavefront_engine.cpp, prefetchNextBatches): they must name what pop() returns next.
+TEST(BucketQueue, NextInCurrentBucketAnnouncesTheUnorderedPops) {
+  BucketQueue queue;
+  queue.reset(1.0, /*unordered=*/true);
+  queue.push(2.2, 7);
+  queue.push(2.7, 8);
+  queue.push(2.5, 9);
+  queue.push(3.1, 10);
+  EXPECT_EQ(queue.nextInCurrentBucket(), -1);  // the calendar is still at bucket 0
+  EXPECT_EQ(queue.earliestBucket(BucketQueue::kNoBucket), 2);
+  EXPECT_EQ(queue.nextInCurrentBucket(0), 9);  // the newest first
+  EXPECT_EQ(queue.nextInCurrentBucket(1), 8);
+  EXPECT_EQ(queue.nextInCurrentBucket(2), 7);
+  EXPECT_EQ(queue.nextInCurrentBucket(3), -1);
+  EXPECT_EQ(queue.pop().item, 9);
+  EXPECT_EQ(queue.nextInCurrentBucket(), 8);
+  queue.push(2.9, 11);  // into the current bucket: it is next now
+  EXPECT_EQ(queue.nextInCurrentBucket(0), 11);
+  EXPECT_EQ(queue.nextInCurrentBucket(1), 8);
+  for (const int item : {11, 8, 7}) EXPECT_EQ(queue.pop().item, item);
+  EXPECT_EQ(queue.nextInCurrentBucket(), -1);  // bucket 2 is empty and the calendar has not moved
+  EXPECT_EQ(queue.earliestBucket(BucketQueue::kNoBucket), 3);
+  EXPECT_EQ(queue.nextInCurrentBucket(), 10);
+  EXPECT_EQ(queue.pop().item, 10);
+  EXPECT_TRUE(queue.empty());
 }
 
 TEST(BucketQueue, PrefetchThroughAnItemToRecordMapKeepsTheOrderAndSkipsItemsWithoutARecord) {

@@ -1,4 +1,4 @@
-#include "apps/commands/commands.hpp"
+#include "apps/egg/commands.hpp"
 
 #include <malloc.h>
 

@@ -1,9 +1,13 @@
-# egg_add_library(<target> <dir> DEPS <libs...>)
-# A library made of every .cpp in <dir> (globbed, so parallel work on different folders never
+# egg_add_library(<target> <dir>[;<dir>...] DEPS <libs...>)
+# A library made of every .cpp in the folders (globbed, so parallel work on different folders never
 # edits the same CMake file). Include paths are rooted at the repository: "core/mesh/mesh.hpp".
 function(egg_add_library target dir)
   cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS" ${ARGN})
-  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${dir}/*.cpp)
+  set(sources "")
+  foreach(d IN LISTS dir)
+    file(GLOB more CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${d}/*.cpp)
+    list(APPEND sources ${more})
+  endforeach()
   if(sources)
     add_library(${target} STATIC ${sources})
     target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR})

@@ -137,14 +137,12 @@ double longestPieceMm(const FabricationOptions& options) {
 }
 
 void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
-                  const std::string& field, double minClearanceMm, const std::string& joint, double scarfLengthMm) {
+                  const std::string& field, double minClearanceMm, SpliceJoint joint, double scarfLengthMm) {
   plan.splicesMm.clear();
   plan.spliceClearancesMm.clear();
   plan.spliceIsScarf.clear();
   plan.segments.clear();
-  if (joint != "plate" && joint != "scarf" && joint != "plate_or_scarf")
-    throw InvalidInput("fabrication.splice_joint: unknown joint \"" + joint + "\"");
-  const bool plates = joint != "scarf", scarfs = joint != "plate";
+  const bool plates = joint != SpliceJoint::Scarf, scarfs = joint != SpliceJoint::Plate;
   if (scarfs && !(scarfLengthMm > 0.0 && scarfLengthMm < stockLengthMm))
     throw InvalidInput("fabrication.scarf_slope: a scarf of " + std::to_string(scarfLengthMm) +
                        " mm does not fit a piece of at most " + std::to_string(stockLengthMm) + " mm");

@@ -104,7 +104,7 @@ int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<Sha
 // a stretch has no position for a plate. With scarfs allowed it does not throw for want of room.
 void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
                   const std::string& field = "fabrication.stock_length_mm", double minClearanceMm = -1.0,
-                  const std::string& joint = "plate", double scarfLengthMm = 0.0);
+                  SpliceJoint joint = SpliceJoint::Plate, double scarfLengthMm = 0.0);
 
 // The longest piece a lamella is cut in: the stock length, or the sheet's usable first side when
 // that is shorter (a strip cut from a sheet is no longer than the sheet).

@@ -37,6 +37,15 @@ double FabricationOptions::labelHeightMm() const {
   return std::clamp(0.35 * lamella_width_mm, 1.0, 30.0);
 }
 
+const char* toString(SpliceJoint joint) {
+  switch (joint) {
+    case SpliceJoint::Plate: return "plate";
+    case SpliceJoint::Scarf: return "scarf";
+    case SpliceJoint::PlateOrScarf: return "plate_or_scarf";
+  }
+  return "unknown";
+}
+
 void FabricationOptions::validate() const {
   requirePositive("lamella.width_m", lamella_width_mm);
   requirePositive("lamella.thickness_m", lamella_thickness_mm);
@@ -64,9 +73,6 @@ void FabricationOptions::validate() const {
   }
   if (splice_clearance_mm) requireNonNegative("fabrication.splice_clearance_mm", *splice_clearance_mm);
   if (min_splice_clearance_mm) requireNonNegative("fabrication.min_splice_clearance_mm", *min_splice_clearance_mm);
-  if (splice_joint != "plate" && splice_joint != "scarf" && splice_joint != "plate_or_scarf") {
-    fail("fabrication.splice_joint", "must be \"plate\", \"scarf\" or \"plate_or_scarf\", got \"" + splice_joint + "\"");
-  }
   if (!std::isfinite(scarf_slope) || scarf_slope < 4.0 || scarf_slope > 40.0) {
     std::ostringstream msg;
     msg << "must lie in [4, 40] (the run of the scarf per unit of thickness), got " << scarf_slope;

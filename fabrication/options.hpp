@@ -27,6 +27,11 @@ struct FabricationPatch {
   std::array<bool, 4> freeSides{true, true, true, true};
 };
 
+// How pieces are joined into a lamella longer than a piece (FabricationOptions::splice_joint).
+enum class SpliceJoint { Plate, Scarf, PlateOrScarf };
+// "plate", "scarf", "plate_or_scarf" (the scene's and bom.csv's spelling).
+const char* toString(SpliceJoint joint);
+
 struct FabricationOptions {
   double lamella_width_mm = 250.0;          // w, across the strip (scene lamella.width_m)
   double lamella_thickness_mm = 40.0;       // t, the weak axis the lamella bends about (lamella.thickness_m)
@@ -53,7 +58,7 @@ struct FabricationOptions {
   // where a stock length has room for one, scarfs where it has not. Every scarf is checked: the
   // stress over its length against scarf_efficiency x the strength, on the net width where it
   // crosses a hole or slot.
-  std::string splice_joint = "plate";
+  SpliceJoint splice_joint = SpliceJoint::Plate;
   double scarf_slope = 12.0;        // 1:12, the usual slope for structural scarfs in plywood and LVL
   double scarf_efficiency = 0.85;   // strength of the glued joint over that of the plain strip
   std::optional<double> label_height_mm;    // engraved text height; default 0.35 w (clamped to 1..30 mm)

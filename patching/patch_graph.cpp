@@ -1,6 +1,8 @@
 // The patch graph (see patch_graph.hpp).
 #include "patching/patch_graph.hpp"
 
+#include "core/egg/patch_side.hpp"
+
 #include <algorithm>
 #include <map>
 #include <numeric>
@@ -8,7 +10,14 @@
 
 namespace egg::patching {
 
-Family familyEndingAtSide(int side) { return side % 2 == 1 ? Family::U : Family::V; }
+const char* toString(BoundaryKind kind) {
+  switch (kind) {
+    case BoundaryKind::Free: return "free";
+    case BoundaryKind::Shared: return "shared";
+    case BoundaryKind::TJunction: return "t_junction";
+  }
+  return "unknown";
+}
 
 PatchGraph buildPatchGraph(const PatchLayout& layout, const std::vector<bool>& usable) {
   PatchGraph graph;
@@ -37,7 +46,7 @@ PatchGraph buildPatchGraph(const PatchLayout& layout, const std::vector<bool>& u
     b.uses = uses[s];
     b.lengthM = layout.segments[s].length;
     const bool partial = std::any_of(b.uses.begin(), b.uses.end(), [](const BoundaryUse& u) { return u.from > 0.0 || u.to < 1.0; });
-    b.kind = b.uses.size() == 1 ? "free" : partial ? "t_junction" : "shared";
+    b.kind = b.uses.size() == 1 ? BoundaryKind::Free : partial ? BoundaryKind::TJunction : BoundaryKind::Shared;
     for (size_t i = 0; i < b.uses.size(); ++i)
       for (size_t j = 0; j < i; ++j)
         adjacent.insert({std::min(b.uses[i].patch, b.uses[j].patch), std::max(b.uses[i].patch, b.uses[j].patch)});
@@ -83,8 +92,8 @@ PatchGraph buildPatchGraph(const PatchLayout& layout, const std::vector<bool>& u
     for (size_t i = 0; i < b.uses.size(); ++i)
       for (size_t j = 0; j < b.uses.size(); ++j) {
         if (i == j) continue;
-        const int a = nodeId(b.uses[i].patch, familyEndingAtSide(b.uses[i].side));
-        const int c = nodeId(b.uses[j].patch, familyEndingAtSide(b.uses[j].side));
+        const int a = nodeId(b.uses[i].patch, PatchSide(b.uses[i].side).endingFamily());
+        const int c = nodeId(b.uses[j].patch, PatchSide(b.uses[j].side).endingFamily());
         neighbours[a].insert(c);
         neighboursBySide[a][b.uses[i].side].insert(c);
       }

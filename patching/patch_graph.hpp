@@ -18,9 +18,15 @@ struct BoundaryUse {
   bool reversed = false;        // the side runs against the segment's direction
 };
 
+// How a boundary segment of the layout is used: by one patch (free: the design boundary), by
+// two patches along whole sides (shared), or by two patches one of which it covers only in part.
+enum class BoundaryKind { Free, Shared, TJunction };
+// "free", "shared", "t_junction" (report.json and patches.json spell them so).
+const char* toString(BoundaryKind kind);
+
 struct Boundary {
   int id = -1;                  // = segment id
-  std::string kind;             // "shared" | "free" | "t_junction" (shared, but not a whole side of a patch)
+  BoundaryKind kind = BoundaryKind::Free;
   std::vector<BoundaryUse> uses;  // one (free) or two (shared) patches
   double lengthM = 0.0;
 };
@@ -70,8 +76,5 @@ struct Coverage {
 };
 // `patchFaces[p]`: the layout-mesh faces of patch p (LayoutPatch::layoutFace; empty if not cut).
 Coverage computeCoverage(const PatchLayout& layout, const std::vector<std::vector<int>>& patchFaces);
-
-// The family whose start or end side is side k: sides 1, 3 carry u's ends, sides 0, 2 v's.
-Family familyEndingAtSide(int side);
 
 }  // namespace egg::patching

@@ -2,6 +2,7 @@
 #include "propagation/layout_propagation.hpp"
 
 #include "core/egg/patch_maps.hpp"
+#include "core/egg/patch_side.hpp"
 #include "core/errors.hpp"
 
 #include <fmt/core.h>
@@ -25,10 +26,8 @@ void PropagationOptions::validate() const {
 }
 
 std::pair<bool, bool> familySideRole(Family family, int side) {
-  for (bool end : {false, true}) {
-    const auto [k, reversed] = familySide(family, end);
-    if (k == side) return {end, reversed};
-  }
+  const PatchSide patchSide(side);
+  if (patchSide.endingFamily() == family) return {patchSide.isMembersEnd(), patchSide.againstCorners()};
   throw InvalidInput(fmt::format("side {} carries no end of family {}", side, family == Family::U ? "u" : "v"));
 }
 
@@ -68,9 +67,9 @@ std::optional<Link> findLink(const patching::PatchGraph& graph, const patching::
       const auto& ua = boundary.uses[order];
       const auto& ub = boundary.uses[1 - order];
       if (ua.patch != a.patch || ub.patch != b.patch) continue;
-      if (patching::familyEndingAtSide(ua.side) != a.family || patching::familyEndingAtSide(ub.side) != b.family) continue;
-      if (boundary.kind != "shared") {
-        problem = fmt::format("patches {} and {} share only part of a side (boundary {}, {})", a.patch, b.patch, boundary.id, boundary.kind);
+      if (PatchSide(ua.side).endingFamily() != a.family || PatchSide(ub.side).endingFamily() != b.family) continue;
+      if (boundary.kind != patching::BoundaryKind::Shared) {
+        problem = fmt::format("patches {} and {} share only part of a side (boundary {}, {})", a.patch, b.patch, boundary.id, toString(boundary.kind));
         return std::nullopt;
       }
       return Link{boundary.id, ua, ub};
@@ -211,7 +210,7 @@ struct NodeKey {
   Family family;
   bool operator<(const NodeKey& o) const { return std::tie(patch, family) < std::tie(o.patch, o.family); }
 };
-NodeKey keyOf(const patching::BoundaryUse& use) { return {use.patch, patching::familyEndingAtSide(use.side)}; }
+NodeKey keyOf(const patching::BoundaryUse& use) { return {use.patch, PatchSide(use.side).endingFamily()}; }
 
 using Fallback = std::function<void(std::vector<patching::ChainNode>, std::string)>;
 
@@ -229,8 +228,8 @@ void propagateBranching(const patching::PatchGraph& graph, const std::vector<Pat
     if (b.uses.size() != 2) continue;
     const NodeKey a = keyOf(b.uses[0]), c = keyOf(b.uses[1]);
     if (!nodes.count(a) || !nodes.count(c)) continue;
-    if (b.kind == "shared") whole[a].push_back(c), whole[c].push_back(a);
-    else if (b.kind == "t_junction") tPieces.push_back(&b);
+    if (b.kind == patching::BoundaryKind::Shared) whole[a].push_back(c), whole[c].push_back(a);
+    else if (b.kind == patching::BoundaryKind::TJunction) tPieces.push_back(&b);
   }
   // Sub-chains: a family has one start and one end side, so whole sides link it to at most two
   // neighbours: paths, or rings.
@@ -366,7 +365,7 @@ void addJoints(const patching::PatchGraph& graph, LayoutPropagation& out) {
     piece.patchA = ua.patch, piece.patchB = ub.patch;
     const PropagatedChain &chainA = out.chains[ca], &chainB = out.chains[cb];
     const bool ringCut = ca == cb && chainA.ring && boundary.id == chainA.boundaries.front();
-    piece.kind = ringCut ? "ring cut" : boundary.kind == "shared" ? "whole side" : "t_junction";
+    piece.kind = ringCut ? "ring cut" : boundary.kind == patching::BoundaryKind::Shared ? "whole side" : "t_junction";
     if (ringCut) piece.chain = ca;
     const auto onA = membersOnPiece(sideParameters(chainA, na, ua.side), ka.family, ua);
     const auto onB = membersOnPiece(sideParameters(chainB, nb, ub.side), kb.family, ub);

@@ -1,5 +1,7 @@
 #include "core/egg/patch_maps.hpp"
 
+#include "core/egg/patch_side.hpp"
+
 #include "core/egg/map_proxy.hpp"
 #include "core/egg/map_refinement.hpp"
 #include "core/errors.hpp"
@@ -27,8 +29,8 @@ void DistanceMapOptions::validate() const {
 }
 
 std::pair<int, bool> familySide(Family family, bool end) {
-  if (family == Family::U) return end ? std::pair{1, false} : std::pair{3, true};
-  return end ? std::pair{2, true} : std::pair{0, false};
+  const PatchSide side = PatchSide::whereMembersEnd(family, end);
+  return {side.index(), side.againstCorners()};
 }
 
 double familySideLength(const Patch& patch, Family family, bool end) {

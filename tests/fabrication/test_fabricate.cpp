@@ -155,7 +155,7 @@ TEST(Fabricate, ScarfJointsAreCheckedAgainstTheirEfficiencyAndNetWidth) {
   const auto& lime = materialByName("limewood");
   const double sigmaRatio = lime.youngs_modulus_pa * 0.001 / (2.0 * 0.5) / lime.bending_strength_pa;
   auto options = handOptions();
-  options.splice_joint = "scarf";
+  options.splice_joint = SpliceJoint::Scarf;
   options.scarf_efficiency = 0.8;
   // 150 mm pieces: u1's scarf ends at 150 and begins at 138 (1:12 over 1 mm), between the slot
   // (103.5..111.5) and the end hole: the full width carries it.
@@ -181,7 +181,7 @@ TEST(Fabricate, ScarfJointsAreCheckedAgainstTheirEfficiencyAndNetWidth) {
   EXPECT_DOUBLE_EQ(r.lamellae[1].segments[1].startMm, 102.0);
   EXPECT_NEAR(r.stress[1].scarfRatios[0], sigmaRatio / (0.8 * 0.7), 1e-6);
   // Plates: no scarf, nothing checked there.
-  options.splice_joint = "plate";
+  options.splice_joint = SpliceJoint::Plate;
   r = fabricate({{0, &grid, deployed}}, options);
   EXPECT_EQ(r.scarfJoints, 0);
   EXPECT_DOUBLE_EQ(r.stress[1].scarfRatios.at(0), 0.0);

@@ -52,9 +52,6 @@ TEST(FabricationOptions, EachBadFieldIsNamed) {
   o.material = "balsa";
   expectFieldError(o, "lamella.material");
   o = {};
-  o.splice_joint = "glue";
-  expectFieldError(o, "fabrication.splice_joint");
-  o = {};
   o.scarf_slope = 2.0;
   expectFieldError(o, "fabrication.scarf_slope");
   o = {};

@@ -3,7 +3,7 @@
 // and the corpus replay test (test_fuzz_corpus.cpp, every build) share (issue 17): bytes in, and
 // either the input is accepted or a typed egg::Error says why. Anything else (another exception, a
 // crash, a sanitizer report, a hang) is a bug.
-#include "apps/commands/scene.hpp"
+#include "pipeline/scene.hpp"
 #include "core/errors.hpp"
 #include "core/io/mesh_io.hpp"
 #include "core/mesh/validate.hpp"
@@ -21,7 +21,7 @@ namespace egg::fuzz {
 // The scene parser on the text of a scene file. True when it is a valid scene.
 inline bool scene(const uint8_t* data, size_t size) {
   try {
-    app::parseSceneText(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+    pipeline::parseSceneText(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
     return true;
   } catch (const Error&) {
     return false;

@@ -30,7 +30,7 @@ TEST(PatchGraph, TwoByTwoHasFourSharedSidesAndFourChains) {
   const PatchGraph graph = buildPatchGraph(layout);
   int shared = 0, free = 0;
   for (const auto& b : graph.boundaries) {
-    if (b.kind == "shared") {
+    if (b.kind == BoundaryKind::Shared) {
       ++shared;
       ASSERT_EQ(b.uses.size(), 2u);
       // A shared side runs against itself on the two patches (both are counter-clockwise).
@@ -38,7 +38,7 @@ TEST(PatchGraph, TwoByTwoHasFourSharedSidesAndFourChains) {
       EXPECT_EQ(b.uses[0].from, 0.0);
       EXPECT_EQ(b.uses[0].to, 1.0);
     }
-    if (b.kind == "free") ++free;
+    if (b.kind == BoundaryKind::Free) ++free;
   }
   EXPECT_EQ(shared, 4);
   EXPECT_EQ(free, 8);
@@ -88,7 +88,7 @@ TEST(PatchGraph, TJunctionIsReported) {
   EXPECT_EQ(graph.tJunctions[0].patchesThrough, std::vector<int>{0});
   EXPECT_EQ(graph.tJunctions[0].patchesAt, (std::vector<int>{1, 2}));
   int tKind = 0;
-  for (const auto& b : graph.boundaries) tKind += b.kind == "t_junction";
+  for (const auto& b : graph.boundaries) tKind += b.kind == BoundaryKind::TJunction;
   EXPECT_EQ(tKind, 2);
   // u members of patch 0 leave through side 1 into both right patches: a branching chain.
   bool branching = false;

@@ -1,0 +1,147 @@
+#include "pipeline/joined_simulation.hpp"
+
+#include "assembly/grid_to_rods.hpp"
+#include "assembly/patch_joins.hpp"
+#include "core/errors.hpp"
+#include "core/timing.hpp"
+#include "pipeline/error_time_plot.hpp"
+#include "pipeline/simulation_stage.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace egg::pipeline {
+
+JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene) {
+  const Stopwatch watch;
+  JoinedRun out;
+  try {
+    const std::vector<const EggGrid*> grids = gridsOf(patches);
+    out.swapped = assembly::layerSwaps(run.graph, grids);
+    // Coinciding ends: C0 leaves them ~1e-15 m apart; a tenth of the lamella width separates them
+    // from the next member on the side by far.
+    assembly::PatchJoins joins = assembly::patchJoins(run.graph, grids, out.swapped, 0.1 * scene.lamella.widthM);
+    out.joins = std::move(joins.bolts);
+    out.sidesJoined = joins.sidesJoined;
+    out.sidesSkipped = joins.sidesSkipped;
+    assembly::GridToRodsOptions convert = gridToRodsOptions(scene);
+    // Every patch keeps a network (empty for one without a grid) so that rod indices stay per patch.
+    std::vector<rods::RodNetwork> networks;
+    std::vector<int> solvedIndex(patches.size(), -1);
+    for (size_t p = 0; p < patches.size(); ++p) {
+      if (!patches[p].egg) continue;
+      convert.swapLayers = out.swapped[p];
+      solvedIndex[p] = static_cast<int>(networks.size());
+      networks.push_back(assembly::rodNetworkFromGrid(patches[p].egg->grid, convert));
+    }
+    // Warm start: every patch's own equilibrium under self-weight (held along all its sides) is
+    // next to the joined one, which only lets go of the shared sides' supports and bolts the
+    // boundary lamellas together; from the design surface the joined solve needs the weightless
+    // solve, the load steps and the stiffness continuation again (GC: 70 iterations of the
+    // weightless step alone).
+    out.warmStart = std::all_of(patches.begin(), patches.end(), [](const SolvedPatch& p) {
+      return !p.egg || (p.simulation && p.simulation->converged);
+    });
+    if (out.warmStart) {
+      for (size_t p = 0; p < patches.size(); ++p) {
+        if (!patches[p].egg) continue;
+        rods::startFrom(networks[solvedIndex[p]], patches[p].simulation->deployed);
+      }
+    }
+    for (auto& j : out.joins) j.patchA = solvedIndex[j.patchA], j.patchB = solvedIndex[j.patchB];
+    const rods::JoinedNetwork joined = rods::joinPatches(networks, out.joins);
+    for (auto& j : out.joins) {  // back to layout patch ids for the report
+      j.patchA = static_cast<int>(std::find(solvedIndex.begin(), solvedIndex.end(), j.patchA) - solvedIndex.begin());
+      j.patchB = static_cast<int>(std::find(solvedIndex.begin(), solvedIndex.end(), j.patchB) - solvedIndex.begin());
+    }
+    rods::SimulationOptions options = rodsOptions(scene);
+    options.compareWithoutNotches = false;  // RMS1/RMS2 stay a per-patch figure
+    options.scaleFactor = boundingBox(surface).size().norm();
+    if (out.warmStart) {
+      options.gravitySteps = 0;                        // the start carries its weight already
+      options.solver.stiffnessContinuation = false;   // and is no far-off guess to soften towards
+    }
+    out.simulation = rods::simulateGrid(joined.network, surface, options);
+  } catch (const Error& e) {
+    out.failure = e.what();
+  }
+  out.seconds = watch.seconds();
+  return out;
+}
+
+nlohmann::json joinedSection(const JoinedRun& joined) {
+  nlohmann::json j{{"ran", true},
+                   {"bolts", joined.joins.size()},
+                   {"sides_joined", joined.sidesJoined},
+                   {"sides_skipped_same_layer", joined.sidesSkipped},
+                   {"patches_swapped", std::count(joined.swapped.begin(), joined.swapped.end(), 1)},
+                   {"start", joined.warmStart ? "patch_by_patch_equilibria" : "design_surface"},
+                   {"seconds", joined.seconds}};
+  if (!joined.failure.empty()) {
+    j["converged"] = false;
+    j["failure"] = joined.failure;
+    return j;
+  }
+  const auto& run = joined.simulation->deployed;
+  j["converged"] = joined.simulation->converged;
+  j["iterations"] = run.solver.iterations;
+  j["energy_j"] = run.solver.energy;
+  j["gradient_norm_n_nm"] = run.solver.gradientNorm;  // over positions (N) and twists (N m)
+  j["decrement_j"] = run.solver.decrement;            // last Newton decrement g^T H^-1 g
+  j["max_sag_m"] = run.maxSag_m;  // under self-weight, from the start state (warm) or the weightless equilibrium
+  j["max_sag_from"] = joined.warmStart ? "patch_by_patch_equilibria" : "weightless_equilibrium";
+  j["unknowns"] = run.unknowns;
+  j["factorisations"] = run.solver.factorisations;        // Cholesky, shift trials included
+  j["energy_evaluations"] = run.solver.energyEvaluations;  // line-search trials
+  j["status"] = rods::toString(run.solver.status);
+  if (!joined.simulation->converged) j["reason"] = joined.simulation->reason;
+  if (run.deviation) {
+    j["rmse_m"] = run.deviation->rmse_m;
+    j["max_error_m"] = run.deviation->max_m;
+    j["nrmse"] = run.deviation->nrmse;
+    j["nrmse_normalised_by"] = "surface bounding-box diagonal";
+  }
+  j["history"] = historyJson(run.history);  // error against run time (issue 18)
+  j["history_measuring_s"] = run.historySeconds;
+  return j;
+}
+
+std::string collapsedWhileHeld(const std::vector<SolvedPatch>& patches) {
+  for (const auto& p : patches) {
+    if (p.simulation && p.deployedStatus() == rods::SolverStatus::Collapsed) {
+      return fmt::format(
+          "patch {} collapses under its own weight even held at every connection of its four sides; the joined "
+          "structure holds it on less (a neighbour instead of supports along the shared sides), so it cannot stand "
+          "near the design either and is not simulated",
+          p.id);
+    }
+  }
+  return {};
+}
+
+std::optional<rods::SimulationRun> addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
+                                                       const Scene& scene, bool propagated, int solved, nlohmann::json& simulation,
+                                                       bool patchesHeldAllRound) {
+  simulation["patch_by_patch"] = {{"rmse_m", simulation["rmse_m"]},
+                                  {"max_error_m", simulation["max_error_m"]},
+                                  {"converged", simulation["converged"]},
+                                  {"iterations", simulation["iterations"]},  // summed over patches
+                                  {"seconds", simulation.value("seconds", 0.0)}};
+  std::string skipped;
+  if (!scene.simulation.joinPatches) skipped = "the scene does not join patches (simulation.join_patches = false)";
+  else if (!propagated) skipped = "no propagated members: one patch, or no neighbours' member ends to bolt together";
+  else if (solved < 2) skipped = "fewer than two solved patches";
+  else if (patchesHeldAllRound) skipped = collapsedWhileHeld(patches);
+  if (!skipped.empty()) {
+    simulation["joined"] = {{"ran", false}, {"skipped_reason", skipped}};
+    return std::nullopt;
+  }
+  JoinedRun joined = simulateJoined(run, patches, surface, scene);
+  simulation["joined"] = joinedSection(joined);
+  if (!joined.simulation) return std::nullopt;
+  return std::move(joined.simulation->deployed);
+}
+
+}  // namespace egg::pipeline

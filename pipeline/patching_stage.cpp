@@ -1,0 +1,200 @@
+#include "pipeline/patching_stage.hpp"
+#include "pipeline/grid_stage.hpp"
+#include "pipeline/run_state.hpp"
+#include "core/timing.hpp"
+
+#include "core/errors.hpp"
+#include "core/geodesic/distance_solver.hpp"
+#include "core/io/atomic_file.hpp"
+#include "patching/injectivity.hpp"
+#include "patching/plan_svg.hpp"
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace egg::pipeline {
+
+using nlohmann::json;
+
+namespace {
+
+json point(const Eigen::Vector3d& p) { return json::array({p.x(), p.y(), p.z()}); }
+
+const char* familyName(Family f) { return f == Family::U ? "u" : "v"; }
+
+}  // namespace
+
+PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& surfaceSolver, const Scene& scene) {
+  const std::string origin = scene.path.string();
+  PatchingRun run;
+  const bool given = layoutIsGiven(scene);
+  const bool workflow2 = !given && scene.patching.workflow == 2;
+  run.workflow = given ? "given" : workflow2 ? "2" : "1";
+  patching::LayoutDesignOptions options;
+  options.design = scene.eggOptions();
+  options.split = !given;
+  options.maxSplits = scene.patching.layout.maxSplits;
+  options.minSideM = scene.patching.layout.minSideM;
+  try {
+    options.validate();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(origin + ": " + e.what());
+  }
+  const auto started = std::chrono::steady_clock::now();
+  std::vector<Eigen::Vector3d> corners = scene.patching.corners;
+  std::vector<std::array<int, 4>> quads = scene.patching.quads;
+  if (workflow2) {
+    try {
+      run.initial = patching::proposeLayout(surface, scene.patching.workflow2, &surfaceSolver);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(origin + ": patching: " + e.what());
+    }
+    corners = run.initial->corners;
+    quads = run.initial->quads;
+  }
+  patching::PatchLayout layout = [&] {
+    try {
+      return patching::makeLayout(surface, surfaceSolver, corners, quads, options.layout);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(origin + (workflow2 ? ": patching (Workflow 2's initial layout): " : ": patching.patches: ") + e.what());
+    }
+  }();
+  run.layout = patching::designLayout(std::move(layout), surfaceSolver, options);
+  std::vector<bool> usable;
+  std::vector<std::vector<int>> faces;
+  for (const auto& p : run.layout.patches) {
+    usable.push_back(p.cut.has_value());
+    faces.push_back(p.cut ? p.cut->layoutFace : std::vector<int>{});
+  }
+  run.graph = patching::buildPatchGraph(run.layout.layout, usable);
+  run.coverage = patching::computeCoverage(run.layout.layout, faces);
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  run.designSeconds = run.layout.designSeconds;
+  run.layoutSeconds = total - run.designSeconds;  // corners, traces, splits, layout mesh, graph, coverage
+  return run;
+}
+
+void addPatchingReport(const PatchingRun& run, json& report) {
+  const auto& L = run.layout;
+  json splits = json::array();
+  for (const auto& s : L.splits)
+    splits.push_back({{"parent", s.parent}, {"children", s.children}, {"kind", s.kind}, {"p_max_m", point(s.peak)}});
+  report["patching"] = {{"workflow", run.workflow},
+                        {"patches", L.patches.size()},
+                        {"splits", L.splits.size()},
+                        {"merges", 0},
+                        {"candidates_screened", run.initial ? run.initial->candidatesScreened : 0},
+                        {"candidates_evaluated", L.evaluations},
+                        {"rounds", L.rounds},
+                        {"corners", L.layout.corners.size()},
+                        {"sides", L.layout.curves.size()},
+                        {"layout_mesh_vertices", L.layout.mesh.mesh.n_vertices()},
+                        {"split_log", splits},
+                        {"seconds", run.layoutSeconds + run.designSeconds}};
+  json boundaries = json::array();
+  for (const auto& b : run.graph.boundaries) {
+    json patches = json::array(), uses = json::array();
+    for (const auto& u : b.uses) {
+      patches.push_back(u.patch);
+      uses.push_back({{"patch", u.patch}, {"side", u.side}, {"from", u.from}, {"to", u.to}, {"reversed", u.reversed}});
+    }
+    boundaries.push_back({{"id", b.id}, {"kind", toString(b.kind)}, {"patches", patches}, {"length_m", b.lengthM}, {"on_patches", uses}});
+  }
+  if (run.initial) {
+    report["patching"]["workflow2"] = {{"blocks", run.initial->blocks},
+                                       {"holes", run.initial->holes},
+                                       {"initial_patches", run.initial->quads.size()},
+                                       {"peaks_snapped", run.initial->peaksSnapped},
+                                       {"notes", run.initial->notes},
+                                       {"seconds", run.initial->seconds}};
+  }
+  report["boundaries"] = boundaries;
+  json tj = json::array();
+  for (const auto& t : run.graph.tJunctions)
+    tj.push_back({{"corner", t.corner},
+                  {"position_m", point(L.layout.corners[t.corner])},
+                  {"patches_through", t.patchesThrough},
+                  {"patches_at", t.patchesAt}});
+  report["t_junctions"] = tj;
+  json chains = json::array();
+  for (const auto& c : run.graph.chains) {
+    json nodes = json::array();
+    for (const auto& n : c.nodes) nodes.push_back({{"patch", n.patch}, {"family", familyName(n.family)}});
+    chains.push_back({{"nodes", nodes}, {"ring", c.ring}, {"branching", c.branching}});
+  }
+  report["chains"] = chains;
+  json cutOffs = json::array();
+  for (const auto& c : run.coverage.cutOffs) cutOffs.push_back({{"area_m2", c.areaM2}, {"centroid_m", point(c.centroid)}});
+  report["coverage"] = {{"covered_area_m2", run.coverage.coveredAreaM2},
+                        {"surface_area_m2", run.coverage.surfaceAreaM2},
+                        {"fraction", run.coverage.fraction},
+                        {"cut_offs", cutOffs}};
+}
+
+void writePatchesJson(const PatchingRun& run, const std::filesystem::path& file) {
+  const auto& layout = run.layout.layout;
+  json corners = json::array(), sides = json::array(), patches = json::array();
+  for (const auto& c : layout.corners) corners.push_back(point(c));
+  for (const auto& c : layout.curves) {
+    json polyline = json::array();
+    for (const auto& p : c.positions) polyline.push_back(point(p));
+    sides.push_back({{"from", c.from}, {"to", c.to}, {"corners", c.corners}, {"length_m", c.length}, {"polyline_m", polyline}});
+  }
+  for (size_t p = 0; p < layout.patches.size(); ++p) {
+    const auto& d = run.layout.patches[p];
+    json entry{{"id", p}, {"corners", layout.patches[p]}, {"feasible", d.feasible()}};
+    if (!d.feasible()) entry["reason"] = d.failure;
+    if (d.cut) entry["area_m2"] = d.cut->patch.area;
+    patches.push_back(entry);
+  }
+  json doc{{"units", {{"length", "m"}}}, {"workflow", run.workflow}, {"corners_m", corners}, {"sides", sides}, {"patches", patches}};
+  json report;
+  addPatchingReport(run, report);
+  for (const char* key : {"boundaries", "t_junctions", "chains", "coverage"}) doc[key] = report[key];
+  doc["splits"] = report["patching"]["split_log"];
+  writeFileAtomically(file, doc.dump(1) + "\n");
+}
+
+void writePlan(const PatchingRun& run, const TriMesh& surface, const geodesic::DistanceSolver& surfaceSolver, const Scene& scene,
+               const std::filesystem::path& file, json& report) {
+  const auto started = std::chrono::steady_clock::now();
+  patching::PlanDrawing drawing;
+  drawing.surface = &surface;
+  drawing.layout = &run.layout.layout;
+  for (const auto& p : run.layout.patches) drawing.patchProblems.push_back(p.feasible() ? "" : p.failure);
+  drawing.peaks = patching::findSurfacePeaks(surface);
+  drawing.circles = patching::injectivityCircles(surface, surfaceSolver, drawing.peaks);
+  drawing.coverage = &run.coverage;
+  drawing.title = scene.name;
+  patching::writePlanSvg(file, drawing);
+  json peaks = json::array();
+  for (size_t i = 0; i < drawing.peaks.size(); ++i) {
+    const auto& peak = drawing.peaks[i];
+    const auto& circle = drawing.circles[i];
+    peaks.push_back({{"p_max_m", point(peak.position)},
+                     {"gaussian_max_1_m2", peak.gaussianMax},
+                     {"injectivity_radius_m", peak.radiusM},
+                     {"on_boundary", peak.onBoundary},
+                     {"circle_complete", circle.complete},
+                     {"circle_covers_surface", circle.coversSurface},
+                     {"circle_length_m", circle.lengthM}});
+  }
+  report["peaks"] = peaks;
+  report["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
+void patchingStage(RunState& state) {
+  const Stopwatch watch;
+  state.surfaceSolver.emplace(state.surface->mesh);
+  PatchingRun patching = runPatching(state.surface->mesh, *state.surfaceSolver, state.scene);
+  const double solverSeconds = watch.seconds() - patching.layoutSeconds - patching.designSeconds;
+  state.report.stageRan("patching", patching.layoutSeconds + solverSeconds);
+  state.report.stageRan("design", patching.designSeconds);
+  addPatchingReport(patching, state.report.document());
+  state.patches = layoutPatches(patching);
+  state.patching = std::move(patching);
+}
+
+}  // namespace egg::pipeline

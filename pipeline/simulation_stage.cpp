@@ -1,0 +1,212 @@
+#include "pipeline/simulation_stage.hpp"
+
+#include "assembly/boundary_members.hpp"
+#include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
+#include "core/materials/materials.hpp"
+#include "core/rods/surface_distance.hpp"
+#include "core/timing.hpp"
+#include "pipeline/deviation_plan.hpp"
+#include "pipeline/error_time_plot.hpp"
+#include "pipeline/joined_simulation.hpp"
+
+#include <fmt/core.h>
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+
+namespace egg::pipeline {
+
+using nlohmann::json;
+
+rods::SimulationOptions rodsOptions(const Scene& scene) {
+  rods::SimulationOptions options = scene.simulation.rods;
+  options.historyEvery = kErrorHistoryEvery;
+  return options;
+}
+
+assembly::GridToRodsOptions gridToRodsOptions(const Scene& scene) {
+  assembly::GridToRodsOptions convert;
+  convert.section.width_m = scene.lamella.widthM;
+  convert.section.thickness_m = scene.lamella.thicknessM;
+  convert.material = materialByName(scene.lamella.material);
+  convert.notches = true;
+  return convert;
+}
+
+void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene, bool holdSharedSides,
+                     const std::function<void(int, int)>& patchDone) {
+  // Notches on: the simulation switches them off itself for the comparison run.
+  const assembly::GridToRodsOptions convert = gridToRodsOptions(scene);
+  // Patches in parallel, each simulation on one thread when there are several (the rods code's
+  // own threads would only compete with TBB's); the simulation is bit-identical for any count.
+  const int solved = solvedCount(patches);
+  std::atomic<int> done{0};
+  tbb::parallel_for(size_t(0), patches.size(), [&](size_t i) {
+    auto& patch = patches[i];
+    if (!patch.egg) return;
+    // One patch's failure must not discard the others' results: record it and go on.
+    try {
+      rods::RodNetwork network = assembly::rodNetworkFromGrid(patch.egg->grid, convert);
+      if (holdSharedSides) network = assembly::holdEverySide(std::move(network), patch.egg->grid);
+      rods::SimulationOptions options = rodsOptions(scene);
+      // RMS1 (plain holes) beside RMS2 (notches), Section 2.6.2: a second full run per patch,
+      // only when the scene asks for the comparison (and only meaningful with notches).
+      options.compareWithoutNotches = options.model.notches && options.compareWithoutNotches;
+      // NRMSE of Section 3.5.2 divides by a scale: the patch's bounding-box diagonal, so that the
+      // figure compares patches and scenes of any size.
+      options.scaleFactor = boundingBox(patch.egg->patch.mesh).size().norm();
+      if (solved > 1) options.solver.threads = 1;
+      patch.simulation = rods::simulateGrid(network, surface, options);
+    } catch (const Error& e) {
+      patch.simulationFailure = e.what();
+    }
+    if (patchDone) patchDone(++done, solved);
+  });
+}
+
+json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& scene) {
+  const rods::SimulationOptions& options = scene.simulation.rods;
+  // Errors over all patches pooled by point count, so a big patch weighs as much as its points.
+  double sumSquares = 0.0, sumSquaresPlain = 0.0, maxError = 0.0, nrmseWorst = 0.0;
+  long points = 0, pointsPlain = 0;
+  int iterations = 0;
+  bool converged = true;
+  std::string reason;
+  json perPatch = json::array();
+  for (const auto& patch : patches) {
+    if (!patch.simulationFailure.empty()) {
+      converged = false;
+      if (reason.empty()) reason = fmt::format("patch {}: {}", patch.id, patch.simulationFailure);
+      perPatch.push_back({{"patch", patch.id}, {"converged", false}, {"failure", patch.simulationFailure}});
+      continue;
+    }
+    if (!patch.simulation) continue;
+    const auto& sim = *patch.simulation;
+    converged = converged && sim.converged;
+    if (!sim.converged && reason.empty()) reason = fmt::format("patch {}: {}", patch.id, sim.reason);
+    iterations += sim.deployed.solver.iterations;
+    json entry{{"patch", patch.id},
+               {"converged", sim.converged},
+               {"iterations", sim.deployed.solver.iterations},
+               {"status", rods::toString(sim.deployed.solver.status)},
+               {"energy_j", sim.deployed.solver.energy},
+               {"gradient_norm_n_nm", sim.deployed.solver.gradientNorm},  // over positions (N) and twists (N m)
+               {"decrement_j", sim.deployed.solver.decrement},            // last Newton decrement g^T H^-1 g
+               {"unknowns", sim.deployed.unknowns},
+               {"factorisations", sim.deployed.solver.factorisations},      // Cholesky, shift trials included
+               {"energy_evaluations", sim.deployed.solver.energyEvaluations},  // line-search trials
+               {"seconds", sim.seconds}};
+    // Under self-weight, how far the grid sagged from its weightless equilibrium (a "collapsed"
+    // status means it fell through: Section 3.5.2, Fig. 3.11).
+    if (scene.simulation.rods.model.gravity) entry["max_sag_m"] = sim.deployed.maxSag_m;
+    if (sim.deployed.deviation) {
+      const auto& d = *sim.deployed.deviation;
+      sumSquares += d.rmse_m * d.rmse_m * d.points;
+      points += d.points;
+      maxError = std::max(maxError, d.max_m);
+      nrmseWorst = std::max(nrmseWorst, d.nrmse);
+      entry.update({{"rmse_m", d.rmse_m}, {"max_error_m", d.max_m}, {"nrmse", d.nrmse}});
+    }
+    // Error against run time (issue 18): the deployed run's deviation every few iterations.
+    entry["history"] = historyJson(sim.deployed.history);
+    entry["history_measuring_s"] = sim.deployed.historySeconds;
+    if (sim.withoutNotches && sim.withoutNotches->deviation) {
+      const auto& d = *sim.withoutNotches->deviation;
+      sumSquaresPlain += d.rmse_m * d.rmse_m * d.points;
+      pointsPlain += d.points;
+      entry["rmse_no_notches_m"] = d.rmse_m;
+    }
+    perPatch.push_back(entry);
+  }
+  json section{{"ran", true},
+               {"converged", converged},
+               {"rmse_m", points ? json(std::sqrt(sumSquares / points)) : json(nullptr)},
+               {"max_error_m", points ? json(maxError) : json(nullptr)},
+               {"nrmse", points ? json(nrmseWorst) : json(nullptr)},
+               {"nrmse_normalised_by", "patch bounding-box diagonal (worst patch)"},
+               {"rmse_no_notches_m", pointsPlain ? json(std::sqrt(sumSquaresPlain / pointsPlain)) : json(nullptr)},
+               {"gravity", options.model.gravity},
+               {"bolts_fastened_under_load", options.model.gravity && options.fastenBoltsUnderLoad},
+               {"notches", options.model.notches},
+               {"friction_mu", options.model.frictionMu},
+               {"iterations", iterations},
+               {"patches", perPatch}};
+  if (!converged) section["reason"] = reason;
+  return section;
+}
+
+namespace {
+
+// deployed.svg: the joined structure when it ran, else every patch's own deployment (3.5.2).
+void writeDeployedPlan(const rods::SimulationRun* joined, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
+                       const std::filesystem::path& file) {
+  std::vector<const rods::SimulationRun*> runs;
+  if (joined) runs.push_back(joined);
+  else
+    for (const auto& p : patches)
+      if (p.simulation) runs.push_back(&p.simulation->deployed);
+  if (runs.empty()) return;
+  const rods::SurfaceDistance distance(surface);
+  std::vector<DeployedRod> rods;
+  for (const rods::SimulationRun* run : runs)
+    for (const auto& points : run->contactPoints) {
+      DeployedRod rod;
+      rod.points = points;
+      for (const auto& p : points) rod.distance_m.push_back(distance.distance(p));
+      rods.push_back(std::move(rod));
+    }
+  writeFileAtomically(file, deployedPlanSvg(rods, joined ? "Deployed grid (joined structure), seen from above, coloured by the distance to the design surface"
+                                                         : "Deployed grid (each patch on its own supports), seen from above, coloured by the distance to the design surface"));
+}
+
+}  // namespace
+
+std::string simulationDisabled(const Scene& scene) {
+  return scene.simulation.enabled ? std::string() : "the scene disables it (simulation.enabled = false)";
+}
+
+std::string simulationSkipReason(const RunState& state) {
+  return solvedCount(state.patches) == 0 ? "no solved patch grid to deploy" : std::string();
+}
+
+void simulationStage(RunState& state) {
+  const Scene& scene = state.scene;
+  const Stopwatch watch;
+  const SupportChoice supports = scene.simulation.supports;
+  const bool boundarySupports = supports == SupportChoice::DesignBoundary ||
+                                (supports == SupportChoice::Auto && state.patching->layout.patches.size() > 1);
+  if (boundarySupports)
+    state.report.document()["supports"] = {
+        {"design_boundary_anchors", assembly::supportDesignBoundary(state.patching->graph, editableGridsOf(state.patches))}};
+  // Patch by patch, each patch is held along all its sides, as the thesis simulated them (Fig.
+  // 3.17); the joined run holds the design boundary only and its bolts do the rest.
+  const bool heldAllRound = boundarySupports && scene.simulation.holdSharedSides;
+  std::mutex progressMutex;  // patches finish on TBB's threads
+  simulatePatches(state.patches, state.surface->mesh, scene, heldAllRound, [&](int done, int total) {
+    const std::lock_guard<std::mutex> lock(progressMutex);
+    state.progress(fmt::format("simulation: patch {} of {}", done, total), 0.6 + 0.12 * done / std::max(total, 1));
+  });
+  if (scene.simulation.joinPatches && state.members.has_value()) state.progress("simulation: joined", 0.72);
+  json& section = state.report.section("simulation");
+  section = simulationSection(state.patches, scene);
+  section["seconds"] = watch.seconds();  // patch by patch (wall, patches in parallel)
+  state.joined = addJoinedSimulation(*state.patching, state.patches, state.surface->mesh, scene, state.members.has_value(),
+                                     solvedCount(state.patches), section, heldAllRound);
+  if (scene.wants("report"))
+    writeDeployedPlan(state.joined ? &*state.joined : nullptr, state.patches, state.surface->mesh, state.staging / "deployed.svg");
+  // A deployment that did not reach equilibrium is a failure of the run (exit 1), whose report
+  // still carries every figure.
+  if (!section["converged"].get<bool>())
+    state.failures.push_back("simulation: " + section.value("reason", std::string("did not converge")));
+  const auto& joinedReport = section["joined"];
+  if (joinedReport["ran"].get<bool>() && !joinedReport["converged"].get<bool>())
+    state.failures.push_back("joined simulation: " +
+                             joinedReport.value("failure", joinedReport.value("reason", std::string("did not converge"))));
+}
+
+}  // namespace egg::pipeline

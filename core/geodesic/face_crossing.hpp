@@ -63,21 +63,17 @@ inline bool Propagator::prune(Window& w, double* endLengths) const {
     endLengths[1] = r1;
   }
   // Xin-Wang's other two tests (the vertex ahead, the one behind the edge) are not made: they
-  // killed 0 and 264 of 185k windows on a 3.6k-vertex bump (397, 930 of 15M on the Great Court)
-  // for a lookup and two square roots per window; one-split and trimming do that work already.
-  // Nor would any vertex filter (VTP's per-triangle pruning included) help where this engine is
-  // slowest, the sphere caps of issue 19: even against the final distances of all four vertices
-  // of the edge's two faces, 0 of the 191k windows kept at 4.6k vertices (stored engine) and 0 of
-  // 1.02M at 18k (front engine) are beaten everywhere, 16 of 159k on the bench bump; the cap's
-  // windows are its exact field's, and only cheaper windows make it faster (test_window_
-  // propagation.cpp, WindowPruning). Switched off, this pruning changes the windows kept there by 2.
+  // killed almost no windows for a lookup and two square roots per window; one-split and trimming
+  // do that work already. Nor would any vertex filter (VTP's per-triangle pruning included) help on
+  // the sphere caps, whose windows are their exact field's: only cheaper windows make it faster
+  // (test_window_propagation.cpp, WindowPruning; counts: docs/measurements.md).
   return true;
 }
 
 template <class AddChild>
 void Propagator::crossFace(const Window& w, int index, const FaceCrossing& face, AddChild&& addChild) {
-  // No second pruning here (pruned when added): on a 3.6k-vertex bump re-pruning at the pop would
-  // kill 24 of 183k windows for ~10 % of the time. An unpruned window is still a real path, so
+  // No second pruning here (pruned when added): re-pruning at the pop would kill almost no windows
+  // for ~10 % of the time (docs/measurements.md). An unpruned window is still a real path, so
   // what it offers and the pruning it feeds stay valid: it only costs its own propagation.
   const int h = face.h;
   const int f = face.f;
@@ -120,11 +116,9 @@ void Propagator::crossFace(const Window& w, int index, const FaceCrossing& face,
       relaxVertex(c, d, Predecessor::throughWindow(index, side, atVertex), &w);
     } else {
       // Round the end (bentDistance's value here): sigma + |s - end| + |end - C|, where
-      // |end - C| >= cy. Most of these paths improve nothing (18k cap of issue 19: C lies outside
-      // 98 % of the windows and 90 % of those bends were refused), so the second square root
-      // waits for the bound; its margin, far above rounding, means a spared relaxation would
-      // have been refused: the distances are bit-identical. Instructions per field (cachegrind):
-      // 18k cap -6.7 %, 4.6k cap -6.2 %, 4.4k bump -1.0 %.
+      // |end - C| >= cy. Most of these paths improve nothing, so the second square root waits for
+      // the bound; its margin, far above rounding, means a spared relaxation would have been
+      // refused: the distances are bit-identical (savings: docs/measurements.md).
       const double toEnd = w.sigma + distanceToEnd(w, side);
       if ((toEnd + cy) * (1.0 - 1e-12) < s_.vertexDistance[c]) {
         const double d = toEnd + planarLength(cx - (side ? w.b1 : w.b0), cy);

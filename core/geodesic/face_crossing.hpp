@@ -106,9 +106,7 @@ void Propagator::crossFace(const Window& w, int index, const FaceCrossing& face,
     const int x = w.endVertex[side];
     // Whether x has a cone is read whatever x (vertex 0's when there is none), and the two tests
     // joined without a branch: x >= 0 is a coin toss along the wavefront, and its branch was a
-    // tenth of the propagation's mispredictions (cachegrind --branch-sim, 18k cap, no cones).
-    // With the face's data read once per batch (faceCrossing), interleaved runs on the 18k cap:
-    // 0.88-0.98 of the earlier time (medians of 25-40 runs each); the 4.5k meshes within noise.
+    // large share of the propagation's mispredictions (docs/measurements.md).
     const char bendsAtX = t_.hasShadowCone[x >= 0 ? x : 0];
     if ((x >= 0) & (bendsAtX != 0)) {
       bool atVertex;

@@ -22,7 +22,7 @@ inline bool Propagator::prune(Window& w, double* endLengths) const {
   // |s - b0| and |s - b1|, recomputed only when an end moves: every test below needs them and
   // the square roots were the bulk of this function.
   // The window was just written field by field (crossFace): its fields are read one by
-  // one (loadAlone). Perf samples of the 18k cap: prune 9.1-9.4 % of the run before, 7.2 % after.
+  // one (loadAlone: a paired load would stall on the store buffer; docs/measurements.md).
   const double sx = loadAlone(w.sx), sy = loadAlone(w.sy);
   double r0, r1;
   planarLengths(loadAlone(w.b0) - sx, sy, loadAlone(w.b1) - sx, sy, r0, r1);

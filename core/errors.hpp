@@ -1,6 +1,7 @@
 #pragma once
-// Typed exceptions of eggshell (DESIGN.md "Conventions"). Libraries throw these and never call
-// abort/exit; the `egg` command maps them to messages and exit codes (2 = bad input, 1 = failure).
+// Typed exceptions of eggshell (docs/architecture.md "Conventions"). Libraries throw these and
+// never call abort/exit; the `egg` command maps them to messages and exit codes (2 = bad input, 1 =
+// failure).
 #include <stdexcept>
 #include <string>
 

@@ -1,9 +1,9 @@
 #pragma once
-// plan.svg (DESIGN.md "Outputs"): the plan view of a patching result, readable at a glance. The
-// design surface projected onto the xy plane (z up, y north) with its outline and holes and a
-// Gaussian-curvature colour map; the patch outlines with their ids (infeasible patches hatched,
-// with the index of their reason); the injectivity circles (Section 3.4.1) and their p_max; the
-// cut-offs (regions no patch covers, Section 3.3.2); a scale bar and a legend.
+// plan.svg (docs/architecture.md "Outputs"): the plan view of a patching result, readable at a
+// glance. The design surface projected onto the xy plane (z up, y north) with its outline and holes
+// and a Gaussian-curvature colour map; the patch outlines with their ids (infeasible patches
+// hatched, with the index of their reason); the injectivity circles (Section 3.4.1) and their
+// p_max; the cut-offs (regions no patch covers, Section 3.3.2); a scale bar and a legend.
 #include "core/mesh/mesh.hpp"
 #include "patching/injectivity.hpp"
 #include "patching/layout.hpp"

@@ -4,8 +4,8 @@
 // The maps only steer design choices (the alpha_bar range of Problem 2.3, the cladding functions
 // F, the C function of member placement, the start guesses x2 of member tracing); criterion (i)
 // is restored on the fine patch by member tracing, which moves x2 until the geodesic length on
-// the fine mesh equals the planar length. An exact field on a 3.4k-vertex patch costs ~20 ms,
-// on a few hundred vertices a small fraction of that, so the maps are read on a decimated copy.
+// the fine mesh equals the planar length. An exact field costs roughly in proportion to the
+// vertices, so the maps are read on a decimated copy (timings: docs/measurements.md).
 //
 // The proxy is the fine patch mesh simplified by halfedge collapses in quadric-error order
 // (Garland and Heckbert; no face normal turned by more than 30 degrees, no new sliver): every
@@ -17,12 +17,10 @@
 // boundary point at the same s (linear between the bracketing proxy side vertices, which is what
 // sidePoint does), and the map parameters x1, x2 mean the same boundary points on both meshes up
 // to the chords' sagitta (criterion ii: constant speed along the fine sides).
-// The proxy's distances differ from the fine ones in both directions (on the bench bump the proxy
-// diagonals come out from -1e-3 to +1e-3 m off), so no global rescaling is applied: scaling the
-// maps to the fine side lengths at the corners (bilinear in x1, x2) changed the largest map error
-// by -10 % to +16 % depending on the mesh, and never moved members or F measurably.
-// Not OpenMesh's Decimater: its generic modules took 90-175 ms of CPU on a 3.4k-vertex patch
-// (more than a fine field); this one takes ~10 ms.
+// The proxy's distances differ from the fine ones in both directions, so no global rescaling is
+// applied: scaling the maps to the fine side lengths at the corners helped on some meshes, hurt on
+// others, and never moved members or F measurably (docs/measurements.md).
+// Not OpenMesh's Decimater: its generic modules cost more than a fine field (docs/measurements.md).
 #include "core/egg/patch.hpp"
 
 #include <vector>

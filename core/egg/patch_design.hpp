@@ -1,5 +1,5 @@
 #pragma once
-// The design step of one patch, separate from its grid (issue 13, Sections 2.4.1-2.4.3, 3.3):
+// The design step of one patch, separate from its grid (Sections 2.4.1-2.4.3, 3.3):
 // an already cut patch -> solver set-up -> eta check (smoothing only when asked) -> distance maps
 // -> Problem 2.3 -> cladding functions F_u, F_v. The design keeps what tracing needs (the patch,
 // its fine DistanceSolver, the maps, the alpha_bar result), so that the multi-patch flow can

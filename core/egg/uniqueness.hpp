@@ -102,8 +102,8 @@ UniquenessFields uniquenessFields(const Patch& patch, const PatchPeaks& peaks, c
 // neighbouring samples; the sample with the smallest excess d(p1,p_max) + d(p_max,q) - d(p1,q) is
 // q1, as in Section 2.3.3. So eta is the patch's own; the proxy's error (~1e-3 m on the 6 m bench
 // patch) can only shift which samples are measured, and the excess is stationary at its minimum.
-// Two p1 fields and a peak field on the proxy plus six short directed propagations per peak
-// replace three fields on the patch (~50 ms of CPU at 3.4k vertices).
+// Why: two p1 fields and a peak field on the proxy plus six short directed propagations per peak
+// cost less than three fields on the patch (docs/measurements.md).
 UniquenessFields uniquenessFieldsViaProxy(const Patch& patch, const geodesic::DistanceSolver& solver, const MapProxy& proxy,
                                           const geodesic::DistanceSolver& proxySolver, const PatchPeaks& peaks, int n);
 // `fields` from uniquenessFields(patch, peaks, solver, maps.u.n1) or uniquenessFieldsViaProxy

@@ -2,8 +2,8 @@
 // The priority queue of the window propagation: a bucket queue (calendar queue) for the monotone,
 // Dijkstra-like key sequence of the propagation, with exact (key, item) pop order.
 //
-// Why: a 4k-vertex field pushes and pops ~200k windows, and a heap spent about 300 instructions
-// per pop (30 % of the propagation) sifting through the ~2k-entry wavefront. The keys of the queued
+// Why: a field pushes and pops hundreds of thousands of windows, and a heap spent a large share of
+// the propagation sifting through the wavefront (docs/measurements.md). The keys of the queued
 // windows all lie within a few edge lengths of the front, so buckets of width ~ edge/1024 hold a
 // handful of entries each: a push is an append and a pop scans the current bucket; should the
 // current bucket hold more than a few entries, it becomes a binary heap until it is empty. Entries beyond the calendar's horizon wait in an overflow heap. The pop
@@ -15,10 +15,8 @@
 // nearer than its parent; truly lower in a directed one, whose keys are sums of two separate
 // minima, goal_bound.hpp) are kept in the current bucket and still pop in key order. Keys must
 // not be NaN.
-// Fine meshes crowd the buckets (18k-vertex sphere cap of issue 19: 9 entries per popped bucket,
-// 55 % of the pops from a heap-ordered bucket; edge/4096 brings that to 3 and 0.1 %), yet neither
-// a narrower width nor one adapting to the crowding (more buckets) was faster there within the
-// noise of a shared machine: the queue is not what that row waits for (2026-12).
+// Fine meshes crowd the buckets, yet neither a narrower width nor one adapting to the crowding was
+// faster (docs/measurements.md).
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -52,14 +50,11 @@ class BucketQueue {
   // The most entries held at once since reset() (the queue's share of a field's peak memory).
   std::size_t peakSize() const { return peakSize_; }
   // Records indexed by the (non-negative) items, `stride` bytes apart, to prefetch a bucket ahead
-  // of the pops (nullptr: none). Call again whenever the records move. A popped window's record
-  // was written long before and is a cache miss: on the 18k-vertex cap of issue 19 a quarter of
-  // propagateWindow's samples sat on its first load. Prefetching the next bucket's records when
-  // the calendar reaches a bucket (with the inlined heap comparison), against no prefetch,
-  // thread CPU time per field, interleaved runs of 7 fields: 18k cap, front engine 0.78-0.98
-  // (mean 0.88, faster in 6 of 6); no change beyond the noise on the 4.5k meshes, whose records
-  // stay in cache. Two buckets ahead was slower. The propagation asks for it in front and
-  // wavefront mode (window_propagation.cpp, run; wavefront_engine.cpp, runSplitQueues).
+  // of the pops (nullptr: none). Call again whenever the records move. Why: a popped window's
+  // record was written long before and is a cache miss on meshes whose front does not fit in
+  // cache; one bucket ahead helps there, two was slower (docs/measurements.md). The propagation
+  // asks for it in front and wavefront mode (window_propagation.cpp, run; wavefront_engine.cpp,
+  // runSplitQueues).
   // `recordOfItem` (if given) maps an item to its record (-1: none), `mapStride` bytes from one
   // item's entry to the next: the wavefront engine
   // queues halfedges, whose first queued window is the record its pop reads first, and its map is

@@ -31,103 +31,42 @@ struct DistanceSolverOptions {
   // An interior vertex whose angle sum exceeds 2*pi by more than this (radians) is a saddle: a
   // shortest path may bend around it, so it becomes a pseudo-source. Reflex boundary vertices
   // (angle sum > pi) always are. 0, with imageMergeTolerance 0 (exact()), gives the exact
-  // polyhedral distance.
-  // A saddle below the tolerance (a near-flat one: on a remeshed negatively curved surface almost
-  // every vertex is) emits no windows. Behind it lies a shadow wedge as wide as its excess that no
-  // window enters; the points in it get their distance by bending at the saddle from the windows
-  // that border the wedge (pathBentAt in window_geometry.hpp): exact for one bend, while other
-  // skipped saddles inside the same shadow make it slightly long or, where the straight segment
-  // passes one on its far side, slightly short (second order in the excess; measured from -1.1e-6
-  // to +8e-6, the latter on a hypar where an under-estimated pseudo-source shut out a window).
-  // Near-flat saddles are ~40 % of the windows and ~60 % of the time of an exact field on the bench
-  // bump (4.5k vertices).
-  // Error study (2026-12, max relative error against tolerance 0; patch = side-to-side distances
-  // of a 6 x 6 m patch over an 8 x 8 m bump with sigma 1.5 m and height h, 9 sources x 100 targets
-  // per family, as the distance maps of Section 2.4.2 use them; bench = `egg bench geodesic` bump,
-  // side sources to all vertices):
-  //   tolerance   patch h = 2 m              patch h = 3 m      bench bump
-  //               1k      3.9k    15k        1.1k     4.5k      1k      4.5k    17.7k
-  //   7e-4        6.2e-7  1.1e-6  3.3e-7     2.9e-8   4.5e-6    4.1e-7  5.8e-7  2.9e-7
-  //   1e-3        1.3e-6  9.3e-6  6.4e-5     1.0e-6   3.8e-5    1.5e-6  8.2e-7  4.8e-7
-  //   2e-3        5.2e-6  9.3e-6  6.4e-5     1.2e-4   9.6e-5    4.1e-6  1.9e-6  1.1e-6
-  // (The 1e-3 and 2e-3 rows were measured before the review fixes of the bend: aiming pseudo-source
-  // cones from the bend, and the edge check.)
-  // Time per field at 7e-4 against tolerance 0: 0.40 (bench, 4.5k), 0.47 (patch 3.9k), 0.34 (15k).
-  // Bending at the window's end instead of at the saddle, as before, gave 1.7e-4 (patch h = 2 m,
-  // 3.9k) at 7e-4, and 3e-5 at 15k even at 1e-4; the bar (Sections 2.3.3, 3.4.1) is 1e-4. The
-  // default keeps a margin of 20 on every case above; past it the speed barely grows (most
-  // near-flat saddles are already skipped) and the error does.
-  // A saddle is also never skipped where its shadow could grow wider than a quarter of its
-  // shortest edge within twice the mesh's bounding-box diagonal (mesh_tables.cpp).
+  // polyhedral distance. A near-flat saddle below the tolerance emits no windows; the points in
+  // the shadow wedge behind it get their distance by bending at the saddle (pathBentAt,
+  // window_geometry.hpp): exact for one bend, off by a second-order amount where other skipped
+  // saddles lie in the same shadow. A saddle is never skipped where its shadow could grow wider
+  // than a quarter of its shortest edge within twice the bounding-box diagonal (mesh_tables.cpp).
+  // Why: near-flat saddles are most vertices of a remeshed negatively curved surface and most of
+  // an exact field's time, and skipping them stays well inside the 1e-4 bar of the eta check
+  // (Sections 2.3.3, 3.4.1). Error study and timings: docs/measurements.md.
   double saddleAngleTolerance = 7e-4;
   // Windows narrower than this fraction of their edge length are dropped (numerical slivers that
   // appear when a ray runs exactly through a vertex; the neighbouring windows cover them).
   double minWindowWidthRelative = 1e-11;
-  // Full fields of the wavefront engine (not directed queries, whose distance() must agree with
-  // path(), nor the other engines): a new window and a queued one on the same edge whose distance
-  // functions differ by at most this fraction of the edge length over the narrower one's interval
-  // become one window under the wider one's image (distanceGapBound, window_geometry.hpp: a bound,
-  // not an estimate). On a convex surface every vertex the front passes splits it into two images
-  // a vertex's angle defect apart, and their pieces never join again (as on a plane before exact
-  // merging, but here the images differ): the windows per edge grow with the distance. A merge
-  // moves the distance over the narrower piece by at most tolerance x edge length; a path
-  // crosses about distance / edge length edges, so even with a change at every one the error
-  // would stay of the order of the tolerance relative to the distance, whatever the mesh size (an
-  // estimate, not a proof; measured: a tenth of the tolerance, on 4.6k to 418k triangles).
-  // A merged pair must also have rays within sqrt(2 x tolerance) of each other (absorbNearImage:
-  // why; without it a pseudo-source's wide fan went to a far image's sliver).
-  // Error study (2026-12; max relative error against exact() at the vertices; windows per field;
-  // issue 19's meshes and vertex sources, `egg geodesic --merge-tolerance T` against `--exact`;
-  // the rows at 0 are the saddle skipping's alone):
-  //   tolerance   cap 4.6k          cap 18k           bump 4.4k         bump 418k triangles
-  //   0           0       132.5k    0       1062k     5.9e-8  121.7k    1.2e-10 39.0M
-  //   1e-6        2.3e-8  125.3k    4.4e-8  752k      5.9e-8  117.7k    5.1e-8  26.8M
-  //   2e-6        5.8e-8  119.6k    1.2e-7  609k      6.6e-8  115.6k    2.1e-7  26.6M
-  //   5e-6        2.9e-7  104.8k    6.7e-7  407k      2.6e-7  110.0k    4.9e-7  26.6M
-  //   1e-5        4.9e-7  88.5k     1.2e-6  293k      5.0e-7  105.1k
-  // Time at the default against 0 (interleaved pinned runs; instructions by callgrind): 18k cap
-  // 0.81 (instructions 0.64), 418k-triangle bump 0.58-0.77, 4.6k cap and 4.4k bump within the
-  // noise (instructions 0.98). The default keeps the error within 1e-6 of the exact distance with
-  // a margin of 5 on these, well below the saddle skipping's own (up to 8e-6, above). 0: off.
+  // Full fields of the wavefront engine only (not directed queries, whose distance() must agree
+  // with path(), nor the other engines): a new window and a queued one on the same edge whose
+  // distance functions differ by at most this fraction of the edge length over the narrower one's
+  // interval (distanceGapBound, a bound) and whose rays lie within sqrt(2 x tolerance) of each
+  // other (absorbNearImage) become one window under the wider one's image. Relative error: of the
+  // order of the tolerance, whatever the mesh size (an estimate, not a proof). 0: off.
+  // Why: on a convex surface the windows per edge otherwise grow with the distance (every vertex
+  // the front passes splits it into two images that never join). Error study:
+  // docs/measurements.md.
   double imageMergeTolerance = 2e-6;
   // Worker threads of the batch call; 0 = TBB's default (all cores). Results do not depend on it.
   int threads = 0;
   // How distance fields are propagated (window_propagation.cpp). StoredWindows keeps every window
   // (memory O(windows)) and trims each new one against all earlier ones on its edge. FrontOnly
   // keeps only the queued windows (memory O(front), as VTP, Qin et al. 2016): a window's slot is
-  // freed once it has crossed its face, and a new window is trimmed against the queued windows of
-  // its edge, and they against it. Same distances to rounding (tests/core/geodesic/
-  // test_window_propagation.cpp). Time per field, front / stored (2026-12, `egg bench geodesic
-  // --engine-rows large`, thread CPU; and `egg geodesic --engine`): 1.05-1.10 on the 4.5k bump and
-  // cap, 0.84-1.02 on the 18k cap, 0.88-0.97 on the 17k plane, 0.55-1.02 on the 418k-triangle bump,
-  // whose process peak RSS drops from 5.0 GB to 0.27 GB (working memory 3.6 GB -> 53 MB).
-  // Wavefront (wavefront_engine.cpp, after VTP): the front engine's windows queued per halfedge
-  // (first-in-first-out lists, one queue entry per halfedge, a halfedge's windows propagated as one
-  // batch) and trimmed against the first two of their edge's list only: a few % more windows, each
-  // cheaper. Exact mode: the stored engine's distances to 1e-9; default mode: differences up to
-  // 3e-7 where bends at skipped saddles see other window ends, with the same error against the
-  // exact mode (tests: test_window_propagation.cpp, test_wavefront_engine.cpp). Time per field
-  // against stored / front, one interleaved run, 5 vertex sources (2026-12, thread CPU, `egg bench
-  // geodesic --engine-rows large`): 4.4k bump 0.69 / 0.64, 4.6k cap 0.57 / 0.55, 18k cap 0.46 /
-  // 0.46, 17k plane 0.06 / 0.93, 418k-triangle bump (1 source) 0.29 / 0.31 (14.9 s; 0.22 / 0.31 in
-  // a second run; peak RSS of a wavefront-only process 0.39 GB). Prefetching each halfedge's first
-  // queued window a bucket ahead of its pop, and the next window of a list while one crosses
-  // (wavefront_engine.cpp), cut the 418k-triangle field to 0.65-0.75 of that (`egg geodesic` on the
-  // exported mesh, interleaved, 8.4-9.6 s against 12.5-12.9 s; `egg bench geodesic --engine-rows
-  // large`: 8.7 s, 0.13 of the stored engine's 65 s in the same run; peak RSS of a wavefront-only
-  // process 0.28 GB); up to 18k vertices, whose fronts stay in cache, the change is within the
-  // noise (+-20 %, three interleaved bench runs). Full fields pop a bucket's halfedges in any
-  // order, in buckets one edge wide, with vertex events held back until their bucket is clear
-  // (wavefront_engine.cpp, runSplitQueues): 418k-triangle bump 3.3 s against 8.0 s, 18k cap
-  // 0.88, 4.4k bump 0.78 of the time before (interleaved `egg geodesic` runs; numbers of this and
-  // the authors' VTP on the same meshes: issue 19's note). Full fields also merge near images
-  // (imageMergeTolerance). A batch's crossing, pruning and insertion compile into one function
-  // (face_crossing.hpp), and the records of the next two batches are prefetched while one runs
-  // (wavefront_engine.cpp, prefetchNextBatches): warm fields, interleaved with the authors' VTP
-  // (medians of 5 x 11, bit-identical distances), 18k cap 0.52 -> 0.49 of VTP's time, 4.6k cap
-  // 0.73 -> 0.70, 4.4k bump 0.35 -> 0.32, 17k plane 0.06 -> 0.05 (issue 19's note). The default:
-  // faster than both on every row. path() keeps the windows it traces back through whatever the
-  // engine.
+  // freed once it has crossed its face. Wavefront (wavefront_engine.cpp, after VTP; the default):
+  // the front engine's windows queued per halfedge in first-in-first-out lists, one queue entry per
+  // halfedge, a halfedge's windows propagated as one batch and trimmed against the first two of
+  // their edge's list only; full fields also merge near images (imageMergeTolerance). Exact mode:
+  // all three give the same distances to 1e-9; default mode: the wavefront engine's differ by up
+  // to 3e-7, with the same error against the exact mode (test_window_propagation.cpp,
+  // test_wavefront_engine.cpp). path() keeps the windows it traces back through whatever the
+  // engine. Why Wavefront: the fastest of the three on every bench row, with O(front) memory
+  // (docs/measurements.md, including the comparison with the authors' VTP).
   enum class Engine { StoredWindows, FrontOnly, Wavefront };
   Engine engine = Engine::Wavefront;
 
@@ -181,8 +120,8 @@ class DistanceSolver {
   // The same distances to `targets` by one propagation directed at them (goal_bound.hpp): it stops
   // once every target is final, sweeping about the union of the ellipses d(source, p) + |p t| <=
   // d(source, t). targetDistances are the full field's in exact mode; with skipped near-flat
-  // saddles (the default) they may be slightly longer (measured up to 8e-7 relative at 7e-4, never
-  // shorter, goal_bound.hpp); vertexDistances are only upper bounds. For a
+  // saddles (the default) they may be slightly longer, never shorter (goal_bound.hpp;
+  // docs/measurements.md); vertexDistances are only upper bounds. For a
   // few targets close together: the farthest one sets how far the propagation runs.
   DistanceField directedDistances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const;
 
@@ -200,8 +139,8 @@ class DistanceSolver {
   // directed at `to` (as distance()). Its
   // length equals distance(from, to) to rounding in exact mode; with skipped near-flat saddles
   // (the default) the path bends at the saddle as the distance does, and where that straight
-  // segment would pass another vertex the traced path goes round it, a little longer (reviewed on
-  // bump, hypar and waves samples with vertex, edge and face targets: up to 7e-6; tested: 2e-5).
+  // segment would pass another vertex the traced path goes round it, a little longer (tested to
+  // within 2e-5 relative; docs/measurements.md).
   GeodesicPath path(const SurfacePoint& from, const SurfacePoint& to) const;
 
   int vertexCount() const;

@@ -22,7 +22,7 @@ inline bool Propagator::prune(Window& w, double* endLengths) const {
   // |s - b0| and |s - b1|, recomputed only when an end moves: every test below needs them and
   // the square roots were the bulk of this function.
   // The window was just written field by field (crossFace): its fields are read one by
-  // one (loadAlone). Perf samples of the 18k cap: prune 9.1-9.4 % of the run before, 7.2 % after.
+  // one (loadAlone: a paired load would stall on the store buffer; docs/measurements.md).
   const double sx = loadAlone(w.sx), sy = loadAlone(w.sy);
   double r0, r1;
   planarLengths(loadAlone(w.b0) - sx, sy, loadAlone(w.b1) - sx, sy, r0, r1);
@@ -63,21 +63,17 @@ inline bool Propagator::prune(Window& w, double* endLengths) const {
     endLengths[1] = r1;
   }
   // Xin-Wang's other two tests (the vertex ahead, the one behind the edge) are not made: they
-  // killed 0 and 264 of 185k windows on a 3.6k-vertex bump (397, 930 of 15M on the Great Court)
-  // for a lookup and two square roots per window; one-split and trimming do that work already.
-  // Nor would any vertex filter (VTP's per-triangle pruning included) help where this engine is
-  // slowest, the sphere caps of issue 19: even against the final distances of all four vertices
-  // of the edge's two faces, 0 of the 191k windows kept at 4.6k vertices (stored engine) and 0 of
-  // 1.02M at 18k (front engine) are beaten everywhere, 16 of 159k on the bench bump; the cap's
-  // windows are its exact field's, and only cheaper windows make it faster (test_window_
-  // propagation.cpp, WindowPruning). Switched off, this pruning changes the windows kept there by 2.
+  // killed almost no windows for a lookup and two square roots per window; one-split and trimming
+  // do that work already. Nor would any vertex filter (VTP's per-triangle pruning included) help on
+  // the sphere caps, whose windows are their exact field's: only cheaper windows make it faster
+  // (test_window_propagation.cpp, WindowPruning; counts: docs/measurements.md).
   return true;
 }
 
 template <class AddChild>
 void Propagator::crossFace(const Window& w, int index, const FaceCrossing& face, AddChild&& addChild) {
-  // No second pruning here (pruned when added): on a 3.6k-vertex bump re-pruning at the pop would
-  // kill 24 of 183k windows for ~10 % of the time. An unpruned window is still a real path, so
+  // No second pruning here (pruned when added): re-pruning at the pop would kill almost no windows
+  // for ~10 % of the time (docs/measurements.md). An unpruned window is still a real path, so
   // what it offers and the pruning it feeds stay valid: it only costs its own propagation.
   const int h = face.h;
   const int f = face.f;
@@ -110,9 +106,7 @@ void Propagator::crossFace(const Window& w, int index, const FaceCrossing& face,
     const int x = w.endVertex[side];
     // Whether x has a cone is read whatever x (vertex 0's when there is none), and the two tests
     // joined without a branch: x >= 0 is a coin toss along the wavefront, and its branch was a
-    // tenth of the propagation's mispredictions (cachegrind --branch-sim, 18k cap, no cones).
-    // With the face's data read once per batch (faceCrossing), interleaved runs on the 18k cap:
-    // 0.88-0.98 of the earlier time (medians of 25-40 runs each); the 4.5k meshes within noise.
+    // large share of the propagation's mispredictions (docs/measurements.md).
     const char bendsAtX = t_.hasShadowCone[x >= 0 ? x : 0];
     if ((x >= 0) & (bendsAtX != 0)) {
       bool atVertex;
@@ -120,11 +114,9 @@ void Propagator::crossFace(const Window& w, int index, const FaceCrossing& face,
       relaxVertex(c, d, Predecessor::throughWindow(index, side, atVertex), &w);
     } else {
       // Round the end (bentDistance's value here): sigma + |s - end| + |end - C|, where
-      // |end - C| >= cy. Most of these paths improve nothing (18k cap of issue 19: C lies outside
-      // 98 % of the windows and 90 % of those bends were refused), so the second square root
-      // waits for the bound; its margin, far above rounding, means a spared relaxation would
-      // have been refused: the distances are bit-identical. Instructions per field (cachegrind):
-      // 18k cap -6.7 %, 4.6k cap -6.2 %, 4.4k bump -1.0 %.
+      // |end - C| >= cy. Most of these paths improve nothing, so the second square root waits for
+      // the bound; its margin, far above rounding, means a spared relaxation would have been
+      // refused: the distances are bit-identical (savings: docs/measurements.md).
       const double toEnd = w.sigma + distanceToEnd(w, side);
       if ((toEnd + cy) * (1.0 - 1e-12) < s_.vertexDistance[c]) {
         const double d = toEnd + planarLength(cx - (side ? w.b1 : w.b0), cy);

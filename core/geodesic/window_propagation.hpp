@@ -47,7 +47,7 @@ struct MeshTables {
   std::vector<double> shadowCone;
   // shadowCone > 0, a byte per vertex: every window that misses its face's opposite vertex asks
   // this of the vertex on its end's ray, and a byte array stays in the first-level cache where the
-  // doubles did not (18k-vertex cap: 18 KB against 146 KB).
+  // doubles did not.
   std::vector<char> hasShadowCone;
   double meanEdgeLength = 0.0;
 
@@ -159,8 +159,7 @@ struct Propagation {
   std::vector<EdgeList> lists;
   // A slot: the window and the link to the next slot of its halfedge's list (-1 at the tail), one
   // cache line. A popped list is walked slot by slot, and the 56-byte windows with their links in
-  // an array of their own were two or three lines per window: on the 18k-vertex cap of issue 19,
-  // 2.1M of the propagation's 3.7M simulated first-level misses, against 1.1M in one line.
+  // an array of their own were two or three lines per window (misses: docs/measurements.md).
   struct alignas(64) Slot {
     Window window;
     int next;

@@ -1,5 +1,5 @@
 #pragma once
-// A linear pre-scan of JSON text before it is parsed into a document (issue 17): bounded nesting
+// A linear pre-scan of JSON text before it is parsed into a document: bounded nesting
 // (a document 70,000 levels deep crashed the recursive code that walked it), numbers that fit a
 // double (nlohmann refuses 1e400 with an out_of_range error that named no field), and where in
 // the document the first problem is ("patching.slope_bounds[1]"). It builds nothing, so a huge

@@ -1,7 +1,8 @@
 #pragma once
-// Mesh files in and out (DESIGN.md stage "surface": `{"file": "roof.obj", "scale_to_m": 0.001}`).
-// Import goes through assimp and returns a raw TriangleSoup (duplicate vertices and all): checking
-// and repair are prepareMesh's job (core/mesh/validate.hpp). Export writes atomically.
+// Mesh files in and out (docs/architecture.md "Stage table", row "surface": `{"file": "roof.obj",
+// "scale_to_m": 0.001}`). Import goes through assimp and returns a raw TriangleSoup (duplicate
+// vertices and all): checking and repair are prepareMesh's job (core/mesh/validate.hpp). Export
+// writes atomically.
 // Precision: this assimp build stores coordinates as 32-bit floats, so a file keeps ~7 significant
 // digits (a 100 m roof to ~10 um); georeferenced coordinates should be shifted before export.
 // FBX: we do not ask assimp to convert units (AI_CONFIG_FBX_CONVERT_TO_M stays off), so coordinates

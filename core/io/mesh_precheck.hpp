@@ -1,5 +1,5 @@
 #pragma once
-// Checks of a mesh file before assimp reads it (issue 17): what assimp accepts silently (OFF
+// Checks of a mesh file before assimp reads it: what assimp accepts silently (OFF
 // indices out of range), hangs on (malformed PLY headers), or exhausts memory or the stack on
 // (header counts beyond the file, deep glTF node trees). Used by mesh_io.cpp only.
 #include <assimp/types.h>

@@ -1,9 +1,10 @@
 #pragma once
-// Validation and repair of an input surface (DESIGN.md stage "surface", thesis 4.4.1: "our system
-// works with triangular meshes"). Everything downstream (cotangent Laplacians, heat-method
-// distances, angle-defect curvature) silently produces garbage on NaN coordinates, zero-area
-// faces or non-manifold edges, so we reject such input here with a message that names the vertex,
-// triangle or edge, and repair only what can be repaired without changing the design surface.
+// Validation and repair of an input surface (docs/architecture.md "Stage table", row "surface";
+// thesis 4.4.1: "our system works with triangular meshes"). Everything downstream (cotangent
+// Laplacians, heat-method distances, angle-defect curvature) silently produces garbage on NaN
+// coordinates, zero-area faces or non-manifold edges, so we reject such input here with a message
+// that names the vertex, triangle or edge, and repair only what can be repaired without changing
+// the design surface.
 //
 // checkMesh works on the TriangleSoup an importer or generator produced (OpenMesh refuses some
 // non-manifold configurations outright, so they must be found before a TriMesh exists).

@@ -2,7 +2,8 @@
 // Procedural grids with known geometry, for tests, `egg bench sim` and `egg stress`: an exact
 // geodesic grid on a cylindrical vault. Geodesics of a cylinder are straight lines of its
 // development, so two families of lines at +-45 degrees in the unrolled rectangle are a notch-free
-// elastic geodesic grid (DESIGN.md "Notch-free grids"): deployed, it must reproduce the cylinder.
+// elastic geodesic grid (docs/architecture.md "Notch-free grids"): deployed, it must reproduce the
+// cylinder.
 #include "core/mesh/mesh.hpp"
 #include "core/rods/rod_network.hpp"
 

@@ -33,7 +33,7 @@ struct SimulationOptions {
   bool fastenBoltsUnderLoad = false;
   double scaleFactor = 1.0;            // f of the NRMSE (Section 3.5.2)
   bool compareWithoutNotches = false;  // also run with plain holes (RMS1 of Section 2.6.2)
-  // Error against run time (issue 18): with a surface, every historyEvery-th Newton iteration and
+  // Error against run time: with a surface, every historyEvery-th Newton iteration and
   // the end of every load step measure the contact points' deviation into SimulationRun::history,
   // through solver.observer (it is called on the same schedule; its progress then counts the run's
   // iterations and seconds). 0: no history, no measuring.

@@ -1,5 +1,5 @@
 #pragma once
-// Stiff and extreme cases for the simulation (issue 5, `egg stress`): the cylinder vault of
+// Stiff and extreme cases for the simulation (`egg stress`): the cylinder vault of
 // sample_grids.hpp scaled from 0.1 m to 220 m, with width:thickness 5..100, E 0.5..210 GPa and
 // densities 400..7850 kg/m^3, under self-weight. Each case must converge or say why, never give
 // NaN, never hang (time and iteration limits).

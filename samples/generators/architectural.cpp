@@ -1,5 +1,5 @@
 // The architectural samples of Section 3.6.2 (Great Court, Lilium Tower tip, Yas Hotel canopy) with
-// the closed forms of DESIGN.md "Samples".
+// the closed forms of docs/architecture.md "Samples".
 #include "samples/generators/architectural.hpp"
 
 #include "samples/generators/catalog.hpp"
@@ -67,7 +67,8 @@ SurfaceSpec greatCourt(const Params&) {
   spec.position = [](const Vec2& p) { return Vec3(p.x(), p.y(), greatCourtHeight(p.x(), p.y())); };
   spec.boundary = {rectangleLoop(-b, b, -d, c), ellipseLoop(Vec2::Zero(), a, a)};
   spec.inDomain = [](const Vec2& p) { return p.norm() >= a; };
-  // DESIGN.md spot heights: z(0, 34.135) = 26.157, z(0, -36.685) = 27.573, z(+-29.435, 0) = 22.664.
+  // docs/architecture.md "Samples" spot heights: z(0, 34.135) = 26.157, z(0, -36.685) = 27.573,
+  // z(+-29.435, 0) = 22.664.
   spec.requiredPoints = {{0.0, 34.135}, {0.0, -36.685}, {29.435, 0.0}, {-29.435, 0.0}};
   return spec;
 }

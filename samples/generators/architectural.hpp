@@ -1,6 +1,6 @@
 #pragma once
-// The three architectural design surfaces of Section 3.6.2 in closed form (DESIGN.md "Samples").
-// Exposed so tests and other stages can use them as exact oracles.
+// The three architectural design surfaces of Section 3.6.2 in closed form (docs/architecture.md
+// "Samples"). Exposed so tests and other stages can use them as exact oracles.
 #include <Eigen/Dense>
 
 namespace egg::samples {

@@ -1,4 +1,4 @@
-// Isotropic remeshing in the parameter domain. Geodesic and curvature oracles (DESIGN.md
+// Isotropic remeshing in the parameter domain. Geodesic and curvature oracles (docs/architecture.md
 // "Validation references") are sensitive to slivers, so the footprint mesh from Delaunay refinement
 // is equalised in 3D: on a steep height field or a stretched parametrisation a triangle that is
 // nice in the domain is not nice on the surface.

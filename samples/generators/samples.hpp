@@ -1,6 +1,7 @@
 #pragma once
-// Procedural design surfaces (DESIGN.md "Samples"): the three architectural scenes of Chapter 3
-// and the parametric test surfaces whose geodesics and curvatures are known in closed form.
+// Procedural design surfaces (docs/architecture.md "Samples"): the three architectural scenes of
+// Chapter 3 and the parametric test surfaces whose geodesics and curvatures are known in closed
+// form.
 #include "core/mesh/mesh.hpp"
 
 #include <map>

@@ -1,5 +1,5 @@
-// Meshing pipeline shared by every sample (DESIGN.md "Samples": generated at a requested edge
-// length). Delaunay refinement gives a valid domain triangulation with 3D edges below a bound;
+// Meshing pipeline shared by every sample (docs/architecture.md "Samples": generated at a requested
+// edge length). Delaunay refinement gives a valid domain triangulation with 3D edges below a bound;
 // remeshing then makes the triangles near-equilateral on the surface.
 #include "samples/generators/surface_mesher.hpp"
 

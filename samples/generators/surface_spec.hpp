@@ -2,8 +2,8 @@
 // Internal description of a sample surface: an exact analytic map from a planar parameter domain to
 // R^3. Height fields use the footprint itself as the domain (x, y) -> (x, y, z(x, y)); developable
 // and revolved surfaces use an unrolled or polar domain. Meshing happens in the domain, measured in
-// 3D, so every vertex is an exact evaluation of the map (the analytic oracles of DESIGN.md hold to
-// rounding).
+// 3D, so every vertex is an exact evaluation of the map (the analytic oracles of
+// docs/architecture.md "Validation references" hold to rounding).
 #include <Eigen/Dense>
 
 #include <functional>

@@ -1,6 +1,6 @@
-// Parametric test surfaces whose geodesics and curvatures are known in closed form (DESIGN.md
-// "Validation references"): other stages use them as oracles, so each map is exact and each
-// developable surface is meshed in its unrolled (isometric) domain.
+// Parametric test surfaces whose geodesics and curvatures are known in closed form
+// (docs/architecture.md "Validation references"): other stages use them as oracles, so each map is
+// exact and each developable surface is meshed in its unrolled (isometric) domain.
 #include "samples/generators/catalog.hpp"
 
 #include <cmath>

@@ -1,4 +1,5 @@
-// The architectural samples against the DESIGN.md check values of their closed forms.
+// The architectural samples against the check values of their closed forms (docs/architecture.md
+// "Samples").
 #include "samples/generators/architectural.hpp"
 
 #include "samples/generators/samples.hpp"

@@ -1,6 +1,6 @@
-// The scene files shipped in samples/: only DESIGN.md "Scene file" keys (the parser rejects any
-// other), a known sample with accepted parameters, the lamella sections of Table 3.3, and test
-// scenes small enough for fast pipeline tests.
+// The scene files shipped in samples/: only docs/architecture.md "Scene file" keys (the parser
+// rejects any other), a known sample with accepted parameters, the lamella sections of Table 3.3,
+// and test scenes small enough for fast pipeline tests.
 #include "samples/generators/samples.hpp"
 
 #include <gtest/gtest.h>
@@ -30,8 +30,8 @@ void expectOnlyKeys(const json& object, const std::set<std::string>& allowed, co
   }
 }
 
-// DESIGN.md "Scene file" (the full check, values included, is the scene parser's: tests/apps
-// parses every shipped scene with it). Sections other than `surface` are optional.
+// docs/architecture.md "Scene file" (the full check, values included, is the scene parser's:
+// tests/apps parses every shipped scene with it). Sections other than `surface` are optional.
 void expectDesignKeys(const json& scene) {
   expectOnlyKeys(scene, {"name", "surface", "patching", "grid", "lamella", "simulation", "fabrication", "outputs"}, "");
   const std::map<std::string, std::set<std::string>> sections{
@@ -39,9 +39,10 @@ void expectDesignKeys(const json& scene) {
       {"patching", {"workflow", "eta_max", "slope_bounds", "max_patch_size_m", "block_grid", "patches"}},
       {"grid", {"members_per_family", "map_resolution", "alpha_bar", "min_planar_angle_rad"}},
       {"lamella", {"width_m", "thickness_m", "material"}},
-      // block_grid, join_patches, stock_length_mm, splice_joint: beyond DESIGN.md, documented in the README
-      // (architectural lamellas are spliced from long stock, Section 3.5; the Yas canopy's slots
-      // merge into slits that only a glued scarf can join, and its joined run is too large).
+      // block_grid, join_patches, stock_length_mm, splice_joint: beyond docs/architecture.md,
+      // documented in docs/scene-reference.md (architectural lamellas are spliced from long stock,
+      // Section 3.5; the Yas canopy's slots merge into slits that only a glued scarf can join, and
+      // its joined run is too large).
       {"simulation", {"enabled", "gravity", "friction_mu", "notches", "join_patches"}},
       {"fabrication", {"enabled", "sheet_mm", "bolt_diameter_mm", "stock_length_mm", "splice_joint"}}};
   ASSERT_TRUE(scene.contains("surface"));
@@ -66,9 +67,9 @@ TriMesh generateScene(const json& scene) {
 }
 
 TEST(SceneFiles, ArchitecturalScenesUseThePapersSections) {
-  // Table 3.3: w x t = 50 x 5, 40 x 5 cm; Table 3.2: poplar plywood. The Great Court's 25 x 4 cm
-  // of Table 3.3 collapses under its own weight in poplar (README, "The Great Court's section"):
-  // the scene uses 40 x 8 cm, which stands.
+  // Table 3.3: w x t = 50 x 5, 40 x 5 cm; Table 3.2: poplar plywood. The Great Court's 25 x 4 cm of
+  // Table 3.3 collapses under its own weight in poplar (docs/samples.md, "The Great Court's
+  // section"): the scene uses 40 x 8 cm, which stands.
   const std::map<std::string, std::pair<double, double>> sections{
       {"great_court", {0.40, 0.08}}, {"lilium", {0.50, 0.05}}, {"yas", {0.40, 0.05}}};
   for (const auto& [name, section] : sections) {

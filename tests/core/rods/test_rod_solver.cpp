@@ -64,7 +64,7 @@ struct Cantilever {
 };
 
 TEST(RodSolver, CantileverTipLoadMatchesElasticaTable) {
-  // alpha = P L^2 / EI -> tip deflection v/L (DESIGN.md "Validation references").
+  // alpha = P L^2 / EI -> tip deflection v/L (docs/architecture.md "Validation references").
   const std::vector<std::pair<double, double>> table{{1.0, 0.30172}, {2.0, 0.49346}, {5.0, 0.71379}, {10.0, 0.81061}};
   for (const auto& [alpha, expected] : table) {
     Cantilever c;

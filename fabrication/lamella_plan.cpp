@@ -136,36 +136,54 @@ double longestPieceMm(const FabricationOptions& options) {
   return std::min(options.stock_length_mm, options.sheet_mm[0] - 2.0 * options.margin_mm);
 }
 
-void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
-                  const std::string& field, double minClearanceMm, SpliceJoint joint, double scarfLengthMm) {
-  plan.splicesMm.clear();
-  plan.spliceClearancesMm.clear();
-  plan.spliceIsScarf.clear();
-  plan.segments.clear();
-  const bool plates = joint != SpliceJoint::Scarf, scarfs = joint != SpliceJoint::Plate;
-  if (scarfs && !(scarfLengthMm > 0.0 && scarfLengthMm < stockLengthMm))
-    throw InvalidInput("fabrication.scarf_slope: a scarf of " + std::to_string(scarfLengthMm) +
-                       " mm does not fit a piece of at most " + std::to_string(stockLengthMm) + " mm");
-  if (minClearanceMm < 0.0) minClearanceMm = clearanceMm;
-  // What is cut out of the strip (holes, slots with their round ends), merged where they overlap.
-  std::vector<std::pair<double, double>> cutOut;
+namespace {
+
+using Interval = std::pair<double, double>;
+
+// What is cut out of the strip (holes, slots with their round ends), merged where they overlap.
+std::vector<Interval> mergedCutOuts(const LamellaPlan& plan, double boltDiameterMm) {
+  std::vector<Interval> cutOut;
   for (const auto& f : plan.features) cutOut.emplace_back(f.minXMm(boltDiameterMm), f.maxXMm(boltDiameterMm));
   std::sort(cutOut.begin(), cutOut.end());
-  std::vector<std::pair<double, double>> merged;
+  std::vector<Interval> merged;
   for (const auto& e : cutOut) {
     if (!merged.empty() && e.first <= merged.back().second) merged.back().second = std::max(merged.back().second, e.second);
     else merged.push_back(e);
   }
+  return merged;
+}
+
+// One lamella's splices placed from its start: where a plate or a scarf may go between its
+// cut-outs, and the splices placed so far (into `plan`).
+struct Splicer {
+  LamellaPlan& plan;
+  double stockLengthMm, scarfLengthMm;
+  std::vector<Interval> merged;  // the cut-outs
+  double longestScarf = 0.0;
+  std::vector<Interval> gaps;    // where a feather end may lie
+
+  Splicer(LamellaPlan& plan_, double stockLengthMm_, double boltDiameterMm, double scarfLengthMm_)
+      : plan(plan_), stockLengthMm(stockLengthMm_), scarfLengthMm(scarfLengthMm_), merged(mergedCutOuts(plan_, boltDiameterMm)) {
+    // (Scarf joints: see furthestScarf.)
+    const double endClear = boltDiameterMm / 2.0;
+    longestScarf = 2.0 * scarfLengthMm;
+    for (size_t k = 0; k <= merged.size(); ++k) {
+      const double lo = (k == 0 ? 0.0 : merged[k - 1].second) + endClear;
+      const double hi = (k == merged.size() ? plan.lengthMm : merged[k].first) - endClear;
+      if (hi >= lo) gaps.emplace_back(lo, hi);
+    }
+  }
+
   // Free length from x to the nearest cut-out (zero inside one).
-  auto freeAt = [&](double x) {
+  double freeAt(double x) const {
     double free = std::numeric_limits<double>::infinity();
     for (const auto& [lo, hi] : merged) free = std::min(free, x < lo ? lo - x : x > hi ? x - hi : 0.0);
     return free;
-  };
+  }
   // The furthest position in (start, start + stock] keeping `clear` from every cut-out: the stock
   // end itself or the lower end of the zone around a cut-out that covers it (zones chain, so
   // repeat); -1 when there is none.
-  auto furthest = [&](double start, double clear) {
+  double furthest(double start, double clear) const {
     double cut = start + stockLengthMm;
     bool moved = true;
     while (moved && cut > start) {
@@ -178,7 +196,7 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
       }
     }
     return cut > start + 1e-9 && freeAt(cut) >= clear - 1e-9 ? cut : -1.0;
-  };
+  }
   // A scarf joint: piece A ends at `end`, piece B starts at `begin` before it; they overlap by
   // end - begin, glued on the slope. The holes and slots are cut in the pieces before gluing, so
   // the two feather ends must lie between cut-outs, a bolt radius clear (no hole or slot cut open
@@ -187,15 +205,8 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
   // strong, only longer to machine): between slots metres long the two gaps are rarely exactly one
   // scarf length apart. The furthest end within one stock length from `start`, with the shortest
   // overlap there; nullopt when there is none.
-  const double endClear = boltDiameterMm / 2.0, longestScarf = 2.0 * scarfLengthMm;
-  std::vector<std::pair<double, double>> gaps;  // where a feather end may lie
-  for (size_t k = 0; k <= merged.size(); ++k) {
-    const double lo = (k == 0 ? 0.0 : merged[k - 1].second) + endClear;
-    const double hi = (k == merged.size() ? plan.lengthMm : merged[k].first) - endClear;
-    if (hi >= lo) gaps.emplace_back(lo, hi);
-  }
-  auto furthestScarf = [&](double start) -> std::optional<std::pair<double, double>> {
-    std::optional<std::pair<double, double>> best;
+  std::optional<Interval> furthestScarf(double start) const {
+    std::optional<Interval> best;
     for (const auto& [aLo, aHi] : gaps) {
       for (const auto& [bLo, bHi] : gaps) {
         const double hi = std::min({aHi, bHi + longestScarf, start + stockLengthMm});
@@ -208,21 +219,93 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
       }
     }
     return best;
-  };
+  }
   // A scarf with clean ends is worth a shorter piece, down to 40 % of the stock length; below
   // that the pieces (and joints) would multiply, and the scarf through the slit is preferred.
-  auto cleanOrSlit = [&](double start, const std::pair<double, double>& slit) {
+  Interval cleanOrSlit(double start, const Interval& slit) const {
     const auto clean = furthestScarf(start);
     return clean && clean->first >= start + 0.4 * stockLengthMm ? *clean : slit;
-  };
-  auto addScarf = [&](double& start, const std::pair<double, double>& scarf) {
+  }
+  void addScarf(double& start, const Interval& scarf) {
     const auto [end, begin] = scarf;
     plan.splicesMm.push_back((end + begin) / 2.0);
     plan.spliceClearancesMm.push_back(std::min(freeAt(end), freeAt(begin)));
     plan.spliceIsScarf.push_back(true);
     plan.segments.push_back({start, end});
     start = begin;
-  };
+  }
+  void addPlate(double& start, double cut) {
+    plan.splicesMm.push_back(cut);
+    plan.spliceClearancesMm.push_back(freeAt(cut));
+    plan.spliceIsScarf.push_back(false);
+    plan.segments.push_back({start, cut});
+    start = cut;
+  }
+  // The middle of the widest gap between cut-outs (or a cut-out and the previous splice) in the
+  // stock length from `start` to `reach`, the most room a shorter splice can get here; `cut` is
+  // moved there, and its free length returned (-1 when there is no gap).
+  double middleOfWidestGap(double start, double reach, double& cut) const {
+    double best = -1.0;
+    for (size_t k = 0; k <= merged.size(); ++k) {
+      const double lo = std::max(start, k == 0 ? 0.0 : merged[k - 1].second);
+      const double hi = k == merged.size() ? plan.lengthMm : merged[k].first;
+      if (hi <= lo || lo >= reach) continue;
+      const double x = std::min((lo + hi) / 2.0, reach);
+      const double free = std::min(x - lo, hi - x);
+      if (free > best + 1e-9 || (std::abs(free - best) <= 1e-9 && x > cut)) best = free, cut = x;
+    }
+    return best;
+  }
+  // No position between `start` and `reach` keeps the minimum clearance: says why, and how long
+  // the pieces would have to be.
+  [[noreturn]] void throwUnspliceable(double start, double reach, double clearanceMm, const std::string& field,
+                                      double minClearanceMm) const {
+    double widest = 0.0;
+    for (size_t k = 0; k <= merged.size(); ++k) {
+      const double lo = std::max(start, k == 0 ? 0.0 : merged[k - 1].second);
+      const double hi = std::min(reach, k == merged.size() ? plan.lengthMm : merged[k].first);
+      if (hi > lo) widest = std::max(widest, hi - lo);
+    }
+    // The stock it would take: a splice has to jump every zone of cut-outs grown by the minimum
+    // clearance, so the longest such zone (from the strip's end where one reaches it).
+    double needed = 0.0, zoneLo = 0.0, zoneHi = 0.0;
+    bool open = false;
+    for (const auto& [lo, hi] : merged) {
+      const double a = std::max(0.0, lo - minClearanceMm), b = std::min(plan.lengthMm, hi + minClearanceMm);
+      if (open && a <= zoneHi) {
+        zoneHi = std::max(zoneHi, b);
+      } else {
+        if (open) needed = std::max(needed, zoneHi - zoneLo);
+        zoneLo = a, zoneHi = b, open = true;
+      }
+    }
+    if (open) needed = std::max(needed, zoneHi - zoneLo);
+    std::ostringstream msg;
+    msg << field << ": lamella " << plan.id << " (" << plan.lengthMm << " mm) cannot be spliced between " << start
+        << " and " << reach << " mm (one stock length): its holes and slots leave gaps of at most "
+        << widest << " mm there, and a splice needs a gap of 2 x " << minClearanceMm
+        << " mm (fabrication.min_splice_clearance_mm each side; " << clearanceMm
+        << " mm preferred, fabrication.splice_clearance_mm); it would take pieces of up to " << std::ceil(needed)
+        << " mm";
+    msg << "; fabrication.splice_joint \"plate_or_scarf\" glues a scarf where no plate fits";
+    throw InvalidInput(msg.str());
+  }
+};
+
+}  // namespace
+
+void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
+                  const std::string& field, double minClearanceMm, SpliceJoint joint, double scarfLengthMm) {
+  plan.splicesMm.clear();
+  plan.spliceClearancesMm.clear();
+  plan.spliceIsScarf.clear();
+  plan.segments.clear();
+  const bool plates = joint != SpliceJoint::Scarf, scarfs = joint != SpliceJoint::Plate;
+  if (scarfs && !(scarfLengthMm > 0.0 && scarfLengthMm < stockLengthMm))
+    throw InvalidInput("fabrication.scarf_slope: a scarf of " + std::to_string(scarfLengthMm) +
+                       " mm does not fit a piece of at most " + std::to_string(stockLengthMm) + " mm");
+  if (minClearanceMm < 0.0) minClearanceMm = clearanceMm;
+  Splicer splicer(plan, stockLengthMm, boltDiameterMm, scarfLengthMm);
   double start = 0.0;
   while (plan.lengthMm - start > stockLengthMm + 1e-9) {
     const double reach = start + stockLengthMm;
@@ -232,71 +315,29 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
     // sheet_layout.cpp), and is checked on the net width.
     auto slitScarf = [&]() { return std::make_pair(reach, reach - scarfLengthMm); };
     if (!plates) {
-      addScarf(start, cleanOrSlit(start, slitScarf()));
+      splicer.addScarf(start, splicer.cleanOrSlit(start, slitScarf()));
       continue;
     }
     // The furthest position within one stock length with the full clearance.
-    double cut = furthest(start, clearanceMm);
+    double cut = splicer.furthest(start, clearanceMm);
     if (cut < 0.0) {
       // None: the middle of the widest gap between cut-outs (or a cut-out and the previous
       // splice) in this stock length, the most room a shorter splice can get here.
-      double best = -1.0;
-      for (size_t k = 0; k <= merged.size(); ++k) {
-        const double lo = std::max(start, k == 0 ? 0.0 : merged[k - 1].second);
-        const double hi = k == merged.size() ? plan.lengthMm : merged[k].first;
-        if (hi <= lo || lo >= reach) continue;
-        const double x = std::min((lo + hi) / 2.0, reach);
-        const double free = std::min(x - lo, hi - x);
-        if (free > best + 1e-9 || (std::abs(free - best) <= 1e-9 && x > cut)) best = free, cut = x;
-      }
+      const double best = splicer.middleOfWidestGap(start, reach, cut);
       // (The previous splice counts as a side of its gap; a position closer to it than the
       // minimum but clear of the cut-outs still beats none.)
-      if (best < minClearanceMm - 1e-9) cut = furthest(start, minClearanceMm);
+      if (best < minClearanceMm - 1e-9) cut = splicer.furthest(start, minClearanceMm);
     }
     // No position keeps the minimum either: impossible (whichever earlier cuts: from any clear
     // position the next clear one lies within a stock length when the strip can be cut at all, so
     // this stretch fails for every choice).
     if (cut < 0.0 && scarfs) {
       // No room for a plate here: a glued scarf, where its feather ends find gaps.
-      addScarf(start, cleanOrSlit(start, slitScarf()));
+      splicer.addScarf(start, splicer.cleanOrSlit(start, slitScarf()));
       continue;
     }
-    if (cut < 0.0) {
-      double widest = 0.0;
-      for (size_t k = 0; k <= merged.size(); ++k) {
-        const double lo = std::max(start, k == 0 ? 0.0 : merged[k - 1].second);
-        const double hi = std::min(reach, k == merged.size() ? plan.lengthMm : merged[k].first);
-        if (hi > lo) widest = std::max(widest, hi - lo);
-      }
-      // The stock it would take: a splice has to jump every zone of cut-outs grown by the minimum
-      // clearance, so the longest such zone (from the strip's end where one reaches it).
-      double needed = 0.0, zoneLo = 0.0, zoneHi = 0.0;
-      bool open = false;
-      for (const auto& [lo, hi] : merged) {
-        const double a = std::max(0.0, lo - minClearanceMm), b = std::min(plan.lengthMm, hi + minClearanceMm);
-        if (open && a <= zoneHi) {
-          zoneHi = std::max(zoneHi, b);
-        } else {
-          if (open) needed = std::max(needed, zoneHi - zoneLo);
-          zoneLo = a, zoneHi = b, open = true;
-        }
-      }
-      if (open) needed = std::max(needed, zoneHi - zoneLo);
-      std::ostringstream msg;
-      msg << field << ": lamella " << plan.id << " (" << plan.lengthMm << " mm) cannot be spliced between " << start
-          << " and " << reach << " mm (one stock length): its holes and slots leave gaps of at most "
-          << widest << " mm there, and a splice needs a gap of 2 x " << minClearanceMm
-          << " mm (fabrication.min_splice_clearance_mm each side; " << clearanceMm
-          << " mm preferred, fabrication.splice_clearance_mm); it would take pieces of up to " << std::ceil(needed)
-          << " mm";
-      msg << "; fabrication.splice_joint \"plate_or_scarf\" glues a scarf where no plate fits";
-      throw InvalidInput(msg.str());
-    }
-    plan.splicesMm.push_back(cut);
-    plan.spliceClearancesMm.push_back(freeAt(cut));
-    plan.spliceIsScarf.push_back(false);
-    plan.segments.push_back({start, cut});
-    start = cut;
+    if (cut < 0.0) splicer.throwUnspliceable(start, reach, clearanceMm, field, minClearanceMm);
+    splicer.addPlate(start, cut);
   }
   plan.segments.push_back({start, plan.lengthMm});
 }

@@ -158,16 +158,8 @@ struct Legend {
   }
 };
 
-}  // namespace
-
-void PlanSvgOptions::validate() const {
-  if (!(width_px >= 200.0 && width_px <= 20000.0))
-    throw InvalidInput(fmt::format("PlanSvgOptions.width_px must be in [200, 20000], got {}", width_px));
-  if (!(curvature_percentile > 0.0 && curvature_percentile <= 100.0))
-    throw InvalidInput(fmt::format("PlanSvgOptions.curvature_percentile must be in (0, 100], got {}", curvature_percentile));
-}
-
-std::string planSvg(const PlanDrawing& drawing) {
+// Throws InvalidInput when the drawing's parts do not fit together.
+void validateDrawing(const PlanDrawing& drawing) {
   drawing.options.validate();
   if (drawing.surface == nullptr || drawing.surface->n_faces() == 0) throw InvalidInput("plan.svg: no surface to draw");
   const TriMesh& surface = *drawing.surface;
@@ -181,21 +173,45 @@ std::string planSvg(const PlanDrawing& drawing) {
     throw InvalidInput(fmt::format("plan.svg: {} patch problems for {} patches", drawing.patchProblems.size(), patchCount));
   if (layout && layout->patchSides.size() != layout->patches.size())
     throw InvalidInput("plan.svg: the layout is not finished (finishLayout)");
+}
 
-  // Page: the map on the left (width_px wide, at most 1.4 times as tall), the legend on the right.
-  const BoundingBox box = boundingBox(surface);
-  const double margin = 30.0, titleHeight = drawing.title.empty() ? 0.0 : 34.0, legendWidth = 300.0;
-  const double dx = std::max(box.size().x(), 1e-9), dy = std::max(box.size().y(), 1e-9);
-  const double mapWidth = drawing.options.width_px;
+// The page's geometry.
+struct Page {
   Projection proj;
+  double margin = 0.0, titleHeight = 0.0, legendWidth = 0.0;
+  double dx = 0.0;                          // the plan's width [m]
+  double mapBottom = 0.0, mapRight = 0.0;   // [px]
+};
+
+// Page: the map on the left (width_px wide, at most 1.4 times as tall), the legend on the right.
+Page pageOf(const PlanDrawing& drawing) {
+  const BoundingBox box = boundingBox(*drawing.surface);
+  Page page;
+  page.margin = 30.0, page.titleHeight = drawing.title.empty() ? 0.0 : 34.0, page.legendWidth = 300.0;
+  page.dx = std::max(box.size().x(), 1e-9);
+  const double margin = page.margin, dx = page.dx, dy = std::max(box.size().y(), 1e-9);
+  const double mapWidth = drawing.options.width_px;
+  Projection& proj = page.proj;
   proj.scale = std::min((mapWidth - 2 * margin) / dx, (1.4 * mapWidth - 2 * margin) / dy);
   proj.xmin = box.min.x(), proj.ymax = box.max.y();
-  proj.left = margin, proj.top = margin + titleHeight;
-  const double mapBottom = proj.py(box.min.y()), mapRight = proj.px(box.max.x());
+  proj.left = margin, proj.top = margin + page.titleHeight;
+  page.mapBottom = proj.py(box.min.y()), page.mapRight = proj.px(box.max.x());
+  return page;
+}
 
-  std::string body;
-  // K colour map: faces binned into 17 colours, one path per colour (each face stroked in its own
-  // colour to hide the anti-aliasing seams between faces).
+// The K colour map and the scale its colours were capped at.
+struct CurvatureMap {
+  std::string svg;
+  double kScale = 1.0;       // |K| of the saturated colours
+  double kMin = 0.0, kMax = 0.0;  // over the face means
+};
+
+// K colour map: faces binned into 17 colours, one path per colour (each face stroked in its own
+// colour to hide the anti-aliasing seams between faces).
+CurvatureMap curvatureMap(const PlanDrawing& drawing, const Projection& proj) {
+  const TriMesh& surface = *drawing.surface;
+  const int nv = static_cast<int>(surface.n_vertices());
+  CurvatureMap out;
   const Eigen::VectorXd gaussian = drawing.gaussian.size() == nv ? drawing.gaussian : computeCurvature(surface).gaussian;
   std::vector<double> faceK(surface.n_faces());
   for (auto fh : surface.faces()) {
@@ -207,8 +223,9 @@ std::string planSvg(const PlanDrawing& drawing) {
   const size_t rank = std::min(magnitudes.size() - 1,
                                static_cast<size_t>(std::floor(drawing.options.curvature_percentile / 100.0 * (magnitudes.size() - 1))));
   std::nth_element(magnitudes.begin(), magnitudes.begin() + rank, magnitudes.end());
-  const double kScale = std::max(magnitudes[rank], 1e-9);
+  const double kScale = out.kScale = std::max(magnitudes[rank], 1e-9);
   const auto [kMinIt, kMaxIt] = std::minmax_element(faceK.begin(), faceK.end());
+  out.kMin = *kMinIt, out.kMax = *kMaxIt;
   std::vector<std::string> bins(2 * kHalfBins + 1);
   for (auto fh : surface.faces()) {
     const int bin = static_cast<int>(std::lround(std::clamp(faceK[fh.idx()] / kScale, -1.0, 1.0) * kHalfBins)) + kHalfBins;
@@ -217,6 +234,7 @@ std::string planSvg(const PlanDrawing& drawing) {
     for (int k = 0; k < 3; ++k) d.append(k == 0 ? "M" : "L").append(point(proj, toEigen(surface.point(TriMesh::VertexHandle(fv[k])))));
     d += "Z";
   }
+  std::string& body = out.svg;
   body += "<g id=\"curvature-map\">\n";
   for (int b = 0; b < static_cast<int>(bins.size()); ++b)
     if (!bins[b].empty()) {
@@ -224,51 +242,62 @@ std::string planSvg(const PlanDrawing& drawing) {
       body += fmt::format("<path fill=\"{0}\" stroke=\"{0}\" stroke-width=\"0.6\" stroke-linejoin=\"round\" d=\"{1}\"/>\n", colour, bins[b]);
     }
   body += "</g>\n";
+  return out;
+}
 
-  // Cut-offs: grey under a hatch (group opacity, so overlapping face strokes do not show).
-  if (drawing.coverage != nullptr) {
-    const TriMesh& lm = layout->mesh.mesh;
-    for (size_t c = 0; c < drawing.coverage->cutOffs.size(); ++c) {
-      const CutOff& cut = drawing.coverage->cutOffs[c];
-      std::string d;
-      for (int f : cut.faces) {
-        if (f < 0 || f >= static_cast<int>(lm.n_faces()))
-          throw InvalidInput(fmt::format("plan.svg: cut-off {} lists face {} of a layout mesh with {} faces", c, f, lm.n_faces()));
-        const auto fv = faceVertices(lm, f);
-        for (int k = 0; k < 3; ++k) d.append(k == 0 ? "M" : "L").append(point(proj, toEigen(lm.point(TriMesh::VertexHandle(fv[k])))));
-        d += "Z";
-      }
-      body += fmt::format("<g id=\"cutoff-{}\" class=\"cutoff\"><g opacity=\"0.45\"><path fill=\"#808080\" stroke=\"#808080\" "
-                          "stroke-width=\"0.6\" d=\"{}\"/></g><path fill=\"url(#hatch-cutoff)\" d=\"{}\"/></g>\n",
-                          c, d, d);
-      // Label at the deepest face (most face steps from the cut-off's border; the one nearest the
-      // centroid among those): the centroid of a ring lies outside it.
-      std::vector<int> depth(lm.n_faces(), -2);  // -2 not in the cut-off, -1 not reached yet
-      for (int f : cut.faces) depth[f] = -1;
-      std::vector<int> queue;
-      for (int f : cut.faces) {
-        int neighbours = 0;
-        for (auto g : lm.ff_range(TriMesh::FaceHandle(f))) neighbours += depth[g.idx()] != -2;
-        if (neighbours < 3 && depth[f] == -1) depth[f] = 0, queue.push_back(f);
-      }
-      for (size_t i = 0; i < queue.size(); ++i)
-        for (auto g : lm.ff_range(TriMesh::FaceHandle(queue[i])))
-          if (depth[g.idx()] == -1) depth[g.idx()] = depth[queue[i]] + 1, queue.push_back(g.idx());
-      Eigen::Vector3d at = cut.centroid;
-      int bestDepth = -1;
-      double best = std::numeric_limits<double>::infinity();
-      for (int f : cut.faces) {
-        const auto fv = faceVertices(lm, f);
-        Eigen::Vector3d c = Eigen::Vector3d::Zero();
-        for (int k = 0; k < 3; ++k) c += toEigen(lm.point(TriMesh::VertexHandle(fv[k]))) / 3.0;
-        const double dist = (c - cut.centroid).head<2>().norm();
-        if (depth[f] > bestDepth || (depth[f] == bestDepth && dist < best)) bestDepth = depth[f], best = dist, at = c;
-      }
-      body += label(proj.px(at.x()), proj.py(at.y()) + 4, fmt::format("cut-off {:.3g} m²", cut.areaM2), 11, " fill=\"#333\"");
-    }
+// Label at the deepest face (most face steps from the cut-off's border; the one nearest the
+// centroid among those): the centroid of a ring lies outside it.
+Eigen::Vector3d cutOffLabelPoint(const TriMesh& lm, const CutOff& cut) {
+  std::vector<int> depth(lm.n_faces(), -2);  // -2 not in the cut-off, -1 not reached yet
+  for (int f : cut.faces) depth[f] = -1;
+  std::vector<int> queue;
+  for (int f : cut.faces) {
+    int neighbours = 0;
+    for (auto g : lm.ff_range(TriMesh::FaceHandle(f))) neighbours += depth[g.idx()] != -2;
+    if (neighbours < 3 && depth[f] == -1) depth[f] = 0, queue.push_back(f);
   }
+  for (size_t i = 0; i < queue.size(); ++i)
+    for (auto g : lm.ff_range(TriMesh::FaceHandle(queue[i])))
+      if (depth[g.idx()] == -1) depth[g.idx()] = depth[queue[i]] + 1, queue.push_back(g.idx());
+  Eigen::Vector3d at = cut.centroid;
+  int bestDepth = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (int f : cut.faces) {
+    const auto fv = faceVertices(lm, f);
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) c += toEigen(lm.point(TriMesh::VertexHandle(fv[k]))) / 3.0;
+    const double dist = (c - cut.centroid).head<2>().norm();
+    if (depth[f] > bestDepth || (depth[f] == bestDepth && dist < best)) bestDepth = depth[f], best = dist, at = c;
+  }
+  return at;
+}
 
-  // Design outline and holes (the loop with the largest plan area is the outline).
+// Cut-offs: grey under a hatch (group opacity, so overlapping face strokes do not show).
+std::string cutOffsSvg(const PlanDrawing& drawing, const Projection& proj) {
+  std::string body;
+  const TriMesh& lm = drawing.layout->mesh.mesh;
+  for (size_t c = 0; c < drawing.coverage->cutOffs.size(); ++c) {
+    const CutOff& cut = drawing.coverage->cutOffs[c];
+    std::string d;
+    for (int f : cut.faces) {
+      if (f < 0 || f >= static_cast<int>(lm.n_faces()))
+        throw InvalidInput(fmt::format("plan.svg: cut-off {} lists face {} of a layout mesh with {} faces", c, f, lm.n_faces()));
+      const auto fv = faceVertices(lm, f);
+      for (int k = 0; k < 3; ++k) d.append(k == 0 ? "M" : "L").append(point(proj, toEigen(lm.point(TriMesh::VertexHandle(fv[k])))));
+      d += "Z";
+    }
+    body += fmt::format("<g id=\"cutoff-{}\" class=\"cutoff\"><g opacity=\"0.45\"><path fill=\"#808080\" stroke=\"#808080\" "
+                        "stroke-width=\"0.6\" d=\"{}\"/></g><path fill=\"url(#hatch-cutoff)\" d=\"{}\"/></g>\n",
+                        c, d, d);
+    const Eigen::Vector3d at = cutOffLabelPoint(lm, cut);
+    body += label(proj.px(at.x()), proj.py(at.y()) + 4, fmt::format("cut-off {:.3g} m²", cut.areaM2), 11, " fill=\"#333\"");
+  }
+  return body;
+}
+
+// Design outline and holes (the loop with the largest plan area is the outline).
+std::string outlineSvg(const TriMesh& surface, const Projection& proj) {
+  std::string body;
   auto loops = boundaryLoops(surface);
   size_t outer = 0;
   for (size_t i = 0; i < loops.size(); ++i)
@@ -276,10 +305,16 @@ std::string planSvg(const PlanDrawing& drawing) {
   for (size_t i = 0; i < loops.size(); ++i)
     body += fmt::format("<polygon id=\"{}\" fill=\"none\" stroke=\"#1a1a1a\" stroke-width=\"2.5\" stroke-linejoin=\"round\" points=\"{}\"/>\n",
                         i == outer ? std::string("outline") : fmt::format("hole-{}", i < outer ? i : i - 1), pointList(proj, loops[i]));
+  return body;
+}
 
-  // Patch outlines with their ids; infeasible ones hatched, labelled with the index of their reason.
-  std::vector<std::string> reasons;  // distinct problems, in order of first appearance
-  std::string labels;
+// Patch outlines with their ids; infeasible ones hatched, labelled with the index of their reason.
+// The outlines go to `body`, the ids to `labels`, the distinct problems, in order of first
+// appearance, to `reasons`.
+void patchOutlinesSvg(const PlanDrawing& drawing, const Projection& proj, std::string& body, std::string& labels,
+                      std::vector<std::string>& reasons) {
+  const PatchLayout* layout = drawing.layout;
+  const int patchCount = layout ? static_cast<int>(layout->patches.size()) : 0;
   for (int p = 0; p < patchCount; ++p) {
     const std::string problem = drawing.patchProblems.empty() ? "" : drawing.patchProblems[p];
     int reason = -1;
@@ -296,9 +331,12 @@ std::string planSvg(const PlanDrawing& drawing) {
     labels += label(proj.px(c.x()), proj.py(c.y()) + 6, reason >= 0 ? fmt::format("{} [{}]", p, reason + 1) : std::to_string(p), 17,
                     fmt::format(" id=\"patch-label-{}\" font-weight=\"bold\"", p));
   }
+}
 
-  // Injectivity circles, then the p_max markers and their labels on top of everything.
-  std::vector<std::string> notes;
+// Injectivity circles, then the p_max markers and their labels on top of everything. The circles
+// go to `body` (a note for each that encloses the whole surface to `notes`), the markers to `labels`.
+void circlesAndPeaksSvg(const PlanDrawing& drawing, const Page& page, std::string& body, std::string& labels, std::vector<std::string>& notes) {
+  const Projection& proj = page.proj;
   for (size_t i = 0; i < drawing.circles.size(); ++i) {
     const InjectivityCircle& circle = drawing.circles[i];
     body += fmt::format("<g id=\"circle-{}\" class=\"circle\" fill=\"none\" stroke=\"#7b1fa2\" stroke-width=\"2.5\" "
@@ -325,15 +363,20 @@ std::string planSvg(const PlanDrawing& drawing) {
                           i, x, y, x - 4, y, x, y - 4);
     // Beside the marker, on the side where it stays inside the map (width estimated at 0.6 em a character).
     const std::string text = fmt::format("p{}  {}", i, markers[i].second);
-    const bool left = x + 10 + 0.6 * 12 * static_cast<double>(text.size()) > mapRight;
+    const bool left = x + 10 + 0.6 * 12 * static_cast<double>(text.size()) > page.mapRight;
     const double ty = y - 8 < proj.top + 12 ? y + 20 : y - 8;
     labels += label(left ? x - 10 : x + 10, ty, text, 12, " fill=\"#4a0072\"", left ? "end" : "start");
   }
-  body += labels;
+}
 
-  // Scale bar (a round length near a fifth of the plan's width) and north arrow, under the map.
-  const double barM = roundLength(0.2 * dx), barPx = barM * proj.scale;
-  const double barY = mapBottom + 24, barX = margin;
+// The scale bar's top edge [px].
+double scaleBarY(const Page& page) { return page.mapBottom + 24; }
+
+// Scale bar (a round length near a fifth of the plan's width) and north arrow, under the map.
+std::string scaleBarSvg(const Page& page) {
+  const Projection& proj = page.proj;
+  const double barM = roundLength(0.2 * page.dx), barPx = barM * proj.scale;
+  const double barY = scaleBarY(page), barX = page.margin;
   std::string scaleBar = fmt::format(
       "<g id=\"scale\"><rect id=\"scale-bar\" x=\"{:.3f}\" y=\"{:.1f}\" width=\"{:.3f}\" height=\"8\" fill=\"#fff\" stroke=\"#000\" "
       "stroke-width=\"1.2\"/><rect x=\"{:.3f}\" y=\"{:.1f}\" width=\"{:.3f}\" height=\"8\" fill=\"#000\"/>\n",
@@ -341,15 +384,19 @@ std::string planSvg(const PlanDrawing& drawing) {
   scaleBar += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\">0</text>", barX - 3, barY + 24);
   scaleBar += fmt::format("<text id=\"scale-label\" x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\" text-anchor=\"middle\">{} m</text></g>\n",
                           barX + barPx, barY + 24, fmt::format("{:g}", barM));
-  const double northX = mapRight - 10, northY = barY - 6;
+  const double northX = page.mapRight - 10, northY = barY - 6;
   scaleBar += fmt::format("<g id=\"north\"><path d=\"M{0:.1f},{1:.1f}l-7,18l7,-5l7,5z\" fill=\"#000\"/>"
                           "<text x=\"{0:.1f}\" y=\"{2:.1f}\" font-size=\"13\" font-weight=\"bold\" text-anchor=\"middle\">N</text></g>\n",
                           northX, northY, northY + 32);
-  body += scaleBar;
+  return scaleBar;
+}
 
-  // Legend.
+// Legend.
+Legend legendOf(const PlanDrawing& drawing, const Page& page, const CurvatureMap& kMap, const std::vector<std::string>& reasons,
+                const std::vector<std::string>& notes) {
+  const double kScale = kMap.kScale;
   Legend legend;
-  legend.x = mapRight + margin, legend.y = proj.top;
+  legend.x = page.mapRight + page.margin, legend.y = page.proj.top;
   legend.text("Gaussian curvature K [1/m²]", 13, " font-weight=\"bold\"");
   const double barWidth = 240.0, cell = barWidth / (2 * kHalfBins + 1);
   for (int b = 0; b <= 2 * kHalfBins; ++b)
@@ -364,7 +411,7 @@ std::string planSvg(const PlanDrawing& drawing) {
                               legend.x + frac * barWidth, legend.y + 11, anchor, escapeXml(text));
   legend.y += 16;
   legend.text(fmt::format("colours capped at the {:g}th percentile of |K|", drawing.options.curvature_percentile), 10);
-  legend.text(fmt::format("K from {} to {} /m² (face means)", number(*kMinIt), number(*kMaxIt)), 10);
+  legend.text(fmt::format("K from {} to {} /m² (face means)", number(kMap.kMin), number(kMap.kMax)), 10);
   legend.gap(10);
   legend.item("<path d=\"M0,7h30\" stroke=\"#1a1a1a\" stroke-width=\"2.5\"/>", "design outline and holes");
   legend.item("<rect x=\"1\" y=\"1\" width=\"28\" height=\"12\" fill=\"none\" stroke=\"#000\" stroke-width=\"2\"/>", "patch outline and id");
@@ -392,14 +439,19 @@ std::string planSvg(const PlanDrawing& drawing) {
   }
   legend.gap(8);
   legend.text("plan view: xy projection, z up, metres", 10, " fill=\"#555\"");
+  return legend;
+}
 
-  const double width = legend.x + legendWidth;
-  const double height = std::max(barY + 40, legend.y + margin);
+// The SVG document round the map's body and the legend.
+std::string documentSvg(const PlanDrawing& drawing, const Page& page, const std::string& body, const Legend& legend) {
+  const double margin = page.margin;
+  const double width = legend.x + page.legendWidth;
+  const double height = std::max(scaleBarY(page) + 40, legend.y + margin);
   std::string svg = fmt::format(
       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0:.0f}\" height=\"{1:.0f}\" viewBox=\"0 0 {0:.0f} {1:.0f}\" "
       "data-px-per-m=\"{2:.9g}\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\">\n",
-      width, height, proj.scale);
+      width, height, page.proj.scale);
   svg += "<defs>\n"
          "<pattern id=\"hatch-cutoff\" width=\"8\" height=\"8\" patternUnits=\"userSpaceOnUse\" patternTransform=\"rotate(45)\">"
          "<line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"8\" stroke=\"#444\" stroke-width=\"1.1\"/></pattern>\n"
@@ -414,6 +466,34 @@ std::string planSvg(const PlanDrawing& drawing) {
   svg += body + legend.svg + "</svg>\n";
   return svg;
 }
+
+}  // namespace
+
+void PlanSvgOptions::validate() const {
+  if (!(width_px >= 200.0 && width_px <= 20000.0))
+    throw InvalidInput(fmt::format("PlanSvgOptions.width_px must be in [200, 20000], got {}", width_px));
+  if (!(curvature_percentile > 0.0 && curvature_percentile <= 100.0))
+    throw InvalidInput(fmt::format("PlanSvgOptions.curvature_percentile must be in (0, 100], got {}", curvature_percentile));
+}
+
+std::string planSvg(const PlanDrawing& drawing) {
+  validateDrawing(drawing);
+  const Page page = pageOf(drawing);
+  const CurvatureMap kMap = curvatureMap(drawing, page.proj);
+  std::string body = kMap.svg;
+  if (drawing.coverage != nullptr) body += cutOffsSvg(drawing, page.proj);
+  body += outlineSvg(*drawing.surface, page.proj);
+  std::vector<std::string> reasons;  // distinct problems, in order of first appearance
+  std::string labels;
+  patchOutlinesSvg(drawing, page.proj, body, labels, reasons);
+  std::vector<std::string> notes;
+  circlesAndPeaksSvg(drawing, page, body, labels, notes);
+  body += labels;
+  body += scaleBarSvg(page);
+  const Legend legend = legendOf(drawing, page, kMap, reasons, notes);
+  return documentSvg(drawing, page, body, legend);
+}
+
 
 void writePlanSvg(const std::filesystem::path& path, const PlanDrawing& drawing) { writeFileAtomically(path, planSvg(drawing)); }
 

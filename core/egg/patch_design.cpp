@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace egg {
@@ -106,6 +107,55 @@ DesignFailure slopeFailure(const PatchDesign& d, const std::string& message) {
   return f;
 }
 
+// Section 2.3.3: cotangent-Laplacian smoothing of the patch (boundary held, it is the traced
+// quad) repeated until eta <= eta_max. Only when the check fails and smoothing is asked for
+// (in multi-patch mode splitting replaces it, Section 3.1); the maps are then redone on the
+// smoothed patch. `solver` becomes the smoothed patch's; returns the failure when smoothing
+// leaves a corner's inner angle at pi or above.
+std::optional<DesignFailure> smoothUntilUnique(PatchDesign& d, std::shared_ptr<const geodesic::DistanceSolver>& solver,
+                                               const EggOptions& options) {
+  std::vector<Eigen::Vector3d> original;
+  for (auto vh : d.patch.mesh.vertices()) original.push_back(toEigen(d.patch.mesh.point(vh)));
+  SmoothingOptions smoothing;
+  smoothing.fix_boundary = true;
+  int rounds = 0;
+  UniquenessReport report = d.uniqueness;
+  // The same boundary samples as the check on the maps, so eta before and after smoothing
+  // compare like with like.
+  UniquenessOptions after = options.uniqueness;
+  after.sideSamples = options.maps.resolution;
+  while (!report.passed && rounds < options.uniqueness.maxSmoothingRounds) {
+    d.patch.mesh = smoothMeshStep(d.patch.mesh, smoothing).mesh;
+    ++rounds;
+    solver = std::make_shared<geodesic::DistanceSolver>(d.patch.mesh);
+    report = checkUniqueness(d.patch, *solver, after);
+    d.propagations += report.propagations;
+  }
+  report.smoothingRounds = rounds;
+  for (auto vh : d.patch.mesh.vertices())
+    report.smoothingDisplacementM =
+        std::max(report.smoothingDisplacementM, (toEigen(d.patch.mesh.point(vh)) - original[vh.idx()]).norm());
+  report.seconds += d.uniqueness.seconds;
+  report.checksBeforeSmoothing = d.uniqueness.checks;
+  report.etaBeforeSmoothing = std::max(d.uniqueness.etaU, d.uniqueness.etaV);
+  const UniquenessReport before = d.uniqueness;
+  d.uniqueness = report;
+  refreshPatchGeometry(d.patch);
+  d.solver = solver;
+  // Smoothing moves the interior next to the corners, so criterion (iv) is checked again. The
+  // split this asks for is the one the eta failure before smoothing asked for.
+  for (int k = 0; k < 4; ++k) {
+    if (d.patch.innerAngles[k] >= M_PI - options.patch.angleMargin) {
+      DesignFailure f = etaFailure(d.patch, before.checks, before.etaU, before.etaV, options.uniqueness.etaMax);
+      f.kind = DesignFailureKind::Convexity;
+      f.message = "after smoothing, the inner angle at corner " + std::to_string(k) + " is " +
+                  std::to_string(d.patch.innerAngles[k]) + " rad, not below pi (criterion iv)";
+      return f;
+    }
+  }
+  return std::nullopt;
+}
+
 PatchDesign failed(PatchDesign d, DesignFailure failure, std::chrono::steady_clock::time_point started) {
   d.feasible = false;
   d.failure = std::move(failure);
@@ -191,49 +241,9 @@ PatchDesign designPatch(Patch patch, const EggOptions& options) {
   d.uniqueness = checkUniqueness(d.patch, d.peaks, etaFields, d.maps, options.uniqueness);
   d.uniqueness.propagations = etaFields.propagations();
   if (!d.uniqueness.passed && options.uniqueness.smooth) {
-    // Section 2.3.3: cotangent-Laplacian smoothing of the patch (boundary held, it is the traced
-    // quad) repeated until eta <= eta_max. Only when the check fails and smoothing is asked for
-    // (in multi-patch mode splitting replaces it, Section 3.1); the maps are then redone on the
-    // smoothed patch.
-    std::vector<Eigen::Vector3d> original;
-    for (auto vh : d.patch.mesh.vertices()) original.push_back(toEigen(d.patch.mesh.point(vh)));
-    SmoothingOptions smoothing;
-    smoothing.fix_boundary = true;
-    int rounds = 0;
-    UniquenessReport report = d.uniqueness;
-    // The same boundary samples as the check on the maps, so eta before and after smoothing
-    // compare like with like.
-    UniquenessOptions after = options.uniqueness;
-    after.sideSamples = options.maps.resolution;
-    while (!report.passed && rounds < options.uniqueness.maxSmoothingRounds) {
-      d.patch.mesh = smoothMeshStep(d.patch.mesh, smoothing).mesh;
-      ++rounds;
-      solver = std::make_shared<geodesic::DistanceSolver>(d.patch.mesh);
-      report = checkUniqueness(d.patch, *solver, after);
-      d.propagations += report.propagations;
-    }
-    report.smoothingRounds = rounds;
-    for (auto vh : d.patch.mesh.vertices())
-      report.smoothingDisplacementM =
-          std::max(report.smoothingDisplacementM, (toEigen(d.patch.mesh.point(vh)) - original[vh.idx()]).norm());
-    report.seconds += d.uniqueness.seconds;
-    report.checksBeforeSmoothing = d.uniqueness.checks;
-    report.etaBeforeSmoothing = std::max(d.uniqueness.etaU, d.uniqueness.etaV);
-    const UniquenessReport before = d.uniqueness;
-    d.uniqueness = report;
-    refreshPatchGeometry(d.patch);
-    d.solver = solver;
-    // Smoothing moves the interior next to the corners, so criterion (iv) is checked again. The
-    // split this asks for is the one the eta failure before smoothing asked for.
-    for (int k = 0; k < 4; ++k) {
-      if (d.patch.innerAngles[k] >= M_PI - options.patch.angleMargin) {
-        DesignFailure f = etaFailure(d.patch, before.checks, before.etaU, before.etaV, options.uniqueness.etaMax);
-        f.kind = DesignFailureKind::Convexity;
-        f.message = "after smoothing, the inner angle at corner " + std::to_string(k) + " is " +
-                    std::to_string(d.patch.innerAngles[k]) + " rad, not below pi (criterion iv)";
-        d.seconds.uniqueness += since(t);
-        return failed(std::move(d), std::move(f), started);
-      }
+    if (std::optional<DesignFailure> f = smoothUntilUnique(d, solver, options)) {
+      d.seconds.uniqueness += since(t);
+      return failed(std::move(d), std::move(*f), started);
     }
   }
   d.solver = solver;

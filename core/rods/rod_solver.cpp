@@ -167,6 +167,123 @@ class Observation {
   double seconds_ = 0.0;
 };
 
+// LLT rather than LDLT: cheaper, and it stops at the first non-positive pivot, which is all the
+// shift search needs to know. Supernodal (supernodal_cholesky.hpp). Two factorisations: see the
+// shift search in newtonDirection.
+using Factorisation = SupernodalCholesky;
+
+// The checks before a Newton step at energy `energy` and free gradient g: true (result's status
+// and reason set) when the iteration stops here.
+bool stopsBeforeStep(double energy, const Eigen::VectorXd& g, const SolverOptions& options, SolverResult& result) {
+  if (!std::isfinite(energy) || !g.allFinite()) {
+    result.status = SolverStatus::NonFinite;
+    result.reason = "energy or gradient not finite at the current state";
+    return true;
+  }
+  if (g.squaredNorm() == 0.0) {
+    // Already in equilibrium (an unloaded straight rod, say): no descent direction exists, and
+    // the shift search below would report that as a stall.
+    result.status = SolverStatus::Converged;
+    result.converged = true;
+    result.decrement = 0.0;
+    result.reason = "gradient exactly zero: already in equilibrium";
+    return true;
+  }
+  if (result.iterations >= options.maxIterations) {
+    result.status = SolverStatus::IterationLimit;
+    result.reason = format("no convergence in %d iterations (decrement %.3g J)", result.iterations, result.decrement);
+    return true;
+  }
+  if (result.seconds > options.timeLimit_s) {
+    result.status = SolverStatus::TimeLimit;
+    result.reason = format("wall-clock hang guard of %.3g s reached after %d iterations (the run is stopped, not "
+                           "converged: raise the guard or find the hang)", options.timeLimit_s, result.iterations);
+    return true;
+  }
+  return false;
+}
+
+// Newton direction; shift the diagonal (relative to itself) until the factor is positive
+// definite. Starting from a tenth of the last shift keeps the number of refactorisations low
+// (measured: ~2 per iteration when starting from zero every time, ~1.3 this way); the shift
+// returns to zero near a stable equilibrium, where Newton converges quadratically.
+// The trial shifts 0 or s/10, then x10 each, are tried in order; the first that gives a
+// positive definite factor and a descent direction is taken. With two threads, two
+// consecutive trials are factorised at once: the same choice as one after the other, in less
+// wall time when the first fails (benchmark grid, 784 vertices: 1.76 factorisations per
+// iteration one after the other, 1.2 pairs). An unshifted first trial is tried alone: it
+// fails rarely (3 of 19 times there), and a second factorisation would be wasted work.
+// `shift`: the last shift in, the one taken out; false when no trial gave a direction.
+bool newtonDirection(FreeHessian& hessian, Factorisation (&solvers)[2], const Eigen::VectorXd& g, const Eigen::VectorXd& scale, int threads,
+                     double& shift, SolverResult& result, Eigen::VectorXd& direction) {
+  bool factored = false;
+  std::vector<double> trials;
+  for (double trial = shift * 0.1 < 1e-10 ? 0.0 : shift * 0.1; trials.size() < 30;
+       trial = trial == 0.0 ? 1e-8 : trial * 10.0) {
+    trials.push_back(trial);
+  }
+  auto attempt = [&](int which, double trial, Eigen::VectorXd& out) {
+    Factorisation& solver = solvers[which];
+    if (!solver.factorize(hessian.shifted(trial, scale, which))) return false;
+    out = -solver.solve(g);
+    return out.allFinite() && out.dot(g) < 0.0;
+  };
+  for (size_t k = 0; k < trials.size() && !factored;) {
+    const bool pair = threads >= 2 && trials[k] > 0.0 && k + 1 < trials.size();
+    if (pair) {
+      Eigen::VectorXd second;
+      // std::async, not a bare thread: an exception on either side propagates (get() rethrows
+      // the worker's; if the first attempt throws, the future's destructor waits for the worker).
+      result.factorisations += 2;
+      auto other = std::async(std::launch::async, [&]() { return attempt(1, trials[k + 1], second); });
+      const bool firstOk = attempt(0, trials[k], direction);
+      const bool secondOk = other.get();
+      if (firstOk) {
+        factored = true;
+        shift = trials[k];
+      } else if (secondOk) {
+        factored = true;
+        shift = trials[k + 1];
+        direction = std::move(second);
+      }
+      k += 2;
+    } else {
+      ++result.factorisations;
+      if (attempt(0, trials[k], direction)) {
+        factored = true;
+        shift = trials[k];
+      }
+      k += 1;
+    }
+  }
+  return factored;
+}
+
+// Backtracking line search (Armijo), first limited so sliding bolts stay inside their
+// barriers (fraction to the boundary). `direction` is over the free dofs (freeIndex); true with
+// the accepted state in `candidate`, false when no step decreased the energy enough.
+bool lineSearch(RodModel& model, const Eigen::VectorXd& z, const Eigen::VectorXd& direction, const std::vector<int>& freeIndex, double energy,
+                SolverResult& result, Eigen::VectorXd& candidate) {
+  const int n = static_cast<int>(freeIndex.size());
+  Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    if (freeIndex[i] >= 0) step[i] = direction[freeIndex[i]];
+  }
+  double alpha = model.maxStep(z, step);
+  bool accepted = false;
+  for (int tries = 0; tries < 60 && alpha > 1e-14; ++tries) {
+    candidate = z + alpha * step;
+    ++result.energyEvaluations;
+    const double e = model.energy(candidate);
+    if (std::isfinite(e) && e <= energy - 1e-4 * alpha * result.decrement) {
+      accepted = true;
+      break;
+    }
+    alpha *= 0.5;
+  }
+  return accepted;
+}
+
 // Newton with line search on the model as it is (one stage of the continuation).
 SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_point start, int iterationsBefore,
                     Observation& observe) {
@@ -183,11 +300,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
   Eigen::VectorXd gradient(n);
   std::vector<Eigen::Triplet<double>> triplets;
   FreeHessian hessian(freeIndex, freeCount);
-  // LLT rather than LDLT: cheaper, and it stops at the first non-positive pivot, which is all the
-  // shift search needs to know. Supernodal (supernodal_cholesky.hpp). Two factorisations: see the
-  // shift search below.
-  using Factorisation = SupernodalCholesky;
-  Factorisation solvers[2];
+  Factorisation solvers[2];  // two: see newtonDirection
   double shift = 0.0;  // relative diagonal shift that last made the Hessian positive definite
 
   for (int iteration = 0;; ++iteration) {
@@ -202,31 +315,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     result.gradientNorm = g.norm();
     result.iterations = iterationsBefore + iteration;
     result.seconds = elapsed();
-    if (!std::isfinite(energy) || !g.allFinite()) {
-      result.status = SolverStatus::NonFinite;
-      result.reason = "energy or gradient not finite at the current state";
-      return result;
-    }
-    if (g.squaredNorm() == 0.0) {
-      // Already in equilibrium (an unloaded straight rod, say): no descent direction exists, and
-      // the shift search below would report that as a stall.
-      result.status = SolverStatus::Converged;
-      result.converged = true;
-      result.decrement = 0.0;
-      result.reason = "gradient exactly zero: already in equilibrium";
-      return result;
-    }
-    if (result.iterations >= options.maxIterations) {
-      result.status = SolverStatus::IterationLimit;
-      result.reason = format("no convergence in %d iterations (decrement %.3g J)", result.iterations, result.decrement);
-      return result;
-    }
-    if (result.seconds > options.timeLimit_s) {
-      result.status = SolverStatus::TimeLimit;
-      result.reason = format("wall-clock hang guard of %.3g s reached after %d iterations (the run is stopped, not "
-                             "converged: raise the guard or find the hang)", options.timeLimit_s, result.iterations);
-      return result;
-    }
+    if (stopsBeforeStep(energy, g, options, result)) return result;
 
     const bool newPattern = hessian.assemble(triplets);
     const Eigen::VectorXd diagonal = hessian.diagonal();
@@ -238,57 +327,8 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       if (options.threads >= 2) solvers[1] = solvers[0];
     }
 
-    // Newton direction; shift the diagonal (relative to itself) until the factor is positive
-    // definite. Starting from a tenth of the last shift keeps the number of refactorisations low
-    // (measured: ~2 per iteration when starting from zero every time, ~1.3 this way); the shift
-    // returns to zero near a stable equilibrium, where Newton converges quadratically.
-    // The trial shifts 0 or s/10, then x10 each, are tried in order; the first that gives a
-    // positive definite factor and a descent direction is taken. With two threads, two
-    // consecutive trials are factorised at once: the same choice as one after the other, in less
-    // wall time when the first fails (benchmark grid, 784 vertices: 1.76 factorisations per
-    // iteration one after the other, 1.2 pairs). An unshifted first trial is tried alone: it
-    // fails rarely (3 of 19 times there), and a second factorisation would be wasted work.
     Eigen::VectorXd direction;
-    bool factored = false;
-    std::vector<double> trials;
-    for (double trial = shift * 0.1 < 1e-10 ? 0.0 : shift * 0.1; trials.size() < 30;
-         trial = trial == 0.0 ? 1e-8 : trial * 10.0) {
-      trials.push_back(trial);
-    }
-    auto attempt = [&](int which, double trial, Eigen::VectorXd& out) {
-      Factorisation& solver = solvers[which];
-      if (!solver.factorize(hessian.shifted(trial, scale, which))) return false;
-      out = -solver.solve(g);
-      return out.allFinite() && out.dot(g) < 0.0;
-    };
-    for (size_t k = 0; k < trials.size() && !factored;) {
-      const bool pair = options.threads >= 2 && trials[k] > 0.0 && k + 1 < trials.size();
-      if (pair) {
-        Eigen::VectorXd second;
-        // std::async, not a bare thread: an exception on either side propagates (get() rethrows
-        // the worker's; if the first attempt throws, the future's destructor waits for the worker).
-        result.factorisations += 2;
-        auto other = std::async(std::launch::async, [&]() { return attempt(1, trials[k + 1], second); });
-        const bool firstOk = attempt(0, trials[k], direction);
-        const bool secondOk = other.get();
-        if (firstOk) {
-          factored = true;
-          shift = trials[k];
-        } else if (secondOk) {
-          factored = true;
-          shift = trials[k + 1];
-          direction = std::move(second);
-        }
-        k += 2;
-      } else {
-        ++result.factorisations;
-        if (attempt(0, trials[k], direction)) {
-          factored = true;
-          shift = trials[k];
-        }
-        k += 1;
-      }
-    }
+    const bool factored = newtonDirection(hessian, solvers, g, scale, options.threads, shift, result, direction);
     if (!factored) {
       result.status = SolverStatus::Stalled;
       result.reason = "Hessian could not be made positive definite";
@@ -307,25 +347,8 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       return result;
     }
 
-    // Backtracking line search (Armijo), first limited so sliding bolts stay inside their
-    // barriers (fraction to the boundary).
-    Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
-    for (int i = 0; i < n; ++i) {
-      if (freeIndex[i] >= 0) step[i] = direction[freeIndex[i]];
-    }
-    double alpha = model.maxStep(z, step);
-    bool accepted = false;
     Eigen::VectorXd candidate;
-    for (int tries = 0; tries < 60 && alpha > 1e-14; ++tries) {
-      candidate = z + alpha * step;
-      ++result.energyEvaluations;
-      const double e = model.energy(candidate);
-      if (std::isfinite(e) && e <= energy - 1e-4 * alpha * result.decrement) {
-        accepted = true;
-        break;
-      }
-      alpha *= 0.5;
-    }
+    const bool accepted = lineSearch(model, z, direction, freeIndex, energy, result, candidate);
     if (!accepted) {
       // At round-off level the Armijo test cannot see a decrease any more: that is convergence.
       const bool roundOff = result.decrement <= 1e-6 * energyScale;

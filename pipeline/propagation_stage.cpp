@@ -55,10 +55,10 @@ json propagationSection(const propagation::LayoutPropagation& members, const pro
   for (const auto& g : tracing.gaps)
     gaps.push_back({{"boundary", g.boundary},
                     {"patches", {g.patchA, g.patchB}},
-                    {"piece", g.piece},
+                    {"piece", toString(g.piece)},
                     {"members", {g.membersA, g.membersB}},
                     {"max_gap_m", g.maxGapM},
-                    {"kind", g.kind}});
+                    {"kind", toString(g.kind)}});
   return {{"ran", true},
           {"c0_max_gap_m", tracing.c0MaxGapM},
           {"evenness_before", members.evennessBefore},

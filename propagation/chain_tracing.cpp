@@ -278,9 +278,9 @@ SideGap gapOf(const SharedPiece& piece, const LayoutPropagation& propagation, co
   gap.piece = piece.kind;
   gap.membersA = piece.membersA, gap.membersB = piece.membersB;
   if (!patches[piece.patchA].grid || !patches[piece.patchB].grid) {
-    gap.kind = "not traced";
-  } else if (piece.kind == "ring cut") {
-    gap.kind = "ring cut";
+    gap.kind = GapKind::NotTraced;
+  } else if (piece.kind == PieceKind::RingCut) {
+    gap.kind = GapKind::RingCut;
     // Members need not close round a ring (3.7.1): the chain's member j on both sides of the cut.
     const PropagatedChain& chain = propagation.chains[piece.chain];
     const int n = static_cast<int>(chain.nodes.size()), m = static_cast<int>(chain.solution.start.size());
@@ -291,7 +291,7 @@ SideGap gapOf(const SharedPiece& piece, const LayoutPropagation& propagation, co
       if (a && b) gap.maxGapM = std::max(gap.maxGapM, (*a - *b).norm());
     }
   } else if (piece.membersA != piece.membersB) {
-    gap.kind = "count mismatch";
+    gap.kind = GapKind::CountMismatch;
   } else {
     bool closed = false, bothStart = false, headOn = false;
     for (int j : piece.joints) {
@@ -302,12 +302,24 @@ SideGap gapOf(const SharedPiece& piece, const LayoutPropagation& propagation, co
       bothStart = bothStart || (!joint.a.atEnd && !joint.b.atEnd);
       headOn = headOn || (joint.a.atEnd && joint.b.atEnd);
     }
-    gap.kind = headOn ? "head-on" : bothStart ? "both start" : "closed";
+    gap.kind = headOn ? GapKind::HeadOn : bothStart ? GapKind::BothStart : GapKind::Closed;
   }
   return gap;
 }
 
 }  // namespace
+
+const char* toString(GapKind kind) {
+  switch (kind) {
+    case GapKind::Closed: return "closed";
+    case GapKind::BothStart: return "both start";
+    case GapKind::HeadOn: return "head-on";
+    case GapKind::RingCut: return "ring cut";
+    case GapKind::CountMismatch: return "count mismatch";
+    case GapKind::NotTraced: return "not traced";
+  }
+  return "unknown";
+}
 
 LayoutTracing traceLayout(const std::vector<const PatchDesign*>& designs, const LayoutPropagation& propagation) {
   const auto started = Clock::now();
@@ -347,7 +359,7 @@ LayoutTracing traceLayout(const std::vector<const PatchDesign*>& designs, const 
   // C0 on every piece, measured on the traced member ends.
   for (const auto& piece : propagation.pieces) {
     SideGap gap = gapOf(piece, propagation, out.patches);
-    if (gap.kind != "ring cut") out.c0MaxGapM = std::max(out.c0MaxGapM, gap.maxGapM);
+    if (gap.kind != GapKind::RingCut) out.c0MaxGapM = std::max(out.c0MaxGapM, gap.maxGapM);
     out.gaps.push_back(gap);
   }
   out.seconds = std::chrono::duration<double>(Clock::now() - started).count();

@@ -31,17 +31,21 @@ struct TracedPatch {
   double membersSeconds = 0.0, tracingSeconds = 0.0;
 };
 
+// How the member ends of two patches meet on a shared piece: one's ends start the other's
+// members (closed), both start there, they met by iterating a start (head-on); or not at all: the
+// cut of a ring, a different member count on each side, a patch not traced.
+enum class GapKind { Closed, BothStart, HeadOn, RingCut, CountMismatch, NotTraced };
+// "closed", "both start", "head-on", "ring cut", "count mismatch", "not traced".
+const char* toString(GapKind kind);
+
 // The traced member ends of the two patches on one shared boundary piece.
 struct SideGap {
   int boundary = -1;       // PatchGraph boundary id
   int patchA = -1, patchB = -1;
-  std::string piece;       // SharedPiece::kind: "whole side", "t_junction", "ring cut"
+  PieceKind piece = PieceKind::WholeSide;
   int membersA = 0, membersB = 0;  // members each side puts on the piece
   double maxGapM = 0.0;    // largest distance between corresponding member ends
-  // "closed" (one's ends start the other's), "both start", "head-on" (ends met by iterating a
-  // start), "held" (head-on or T-junction end whose start could not move), "ring cut",
-  // "count mismatch", "not traced"
-  std::string kind;
+  GapKind kind = GapKind::Closed;
 };
 
 struct LayoutTracing {

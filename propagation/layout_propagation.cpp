@@ -25,6 +25,15 @@ void PropagationOptions::validate() const {
   chain.validate();
 }
 
+const char* toString(PieceKind kind) {
+  switch (kind) {
+    case PieceKind::WholeSide: return "whole side";
+    case PieceKind::TJunction: return "t_junction";
+    case PieceKind::RingCut: return "ring cut";
+  }
+  return "unknown";
+}
+
 std::pair<bool, bool> familySideRole(Family family, int side) {
   const PatchSide patchSide(side);
   if (patchSide.endingFamily() == family) return {patchSide.isMembersEnd(), patchSide.againstCorners()};
@@ -365,7 +374,9 @@ void addJoints(const patching::PatchGraph& graph, LayoutPropagation& out) {
     piece.patchA = ua.patch, piece.patchB = ub.patch;
     const PropagatedChain &chainA = out.chains[ca], &chainB = out.chains[cb];
     const bool ringCut = ca == cb && chainA.ring && boundary.id == chainA.boundaries.front();
-    piece.kind = ringCut ? "ring cut" : boundary.kind == patching::BoundaryKind::Shared ? "whole side" : "t_junction";
+    piece.kind = ringCut ? PieceKind::RingCut
+                 : boundary.kind == patching::BoundaryKind::Shared ? PieceKind::WholeSide
+                                                                   : PieceKind::TJunction;
     if (ringCut) piece.chain = ca;
     const auto onA = membersOnPiece(sideParameters(chainA, na, ua.side), ka.family, ua);
     const auto onB = membersOnPiece(sideParameters(chainB, nb, ub.side), kb.family, ub);

@@ -82,11 +82,17 @@ struct MemberJoint {
   double offset = 0.0, scale = 1.0;
 };
 
+// What a shared boundary piece is: a whole side of both patches, part of a side (a T-junction), or
+// the cut that closes a ring of patches (its members need not close, 3.7.1).
+enum class PieceKind { WholeSide, TJunction, RingCut };
+// "whole side", "t_junction", "ring cut" (report.json's spelling).
+const char* toString(PieceKind kind);
+
 // A boundary piece two propagated families share, with the members each puts on it.
 struct SharedPiece {
   int boundary = -1;
   int patchA = -1, patchB = -1;
-  std::string kind;  // "whole side", "t_junction" or "ring cut" (members need not close, 3.7.1)
+  PieceKind kind = PieceKind::WholeSide;
   int membersA = 0, membersB = 0;
   int chain = -1;           // a ring cut: the ring's index into LayoutPropagation::chains
   std::vector<int> joints;  // indices into LayoutPropagation::joints

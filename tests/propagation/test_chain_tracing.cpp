@@ -65,8 +65,8 @@ TEST(ChainTracing, SlowTwoByTwoBumpMembersMeetOnEverySharedSide) {
   EXPECT_EQ(traced.heldRuns, 0);
   ASSERT_EQ(traced.gaps.size(), 4u);
   for (const auto& gap : traced.gaps) {
-    EXPECT_EQ(gap.kind, "closed");
-    EXPECT_EQ(gap.piece, "whole side");
+    EXPECT_EQ(gap.kind, GapKind::Closed);
+    EXPECT_EQ(gap.piece, PieceKind::WholeSide);
     EXPECT_EQ(gap.membersA, 4);
     EXPECT_EQ(gap.membersB, 4);
     EXPECT_LE(gap.maxGapM, 1e-6) << gap.patchA << "-" << gap.patchB;
@@ -90,7 +90,7 @@ TEST(ChainTracing, SlowHeadOnMembersAreClosedByMovingAFreeStart) {
   const LayoutPropagation members = propagateLayout(d->graph, d->sides, fourMembers());
   const LayoutTracing traced = traceLayout(d->designs, members);
   ASSERT_EQ(traced.gaps.size(), 1u);
-  EXPECT_EQ(traced.gaps[0].kind, "head-on");
+  EXPECT_EQ(traced.gaps[0].kind, GapKind::HeadOn);
   EXPECT_LE(traced.gaps[0].maxGapM, 1e-6);
   EXPECT_EQ(traced.c0MaxGapM, traced.gaps[0].maxGapM);
   EXPECT_EQ(traced.matchedRuns, 2);  // the two inner u members of patch 1
@@ -119,8 +119,8 @@ TEST(ChainTracing, SlowTJunctionMemberEndsAtTheSmallerPatchesCorner) {
   int tPieces = 0;
   for (const auto& gap : traced.gaps) {
     EXPECT_EQ(gap.membersA, gap.membersB) << gap.boundary;
-    EXPECT_LE(gap.maxGapM, 1e-6) << gap.boundary << " " << gap.kind;
-    tPieces += gap.piece == "t_junction";
+    EXPECT_LE(gap.maxGapM, 1e-6) << gap.boundary << " " << toString(gap.kind);
+    tPieces += gap.piece == PieceKind::TJunction;
   }
   EXPECT_EQ(tPieces, 2);
   EXPECT_LE(traced.c0MaxGapM, 1e-6);

@@ -130,7 +130,7 @@ TEST(LayoutPropagation, ARingOfFourPatchesNeedNotClose) {
   // shared sides of the u ring pair the inner members: 3 each.
   int cuts = 0;
   for (const auto& piece : result.pieces) {
-    if (piece.kind == "ring cut") {
+    if (piece.kind == PieceKind::RingCut) {
       ++cuts;
       EXPECT_EQ(piece.boundary, chain.boundaries.front());
       EXPECT_EQ(piece.chain, c);
@@ -186,7 +186,7 @@ TEST(LayoutPropagation, ATJunctionMemberIsKept) {
   // Both pieces: the same members on both sides, paired by joints of equal points.
   int pieces = 0;
   for (const auto& piece : result.pieces) {
-    if (piece.kind != "t_junction") continue;
+    if (piece.kind != PieceKind::TJunction) continue;
     ++pieces;
     EXPECT_EQ(piece.membersA, 3);
     EXPECT_EQ(piece.membersB, 3);
@@ -225,7 +225,7 @@ TEST(LayoutPropagation, SubChainsAreSolvedBreadthFirstOverTheTJunctions) {
   int tPieces = 0;
   for (const auto& piece : result.pieces) {
     EXPECT_EQ(piece.membersA, piece.membersB) << piece.boundary;
-    tPieces += piece.kind == "t_junction";
+    tPieces += piece.kind == PieceKind::TJunction;
   }
   EXPECT_EQ(tPieces, 2);
   EXPECT_LE(result.evennessAfter, result.evennessBefore);

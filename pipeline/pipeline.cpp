@@ -74,9 +74,11 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   RunState state(scene, out.staging(), progress);
   for (const Stage& stage : stageTable()) {
     const char* name = toString(stage.id);
-    if (const std::string why = skipReason(stage, state); !why.empty()) {
+    // A stage without work of its own was recorded by the one that did it (patching: design).
+    const std::string why = stage.run ? skipReason(stage, state) : std::string();
+    if (!why.empty()) {
       state.report.stageSkipped(name, why);
-    } else if (stage.run) {  // else recorded by the stage that does its work
+    } else if (stage.run) {
       state.progress(name, stage.progress);
       const Stopwatch watch;
       stage.run(state);

@@ -349,12 +349,12 @@ std::vector<SceneSection> makeSections() {
          [](const Scene& s) {
            json corners = json::array();
            for (const auto& c : s.patching.corners) corners.push_back(pointJson(c));
-           return some(corners);
+           return corners.empty() ? std::nullopt : some(corners);
          }},
         {"patches", "array of four corners",
          "a given layout: per patch four corners [x, y, z], or four indices into corners (a corner may lie on another "
          "patch's side: a T-junction)",
-         readPatches, [](const Scene& s) { return some(s.patching.quads); }}},
+         readPatches, [](const Scene& s) { return s.patching.quads.empty() ? std::nullopt : some(s.patching.quads); }}},
        checkPatching});
 
   sections.push_back(

@@ -11,11 +11,11 @@ rods::Rod rodOf(const GridMember& member, const GridToRodsOptions& options, int 
   rods::Rod rod;
   // The lamella is cut straight at its planar length; criterion (i) makes that equal to the
   // geodesic's length on the surface up to the grid's tolerance.
-  rod.length_m = member.planarLength;
+  rod.lengthM = member.planarLength;
   rod.section = options.section;
-  rod.material.youngs_modulus_pa = options.material.youngs_modulus_pa;
-  rod.material.shear_modulus_pa = options.material.shear_modulus_pa;
-  rod.material.density_kg_m3 = options.material.density_kg_m3;
+  rod.material.youngsModulusPa = options.material.youngsModulusPa;
+  rod.material.shearModulusPa = options.material.shearModulusPa;
+  rod.material.densityKgM3 = options.material.densityKgM3;
   rod.layer = layer;
   rod.guess = member.spatial;  // the traced geodesic: the deployment's initial guess
   rod.guessNormals = member.normals;
@@ -27,8 +27,8 @@ rods::Rod rodOf(const GridMember& member, const GridToRodsOptions& options, int 
 rods::Notch notchOf(double notchLength, bool enabled) {
   rods::Notch notch;
   if (!enabled) return notch;
-  if (notchLength > 0.0) notch.after_m = notchLength;
-  if (notchLength < 0.0) notch.before_m = -notchLength;
+  if (notchLength > 0.0) notch.afterM = notchLength;
+  if (notchLength < 0.0) notch.beforeM = -notchLength;
   return notch;
 }
 
@@ -38,7 +38,7 @@ double clampToRod(double s, double length) { return std::clamp(s, 0.0, length); 
 rods::Anchor anchorAt(const GridConnection& c, const rods::RodNetwork& network) {
   rods::Anchor anchor;
   anchor.rod = c.memberU;
-  anchor.s_m = clampToRod(c.sBarU, network.rods[anchor.rod].length_m);
+  anchor.sM = clampToRod(c.sBarU, network.rods[anchor.rod].lengthM);
   anchor.position = c.spatial;
   anchor.normal = c.normal.normalized();
   return anchor;
@@ -56,17 +56,17 @@ rods::RodNetwork rodNetworkFromGrid(const EggGrid& grid, const GridToRodsOptions
     rods::Connection bolt;
     bolt.rodA = c.memberU;
     bolt.rodB = uCount + c.memberV;
-    const double lengthA = network.rods[bolt.rodA].length_m;
-    const double lengthB = network.rods[bolt.rodB].length_m;
-    bolt.sA_m = clampToRod(c.sBarU, lengthA);
-    bolt.sB_m = clampToRod(c.sBarV, lengthB);
+    const double lengthA = network.rods[bolt.rodA].lengthM;
+    const double lengthB = network.rods[bolt.rodB].lengthM;
+    bolt.sAM = clampToRod(c.sBarU, lengthA);
+    bolt.sBM = clampToRod(c.sBarV, lengthB);
     // A notch cannot run past the lamella's end.
     bolt.notchA = notchOf(c.notchU, options.notches && !c.onBoundary);
     bolt.notchB = notchOf(c.notchV, options.notches && !c.onBoundary);
-    bolt.notchA.after_m = std::min(bolt.notchA.after_m, lengthA - bolt.sA_m);
-    bolt.notchA.before_m = std::min(bolt.notchA.before_m, bolt.sA_m);
-    bolt.notchB.after_m = std::min(bolt.notchB.after_m, lengthB - bolt.sB_m);
-    bolt.notchB.before_m = std::min(bolt.notchB.before_m, bolt.sB_m);
+    bolt.notchA.afterM = std::min(bolt.notchA.afterM, lengthA - bolt.sAM);
+    bolt.notchA.beforeM = std::min(bolt.notchA.beforeM, bolt.sAM);
+    bolt.notchB.afterM = std::min(bolt.notchB.afterM, lengthB - bolt.sBM);
+    bolt.notchB.beforeM = std::min(bolt.notchB.beforeM, bolt.sBM);
     network.connections.push_back(bolt);
   }
   for (const auto& a : grid.anchors) {

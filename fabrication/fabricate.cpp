@@ -41,9 +41,9 @@ std::vector<Drawing> emptySheets(int count, std::array<double, 2> sizeMm, const 
 void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult& r) {
   const auto& o = r.options;
   // Section 3.5.2: t < w/5, or the lamella no longer behaves like a geodesic ribbon.
-  if (o.lamella_thickness_mm >= o.lamella_width_mm / 5.0) {
-    r.warnings.push_back("lamella thickness " + formatted("%.3g", o.lamella_thickness_mm) + " mm is not below w/5 = " +
-                         formatted("%.3g", o.lamella_width_mm / 5.0) + " mm (Section 3.5.2)");
+  if (o.lamellaThicknessMm >= o.lamellaWidthMm / 5.0) {
+    r.warnings.push_back("lamella thickness " + formatted("%.3g", o.lamellaThicknessMm) + " mm is not below w/5 = " +
+                         formatted("%.3g", o.lamellaWidthMm / 5.0) + " mm (Section 3.5.2)");
   }
   // Section 3.5.2: for desktop and medium models a width of about 2 % of the size works well.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -56,9 +56,9 @@ void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult&
   }
   if ((hi - lo).allFinite()) {
     const double sizeMm = (hi - lo).maxCoeff() * 1000.0;
-    const double ratio = o.lamella_width_mm / sizeMm;
+    const double ratio = o.lamellaWidthMm / sizeMm;
     if (sizeMm <= 10000.0 && (ratio < 0.01 || ratio > 0.04)) {
-      r.warnings.push_back("lamella width " + formatted("%.3g", o.lamella_width_mm) + " mm is " +
+      r.warnings.push_back("lamella width " + formatted("%.3g", o.lamellaWidthMm) + " mm is " +
                            formatted("%.2f", 100.0 * ratio) + " % of the model size " + formatted("%.0f", sizeMm) +
                            " mm; about 2 % works well for desktop and medium models (Section 3.5.2)");
     }
@@ -75,14 +75,14 @@ void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult&
   for (const auto& plan : r.lamellae) {
     for (size_t k = 0; k < plan.spliceClearancesMm.size(); ++k) {
       if (k < plan.spliceIsScarf.size() && plan.spliceIsScarf[k]) continue;  // glued, checked in checkScarfs
-      if (plan.spliceClearancesMm[k] >= o.spliceClearanceMm() - 1e-9) continue;
+      if (plan.spliceClearancesMm[k] >= o.effectiveSpliceClearanceMm() - 1e-9) continue;
       ++tight;
       if (!tightest || plan.spliceClearancesMm[k] < tightest->spliceClearancesMm[tightestIndex]) tightest = &plan, tightestIndex = k;
     }
   }
   if (tightest) {
     r.warnings.push_back(std::to_string(tight) + " splices lie closer than fabrication.splice_clearance_mm = " +
-                         formatted("%.0f", o.spliceClearanceMm()) +
+                         formatted("%.0f", o.effectiveSpliceClearanceMm()) +
                          " mm to a hole or slot (no clearer position within a stock length); the tightest, " + tightest->id +
                          " S" + std::to_string(tightestIndex + 1) + " at " + formatted("%.0f", tightest->splicesMm[tightestIndex]) +
                          " mm, has " + formatted("%.0f", tightest->spliceClearancesMm[tightestIndex]) +
@@ -91,7 +91,7 @@ void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult&
   }
   if (r.maxScarfRatio > 1.0) {
     r.warnings.push_back("scarf joint " + r.maxScarfJoint + " is stressed to " + formatted("%.2f", r.maxScarfRatio) +
-                         " of its strength (fabrication.scarf_efficiency " + formatted("%.2f", o.scarf_efficiency) +
+                         " of its strength (fabrication.scarf_efficiency " + formatted("%.2f", o.scarfEfficiency) +
                          " of " + r.material.name + ", net of the holes and slots it crosses): move it or use plates");
   }
   if (r.counts.droppedBoundary > 0) {
@@ -106,7 +106,7 @@ void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult&
 void checkScarfs(const LamellaPlan& plan, FabricationResult& r, LamellaStress& s) {
   const auto& o = r.options;
   s.scarfRatios.assign(plan.splicesMm.size(), 0.0);
-  const double d = o.bolt_diameter_mm;
+  const double d = o.boltDiameterMm;
   for (size_t k = 0; k < plan.splicesMm.size(); ++k) {
     if (k >= plan.spliceIsScarf.size() || !plan.spliceIsScarf[k]) continue;
     const double from = plan.segments[k + 1].startMm, to = plan.segments[k].endMm;
@@ -115,10 +115,10 @@ void checkScarfs(const LamellaPlan& plan, FabricationResult& r, LamellaStress& s
     const double net = crossed ? (plan.widthMm - d) / plan.widthMm : 1.0;
     // Strip coordinates (mm from the strip's start) to arc length along the member (m).
     const double a = (from - plan.overhangMm) / 1000.0, b = (to - plan.overhangMm) / 1000.0;
-    const double sigma = maxStressOver(s.bendingArc_m, s.bending_pa, a, b);
-    const double tau = maxStressOver(s.torsionArc_m, s.torsion_pa, a, b);
-    const double ratio = std::max(sigma / r.material.bending_strength_pa, tau / r.material.shear_strength_pa) /
-                         (o.scarf_efficiency * net);
+    const double sigma = maxStressOver(s.bendingArcM, s.bendingPa, a, b);
+    const double tau = maxStressOver(s.torsionArcM, s.torsionPa, a, b);
+    const double ratio = std::max(sigma / r.material.bendingStrengthPa, tau / r.material.shearStrengthPa) /
+                         (o.scarfEfficiency * net);
     s.scarfRatios[k] = ratio;
     s.stressRatio = std::max(s.stressRatio, ratio);
     ++r.scarfJoints;
@@ -140,7 +140,7 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
   for (const auto& plan : r.lamellae) {
     if (!plan.unspliceable.empty()) r.unspliceable.push_back(plan.unspliceable);
   }
-  const double t = options.lamella_thickness_mm / 1000.0, w = options.lamella_width_mm / 1000.0;
+  const double t = options.lamellaThicknessMm / 1000.0, w = options.lamellaWidthMm / 1000.0;
 
   // One bolt per connection, one for each group of connections merged on a shared lamella.
   for (const auto& patch : patches) r.connections += static_cast<int>(patch.grid->connections.size());
@@ -160,24 +160,24 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
       // Bending from the simulated shape; the twist of the surface frame from the trace.
       const auto& centreline = (*patch->deployedCentrelines)[isU ? plan.index : patch->grid->u.size() + plan.index];
       const LamellaStress deployed = lamellaStress(centreline, nullptr, t, r.material, curvatureWindowM(centreline, w));
-      s.maxCurvature_1_m = deployed.maxCurvature_1_m;
-      s.maxBendingStress_pa = deployed.maxBendingStress_pa;
-      s.bendingArc_m = deployed.bendingArc_m;
-      s.bending_pa = deployed.bending_pa;
-      s.stressRatio = std::max(s.maxBendingStress_pa / r.material.bending_strength_pa,
-                               s.maxTorsionStress_pa / r.material.shear_strength_pa);
+      s.maxCurvaturePerM = deployed.maxCurvaturePerM;
+      s.maxBendingStressPa = deployed.maxBendingStressPa;
+      s.bendingArcM = deployed.bendingArcM;
+      s.bendingPa = deployed.bendingPa;
+      s.stressRatio = std::max(s.maxBendingStressPa / r.material.bendingStrengthPa,
+                               s.maxTorsionStressPa / r.material.shearStrengthPa);
       s.fromSimulation = true;
     }
     checkScarfs(plan, r, s);
     r.stress.push_back(s);
     if (s.stressRatio > r.maxStressRatio) r.maxStressRatio = s.stressRatio, r.maxStressLamella = plan.id;
-    r.maxBendingStressPa = std::max(r.maxBendingStressPa, s.maxBendingStress_pa);
-    r.maxTorsionStressPa = std::max(r.maxTorsionStressPa, s.maxTorsionStress_pa);
+    r.maxBendingStressPa = std::max(r.maxBendingStressPa, s.maxBendingStressPa);
+    r.maxTorsionStressPa = std::max(r.maxTorsionStressPa, s.maxTorsionStressPa);
     r.totalLengthM += plan.lengthMm / 1000.0;
     r.splices += static_cast<int>(plan.splicesMm.size());
   }
   r.volumeM3 = r.totalLengthM * w * t;
-  r.massKg = r.volumeM3 * r.material.density_kg_m3;
+  r.massKg = r.volumeM3 * r.material.densityKgM3;
 
   // Lamella sheets: every segment is a part.
   std::vector<NestPart> parts;
@@ -189,8 +189,8 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
       partOf.emplace_back(static_cast<int>(i), static_cast<int>(k));
     }
   }
-  r.lamellaNesting = nestParts(parts, options.sheet_mm, options.kerf_mm, options.margin_mm, "fabrication.sheet_mm");
-  r.sheets = emptySheets(r.lamellaNesting.sheets, options.sheet_mm, "lamella sheet");
+  r.lamellaNesting = nestParts(parts, options.sheetMm, options.kerfMm, options.marginMm, "fabrication.sheet_mm");
+  r.sheets = emptySheets(r.lamellaNesting.sheets, options.sheetMm, "lamella sheet");
   for (size_t p = 0; p < parts.size(); ++p) {
     const auto& at = r.lamellaNesting.placements[p];
     drawLamellaSegment(r.lamellae[partOf[p].first], partOf[p].second, {at.xMm, at.yMm}, options, r.sheets[at.sheet]);
@@ -206,9 +206,9 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
     stickerParts.push_back({"sticker " + s.id, s.lengthMm, s.widthMm});
     r.stickerAreaM2 += s.areaM2();
   }
-  r.stickerNesting = nestParts(stickerParts, options.stickerSheetMm(), options.kerf_mm, options.margin_mm,
+  r.stickerNesting = nestParts(stickerParts, options.effectiveStickerSheetMm(), options.kerfMm, options.marginMm,
                                "fabrication.sticker_sheet_mm");
-  r.stickerSheets = emptySheets(r.stickerNesting.sheets, options.stickerSheetMm(), "PTFE sticker sheet");
+  r.stickerSheets = emptySheets(r.stickerNesting.sheets, options.effectiveStickerSheetMm(), "PTFE sticker sheet");
   for (size_t p = 0; p < r.stickers.size(); ++p) {
     const auto& at = r.stickerNesting.placements[p];
     drawSticker(r.stickers[p], {at.xMm, at.yMm}, options, r.stickerSheets[at.sheet]);
@@ -229,16 +229,16 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches, const 
     // b is h - (b/2)(|nx| + |ny|)/nz. The default block narrows to the widest whose top stays 5 mm
     // above the ground, but not below the lamella's width (it must still carry the lamella); a block
     // that then still reaches below the ground is reported with its depth.
-    double block = options.supportBlockMm();
+    double block = options.effectiveSupportBlockMm();
     const double slope = (std::abs(s.normal.x()) + std::abs(s.normal.y())) / s.normal.z();
     const double widest = slope > 0.0 ? 2.0 * (s.heightM * 1000.0 - 5.0) / slope : block;
-    if (!options.support_block_mm && widest < block) {
-      block = std::min(block, std::max(std::floor(widest), options.lamella_width_mm));
+    if (!options.supportBlockMm && widest < block) {
+      block = std::min(block, std::max(std::floor(widest), options.lamellaWidthMm));
       ++narrowed;
     }
     s.blockMm = block;
     double drop = 0.0;
-    r.supportSolids.push_back(supportSolid(s, block, options.bolt_diameter_mm, 3.0 * options.bolt_diameter_mm, &drop));
+    r.supportSolids.push_back(supportSolid(s, block, options.boltDiameterMm, 3.0 * options.boltDiameterMm, &drop));
     s.belowGroundMm = drop;
     if (drop > 0.0) sunk.push_back(s.id);
   }
@@ -279,24 +279,24 @@ std::string bomCsv(const FabricationResult& r) {
   const auto& o = r.options;
   s << "item,id,count,length_mm,width_mm,thickness_mm,area_m2,volume_m3,mass_kg,note\n";
   char line[512];
-  const double rho = r.material.density_kg_m3;
+  const double rho = r.material.densityKgM3;
   for (size_t i = 0; i < r.lamellae.size(); ++i) {
     const auto& p = r.lamellae[i];
     int holes = 0, slots = 0;
     for (const auto& f : p.features) (f.kind == FeatureKind::Slot ? slots : holes)++;
-    const double volume = p.lengthMm * p.widthMm * o.lamella_thickness_mm * 1e-9;
+    const double volume = p.lengthMm * p.widthMm * o.lamellaThicknessMm * 1e-9;
     const char* notCut = p.unspliceable.empty() ? "" : "; NOT CUT: no splice position (report.json unspliceable_lamellae)";
     std::snprintf(line, sizeof line, "lamella,%s,1,%.2f,%.2f,%.2f,,%.6g,%.6g,%s; %d holes; %d slots; %zu segments; stress ratio %.3f%s\n",
-                  p.id.c_str(), p.lengthMm, p.widthMm, o.lamella_thickness_mm, volume, volume * rho,
+                  p.id.c_str(), p.lengthMm, p.widthMm, o.lamellaThicknessMm, volume, volume * rho,
                   r.material.name.c_str(), holes, slots, p.segments.size(), r.stress[i].stressRatio, notCut);
     s << line;
   }
   s << "splice,," << r.splices - r.scarfJoints << ",,,,,,,butt joints with bolted plates clear of holes by "
-    << formatted("%.1f", o.spliceClearanceMm()) << " mm where a stock length allows, else at least "
-    << formatted("%.1f", o.minSpliceClearanceMm()) << " mm\n";
+    << formatted("%.1f", o.effectiveSpliceClearanceMm()) << " mm where a stock length allows, else at least "
+    << formatted("%.1f", o.effectiveMinSpliceClearanceMm()) << " mm\n";
   if (r.scarfJoints > 0) {
     s << "scarf,," << r.scarfJoints << "," << formatted("%.1f", o.scarfLengthMm()) << ",,,,,,glued scarf joints 1:"
-      << formatted("%g", o.scarf_slope) << " to 1:" << formatted("%g", 2.0 * o.scarf_slope)
+      << formatted("%g", o.scarfSlope) << " to 1:" << formatted("%g", 2.0 * o.scarfSlope)
       << " (length_mm: the shortest), glued before assembly; the pieces overlap on the slope\n";
   }
   // Every splice: where along its lamella (length_mm = the cut's distance from the strip's start).
@@ -307,25 +307,25 @@ std::string bomCsv(const FabricationResult& r) {
         std::snprintf(line, sizeof line,
                       "splice_joint,%s S%zu,1,%.2f,%.2f,%.2f,,,,scarf between pieces %zu and %zu; feather ends %.1f mm from "
                       "the nearest hole or slot; %.0f mm long; stress ratio %.3f\n",
-                      p.id.c_str(), k + 1, p.splicesMm[k], p.widthMm, o.lamella_thickness_mm, k + 1, k + 2,
+                      p.id.c_str(), k + 1, p.splicesMm[k], p.widthMm, o.lamellaThicknessMm, k + 1, k + 2,
                       p.spliceClearancesMm[k], p.segments[k].endMm - p.segments[k + 1].startMm, r.stress[i].scarfRatios[k]);
       } else {
         std::snprintf(line, sizeof line, "splice_joint,%s S%zu,1,%.2f,%.2f,%.2f,,,,between pieces %zu and %zu; %.1f mm free each side\n",
-                      p.id.c_str(), k + 1, p.splicesMm[k], p.widthMm, o.lamella_thickness_mm, k + 1, k + 2,
+                      p.id.c_str(), k + 1, p.splicesMm[k], p.widthMm, o.lamellaThicknessMm, k + 1, k + 2,
                       p.spliceClearancesMm[k]);
       }
       s << line;
     }
   }
-  s << "bolt,," << r.connections << ",,,,,,,diameter " << formatted("%.1f", o.bolt_diameter_mm) << " mm; one per connection (merged on shared lamellas)\n";
+  s << "bolt,," << r.connections << ",,,,,,,diameter " << formatted("%.1f", o.boltDiameterMm) << " mm; one per connection (merged on shared lamellas)\n";
   s << "washer,," << 2 * r.connections << ",,,,,,,two per bolt\n";
   s << "brass_sleeve,," << r.counts.slots << ",,,,,,,one per slot (Section 3.5.1)\n";
   s << "ptfe_sticker,," << r.stickers.size() << ",,,," << formatted("%.6g", r.stickerAreaM2)
     << ",,,two per notched connection (Section 3.5.1)\n";
   s << "support,," << r.supports.size() << ",,,,,,,see supports/supports.csv\n";
-  s << "lamella_sheet,," << r.lamellaNesting.sheets << "," << o.sheet_mm[0] << "," << o.sheet_mm[1] << ","
-    << o.lamella_thickness_mm << ",,,,yield " << formatted("%.3f", r.lamellaNesting.yield) << "\n";
-  s << "sticker_sheet,," << r.stickerNesting.sheets << "," << o.stickerSheetMm()[0] << "," << o.stickerSheetMm()[1]
+  s << "lamella_sheet,," << r.lamellaNesting.sheets << "," << o.sheetMm[0] << "," << o.sheetMm[1] << ","
+    << o.lamellaThicknessMm << ",,,,yield " << formatted("%.3f", r.lamellaNesting.yield) << "\n";
+  s << "sticker_sheet,," << r.stickerNesting.sheets << "," << o.effectiveStickerSheetMm()[0] << "," << o.effectiveStickerSheetMm()[1]
     << ",,,,,PTFE foil\n";
   s << "total_lamellae,," << r.lamellae.size() << "," << formatted("%.2f", r.totalLengthM * 1000.0) << ",,,,"
     << formatted("%.6g", r.volumeM3) << "," << formatted("%.6g", r.massKg) << ",self-weight "
@@ -402,8 +402,8 @@ nlohmann::json fabricationReport(const FabricationResult& r, const std::vector<s
   for (size_t i = 0; i < r.lamellae.size() && i < r.stress.size(); ++i) {
     stress.push_back({{"id", r.lamellae[i].id},
                       {"ratio", r.stress[i].stressRatio},
-                      {"bending_stress_pa", r.stress[i].maxBendingStress_pa},
-                      {"torsion_stress_pa", r.stress[i].maxTorsionStress_pa},
+                      {"bending_stress_pa", r.stress[i].maxBendingStressPa},
+                      {"torsion_stress_pa", r.stress[i].maxTorsionStressPa},
                       {"from_simulation", r.stress[i].fromSimulation}});
     double scarf = 0.0;
     for (size_t k = 0; k < r.stress[i].scarfRatios.size(); ++k) {

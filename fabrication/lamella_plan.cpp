@@ -50,8 +50,8 @@ LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member, 
   plan.index = member.index;
   plan.boundary = member.boundary;
   plan.id = lamellaId(patch.patchId, member.family, member.index);
-  plan.widthMm = options.lamella_width_mm;
-  plan.overhangMm = options.endOverhangMm();
+  plan.widthMm = options.lamellaWidthMm;
+  plan.overhangMm = options.effectiveEndOverhangMm();
   plan.lengthMm = member.planarLength * 1000.0 + 2.0 * plan.overhangMm;
   const bool isU = member.family == Family::U;
   const int nu = static_cast<int>(grid.u.size()), nv = static_cast<int>(grid.v.size());
@@ -67,8 +67,8 @@ LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member, 
     f.xMm = plan.overhangMm + (isU ? c.sBarU : c.sBarV) * 1000.0;
     const double notchMm = (isU ? c.notchU : c.notchV) * 1000.0;
     if (member.boundary) {
-      f.droppedBoundaryNotch = std::abs(notchMm) >= options.min_notch_mm && notchMm != 0.0;
-    } else if (std::abs(notchMm) >= options.min_notch_mm && notchMm != 0.0) {
+      f.droppedBoundaryNotch = std::abs(notchMm) >= options.minNotchMm && notchMm != 0.0;
+    } else if (std::abs(notchMm) >= options.minNotchMm && notchMm != 0.0) {
       f.kind = FeatureKind::Slot;
       f.slideMm = notchMm;
     } else {
@@ -78,7 +78,7 @@ LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member, 
   }
   std::sort(plan.features.begin(), plan.features.end(),
             [](const LamellaFeature& a, const LamellaFeature& b) { return a.xMm < b.xMm; });
-  const double d = options.bolt_diameter_mm;
+  const double d = options.boltDiameterMm;
   for (const auto& f : plan.features) {
     if (f.minXMm(d) < -1e-9 || f.maxXMm(d) > plan.lengthMm + 1e-9) {
       std::ostringstream msg;
@@ -113,12 +113,12 @@ std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patch
   }
   mergeSharedBoundaries(plans, shared, 0.5);
   const double piece = longestPieceMm(options);
-  const std::string field = piece < options.stock_length_mm ? "fabrication.sheet_mm (the longest strip a sheet holds)"
+  const std::string field = piece < options.stockLengthMm ? "fabrication.sheet_mm (the longest strip a sheet holds)"
                                                              : "fabrication.stock_length_mm";
   for (auto& plan : plans) {
     try {
-      placeSplices(plan, piece, options.spliceClearanceMm(), options.bolt_diameter_mm, field, options.minSpliceClearanceMm(),
-                   options.splice_joint, options.scarfLengthMm());
+      placeSplices(plan, piece, options.effectiveSpliceClearanceMm(), options.boltDiameterMm, field, options.effectiveMinSpliceClearanceMm(),
+                   options.spliceJoint, options.scarfLengthMm());
     } catch (const InvalidInput& e) {
       // Slots that leave no room for any splice within a stock length (overlapping slots on the
       // Yas canopy's 45 m lamellas): no cut file can make it; the rest of the grid still can.
@@ -133,7 +133,7 @@ std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patch
 }
 
 double longestPieceMm(const FabricationOptions& options) {
-  return std::min(options.stock_length_mm, options.sheet_mm[0] - 2.0 * options.margin_mm);
+  return std::min(options.stockLengthMm, options.sheetMm[0] - 2.0 * options.marginMm);
 }
 
 namespace {

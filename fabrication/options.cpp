@@ -32,9 +32,9 @@ void requireNonNegative(const std::string& field, double value) {
 
 }  // namespace
 
-double FabricationOptions::labelHeightMm() const {
-  if (label_height_mm) return *label_height_mm;
-  return std::clamp(0.35 * lamella_width_mm, 1.0, 30.0);
+double FabricationOptions::effectiveLabelHeightMm() const {
+  if (labelHeightMm) return *labelHeightMm;
+  return std::clamp(0.35 * lamellaWidthMm, 1.0, 30.0);
 }
 
 const char* toString(SpliceJoint joint) {
@@ -47,55 +47,55 @@ const char* toString(SpliceJoint joint) {
 }
 
 void FabricationOptions::validate() const {
-  requirePositive("lamella.width_m", lamella_width_mm);
-  requirePositive("lamella.thickness_m", lamella_thickness_mm);
+  requirePositive("lamella.width_m", lamellaWidthMm);
+  requirePositive("lamella.thickness_m", lamellaThicknessMm);
   try {
     materialByName(material);
   } catch (const InvalidInput& e) {
     fail("lamella.material", e.what());
   }
-  requirePositive("fabrication.sheet_mm", sheet_mm[0]);
-  requirePositive("fabrication.sheet_mm", sheet_mm[1]);
-  requireNonNegative("fabrication.kerf_mm", kerf_mm);
-  requireNonNegative("fabrication.margin_mm", margin_mm);
-  if (2.0 * margin_mm >= std::min(sheet_mm[0], sheet_mm[1])) fail("fabrication.margin_mm", "leaves no room on the sheet");
-  requirePositive("fabrication.bolt_diameter_mm", bolt_diameter_mm);
-  if (bolt_diameter_mm >= lamella_width_mm) {
+  requirePositive("fabrication.sheet_mm", sheetMm[0]);
+  requirePositive("fabrication.sheet_mm", sheetMm[1]);
+  requireNonNegative("fabrication.kerf_mm", kerfMm);
+  requireNonNegative("fabrication.margin_mm", marginMm);
+  if (2.0 * marginMm >= std::min(sheetMm[0], sheetMm[1])) fail("fabrication.margin_mm", "leaves no room on the sheet");
+  requirePositive("fabrication.bolt_diameter_mm", boltDiameterMm);
+  if (boltDiameterMm >= lamellaWidthMm) {
     fail("fabrication.bolt_diameter_mm", "must be smaller than the lamella width (lamella.width_m)");
   }
-  requireNonNegative("fabrication.min_notch_mm", min_notch_mm);
-  requirePositive("fabrication.stock_length_mm", stock_length_mm);
-  if (end_overhang_mm) {
-    requireNonNegative("fabrication.end_overhang_mm", *end_overhang_mm);
-    if (*end_overhang_mm < bolt_diameter_mm / 2.0) {
+  requireNonNegative("fabrication.min_notch_mm", minNotchMm);
+  requirePositive("fabrication.stock_length_mm", stockLengthMm);
+  if (endOverhangMm) {
+    requireNonNegative("fabrication.end_overhang_mm", *endOverhangMm);
+    if (*endOverhangMm < boltDiameterMm / 2.0) {
       fail("fabrication.end_overhang_mm", "must be at least half the bolt diameter (the end holes would be open)");
     }
   }
-  if (splice_clearance_mm) requireNonNegative("fabrication.splice_clearance_mm", *splice_clearance_mm);
-  if (min_splice_clearance_mm) requireNonNegative("fabrication.min_splice_clearance_mm", *min_splice_clearance_mm);
-  if (!std::isfinite(scarf_slope) || scarf_slope < 4.0 || scarf_slope > 40.0) {
+  if (spliceClearanceMm) requireNonNegative("fabrication.splice_clearance_mm", *spliceClearanceMm);
+  if (minSpliceClearanceMm) requireNonNegative("fabrication.min_splice_clearance_mm", *minSpliceClearanceMm);
+  if (!std::isfinite(scarfSlope) || scarfSlope < 4.0 || scarfSlope > 40.0) {
     std::ostringstream msg;
-    msg << "must lie in [4, 40] (the run of the scarf per unit of thickness), got " << scarf_slope;
+    msg << "must lie in [4, 40] (the run of the scarf per unit of thickness), got " << scarfSlope;
     fail("fabrication.scarf_slope", msg.str());
   }
-  if (!std::isfinite(scarf_efficiency) || scarf_efficiency <= 0.0 || scarf_efficiency > 1.0) {
+  if (!std::isfinite(scarfEfficiency) || scarfEfficiency <= 0.0 || scarfEfficiency > 1.0) {
     std::ostringstream msg;
-    msg << "must lie in (0, 1], got " << scarf_efficiency;
+    msg << "must lie in (0, 1], got " << scarfEfficiency;
     fail("fabrication.scarf_efficiency", msg.str());
   }
-  if (label_height_mm) requirePositive("fabrication.label_height_mm", *label_height_mm);
-  requireNonNegative("fabrication.sticker_margin_mm", sticker_margin_mm);
-  if (sticker_sheet_mm) {
-    requirePositive("fabrication.sticker_sheet_mm", (*sticker_sheet_mm)[0]);
-    requirePositive("fabrication.sticker_sheet_mm", (*sticker_sheet_mm)[1]);
-    if (2.0 * margin_mm >= std::min((*sticker_sheet_mm)[0], (*sticker_sheet_mm)[1])) {
+  if (labelHeightMm) requirePositive("fabrication.label_height_mm", *labelHeightMm);
+  requireNonNegative("fabrication.sticker_margin_mm", stickerMarginMm);
+  if (stickerSheetMm) {
+    requirePositive("fabrication.sticker_sheet_mm", (*stickerSheetMm)[0]);
+    requirePositive("fabrication.sticker_sheet_mm", (*stickerSheetMm)[1]);
+    if (2.0 * marginMm >= std::min((*stickerSheetMm)[0], (*stickerSheetMm)[1])) {
       fail("fabrication.sticker_sheet_mm", "leaves no room inside the margin (fabrication.margin_mm)");
     }
   }
-  if (ground_height_m && !std::isfinite(*ground_height_m)) fail("fabrication.ground_height_m", "must be a finite number");
-  if (support_block_mm) {
-    requirePositive("fabrication.support_block_mm", *support_block_mm);
-    if (*support_block_mm <= 2.0 * bolt_diameter_mm) {
+  if (groundHeightM && !std::isfinite(*groundHeightM)) fail("fabrication.ground_height_m", "must be a finite number");
+  if (supportBlockMm) {
+    requirePositive("fabrication.support_block_mm", *supportBlockMm);
+    if (*supportBlockMm <= 2.0 * boltDiameterMm) {
       fail("fabrication.support_block_mm", "must exceed twice the bolt diameter (room for the bolt hole)");
     }
   }

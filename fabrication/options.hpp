@@ -27,28 +27,28 @@ struct FabricationPatch {
   std::array<bool, 4> freeSides{true, true, true, true};
 };
 
-// How pieces are joined into a lamella longer than a piece (FabricationOptions::splice_joint).
+// How pieces are joined into a lamella longer than a piece (FabricationOptions::spliceJoint).
 enum class SpliceJoint { Plate, Scarf, PlateOrScarf };
 // "plate", "scarf", "plate_or_scarf" (the scene's and bom.csv's spelling).
 const char* toString(SpliceJoint joint);
 
 struct FabricationOptions {
-  double lamella_width_mm = 250.0;          // w, across the strip (scene lamella.width_m)
-  double lamella_thickness_mm = 40.0;       // t, the weak axis the lamella bends about (lamella.thickness_m)
+  double lamellaWidthMm = 250.0;          // w, across the strip (scene lamella.width_m)
+  double lamellaThicknessMm = 40.0;       // t, the weak axis the lamella bends about (lamella.thickness_m)
   std::string material = "poplar_plywood";  // core/materials name (lamella.material)
-  std::array<double, 2> sheet_mm{2500.0, 1250.0};  // stock sheet or laser bed; strips run along the first side
-  double kerf_mm = 0.2;                     // width the cutter removes: gap between nested parts
-  double margin_mm = 10.0;                  // unused border around every sheet
-  double bolt_diameter_mm = 8.0;            // hole diameter and slot width
-  double min_notch_mm = 1.0;                // shorter notches are cut as plain holes (mesh noise, 2.4.5)
-  double stock_length_mm = 6000.0;          // longest piece a lamella can be cut from (and at most the sheet's first side); longer ones are spliced
-  std::optional<double> end_overhang_mm;    // strip beyond the end connections; default half the width
-  std::optional<double> splice_clearance_mm;  // no hole or slot this close to a splice; default the width
+  std::array<double, 2> sheetMm{2500.0, 1250.0};  // stock sheet or laser bed; strips run along the first side
+  double kerfMm = 0.2;                     // width the cutter removes: gap between nested parts
+  double marginMm = 10.0;                  // unused border around every sheet
+  double boltDiameterMm = 8.0;            // hole diameter and slot width
+  double minNotchMm = 1.0;                // shorter notches are cut as plain holes (mesh noise, 2.4.5)
+  double stockLengthMm = 6000.0;          // longest piece a lamella can be cut from (and at most the sheet's first side); longer ones are spliced
+  std::optional<double> endOverhangMm;    // strip beyond the end connections; default half the width
+  std::optional<double> spliceClearanceMm;  // no hole or slot this close to a splice; default the width
   // Where a stock length has no position that clear (slots nearly as long as their spacing), the
   // splice goes to the middle of the widest gap if that keeps this much each side. Default 3.5 d:
   // the new end is then 4 d from the nearest bolt centre, the least end distance of a bolt from an
   // unloaded end in EN 1995-1-1 Table 8.4 (a3,c). Never more than the splice clearance.
-  std::optional<double> min_splice_clearance_mm;
+  std::optional<double> minSpliceClearanceMm;
   // How pieces are joined into a lamella longer than a piece. "plate": bolted splice plates, in a
   // gap clear of holes and slots (above). "scarf": glued scarf joints of slope 1:scarf_slope
   // (to 1:2 scarf_slope) through the thickness, the pieces cut with their holes and slots and glued
@@ -58,28 +58,28 @@ struct FabricationOptions {
   // where a stock length has room for one, scarfs where it has not. Every scarf is checked: the
   // stress over its length against scarf_efficiency x the strength, on the net width where it
   // crosses a hole or slot.
-  SpliceJoint splice_joint = SpliceJoint::Plate;
-  double scarf_slope = 12.0;        // 1:12, the usual slope for structural scarfs in plywood and LVL
-  double scarf_efficiency = 0.85;   // strength of the glued joint over that of the plain strip
-  std::optional<double> label_height_mm;    // engraved text height; default 0.35 w (clamped to 1..30 mm)
-  double sticker_margin_mm = 2.0;           // PTFE sticker beyond the swept contact area (3.5.1)
-  std::optional<std::array<double, 2>> sticker_sheet_mm;  // PTFE foil sheet; default sheet_mm
-  std::optional<double> ground_height_m;    // ground plane z; default 0.1 m below the lowest support
-  std::optional<double> support_block_mm;   // footprint side of a support block; default 3 w
-  bool supports_at_boundary_connections = false;  // a support at every boundary connection (3.5.2 iv), not only at anchors
+  SpliceJoint spliceJoint = SpliceJoint::Plate;
+  double scarfSlope = 12.0;        // 1:12, the usual slope for structural scarfs in plywood and LVL
+  double scarfEfficiency = 0.85;   // strength of the glued joint over that of the plain strip
+  std::optional<double> labelHeightMm;    // engraved text height; default 0.35 w (clamped to 1..30 mm)
+  double stickerMarginMm = 2.0;           // PTFE sticker beyond the swept contact area (3.5.1)
+  std::optional<std::array<double, 2>> stickerSheetMm;  // PTFE foil sheet; default sheet_mm
+  std::optional<double> groundHeightM;    // ground plane z; default 0.1 m below the lowest support
+  std::optional<double> supportBlockMm;   // footprint side of a support block; default 3 w
+  bool supportsAtBoundaryConnections = false;  // a support at every boundary connection (3.5.2 iv), not only at anchors
 
   // Throws InvalidInput naming the scene field ("fabrication.sheet_mm: ...").
   void validate() const;
 
-  double endOverhangMm() const { return end_overhang_mm.value_or(lamella_width_mm / 2.0); }
-  double spliceClearanceMm() const { return splice_clearance_mm.value_or(lamella_width_mm); }
-  double minSpliceClearanceMm() const {
-    return std::min(min_splice_clearance_mm.value_or(3.5 * bolt_diameter_mm), spliceClearanceMm());
+  double effectiveEndOverhangMm() const { return endOverhangMm.value_or(lamellaWidthMm / 2.0); }
+  double effectiveSpliceClearanceMm() const { return spliceClearanceMm.value_or(lamellaWidthMm); }
+  double effectiveMinSpliceClearanceMm() const {
+    return std::min(minSpliceClearanceMm.value_or(3.5 * boltDiameterMm), effectiveSpliceClearanceMm());
   }
-  double labelHeightMm() const;
-  double scarfLengthMm() const { return scarf_slope * lamella_thickness_mm; }
-  std::array<double, 2> stickerSheetMm() const { return sticker_sheet_mm.value_or(sheet_mm); }
-  double supportBlockMm() const { return support_block_mm.value_or(3.0 * lamella_width_mm); }
+  double effectiveLabelHeightMm() const;
+  double scarfLengthMm() const { return scarfSlope * lamellaThicknessMm; }
+  std::array<double, 2> effectiveStickerSheetMm() const { return stickerSheetMm.value_or(sheetMm); }
+  double effectiveSupportBlockMm() const { return supportBlockMm.value_or(3.0 * lamellaWidthMm); }
 };
 
 }  // namespace egg::fabrication

@@ -61,8 +61,8 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
                         const FabricationOptions& options, Drawing& drawing) {
   const LamellaSegment& seg = plan.segments[segment];
   const double w = plan.widthMm, L = seg.lengthMm();
-  const double d = options.bolt_diameter_mm, r = d / 2.0;
-  const double h = options.labelHeightMm(), hc = 0.7 * h;
+  const double d = options.boltDiameterMm, r = d / 2.0;
+  const double h = options.effectiveLabelHeightMm(), hc = 0.7 * h;
   auto at = [&](double x, double y) { return Eigen::Vector2d(origin + Eigen::Vector2d(x - seg.startMm, y)); };
   drawing.polylines.push_back({Layer::Cut, {at(seg.startMm, 0), at(seg.endMm, 0), at(seg.endMm, w), at(seg.startMm, w)}, true});
   // Occupied stretches along the strip (features and their labels), for the lamella label.
@@ -105,8 +105,8 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
     // The mark half the splice's clearance in from the cut (the clearance of the splice: a tight
     // one keeps less than splice_clearance_mm, placeSplices).
     const double splice = plan.splicesMm[k];
-    const double clearance = k < plan.spliceClearancesMm.size() ? std::min(plan.spliceClearancesMm[k], options.spliceClearanceMm())
-                                                                : options.spliceClearanceMm();
+    const double clearance = k < plan.spliceClearancesMm.size() ? std::min(plan.spliceClearancesMm[k], options.effectiveSpliceClearanceMm())
+                                                                : options.effectiveSpliceClearanceMm();
     const double x = splice == seg.startMm ? splice + clearance / 2.0 : splice == seg.endMm ? splice - clearance / 2.0 : -1;
     if (x < 0) continue;
     drawing.polylines.push_back({Layer::Engrave, {at(x, 0.0), at(x, w)}, false});
@@ -124,7 +124,7 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
 }
 
 void drawSticker(const Sticker& s, const Eigen::Vector2d& origin, const FabricationOptions& options, Drawing& drawing) {
-  const double w = s.widthMm, L = s.lengthMm, r = options.bolt_diameter_mm / 2.0;
+  const double w = s.widthMm, L = s.lengthMm, r = options.boltDiameterMm / 2.0;
   auto at = [&](double x, double y) { return Eigen::Vector2d(origin + Eigen::Vector2d(x, y)); };
   drawing.polylines.push_back({Layer::Cut, {at(0, 0), at(L, 0), at(L, w), at(0, w)}, true});
   const Eigen::Vector2d bolt = at(s.boltXMm, w / 2.0);
@@ -136,7 +136,7 @@ void drawSticker(const Sticker& s, const Eigen::Vector2d& origin, const Fabricat
   // Labels in the longer end beside the cut-out.
   const double lo = std::min(s.boltXMm, s.boltXMm + s.slideMm) - r, hi = std::max(s.boltXMm, s.boltXMm + s.slideMm) + r;
   const double x = lo > L - hi ? lo / 2.0 : (hi + L) / 2.0;
-  const double h = std::min(options.labelHeightMm(), 0.3 * w);
+  const double h = std::min(options.effectiveLabelHeightMm(), 0.3 * w);
   drawing.texts.push_back({Layer::Label, at(x, 0.7 * w), h, s.connectionId, TextAlign::Centre});
   drawing.texts.push_back({Layer::Label, at(x, 0.3 * w), h, s.lamellaId, TextAlign::Centre});
 }

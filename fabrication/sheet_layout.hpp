@@ -1,7 +1,7 @@
 #pragma once
 // Lamella segments and stickers drawn onto a sheet (millimetres, y up). In a part's own frame x runs
 // along the strip from its start and y across it, 0 .. w; the centreline is y = w/2. With h the
-// label height (FabricationOptions::labelHeightMm) and r the bolt radius:
+// label height (FabricationOptions::effectiveLabelHeightMm) and r the bolt radius:
 //  - outline: a closed CUT rectangle;
 //  - hole: a CUT circle of radius r at (x, w/2); slot: a CUT stadium from (x, w/2) to (x + slide, w/2);
 //  - connection id: LABEL text of height 0.7 h, left-aligned at (feature end + 0.25 h, w/2), or ending

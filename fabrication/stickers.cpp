@@ -59,7 +59,7 @@ std::vector<Sticker> planStickers(const FabricationPatch& patch, const std::vect
       const Eigen::Vector2d du = mu.planarEnd - mu.planarStart, dv = mv.planarEnd - mv.planarStart;
       const double planar = crossingAngle({du.x(), du.y(), 0.0}, {dv.x(), dv.y(), 0.0});
       const double deployed = crossingAngle(tangentAt(mu.spatial, c.sU), tangentAt(mv.spatial, c.sV));
-      const double w = options.lamella_width_mm;
+      const double w = options.lamellaWidthMm;
       // The other lamella's footprint is widest at the angle furthest from a right angle.
       const double half = std::max(contactHalfLengthMm(w, planar), contactHalfLengthMm(w, deployed));
       for (const auto& [planPointer, f] : features) {
@@ -74,8 +74,8 @@ std::vector<Sticker> planStickers(const FabricationPatch& patch, const std::vect
         // either side, the margin beyond that. At small crossing angles (a compact planar layout)
         // the footprint is long: it stops halfway to the neighbouring connections (their stickers
         // cover the rest) and at the strip's ends, but always covers the slot and a bolt radius.
-        double lo = std::min(0.0, s.slideMm) - half - options.sticker_margin_mm;
-        double hi = std::max(0.0, s.slideMm) + half + options.sticker_margin_mm;
+        double lo = std::min(0.0, s.slideMm) - half - options.stickerMarginMm;
+        double hi = std::max(0.0, s.slideMm) + half + options.stickerMarginMm;
         double limitLo = -f->xMm, limitHi = plan.lengthMm - f->xMm;
         for (const auto& other : plan.features) {
           if (&other == f) continue;
@@ -83,7 +83,7 @@ std::vector<Sticker> planStickers(const FabricationPatch& patch, const std::vect
           if (gap > 0) limitHi = std::min(limitHi, gap / 2.0);
           if (gap < 0) limitLo = std::max(limitLo, gap / 2.0);
         }
-        const double r = options.bolt_diameter_mm / 2.0;
+        const double r = options.boltDiameterMm / 2.0;
         limitLo = std::min(limitLo, std::min(0.0, s.slideMm) - 2.0 * r);
         limitHi = std::max(limitHi, std::max(0.0, s.slideMm) + 2.0 * r);
         s.clipped = lo < limitLo || hi > limitHi;

@@ -48,10 +48,10 @@ std::vector<double> polylineTwistRate(const std::vector<Eigen::Vector3d>& points
 namespace {
 
 void finish(LamellaStress& s, double thicknessM, const MaterialProperties& material) {
-  s.maxBendingStress_pa = material.youngs_modulus_pa * s.maxCurvature_1_m * thicknessM / 2.0;
-  s.maxTorsionStress_pa = material.shear_modulus_pa * s.maxTwistRate_rad_m * thicknessM;
-  const double bendingRatio = material.bending_strength_pa > 0 ? s.maxBendingStress_pa / material.bending_strength_pa : 0.0;
-  const double torsionRatio = material.shear_strength_pa > 0 ? s.maxTorsionStress_pa / material.shear_strength_pa : 0.0;
+  s.maxBendingStressPa = material.youngsModulusPa * s.maxCurvaturePerM * thicknessM / 2.0;
+  s.maxTorsionStressPa = material.shearModulusPa * s.maxTwistRateRadPerM * thicknessM;
+  const double bendingRatio = material.bendingStrengthPa > 0 ? s.maxBendingStressPa / material.bendingStrengthPa : 0.0;
+  const double torsionRatio = material.shearStrengthPa > 0 ? s.maxTorsionStressPa / material.shearStrengthPa : 0.0;
   s.stressRatio = std::max(bendingRatio, torsionRatio);
 }
 
@@ -103,13 +103,13 @@ LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, cons
         const double rate = polylineTwistRate({centreline[j], centreline[k]}, {(*normals)[j], (*normals)[k]})[0];
         const double chord = (centreline[k] - centreline[j]).norm();
         const double twist = std::abs(rate) * chord / (arc[k] - arc[j]);
-        s.maxTwistRate_rad_m = std::max(s.maxTwistRate_rad_m, twist);
-        s.torsionArc_m.push_back(arc[i]);
-        s.torsion_pa.push_back(material.shear_modulus_pa * twist * thicknessM);
+        s.maxTwistRateRadPerM = std::max(s.maxTwistRateRadPerM, twist);
+        s.torsionArcM.push_back(arc[i]);
+        s.torsionPa.push_back(material.shearModulusPa * twist * thicknessM);
       }
-      s.maxCurvature_1_m = std::max(s.maxCurvature_1_m, curvature);
-      s.bendingArc_m.push_back(arc[i]);
-      s.bending_pa.push_back(material.youngs_modulus_pa * curvature * thicknessM / 2.0);
+      s.maxCurvaturePerM = std::max(s.maxCurvaturePerM, curvature);
+      s.bendingArcM.push_back(arc[i]);
+      s.bendingPa.push_back(material.youngsModulusPa * curvature * thicknessM / 2.0);
     }
     if (measured) {
       finish(s, thicknessM, material);
@@ -121,18 +121,18 @@ LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, cons
   for (size_t i = 0; i < kappa.size(); ++i) {
     if (i > 0) along += (centreline[i] - centreline[i - 1]).norm();
     const double k = useNormals ? std::abs(kappa[i].dot((*normals)[i].normalized())) : kappa[i].norm();
-    s.maxCurvature_1_m = std::max(s.maxCurvature_1_m, k);
-    s.bendingArc_m.push_back(along);
-    s.bending_pa.push_back(material.youngs_modulus_pa * k * thicknessM / 2.0);
+    s.maxCurvaturePerM = std::max(s.maxCurvaturePerM, k);
+    s.bendingArcM.push_back(along);
+    s.bendingPa.push_back(material.youngsModulusPa * k * thicknessM / 2.0);
   }
   if (useNormals) {
     const auto rates = polylineTwistRate(centreline, *normals);
     along = 0.0;
     for (size_t i = 0; i < rates.size(); ++i) {
       const double length = (centreline[i + 1] - centreline[i]).norm();
-      s.maxTwistRate_rad_m = std::max(s.maxTwistRate_rad_m, std::abs(rates[i]));
-      s.torsionArc_m.push_back(along + length / 2.0);
-      s.torsion_pa.push_back(material.shear_modulus_pa * std::abs(rates[i]) * thicknessM);
+      s.maxTwistRateRadPerM = std::max(s.maxTwistRateRadPerM, std::abs(rates[i]));
+      s.torsionArcM.push_back(along + length / 2.0);
+      s.torsionPa.push_back(material.shearModulusPa * std::abs(rates[i]) * thicknessM);
       along += length;
     }
   }

@@ -21,15 +21,15 @@ std::vector<double> polylineTwistRate(const std::vector<Eigen::Vector3d>& points
                                       const std::vector<Eigen::Vector3d>& normals);
 
 struct LamellaStress {
-  double maxCurvature_1_m = 0.0;       // largest weak-axis curvature along the lamella
-  double maxBendingStress_pa = 0.0;    // E kappa t / 2
-  double maxTwistRate_rad_m = 0.0;
-  double maxTorsionStress_pa = 0.0;    // G theta' t
+  double maxCurvaturePerM = 0.0;       // largest weak-axis curvature along the lamella
+  double maxBendingStressPa = 0.0;    // E kappa t / 2
+  double maxTwistRateRadPerM = 0.0;
+  double maxTorsionStressPa = 0.0;    // G theta' t
   double stressRatio = 0.0;            // max(sigma / f_m, tau / f_v)
   bool fromSimulation = false;         // bending from the deployed centreline (else the traced geodesic)
   // Where along the lamella (arc length from its first point, m) each stress was measured: the
   // splice checks read them over a joint's length (maxStressOver).
-  std::vector<double> bendingArc_m, bending_pa, torsionArc_m, torsion_pa;
+  std::vector<double> bendingArcM, bendingPa, torsionArcM, torsionPa;
   std::vector<double> scarfRatios;     // per splice (fabricate): a scarf's stress over its strength, 0 for a plate
 };
 

@@ -38,7 +38,7 @@ std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, 
       }
       if (chosen.insert(a.connection).second) picks.emplace_back(a.connection, "anchor: " + a.reason);
     }
-    if (options.supports_at_boundary_connections) {
+    if (options.supportsAtBoundaryConnections) {
       for (int k = 0; k < static_cast<int>(grid.connections.size()); ++k) {
         if (grid.connections[k].onBoundary && onFreeSide(k) && chosen.insert(k).second) picks.emplace_back(k, "boundary connection");
       }
@@ -67,7 +67,7 @@ std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, 
   }
   double lowest = std::numeric_limits<double>::infinity();
   for (const auto& s : supports) lowest = std::min(lowest, s.position.z());
-  const double ground = options.ground_height_m.value_or(supports.empty() ? 0.0 : lowest - 0.1);
+  const double ground = options.groundHeightM.value_or(supports.empty() ? 0.0 : lowest - 0.1);
   for (size_t i = 0; i < supports.size(); ++i) {
     auto& s = supports[i];
     char id[32];

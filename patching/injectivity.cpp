@@ -54,9 +54,9 @@ double nextGuess(const Crossing& c) {
 void SurfacePeakOptions::validate() const {
   curvature.validate();
   peaks.validate();
-  if (!(std::isfinite(min_gaussian) && min_gaussian >= 0.0)) {
+  if (!(std::isfinite(minGaussian) && minGaussian >= 0.0)) {
     std::ostringstream s;
-    s << "SurfacePeakOptions.min_gaussian must be >= 0 (0 = automatic), got " << min_gaussian;
+    s << "SurfacePeakOptions.min_gaussian must be >= 0 (0 = automatic), got " << minGaussian;
     throw InvalidInput(s.str());
   }
 }
@@ -67,19 +67,19 @@ std::vector<SurfacePeak> findSurfacePeaks(const TriMesh& surface, const SurfaceP
   const CurvatureField field = computeCurvature(surface, options.curvature);
   const double diagonal = boundingBox(surface).size().norm();
   // r = pi / sqrt(K) < diagonal  <=>  K > (pi / diagonal)^2.
-  const double threshold = options.min_gaussian > 0.0 ? options.min_gaussian : std::pow(std::numbers::pi / diagonal, 2);
+  const double threshold = options.minGaussian > 0.0 ? options.minGaussian : std::pow(std::numbers::pi / diagonal, 2);
   PeakOptions peakOptions = options.peaks;
   // The raw search only needs averaged K > 0 and every candidate whose nearby maximum passes: the
   // averaged K is never above the nearby maximum, so filtering on the latter below loses nothing.
-  peakOptions.min_gaussian = std::max(peakOptions.min_gaussian, 0.0);
-  std::vector<CurvaturePeak> raw = findGaussianPeaks(surface, field.gaussian, field.mixed_area, peakOptions);
+  peakOptions.minGaussian = std::max(peakOptions.minGaussian, 0.0);
+  std::vector<CurvaturePeak> raw = findGaussianPeaks(surface, field.gaussian, field.mixedArea, peakOptions);
   std::stable_sort(raw.begin(), raw.end(), [](const CurvaturePeak& a, const CurvaturePeak& b) {
-    if (a.gaussian_averaged != b.gaussian_averaged) return a.gaussian_averaged > b.gaussian_averaged;
+    if (a.gaussianAveraged != b.gaussianAveraged) return a.gaussianAveraged > b.gaussianAveraged;
     return a.vertex < b.vertex;
   });
   std::vector<SurfacePeak> kept;
   for (const CurvaturePeak& p : raw) {
-    if (!(p.gaussian_max_nearby > threshold)) continue;
+    if (!(p.gaussianMaxNearby > threshold)) continue;
     const bool inside = std::any_of(kept.begin(), kept.end(), [&](const SurfacePeak& k) {
       return (k.position - p.position).norm() < k.radiusM;
     });
@@ -87,10 +87,10 @@ std::vector<SurfacePeak> findSurfacePeaks(const TriMesh& surface, const SurfaceP
     SurfacePeak peak;
     peak.vertex = p.vertex;
     peak.position = p.position;
-    peak.gaussianAveraged = p.gaussian_averaged;
-    peak.gaussianMax = p.gaussian_max_nearby;
-    peak.radiusM = injectivityRadiusBound(p.gaussian_max_nearby);
-    peak.onBoundary = p.on_boundary;
+    peak.gaussianAveraged = p.gaussianAveraged;
+    peak.gaussianMax = p.gaussianMaxNearby;
+    peak.radiusM = injectivityRadiusBound(p.gaussianMaxNearby);
+    peak.onBoundary = p.onBoundary;
     kept.push_back(peak);
   }
   return kept;

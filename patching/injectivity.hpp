@@ -22,7 +22,7 @@ struct SurfacePeakOptions {
   PeakOptions peaks;           // ball averaging of K; its min_gaussian is raised to `min_gaussian` below
   // Report only peaks with K_max above this [1/m^2]; 0 = automatic: peaks whose injectivity radius
   // pi / sqrt(K_max) is smaller than the surface's bounding-box diagonal (the others cannot matter).
-  double min_gaussian = 0.0;
+  double minGaussian = 0.0;
   void validate() const;  // throws InvalidInput naming the field
 };
 

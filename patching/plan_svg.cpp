@@ -190,7 +190,7 @@ Page pageOf(const PlanDrawing& drawing) {
   page.margin = 30.0, page.titleHeight = drawing.title.empty() ? 0.0 : 34.0, page.legendWidth = 300.0;
   page.dx = std::max(box.size().x(), 1e-9);
   const double margin = page.margin, dx = page.dx, dy = std::max(box.size().y(), 1e-9);
-  const double mapWidth = drawing.options.width_px;
+  const double mapWidth = drawing.options.widthPx;
   Projection& proj = page.proj;
   proj.scale = std::min((mapWidth - 2 * margin) / dx, (1.4 * mapWidth - 2 * margin) / dy);
   proj.xmin = box.min.x(), proj.ymax = box.max.y();
@@ -221,7 +221,7 @@ CurvatureMap curvatureMap(const PlanDrawing& drawing, const Projection& proj) {
   std::vector<double> magnitudes(faceK.size());
   std::transform(faceK.begin(), faceK.end(), magnitudes.begin(), [](double k) { return std::abs(k); });
   const size_t rank = std::min(magnitudes.size() - 1,
-                               static_cast<size_t>(std::floor(drawing.options.curvature_percentile / 100.0 * (magnitudes.size() - 1))));
+                               static_cast<size_t>(std::floor(drawing.options.curvaturePercentile / 100.0 * (magnitudes.size() - 1))));
   std::nth_element(magnitudes.begin(), magnitudes.begin() + rank, magnitudes.end());
   const double kScale = out.kScale = std::max(magnitudes[rank], 1e-9);
   const auto [kMinIt, kMaxIt] = std::minmax_element(faceK.begin(), faceK.end());
@@ -410,7 +410,7 @@ Legend legendOf(const PlanDrawing& drawing, const Page& page, const CurvatureMap
     legend.svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" text-anchor=\"{}\">{}</text>\n",
                               legend.x + frac * barWidth, legend.y + 11, anchor, escapeXml(text));
   legend.y += 16;
-  legend.text(fmt::format("colours capped at the {:g}th percentile of |K|", drawing.options.curvature_percentile), 10);
+  legend.text(fmt::format("colours capped at the {:g}th percentile of |K|", drawing.options.curvaturePercentile), 10);
   legend.text(fmt::format("K from {} to {} /m² (face means)", number(kMap.kMin), number(kMap.kMax)), 10);
   legend.gap(10);
   legend.item("<path d=\"M0,7h30\" stroke=\"#1a1a1a\" stroke-width=\"2.5\"/>", "design outline and holes");
@@ -470,10 +470,10 @@ std::string documentSvg(const PlanDrawing& drawing, const Page& page, const std:
 }  // namespace
 
 void PlanSvgOptions::validate() const {
-  if (!(width_px >= 200.0 && width_px <= 20000.0))
-    throw InvalidInput(fmt::format("PlanSvgOptions.width_px must be in [200, 20000], got {}", width_px));
-  if (!(curvature_percentile > 0.0 && curvature_percentile <= 100.0))
-    throw InvalidInput(fmt::format("PlanSvgOptions.curvature_percentile must be in (0, 100], got {}", curvature_percentile));
+  if (!(widthPx >= 200.0 && widthPx <= 20000.0))
+    throw InvalidInput(fmt::format("PlanSvgOptions.width_px must be in [200, 20000], got {}", widthPx));
+  if (!(curvaturePercentile > 0.0 && curvaturePercentile <= 100.0))
+    throw InvalidInput(fmt::format("PlanSvgOptions.curvature_percentile must be in (0, 100], got {}", curvaturePercentile));
 }
 
 std::string planSvg(const PlanDrawing& drawing) {

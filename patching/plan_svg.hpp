@@ -17,8 +17,8 @@
 namespace egg::patching {
 
 struct PlanSvgOptions {
-  double width_px = 1000.0;            // width of the map (the legend column comes on top)
-  double curvature_percentile = 98.0;  // the K colour scale is symmetric, +-this percentile of |K| over the faces, so noise does not wash it out
+  double widthPx = 1000.0;            // width of the map (the legend column comes on top)
+  double curvaturePercentile = 98.0;  // the K colour scale is symmetric, +-this percentile of |K| over the faces, so noise does not wash it out
   void validate() const;               // throws InvalidInput naming the field
 };
 

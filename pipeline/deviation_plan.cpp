@@ -11,10 +11,10 @@
 
 namespace egg::pipeline {
 
-std::string deviationColour(double distance_m, double scale_m) {
+std::string deviationColour(double distanceM, double scaleM) {
   // A diverging ramp (ColorBrewer RdYlBu ends and middle): near the surface reads as cool.
   static const std::array<std::array<double, 3>, 3> stops{{{44, 123, 182}, {255, 255, 191}, {215, 25, 28}}};
-  double t = scale_m > 0.0 && std::isfinite(distance_m) ? std::clamp(distance_m / scale_m, 0.0, 1.0) : (std::isfinite(distance_m) ? 0.0 : 1.0);
+  double t = scaleM > 0.0 && std::isfinite(distanceM) ? std::clamp(distanceM / scaleM, 0.0, 1.0) : (std::isfinite(distanceM) ? 0.0 : 1.0);
   const int k = t < 0.5 ? 0 : 1;
   const double u = t < 0.5 ? t / 0.5 : (t - 0.5) / 0.5;
   std::array<int, 3> rgb{};
@@ -22,11 +22,11 @@ std::string deviationColour(double distance_m, double scale_m) {
   return fmt::format("#{:02x}{:02x}{:02x}", rgb[0], rgb[1], rgb[2]);
 }
 
-double deviationScale(double maxDistance_m) {
-  if (!(maxDistance_m > 0.0) || !std::isfinite(maxDistance_m)) return 0.01;
-  const double decade = std::pow(10.0, std::floor(std::log10(maxDistance_m)));
+double deviationScale(double maxDistanceM) {
+  if (!(maxDistanceM > 0.0) || !std::isfinite(maxDistanceM)) return 0.01;
+  const double decade = std::pow(10.0, std::floor(std::log10(maxDistanceM)));
   for (double m : {1.0, 2.0, 5.0, 10.0})
-    if (m * decade >= maxDistance_m * (1.0 - 1e-12)) return m * decade;
+    if (m * decade >= maxDistanceM * (1.0 - 1e-12)) return m * decade;
   return 10.0 * decade;
 }
 
@@ -37,7 +37,7 @@ std::string deployedPlanSvg(const std::vector<DeployedRod>& rods, const std::str
     for (size_t i = 0; i < r.points.size(); ++i) {
       minX = std::min(minX, r.points[i].x()), maxX = std::max(maxX, r.points[i].x());
       minY = std::min(minY, r.points[i].y()), maxY = std::max(maxY, r.points[i].y());
-      if (i < r.distance_m.size() && std::isfinite(r.distance_m[i])) maxD = std::max(maxD, r.distance_m[i]);
+      if (i < r.distanceM.size() && std::isfinite(r.distanceM[i])) maxD = std::max(maxD, r.distanceM[i]);
     }
   if (!(maxX >= minX)) minX = minY = 0.0, maxX = maxY = 1.0;
   const double plotW = 900.0, pad = 20.0, barW = 110.0;
@@ -52,11 +52,11 @@ std::string deployedPlanSvg(const std::vector<DeployedRod>& rods, const std::str
       "<text x=\"{2}\" y=\"16\">{3}</text>\n",
       w, h, pad, escapeXml(caption));
   for (const auto& r : rods) {
-    const size_t n = std::min(r.points.size(), r.distance_m.size());
+    const size_t n = std::min(r.points.size(), r.distanceM.size());
     size_t i = 0;
     while (i + 1 < n) {
       const auto binOf = [&](size_t k) {
-        const double d = 0.5 * (r.distance_m[k] + r.distance_m[k + 1]);
+        const double d = 0.5 * (r.distanceM[k] + r.distanceM[k + 1]);
         return std::isfinite(d) ? std::min(kBins - 1, static_cast<int>(d / scale * kBins)) : kBins - 1;
       };
       const int bin = binOf(i);

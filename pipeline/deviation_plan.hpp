@@ -13,15 +13,15 @@ namespace egg::pipeline {
 // One deployed rod: its contact points and each point's distance to the design surface (metres).
 struct DeployedRod {
   std::vector<Eigen::Vector3d> points;
-  std::vector<double> distance_m;
+  std::vector<double> distanceM;
 };
 
 // The colour of a distance on the bar from 0 (blue #2c7bb6) through scale/2 (pale yellow #ffffbf)
 // to `scale_m` and beyond (red #d7191c), linear between those stops, as "#rrggbb".
-std::string deviationColour(double distance_m, double scale_m);
+std::string deviationColour(double distanceM, double scaleM);
 
 // The bar's top value: the largest distance rounded up to 1, 2 or 5 x 10^k metres (> 0).
-double deviationScale(double maxDistance_m);
+double deviationScale(double maxDistanceM);
 
 // The figure: an <svg id="deployed"> that renders alone (it has the namespace) and inline in the
 // page. Consecutive segments in the same of 16 colour bins are one polyline, which keeps the Great

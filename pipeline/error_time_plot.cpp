@@ -14,7 +14,7 @@ using nlohmann::json;
 json historyJson(const std::vector<rods::DeviationSample>& history) {
   json out = json::array();
   for (const auto& s : history)
-    out.push_back({{"seconds", s.seconds}, {"iteration", s.iteration}, {"load_step", s.loadStep}, {"rmse_m", s.rmse_m}, {"max_error_m", s.max_m}});
+    out.push_back({{"seconds", s.seconds}, {"iteration", s.iteration}, {"load_step", s.loadStep}, {"rmse_m", s.rmseM}, {"max_error_m", s.maxM}});
   return out;
 }
 
@@ -30,8 +30,8 @@ std::vector<rods::DeviationSample> historyFromJson(const json& history, const st
     s.seconds = h["seconds"].get<double>();
     s.iteration = h["iteration"].get<int>();
     s.loadStep = h.value("load_step", 0);
-    s.rmse_m = h["rmse_m"].get<double>();
-    s.max_m = h["max_error_m"].get<double>();
+    s.rmseM = h["rmse_m"].get<double>();
+    s.maxM = h["max_error_m"].get<double>();
     out.push_back(s);
   }
   return out;
@@ -52,7 +52,7 @@ PlotFrame errorTimeFrame(int panel, const std::vector<ErrorTimeSeries>& series) 
   for (const auto& s : series)
     for (const auto& p : s.samples) {
       seconds = std::max(seconds, p.seconds);
-      error = std::max(error, panel == 0 ? p.rmse_m : p.max_m);
+      error = std::max(error, panel == 0 ? p.rmseM : p.maxM);
     }
   return {kPanelLeft + panel * (kPanelWidth + kPanelGap), kTop, kPanelWidth, kHeight, 0.0, seconds > 0.0 ? seconds : 1.0, 0.0,
           error > 0.0 ? 1.08 * error : 1.0, false};
@@ -89,13 +89,13 @@ std::string errorTimeSvg(const std::string& id, const std::string& title, const 
     for (size_t k = 0; k < drawn.size(); ++k) {
       std::string points;
       for (const auto& p : drawn[k]->samples)
-        points += fmt::format("{}{:.2f},{:.2f}", points.empty() ? "" : " ", f.px(p.seconds), f.py(panel == 0 ? p.rmse_m : p.max_m));
+        points += fmt::format("{}{:.2f},{:.2f}", points.empty() ? "" : " ", f.px(p.seconds), f.py(panel == 0 ? p.rmseM : p.maxM));
       svg += fmt::format("<polyline id=\"{}-{}-{}\" points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{}/>\n", escapeXml(id),
                          panel == 0 ? "rmse" : "max", k, points, kPalette[k % 10], dashes(k));
       // The samples themselves: the line between them is no measurement.
       for (const auto& p : drawn[k]->samples)
         svg += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"1.8\" fill=\"{}\"/>", f.px(p.seconds),
-                           f.py(panel == 0 ? p.rmse_m : p.max_m), kPalette[k % 10]);
+                           f.py(panel == 0 ? p.rmseM : p.maxM), kPalette[k % 10]);
       svg += "\n";
     }
   }

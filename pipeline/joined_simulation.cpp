@@ -90,7 +90,7 @@ nlohmann::json joinedSection(const JoinedRun& joined) {
   j["energy_j"] = run.solver.energy;
   j["gradient_norm_n_nm"] = run.solver.gradientNorm;  // over positions (N) and twists (N m)
   j["decrement_j"] = run.solver.decrement;            // last Newton decrement g^T H^-1 g
-  j["max_sag_m"] = run.maxSag_m;  // under self-weight, from the start state (warm) or the weightless equilibrium
+  j["max_sag_m"] = run.maxSagM;  // under self-weight, from the start state (warm) or the weightless equilibrium
   j["max_sag_from"] = joined.warmStart ? "patch_by_patch_equilibria" : "weightless_equilibrium";
   j["unknowns"] = run.unknowns;
   j["factorisations"] = run.solver.factorisations;        // Cholesky, shift trials included
@@ -98,8 +98,8 @@ nlohmann::json joinedSection(const JoinedRun& joined) {
   j["status"] = rods::toString(run.solver.status);
   if (!joined.simulation->converged) j["reason"] = joined.simulation->reason;
   if (run.deviation) {
-    j["rmse_m"] = run.deviation->rmse_m;
-    j["max_error_m"] = run.deviation->max_m;
+    j["rmse_m"] = run.deviation->rmseM;
+    j["max_error_m"] = run.deviation->maxM;
     j["nrmse"] = run.deviation->nrmse;
     j["nrmse_normalised_by"] = "surface bounding-box diagonal";
   }

@@ -70,7 +70,7 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   // Files go to a staging folder that replaces the run folder only when the run completes; an
   // exception on the way (bad input included) removes it, so nothing half-written is left. It is
   // made first so that an unusable --out fails before minutes of work.
-  StagedDirectory out(options.out_dir);
+  StagedDirectory out(options.outDir);
   RunState state(scene, out.staging(), progress);
   for (const Stage& stage : stageTable()) {
     const char* name = toString(stage.id);
@@ -98,7 +98,7 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
     writeFileAtomically(out.staging() / "report.json", result.report.dump(2) + "\n");
   }
   out.commit();
-  result.out_dir = std::filesystem::absolute(options.out_dir);
+  result.outDir = std::filesystem::absolute(options.outDir);
   progress("done", 1.0);
   return result;
 }

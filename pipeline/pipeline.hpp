@@ -18,13 +18,13 @@ namespace egg::pipeline {
 void checkOutputsCanBeProduced(const Scene& scene);
 
 struct PipelineOptions {
-  std::filesystem::path out_dir = "out";   // the run folder; replaced whole at the end
+  std::filesystem::path outDir = "out";   // the run folder; replaced whole at the end
   std::function<void(const std::string& stage, double fraction)> progress;  // optional
 };
 
 struct PipelineResult {
   nlohmann::json report;                   // what report.json holds
-  std::filesystem::path out_dir;           // absolute path of the written run folder
+  std::filesystem::path outDir;           // absolute path of the written run folder
   double seconds = 0.0;
   // Exit code 1: patches the EGG criteria reject in the final layout (a patch Workflow 1 split is
   // not one), grids that cannot be traced, a deployment that does not converge.

@@ -51,8 +51,8 @@ EggOptions Scene::eggOptions() const {
 
 fabrication::FabricationOptions Scene::fabricationOptions() const {
   fabrication::FabricationOptions options = fabrication.options;
-  options.lamella_width_mm = lamella.widthM * 1000.0;
-  options.lamella_thickness_mm = lamella.thicknessM * 1000.0;
+  options.lamellaWidthMm = lamella.widthM * 1000.0;
+  options.lamellaThicknessMm = lamella.thicknessM * 1000.0;
   options.material = lamella.material;
   return options;
 }

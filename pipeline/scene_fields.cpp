@@ -261,12 +261,12 @@ void checkLamella(JsonSection& j, Scene& scene) {
 
 void readStickerSheet(JsonSection& j, Scene& scene) {
   fabrication::FabricationOptions& f = scene.fabrication.options;
-  if (j.has("sticker_sheet_mm")) f.sticker_sheet_mm = j.pair("sticker_sheet_mm", f.sheet_mm, 1.0, 1e5);
+  if (j.has("sticker_sheet_mm")) f.stickerSheetMm = j.pair("sticker_sheet_mm", f.sheetMm, 1.0, 1e5);
 }
 
 void checkFabrication(JsonSection& j, Scene& scene) {
   const fabrication::FabricationOptions& f = scene.fabrication.options;
-  if (2.0 * f.margin_mm >= std::min(f.sheet_mm[0], f.sheet_mm[1])) j.fail("margin_mm", "leaves no room on the sheet");
+  if (2.0 * f.marginMm >= std::min(f.sheetMm[0], f.sheetMm[1])) j.fail("margin_mm", "leaves no room on the sheet");
 }
 
 std::string materialNames() {
@@ -410,7 +410,7 @@ std::vector<SceneSection> makeSections() {
                 "under self-weight, bolts tightened at the weightless equilibrium before the grid carries its weight"),
         number("newton_tolerance", [](Scene& s) -> auto& { return s.simulation.rods.solver.tolerance; }, 1e-16, 1e-2,
                "Newton stops when its decrement falls below this x the energy scale"),
-        number("time_limit_s", [](Scene& s) -> auto& { return s.simulation.rods.solver.timeLimit_s; }, 0.1, 1e6,
+        number("time_limit_s", [](Scene& s) -> auto& { return s.simulation.rods.solver.timeLimitS; }, 0.1, 1e6,
                "wall-clock hang guard of each solve (the iteration limit, not this, decides results)")},
        {}});
 
@@ -420,45 +420,45 @@ std::vector<SceneSection> makeSections() {
   sections.push_back(
       {"fabrication", "What the workshop cuts (Sections 3.5, 3.6.1); lengths in millimetres.",
        {boolean("enabled", [](Scene& s) -> auto& { return s.fabrication.enabled; }, "write cut files, stickers, supports, BOM"),
-        pair("sheet_mm", fab([](auto& f) -> auto& { return f.sheet_mm; }), 1.0, 1e5,
+        pair("sheet_mm", fab([](auto& f) -> auto& { return f.sheetMm; }), 1.0, 1e5,
              "stock sheet or laser bed; strips run along the first side"),
-        positive("bolt_diameter_mm", fab([](auto& f) -> auto& { return f.bolt_diameter_mm; }), 1000.0,
+        positive("bolt_diameter_mm", fab([](auto& f) -> auto& { return f.boltDiameterMm; }), 1000.0,
                  "hole diameter and slot width"),
-        number("kerf_mm", fab([](auto& f) -> auto& { return f.kerf_mm; }), 0.0, 100.0, "width the cutter removes between parts"),
-        number("margin_mm", fab([](auto& f) -> auto& { return f.margin_mm; }), 0.0, 1e4, "unused border of every sheet"),
-        number("min_notch_mm", fab([](auto& f) -> auto& { return f.min_notch_mm; }), 0.0, 1e4,
+        number("kerf_mm", fab([](auto& f) -> auto& { return f.kerfMm; }), 0.0, 100.0, "width the cutter removes between parts"),
+        number("margin_mm", fab([](auto& f) -> auto& { return f.marginMm; }), 0.0, 1e4, "unused border of every sheet"),
+        number("min_notch_mm", fab([](auto& f) -> auto& { return f.minNotchMm; }), 0.0, 1e4,
                "shorter notches are cut as plain holes (mesh noise, 2.4.5)"),
-        positive("stock_length_mm", fab([](auto& f) -> auto& { return f.stock_length_mm; }), 1e6,
+        positive("stock_length_mm", fab([](auto& f) -> auto& { return f.stockLengthMm; }), 1e6,
                  "longest piece a lamella is cut from; longer lamellas are spliced"),
-        optionalNumber("end_overhang_mm", fab([](auto& f) -> auto& { return f.end_overhang_mm; }), 0.0, 1e4,
+        optionalNumber("end_overhang_mm", fab([](auto& f) -> auto& { return f.endOverhangMm; }), 0.0, 1e4,
                        "strip beyond the end connections (default: half the width)"),
-        optionalNumber("splice_clearance_mm", fab([](auto& f) -> auto& { return f.splice_clearance_mm; }), 0.0, 1e5,
+        optionalNumber("splice_clearance_mm", fab([](auto& f) -> auto& { return f.spliceClearanceMm; }), 0.0, 1e5,
                        "no hole or slot this close to a splice (default: the width)"),
-        optionalNumber("min_splice_clearance_mm", fab([](auto& f) -> auto& { return f.min_splice_clearance_mm; }), 0.0, 1e5,
+        optionalNumber("min_splice_clearance_mm", fab([](auto& f) -> auto& { return f.minSpliceClearanceMm; }), 0.0, 1e5,
                        "where no position is that clear, at least this (default 3.5 bolt diameters, EN 1995-1-1 8.4)"),
-        optionalNumber("label_height_mm", fab([](auto& f) -> auto& { return f.label_height_mm; }), 0.1, 1000.0,
+        optionalNumber("label_height_mm", fab([](auto& f) -> auto& { return f.labelHeightMm; }), 0.1, 1000.0,
                        "engraved text height (default 0.35 w, 1..30 mm)"),
-        choice("splice_joint", fab([](auto& f) -> auto& { return f.splice_joint; }),
+        choice("splice_joint", fab([](auto& f) -> auto& { return f.spliceJoint; }),
                {{fabrication::SpliceJoint::Plate, "plate"},
                 {fabrication::SpliceJoint::Scarf, "scarf"},
                 {fabrication::SpliceJoint::PlateOrScarf, "plate_or_scarf"}},
                "splices as bolted plates, glued scarfs, or plates with scarfs where no plate fits"),
-        number("scarf_slope", fab([](auto& f) -> auto& { return f.scarf_slope; }), 4.0, 40.0,
+        number("scarf_slope", fab([](auto& f) -> auto& { return f.scarfSlope; }), 4.0, 40.0,
                "scarf run per unit of thickness (1:12)"),
-        number("scarf_efficiency", fab([](auto& f) -> auto& { return f.scarf_efficiency; }), 0.01, 1.0,
+        number("scarf_efficiency", fab([](auto& f) -> auto& { return f.scarfEfficiency; }), 0.01, 1.0,
                "glued joint strength over the plain strip's"),
-        number("sticker_margin_mm", fab([](auto& f) -> auto& { return f.sticker_margin_mm; }), 0.0, 1000.0,
+        number("sticker_margin_mm", fab([](auto& f) -> auto& { return f.stickerMarginMm; }), 0.0, 1000.0,
                "PTFE sticker beyond the swept contact area (3.5.1)"),
         {"sticker_sheet_mm", "two numbers in [1, 100000], optional", "PTFE foil sheet (default: sheet_mm)", readStickerSheet,
          [](const Scene& s) {
-           const auto& sheet = s.fabrication.options.sticker_sheet_mm;
+           const auto& sheet = s.fabrication.options.stickerSheetMm;
            return sheet ? some(*sheet) : std::nullopt;
          }},
-        optionalNumber("ground_height_m", fab([](auto& f) -> auto& { return f.ground_height_m; }), -1e5, 1e5,
+        optionalNumber("ground_height_m", fab([](auto& f) -> auto& { return f.groundHeightM; }), -1e5, 1e5,
                        "ground plane z of the supports, metres (default: 0.1 m below the lowest)"),
-        optionalNumber("support_block_mm", fab([](auto& f) -> auto& { return f.support_block_mm; }), 1.0, 1e5,
+        optionalNumber("support_block_mm", fab([](auto& f) -> auto& { return f.supportBlockMm; }), 1.0, 1e5,
                        "footprint side of a support block (default 3 w)"),
-        boolean("supports_at_boundary_connections", fab([](auto& f) -> auto& { return f.supports_at_boundary_connections; }),
+        boolean("supports_at_boundary_connections", fab([](auto& f) -> auto& { return f.supportsAtBoundaryConnections; }),
                 "a support at every boundary connection (3.5.2 iv), not only at anchors")},
        checkFabrication});
   return sections;

@@ -31,8 +31,8 @@ rods::SimulationOptions rodsOptions(const Scene& scene) {
 
 assembly::GridToRodsOptions gridToRodsOptions(const Scene& scene) {
   assembly::GridToRodsOptions convert;
-  convert.section.width_m = scene.lamella.widthM;
-  convert.section.thickness_m = scene.lamella.thicknessM;
+  convert.section.widthM = scene.lamella.widthM;
+  convert.section.thicknessM = scene.lamella.thicknessM;
   convert.material = materialByName(scene.lamella.material);
   convert.notches = true;
   return convert;
@@ -103,23 +103,23 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
                {"seconds", sim.seconds}};
     // Under self-weight, how far the grid sagged from its weightless equilibrium (a "collapsed"
     // status means it fell through: Section 3.5.2, Fig. 3.11).
-    if (scene.simulation.rods.model.gravity) entry["max_sag_m"] = sim.deployed.maxSag_m;
+    if (scene.simulation.rods.model.gravity) entry["max_sag_m"] = sim.deployed.maxSagM;
     if (sim.deployed.deviation) {
       const auto& d = *sim.deployed.deviation;
-      sumSquares += d.rmse_m * d.rmse_m * d.points;
+      sumSquares += d.rmseM * d.rmseM * d.points;
       points += d.points;
-      maxError = std::max(maxError, d.max_m);
+      maxError = std::max(maxError, d.maxM);
       nrmseWorst = std::max(nrmseWorst, d.nrmse);
-      entry.update({{"rmse_m", d.rmse_m}, {"max_error_m", d.max_m}, {"nrmse", d.nrmse}});
+      entry.update({{"rmse_m", d.rmseM}, {"max_error_m", d.maxM}, {"nrmse", d.nrmse}});
     }
     // Error against run time (issue 18): the deployed run's deviation every few iterations.
     entry["history"] = historyJson(sim.deployed.history);
     entry["history_measuring_s"] = sim.deployed.historySeconds;
     if (sim.withoutNotches && sim.withoutNotches->deviation) {
       const auto& d = *sim.withoutNotches->deviation;
-      sumSquaresPlain += d.rmse_m * d.rmse_m * d.points;
+      sumSquaresPlain += d.rmseM * d.rmseM * d.points;
       pointsPlain += d.points;
-      entry["rmse_no_notches_m"] = d.rmse_m;
+      entry["rmse_no_notches_m"] = d.rmseM;
     }
     perPatch.push_back(entry);
   }
@@ -157,7 +157,7 @@ void writeDeployedPlan(const rods::SimulationRun* joined, const std::vector<Solv
     for (const auto& points : run->contactPoints) {
       DeployedRod rod;
       rod.points = points;
-      for (const auto& p : points) rod.distance_m.push_back(distance.distance(p));
+      for (const auto& p : points) rod.distanceM.push_back(distance.distance(p));
       rods.push_back(std::move(rod));
     }
   writeFileAtomically(file, deployedPlanSvg(rods, joined ? "Deployed grid (joined structure), seen from above, coloured by the distance to the design surface"

@@ -19,7 +19,7 @@ using Clock = std::chrono::steady_clock;
 LoadedSurface fromFile(const std::filesystem::path& file, double scaleToM, bool keepLargest) {
   const auto start = Clock::now();
   MeshImportOptions importOptions;
-  importOptions.scale_to_m = scaleToM;
+  importOptions.scaleToM = scaleToM;
   TriangleSoup soup = readMeshFile(file, importOptions);
   MeshCheckOptions checkOptions;
   checkOptions.components = keepLargest ? ComponentPolicy::KeepLargest : ComponentPolicy::Reject;
@@ -80,7 +80,7 @@ nlohmann::json surfaceSummary(const LoadedSurface& surface) {
   nlohmann::json issues = nlohmann::json::array();
   for (const auto& issue : check.issues) issues.push_back(issue.message);
   const CurvatureField curvature = computeCurvature(mesh);
-  const double bound = injectivityRadiusBound(curvature.gaussian_max);
+  const double bound = injectivityRadiusBound(curvature.gaussianMax);
   return {
       {"source", surface.description},
       {"vertices", mesh.n_vertices()},
@@ -90,12 +90,12 @@ nlohmann::json surfaceSummary(const LoadedSurface& surface) {
       {"bbox_m", {box.size().x(), box.size().y(), box.size().z()}},
       {"area_m2", surfaceArea(mesh)},
       {"mean_edge_m", meanEdgeLength(mesh)},
-      {"min_angle_rad", check.min_angle_rad},
-      {"boundary_edges", check.boundary_edges},
+      {"min_angle_rad", check.minAngleRad},
+      {"boundary_edges", check.boundaryEdges},
       {"components", check.components},
       {"gaussian_curvature",
-       {{"min_per_m2", curvature.gaussian_min},
-        {"max_per_m2", curvature.gaussian_max},
+       {{"min_per_m2", curvature.gaussianMin},
+        {"max_per_m2", curvature.gaussianMax},
         {"injectivity_bound_m", std::isfinite(bound) ? nlohmann::json(bound) : nlohmann::json(nullptr)}}},
       {"validation", {{"ok", check.acceptable()}, {"issues", issues}}},
       {"warnings", surface.warnings},

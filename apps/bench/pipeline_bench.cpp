@@ -275,7 +275,7 @@ int runPipelineBench(const PipelineBenchOptions& options) {
       if (v.widthM > 0) scene.lamella.widthM = v.widthM, scene.lamella.thicknessM = v.thicknessM;
       scene.outputs = {"report"};
       PipelineOptions run;
-      run.out_dir = options.out / "runs" / variantName(scene.name, v, k);
+      run.outDir = options.out / "runs" / variantName(scene.name, v, k);
       const std::string label = fmt::format("{} {} ({}/{})", scene.name, v.varied, rows.size() + 1, total);
       bar.update(static_cast<double>(rows.size()) / static_cast<double>(total), label);
       if (bar.shown())

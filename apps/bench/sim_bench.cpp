@@ -78,9 +78,9 @@ int runSimBench(const SimBenchArgs& args) {
              "rmse_mm", "max_mm", "plain_s", "iters", "ratio");
   for (double spacing : args.spacings) {
     rods::CylinderGridParameters parameters;
-    parameters.spacing_m = spacing;
+    parameters.spacingM = spacing;
     parameters.notchFraction = args.notchFraction;
-    parameters.meshEdge_m = 0.05;
+    parameters.meshEdgeM = 0.05;
     const rods::SampleGrid grid = rods::cylinderGrid(parameters);
     const rods::SurfaceDistance surface(grid.surface);
     for (double tolerance : args.tolerances) {
@@ -96,8 +96,8 @@ int runSimBench(const SimBenchArgs& args) {
         plain = timedRun(grid.network, surface, plainOptions, args.repeats);
       }
       const rods::SimulationRun& run = notched.run;
-      const double rmse = run.deviation ? run.deviation->rmse_m : 0.0;
-      const double maxError = run.deviation ? run.deviation->max_m : 0.0;
+      const double rmse = run.deviation ? run.deviation->rmseM : 0.0;
+      const double maxError = run.deviation ? run.deviation->maxM : 0.0;
       const double ratio = plain ? notched.medianSeconds / plain->medianSeconds : 0.0;
       fmt::print(tableStream(args.json), "{:>7.2f} {:>8} {:>8} {:>5} {:>9.0e} {:>5} {:>8.3f} {:>15} {:>9.2e} {:>4} {:>9.4f} {:>9.4f} {:>8} {:>5} {:>6}\n",
                  spacing, run.vertices, run.unknowns, grid.network.connections.size(), tolerance,
@@ -128,7 +128,7 @@ int runSimBench(const SimBenchArgs& args) {
         row["plain_seconds"] = plain->medianSeconds;
         row["plain_iterations"] = plain->run.solver.iterations;
         row["plain_converged"] = plain->run.solver.converged;
-        row["plain_rmse_m"] = plain->run.deviation ? plain->run.deviation->rmse_m : 0.0;
+        row["plain_rmse_m"] = plain->run.deviation ? plain->run.deviation->rmseM : 0.0;
         row["ratio_to_plain"] = ratio;
       }
       rows.push_back(row);
@@ -196,7 +196,7 @@ bool runPipelineSuite(const StressArgs& args, nlohmann::json& rows) {
     bar.clear();
     ok = ok && r.ok;
     fmt::print(out, "{:<17} {:<21} {:>6} {:>9.3g} {:>9.3g} {:>8.2f} {:>8.0f}  {:<4} {} [{}]\n", r.name, r.kind, r.iterations,
-               r.rmse_m, r.maxError_m, r.seconds, r.peakRss_mb, r.ok ? "yes" : "NO", r.result, r.stages);
+               r.rmseM, r.maxErrorM, r.seconds, r.peakRssMb, r.ok ? "yes" : "NO", r.result, r.stages);
     std::fflush(out);
     rows.push_back(r.toJson());
   }
@@ -226,15 +226,15 @@ int runStress(const StressArgs& args) {
     const rods::StressOutcome o = rods::runStressCase(c, args.timeLimit, args.maxIterations);
     allFinite = allFinite && o.finite;
     const std::string result = !o.finite ? "NON-FINITE" : o.converged ? "converged" : "stopped: " + o.reason;
-    const double sagPercent = o.extent_m > 0.0 ? 100.0 * o.sag_m / o.extent_m : 0.0;
+    const double sagPercent = o.extentM > 0.0 ? 100.0 * o.sagM / o.extentM : 0.0;
     fmt::print(tableStream(args.json), "{:<28} {:>9.3g} {:>6.0f} {:>8.3g} {:>6.0f} {:>6} {:>8.2f} {:>10.3g} {:>9.3g} {:>7.2f}  {}\n", c.name,
-               3.0 * c.scale, c.widthToThickness, 1e-9 * c.youngsModulus_pa, c.density_kg_m3, o.iterations, o.seconds,
-               o.rmse_m, o.nrmse, sagPercent, result);
+               3.0 * c.scale, c.widthToThickness, 1e-9 * c.youngsModulusPa, c.densityKgM3, o.iterations, o.seconds,
+               o.rmseM, o.nrmse, sagPercent, result);
     rows.push_back({{"case", c.name},
                     {"span_m", 3.0 * c.scale},
                     {"width_to_thickness", c.widthToThickness},
-                    {"youngs_modulus_pa", c.youngsModulus_pa},
-                    {"density_kg_m3", c.density_kg_m3},
+                    {"youngs_modulus_pa", c.youngsModulusPa},
+                    {"density_kg_m3", c.densityKgM3},
                     {"vertices", o.vertices},
                     {"iterations", o.iterations},
                     {"seconds", o.seconds},
@@ -242,11 +242,11 @@ int runStress(const StressArgs& args) {
                     {"status", rods::toString(o.status)},
                     {"finite", o.finite},
                     {"reason", o.reason},
-                    {"rmse_m", o.rmse_m},
+                    {"rmse_m", o.rmseM},
                     {"nrmse", o.nrmse},
-                    {"sag_m", o.sag_m},
-                    {"extent_m", o.extent_m},
-                    {"max_error_m", o.maxError_m}});
+                    {"sag_m", o.sagM},
+                    {"extent_m", o.extentM},
+                    {"max_error_m", o.maxErrorM}});
   }
   bool pipelineOk = true;
   nlohmann::json prow = nlohmann::json::array();

@@ -21,7 +21,7 @@ namespace egg::app {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-ChildOutcome runChild(const std::function<int()>& body, double timeLimit_s, const fs::path& logFile) {
+ChildOutcome runChild(const std::function<int()>& body, double timeLimitS, const fs::path& logFile) {
   ChildOutcome out;
   std::fflush(nullptr);
   const Stopwatch watch;
@@ -54,7 +54,7 @@ ChildOutcome runChild(const std::function<int()>& body, double timeLimit_s, cons
     const pid_t r = wait4(pid, &status, WNOHANG, &usage);
     const double elapsed = watch.seconds();
     if (r == pid) break;
-    if (elapsed > timeLimit_s) {
+    if (elapsed > timeLimitS) {
       out.timedOut = true;
       kill(-pid, SIGKILL);
       kill(pid, SIGKILL);
@@ -64,7 +64,7 @@ ChildOutcome runChild(const std::function<int()>& body, double timeLimit_s, cons
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   out.seconds = watch.seconds();
-  out.peakRss_mb = usage.ru_maxrss / 1024.0;  // kB on Linux
+  out.peakRssMb = usage.ru_maxrss / 1024.0;  // kB on Linux
   if (!out.timedOut) {
     if (WIFSIGNALED(status)) out.signal = WTERMSIG(status);
     else if (WIFEXITED(status)) out.exitCode = WEXITSTATUS(status);
@@ -234,7 +234,7 @@ std::vector<PipelineStressCase> pipelineStressCases() {
           "+ one geodesic field (egg geodesic); patching and later stages skipped at this size",
           meshScene("million"));
   big.surfaceOnly = true;
-  big.timeLimit_s = 300.0;
+  big.timeLimitS = 300.0;
   big.writeMesh = [](const fs::path& p) {
     Obj o;
     addGrid(o, 708, 707, 100, 100, bump(20, 20));
@@ -254,7 +254,7 @@ PipelineStressRow classify(const PipelineStressCase& c, const ChildOutcome& o, c
   row.name = c.name;
   row.kind = c.kind;
   row.seconds = o.seconds;
-  row.peakRss_mb = o.peakRss_mb;
+  row.peakRssMb = o.peakRssMb;
   static const std::regex nonFinite(R"(\b(nan|-?inf)\b)", std::regex::icase);
   bool finite = !std::regex_search(o.output, nonFinite);
   if (report.is_object()) {
@@ -267,8 +267,8 @@ PipelineStressRow classify(const PipelineStressCase& c, const ChildOutcome& o, c
       const json& sim = report["simulation"];
       for (const char* k : {"rmse_m", "max_error_m", "nrmse"}) finite = finite && finiteNumber(sim, k);
       row.iterations = sim.value("iterations", 0);
-      if (sim.contains("rmse_m") && sim["rmse_m"].is_number()) row.rmse_m = sim["rmse_m"].get<double>();
-      if (sim.contains("max_error_m") && sim["max_error_m"].is_number()) row.maxError_m = sim["max_error_m"].get<double>();
+      if (sim.contains("rmse_m") && sim["rmse_m"].is_number()) row.rmseM = sim["rmse_m"].get<double>();
+      if (sim.contains("max_error_m") && sim["max_error_m"].is_number()) row.maxErrorM = sim["max_error_m"].get<double>();
     }
     if (report.contains("patches") && report["patches"].is_array())
       for (const json& p : report["patches"])
@@ -282,7 +282,7 @@ PipelineStressRow classify(const PipelineStressCase& c, const ChildOutcome& o, c
       else if (!line.empty()) last = line;
     return last.substr(0, 160);
   };
-  if (o.timedOut) row.result = fmt::format("TIMEOUT after {:.0f} s", c.timeLimit_s);
+  if (o.timedOut) row.result = fmt::format("TIMEOUT after {:.0f} s", c.timeLimitS);
   else if (o.signal != 0) row.result = fmt::format("CRASH (signal {})", o.signal);
   else if (!finite) row.result = "NON-FINITE: " + firstLine(o.output);
   else if (o.exitCode == 0) {
@@ -301,8 +301,8 @@ PipelineStressRow classify(const PipelineStressCase& c, const ChildOutcome& o, c
 
 json PipelineStressRow::toJson() const {
   return {{"case", name},       {"class", kind},          {"stages", stages},  {"ok", ok},
-          {"result", result},   {"iterations", iterations}, {"rmse_m", rmse_m}, {"max_error_m", maxError_m},
-          {"seconds", seconds}, {"peak_rss_mb", peakRss_mb}};
+          {"result", result},   {"iterations", iterations}, {"rmse_m", rmseM}, {"max_error_m", maxErrorM},
+          {"seconds", seconds}, {"peak_rss_mb", peakRssMb}};
 }
 
 PipelineStressRow runPipelineStressCase(const PipelineStressCase& c, const EggCommand& command, const fs::path& workDir) {
@@ -318,7 +318,7 @@ PipelineStressRow runPipelineStressCase(const PipelineStressCase& c, const EggCo
   }
   if (!c.surfaceOnly) {
     const ChildOutcome o = runChild([&] { return command({"run", (dir / "scene.json").string(), "-o", (dir / "out").string(), "-q", "-j", "1"}); },
-                                    c.timeLimit_s, dir / "log.txt");
+                                    c.timeLimitS, dir / "log.txt");
     json report;
     std::ifstream r(dir / "out" / "report.json");
     if (r) report = json::parse(r, nullptr, false);
@@ -327,7 +327,7 @@ PipelineStressRow runPipelineStressCase(const PipelineStressCase& c, const EggCo
   }
   // Large mesh: load + curvature, then one geodesic field, each a child (a fifth and four fifths of the limit).
   ChildOutcome a = runChild([&] { return command({"surface", (dir / "mesh.obj").string(), "--stats", "--json"}); },
-                            (c.geodesic ? 0.2 : 1.0) * c.timeLimit_s, dir / "surface.txt");
+                            (c.geodesic ? 0.2 : 1.0) * c.timeLimitS, dir / "surface.txt");
   ChildOutcome total = a;
   std::string stages = "surface,curvature";
   if (c.geodesic && !a.timedOut && a.signal == 0 && a.exitCode == 0) {
@@ -337,10 +337,10 @@ PipelineStressRow runPipelineStressCase(const PipelineStressCase& c, const EggCo
           return command({"geodesic", (dir / "mesh.obj").string(), "--source", "0,0,20", "--engine", "wavefront", "--out", (dir / "d.csv").string(),
                           "--json"});
         },
-        0.8 * c.timeLimit_s, dir / "geodesic.txt");
+        0.8 * c.timeLimitS, dir / "geodesic.txt");
     total = b;
     total.seconds += a.seconds;
-    total.peakRss_mb = std::max(a.peakRss_mb, b.peakRss_mb);
+    total.peakRssMb = std::max(a.peakRssMb, b.peakRssMb);
     total.output = a.output + b.output;
     stages += ",geodesic";
   }

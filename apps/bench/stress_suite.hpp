@@ -19,14 +19,14 @@ struct ChildOutcome {
   int exitCode = -1;     // valid when signal == 0 and !timedOut
   int signal = 0;        // the signal that ended the child (a crash), 0 if it exited
   double seconds = 0.0;
-  double peakRss_mb = 0.0;  // the child's own peak resident set (wait4 rusage)
+  double peakRssMb = 0.0;  // the child's own peak resident set (wait4 rusage)
   std::string output;    // the child's stdout and stderr, interleaved
 };
 
 // Forks; the child sends stdout and stderr to a file, runs `body` and exits with its return code
 // (an escaping exception: code 3 with its message). Killed (with its process group) after
 // timeLimit_s. Never throws for what the child does.
-ChildOutcome runChild(const std::function<int()>& body, double timeLimit_s, const std::filesystem::path& logFile);
+ChildOutcome runChild(const std::function<int()>& body, double timeLimitS, const std::filesystem::path& logFile);
 
 struct PipelineStressCase {
   std::string name;
@@ -36,7 +36,7 @@ struct PipelineStressCase {
   std::function<void(const std::filesystem::path&)> writeMesh;  // writes the case's OBJ
   bool surfaceOnly = false; // `egg surface --stats` + `egg geodesic` instead of `egg run`
   bool geodesic = true;     // surfaceOnly: also the geodesic field (`egg stress --large-mesh-stages surface` drops it)
-  double timeLimit_s = 60.0;
+  double timeLimitS = 60.0;
 };
 
 // The fixed suite (same cases every run, in this order).
@@ -46,7 +46,7 @@ struct PipelineStressRow {
   std::string name, kind, stages, result;
   bool ok = false;          // converged or a stated reason; false: NaN, crash, timeout
   int iterations = 0;
-  double rmse_m = 0.0, maxError_m = 0.0, seconds = 0.0, peakRss_mb = 0.0;
+  double rmseM = 0.0, maxErrorM = 0.0, seconds = 0.0, peakRssMb = 0.0;
   nlohmann::json toJson() const;
 };
 

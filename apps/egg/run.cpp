@@ -36,7 +36,7 @@ void registerRunCommand(CLI::App& parent, Action& action) {
       std::optional<tbb::global_control> threadLimit;
       if (args->threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(args->threads));
       PipelineOptions options;
-      options.out_dir = args->out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args->out);
+      options.outDir = args->out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args->out);
       ProgressLine bar(!args->quiet);  // drawn only on a terminal
       if (bar.shown()) options.progress = [&bar](const std::string& stage, double fraction) { bar.update(fraction, stage); };
       const PipelineResult result = runPipeline(scene, options);
@@ -49,7 +49,7 @@ void registerRunCommand(CLI::App& parent, Action& action) {
         std::cout << result.report.dump(2) << "\n";
       } else {
         std::cout << fmt::format("egg run: {} done in {:.2f} s; results in {}\n", scene.name, result.seconds,
-                                 result.out_dir.string());
+                                 result.outDir.string());
       }
       for (const auto& failure : result.failures) std::cerr << "egg run: " << failure << "\n";
       return result.failures.empty() ? kExitOk : kExitFailure;

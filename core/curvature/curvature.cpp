@@ -128,14 +128,14 @@ PrincipalFit fitPrincipal(const TriMesh& mesh, const Eigen::Vector3d& p, const E
 }  // namespace
 
 void CurvatureOptions::validate() const {
-  if (fit_rings < 1 || fit_rings > 5)
-    throw InvalidInput("CurvatureOptions.fit_rings must be in [1, 5], got " + std::to_string(fit_rings));
-  if (fit_degree < 2 || fit_degree > 4)
-    throw InvalidInput("CurvatureOptions.fit_degree must be 2, 3 or 4, got " + std::to_string(fit_degree));
-  if (boundary_fit_degree < 2 || boundary_fit_degree > 4)
-    throw InvalidInput("CurvatureOptions.boundary_fit_degree must be 2, 3 or 4, got " + std::to_string(boundary_fit_degree));
-  if (min_fit_points < 5 || min_fit_points > 500)
-    throw InvalidInput("CurvatureOptions.min_fit_points must be in [5, 500], got " + std::to_string(min_fit_points));
+  if (fitRings < 1 || fitRings > 5)
+    throw InvalidInput("CurvatureOptions.fit_rings must be in [1, 5], got " + std::to_string(fitRings));
+  if (fitDegree < 2 || fitDegree > 4)
+    throw InvalidInput("CurvatureOptions.fit_degree must be 2, 3 or 4, got " + std::to_string(fitDegree));
+  if (boundaryFitDegree < 2 || boundaryFitDegree > 4)
+    throw InvalidInput("CurvatureOptions.boundary_fit_degree must be 2, 3 or 4, got " + std::to_string(boundaryFitDegree));
+  if (minFitPoints < 5 || minFitPoints > 500)
+    throw InvalidInput("CurvatureOptions.min_fit_points must be in [5, 500], got " + std::to_string(minFitPoints));
 }
 
 Eigen::VectorXd angleDefects(const TriMesh& mesh) {
@@ -177,17 +177,17 @@ CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& opt
   const auto start = std::chrono::steady_clock::now();
   const int n = static_cast<int>(mesh.n_vertices());
   CurvatureField field;
-  field.mixed_area = mixedVoronoiAreas(mesh);
+  field.mixedArea = mixedVoronoiAreas(mesh);
   field.normals = vertexNormals(mesh);
   const Eigen::VectorXd defect = angleDefects(mesh);
   field.gaussian.resize(n);
-  field.gaussian_angle_defect.resize(n);
+  field.gaussianAngleDefect.resize(n);
   field.mean.resize(n);
-  field.kappa_max.resize(n);
-  field.kappa_min.resize(n);
-  field.direction_max.assign(n, Eigen::Vector3d::Zero());
-  field.direction_min.assign(n, Eigen::Vector3d::Zero());
-  field.on_boundary.assign(n, 0);
+  field.kappaMax.resize(n);
+  field.kappaMin.resize(n);
+  field.directionMax.assign(n, Eigen::Vector3d::Zero());
+  field.directionMin.assign(n, Eigen::Vector3d::Zero());
+  field.onBoundary.assign(n, 0);
 
   // Every vertex's fit is independent: in parallel (a 3.4k-vertex patch spent ~25 ms here on one
   // thread, a fifth of the whole EGG solve's budget). Each thread keeps its own stamp array; the
@@ -201,41 +201,41 @@ CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& opt
     auto& [stamp, neighbourhood] = scratch.local();
     for (int v = range.begin(); v < range.end(); ++v) {
       const auto vh = TriMesh::VertexHandle(v);
-      field.on_boundary[v] = mesh.is_boundary(vh) ? 1 : 0;
+      field.onBoundary[v] = mesh.is_boundary(vh) ? 1 : 0;
       const Eigen::Vector3d p = toEigen(mesh.point(vh));
       PrincipalFit fit;
       // A one-sided neighbourhood makes a high-degree fit extrapolate wildly at the vertex (a
       // corner of the great_court roof gave K = -0.38 / m^2 with degree 4); a quadric is stable there.
-      const int degree = field.on_boundary[v] ? std::min(options.fit_degree, options.boundary_fit_degree) : options.fit_degree;
-      for (int rings = options.fit_rings; rings <= options.fit_rings + 2; ++rings) {
+      const int degree = field.onBoundary[v] ? std::min(options.fitDegree, options.boundaryFitDegree) : options.fitDegree;
+      for (int rings = options.fitRings; rings <= options.fitRings + 2; ++rings) {
         gatherRings(mesh, v, rings, stamp, v * 8 + rings, neighbourhood);
-        const int wanted = std::max(options.min_fit_points, 2 * monomialCount(degree));
-        if (static_cast<int>(neighbourhood.size()) - 1 < wanted && rings < options.fit_rings + 2) continue;
+        const int wanted = std::max(options.minFitPoints, 2 * monomialCount(degree));
+        if (static_cast<int>(neighbourhood.size()) - 1 < wanted && rings < options.fitRings + 2) continue;
         fit = fitPrincipal(mesh, p, field.normals[v], neighbourhood, degree);
         break;
       }
       // stamp values v*8+rings are unique per (v, rings) since rings < 8.
-      field.kappa_max(v) = fit.kappaMax;
-      field.kappa_min(v) = fit.kappaMin;
-      field.direction_max[v] = fit.directionMax;
-      field.direction_min[v] = fit.directionMin;
+      field.kappaMax(v) = fit.kappaMax;
+      field.kappaMin(v) = fit.kappaMin;
+      field.directionMax[v] = fit.directionMax;
+      field.directionMin[v] = fit.directionMin;
       field.mean(v) = 0.5 * (fit.kappaMax + fit.kappaMin);
       field.gaussian(v) = fit.kappaMax * fit.kappaMin;
-      const bool defectUsable = !field.on_boundary[v] && field.mixed_area(v) > 0.0;
+      const bool defectUsable = !field.onBoundary[v] && field.mixedArea(v) > 0.0;
       // A failed fit (too few neighbours, a singular system) must not read as K = 0: that would
       // lower K_max and loosen the injectivity bound of Eq. 2.1. Fall back to the angle defect.
-      if (!fit.ok && defectUsable) field.gaussian(v) = defect(v) / field.mixed_area(v);
-      field.gaussian_angle_defect(v) = defectUsable ? defect(v) / field.mixed_area(v) : field.gaussian(v);
+      if (!fit.ok && defectUsable) field.gaussian(v) = defect(v) / field.mixedArea(v);
+      field.gaussianAngleDefect(v) = defectUsable ? defect(v) / field.mixedArea(v) : field.gaussian(v);
     }
   });
-  field.vertex_gaussian_max = 0;
-  field.vertex_gaussian_min = 0;
+  field.vertexGaussianMax = 0;
+  field.vertexGaussianMin = 0;
   for (int v = 1; v < n; ++v) {
-    if (field.gaussian(v) > field.gaussian(field.vertex_gaussian_max)) field.vertex_gaussian_max = v;
-    if (field.gaussian(v) < field.gaussian(field.vertex_gaussian_min)) field.vertex_gaussian_min = v;
+    if (field.gaussian(v) > field.gaussian(field.vertexGaussianMax)) field.vertexGaussianMax = v;
+    if (field.gaussian(v) < field.gaussian(field.vertexGaussianMin)) field.vertexGaussianMin = v;
   }
-  field.gaussian_max = field.gaussian(field.vertex_gaussian_max);
-  field.gaussian_min = field.gaussian(field.vertex_gaussian_min);
+  field.gaussianMax = field.gaussian(field.vertexGaussianMax);
+  field.gaussianMin = field.gaussian(field.vertexGaussianMin);
   field.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return field;
 }

@@ -30,36 +30,36 @@ namespace egg {
 
 struct CurvatureOptions {
   // Rings of neighbours used by the principal-curvature fit.
-  int fit_rings = 2;
+  int fitRings = 2;
   // Degree of the fitted height field (2 = quadric; 3-4 remove the O(h^2) bias of a quadric fit
   // and the O(h) bias at boundaries; lowered automatically where too few points are available).
-  int fit_degree = 4;
+  int fitDegree = 4;
   // Degree at boundary vertices, whose one-sided neighbourhoods make high degrees unstable.
-  int boundary_fit_degree = 2;
+  int boundaryFitDegree = 2;
   // Grow the fit neighbourhood (up to fit_rings + 2 rings) until it holds this many vertices;
   // boundary and corner vertices have few neighbours.
-  int min_fit_points = 12;
+  int minFitPoints = 12;
 
   void validate() const;  // throws InvalidInput naming the field
 };
 
 struct CurvatureField {
   Eigen::VectorXd gaussian;               // K = kappa_max * kappa_min of the fit [1/m^2]
-  Eigen::VectorXd gaussian_angle_defect;  // angle defect / mixed area inside, the fit on the boundary
+  Eigen::VectorXd gaussianAngleDefect;  // angle defect / mixed area inside, the fit on the boundary
                                           // (where the defect measures the boundary's turning) [1/m^2]
   Eigen::VectorXd mean;          // H = (kappa_max + kappa_min) / 2 [1/m]
-  Eigen::VectorXd kappa_max;     // larger principal curvature [1/m]
-  Eigen::VectorXd kappa_min;     // smaller principal curvature [1/m]
-  std::vector<Eigen::Vector3d> direction_max;  // unit tangent direction of kappa_max
-  std::vector<Eigen::Vector3d> direction_min;  // unit tangent direction of kappa_min
+  Eigen::VectorXd kappaMax;     // larger principal curvature [1/m]
+  Eigen::VectorXd kappaMin;     // smaller principal curvature [1/m]
+  std::vector<Eigen::Vector3d> directionMax;  // unit tangent direction of kappa_max
+  std::vector<Eigen::Vector3d> directionMin;  // unit tangent direction of kappa_min
   std::vector<Eigen::Vector3d> normals;        // unit vertex normals (angle-weighted)
-  Eigen::VectorXd mixed_area;    // mixed Voronoi area per vertex [m^2]
-  std::vector<char> on_boundary; // 1 for boundary vertices
+  Eigen::VectorXd mixedArea;    // mixed Voronoi area per vertex [m^2]
+  std::vector<char> onBoundary; // 1 for boundary vertices
   // Summary of `gaussian`.
-  double gaussian_max = 0.0;
-  double gaussian_min = 0.0;
-  int vertex_gaussian_max = -1;
-  int vertex_gaussian_min = -1;
+  double gaussianMax = 0.0;
+  double gaussianMin = 0.0;
+  int vertexGaussianMax = -1;
+  int vertexGaussianMin = -1;
   double seconds = 0.0;
 };
 

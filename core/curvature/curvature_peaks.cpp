@@ -34,10 +34,10 @@ void PeakOptions::validate() const {
     s << "PeakOptions." << field << " " << rule << ", got " << value;
     throw InvalidInput(s.str());
   };
-  if (!std::isfinite(min_gaussian)) fail("min_gaussian", min_gaussian, "must be finite");
-  if (!(smoothing_radius_m >= 0.0 && std::isfinite(smoothing_radius_m)))
-    fail("smoothing_radius_m", smoothing_radius_m, "must be >= 0 (0 = automatic)");
-  if (!(separation_m >= 0.0 && std::isfinite(separation_m))) fail("separation_m", separation_m, "must be >= 0 (0 = automatic)");
+  if (!std::isfinite(minGaussian)) fail("min_gaussian", minGaussian, "must be finite");
+  if (!(smoothingRadiusM >= 0.0 && std::isfinite(smoothingRadiusM)))
+    fail("smoothing_radius_m", smoothingRadiusM, "must be >= 0 (0 = automatic)");
+  if (!(separationM >= 0.0 && std::isfinite(separationM))) fail("separation_m", separationM, "must be >= 0 (0 = automatic)");
 }
 
 Eigen::VectorXd averageOverBall(const TriMesh& mesh, const Eigen::VectorXd& field, const Eigen::VectorXd& vertexArea,
@@ -71,17 +71,17 @@ std::vector<CurvaturePeak> findGaussianPeaks(const TriMesh& mesh, const Eigen::V
     throw InvalidInput("findGaussianPeaks: gaussian has " + std::to_string(gaussian.size()) + " values for " +
                        std::to_string(n) + " vertices");
   if (n == 0) return {};
-  const double radius = options.smoothing_radius_m > 0.0 ? options.smoothing_radius_m : 2.0 * meanEdgeLength(mesh);
-  const double separation = options.separation_m > 0.0 ? options.separation_m : radius;
+  const double radius = options.smoothingRadiusM > 0.0 ? options.smoothingRadiusM : 2.0 * meanEdgeLength(mesh);
+  const double separation = options.separationM > 0.0 ? options.separationM : radius;
   const Eigen::VectorXd averaged = averageOverBall(mesh, gaussian, vertexArea, radius);
 
   std::vector<CurvaturePeak> peaks;
   std::vector<int> stamp(n, -1), stampNearby(n, -1), members;
   for (int v = 0; v < n; ++v) {
-    if (!(averaged(v) > options.min_gaussian)) continue;
+    if (!(averaged(v) > options.minGaussian)) continue;
     const auto vh = TriMesh::VertexHandle(v);
     const bool boundary = mesh.is_boundary(vh);
-    if (boundary && !options.include_boundary) continue;
+    if (boundary && !options.includeBoundary) continue;
     ball(mesh, v, separation, stamp, members);
     // Strict maximum, ties broken by the lower index, so a plateau yields exactly one peak.
     const bool isMax = std::all_of(members.begin(), members.end(), [&](int w) {
@@ -91,16 +91,16 @@ std::vector<CurvaturePeak> findGaussianPeaks(const TriMesh& mesh, const Eigen::V
     CurvaturePeak peak;
     peak.vertex = v;
     peak.position = toEigen(mesh.point(vh));
-    peak.gaussian_averaged = averaged(v);
-    peak.gaussian_vertex = gaussian(v);
+    peak.gaussianAveraged = averaged(v);
+    peak.gaussianVertex = gaussian(v);
     ball(mesh, v, radius, stampNearby, members);
-    peak.gaussian_max_nearby = gaussian(v);
-    for (int w : members) peak.gaussian_max_nearby = std::max(peak.gaussian_max_nearby, gaussian(w));
-    peak.injectivity_bound_m = injectivityRadiusBound(peak.gaussian_max_nearby);
-    peak.on_boundary = boundary;
+    peak.gaussianMaxNearby = gaussian(v);
+    for (int w : members) peak.gaussianMaxNearby = std::max(peak.gaussianMaxNearby, gaussian(w));
+    peak.injectivityBoundM = injectivityRadiusBound(peak.gaussianMaxNearby);
+    peak.onBoundary = boundary;
     peaks.push_back(peak);
   }
-  std::sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) { return a.gaussian_averaged > b.gaussian_averaged; });
+  std::sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) { return a.gaussianAveraged > b.gaussianAveraged; });
   return peaks;
 }
 

@@ -12,14 +12,14 @@ namespace egg {
 
 struct PeakOptions {
   // Only peaks whose averaged K exceeds this are reported [1/m^2].
-  double min_gaussian = 0.0;
+  double minGaussian = 0.0;
   // Radius of the averaging ball [m]; 0 = twice the mean edge length.
-  double smoothing_radius_m = 0.0;
+  double smoothingRadiusM = 0.0;
   // A peak is the largest averaged K within this radius [m]; 0 = the smoothing radius.
-  double separation_m = 0.0;
+  double separationM = 0.0;
   // Report peaks on the boundary too (a peak on the boundary is harmless for one patch, Section
   // 2.3.3, but matters when the surface is split).
-  bool include_boundary = true;
+  bool includeBoundary = true;
 
   void validate() const;  // throws InvalidInput naming the field
 };
@@ -27,13 +27,13 @@ struct PeakOptions {
 struct CurvaturePeak {
   int vertex = -1;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  double gaussian_averaged = 0.0;  // kernel-averaged K at the peak, the search criterion [1/m^2]
+  double gaussianAveraged = 0.0;  // kernel-averaged K at the peak, the search criterion [1/m^2]
                                    // (biased low by O((radius / bump width)^2))
-  double gaussian_vertex = 0.0;    // K of the peak vertex itself [1/m^2]
-  double gaussian_max_nearby = 0.0;  // largest K within the smoothing ball [1/m^2]: a conservative
+  double gaussianVertex = 0.0;    // K of the peak vertex itself [1/m^2]
+  double gaussianMaxNearby = 0.0;  // largest K within the smoothing ball [1/m^2]: a conservative
                                      // (high) estimate, safe for the uniqueness check
-  double injectivity_bound_m = 0.0;  // pi / sqrt(gaussian_max_nearby), Eq. 2.1
-  bool on_boundary = false;
+  double injectivityBoundM = 0.0;  // pi / sqrt(gaussian_max_nearby), Eq. 2.1
+  bool onBoundary = false;
 };
 
 // Average of a per-vertex field over the vertices within Euclidean distance `radiusM` reachable

@@ -117,7 +117,7 @@ std::optional<DesignFailure> smoothUntilUnique(PatchDesign& d, std::shared_ptr<c
   std::vector<Eigen::Vector3d> original;
   for (auto vh : d.patch.mesh.vertices()) original.push_back(toEigen(d.patch.mesh.point(vh)));
   SmoothingOptions smoothing;
-  smoothing.fix_boundary = true;
+  smoothing.fixBoundary = true;
   int rounds = 0;
   UniquenessReport report = d.uniqueness;
   // The same boundary samples as the check on the maps, so eta before and after smoothing

@@ -73,7 +73,7 @@ EtaCheck makeCheck(const Patch& patch, Family family, const CurvaturePeak& peak,
   check.family = family;
   check.peakVertex = peak.vertex;
   check.peak = peak.position;
-  check.gaussian = peak.gaussian_max_nearby;
+  check.gaussian = peak.gaussianMaxNearby;
   check.p1 = position(patch.mesh, familyBoundaryPoint(patch, family, p1.onEnd, static_cast<double>(p1.index) / (n - 1)));
   if (q >= 0) {
     check.eta = viaPeak / direct;
@@ -138,8 +138,8 @@ PatchPeaks findPatchPeaks(const Patch& patch, const UniquenessOptions& options) 
   PatchPeaks result;
   const auto curvature = computeCurvature(patch.mesh);
   PeakOptions peakOptions;
-  peakOptions.include_boundary = false;  // a peak on the boundary is harmless (Section 2.3.3)
-  auto peaks = findGaussianPeaks(patch.mesh, curvature.gaussian, curvature.mixed_area, peakOptions);
+  peakOptions.includeBoundary = false;  // a peak on the boundary is harmless (Section 2.3.3)
+  auto peaks = findGaussianPeaks(patch.mesh, curvature.gaussian, curvature.mixedArea, peakOptions);
   const double longest = *std::max_element(patch.sideLengths.begin(), patch.sideLengths.end());
   const double margin = std::max(options.boundaryMarginRelative * longest, 2.0 * meanEdgeLength(patch.mesh));
   const auto nearBoundary = [&](const CurvaturePeak& p) {
@@ -149,10 +149,10 @@ PatchPeaks findPatchPeaks(const Patch& patch, const UniquenessOptions& options) 
     return false;
   };
   peaks.erase(std::remove_if(peaks.begin(), peaks.end(),
-                             [&](const CurvaturePeak& p) { return p.gaussian_max_nearby <= 0 || nearBoundary(p); }),
+                             [&](const CurvaturePeak& p) { return p.gaussianMaxNearby <= 0 || nearBoundary(p); }),
               peaks.end());
   if (static_cast<int>(peaks.size()) > options.maxPeaks) peaks.resize(options.maxPeaks);
-  for (const auto& p : peaks) result.gaussianMax = std::max(result.gaussianMax, p.gaussian_max_nearby);
+  for (const auto& p : peaks) result.gaussianMax = std::max(result.gaussianMax, p.gaussianMaxNearby);
   result.peaks = std::move(peaks);
   result.seconds = secondsSince(started);
   return result;

@@ -244,17 +244,17 @@ std::unique_ptr<aiScene> sceneFromSoup(const TriangleSoup& soup, double scale) {
 }  // namespace
 
 void MeshImportOptions::validate() const {
-  if (!(std::isfinite(scale_to_m) && scale_to_m > 0.0)) {
+  if (!(std::isfinite(scaleToM) && scaleToM > 0.0)) {
     std::ostringstream s;
-    s << "MeshImportOptions.scale_to_m must be a positive number, got " << scale_to_m;
+    s << "MeshImportOptions.scale_to_m must be a positive number, got " << scaleToM;
     throw InvalidInput(s.str());
   }
 }
 
 void MeshExportOptions::validate() const {
-  if (!(std::isfinite(scale_from_m) && scale_from_m > 0.0)) {
+  if (!(std::isfinite(scaleFromM) && scaleFromM > 0.0)) {
     std::ostringstream s;
-    s << "MeshExportOptions.scale_from_m must be a positive number, got " << scale_from_m;
+    s << "MeshExportOptions.scale_from_m must be a positive number, got " << scaleFromM;
     throw InvalidInput(s.str());
   }
 }
@@ -290,9 +290,9 @@ TriangleSoup readMeshFile(const fs::path& path, const MeshImportOptions& options
   TriangleSoup soup;
   long ignoredPrimitives = 0;
   if (scene->mRootNode != nullptr)
-    collectNodes(*scene, *scene->mRootNode, options.scale_to_m, soup, ignoredPrimitives);
+    collectNodes(*scene, *scene->mRootNode, options.scaleToM, soup, ignoredPrimitives);
   if (!objPositions.empty() && scene->mRootNode != nullptr && !soup.triangles.empty())
-    objSoupInFileOrder(*scene, objPositions, options.scale_to_m, soup);
+    objSoupInFileOrder(*scene, objPositions, options.scaleToM, soup);
   if (soup.triangles.empty()) {
     std::string detail = std::to_string(scene->mNumMeshes) + " mesh(es)";
     if (ignoredPrimitives > 0) detail += ", " + std::to_string(ignoredPrimitives) + " points/lines";
@@ -340,7 +340,7 @@ void writeMeshFile(const fs::path& path, const TriangleSoup& soup, const MeshExp
   // Leftovers of earlier versions, which exported into .egg-write-PID-N folders.
   removeDeadLeftovers(directory, ".egg-write-", true);
 
-  const auto scene = sceneFromSoup(soup, options.scale_from_m);
+  const auto scene = sceneFromSoup(soup, options.scaleFromM);
   Assimp::Exporter exporter;
   auto* memory = new MemoryIOSystem;  // owned by the exporter
   exporter.SetIOHandler(memory);

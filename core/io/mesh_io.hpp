@@ -18,7 +18,7 @@ namespace egg {
 
 struct MeshImportOptions {
   // Factor from file units to metres (0.001 for a file in millimetres).
-  double scale_to_m = 1.0;
+  double scaleToM = 1.0;
 
   void validate() const;  // throws InvalidInput naming the field
 };
@@ -36,7 +36,7 @@ TriMesh loadMeshFile(const std::filesystem::path& path, const MeshImportOptions&
 
 struct MeshExportOptions {
   // Factor from metres to file units (1000 writes millimetres).
-  double scale_from_m = 1.0;
+  double scaleFromM = 1.0;
   // STL and PLY: binary (true) or ASCII (false).
   bool binary = true;
 

@@ -18,9 +18,9 @@ void SmoothingOptions::validate() const {
     s << "SmoothingOptions.strength must be a positive number, got " << strength;
     throw InvalidInput(s.str());
   }
-  if (!(cg_tolerance > 0.0 && cg_tolerance < 1e-2)) {
+  if (!(cgTolerance > 0.0 && cgTolerance < 1e-2)) {
     std::ostringstream s;
-    s << "SmoothingOptions.cg_tolerance must be in (0, 0.01), got " << cg_tolerance;
+    s << "SmoothingOptions.cg_tolerance must be in (0, 0.01), got " << cgTolerance;
     throw InvalidInput(s.str());
   }
 }
@@ -29,26 +29,26 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
   options.validate();
   const int n = static_cast<int>(mesh.n_vertices());
   if (n == 0 || mesh.n_faces() == 0) throw InvalidInput("smoothMeshStep: the mesh is empty");
-  for (int v : options.fixed_vertices)
+  for (int v : options.fixedVertices)
     if (v < 0 || v >= n)
       throw InvalidInput("SmoothingOptions.fixed_vertices holds " + std::to_string(v) + ", but the mesh has " +
                          std::to_string(n) + " vertices");
   const auto start = std::chrono::steady_clock::now();
 
   std::vector<char> fixed(n, 0);
-  if (options.fix_boundary)
+  if (options.fixBoundary)
     for (auto vh : mesh.vertices())
       if (mesh.is_boundary(vh)) fixed[vh.idx()] = 1;
-  for (int v : options.fixed_vertices) fixed[v] = 1;
+  for (int v : options.fixedVertices) fixed[v] = 1;
 
   SmoothingResult result;
   result.mesh = mesh;
   const double edge = meanEdgeLength(mesh);
-  result.time_step_m2 = options.strength * edge * edge;
+  result.timeStepM2 = options.strength * edge * edge;
   std::vector<int> freeIndex(n, -1);
   int freeCount = 0;
   for (int v = 0; v < n; ++v) {
-    if (fixed[v]) ++result.fixed_vertices;
+    if (fixed[v]) ++result.fixedVertices;
     else freeIndex[v] = freeCount++;
   }
   if (freeCount == 0) return result;
@@ -63,7 +63,7 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
   for (int v = 0; v < n; ++v) X.row(v) = toEigen(mesh.point(TriMesh::VertexHandle(v))).transpose();
 
   // (M + t L)_ff X'_f = M_f X_f - t L_fb X_b: fixed vertices move to the right-hand side.
-  const double t = result.time_step_m2;
+  const double t = result.timeStepM2;
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(L.nonZeros());
   Eigen::MatrixXd rhs(freeCount, 3);
@@ -82,10 +82,10 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
   A.setFromTriplets(entries.begin(), entries.end());
 
   constexpr int kCholeskyLimit = 100000;  // beyond this, fill-in makes the simplicial factorisation slow
-  result.used_cholesky = options.solver == FairingSolver::Cholesky ||
+  result.usedCholesky = options.solver == FairingSolver::Cholesky ||
                          (options.solver == FairingSolver::Auto && freeCount <= kCholeskyLimit);
   Eigen::MatrixXd solved(freeCount, 3);
-  if (result.used_cholesky) {
+  if (result.usedCholesky) {
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
     if (solver.info() != Eigen::Success)
       throw SolverFailure("smoothMeshStep: the implicit fairing system could not be factorised (degenerate faces?)");
@@ -93,7 +93,7 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
     if (solver.info() != Eigen::Success) throw SolverFailure("smoothMeshStep: the implicit fairing solve failed");
   } else {
     Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver(A);
-    solver.setTolerance(options.cg_tolerance);
+    solver.setTolerance(options.cgTolerance);
     solver.setMaxIterations(std::max(1000, freeCount / 10));
     for (int axis = 0; axis < 3; ++axis) {
       Eigen::VectorXd guess(freeCount);
@@ -114,11 +114,11 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
     if (fixed[v]) continue;
     const Eigen::Vector3d moved = solved.row(freeIndex[v]).transpose();
     const double displacement = (moved - X.row(v).transpose()).norm();
-    result.max_displacement_m = std::max(result.max_displacement_m, displacement);
+    result.maxDisplacementM = std::max(result.maxDisplacementM, displacement);
     sum += displacement;
     result.mesh.set_point(TriMesh::VertexHandle(v), toOpenMesh(moved));
   }
-  result.mean_displacement_m = sum / n;
+  result.meanDisplacementM = sum / n;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -134,14 +134,14 @@ SmoothingLoopResult smoothUntil(const TriMesh& mesh, const std::function<bool(co
   while (!loop.satisfied && loop.steps < maxSteps) {
     SmoothingResult step = smoothMeshStep(loop.mesh, options);
     loop.mesh = std::move(step.mesh);
-    loop.max_displacement_m.push_back(step.max_displacement_m);
-    loop.mean_displacement_m.push_back(step.mean_displacement_m);
+    loop.maxDisplacementM.push_back(step.maxDisplacementM);
+    loop.meanDisplacementM.push_back(step.meanDisplacementM);
     ++loop.steps;
     loop.satisfied = done(loop.mesh);
   }
   for (auto vh : mesh.vertices())
-    loop.total_max_displacement_m =
-        std::max(loop.total_max_displacement_m, (toEigen(loop.mesh.point(vh)) - toEigen(mesh.point(vh))).norm());
+    loop.totalMaxDisplacementM =
+        std::max(loop.totalMaxDisplacementM, (toEigen(loop.mesh.point(vh)) - toEigen(mesh.point(vh))).norm());
   loop.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return loop;
 }

@@ -32,24 +32,24 @@ struct SmoothingOptions {
   // Which Laplacian.
   LaplacianWeights weights = LaplacianWeights::Cotangent;
   // Keep boundary vertices where they are (the patch boundary is a traced geodesic).
-  bool fix_boundary = true;
+  bool fixBoundary = true;
   // Further vertices to keep fixed (e.g. patch corners), by index.
-  std::vector<int> fixed_vertices;
+  std::vector<int> fixedVertices;
   // Linear solver of the implicit step.
   FairingSolver solver = FairingSolver::Auto;
   // Relative residual at which conjugate gradients stop.
-  double cg_tolerance = 1e-12;
+  double cgTolerance = 1e-12;
 
   void validate() const;  // throws InvalidInput naming the field
 };
 
 struct SmoothingResult {
   TriMesh mesh;                      // the smoothed mesh (same connectivity)
-  double max_displacement_m = 0.0;   // largest vertex move of this step
-  double mean_displacement_m = 0.0;  // mean over all vertices (fixed ones count as 0)
-  int fixed_vertices = 0;            // vertices held in place
-  double time_step_m2 = 0.0;         // t in metres squared
-  bool used_cholesky = true;         // which solver ran
+  double maxDisplacementM = 0.0;   // largest vertex move of this step
+  double meanDisplacementM = 0.0;  // mean over all vertices (fixed ones count as 0)
+  int fixedVertices = 0;            // vertices held in place
+  double timeStepM2 = 0.0;         // t in metres squared
+  bool usedCholesky = true;         // which solver ran
   int iterations = 0;                // conjugate-gradient iterations (largest of x, y, z; 0 for Cholesky)
   double residual = 0.0;             // relative residual of the solve (CG estimate; 0 for Cholesky)
   double seconds = 0.0;
@@ -63,9 +63,9 @@ struct SmoothingLoopResult {
   TriMesh mesh;                              // the mesh after the last step (the input if none ran)
   int steps = 0;                             // steps taken
   bool satisfied = false;                    // `done` returned true (possibly before any step)
-  std::vector<double> max_displacement_m;    // per step
-  std::vector<double> mean_displacement_m;   // per step
-  double total_max_displacement_m = 0.0;     // largest distance of any vertex from its start
+  std::vector<double> maxDisplacementM;    // per step
+  std::vector<double> meanDisplacementM;   // per step
+  double totalMaxDisplacementM = 0.0;     // largest distance of any vertex from its start
   double seconds = 0.0;
 };
 

@@ -122,7 +122,7 @@ bool Checker::checkIndices() {
   for (size_t t = 0; t < w_.soup.triangles.size(); ++t) {
     const auto& tri = w_.soup.triangles[t];
     if (std::all_of(tri.begin(), tri.end(), [&](int v) { return v >= 0 && v < n; })) continue;
-    if (++bad <= o_.max_named_elements)
+    if (++bad <= o_.maxNamedElements)
       named.push_back("triangle " + std::to_string(t) + " (" + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) +
                       ", " + std::to_string(tri[2]) + ")");
   }
@@ -140,17 +140,17 @@ void Checker::mergeDuplicates(double tolerance) {
   for (size_t t = 0; t < w_.soup.triangles.size(); ++t) {
     const auto& tri = w_.soup.triangles[t];
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
-      if (++repeatedCount <= o_.max_named_elements) repeated.push_back(triangleName(static_cast<int>(t)));
+      if (++repeatedCount <= o_.maxNamedElements) repeated.push_back(triangleName(static_cast<int>(t)));
   }
-  if (o_.merge_duplicate_vertices) {
+  if (o_.mergeDuplicateVertices) {
     std::vector<int> oldToNew, kept;
     const int merged = mergeDuplicateVertices(w_.soup, tolerance, &oldToNew);
     w_.applyVertexMap(oldToNew);
     const auto [collapsed, duplicates] = dropCollapsedAndDuplicateTriangles(w_.soup, &kept);
     w_.applyTriangleSelection(kept);
-    d_.merged_vertices = merged;
-    d_.dropped_collapsed_triangles = collapsed;
-    d_.dropped_duplicate_triangles = duplicates;
+    d_.mergedVertices = merged;
+    d_.droppedCollapsedTriangles = collapsed;
+    d_.droppedDuplicateTriangles = duplicates;
     std::ostringstream tol;
     tol << tolerance;
     if (merged > 0)
@@ -179,7 +179,7 @@ void Checker::mergeDuplicates(double tolerance) {
     for (size_t i = 0; i < oldToNew.size(); ++i) {
       int& first = firstOf[oldToNew[i]];
       if (first < 0) first = static_cast<int>(i);
-      else if (shown++ < o_.max_named_elements)
+      else if (shown++ < o_.maxNamedElements)
         pairs.push_back(vertexName(static_cast<int>(i)) + " duplicates vertex " + std::to_string(w_.vertexOrigin[first]));
     }
     add(MeshIssueKind::DuplicateVertices, merged, Severity::Error,
@@ -204,8 +204,8 @@ void Checker::handleComponents() {
     const int dropped = keepLargestComponent(w_.soup, &kept, &oldToNew);
     w_.applyTriangleSelection(kept);
     w_.applyVertexMap(oldToNew);
-    d_.dropped_component_triangles = dropped;
-    d_.removed_components = count - 1;
+    d_.droppedComponentTriangles = dropped;
+    d_.removedComponents = count - 1;
     add(MeshIssueKind::SeveralComponents, count - 1, Severity::Repaired,
         "the mesh has " + std::to_string(count) + " connected components; kept the largest by area (" +
             std::to_string(w_.soup.triangles.size()) + " triangles) and dropped " + std::to_string(dropped) +
@@ -220,7 +220,7 @@ void Checker::handleComponents() {
     if (first[component[t]] < 0) first[component[t]] = static_cast<int>(t);
   }
   std::vector<std::string> named;
-  for (int c = 0; c < count && c < o_.max_named_elements; ++c)
+  for (int c = 0; c < count && c < o_.maxNamedElements; ++c)
     named.push_back("component " + std::to_string(c) + ": " + std::to_string(size[c]) + " triangles from " +
                     triangleName(first[c]));
   add(MeshIssueKind::SeveralComponents, count, Severity::Error,
@@ -234,16 +234,16 @@ void Checker::handleIsolatedVertices() {
     for (int v : tri) used[v] = 1;
   const int isolated = static_cast<int>(std::count(used.begin(), used.end(), 0));
   if (isolated == 0) return;
-  if (o_.drop_unreferenced_vertices) {
+  if (o_.dropUnreferencedVertices) {
     std::vector<int> oldToNew;
-    d_.dropped_unreferenced_vertices = dropUnreferencedVertices(w_.soup, &oldToNew);
+    d_.droppedUnreferencedVertices = dropUnreferencedVertices(w_.soup, &oldToNew);
     w_.applyVertexMap(oldToNew);
     add(MeshIssueKind::IsolatedVertices, isolated, Severity::Repaired,
         "dropped " + std::to_string(isolated) + " vertices that no triangle uses");
     return;
   }
   std::vector<std::string> named;
-  for (size_t v = 0; v < used.size() && static_cast<int>(named.size()) < o_.max_named_elements; ++v)
+  for (size_t v = 0; v < used.size() && static_cast<int>(named.size()) < o_.maxNamedElements; ++v)
     if (!used[v]) named.push_back(vertexName(static_cast<int>(v)));
   add(MeshIssueKind::IsolatedVertices, isolated, Severity::Error,
       std::to_string(isolated) + " vertices are used by no triangle: " + list(named, isolated));
@@ -253,7 +253,7 @@ void Checker::checkFinite() {
   std::vector<std::string> named;
   int bad = 0;
   for (size_t v = 0; v < w_.soup.vertices.size(); ++v)
-    if (!w_.soup.vertices[v].allFinite() && ++bad <= o_.max_named_elements) named.push_back(vertexName(static_cast<int>(v)));
+    if (!w_.soup.vertices[v].allFinite() && ++bad <= o_.maxNamedElements) named.push_back(vertexName(static_cast<int>(v)));
   if (bad > 0)
     add(MeshIssueKind::NonFiniteVertex, bad, Severity::Error,
         std::to_string(bad) + " vertices have a NaN or infinite coordinate: " + list(named, bad));
@@ -268,14 +268,14 @@ void Checker::checkFaceShapes() {
       const double l = (V[tri[(k + 1) % 3]] - V[tri[k]]).norm();
       if (std::isfinite(l)) edgeSum += l, ++edgeCount;
     }
-  r_.mean_edge_length_m = edgeCount ? edgeSum / edgeCount : 0.0;
-  const double areaThreshold = o_.degenerate_area_relative * r_.mean_edge_length_m * r_.mean_edge_length_m;
+  r_.meanEdgeLengthM = edgeCount ? edgeSum / edgeCount : 0.0;
+  const double areaThreshold = o_.degenerateAreaRelative * r_.meanEdgeLengthM * r_.meanEdgeLengthM;
 
   std::vector<std::string> degenerate;
   int degenerateCount = 0, sliverCount = 0, worstSliver = -1;
   double worstSliverAngle = std::numeric_limits<double>::infinity();
-  r_.min_face_area_m2 = std::numeric_limits<double>::infinity();
-  r_.min_angle_rad = std::numeric_limits<double>::infinity();
+  r_.minFaceAreaM2 = std::numeric_limits<double>::infinity();
+  r_.minAngleRad = std::numeric_limits<double>::infinity();
   for (size_t t = 0; t < w_.soup.triangles.size(); ++t) {
     const auto& tri = w_.soup.triangles[t];
     const Eigen::Vector3d& a = V[tri[0]];
@@ -290,32 +290,32 @@ void Checker::checkFaceShapes() {
       const Eigen::Vector3d e2 = V[tri[(k + 2) % 3]] - V[tri[k]];
       minAngle = std::min(minAngle, std::atan2(e1.cross(e2).norm(), e1.dot(e2)));
     }
-    r_.min_face_area_m2 = std::min(r_.min_face_area_m2, area);
-    if (minAngle < r_.min_angle_rad) {
-      r_.min_angle_rad = minAngle;
-      r_.worst_face = w_.triangleOrigin[t];
+    r_.minFaceAreaM2 = std::min(r_.minFaceAreaM2, area);
+    if (minAngle < r_.minAngleRad) {
+      r_.minAngleRad = minAngle;
+      r_.worstFace = w_.triangleOrigin[t];
     }
     if (area <= areaThreshold) {
-      if (++degenerateCount <= o_.max_named_elements) {
+      if (++degenerateCount <= o_.maxNamedElements) {
         std::ostringstream s;
         s << triangleName(static_cast<int>(t)) << " area " << area << " m2";
         degenerate.push_back(s.str());
       }
-    } else if (minAngle < o_.sliver_min_angle_rad) {
+    } else if (minAngle < o_.sliverMinAngleRad) {
       ++sliverCount;
       if (minAngle < worstSliverAngle) worstSliverAngle = minAngle, worstSliver = static_cast<int>(t);
     }
   }
   if (degenerateCount > 0)
     add(MeshIssueKind::DegenerateFaces, degenerateCount, Severity::Error,
-        std::to_string(degenerateCount) + " zero-area triangle(s) (area below " + formatNumber(o_.degenerate_area_relative) +
+        std::to_string(degenerateCount) + " zero-area triangle(s) (area below " + formatNumber(o_.degenerateAreaRelative) +
             " x mean edge length squared): " + list(degenerate, degenerateCount));
   if (sliverCount > 0) {
     std::ostringstream s;
-    s << sliverCount << " sliver triangle(s) with an angle below " << o_.sliver_min_angle_rad * 180.0 / std::numbers::pi
+    s << sliverCount << " sliver triangle(s) with an angle below " << o_.sliverMinAngleRad * 180.0 / std::numbers::pi
       << " degrees; the worst is " << triangleName(worstSliver) << " with "
       << worstSliverAngle * 180.0 / std::numbers::pi << " degrees";
-    add(MeshIssueKind::SliverFaces, sliverCount, o_.reject_slivers ? Severity::Error : Severity::Warning, s.str());
+    add(MeshIssueKind::SliverFaces, sliverCount, o_.rejectSlivers ? Severity::Error : Severity::Warning, s.str());
   }
 }
 
@@ -344,20 +344,20 @@ void Checker::checkEdgesAndOrientation() {
 
   std::vector<std::string> nonManifold, conflicts;
   int nonManifoldCount = 0, conflictCount = 0;
-  r_.boundary_edges = 0;
+  r_.boundaryEdges = 0;
   std::vector<Use> uses;
   for (size_t begin = 0; begin < all.size();) {
     size_t end = begin;
     while (end < all.size() && all[end].key == all[begin].key) ++end;
     uses.assign(all.begin() + begin, all.begin() + end);
     begin = end;
-    if (uses.size() == 1) ++r_.boundary_edges;
-    if (uses.size() > 2 && ++nonManifoldCount <= o_.max_named_elements) {
+    if (uses.size() == 1) ++r_.boundaryEdges;
+    if (uses.size() > 2 && ++nonManifoldCount <= o_.maxNamedElements) {
       std::string s = edgeName(uses[0].from, uses[0].to) + " is shared by " + std::to_string(uses.size()) + " triangles (";
       for (size_t i = 0; i < uses.size(); ++i) s += (i ? ", " : "") + std::to_string(w_.triangleOrigin[uses[i].triangle]);
       nonManifold.push_back(s + ")");
     }
-    if (uses.size() == 2 && uses[0].from == uses[1].from && ++conflictCount <= o_.max_named_elements)
+    if (uses.size() == 2 && uses[0].from == uses[1].from && ++conflictCount <= o_.maxNamedElements)
       conflicts.push_back(edgeName(uses[0].from, uses[0].to) + " runs the same way in triangles " +
                           std::to_string(w_.triangleOrigin[uses[0].triangle]) + " and " +
                           std::to_string(w_.triangleOrigin[uses[1].triangle]));
@@ -366,7 +366,7 @@ void Checker::checkEdgesAndOrientation() {
     add(MeshIssueKind::NonManifoldEdges, nonManifoldCount, Severity::Error,
         std::to_string(nonManifoldCount) + " non-manifold edge(s): " + list(nonManifold, nonManifoldCount));
   if (conflictCount == 0) return;
-  if (!o_.fix_orientation) {
+  if (!o_.fixOrientation) {
     add(MeshIssueKind::InconsistentOrientation, conflictCount, Severity::Error,
         "inconsistent orientation at " + std::to_string(conflictCount) + " edge(s) (turn the faces so that neighbours agree, e.g. unify the normals in the modelling tool): " +
             list(conflicts, conflictCount));
@@ -379,7 +379,7 @@ void Checker::checkEdgesAndOrientation() {
             list(conflicts, conflictCount));
     return;
   }
-  d_.flipped_triangles = flipped;
+  d_.flippedTriangles = flipped;
   add(MeshIssueKind::InconsistentOrientation, conflictCount, Severity::Repaired,
       "flipped " + std::to_string(flipped) + " triangle(s) to make the orientation consistent");
 }
@@ -417,7 +417,7 @@ void Checker::checkVertexFans() {
     int fans = 0;
     for (size_t i = 0; i < tris.size(); ++i)
       if (root(static_cast<int>(i)) == static_cast<int>(i)) ++fans;
-    if (fans > 1 && ++bad <= o_.max_named_elements)
+    if (fans > 1 && ++bad <= o_.maxNamedElements)
       named.push_back(vertexName(v) + " joins " + std::to_string(fans) + " separate fans of triangles");
   }
   if (bad > 0)
@@ -440,7 +440,7 @@ void Checker::run() {
   for (const auto& p : w_.soup.vertices)
     if (p.allFinite()) box.min = box.min.cwiseMin(p), box.max = box.max.cwiseMax(p);
   const double diagonal = box.min.allFinite() ? box.size().norm() : 0.0;
-  mergeDuplicates(o_.merge_tolerance_relative * diagonal);
+  mergeDuplicates(o_.mergeToleranceRelative * diagonal);
   if (w_.soup.triangles.empty()) {
     add(MeshIssueKind::Empty, 0, Severity::Error, "no triangle is left after merging duplicate vertices");
     return;
@@ -451,8 +451,8 @@ void Checker::run() {
   checkFaceShapes();
   checkEdgesAndOrientation();
   checkVertexFans();
-  r_.vertices_after_repair = static_cast<int>(w_.soup.vertices.size());
-  r_.triangles_after_repair = static_cast<int>(w_.soup.triangles.size());
+  r_.verticesAfterRepair = static_cast<int>(w_.soup.vertices.size());
+  r_.trianglesAfterRepair = static_cast<int>(w_.soup.triangles.size());
 }
 
 WorkingSoup makeWorking(TriangleSoup soup) {
@@ -467,7 +467,7 @@ WorkingSoup makeWorking(TriangleSoup soup) {
 
 bool isError(const MeshIssue& issue, const MeshCheckOptions& options) {
   if (issue.repairable) return false;
-  return !(issue.kind == MeshIssueKind::SliverFaces && !options.reject_slivers);
+  return !(issue.kind == MeshIssueKind::SliverFaces && !options.rejectSlivers);
 }
 
 }  // namespace
@@ -493,17 +493,17 @@ std::string toString(MeshIssueKind kind) {
 }
 
 void MeshCheckOptions::validate() const {
-  if (!(merge_tolerance_relative >= 0.0 && merge_tolerance_relative < 0.01))
+  if (!(mergeToleranceRelative >= 0.0 && mergeToleranceRelative < 0.01))
     throw InvalidInput("MeshCheckOptions.merge_tolerance_relative must be in [0, 0.01), got " +
-                       formatNumber(merge_tolerance_relative));
-  if (!(degenerate_area_relative >= 0.0 && degenerate_area_relative < 0.1))
+                       formatNumber(mergeToleranceRelative));
+  if (!(degenerateAreaRelative >= 0.0 && degenerateAreaRelative < 0.1))
     throw InvalidInput("MeshCheckOptions.degenerate_area_relative must be in [0, 0.1), got " +
-                       formatNumber(degenerate_area_relative));
-  if (!(sliver_min_angle_rad >= 0.0 && sliver_min_angle_rad < std::numbers::pi / 3.0))
+                       formatNumber(degenerateAreaRelative));
+  if (!(sliverMinAngleRad >= 0.0 && sliverMinAngleRad < std::numbers::pi / 3.0))
     throw InvalidInput("MeshCheckOptions.sliver_min_angle_rad must be in [0, pi/3), got " +
-                       formatNumber(sliver_min_angle_rad));
-  if (max_named_elements < 1)
-    throw InvalidInput("MeshCheckOptions.max_named_elements must be at least 1, got " + std::to_string(max_named_elements));
+                       formatNumber(sliverMinAngleRad));
+  if (maxNamedElements < 1)
+    throw InvalidInput("MeshCheckOptions.max_named_elements must be at least 1, got " + std::to_string(maxNamedElements));
 }
 
 bool MeshCheckResult::has(MeshIssueKind kind) const { return find(kind) != nullptr; }
@@ -514,7 +514,7 @@ const MeshIssue* MeshCheckResult::find(MeshIssueKind kind) const {
   return nullptr;
 }
 
-bool MeshCheckResult::acceptable() const { return !has_errors; }
+bool MeshCheckResult::acceptable() const { return !hasErrors; }
 
 std::string MeshCheckResult::summary() const {
   std::string s;
@@ -529,7 +529,7 @@ MeshCheckResult checkMesh(const TriangleSoup& soup, const MeshCheckOptions& opti
   MeshCheckResult result;
   MeshRepairDiagnostics diagnostics;
   Checker(work, options, result, diagnostics).run();
-  for (const auto& issue : result.issues) result.has_errors = result.has_errors || isError(issue, options);
+  for (const auto& issue : result.issues) result.hasErrors = result.hasErrors || isError(issue, options);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -544,10 +544,10 @@ TriMesh prepareMesh(TriangleSoup soup, const MeshCheckOptions& options, MeshRepa
   std::string errors;
   for (const auto& issue : result.issues)
     if (isError(issue, options)) {
-      result.has_errors = true;
+      result.hasErrors = true;
       errors += (errors.empty() ? "" : "; ") + issue.message;
     }
-  if (result.has_errors) throw InvalidInput("invalid mesh: " + errors);
+  if (result.hasErrors) throw InvalidInput("invalid mesh: " + errors);
   TriMesh mesh = meshFromSoup(work.soup);
   diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.seconds = diagnostics.seconds;

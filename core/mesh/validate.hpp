@@ -23,24 +23,24 @@ enum class ComponentPolicy {
 struct MeshCheckOptions {
   // Vertices closer than this fraction of the bounding-box diagonal are the same vertex (STL
   // stores each triangle corner separately; float round-off of ~1e-7 must still merge).
-  double merge_tolerance_relative = 1e-7;
+  double mergeToleranceRelative = 1e-7;
   // Repair: merge duplicate vertices (then drop collapsed and repeated triangles).
-  bool merge_duplicate_vertices = true;
+  bool mergeDuplicateVertices = true;
   // Repair: drop vertices no triangle uses (importers keep stray points, e.g. OBJ "v" lines).
-  bool drop_unreferenced_vertices = true;
+  bool dropUnreferencedVertices = true;
   // Repair: flip triangles so neighbours agree on orientation (lossless on an orientable surface).
-  bool fix_orientation = false;
+  bool fixOrientation = false;
   // What to do with several connected components.
   ComponentPolicy components = ComponentPolicy::Reject;
   // A face is degenerate (zero area) below this fraction of the squared mean edge length.
-  double degenerate_area_relative = 1e-12;
+  double degenerateAreaRelative = 1e-12;
   // A face is a sliver when its smallest angle is below this (radians, ~0.057 degrees): cotangent
   // weights of such faces exceed ~1000 and wreck Laplacians.
-  double sliver_min_angle_rad = 1e-3;
+  double sliverMinAngleRad = 1e-3;
   // Sliver faces are an error (true) or only reported (false).
-  bool reject_slivers = true;
+  bool rejectSlivers = true;
   // At most this many elements are named in one message (the count is always given).
-  int max_named_elements = 5;
+  int maxNamedElements = 5;
 
   void validate() const;  // throws InvalidInput naming the field
 };
@@ -75,15 +75,15 @@ struct MeshCheckResult {
   std::vector<MeshIssue> issues;  // in the order of the checks
   int vertices = 0;   // in the input soup
   int triangles = 0;  // in the input soup
-  int vertices_after_repair = 0;
-  int triangles_after_repair = 0;
+  int verticesAfterRepair = 0;
+  int trianglesAfterRepair = 0;
   int components = 0;
-  int boundary_edges = 0;
-  double mean_edge_length_m = 0.0;
-  double min_face_area_m2 = 0.0;
-  double min_angle_rad = 0.0;  // smallest triangle angle found
-  int worst_face = -1;         // triangle with that smallest angle (input numbering)
-  bool has_errors = false;     // an issue prepareMesh would refuse
+  int boundaryEdges = 0;
+  double meanEdgeLengthM = 0.0;
+  double minFaceAreaM2 = 0.0;
+  double minAngleRad = 0.0;  // smallest triangle angle found
+  int worstFace = -1;         // triangle with that smallest angle (input numbering)
+  bool hasErrors = false;     // an issue prepareMesh would refuse
   double seconds = 0.0;
 
   bool has(MeshIssueKind kind) const;
@@ -99,13 +99,13 @@ struct MeshCheckResult {
 MeshCheckResult checkMesh(const TriangleSoup& soup, const MeshCheckOptions& options = {});
 
 struct MeshRepairDiagnostics {
-  int merged_vertices = 0;
-  int dropped_collapsed_triangles = 0;
-  int dropped_duplicate_triangles = 0;
-  int dropped_unreferenced_vertices = 0;
-  int dropped_component_triangles = 0;
-  int removed_components = 0;
-  int flipped_triangles = 0;
+  int mergedVertices = 0;
+  int droppedCollapsedTriangles = 0;
+  int droppedDuplicateTriangles = 0;
+  int droppedUnreferencedVertices = 0;
+  int droppedComponentTriangles = 0;
+  int removedComponents = 0;
+  int flippedTriangles = 0;
   std::vector<std::string> warnings;  // what was repaired or dropped, in words
   MeshCheckResult check;              // the check of the repaired soup
   double seconds = 0.0;

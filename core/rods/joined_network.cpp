@@ -45,9 +45,9 @@ JoinedNetwork joinPatches(const std::vector<RodNetwork>& patches, const std::vec
     if (join.patchA == join.patchB) throw InvalidInput(name + ": joins a patch to itself");
     Connection c;
     c.rodA = joined.firstRod[join.patchA] + join.rodA;
-    c.sA_m = join.sA_m;
+    c.sAM = join.sAM;
     c.rodB = joined.firstRod[join.patchB] + join.rodB;
-    c.sB_m = join.sB_m;
+    c.sBM = join.sBM;
     if (joined.network.rods[c.rodA].layer == joined.network.rods[c.rodB].layer) {
       throw InvalidInput(name + ": the two boundary lamellas are in the same layer; one must lie on the other");
     }
@@ -73,13 +73,13 @@ JoinedSimulation simulateJoinedPatches(const std::vector<RodNetwork>& patches, c
     const SimulationRun& run = result.perPatch.back();
     result.converged = result.converged && run.solver.converged;
     const DeviationStats& d = *run.deviation;
-    sumSquares += d.rmse_m * d.rmse_m * d.points;
+    sumSquares += d.rmseM * d.rmseM * d.points;
     result.patchByPatch.points += d.points;
-    result.patchByPatch.max_m = std::max(result.patchByPatch.max_m, d.max_m);
+    result.patchByPatch.maxM = std::max(result.patchByPatch.maxM, d.maxM);
   }
-  result.patchByPatch.rmse_m =
+  result.patchByPatch.rmseM =
       result.patchByPatch.points > 0 ? std::sqrt(sumSquares / result.patchByPatch.points) : 0.0;
-  result.patchByPatch.nrmse = result.patchByPatch.rmse_m / options.scaleFactor;
+  result.patchByPatch.nrmse = result.patchByPatch.rmseM / options.scaleFactor;
   result.joined = simulateRods(joined.network, &distance, options);
   result.converged = result.converged && result.joined.solver.converged;
   return result;

@@ -16,10 +16,10 @@ namespace egg::rods {
 struct PatchJoin {
   int patchA = -1;
   int rodA = -1;
-  double sA_m = 0.0;
+  double sAM = 0.0;
   int patchB = -1;
   int rodB = -1;
-  double sB_m = 0.0;
+  double sBM = 0.0;
 };
 
 struct JoinedNetwork {

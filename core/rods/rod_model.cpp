@@ -23,10 +23,10 @@ Eigen::Vector3d anyPerpendicular(const Eigen::Vector3d& t) {
 }  // namespace
 
 void ModelOptions::validate() const {
-  if (!(targetEdgeLength_m >= 0.0)) throw InvalidInput("ModelOptions.targetEdgeLength_m must be >= 0");
+  if (!(targetEdgeLengthM >= 0.0)) throw InvalidInput("ModelOptions.targetEdgeLength_m must be >= 0");
   if (minEdgesPerRod < 2) throw InvalidInput("ModelOptions.minEdgesPerRod must be >= 2");
   if (maxEdgesPerRod < minEdgesPerRod) throw InvalidInput("ModelOptions.maxEdgesPerRod must be >= minEdgesPerRod");
-  if (!(gravity_m_s2 >= 0.0)) throw InvalidInput("ModelOptions.gravity_m_s2 must be >= 0");
+  if (!(gravityMPerS2 >= 0.0)) throw InvalidInput("ModelOptions.gravity_m_s2 must be >= 0");
   if (!(frictionMu >= 0.0)) throw InvalidInput("ModelOptions.frictionMu must be >= 0");
   if (!(frictionEpsilon > 0.0 && frictionEpsilon < 0.5)) throw InvalidInput("ModelOptions.frictionEpsilon must be in (0, 0.5)");
   if (!(connectionWeight > 0.0)) throw InvalidInput("ModelOptions.connectionWeight must be > 0");
@@ -37,8 +37,8 @@ void ModelOptions::validate() const {
 }
 
 RodStiffness stiffnessOf(const Rod& rod) {
-  const double w = rod.section.width_m, t = rod.section.thickness_m;
-  const double e = rod.material.youngs_modulus_pa, g = rod.material.shear_modulus_pa;
+  const double w = rod.section.widthM, t = rod.section.thicknessM;
+  const double e = rod.material.youngsModulusPa, g = rod.material.shearModulusPa;
   RodStiffness s;
   s.stretching = e * w * t;
   s.bendingWeak = e * w * t * t * t / 12.0;
@@ -55,12 +55,12 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
 
   // Edge length: a third of the median bolt spacing, so bolts can slide across vertices and the
   // centreline between bolts bends smoothly.
-  double targetEdge = options.targetEdgeLength_m;
+  double targetEdge = options.targetEdgeLengthM;
   if (targetEdge <= 0.0) {
     std::vector<std::vector<double>> positions(network.rods.size());
     for (const auto& c : network.connections) {
-      positions[c.rodA].push_back(c.sA_m);
-      positions[c.rodB].push_back(c.sB_m);
+      positions[c.rodA].push_back(c.sAM);
+      positions[c.rodB].push_back(c.sBM);
     }
     std::vector<double> spacings;
     for (auto& p : positions) {
@@ -74,7 +74,7 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
       targetEdge = spacings[spacings.size() / 2] / 3.0;
     } else {
       double longest = 0.0;
-      for (const auto& r : network.rods) longest = std::max(longest, r.length_m);
+      for (const auto& r : network.rods) longest = std::max(longest, r.lengthM);
       targetEdge = longest / 20.0;
     }
   }
@@ -82,13 +82,13 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
   int dof = 0;
   for (const Rod& rod : network.rods) {
     RodData data;
-    data.edges = std::clamp(static_cast<int>(std::ceil(rod.length_m / targetEdge - 1e-9)), options.minEdgesPerRod,
+    data.edges = std::clamp(static_cast<int>(std::ceil(rod.lengthM / targetEdge - 1e-9)), options.minEdgesPerRod,
                             options.maxEdgesPerRod);
-    data.length = rod.length_m;
-    data.h = rod.length_m / data.edges;
-    data.thickness = rod.section.thickness_m;
+    data.length = rod.lengthM;
+    data.h = rod.lengthM / data.edges;
+    data.thickness = rod.section.thicknessM;
     data.layer = rod.layer;
-    data.linearDensity = rod.material.density_kg_m3 * rod.section.width_m * rod.section.thickness_m;
+    data.linearDensity = rod.material.densityKgM3 * rod.section.widthM * rod.section.thicknessM;
     data.stiffness = stiffnessOf(rod);
     data.firstVertexDof = dof;
     dof += 3 * (data.edges + 1);
@@ -111,10 +111,10 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
     Bolt bolt;
     auto makeSide = [&](int rod, double s, const Notch& notch) {
       BoltSide side;
-      const double length = notch.before_m + notch.after_m;
+      const double length = notch.beforeM + notch.afterM;
       if (options.notches && length > 1e-6 * rods_[rod].h) {
-        side.notchMin = s - notch.before_m;
-        side.notchMax = s + notch.after_m;
+        side.notchMin = s - notch.beforeM;
+        side.notchMax = s + notch.afterM;
         // Start strictly inside the notch: the log barrier E_n is infinite at its ends.
         const double margin = 0.01 * length;
         s = std::clamp(s, side.notchMin + margin, side.notchMax - margin);
@@ -123,8 +123,8 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
       side.point = pointAt(rod, s);
       return side;
     };
-    BoltSide sideA = makeSide(c.rodA, c.sA_m, c.notchA);
-    BoltSide sideB = makeSide(c.rodB, c.sB_m, c.notchB);
+    BoltSide sideA = makeSide(c.rodA, c.sAM, c.notchA);
+    BoltSide sideB = makeSide(c.rodB, c.sBM, c.notchB);
     bolt.aIsLower = aLower;
     bolt.lower = aLower ? sideA : sideB;
     bolt.upper = aLower ? sideB : sideA;
@@ -208,7 +208,7 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
 
   for (const Anchor& a : network.anchors) {
     AnchorData data;
-    data.point = pointAt(a.rod, a.s_m);
+    data.point = pointAt(a.rod, a.sM);
     const Eigen::Vector3d n = a.normal.normalized();
     const double side = network.rods[a.rod].layer == 0 ? -0.5 : 0.5;
     data.target = a.position + side * rods_[a.rod].thickness * n;
@@ -224,13 +224,13 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
   double heaviest = 0.0, stiffest = 0.0;
   for (int r = 0; r < rodCount(); ++r) {
     const RodData& data = rods_[r];
-    heaviest = std::max(heaviest, data.linearDensity * data.length * options.gravity_m_s2);
+    heaviest = std::max(heaviest, data.linearDensity * data.length * options.gravityMPerS2);
     stiffest = std::max(stiffest, data.stiffness.bendingWeak / (data.length * data.length));
     energyUnit_ = std::max(energyUnit_, data.stiffness.bendingWeak / data.length);
     if (!options.gravity) continue;
     for (int i = 0; i <= data.edges; ++i) {
       const double mass = data.linearDensity * data.h * ((i == 0 || i == data.edges) ? 0.5 : 1.0);
-      baseConstantGradient_[vertexDof(r, i) + 2] += mass * options.gravity_m_s2;
+      baseConstantGradient_[vertexDof(r, i) + 2] += mass * options.gravityMPerS2;
     }
   }
   forceScale_ = std::max(stiffest, options.gravity ? heaviest : 0.0);

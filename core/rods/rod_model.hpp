@@ -15,12 +15,12 @@
 namespace egg::rods {
 
 struct ModelOptions {
-  double targetEdgeLength_m = 0.0;  // rest edge length; 0 = automatic (a third of the typical bolt spacing)
+  double targetEdgeLengthM = 0.0;  // rest edge length; 0 = automatic (a third of the typical bolt spacing)
   int minEdgesPerRod = 6;           // lower bound on edges per rod
   int maxEdgesPerRod = 400;         // upper bound on edges per rod
   bool notches = true;              // false: every bolt is a plain hole (the RMS1 run of Section 2.6.2)
   bool gravity = false;             // self-weight from density (Section 3.5.2), along -z
-  double gravity_m_s2 = 9.81;       // gravitational acceleration
+  double gravityMPerS2 = 9.81;       // gravitational acceleration
   double frictionMu = 0.1;          // mu of E_p (Section 2.5)
   double frictionEpsilon = 1e-4;    // epsilon of E_p: how far past an edge end a bolt may move per iteration
   double connectionWeight = 1.0;    // lambda_q1 in units of EA/h of the softer rod

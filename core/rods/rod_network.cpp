@@ -17,7 +17,7 @@ void checkPosition(const RodNetwork& network, int rod, double s, const std::stri
     throw InvalidInput(what + " refers to rod " + std::to_string(rod) + ", but there are " +
                        std::to_string(network.rods.size()) + " rods");
   }
-  const double length = network.rods[rod].length_m;
+  const double length = network.rods[rod].lengthM;
   if (!(s >= -1e-9 * length && s <= length * (1.0 + 1e-9))) {
     throw InvalidInput(what + " lies at s = " + std::to_string(s) + " m, outside rod " + std::to_string(rod) +
                        " of length " + std::to_string(length) + " m");
@@ -31,14 +31,14 @@ void validateNetwork(const RodNetwork& network) {
   for (size_t r = 0; r < network.rods.size(); ++r) {
     const Rod& rod = network.rods[r];
     const std::string name = "rod " + std::to_string(r);
-    if (!(rod.length_m > 0.0) || !std::isfinite(rod.length_m)) throw InvalidInput(name + ": length_m must be > 0");
-    if (!(rod.section.width_m > 0.0) || !(rod.section.thickness_m > 0.0)) {
+    if (!(rod.lengthM > 0.0) || !std::isfinite(rod.lengthM)) throw InvalidInput(name + ": length_m must be > 0");
+    if (!(rod.section.widthM > 0.0) || !(rod.section.thicknessM > 0.0)) {
       throw InvalidInput(name + ": section width_m and thickness_m must be > 0");
     }
-    if (!(rod.material.youngs_modulus_pa > 0.0) || !(rod.material.shear_modulus_pa > 0.0)) {
+    if (!(rod.material.youngsModulusPa > 0.0) || !(rod.material.shearModulusPa > 0.0)) {
       throw InvalidInput(name + ": material youngs_modulus_pa and shear_modulus_pa must be > 0");
     }
-    if (!(rod.material.density_kg_m3 >= 0.0)) throw InvalidInput(name + ": material density_kg_m3 must be >= 0");
+    if (!(rod.material.densityKgM3 >= 0.0)) throw InvalidInput(name + ": material density_kg_m3 must be >= 0");
     if (rod.layer != 0 && rod.layer != 1) throw InvalidInput(name + ": layer must be 0 or 1");
     if (rod.guess.size() < 2) throw InvalidInput(name + ": guess needs at least 2 points");
     if (rod.guessNormals.size() != rod.guess.size()) {
@@ -56,25 +56,25 @@ void validateNetwork(const RodNetwork& network) {
   for (size_t c = 0; c < network.connections.size(); ++c) {
     const Connection& con = network.connections[c];
     const std::string name = "connection " + std::to_string(c);
-    checkPosition(network, con.rodA, con.sA_m, name + " (rod a)");
-    checkPosition(network, con.rodB, con.sB_m, name + " (rod b)");
+    checkPosition(network, con.rodA, con.sAM, name + " (rod a)");
+    checkPosition(network, con.rodB, con.sBM, name + " (rod b)");
     if (con.rodA == con.rodB) throw InvalidInput(name + ": joins rod " + std::to_string(con.rodA) + " to itself");
     if (network.rods[con.rodA].layer == network.rods[con.rodB].layer) {
       throw InvalidInput(name + ": rods " + std::to_string(con.rodA) + " and " + std::to_string(con.rodB) +
                          " are in the same layer");
     }
-    for (const auto& [notch, rod, s] : {std::tuple{con.notchA, con.rodA, con.sA_m}, std::tuple{con.notchB, con.rodB, con.sB_m}}) {
-      if (!(notch.before_m >= 0.0) || !(notch.after_m >= 0.0)) {
+    for (const auto& [notch, rod, s] : {std::tuple{con.notchA, con.rodA, con.sAM}, std::tuple{con.notchB, con.rodB, con.sBM}}) {
+      if (!(notch.beforeM >= 0.0) || !(notch.afterM >= 0.0)) {
         throw InvalidInput(name + ": notch lengths must be >= 0");
       }
-      checkPosition(network, rod, s - notch.before_m, name + " (notch start)");
-      checkPosition(network, rod, s + notch.after_m, name + " (notch end)");
+      checkPosition(network, rod, s - notch.beforeM, name + " (notch start)");
+      checkPosition(network, rod, s + notch.afterM, name + " (notch end)");
     }
   }
   for (size_t a = 0; a < network.anchors.size(); ++a) {
     const Anchor& anchor = network.anchors[a];
     const std::string name = "anchor " + std::to_string(a);
-    checkPosition(network, anchor.rod, anchor.s_m, name);
+    checkPosition(network, anchor.rod, anchor.sM, name);
     if (!finite(anchor.position) || !finite(anchor.normal) || anchor.normal.norm() < 1e-12) {
       throw InvalidInput(name + ": position/normal not finite or zero normal");
     }

@@ -16,20 +16,20 @@ namespace egg::rods {
 // surface normal). Stiffnesses follow from it (rod_model.hpp): EI weak = E w t^3/12,
 // EI strong = E t w^3/12, GJ with J = w t^3/3 (thin strip).
 struct CrossSection {
-  double width_m = 0.25;
-  double thickness_m = 0.04;
+  double widthM = 0.25;
+  double thicknessM = 0.04;
 };
 
 // Linear elastic, isotropic material.
 struct Material {
-  double youngs_modulus_pa = 10.0e9;  // E
-  double shear_modulus_pa = 0.6e9;    // G (wood is far softer in shear than E/2.6)
-  double density_kg_m3 = 500.0;       // only used when the simulation adds gravity
+  double youngsModulusPa = 10.0e9;  // E
+  double shearModulusPa = 0.6e9;    // G (wood is far softer in shear than E/2.6)
+  double densityKgM3 = 500.0;       // only used when the simulation adds gravity
 };
 
 // One lamella: straight at rest (it is cut straight, Section 2.3.1), of the given planar length.
 struct Rod {
-  double length_m = 0.0;
+  double lengthM = 0.0;
   CrossSection section;
   Material material;
   // The two families lie in two layers bolted face to face: layer 0 below, layer 1 on top (along
@@ -48,8 +48,8 @@ struct Rod {
 // s - before_m to s + after_m along the rod. The grid's notch length l = s - s_bar gives
 // after_m = l when l > 0, before_m = -l when l < 0. Both zero (default): a plain hole.
 struct Notch {
-  double before_m = 0.0;
-  double after_m = 0.0;
+  double beforeM = 0.0;
+  double afterM = 0.0;
 };
 
 // A bolt joining rod a (in layer 0) and rod b (in layer 1) where they cross (Section 2.5, E_q).
@@ -57,9 +57,9 @@ struct Notch {
 // each rod within its notch (E_n), with pseudo-friction (E_p).
 struct Connection {
   int rodA = -1;
-  double sA_m = 0.0;  // bolt position along rod a in the planar grid
+  double sAM = 0.0;  // bolt position along rod a in the planar grid
   int rodB = -1;
-  double sB_m = 0.0;  // bolt position along rod b in the planar grid
+  double sBM = 0.0;  // bolt position along rod b in the planar grid
   Notch notchA;       // notch in rod a (zero: plain hole)
   Notch notchB;       // notch in rod b
 };
@@ -69,7 +69,7 @@ struct Connection {
 // and its tangent plane, given by the plane's normal) are the same constraint.
 struct Anchor {
   int rod = -1;
-  double s_m = 0.0;             // where along the rod
+  double sM = 0.0;             // where along the rod
   Eigen::Vector3d position;     // on the design surface
   Eigen::Vector3d normal;       // unit surface normal there (towards layer 1)
 };

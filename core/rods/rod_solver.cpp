@@ -28,7 +28,7 @@ std::string format(const char* pattern, Args... args) {
 
 void SolverOptions::validate() const {
   if (maxIterations < 1) throw InvalidInput("SolverOptions.maxIterations must be >= 1");
-  if (!(timeLimit_s > 0.0)) throw InvalidInput("SolverOptions.timeLimit_s must be > 0");
+  if (!(timeLimitS > 0.0)) throw InvalidInput("SolverOptions.timeLimit_s must be > 0");
   if (!(tolerance > 0.0 && tolerance < 1.0)) throw InvalidInput("SolverOptions.tolerance must be in (0, 1)");
   if (threads < 1) throw InvalidInput("SolverOptions.threads must be >= 1");
   if (!(continuationStart > 0.0 && continuationStart <= 1.0)) {
@@ -194,10 +194,10 @@ bool stopsBeforeStep(double energy, const Eigen::VectorXd& g, const SolverOption
     result.reason = format("no convergence in %d iterations (decrement %.3g J)", result.iterations, result.decrement);
     return true;
   }
-  if (result.seconds > options.timeLimit_s) {
+  if (result.seconds > options.timeLimitS) {
     result.status = SolverStatus::TimeLimit;
     result.reason = format("wall-clock hang guard of %.3g s reached after %d iterations (the run is stopped, not "
-                           "converged: raise the guard or find the hang)", options.timeLimit_s, result.iterations);
+                           "converged: raise the guard or find the hang)", options.timeLimitS, result.iterations);
     return true;
   }
   return false;

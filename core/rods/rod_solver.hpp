@@ -26,7 +26,7 @@ struct SolverOptions {
   int maxIterations = 500;    // Newton iterations before giving up: the limit that decides results
   // Wall-clock hang guard only: results must not depend on the machine, so the iteration limit
   // stops a slow solve; this stops a hung one and fails it (status TimeLimit) with a message.
-  double timeLimit_s = 900.0;
+  double timeLimitS = 900.0;
   double tolerance = 1e-10;   // stop when the Newton decrement g^T H^-1 g is below tolerance x energy scale
   int threads = 2;            // threads assembling the Hessian
   // Newton in Cartesian coordinates crawls along the inextensibility valley of thin rods (each step

@@ -10,14 +10,14 @@
 namespace egg::rods {
 
 struct CylinderGridParameters {
-  double radius_m = 5.0;        // cylinder radius; axis along y
-  double halfAngle_rad = 0.8;   // the vault spans -halfAngle..halfAngle around the axis
-  double length_m = 8.0;        // extent along the axis
-  double spacing_m = 1.0;       // perpendicular distance between members of a family
+  double radiusM = 5.0;        // cylinder radius; axis along y
+  double halfAngleRad = 0.8;   // the vault spans -halfAngle..halfAngle around the axis
+  double lengthM = 8.0;        // extent along the axis
+  double spacingM = 1.0;       // perpendicular distance between members of a family
   double notchFraction = 0.2;   // notch length on each side of inner bolts, in spacings (0: none)
   CrossSection section{0.05, 0.005};
   Material material{10.0e9, 0.6e9, 500.0};
-  double meshEdge_m = 0.25;     // edge length of the surface triangulation
+  double meshEdgeM = 0.25;     // edge length of the surface triangulation
   void validate() const;        // throws InvalidInput naming the field
 };
 

@@ -76,7 +76,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
         for (int r = 0; r < observed.rodCount(); ++r)
           for (int i = 0; i < observed.vertexCount(r); ++i) contact.push_back(observed.contactPoint(r, i));
         const DeviationStats d = measureDeviation(contact, *surface, options.scaleFactor);
-        run.history.push_back({shifted.iteration, step, shifted.seconds, d.rmse_m, d.max_m});
+        run.history.push_back({shifted.iteration, step, shifted.seconds, d.rmseM, d.maxM});
       }
       if (options.solver.observer) options.solver.observer(shifted, observed);
       const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - before).count();
@@ -111,7 +111,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   for (step = 0; step <= steps; ++step) {
     model.setLoadFactor(steps == 0 ? 1.0 : static_cast<double>(step) / steps);
     const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    solverOptions.timeLimit_s = std::max(1e-3, options.solver.timeLimit_s - spent);
+    solverOptions.timeLimitS = std::max(1e-3, options.solver.timeLimitS - spent);
     solverOptions.maxIterations = std::max(1, options.solver.maxIterations - iterations);
     callStart = spent - observing;
     run.solver = minimiseEnergy(model, solverOptions);
@@ -152,7 +152,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
       break;
     }
   }
-  if (!weightless.empty()) run.maxSag_m = largestDisplacement();
+  if (!weightless.empty()) run.maxSagM = largestDisplacement();
   run.solver.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.unknowns = model.dofCount();
 
@@ -170,7 +170,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     run.vertices += model.vertexCount(r);
   }
   for (int c = 0; c < model.boltCount(); ++c) {
-    run.boltPositions_m.push_back({model.boltPosition(c, 0), model.boltPosition(c, 1)});
+    run.boltPositionsM.push_back({model.boltPosition(c, 0), model.boltPosition(c, 1)});
   }
   if (surface) run.deviation = measureDeviation(contact, *surface, options.scaleFactor);
   return run;

@@ -46,8 +46,8 @@ struct DeviationSample {
   int iteration = 0;    // Newton iterations of the run so far (all load steps)
   int loadStep = 0;     // 0: the weightless solve (or the single full-weight one), then 1..gravitySteps
   double seconds = 0.0; // wall time since the run started (model set-up included), measuring excluded
-  double rmse_m = 0.0;  // contact points vs the design surface, as SimulationRun::deviation
-  double max_m = 0.0;
+  double rmseM = 0.0;  // contact points vs the design surface, as SimulationRun::deviation
+  double maxM = 0.0;
 };
 
 // One deployed state and its error.
@@ -59,9 +59,9 @@ struct SimulationRun {
   std::vector<std::vector<Eigen::Vector3d>> centrelines;  // per rod, vertices (m)
   std::vector<std::vector<Eigen::Vector3d>> normals;      // per rod vertex, lamella normal
   std::vector<std::vector<Eigen::Vector3d>> contactPoints;  // per rod vertex, on the contact surface between the layers
-  std::vector<std::array<double, 2>> boltPositions_m;     // per connection: s along rod a, rod b
+  std::vector<std::array<double, 2>> boltPositionsM;     // per connection: s along rod a, rod b
   std::optional<DeviationStats> deviation;                // contact points vs surface (when given)
-  double maxSag_m = 0.0;  // self-weight runs: largest vertex displacement from the weightless equilibrium
+  double maxSagM = 0.0;  // self-weight runs: largest vertex displacement from the weightless equilibrium
   // options.historyEvery > 0 and a surface: the deviation from the start to the final state (the
   // last sample is `deviation`), and the wall time the measuring took (inside solver.seconds).
   std::vector<DeviationSample> history;

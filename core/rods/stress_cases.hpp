@@ -14,8 +14,8 @@ struct StressCase {
   std::string name;
   double scale = 1.0;              // vault span factor: radius 3 f, length 3 f, spacing 0.75 f (m)
   double widthToThickness = 10.0;  // lamella width 0.05 f, thickness = width / this
-  double youngsModulus_pa = 10.0e9;
-  double density_kg_m3 = 500.0;
+  double youngsModulusPa = 10.0e9;
+  double densityKgM3 = 500.0;
 };
 
 // One factor at a time around the base case, then the two extreme corners.
@@ -30,15 +30,15 @@ struct StressOutcome {
   int vertices = 0;
   int iterations = 0;
   double seconds = 0.0;
-  double rmse_m = 0.0;
+  double rmseM = 0.0;
   double nrmse = 0.0;     // rmse / scale
-  double maxError_m = 0.0;
-  double sag_m = 0.0;     // largest displacement from the weightless equilibrium
-  double extent_m = 0.0;  // the design surface's bounding-box diagonal (a sag of several % of it: collapsed)
+  double maxErrorM = 0.0;
+  double sagM = 0.0;     // largest displacement from the weightless equilibrium
+  double extentM = 0.0;  // the design surface's bounding-box diagonal (a sag of several % of it: collapsed)
 };
 
 // 1000 iterations: thin or heavy vaults that fall through need several hundred Newton
 // iterations to reach their collapsed equilibrium (w:t 100: 615-636, depending on round-off).
-StressOutcome runStressCase(const StressCase& stressCase, double timeLimit_s = 20.0, int maxIterations = 1000);
+StressOutcome runStressCase(const StressCase& stressCase, double timeLimitS = 20.0, int maxIterations = 1000);
 
 }  // namespace egg::rods

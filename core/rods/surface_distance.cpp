@@ -65,11 +65,11 @@ DeviationStats measureDeviation(const std::vector<Eigen::Vector3d>& points, cons
   for (const auto& p : points) {
     const double d = surface.distance(p);
     sum += d * d;
-    stats.max_m = std::max(stats.max_m, d);
+    stats.maxM = std::max(stats.maxM, d);
   }
   stats.points = static_cast<int>(points.size());
-  stats.rmse_m = points.empty() ? 0.0 : std::sqrt(sum / points.size());
-  stats.nrmse = stats.rmse_m / scaleFactor;
+  stats.rmseM = points.empty() ? 0.0 : std::sqrt(sum / points.size());
+  stats.nrmse = stats.rmseM / scaleFactor;
   return stats;
 }
 

@@ -30,8 +30,8 @@ class SurfaceDistance {
 // distances of points to the surface.
 struct DeviationStats {
   int points = 0;
-  double rmse_m = 0.0;
-  double max_m = 0.0;
+  double rmseM = 0.0;
+  double maxM = 0.0;
   double nrmse = 0.0;
 };
 

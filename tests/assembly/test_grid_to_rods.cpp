@@ -61,10 +61,10 @@ TEST(GridToRods, MembersBecomeStraightRodsInTwoLayers) {
   ASSERT_EQ(network.rods.size(), 4u);
   EXPECT_EQ(network.rods[0].layer, 0);
   EXPECT_EQ(network.rods[3].layer, 1);
-  EXPECT_DOUBLE_EQ(network.rods[0].length_m, 2.0);  // the planar (cut) length, not the spatial one
-  EXPECT_DOUBLE_EQ(network.rods[2].length_m, 2.5);
-  EXPECT_DOUBLE_EQ(network.rods[1].material.youngs_modulus_pa, 7.6e9);
-  EXPECT_DOUBLE_EQ(network.rods[1].section.thickness_m, 0.01);
+  EXPECT_DOUBLE_EQ(network.rods[0].lengthM, 2.0);  // the planar (cut) length, not the spatial one
+  EXPECT_DOUBLE_EQ(network.rods[2].lengthM, 2.5);
+  EXPECT_DOUBLE_EQ(network.rods[1].material.youngsModulusPa, 7.6e9);
+  EXPECT_DOUBLE_EQ(network.rods[1].section.thicknessM, 0.01);
   EXPECT_EQ(network.rods[1].guess.size(), 2u);
   EXPECT_NO_THROW(rods::validateNetwork(network));
 }
@@ -75,13 +75,13 @@ TEST(GridToRods, NotchSignGivesTheSlidingDirection) {
   const auto& inner = network.connections[3];
   EXPECT_EQ(inner.rodA, 1);
   EXPECT_EQ(inner.rodB, 3);
-  EXPECT_DOUBLE_EQ(inner.notchA.after_m, 0.03);
-  EXPECT_DOUBLE_EQ(inner.notchA.before_m, 0.0);
-  EXPECT_DOUBLE_EQ(inner.notchB.before_m, 0.02);
-  EXPECT_DOUBLE_EQ(inner.notchB.after_m, 0.0);
+  EXPECT_DOUBLE_EQ(inner.notchA.afterM, 0.03);
+  EXPECT_DOUBLE_EQ(inner.notchA.beforeM, 0.0);
+  EXPECT_DOUBLE_EQ(inner.notchB.beforeM, 0.02);
+  EXPECT_DOUBLE_EQ(inner.notchB.afterM, 0.0);
   for (int k = 0; k < 3; ++k) {  // boundary connections: plain holes
     const auto& c = network.connections[k];
-    EXPECT_DOUBLE_EQ(c.notchA.after_m + c.notchA.before_m + c.notchB.after_m + c.notchB.before_m, 0.0) << k;
+    EXPECT_DOUBLE_EQ(c.notchA.afterM + c.notchA.beforeM + c.notchB.afterM + c.notchB.beforeM, 0.0) << k;
   }
 }
 
@@ -89,15 +89,15 @@ TEST(GridToRods, WithoutNotchesEveryBoltIsAPlainHole) {
   auto o = options();
   o.notches = false;
   const auto network = rodNetworkFromGrid(smallGrid(), o);
-  EXPECT_DOUBLE_EQ(network.connections[3].notchA.after_m, 0.0);
-  EXPECT_DOUBLE_EQ(network.connections[3].notchB.before_m, 0.0);
+  EXPECT_DOUBLE_EQ(network.connections[3].notchA.afterM, 0.0);
+  EXPECT_DOUBLE_EQ(network.connections[3].notchB.beforeM, 0.0);
 }
 
 TEST(GridToRods, AnchorsHoldTheirConnectionOnTheSurface) {
   const auto network = rodNetworkFromGrid(smallGrid(), options());
   ASSERT_EQ(network.anchors.size(), 1u);
   EXPECT_EQ(network.anchors[0].rod, 0);
-  EXPECT_DOUBLE_EQ(network.anchors[0].s_m, 0.0);
+  EXPECT_DOUBLE_EQ(network.anchors[0].sM, 0.0);
   EXPECT_TRUE(network.anchors[0].position.isApprox(Eigen::Vector3d(0, 0, 0.05)));
   EXPECT_NEAR(network.anchors[0].normal.norm(), 1.0, 1e-15);
 }
@@ -117,7 +117,7 @@ TEST(GridToRods, HoldEverySideAddsASupportAtEachBoundaryConnectionNotAnchoredYet
     const GridConnection& c = grid.connections[added[k]];
     const rods::Anchor& a = held.anchors[2 + k];
     EXPECT_EQ(a.rod, c.memberU) << k;
-    EXPECT_DOUBLE_EQ(a.s_m, c.sBarU) << k;
+    EXPECT_DOUBLE_EQ(a.sM, c.sBarU) << k;
     EXPECT_EQ(a.position, c.spatial) << k;
     EXPECT_NEAR(a.normal.norm(), 1.0, 1e-15) << k;
     EXPECT_NEAR(a.normal.dot(c.normal.normalized()), 1.0, 1e-15) << k;

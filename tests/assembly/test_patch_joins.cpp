@@ -43,8 +43,8 @@ TEST(PatchJoins, NeighboursWithBoundaryLamellasOfOneFamilySwapLayersAndBoltAtEve
     EXPECT_EQ(bolt.rodA, 5);  // 3 u rods, then v member 2
     EXPECT_EQ(bolt.patchB, 1);
     EXPECT_EQ(bolt.rodB, 3);  // v member 0
-    EXPECT_DOUBLE_EQ(bolt.sA_m, i * 1.0);
-    EXPECT_DOUBLE_EQ(bolt.sB_m, i * 1.0);
+    EXPECT_DOUBLE_EQ(bolt.sAM, i * 1.0);
+    EXPECT_DOUBLE_EQ(bolt.sBM, i * 1.0);
   }
   // Unswapped, the two lamellas would lie in one layer: the side is counted, not bolted.
   const PatchJoins same = patchJoins(graph, grids, {0, 0}, 0.01);

@@ -106,15 +106,15 @@ TEST(Fabricate, SimulatedCentrelinesDriveTheBendingStress) {
   const auto r = fabricate({{0, &grid, deployed}}, handOptions());
   const auto& lime = materialByName("limewood");
   EXPECT_TRUE(r.stress[1].fromSimulation);
-  EXPECT_NEAR(r.stress[1].maxBendingStress_pa, lime.youngs_modulus_pa * 2.0 * 0.001 / 2.0, 1e-3);
+  EXPECT_NEAR(r.stress[1].maxBendingStressPa, lime.youngsModulusPa * 2.0 * 0.001 / 2.0, 1e-3);
   EXPECT_EQ(r.maxStressLamella, "P0-U1");
-  EXPECT_NEAR(r.maxStressRatio, 9.1e6 / lime.bending_strength_pa, 1e-9);
+  EXPECT_NEAR(r.maxStressRatio, 9.1e6 / lime.bendingStrengthPa, 1e-9);
 }
 
 TEST(Fabricate, SheetSmallerThanTheWidestPartIsAClearError) {
   const EggGrid grid = handGrid();
   auto options = handOptions();
-  options.sheet_mm = {500.0, 18.0};  // 8 mm usable across: narrower than the 10 mm strips
+  options.sheetMm = {500.0, 18.0};  // 8 mm usable across: narrower than the 10 mm strips
   try {
     fabricate({{0, &grid, std::nullopt}}, options);
     FAIL() << "expected InvalidInput";
@@ -126,7 +126,7 @@ TEST(Fabricate, SheetSmallerThanTheWidestPartIsAClearError) {
   }
   // The sticker foil too.
   options = handOptions();
-  options.sticker_sheet_mm = std::array<double, 2>{15.0, 100.0};
+  options.stickerSheetMm = std::array<double, 2>{15.0, 100.0};
   try {
     fabricate({{0, &grid, std::nullopt}}, options);
     FAIL() << "expected InvalidInput";
@@ -139,7 +139,7 @@ TEST(Fabricate, StripsLongerThanTheSheetAreSplicedToFitIt) {
   // 160 mm sheet, 5 mm margins: pieces of at most 150 mm although the stock is 1000 mm.
   const EggGrid grid = handGrid();
   auto options = handOptions();
-  options.sheet_mm = {160.0, 300.0};
+  options.sheetMm = {160.0, 300.0};
   const auto r = fabricate({{0, &grid, std::nullopt}}, options);
   EXPECT_DOUBLE_EQ(longestPieceMm(options), 150.0);
   EXPECT_EQ(r.splices, 6);
@@ -153,13 +153,13 @@ TEST(Fabricate, ScarfJointsAreCheckedAgainstTheirEfficiencyAndNetWidth) {
   const EggGrid grid = handGrid();
   const auto deployed = deployedWithU1OnACircle(grid);
   const auto& lime = materialByName("limewood");
-  const double sigmaRatio = lime.youngs_modulus_pa * 0.001 / (2.0 * 0.5) / lime.bending_strength_pa;
+  const double sigmaRatio = lime.youngsModulusPa * 0.001 / (2.0 * 0.5) / lime.bendingStrengthPa;
   auto options = handOptions();
-  options.splice_joint = SpliceJoint::Scarf;
-  options.scarf_efficiency = 0.8;
+  options.spliceJoint = SpliceJoint::Scarf;
+  options.scarfEfficiency = 0.8;
   // 150 mm pieces: u1's scarf ends at 150 and begins at 138 (1:12 over 1 mm), between the slot
   // (103.5..111.5) and the end hole: the full width carries it.
-  options.sheet_mm = {160.0, 300.0};
+  options.sheetMm = {160.0, 300.0};
   auto r = fabricate({{0, &grid, deployed}}, options);
   EXPECT_EQ(r.scarfJoints, 6);
   EXPECT_EQ(r.splices, 6);
@@ -174,14 +174,14 @@ TEST(Fabricate, ScarfJointsAreCheckedAgainstTheirEfficiencyAndNetWidth) {
   EXPECT_NE(bomCsv(r).find("splice_joint,P0-U1 S1,1,144.00"), std::string::npos) << bomCsv(r);
   // 120 mm pieces: the scarf runs from the gap before the slot (102) to 120, across the slot: the
   // net width 10 - 3 mm carries it.
-  options.sheet_mm = {130.0, 300.0};
+  options.sheetMm = {130.0, 300.0};
   r = fabricate({{0, &grid, deployed}}, options);
   ASSERT_EQ(r.lamellae[1].segments.size(), 2u);
   EXPECT_DOUBLE_EQ(r.lamellae[1].segments[0].endMm, 120.0);
   EXPECT_DOUBLE_EQ(r.lamellae[1].segments[1].startMm, 102.0);
   EXPECT_NEAR(r.stress[1].scarfRatios[0], sigmaRatio / (0.8 * 0.7), 1e-6);
   // Plates: no scarf, nothing checked there.
-  options.splice_joint = SpliceJoint::Plate;
+  options.spliceJoint = SpliceJoint::Plate;
   r = fabricate({{0, &grid, deployed}}, options);
   EXPECT_EQ(r.scarfJoints, 0);
   EXPECT_DOUBLE_EQ(r.stress[1].scarfRatios.at(0), 0.0);
@@ -288,7 +288,7 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
 TEST(Fabricate, LamellasLongerThanTheStockAreSplitClearOfTheirHoles) {
   const EggGrid grid = handGrid();
   auto options = handOptions();
-  options.stock_length_mm = 150.0;
+  options.stockLengthMm = 150.0;
   const auto r = fabricate({{0, &grid, std::nullopt}}, options);
   EXPECT_EQ(r.splices, 6);  // every 210 mm strip once
   for (const auto& plan : r.lamellae) {
@@ -307,7 +307,7 @@ TEST(Fabricate, MultiPageSheetsPdf) {
   // A tighter sheet: 2 strips per sheet (one row of 210 + 0.5 + 210 on 440 - 10 usable... per row).
   const EggGrid grid = handGrid();
   auto options = handOptions();
-  options.sheet_mm = {440.0, 21.0};  // usable 430 x 11: one row of two strips
+  options.sheetMm = {440.0, 21.0};  // usable 430 x 11: one row of two strips
   const auto r = fabricate({{0, &grid, std::nullopt}}, options);
   EXPECT_EQ(r.lamellaNesting.sheets, 3);
   const auto dir = testing::scratchDir("fabricate_pages");
@@ -336,15 +336,15 @@ TEST(Fabricate, SolvedBumpPatchEndToEnd) {
   const EggResult solved = solveEgg(mesh, corners, egg);
   const EggGrid& grid = solved.grid;
   FabricationOptions options;
-  options.lamella_width_mm = 100.0;
-  options.lamella_thickness_mm = 10.0;
-  options.sheet_mm = {2500.0, 1250.0};
+  options.lamellaWidthMm = 100.0;
+  options.lamellaThicknessMm = 10.0;
+  options.sheetMm = {2500.0, 1250.0};
   const auto r = fabricate({{0, &grid, std::nullopt}}, options);
   EXPECT_EQ(r.lamellae.size(), grid.u.size() + grid.v.size());
   EXPECT_EQ(r.connections, static_cast<int>(grid.connections.size()));
   EXPECT_EQ(r.counts.holes + r.counts.slots, 2 * static_cast<int>(grid.connections.size()));
   // Slots: exactly the inner members' notches of at least min_notch_mm (countNotches of the grid).
-  EXPECT_EQ(r.counts.slots + r.counts.droppedBoundary, countNotches(grid, options.min_notch_mm / 1000.0));
+  EXPECT_EQ(r.counts.slots + r.counts.droppedBoundary, countNotches(grid, options.minNotchMm / 1000.0));
   EXPECT_GT(r.counts.slots, 0);
   EXPECT_EQ(r.supports.size(), grid.anchors.size());
   EXPECT_GT(r.maxStressRatio, 0.0);
@@ -372,9 +372,9 @@ TEST(Fabricate, LamellasThatCannotBeSplicedAreListedAndTheRestIsCut) {
   // 20 mm stock with 100 mm clear of every hole (holes 100 mm apart): no lamella can be spliced.
   const EggGrid grid = testing::handGrid();
   auto options = testing::handOptions();
-  options.stock_length_mm = 20.0;
-  options.splice_clearance_mm = 100.0;
-  options.min_splice_clearance_mm = 100.0;
+  options.stockLengthMm = 20.0;
+  options.spliceClearanceMm = 100.0;
+  options.minSpliceClearanceMm = 100.0;
   const auto r = fabricate({{0, &grid, std::nullopt}}, options);
   ASSERT_EQ(r.unspliceable.size(), r.lamellae.size());
   for (size_t i = 0; i < r.lamellae.size(); ++i) {
@@ -402,8 +402,8 @@ TEST(Fabricate, DefaultSupportBlocksNarrowAboveSteepGround) {
   EggGrid grid = testing::handGrid();
   grid.connections[0].normal = Eigen::Vector3d(std::sin(M_PI / 3.0), 0.0, std::cos(M_PI / 3.0));
   auto options = testing::handOptions();
-  options.support_block_mm.reset();
-  options.ground_height_m = 0.47;
+  options.supportBlockMm.reset();
+  options.groundHeightM = 0.47;
   const auto r = fabricate({{0, &grid, std::nullopt}}, options);
   ASSERT_EQ(r.supports.size(), 4u);
   EXPECT_EQ(r.supports[0].connectionId, "P0-C0-0");
@@ -414,7 +414,7 @@ TEST(Fabricate, DefaultSupportBlocksNarrowAboveSteepGround) {
   for (const auto& w : r.warnings) EXPECT_EQ(w.find("below the ground"), std::string::npos) << w;
   // 10 mm above the ground even a block of the lamella's width (10 mm) falls 5 tan 60 = 8.66 mm,
   // to 1.34 mm above the ground; the bottom goes 5 mm below that: 3.66 mm below the ground.
-  options.ground_height_m = 0.49;
+  options.groundHeightM = 0.49;
   const auto low = fabricate({{0, &grid, std::nullopt}}, options);
   EXPECT_DOUBLE_EQ(low.supports[0].blockMm, 10.0);
   EXPECT_NEAR(low.supports[0].belowGroundMm, 5.0 + 5.0 * std::tan(M_PI / 3.0) - 10.0, 1e-9);

@@ -19,49 +19,49 @@ void expectFieldError(const FabricationOptions& o, const std::string& field) {
 TEST(FabricationOptions, DefaultsAreValid) {
   EXPECT_NO_THROW(FabricationOptions{}.validate());
   FabricationOptions o;
-  EXPECT_DOUBLE_EQ(o.endOverhangMm(), 125.0);      // half the 250 mm width
-  EXPECT_DOUBLE_EQ(o.spliceClearanceMm(), 250.0);  // the width
-  EXPECT_DOUBLE_EQ(o.labelHeightMm(), 30.0);       // 0.35 w = 87.5, clamped
-  o.lamella_width_mm = 10.0;
-  EXPECT_DOUBLE_EQ(o.labelHeightMm(), 3.5);
+  EXPECT_DOUBLE_EQ(o.effectiveEndOverhangMm(), 125.0);      // half the 250 mm width
+  EXPECT_DOUBLE_EQ(o.effectiveSpliceClearanceMm(), 250.0);  // the width
+  EXPECT_DOUBLE_EQ(o.effectiveLabelHeightMm(), 30.0);       // 0.35 w = 87.5, clamped
+  o.lamellaWidthMm = 10.0;
+  EXPECT_DOUBLE_EQ(o.effectiveLabelHeightMm(), 3.5);
 }
 
 TEST(FabricationOptions, EachBadFieldIsNamed) {
   FabricationOptions o;
-  o.sheet_mm = {0.0, 100.0};
+  o.sheetMm = {0.0, 100.0};
   expectFieldError(o, "fabrication.sheet_mm");
   o = {};
-  o.kerf_mm = -1.0;
+  o.kerfMm = -1.0;
   expectFieldError(o, "fabrication.kerf_mm");
   o = {};
-  o.margin_mm = 700.0;
+  o.marginMm = 700.0;
   expectFieldError(o, "fabrication.margin_mm");
   o = {};
-  o.bolt_diameter_mm = 300.0;
+  o.boltDiameterMm = 300.0;
   expectFieldError(o, "fabrication.bolt_diameter_mm");
   o = {};
-  o.min_notch_mm = -0.1;
+  o.minNotchMm = -0.1;
   expectFieldError(o, "fabrication.min_notch_mm");
   o = {};
-  o.stock_length_mm = 0.0;
+  o.stockLengthMm = 0.0;
   expectFieldError(o, "fabrication.stock_length_mm");
   o = {};
-  o.end_overhang_mm = 1.0;
+  o.endOverhangMm = 1.0;
   expectFieldError(o, "fabrication.end_overhang_mm");
   o = {};
   o.material = "balsa";
   expectFieldError(o, "lamella.material");
   o = {};
-  o.scarf_slope = 2.0;
+  o.scarfSlope = 2.0;
   expectFieldError(o, "fabrication.scarf_slope");
   o = {};
-  o.scarf_efficiency = 1.5;
+  o.scarfEfficiency = 1.5;
   expectFieldError(o, "fabrication.scarf_efficiency");
   o = {};
-  o.support_block_mm = 10.0;
+  o.supportBlockMm = 10.0;
   expectFieldError(o, "fabrication.support_block_mm");
   o = {};
-  o.sticker_sheet_mm = std::array<double, 2>{100.0, -1.0};
+  o.stickerSheetMm = std::array<double, 2>{100.0, -1.0};
   expectFieldError(o, "fabrication.sticker_sheet_mm");
 }
 

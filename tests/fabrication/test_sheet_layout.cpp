@@ -56,7 +56,7 @@ TEST(SheetLayout, HandLamellaPrimitivesAtKnownMillimetres) {
 TEST(SheetLayout, SplicedSegmentsCarryTheirLabelAndSpliceMark) {
   const EggGrid grid = testing::handGrid();
   auto options = testing::handOptions();
-  options.stock_length_mm = 150.0;
+  options.stockLengthMm = 150.0;
   const auto plans = planLamellae({{0, &grid, std::nullopt}}, options);
   const LamellaPlan& u1 = plans[1];
   ASSERT_EQ(u1.splicesMm.size(), 1u);

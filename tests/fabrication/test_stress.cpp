@@ -26,14 +26,14 @@ TEST(Stress, LamellaBentToAKnownRadiusGivesSigmaEqualsEKappaTOverTwo) {
   arc(radius, points, normals);
   for (const auto& k : polylineCurvature(points)) EXPECT_NEAR(k.norm(), 1.0 / radius, 1e-12);
   const LamellaStress s = lamellaStress(points, &normals, t, lime);
-  EXPECT_NEAR(s.maxCurvature_1_m, 0.5, 1e-12);
+  EXPECT_NEAR(s.maxCurvaturePerM, 0.5, 1e-12);
   // sigma = E kappa t / 2 = 9.1e9 * 0.5 * 0.001 / 2 = 2.275 MPa, exactly.
-  EXPECT_NEAR(s.maxBendingStress_pa, 2.275e6, 1e-3);
-  EXPECT_NEAR(s.maxBendingStress_pa, lime.youngs_modulus_pa * (1.0 / radius) * t / 2.0, 1e-6);
-  EXPECT_NEAR(s.maxTwistRate_rad_m, 0.0, 1e-12);  // the normal stays in the bending plane
-  EXPECT_NEAR(s.stressRatio, 2.275e6 / lime.bending_strength_pa, 1e-12);
+  EXPECT_NEAR(s.maxBendingStressPa, 2.275e6, 1e-3);
+  EXPECT_NEAR(s.maxBendingStressPa, lime.youngsModulusPa * (1.0 / radius) * t / 2.0, 1e-6);
+  EXPECT_NEAR(s.maxTwistRateRadPerM, 0.0, 1e-12);  // the normal stays in the bending plane
+  EXPECT_NEAR(s.stressRatio, 2.275e6 / lime.bendingStrengthPa, 1e-12);
   // Without normals (a deployed centreline) the whole curvature counts: the same here.
-  EXPECT_NEAR(lamellaStress(points, nullptr, t, lime).maxBendingStress_pa, 2.275e6, 1e-3);
+  EXPECT_NEAR(lamellaStress(points, nullptr, t, lime).maxBendingStressPa, 2.275e6, 1e-3);
 }
 
 TEST(Stress, CurvatureAboutTheStrongAxisIsNotWeakAxisBending) {
@@ -42,7 +42,7 @@ TEST(Stress, CurvatureAboutTheStrongAxisIsNotWeakAxisBending) {
   std::vector<Eigen::Vector3d> points, normals;
   arc(2.0, points, normals);
   for (auto& n : normals) n = Eigen::Vector3d::UnitY();
-  EXPECT_NEAR(lamellaStress(points, &normals, 0.001, materialByName("limewood")).maxCurvature_1_m, 0.0, 1e-12);
+  EXPECT_NEAR(lamellaStress(points, &normals, 0.001, materialByName("limewood")).maxCurvaturePerM, 0.0, 1e-12);
 }
 
 TEST(Stress, TwistedStripGivesTauEqualsGThetaPrimeT) {
@@ -56,9 +56,9 @@ TEST(Stress, TwistedStripGivesTauEqualsGThetaPrimeT) {
   for (double r : polylineTwistRate(points, normals)) EXPECT_NEAR(std::abs(r), 0.5, 1e-12);
   const MaterialProperties& poplar = materialByName("poplar_plywood");
   const LamellaStress s = lamellaStress(points, &normals, 0.003, poplar);
-  EXPECT_NEAR(s.maxCurvature_1_m, 0.0, 1e-12);
-  EXPECT_NEAR(s.maxTorsionStress_pa, poplar.shear_modulus_pa * 0.5 * 0.003, 1e-6);
-  EXPECT_NEAR(s.stressRatio, s.maxTorsionStress_pa / poplar.shear_strength_pa, 1e-12);
+  EXPECT_NEAR(s.maxCurvaturePerM, 0.0, 1e-12);
+  EXPECT_NEAR(s.maxTorsionStressPa, poplar.shearModulusPa * 0.5 * 0.003, 1e-6);
+  EXPECT_NEAR(s.stressRatio, s.maxTorsionStressPa / poplar.shearStrengthPa, 1e-12);
 }
 
 TEST(Stress, ShortPolylinesHaveNoCurvature) {
@@ -87,11 +87,11 @@ TEST(Stress, WindowedCurvatureIsExactOnACircleAndIgnoresMeshKinks) {
     kinked.push_back((2.0 + (k % 2 ? 0.0002 : 0.0)) * n);
     normals.push_back(n);
   }
-  EXPECT_NEAR(lamellaStress(clean, &normals, 0.001, lime, 0.2).maxCurvature_1_m, 0.5, 1e-12);
-  EXPECT_NEAR(lamellaStress(clean, &normals, 0.001, lime, 0.2).maxBendingStress_pa, 2.275e6, 1e-5);
-  EXPECT_GT(lamellaStress(kinked, &normals, 0.001, lime).maxCurvature_1_m, 4.0);  // vertex by vertex: 8 x too much
-  EXPECT_NEAR(lamellaStress(kinked, &normals, 0.001, lime, 0.2).maxCurvature_1_m, 0.5, 0.015);
-  EXPECT_NEAR(lamellaStress(kinked, nullptr, 0.001, lime, 0.2).maxCurvature_1_m, 0.5, 0.015);
+  EXPECT_NEAR(lamellaStress(clean, &normals, 0.001, lime, 0.2).maxCurvaturePerM, 0.5, 1e-12);
+  EXPECT_NEAR(lamellaStress(clean, &normals, 0.001, lime, 0.2).maxBendingStressPa, 2.275e6, 1e-5);
+  EXPECT_GT(lamellaStress(kinked, &normals, 0.001, lime).maxCurvaturePerM, 4.0);  // vertex by vertex: 8 x too much
+  EXPECT_NEAR(lamellaStress(kinked, &normals, 0.001, lime, 0.2).maxCurvaturePerM, 0.5, 0.015);
+  EXPECT_NEAR(lamellaStress(kinked, nullptr, 0.001, lime, 0.2).maxCurvaturePerM, 0.5, 0.015);
   // The window: twice the width, or three median segments (10 mm here).
   EXPECT_NEAR(curvatureWindowM(clean, 0.1), 0.2, 1e-12);
   EXPECT_NEAR(curvatureWindowM(clean, 0.001), 3.0 * 2.0 * 2.0 * std::sin(0.0025), 1e-9);
@@ -105,7 +105,7 @@ TEST(Stress, WindowedTwistRate) {
     normals.emplace_back(0.0, -std::sin(0.5 * x), std::cos(0.5 * x));
   }
   const auto& poplar = materialByName("poplar_plywood");
-  EXPECT_NEAR(lamellaStress(points, &normals, 0.003, poplar, 0.3).maxTwistRate_rad_m, 0.5, 1e-3);
+  EXPECT_NEAR(lamellaStress(points, &normals, 0.003, poplar, 0.3).maxTwistRateRadPerM, 0.5, 1e-3);
 }
 
 }  // namespace
@@ -129,11 +129,11 @@ TEST(Stress, HelixGivesItsAnalyticCurvatureAndTorsion) {
   const double t = 0.01;
   const LamellaStress s = lamellaStress(points, &normals, t, poplar, 0.3);
   const double kappa = a / (a * a + b * b), torsion = b / (a * a + b * b);  // 0.4706 and 0.1176 1/m
-  EXPECT_NEAR(s.maxCurvature_1_m, kappa, 1e-3 * kappa);
+  EXPECT_NEAR(s.maxCurvaturePerM, kappa, 1e-3 * kappa);
   // The turn of the chord-projected normal carries an error of the order (kappa window)^2 = 2 %.
-  EXPECT_NEAR(s.maxTwistRate_rad_m, torsion, 0.02 * torsion);
-  EXPECT_NEAR(s.maxBendingStress_pa, poplar.youngs_modulus_pa * kappa * t / 2.0, 1e-3 * s.maxBendingStress_pa);
-  EXPECT_NEAR(s.maxTorsionStress_pa, poplar.shear_modulus_pa * s.maxTwistRate_rad_m * t, 1e-9 * s.maxTorsionStress_pa);
+  EXPECT_NEAR(s.maxTwistRateRadPerM, torsion, 0.02 * torsion);
+  EXPECT_NEAR(s.maxBendingStressPa, poplar.youngsModulusPa * kappa * t / 2.0, 1e-3 * s.maxBendingStressPa);
+  EXPECT_NEAR(s.maxTorsionStressPa, poplar.shearModulusPa * s.maxTwistRateRadPerM * t, 1e-9 * s.maxTorsionStressPa);
 }
 
 // The Lilium's base side P8-U0 (a patch side on the mesh): 9 vertices over 4.25 m, three pairs of
@@ -157,10 +157,10 @@ TEST(Stress, ShortLamellaWithCrowdedVerticesIsMeasuredOverItsLength) {
   const LamellaStress s = lamellaStress(points, &normals, 0.05, poplar, window);
   // Only the most central vertex (x = 2.5) lies 1.75 m from both ends: measured from x = 0.504 to
   // 4.25, where the frame turns at its mean rate.
-  EXPECT_NEAR(s.maxTwistRate_rad_m, 0.4 / 4.25, 1e-9);
+  EXPECT_NEAR(s.maxTwistRateRadPerM, 0.4 / 4.25, 1e-9);
   EXPECT_LT(s.stressRatio, 1.0);
   // Vertex by vertex (no window) the jumps dominate: 0.09 rad over 1 mm.
-  EXPECT_GT(lamellaStress(points, &normals, 0.05, poplar).maxTwistRate_rad_m, 80.0);
+  EXPECT_GT(lamellaStress(points, &normals, 0.05, poplar).maxTwistRateRadPerM, 80.0);
 }
 
 }  // namespace

@@ -72,8 +72,8 @@ TEST(Supports, AtTheAnchorsWithTheTangentPlane) {
     EXPECT_NEAR(s.inclinationDeg, 0.0, 1e-12);
   }
   auto options = testing::handOptions();
-  options.supports_at_boundary_connections = true;
-  options.ground_height_m = 0.0;
+  options.supportsAtBoundaryConnections = true;
+  options.groundHeightM = 0.0;
   const auto all = planSupports({{0, &grid, std::nullopt}}, options);
   EXPECT_EQ(all.size(), 8u);  // every connection but the inner one
   EXPECT_NEAR(all[0].heightM, 0.5, 1e-12);
@@ -126,7 +126,7 @@ TEST(Supports, TooSteepIsABracketAndBelowGroundAnError) {
   EXPECT_TRUE(supports[1].block);
   EXPECT_NE(supportsCsv(supports).find(",bracket,,\n"), std::string::npos);
   auto options = testing::handOptions();
-  options.ground_height_m = 0.6;
+  options.groundHeightM = 0.6;
   const EggGrid flat = testing::handGrid();
   EXPECT_THROW(planSupports({{0, &flat, std::nullopt}}, options), InvalidInput);
 }
@@ -164,7 +164,7 @@ TEST(Supports, OnlyOnFreeSides) {
   // Side 3 (v member 0: connections 0, 3, 6) free, every boundary connection there supported.
   patch.freeSides = {false, false, false, true};
   auto options = testing::handOptions();
-  options.supports_at_boundary_connections = true;
+  options.supportsAtBoundaryConnections = true;
   const auto column = planSupports({patch}, options, nullptr, &inner);
   ASSERT_EQ(column.size(), 3u);
   EXPECT_EQ(column[0].connectionId, "P0-C0-0");

@@ -50,7 +50,7 @@ TriMesh twoBumps(double separation, double height = 2.0) {
 
 SurfacePeakOptions withMinGaussian(double k) {
   SurfacePeakOptions options;
-  options.min_gaussian = k;
+  options.minGaussian = k;
   return options;
 }
 
@@ -155,9 +155,9 @@ TEST(Injectivity, TwoBumpsFarApartGiveTwoPeaksCloseTogetherOne) {
   // finds a peak on each, but each lies well inside the other's circle.
   const TriMesh close = twoBumps(3.0, 0.5);
   const CurvatureField field = computeCurvature(close);
-  const auto raw = findGaussianPeaks(close, field.gaussian, field.mixed_area);
+  const auto raw = findGaussianPeaks(close, field.gaussian, field.mixedArea);
   int strong = 0;
-  for (const auto& p : raw) strong += p.gaussian_max_nearby > 0.2 && std::abs(std::abs(p.position.x()) - 1.5) < 0.2;
+  for (const auto& p : raw) strong += p.gaussianMaxNearby > 0.2 && std::abs(std::abs(p.position.x()) - 1.5) < 0.2;
   EXPECT_EQ(strong, 2);
   const auto kept = findSurfacePeaks(close);
   ASSERT_EQ(kept.size(), 1u);

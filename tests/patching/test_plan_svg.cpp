@@ -165,7 +165,7 @@ TEST(PlanSvg, SurfaceAloneAndBadInput) {
   drawing.gaussian = Eigen::VectorXd::Zero(3);
   EXPECT_THROW(planSvg(drawing), InvalidInput);  // one value per vertex
   drawing.gaussian.resize(0);
-  drawing.options.width_px = 10;
+  drawing.options.widthPx = 10;
   EXPECT_THROW(planSvg(drawing), InvalidInput);
 }
 

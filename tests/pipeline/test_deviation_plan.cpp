@@ -29,7 +29,7 @@ TEST(DeviationPlan, StretchesOfOneColourAreOnePolyline) {
   // A rod whose first three points lie on the surface and last two 1 m off: two colour runs.
   DeployedRod rod;
   for (int i = 0; i < 5; ++i) rod.points.emplace_back(i, 0.5 * i, 0.0);
-  rod.distance_m = {0.0, 0.0, 0.0, 1.0, 1.0};
+  rod.distanceM = {0.0, 0.0, 0.0, 1.0, 1.0};
   const std::string svg = deployedPlanSvg({rod}, "a <test> & caption");
   EXPECT_EQ(svg.rfind("<svg id=\"deployed\" xmlns=\"http://www.w3.org/2000/svg\"", 0), 0u);
   size_t polylines = 0;

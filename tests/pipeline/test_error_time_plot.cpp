@@ -31,8 +31,8 @@ TEST(ErrorTimePlot, HistoryRoundTripsThroughTheReport) {
   EXPECT_EQ(back[2].iteration, 16);
   EXPECT_EQ(back[2].loadStep, 1);
   EXPECT_EQ(back[2].seconds, 2.0);
-  EXPECT_EQ(back[2].rmse_m, 0.1);
-  EXPECT_EQ(back[2].max_m, 0.5);
+  EXPECT_EQ(back[2].rmseM, 0.1);
+  EXPECT_EQ(back[2].maxM, 0.5);
   nlohmann::json broken = j;
   broken[1].erase("rmse_m");
   try {

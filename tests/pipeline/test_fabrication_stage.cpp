@@ -14,11 +14,11 @@ TEST(FabricationStage, SceneDefaultsAreTheLibraryDefaults) {
   const Scene scene = parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"}})"), "/scenes/test.json");
   const auto o = scene.fabricationOptions();
   const fabrication::FabricationOptions library;
-  EXPECT_DOUBLE_EQ(o.lamella_width_mm, library.lamella_width_mm);  // 0.25 m
-  EXPECT_DOUBLE_EQ(o.lamella_thickness_mm, library.lamella_thickness_mm);
+  EXPECT_DOUBLE_EQ(o.lamellaWidthMm, library.lamellaWidthMm);  // 0.25 m
+  EXPECT_DOUBLE_EQ(o.lamellaThicknessMm, library.lamellaThicknessMm);
   EXPECT_EQ(o.material, library.material);
-  EXPECT_EQ(o.stickerSheetMm(), library.sheet_mm);
-  EXPECT_FALSE(o.end_overhang_mm.has_value());
+  EXPECT_EQ(o.effectiveStickerSheetMm(), library.sheetMm);
+  EXPECT_FALSE(o.endOverhangMm.has_value());
   EXPECT_NO_THROW(o.validate());
   EXPECT_TRUE(fabricationWanted(scene));
 }
@@ -32,18 +32,18 @@ TEST(FabricationStage, SceneKeysReachTheOptions) {
       "outputs": ["report", "stickers"]})"),
                                  "/scenes/test.json");
   const auto o = scene.fabricationOptions();
-  EXPECT_DOUBLE_EQ(o.lamella_width_mm, 10.0);
-  EXPECT_DOUBLE_EQ(o.lamella_thickness_mm, 1.0);
+  EXPECT_DOUBLE_EQ(o.lamellaWidthMm, 10.0);
+  EXPECT_DOUBLE_EQ(o.lamellaThicknessMm, 1.0);
   EXPECT_EQ(o.material, "limewood");
-  EXPECT_DOUBLE_EQ(o.sheet_mm[0], 1000.0);
-  EXPECT_DOUBLE_EQ(o.kerf_mm, 0.1);
-  EXPECT_DOUBLE_EQ(o.stock_length_mm, 900.0);
-  EXPECT_DOUBLE_EQ(o.endOverhangMm(), 6.0);
-  EXPECT_DOUBLE_EQ(*o.ground_height_m, 0.2);
-  EXPECT_DOUBLE_EQ(o.minSpliceClearanceMm(), 7.0);
-  EXPECT_EQ(o.splice_joint, fabrication::SpliceJoint::PlateOrScarf);
+  EXPECT_DOUBLE_EQ(o.sheetMm[0], 1000.0);
+  EXPECT_DOUBLE_EQ(o.kerfMm, 0.1);
+  EXPECT_DOUBLE_EQ(o.stockLengthMm, 900.0);
+  EXPECT_DOUBLE_EQ(o.effectiveEndOverhangMm(), 6.0);
+  EXPECT_DOUBLE_EQ(*o.groundHeightM, 0.2);
+  EXPECT_DOUBLE_EQ(o.effectiveMinSpliceClearanceMm(), 7.0);
+  EXPECT_EQ(o.spliceJoint, fabrication::SpliceJoint::PlateOrScarf);
   EXPECT_DOUBLE_EQ(o.scarfLengthMm(), 10.0);  // 1:10 over 1 mm
-  EXPECT_DOUBLE_EQ(o.scarf_efficiency, 0.9);
+  EXPECT_DOUBLE_EQ(o.scarfEfficiency, 0.9);
   const auto outputs = fabricationOutputsFromScene(scene);
   EXPECT_FALSE(outputs.cutFiles);
   EXPECT_TRUE(outputs.stickers);

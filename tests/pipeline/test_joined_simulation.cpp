@@ -31,9 +31,9 @@ Scene twoPatchScene(bool join) {
 
 nlohmann::json run(const Scene& scene, const std::string& name) {
   PipelineOptions options;
-  options.out_dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+  options.outDir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
   auto result = runPipeline(scene, options);
-  fs::remove_all(options.out_dir);
+  fs::remove_all(options.outDir);
   EXPECT_TRUE(result.failures.empty()) << nlohmann::json(result.failures).dump(1);
   return result.report;
 }

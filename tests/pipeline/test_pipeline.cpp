@@ -31,7 +31,7 @@ TEST(Pipeline, SlowBumpPatchRunsEndToEnd) {
   const fs::path out = fs::temp_directory_path() / ("egg_pipeline_test_" + std::to_string(::getpid()));
   fs::remove_all(out);
   PipelineOptions options;
-  options.out_dir = out;
+  options.outDir = out;
   const PipelineResult result = runPipeline(bumpPatchScene(), options);
   const auto& report = result.report;
   EXPECT_TRUE(result.failures.empty());
@@ -101,7 +101,7 @@ TEST(Pipeline, InfeasiblePatchIsReportedNotFatal) {
   scene.design().alphaBar.slopeMax = 1.001;
   const fs::path out = fs::temp_directory_path() / ("egg_pipeline_infeasible_" + std::to_string(::getpid()));
   PipelineOptions options;
-  options.out_dir = out;
+  options.outDir = out;
   const PipelineResult result = runPipeline(scene, options);
   ASSERT_EQ(result.failures.size(), 1u);
   EXPECT_FALSE(result.report["patches"][0]["feasible"].get<bool>());
@@ -117,7 +117,7 @@ TEST(Pipeline, SlowSelfWeightReportsTheSag) {
   scene.simulation.rods.model.gravity = true;
   const fs::path out = fs::temp_directory_path() / ("egg_pipeline_gravity_" + std::to_string(::getpid()));
   PipelineOptions options;
-  options.out_dir = out;
+  options.outDir = out;
   const PipelineResult result = runPipeline(scene, options);
   const auto& sim = result.report["simulation"];
   ASSERT_TRUE(sim["ran"].get<bool>());
@@ -160,7 +160,7 @@ fs::path scratch(const std::string& name) { return fs::temp_directory_path() / (
 TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   const fs::path out = scratch("egg_pipeline_2x2");
   PipelineOptions options;
-  options.out_dir = out;
+  options.outDir = out;
   std::vector<std::pair<std::string, double>> progress;  // the progress bar's feed
   options.progress = [&](const std::string& stage, double fraction) { progress.emplace_back(stage, fraction); };
   const PipelineResult result = runPipeline(twoByTwoScene(R"(["report", "plan", "cut_files"])"), options);
@@ -227,9 +227,9 @@ TEST(PipelineMultiPatch, SlowResultsDoNotDependOnTheThreadCount) {
   const auto runWith = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     PipelineOptions options;
-    options.out_dir = scratch("egg_pipeline_threads_" + std::to_string(threads));
+    options.outDir = scratch("egg_pipeline_threads_" + std::to_string(threads));
     auto report = runPipeline(scene, options).report;
-    fs::remove_all(options.out_dir);
+    fs::remove_all(options.outDir);
     return report;
   };
   const auto one = runWith(1), two = runWith(2);
@@ -251,7 +251,7 @@ TEST(PipelineMultiPatch, OutputsDecideWhatRuns) {
   // Nothing asked for: no stage runs, no folder appears.
   const fs::path out = scratch("egg_pipeline_outputs");
   PipelineOptions options;
-  options.out_dir = out;
+  options.outDir = out;
   const PipelineResult none = runPipeline(twoByTwoScene("[]"), options);
   EXPECT_TRUE(none.nothingRequested);
   for (const auto& [stage, entry] : none.report["stages"].items()) EXPECT_FALSE(entry["ran"].get<bool>()) << stage;
@@ -274,7 +274,7 @@ TEST(PipelineMultiPatch, AnInfeasiblePatchDoesNotStopTheOthers) {
   scene.patching.quads[3][2] = static_cast<int>(scene.patching.corners.size()) - 1;
   const fs::path out = scratch("egg_pipeline_one_bad");
   PipelineOptions options;
-  options.out_dir = out;
+  options.outDir = out;
   const PipelineResult result = runPipeline(scene, options);
   ASSERT_EQ(result.report["patches"].size(), 4u);
   int feasible = 0;
@@ -290,10 +290,10 @@ TEST(PipelineMultiPatch, PartsThatCannotBeCutAreAFailureWithItsReport) {
   // fails (exit 1) and says why; the report is written, the cut files are not.
   Scene scene = twoByTwoScene(R"(["report", "cut_files"])");
   scene.simulation.enabled = false;
-  scene.fabrication.options.sheet_mm = {2500.0, 40.0};
+  scene.fabrication.options.sheetMm = {2500.0, 40.0};
   const fs::path out = scratch("egg_pipeline_uncuttable");
   PipelineOptions options;
-  options.out_dir = out;
+  options.outDir = out;
   const PipelineResult result = runPipeline(scene, options);
   ASSERT_EQ(result.failures.size(), 1u);
   EXPECT_EQ(result.failures[0].rfind("fabrication: ", 0), 0u) << result.failures[0];

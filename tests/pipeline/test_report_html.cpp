@@ -184,7 +184,7 @@ TEST(ReportHtml, WritesAPngPreviewOfEveryFigure) {
          "<line x1=\"10\" y1=\"10\" x2=\"190\" y2=\"190\" stroke=\"#1f77b4\" stroke-width=\"3\"/>\n</svg>\n";
   // The deployed grid as the pipeline writes it (deviation_plan.hpp): one rod rising off the surface.
   DeployedRod rod;
-  for (int i = 0; i < 5; ++i) rod.points.emplace_back(i, 0.3 * i, 0.0), rod.distance_m.push_back(0.05 * i);
+  for (int i = 0; i < 5; ++i) rod.points.emplace_back(i, 0.3 * i, 0.0), rod.distanceM.push_back(0.05 * i);
   std::ofstream(dir / "deployed.svg") << deployedPlanSvg({rod}, "test rod");
   const std::vector<std::string> previews = writeReportHtml(dir, sampleReport());
   const std::vector<std::string> expected = {"preview/plan.png",           "preview/stage_time_chart.png",

@@ -57,7 +57,7 @@ TEST(Scene, DefaultsFillEverythingButTheSurface) {
   EXPECT_FALSE(egg::rods::SimulationOptions{}.fastenBoltsUnderLoad);
   EXPECT_DOUBLE_EQ(s.design().members.spacingFactor, egg::MemberOptions{}.spacingFactor);
   EXPECT_DOUBLE_EQ(s.simulation.rods.solver.tolerance, egg::rods::SolverOptions{}.tolerance);
-  EXPECT_DOUBLE_EQ(s.simulation.rods.solver.timeLimit_s, egg::rods::SolverOptions{}.timeLimit_s);
+  EXPECT_DOUBLE_EQ(s.simulation.rods.solver.timeLimitS, egg::rods::SolverOptions{}.timeLimitS);
   EXPECT_TRUE(s.wants("cut_files"));
 }
 
@@ -96,19 +96,19 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_FALSE(s.simulation.joinPatches);
   EXPECT_TRUE(s.simulation.rods.compareWithoutNotches);
   EXPECT_FALSE(s.simulation.holdSharedSides);
-  EXPECT_DOUBLE_EQ(s.fabrication.options.sheet_mm[1], 1500.0);
-  EXPECT_DOUBLE_EQ(s.fabrication.options.kerf_mm, 0.3);
-  EXPECT_DOUBLE_EQ(s.fabrication.options.margin_mm, 12.0);
-  EXPECT_DOUBLE_EQ(s.fabrication.options.min_notch_mm, 2.0);
-  EXPECT_DOUBLE_EQ(s.fabrication.options.stock_length_mm, 5000.0);
-  EXPECT_DOUBLE_EQ(*s.fabrication.options.end_overhang_mm, 40.0);
-  EXPECT_DOUBLE_EQ(*s.fabrication.options.splice_clearance_mm, 300.0);
-  EXPECT_DOUBLE_EQ(*s.fabrication.options.label_height_mm, 12.0);
-  EXPECT_DOUBLE_EQ(s.fabrication.options.sticker_margin_mm, 3.0);
-  EXPECT_DOUBLE_EQ((*s.fabrication.options.sticker_sheet_mm)[0], 600.0);
-  EXPECT_DOUBLE_EQ(*s.fabrication.options.ground_height_m, -0.5);
-  EXPECT_DOUBLE_EQ(*s.fabrication.options.support_block_mm, 200.0);
-  EXPECT_TRUE(s.fabrication.options.supports_at_boundary_connections);
+  EXPECT_DOUBLE_EQ(s.fabrication.options.sheetMm[1], 1500.0);
+  EXPECT_DOUBLE_EQ(s.fabrication.options.kerfMm, 0.3);
+  EXPECT_DOUBLE_EQ(s.fabrication.options.marginMm, 12.0);
+  EXPECT_DOUBLE_EQ(s.fabrication.options.minNotchMm, 2.0);
+  EXPECT_DOUBLE_EQ(s.fabrication.options.stockLengthMm, 5000.0);
+  EXPECT_DOUBLE_EQ(*s.fabrication.options.endOverhangMm, 40.0);
+  EXPECT_DOUBLE_EQ(*s.fabrication.options.spliceClearanceMm, 300.0);
+  EXPECT_DOUBLE_EQ(*s.fabrication.options.labelHeightMm, 12.0);
+  EXPECT_DOUBLE_EQ(s.fabrication.options.stickerMarginMm, 3.0);
+  EXPECT_DOUBLE_EQ((*s.fabrication.options.stickerSheetMm)[0], 600.0);
+  EXPECT_DOUBLE_EQ(*s.fabrication.options.groundHeightM, -0.5);
+  EXPECT_DOUBLE_EQ(*s.fabrication.options.supportBlockMm, 200.0);
+  EXPECT_TRUE(s.fabrication.options.supportsAtBoundaryConnections);
   EXPECT_FALSE(s.wants("cut_files"));
   // And it survives a round trip through the report echo.
   const Scene back = parseScene([&] {
@@ -121,14 +121,14 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_EQ(back.design().maps.proxyVertices, 450);
   EXPECT_DOUBLE_EQ(back.design().members.spacingFactor, 11.0);
   EXPECT_DOUBLE_EQ(back.simulation.rods.solver.tolerance, 1e-6);
-  EXPECT_DOUBLE_EQ(back.simulation.rods.solver.timeLimit_s, 30.0);
+  EXPECT_DOUBLE_EQ(back.simulation.rods.solver.timeLimitS, 30.0);
   EXPECT_FALSE(back.simulation.joinPatches);
   EXPECT_TRUE(back.simulation.rods.compareWithoutNotches);
   EXPECT_FALSE(back.simulation.holdSharedSides);
   EXPECT_EQ(back.patching.patches.size(), 1u);
-  EXPECT_DOUBLE_EQ(*back.fabrication.options.end_overhang_mm, 40.0);
-  EXPECT_DOUBLE_EQ(back.fabrication.options.stock_length_mm, 5000.0);
-  EXPECT_FALSE(parse(R"({"surface": {"sample": "bump"}})").fabrication.options.end_overhang_mm.has_value());
+  EXPECT_DOUBLE_EQ(*back.fabrication.options.endOverhangMm, 40.0);
+  EXPECT_DOUBLE_EQ(back.fabrication.options.stockLengthMm, 5000.0);
+  EXPECT_FALSE(parse(R"({"surface": {"sample": "bump"}})").fabrication.options.endOverhangMm.has_value());
 }
 
 TEST(Scene, UnknownKeysAreErrorsNamingTheField) {

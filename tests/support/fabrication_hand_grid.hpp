@@ -77,19 +77,19 @@ inline EggGrid handGrid(double shiftXM = 0.0) {
 // The options the hand-checked numbers below assume (millimetres).
 inline FabricationOptions handOptions() {
   FabricationOptions o;
-  o.lamella_width_mm = 10.0;
-  o.lamella_thickness_mm = 1.0;
+  o.lamellaWidthMm = 10.0;
+  o.lamellaThicknessMm = 1.0;
   o.material = "limewood";
-  o.sheet_mm = {500.0, 300.0};
-  o.kerf_mm = 0.5;
-  o.margin_mm = 5.0;
-  o.bolt_diameter_mm = 3.0;
-  o.min_notch_mm = 1.0;
-  o.stock_length_mm = 1000.0;
-  o.end_overhang_mm = 5.0;
-  o.label_height_mm = 3.0;
-  o.sticker_sheet_mm = std::array<double, 2>{200.0, 100.0};
-  o.support_block_mm = 30.0;
+  o.sheetMm = {500.0, 300.0};
+  o.kerfMm = 0.5;
+  o.marginMm = 5.0;
+  o.boltDiameterMm = 3.0;
+  o.minNotchMm = 1.0;
+  o.stockLengthMm = 1000.0;
+  o.endOverhangMm = 5.0;
+  o.labelHeightMm = 3.0;
+  o.stickerSheetMm = std::array<double, 2>{200.0, 100.0};
+  o.supportBlockMm = 30.0;
   return o;
 }
 

@@ -48,7 +48,7 @@ TEST(StressSuite, HangingChildIsKilledAndReportedAsTimeout) {
   EXPECT_LT(o.seconds, 5.0);
   PipelineStressCase c;
   c.name = "hang";
-  c.timeLimit_s = 0.3;
+  c.timeLimitS = 0.3;
   const PipelineStressRow row = classify(c, o, nlohmann::json());
   EXPECT_FALSE(row.ok);
   EXPECT_NE(row.result.find("TIMEOUT"), std::string::npos);
@@ -96,7 +96,7 @@ TEST(StressSuite, NonFiniteOutputOrReportIsAFailure) {
     std::vector<char> v(200u << 20, 1);
     return v[12345] == 1 ? 0 : 1;
   }, 10.0, scratch("mem") / "log.txt");
-  EXPECT_GT(big.peakRss_mb, 190.0);
+  EXPECT_GT(big.peakRssMb, 190.0);
 }
 
 // The real pipeline on the suite's non-manifold mesh: a typed error naming the problem, not a crash.

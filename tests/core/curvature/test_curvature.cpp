@@ -90,8 +90,8 @@ TEST(Curvature, SphereGaussianWithinOnePercent) {
     const CurvatureField field = computeCurvature(mesh);
     double worstK = 0.0, worstKappa = 0.0, worstH = 0.0;
     for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v) {
-      worstK = std::max(worstK, std::abs(field.gaussian_angle_defect(v) * radius * radius - 1.0));
-      worstKappa = std::max({worstKappa, std::abs(field.kappa_max(v) * radius - 1.0), std::abs(field.kappa_min(v) * radius - 1.0)});
+      worstK = std::max(worstK, std::abs(field.gaussianAngleDefect(v) * radius * radius - 1.0));
+      worstKappa = std::max({worstKappa, std::abs(field.kappaMax(v) * radius - 1.0), std::abs(field.kappaMin(v) * radius - 1.0)});
       worstH = std::max(worstH, std::abs(field.mean(v) * radius - 1.0));
       // Outward normals: the normal is the radial direction.
       EXPECT_GT(field.normals[v].dot(toEigen(mesh.point(TriMesh::VertexHandle(v))).normalized()), 0.9999);
@@ -100,7 +100,7 @@ TEST(Curvature, SphereGaussianWithinOnePercent) {
               << " R): max rel. error K " << worstK << ", kappa " << worstKappa << ", H " << worstH << "\n";
     EXPECT_LT(worstK, 0.01) << "level " << level;
     EXPECT_LT(worstKappa, 0.01) << "level " << level;
-    EXPECT_NEAR(injectivityRadiusBound(field.gaussian_max), kPi * radius, 0.01 * kPi * radius);
+    EXPECT_NEAR(injectivityRadiusBound(field.gaussianMax), kPi * radius, 0.01 * kPi * radius);
   }
 }
 
@@ -110,23 +110,23 @@ TEST(Curvature, CylinderIsFlatInKWithPrincipalDirectionsAroundAndAlong) {
   const CurvatureField field = computeCurvature(mesh);
   int interior = 0;
   for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v) {
-    if (field.on_boundary[v]) continue;
+    if (field.onBoundary[v]) continue;
     ++interior;
     const Eigen::Vector3d p = toEigen(mesh.point(TriMesh::VertexHandle(v)));
     const Eigen::Vector3d around = Eigen::Vector3d(-p.y(), p.x(), 0.0).normalized();
-    EXPECT_NEAR(field.gaussian_angle_defect(v), 0.0, 1e-10);  // angle defect of a developable mesh is exactly 0
-    EXPECT_NEAR(field.kappa_max(v), 1.0 / radius, 0.01 / radius);
-    EXPECT_NEAR(field.kappa_min(v), 0.0, 0.01 / radius);
-    EXPECT_GT(std::abs(field.direction_max[v].dot(around)), 0.999);
-    EXPECT_GT(std::abs(field.direction_min[v].z()), 0.999);
+    EXPECT_NEAR(field.gaussianAngleDefect(v), 0.0, 1e-10);  // angle defect of a developable mesh is exactly 0
+    EXPECT_NEAR(field.kappaMax(v), 1.0 / radius, 0.01 / radius);
+    EXPECT_NEAR(field.kappaMin(v), 0.0, 0.01 / radius);
+    EXPECT_GT(std::abs(field.directionMax[v].dot(around)), 0.999);
+    EXPECT_GT(std::abs(field.directionMin[v].z()), 0.999);
   }
   EXPECT_GT(interior, 1000);
   // Boundary vertices get K, kappa from a one-sided quadric fit: a few per cent of 1/R (measured
   // 2.5 % of 1/R^2 in K, 3.3 % in kappa here), stable rather than accurate.
   for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v) {
-    if (!field.on_boundary[v]) continue;
-    EXPECT_NEAR(field.gaussian_angle_defect(v), 0.0, 0.05 / (radius * radius));
-    EXPECT_NEAR(field.kappa_max(v), 1.0 / radius, 0.05 / radius);
+    if (!field.onBoundary[v]) continue;
+    EXPECT_NEAR(field.gaussianAngleDefect(v), 0.0, 0.05 / (radius * radius));
+    EXPECT_NEAR(field.kappaMax(v), 1.0 / radius, 0.05 / radius);
   }
 }
 
@@ -135,17 +135,17 @@ TEST(Curvature, HyparAtTheOriginHasKMinusCSquared) {
   int origin = 0;
   const TriMesh mesh = heightField(6, 0.1, [c](double x, double y) { return c * x * y; }, &origin);
   const CurvatureField field = computeCurvature(mesh);
-  std::cout << "hypar origin (valence 6): angle defect K " << field.gaussian_angle_defect(origin) << ", fit K "
+  std::cout << "hypar origin (valence 6): angle defect K " << field.gaussianAngleDefect(origin) << ", fit K "
             << field.gaussian(origin) << " (exact " << -c * c << ")\n";
-  EXPECT_NEAR(field.gaussian_angle_defect(origin), -c * c, 0.01 * c * c);
+  EXPECT_NEAR(field.gaussianAngleDefect(origin), -c * c, 0.01 * c * c);
   EXPECT_NEAR(field.gaussian(origin), -c * c, 1e-3 * c * c);
   EXPECT_NEAR(field.mean(origin), 0.0, 1e-3 * c);
-  EXPECT_NEAR(field.kappa_max(origin), c, 1e-3 * c);
-  EXPECT_NEAR(field.kappa_min(origin), -c, 1e-3 * c);
+  EXPECT_NEAR(field.kappaMax(origin), c, 1e-3 * c);
+  EXPECT_NEAR(field.kappaMin(origin), -c, 1e-3 * c);
   // Principal directions of z = cxy bisect the axes.
-  EXPECT_NEAR(std::abs(field.direction_max[origin].x()), std::sqrt(0.5), 1e-3);
-  EXPECT_NEAR(std::abs(field.direction_max[origin].y()), std::sqrt(0.5), 1e-3);
-  EXPECT_NEAR(field.direction_max[origin].dot(field.direction_min[origin]), 0.0, 1e-3);
+  EXPECT_NEAR(std::abs(field.directionMax[origin].x()), std::sqrt(0.5), 1e-3);
+  EXPECT_NEAR(std::abs(field.directionMax[origin].y()), std::sqrt(0.5), 1e-3);
+  EXPECT_NEAR(field.directionMax[origin].dot(field.directionMin[origin]), 0.0, 1e-3);
 }
 
 TEST(Curvature, AngleDefectFailsAtValenceEightButTheFitDoesNot) {
@@ -157,7 +157,7 @@ TEST(Curvature, AngleDefectFailsAtValenceEightButTheFitDoesNot) {
   const TriMesh mesh = heightField(6, 0.1, [c](double x, double y) { return c * x * y; }, &origin, true);
   const CurvatureField field = computeCurvature(mesh);
   EXPECT_EQ(mesh.valence(TriMesh::VertexHandle(origin)), 8u);
-  EXPECT_NEAR(field.gaussian_angle_defect(origin), -2.0 * c * c, 0.02 * c * c);
+  EXPECT_NEAR(field.gaussianAngleDefect(origin), -2.0 * c * c, 0.02 * c * c);
   EXPECT_NEAR(field.gaussian(origin), -c * c, 1e-3 * c * c);
 }
 
@@ -168,12 +168,12 @@ TEST(Curvature, ParaboloidSignsFollowTheNormal) {
   const TriMesh mesh = heightField(5, 0.05, [](double x, double y) { return 0.5 * (x * x + y * y); }, &origin);
   const CurvatureField field = computeCurvature(mesh);
   EXPECT_GT(field.normals[origin].z(), 0.9999);
-  EXPECT_NEAR(field.kappa_max(origin), -1.0, 1e-3);
-  EXPECT_NEAR(field.kappa_min(origin), -1.0, 1e-3);
+  EXPECT_NEAR(field.kappaMax(origin), -1.0, 1e-3);
+  EXPECT_NEAR(field.kappaMin(origin), -1.0, 1e-3);
   EXPECT_NEAR(field.mean(origin), -1.0, 1e-3);
-  EXPECT_NEAR(field.gaussian_angle_defect(origin), 1.0, 0.01);
+  EXPECT_NEAR(field.gaussianAngleDefect(origin), 1.0, 0.01);
   // K of a paraboloid is largest at its apex: 1 / (1 + r^2)^2.
-  EXPECT_EQ(field.vertex_gaussian_max, origin);
+  EXPECT_EQ(field.vertexGaussianMax, origin);
 }
 
 TEST(Curvature, SampleSphereCapAtSeveralEdgeLengths) {
@@ -190,8 +190,8 @@ TEST(Curvature, SampleSphereCapAtSeveralEdgeLengths) {
     double maxDefect = 0.0, sumDefect = 0.0, maxFit = 0.0, sumFit = 0.0;
     int interior = 0;
     for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v) {
-      if (field.on_boundary[v]) continue;
-      const double e = std::abs(field.gaussian_angle_defect(v) * radius * radius - 1.0);
+      if (field.onBoundary[v]) continue;
+      const double e = std::abs(field.gaussianAngleDefect(v) * radius * radius - 1.0);
       const double f = std::abs(field.gaussian(v) * radius * radius - 1.0);
       maxDefect = std::max(maxDefect, e), sumDefect += e;
       maxFit = std::max(maxFit, f), sumFit += f;
@@ -214,11 +214,11 @@ TEST(Curvature, SampleCylinderAndHyparMatchAnalyticCurvature) {
   const CurvatureField c = computeCurvature(cyl);
   double worstKappa = 0.0, worstFitK = 0.0, worstDirection = 0.0;
   for (int v = 0; v < static_cast<int>(cyl.n_vertices()); ++v) {
-    if (c.on_boundary[v]) continue;
+    if (c.onBoundary[v]) continue;
     // Axis x; the sign of kappa depends on the sample's orientation, so compare magnitudes.
-    const bool maxIsBent = std::abs(c.kappa_max(v)) > std::abs(c.kappa_min(v));
-    const double bent = maxIsBent ? c.kappa_max(v) : c.kappa_min(v);
-    const Eigen::Vector3d& around = maxIsBent ? c.direction_max[v] : c.direction_min[v];
+    const bool maxIsBent = std::abs(c.kappaMax(v)) > std::abs(c.kappaMin(v));
+    const double bent = maxIsBent ? c.kappaMax(v) : c.kappaMin(v);
+    const Eigen::Vector3d& around = maxIsBent ? c.directionMax[v] : c.directionMin[v];
     worstKappa = std::max(worstKappa, std::abs(std::abs(bent) * radius - 1.0));
     worstFitK = std::max(worstFitK, std::abs(c.gaussian(v)) * radius * radius);
     worstDirection = std::max(worstDirection, std::abs(around.x()));
@@ -235,13 +235,13 @@ TEST(Curvature, SampleCylinderAndHyparMatchAnalyticCurvature) {
   double worstFit = 0.0, meanDefect = 0.0, integralDefect = 0.0, integralExact = 0.0;
   int interior = 0;
   for (int v = 0; v < static_cast<int>(hypar.n_vertices()); ++v) {
-    if (h.on_boundary[v]) continue;
+    if (h.onBoundary[v]) continue;
     const Eigen::Vector3d p = toEigen(hypar.point(TriMesh::VertexHandle(v)));
     const double exact = -twist * twist / std::pow(1.0 + twist * twist * (p.x() * p.x() + p.y() * p.y()), 2);
     worstFit = std::max(worstFit, std::abs(h.gaussian(v) / exact - 1.0));
-    meanDefect += std::abs(h.gaussian_angle_defect(v) / exact - 1.0);
-    integralDefect += h.gaussian_angle_defect(v) * h.mixed_area(v);
-    integralExact += exact * h.mixed_area(v);
+    meanDefect += std::abs(h.gaussianAngleDefect(v) / exact - 1.0);
+    integralDefect += h.gaussianAngleDefect(v) * h.mixedArea(v);
+    integralExact += exact * h.mixedArea(v);
     ++interior;
   }
   std::cout << "sample hypar c=0.1 edge 0.5: K fit max rel. error " << worstFit << ", angle defect mean rel. error "
@@ -262,13 +262,13 @@ TEST(Curvature, TheResultDoesNotDependOnTheThreadCount) {
   ASSERT_GT(mesh.n_vertices(), 200u);
   EXPECT_EQ(one.gaussian, two.gaussian);
   EXPECT_EQ(one.mean, two.mean);
-  EXPECT_EQ(one.kappa_max, two.kappa_max);
-  EXPECT_EQ(one.on_boundary, two.on_boundary);
+  EXPECT_EQ(one.kappaMax, two.kappaMax);
+  EXPECT_EQ(one.onBoundary, two.onBoundary);
 }
 
 TEST(Curvature, OptionsAreValidated) {
   CurvatureOptions options;
-  options.fit_rings = 0;
+  options.fitRings = 0;
   EXPECT_THROW(computeCurvature(icosphere(1.0, 1), options), InvalidInput);
   EXPECT_THROW(computeCurvature(TriMesh{}), InvalidInput);
   EXPECT_EQ(injectivityRadiusBound(-1.0), std::numeric_limits<double>::infinity());

@@ -119,19 +119,19 @@ TEST(MeshIo, StlComesBackWithDuplicatesThatRepairMerges) {
   MeshRepairDiagnostics diagnostics;
   const TriMesh mesh = prepareMesh(raw, {}, diagnostics);
   EXPECT_EQ(mesh.n_vertices(), original.vertices.size());
-  EXPECT_EQ(diagnostics.merged_vertices, static_cast<int>(raw.vertices.size() - original.vertices.size()));
+  EXPECT_EQ(diagnostics.mergedVertices, static_cast<int>(raw.vertices.size() - original.vertices.size()));
 }
 
 TEST(MeshIo, ScaleToMetresAndExportScale) {
   const TriangleSoup original = wavySurface(3);
   TempDir dir;
   MeshExportOptions millimetres;
-  millimetres.scale_from_m = 1000.0;
+  millimetres.scaleFromM = 1000.0;
   writeMeshFile(dir / "mm.obj", original, millimetres);
   const TriangleSoup inFileUnits = readMeshFile(dir / "mm.obj");
   EXPECT_NEAR(inFileUnits.vertices[0].x(), 1000.0 * original.vertices[0].x(), 1e-3);
   MeshImportOptions toMetres;
-  toMetres.scale_to_m = 0.001;
+  toMetres.scaleToM = 0.001;
   expectSameSurface(original, readMeshFile(dir / "mm.obj", toMetres), "mm");
 }
 
@@ -256,7 +256,7 @@ TEST(MeshIo, WriteErrorsNameTheFileAndLeaveNothing) {
   }
   EXPECT_TRUE(dir.files().empty());
   MeshImportOptions bad;
-  bad.scale_to_m = 0.0;
+  bad.scaleToM = 0.0;
   EXPECT_THROW(readMeshFile(dir / "s.obj", bad), InvalidInput);
 }
 
@@ -267,7 +267,7 @@ TEST(MeshIo, LoadMeshFileRepairsOrNamesFileAndElement) {
   MeshRepairDiagnostics diagnostics;
   const TriMesh mesh = loadMeshFile(dir / "ok.stl", {}, {}, diagnostics);
   EXPECT_EQ(mesh.n_vertices(), original.vertices.size());
-  EXPECT_GT(diagnostics.merged_vertices, 0);
+  EXPECT_GT(diagnostics.mergedVertices, 0);
   // A fin on an edge: three triangles share edge (1, 2) of this OBJ (1-based indices in the file).
   writeText(dir / "fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 1 1 1\nf 1 2 3\nf 2 4 3\nf 2 3 5\n");
   try {

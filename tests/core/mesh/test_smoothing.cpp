@@ -49,10 +49,10 @@ TEST(Smoothing, FlatIrregularMeshIsAFixedPointOfCotanButNotUniformFlow) {
   SmoothingOptions options;
   options.strength = 5.0;
   const SmoothingResult cotan = smoothMeshStep(mesh, options);
-  EXPECT_LT(cotan.max_displacement_m, 1e-12);
+  EXPECT_LT(cotan.maxDisplacementM, 1e-12);
   options.weights = LaplacianWeights::Uniform;
   const SmoothingResult uniform = smoothMeshStep(mesh, options);
-  EXPECT_GT(uniform.max_displacement_m, 0.01 / 8.0);
+  EXPECT_GT(uniform.maxDisplacementM, 0.01 / 8.0);
   for (auto vh : uniform.mesh.vertices()) EXPECT_NEAR(uniform.mesh.point(vh)[2], 0.0, 1e-14);
 }
 
@@ -64,10 +64,10 @@ TEST(Smoothing, NoisyPlaneReturnsTowardsThePlaneWithTheBoundaryFixed) {
   double lastMax = std::numeric_limits<double>::infinity();
   for (int step = 0; step < 4; ++step) {
     const SmoothingResult result = smoothMeshStep(current, {});
-    EXPECT_LT(result.max_displacement_m, lastMax);  // the flow slows down as the noise goes
-    EXPECT_GT(result.mean_displacement_m, 0.0);
-    EXPECT_LE(result.mean_displacement_m, result.max_displacement_m);
-    lastMax = result.max_displacement_m;
+    EXPECT_LT(result.maxDisplacementM, lastMax);  // the flow slows down as the noise goes
+    EXPECT_GT(result.meanDisplacementM, 0.0);
+    EXPECT_LE(result.meanDisplacementM, result.maxDisplacementM);
+    lastMax = result.maxDisplacementM;
     current = result.mesh;
     rms.push_back(rmsHeight(current));
   }
@@ -89,14 +89,14 @@ TEST(Smoothing, SphereShrinksLikeBackwardEulerMeanCurvatureFlow) {
   SmoothingOptions options;
   options.strength = 0.05 * radius * radius / std::pow(meanEdgeLength(mesh), 2);  // t = 0.05 R^2
   const SmoothingResult result = smoothMeshStep(mesh, options);
-  EXPECT_NEAR(result.time_step_m2, 0.05 * radius * radius, 1e-12);
-  const double expected = radius / (1.0 + 2.0 * result.time_step_m2 / (radius * radius));
+  EXPECT_NEAR(result.timeStepM2, 0.05 * radius * radius, 1e-12);
+  const double expected = radius / (1.0 + 2.0 * result.timeStepM2 / (radius * radius));
   double worst = 0.0;
   for (auto vh : result.mesh.vertices())
     worst = std::max(worst, std::abs(toEigen(result.mesh.point(vh)).norm() / expected - 1.0));
   std::cout << "sphere R' expected " << expected << ", worst relative deviation " << worst << "\n";
   EXPECT_LT(worst, 1e-3);
-  EXPECT_EQ(result.fixed_vertices, 0);  // closed: nothing on a boundary
+  EXPECT_EQ(result.fixedVertices, 0);  // closed: nothing on a boundary
 }
 
 TEST(Smoothing, ConjugateGradientsAgreeWithCholesky) {
@@ -108,26 +108,26 @@ TEST(Smoothing, ConjugateGradientsAgreeWithCholesky) {
     const SmoothingResult direct = smoothMeshStep(mesh, options);
     options.solver = FairingSolver::ConjugateGradient;
     const SmoothingResult iterative = smoothMeshStep(mesh, options);
-    EXPECT_TRUE(direct.used_cholesky);
-    EXPECT_FALSE(iterative.used_cholesky);
+    EXPECT_TRUE(direct.usedCholesky);
+    EXPECT_FALSE(iterative.usedCholesky);
     EXPECT_GT(iterative.iterations, 0);
     double worst = 0.0;
     for (auto vh : mesh.vertices())
       worst = std::max(worst, (toEigen(direct.mesh.point(vh)) - toEigen(iterative.mesh.point(vh))).norm());
     EXPECT_LT(worst, 1e-9) << "strength " << strength;
-    EXPECT_NEAR(direct.max_displacement_m, iterative.max_displacement_m, 1e-9);
+    EXPECT_NEAR(direct.maxDisplacementM, iterative.maxDisplacementM, 1e-9);
   }
 }
 
 TEST(Smoothing, ExtraFixedVerticesStay) {
   const TriMesh mesh = noisyPlane(6, 0.2, 0.05);
   SmoothingOptions options;
-  options.fixed_vertices = {20, 30};
+  options.fixedVertices = {20, 30};
   const SmoothingResult result = smoothMeshStep(mesh, options);
   EXPECT_EQ(result.mesh.point(TriMesh::VertexHandle(20)), mesh.point(TriMesh::VertexHandle(20)));
   EXPECT_EQ(result.mesh.point(TriMesh::VertexHandle(30)), mesh.point(TriMesh::VertexHandle(30)));
   EXPECT_NE(result.mesh.point(TriMesh::VertexHandle(21)), mesh.point(TriMesh::VertexHandle(21)));
-  EXPECT_EQ(result.fixed_vertices, 2 * 13 + 2 * 5 + 2);
+  EXPECT_EQ(result.fixedVertices, 2 * 13 + 2 * 5 + 2);
 }
 
 TEST(Smoothing, LoopStopsWhenTheCriterionHolds) {
@@ -144,16 +144,16 @@ TEST(Smoothing, LoopStopsWhenTheCriterionHolds) {
   EXPECT_LT(loop.steps, 20);
   EXPECT_EQ(checks, loop.steps + 1);  // the input is checked too
   EXPECT_LE(rmsHeight(loop.mesh), target);
-  EXPECT_EQ(static_cast<int>(loop.max_displacement_m.size()), loop.steps);
+  EXPECT_EQ(static_cast<int>(loop.maxDisplacementM.size()), loop.steps);
   // Already satisfied: nothing runs, the mesh is returned unchanged.
   const SmoothingLoopResult none = smoothUntil(mesh, [](const TriMesh&) { return true; }, 5);
   EXPECT_EQ(none.steps, 0);
-  EXPECT_EQ(none.total_max_displacement_m, 0.0);
+  EXPECT_EQ(none.totalMaxDisplacementM, 0.0);
   // Never satisfied: stops at the step limit and says so.
   const SmoothingLoopResult capped = smoothUntil(mesh, [](const TriMesh&) { return false; }, 3);
   EXPECT_FALSE(capped.satisfied);
   EXPECT_EQ(capped.steps, 3);
-  EXPECT_GT(capped.total_max_displacement_m, 0.0);
+  EXPECT_GT(capped.totalMaxDisplacementM, 0.0);
 }
 
 TEST(Smoothing, BadInputIsRejected) {
@@ -162,7 +162,7 @@ TEST(Smoothing, BadInputIsRejected) {
   options.strength = 0.0;
   EXPECT_THROW(smoothMeshStep(mesh, options), InvalidInput);
   options.strength = 1.0;
-  options.fixed_vertices = {1000};
+  options.fixedVertices = {1000};
   EXPECT_THROW(smoothMeshStep(mesh, options), InvalidInput);
   EXPECT_THROW(smoothMeshStep(TriMesh{}, {}), InvalidInput);
 }

@@ -41,8 +41,8 @@ TEST(Validate, CleanGridHasNoIssues) {
   EXPECT_TRUE(result.issues.empty()) << result.summary();
   EXPECT_TRUE(result.acceptable());
   EXPECT_EQ(result.components, 1);
-  EXPECT_EQ(result.boundary_edges, 16);
-  EXPECT_NEAR(result.min_angle_rad, M_PI / 4.0, 1e-12);
+  EXPECT_EQ(result.boundaryEdges, 16);
+  EXPECT_NEAR(result.minAngleRad, M_PI / 4.0, 1e-12);
   MeshRepairDiagnostics diagnostics;
   const TriMesh mesh = prepareMesh(grid(4), {}, diagnostics);
   EXPECT_EQ(mesh.n_vertices(), 25u);
@@ -72,7 +72,7 @@ TEST(Validate, InfiniteUnusedVertexIsSimplyDropped) {
   MeshRepairDiagnostics diagnostics;
   const TriMesh mesh = prepareMesh(soup, {}, diagnostics);
   EXPECT_EQ(mesh.n_vertices(), 9u);
-  EXPECT_EQ(diagnostics.dropped_unreferenced_vertices, 1);
+  EXPECT_EQ(diagnostics.droppedUnreferencedVertices, 1);
 }
 
 TEST(Validate, ZeroAreaTriangleIsNamed) {
@@ -102,12 +102,12 @@ TEST(Validate, SliversReportCountAndWorst) {
   ASSERT_NE(issue, nullptr) << result.summary();
   EXPECT_EQ(issue->count, 2);
   EXPECT_TRUE(contains(issue->message, "the worst is triangle 3 (vertices 1, 5, 4)")) << issue->message;
-  EXPECT_EQ(result.worst_face, 3);
-  EXPECT_NEAR(result.min_angle_rad, std::atan2(5e-6, 0.499995), 1e-12);
+  EXPECT_EQ(result.worstFace, 3);
+  EXPECT_NEAR(result.minAngleRad, std::atan2(5e-6, 0.499995), 1e-12);
   EXPECT_FALSE(result.acceptable());
   // Tolerated (reported, not refused) when the option says so.
   MeshCheckOptions options;
-  options.reject_slivers = false;
+  options.rejectSlivers = false;
   const MeshCheckResult tolerated = checkMesh(soup, options);
   EXPECT_TRUE(tolerated.has(MeshIssueKind::SliverFaces));
   EXPECT_TRUE(tolerated.acceptable()) << tolerated.summary();
@@ -139,7 +139,7 @@ TEST(Validate, IsolatedVerticesAreAnErrorWhenNotDropped) {
   TriangleSoup soup = grid(1);
   soup.vertices.push_back({7, 7, 7});
   MeshCheckOptions options;
-  options.drop_unreferenced_vertices = false;
+  options.dropUnreferencedVertices = false;
   const std::string message = messageOf(soup, options);
   EXPECT_TRUE(contains(message, "vertex 4 at (7, 7, 7)")) << message;
 }
@@ -164,7 +164,7 @@ TEST(Validate, SeveralComponentsRejectedOrLargestKept) {
   const TriMesh mesh = prepareMesh(soup, options, diagnostics);
   EXPECT_EQ(mesh.n_faces(), 18u);
   EXPECT_EQ(mesh.n_vertices(), 16u);
-  EXPECT_EQ(diagnostics.removed_components, 1);
+  EXPECT_EQ(diagnostics.removedComponents, 1);
   ASSERT_EQ(diagnostics.warnings.size(), 1u);
   EXPECT_TRUE(contains(diagnostics.warnings[0], "kept the largest")) << diagnostics.warnings[0];
 }
@@ -178,10 +178,10 @@ TEST(Validate, InconsistentOrientationIsNamedOrFixed) {
   EXPECT_FALSE(contains(message, "by option")) << message;  // issue 17: there is no such option
 
   MeshCheckOptions options;
-  options.fix_orientation = true;
+  options.fixOrientation = true;
   MeshRepairDiagnostics diagnostics;
   const TriMesh mesh = prepareMesh(soup, options, diagnostics);
-  EXPECT_EQ(diagnostics.flipped_triangles, 1);
+  EXPECT_EQ(diagnostics.flippedTriangles, 1);
   EXPECT_EQ(mesh.n_faces(), 8u);
   // All face normals now point the same way (+z, like the majority).
   for (auto fh : mesh.faces()) EXPECT_GT(mesh.calc_face_normal(fh)[2], 0.99);
@@ -201,11 +201,11 @@ TEST(Validate, StlStyleSoupIsMergedIntoOneSurface) {
   const TriMesh mesh = prepareMesh(stl, {}, diagnostics);
   EXPECT_EQ(mesh.n_vertices(), 16u);
   EXPECT_EQ(mesh.n_faces(), 18u);
-  EXPECT_EQ(diagnostics.merged_vertices, 54 - 16);
-  EXPECT_EQ(diagnostics.dropped_duplicate_triangles, 1);
+  EXPECT_EQ(diagnostics.mergedVertices, 54 - 16);
+  EXPECT_EQ(diagnostics.droppedDuplicateTriangles, 1);
 
   MeshCheckOptions noMerge;
-  noMerge.merge_duplicate_vertices = false;
+  noMerge.mergeDuplicateVertices = false;
   const std::string message = messageOf(stl, noMerge);
   EXPECT_TRUE(contains(message, "38 duplicate vertices")) << message;
 }
@@ -219,7 +219,7 @@ TEST(Validate, IndexOutOfRangeAndEmptyAreRejected) {
 
 TEST(Validate, BadOptionsNameTheField) {
   MeshCheckOptions options;
-  options.sliver_min_angle_rad = -1.0;
+  options.sliverMinAngleRad = -1.0;
   try {
     checkMesh(grid(1), options);
     FAIL();

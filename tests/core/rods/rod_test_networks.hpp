@@ -9,7 +9,7 @@ namespace egg::rods::testing {
 
 inline Rod straight(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int layer) {
   Rod rod;
-  rod.length_m = (to - from).norm();
+  rod.lengthM = (to - from).norm();
   rod.section = {0.02, 0.002};
   rod.material = {10.0e9, 3.8e9, 600.0};
   rod.layer = layer;
@@ -26,9 +26,9 @@ inline RodNetwork crossing(double sA, double crossingX, Notch notchA) {
   network.rods.push_back(straight({crossingX, -0.5, 0}, {crossingX, 0.5, 0}, 1));
   Connection c;
   c.rodA = 0;
-  c.sA_m = sA;
+  c.sAM = sA;
   c.rodB = 1;
-  c.sB_m = 0.5;
+  c.sBM = 0.5;
   c.notchA = notchA;
   network.connections.push_back(c);
   return network;

@@ -16,7 +16,7 @@ namespace {
 
 Rod lamella(int layer, double length) {
   Rod rod;
-  rod.length_m = length;
+  rod.lengthM = length;
   rod.section = {0.02, 0.002};
   rod.material = {10.0e9, 3.8e9, 600.0};
   rod.layer = layer;
@@ -32,7 +32,7 @@ TEST(JoinedNetwork, OffsetsRodIndicesAndAddsJoinBolts) {
   b.rods = {lamella(1, 1.0)};
   Anchor anchor;
   anchor.rod = 0;
-  anchor.s_m = 0.2;
+  anchor.sM = 0.2;
   anchor.position = Eigen::Vector3d(0.2, 0, 0);
   anchor.normal = Eigen::Vector3d::UnitZ();
   b.anchors.push_back(anchor);
@@ -55,7 +55,7 @@ TEST(JoinedNetwork, StackedBoundaryLamellasCarryTheirWeightBetweenTheBeamBounds)
   for (double s : {0.0, 0.025}) {  // two anchors close together: a clamp
     Anchor a;
     a.rod = 0;
-    a.s_m = s;
+    a.sM = s;
     a.position = Eigen::Vector3d(s, 0, 0);
     a.normal = Eigen::Vector3d::UnitZ();
     first.anchors.push_back(a);
@@ -74,7 +74,7 @@ TEST(JoinedNetwork, StackedBoundaryLamellasCarryTheirWeightBetweenTheBeamBounds)
   ASSERT_TRUE(result.converged) << result.reason;
 
   const Rod& rod = joined.network.rods[0];
-  const double w = rod.material.density_kg_m3 * rod.section.width_m * rod.section.thickness_m * 9.81;
+  const double w = rod.material.densityKgM3 * rod.section.widthM * rod.section.thicknessM * 9.81;
   const double ei = model.stiffness(0).bendingWeak;
   const double independent = w * std::pow(length, 4) / (8.0 * ei);  // each lamella on its own
   const double composite = independent / 4.0;                      // one beam of twice the thickness
@@ -90,14 +90,14 @@ TEST(JoinedNetwork, StackedBoundaryLamellasCarryTheirWeightBetweenTheBeamBounds)
 TEST(JoinedNetwork, WithoutJoinsTheJoinedRunIsThePatchByPatchRun) {
   // Two vaults on the same cylinder, side by side along its axis (the second shifted by 3 m).
   CylinderGridParameters parameters;
-  parameters.radius_m = 3.0;
-  parameters.halfAngle_rad = 0.6;
-  parameters.length_m = 6.0;
-  parameters.spacing_m = 0.75;
+  parameters.radiusM = 3.0;
+  parameters.halfAngleRad = 0.6;
+  parameters.lengthM = 6.0;
+  parameters.spacingM = 0.75;
   parameters.notchFraction = 0.0;
-  parameters.meshEdge_m = 0.1;
+  parameters.meshEdgeM = 0.1;
   const SampleGrid whole = cylinderGrid(parameters);
-  parameters.length_m = 3.0;
+  parameters.lengthM = 3.0;
   SampleGrid first = cylinderGrid(parameters), second = cylinderGrid(parameters);
   const Eigen::Vector3d shift(0, 3.0, 0);
   for (Rod& rod : second.network.rods) {
@@ -109,8 +109,8 @@ TEST(JoinedNetwork, WithoutJoinsTheJoinedRunIsThePatchByPatchRun) {
   ASSERT_TRUE(result.converged);
   ASSERT_EQ(result.perPatch.size(), 2u);
   EXPECT_EQ(result.patchByPatch.points, result.perPatch[0].vertices + result.perPatch[1].vertices);
-  EXPECT_NEAR(result.joined.deviation->rmse_m, result.patchByPatch.rmse_m, 1e-6 * result.patchByPatch.rmse_m + 1e-9);
-  EXPECT_NEAR(result.joined.deviation->max_m, result.patchByPatch.max_m, 1e-6);
+  EXPECT_NEAR(result.joined.deviation->rmseM, result.patchByPatch.rmseM, 1e-6 * result.patchByPatch.rmseM + 1e-9);
+  EXPECT_NEAR(result.joined.deviation->maxM, result.patchByPatch.maxM, 1e-6);
 }
 
 }  // namespace

@@ -96,11 +96,11 @@ TEST(RodModel, PlainHoleKeepsTheBoltWhereItWasDrilled) {
 TEST(RodModel, AnchorsPlaceTheRodHalfAThicknessOffTheSurface) {
   RodNetwork network;
   network.rods.push_back(straight({0, 0, 0}, {1, 0.2, 0}, 1));  // guess off the anchors
-  network.rods[0].length_m = 1.0;
+  network.rods[0].lengthM = 1.0;
   for (double s : {0.0, 1.0}) {
     Anchor a;
     a.rod = 0;
-    a.s_m = s;
+    a.sM = s;
     a.position = {s, 0, 0};
     a.normal = Eigen::Vector3d::UnitZ();
     network.anchors.push_back(a);

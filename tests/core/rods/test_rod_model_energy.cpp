@@ -22,10 +22,10 @@ TEST(RodModelEnergy, WholeModelDerivativesMatchFiniteDifferences) {
   // random perturbation keeps beta inside (-eps, 1 + eps).
   RodNetwork network = crossing(0.45, 0.42, Notch{0.2, 0.3});
   network.connections[0].notchB = Notch{0.0, 0.1};
-  network.connections[0].sB_m = 0.57;
+  network.connections[0].sBM = 0.57;
   Anchor anchor;
   anchor.rod = 0;
-  anchor.s_m = 0.1;
+  anchor.sM = 0.1;
   anchor.position = {0.1, 0.01, 0.02};
   anchor.normal = Eigen::Vector3d(0.1, 0, 1).normalized();
   network.anchors.push_back(anchor);
@@ -82,9 +82,9 @@ TEST(RodModelEnergy, DerivativesAreBitIdenticalOnAnyThreadCount) {
   network.rods.push_back(straight({0, 0.3, 0}, {1, 0.3, 0}, 0));
   Connection c;
   c.rodA = 2;
-  c.sA_m = 0.42;
+  c.sAM = 0.42;
   c.rodB = 1;
-  c.sB_m = 0.8;
+  c.sBM = 0.8;
   c.notchA = Notch{0.1, 0.1};
   network.connections.push_back(c);
   ModelOptions options = edges(9);

@@ -19,7 +19,7 @@ RodNetwork singleRod(const std::vector<Eigen::Vector3d>& polyline, const std::ve
                      double length) {
   RodNetwork network;
   Rod rod;
-  rod.length_m = length;
+  rod.lengthM = length;
   rod.section = {0.01, 0.001};
   rod.material = {10.0e9, 0.6e9, 500.0};
   rod.guess = polyline;
@@ -34,7 +34,7 @@ RodNetwork straightRod(double length) {
 }
 
 RodNetwork withShearModulus(RodNetwork network, double g) {
-  network.rods[0].material.shear_modulus_pa = g;
+  network.rods[0].material.shearModulusPa = g;
   return network;
 }
 
@@ -148,7 +148,7 @@ TEST(RodSolver, HorizontalCantileverUnderSelfWeightMatchesBeamTheory) {
   ModelOptions options = edges(c.n);
   options.gravity = true;
   RodNetwork network = straightRod(c.n * c.h);
-  network.rods[0].material.density_kg_m3 = 0.02;  // light: linear range (tip ~ 5e-4 L)
+  network.rods[0].material.densityKgM3 = 0.02;  // light: linear range (tip ~ 5e-4 L)
   RodModel model(network, options);
   model.fixVertex(0, 0);
   model.fixVertex(0, 1);
@@ -156,7 +156,7 @@ TEST(RodSolver, HorizontalCantileverUnderSelfWeightMatchesBeamTheory) {
   const SolverResult result = minimiseEnergy(model, tight());
   ASSERT_TRUE(result.converged) << result.reason;
   const Rod& rod = network.rods[0];
-  const double w = rod.material.density_kg_m3 * rod.section.width_m * rod.section.thickness_m * 9.81;
+  const double w = rod.material.densityKgM3 * rod.section.widthM * rod.section.thicknessM * 9.81;
   const double expected = w * std::pow(c.freeLength, 4) / (8.0 * model.stiffness(0).bendingWeak);
   const Eigen::Vector3d root = 0.5 * (model.vertex(0, 0) + model.vertex(0, 1));
   const double deflection = root.z() - model.vertex(0, c.n).z();

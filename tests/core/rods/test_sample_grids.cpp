@@ -27,9 +27,9 @@ Eigen::Vector3d pointAt(const std::vector<Eigen::Vector3d>& p, double s) {
 
 TEST(SampleGrids, CylinderGridIsAnExactGeodesicGrid) {
   CylinderGridParameters parameters;
-  parameters.radius_m = 3.0;
-  parameters.length_m = 4.0;
-  parameters.spacing_m = 0.7;
+  parameters.radiusM = 3.0;
+  parameters.lengthM = 4.0;
+  parameters.spacingM = 0.7;
   const SampleGrid grid = cylinderGrid(parameters);
   ASSERT_GT(grid.network.rods.size(), 6u);
   ASSERT_GT(grid.network.connections.size(), 10u);
@@ -37,15 +37,15 @@ TEST(SampleGrids, CylinderGridIsAnExactGeodesicGrid) {
   EXPECT_EQ(grid.network.anchors.size(), 2 * grid.network.rods.size());
   for (const Rod& rod : grid.network.rods) {
     // Helices sampled finely: chord length within 1e-4 of the exact geodesic length.
-    EXPECT_NEAR(polylineLength(rod.guess), rod.length_m, 1e-4 * rod.length_m);
+    EXPECT_NEAR(polylineLength(rod.guess), rod.lengthM, 1e-4 * rod.lengthM);
   }
   int notched = 0;
   for (const Connection& c : grid.network.connections) {
-    const Eigen::Vector3d a = pointAt(grid.network.rods[c.rodA].guess, c.sA_m);
-    const Eigen::Vector3d b = pointAt(grid.network.rods[c.rodB].guess, c.sB_m);
-    EXPECT_LT((a - b).norm(), 1e-3 * parameters.spacing_m);
+    const Eigen::Vector3d a = pointAt(grid.network.rods[c.rodA].guess, c.sAM);
+    const Eigen::Vector3d b = pointAt(grid.network.rods[c.rodB].guess, c.sBM);
+    EXPECT_LT((a - b).norm(), 1e-3 * parameters.spacingM);
     EXPECT_NE(grid.network.rods[c.rodA].layer, grid.network.rods[c.rodB].layer);
-    notched += c.notchA.after_m > 0.0;
+    notched += c.notchA.afterM > 0.0;
   }
   EXPECT_GT(notched, 0);
   EXPECT_GT(grid.surface.n_faces(), 100u);
@@ -53,7 +53,7 @@ TEST(SampleGrids, CylinderGridIsAnExactGeodesicGrid) {
 
 TEST(SampleGrids, BadParametersAreInvalidInput) {
   CylinderGridParameters parameters;
-  parameters.halfAngle_rad = 2.0;
+  parameters.halfAngleRad = 2.0;
   EXPECT_THROW(cylinderGrid(parameters), InvalidInput);
 }
 

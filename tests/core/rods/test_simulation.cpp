@@ -15,12 +15,12 @@ namespace {
 
 SampleGrid smallVault() {
   CylinderGridParameters parameters;
-  parameters.radius_m = 3.0;
-  parameters.halfAngle_rad = 0.6;
-  parameters.length_m = 3.0;
-  parameters.spacing_m = 0.75;
+  parameters.radiusM = 3.0;
+  parameters.halfAngleRad = 0.6;
+  parameters.lengthM = 3.0;
+  parameters.spacingM = 0.75;
   parameters.section = {0.05, 0.005};
-  parameters.meshEdge_m = 0.05;  // chordal error 0.05^2 / (8 R) = 0.1 mm, well below t/2
+  parameters.meshEdgeM = 0.05;  // chordal error 0.05^2 / (8 R) = 0.1 mm, well below t/2
   return cylinderGrid(parameters);
 }
 
@@ -37,7 +37,7 @@ TEST(Simulation, ContactPointsOfTheGuessLieOnTheSurface) {
     }
   }
   // Only the chordal error of the 0.05 m triangulation of a radius-3 m cylinder remains.
-  EXPECT_LT(measureDeviation(contact, surface).max_m, 0.05 * 0.05 / (8.0 * 3.0) * 1.01);
+  EXPECT_LT(measureDeviation(contact, surface).maxM, 0.05 * 0.05 / (8.0 * 3.0) * 1.01);
 }
 
 TEST(Simulation, NotchFreeCylinderGridDeploysOntoTheCylinder) {
@@ -51,21 +51,21 @@ TEST(Simulation, NotchFreeCylinderGridDeploysOntoTheCylinder) {
   const SimulationRun& plain = *result.withoutNotches;
   ASSERT_TRUE(plain.deviation.has_value());
   // A notch-free geodesic grid supported at every member end: within a thickness of the surface.
-  EXPECT_LT(plain.deviation->rmse_m, 0.005);
-  EXPECT_LT(plain.deviation->max_m, 0.02);
-  EXPECT_NEAR(plain.deviation->nrmse, plain.deviation->rmse_m / 2.0, 1e-15);
+  EXPECT_LT(plain.deviation->rmseM, 0.005);
+  EXPECT_LT(plain.deviation->maxM, 0.02);
+  EXPECT_NEAR(plain.deviation->nrmse, plain.deviation->rmseM / 2.0, 1e-15);
   // Plain holes: bolts stay where they were drilled.
   for (size_t c = 0; c < grid.network.connections.size(); ++c) {
-    EXPECT_DOUBLE_EQ(plain.boltPositions_m[c][0], grid.network.connections[c].sA_m);
+    EXPECT_DOUBLE_EQ(plain.boltPositionsM[c][0], grid.network.connections[c].sAM);
   }
   // With notches the bolts may slide, but only within their slots.
   const SimulationRun& notched = result.deployed;
   ASSERT_TRUE(notched.deviation.has_value());
-  EXPECT_LT(notched.deviation->rmse_m, 0.05);
+  EXPECT_LT(notched.deviation->rmseM, 0.05);
   for (size_t c = 0; c < grid.network.connections.size(); ++c) {
     const Connection& con = grid.network.connections[c];
-    EXPECT_GE(notched.boltPositions_m[c][0], con.sA_m - con.notchA.before_m - 1e-12);
-    EXPECT_LE(notched.boltPositions_m[c][0], con.sA_m + con.notchA.after_m + 1e-12);
+    EXPECT_GE(notched.boltPositionsM[c][0], con.sAM - con.notchA.beforeM - 1e-12);
+    EXPECT_LE(notched.boltPositionsM[c][0], con.sAM + con.notchA.afterM + 1e-12);
   }
   EXPECT_GT(notched.unknowns, plain.unknowns);  // one unknown per sliding bolt side
   for (const auto& line : notched.centrelines) {
@@ -80,29 +80,29 @@ TEST(Simulation, NotchFreeCylinderGridDeploysOntoTheCylinder) {
 // beta) and keeps gravity, so the equilibrium must be symmetric too.
 CylinderGridParameters symmetricVault() {
   CylinderGridParameters parameters;
-  parameters.radius_m = 3.0;
-  parameters.halfAngle_rad = 0.6;
-  parameters.length_m = 3.0;
-  parameters.spacing_m = (3.0 + 2.0 * 3.0 * 0.6) / (6.0 * std::sqrt(2.0));
+  parameters.radiusM = 3.0;
+  parameters.halfAngleRad = 0.6;
+  parameters.lengthM = 3.0;
+  parameters.spacingM = (3.0 + 2.0 * 3.0 * 0.6) / (6.0 * std::sqrt(2.0));
   parameters.section = {0.05, 0.005};
   parameters.notchFraction = 0.2;
-  parameters.meshEdge_m = 0.05;
+  parameters.meshEdgeM = 0.05;
   return parameters;
 }
 
 TEST(Simulation, NotchedVaultUnderSelfWeightConvergesSymmetricAndLinear) {
   const SampleGrid grid = cylinderGrid(symmetricVault());
   const SurfaceDistance surface(grid.surface);
-  const double length = symmetricVault().length_m;
+  const double length = symmetricVault().lengthM;
   double sag[2] = {0.0, 0.0};
   for (int k = 0; k < 2; ++k) {
     SimulationOptions options;
     options.model.gravity = true;
-    options.model.gravity_m_s2 = k == 0 ? 9.81 : 0.5 * 9.81;
+    options.model.gravityMPerS2 = k == 0 ? 9.81 : 0.5 * 9.81;
     const SimulationRun run = simulateRods(grid.network, &surface, options);
     ASSERT_TRUE(run.solver.converged) << run.solver.reason;
     ASSERT_GT(run.solver.iterations, 0);
-    sag[k] = run.maxSag_m;
+    sag[k] = run.maxSagM;
     // Half-turn symmetry of every rod with its partner (found from the guess), vertex by vertex.
     int partners = 0;
     double asymmetry = 0.0;
@@ -137,7 +137,7 @@ TEST(Simulation, NotchedVaultUnderSelfWeightConvergesSymmetricAndLinear) {
 // iterations). Within a small budget the notched run must say so, not just "no convergence".
 TEST(Simulation, SlowSlidingBoltsLetAThinLargeVaultCollapseUnderItsWeight) {
   CylinderGridParameters parameters;  // R 5 m, 8 m long, 1 m spacing: the bench vault
-  parameters.meshEdge_m = 0.1;
+  parameters.meshEdgeM = 0.1;
   const SampleGrid grid = cylinderGrid(parameters);
   SimulationOptions options;
   options.model.gravity = true;
@@ -146,13 +146,13 @@ TEST(Simulation, SlowSlidingBoltsLetAThinLargeVaultCollapseUnderItsWeight) {
   options.model.notches = false;
   const SimulationRun plain = simulateRods(grid.network, nullptr, options);
   ASSERT_TRUE(plain.solver.converged) << plain.solver.reason;
-  EXPECT_LT(plain.maxSag_m, 0.1);
+  EXPECT_LT(plain.maxSagM, 0.1);
   options.model.notches = true;
   const SimulationRun notched = simulateRods(grid.network, nullptr, options);
   EXPECT_FALSE(notched.solver.converged);
   EXPECT_EQ(notched.solver.status, SolverStatus::Collapsed) << notched.solver.reason;
   EXPECT_NE(notched.solver.reason.find("collapses under its own weight"), std::string::npos);
-  EXPECT_GT(notched.maxSag_m, 0.11);  // measured 0.35 m after 200 iterations
+  EXPECT_GT(notched.maxSagM, 0.11);  // measured 0.35 m after 200 iterations
   for (const auto& line : notched.centrelines) {
     for (const auto& p : line) ASSERT_TRUE(p.allFinite());
   }
@@ -162,7 +162,7 @@ TEST(Simulation, FasteningTheBoltsBeforeLoadingHoldsTheVaultThatCollapsesWithLoo
   // The same vault whose sliding bolts let it fall through (above): tightened at the weightless
   // equilibrium, the scissor grid can no longer shear nor slide, and it carries its weight.
   CylinderGridParameters parameters;
-  parameters.meshEdge_m = 0.1;
+  parameters.meshEdgeM = 0.1;
   const SampleGrid grid = cylinderGrid(parameters);
   SimulationOptions options;
   options.model.gravity = true;
@@ -171,15 +171,15 @@ TEST(Simulation, FasteningTheBoltsBeforeLoadingHoldsTheVaultThatCollapsesWithLoo
   options.fastenBoltsUnderLoad = true;
   const SimulationRun fastened = simulateRods(grid.network, nullptr, options);
   ASSERT_TRUE(fastened.solver.converged) << fastened.solver.reason;
-  EXPECT_LT(fastened.maxSag_m, 0.05);
+  EXPECT_LT(fastened.maxSagM, 0.05);
   // Fastened bolts do not slide under load: each bolt is where the weightless run left it.
   options.model.gravity = false;
   const SimulationRun weightless = simulateRods(grid.network, nullptr, options);
   ASSERT_TRUE(weightless.solver.converged) << weightless.solver.reason;
-  ASSERT_EQ(fastened.boltPositions_m.size(), weightless.boltPositions_m.size());
-  for (size_t b = 0; b < fastened.boltPositions_m.size(); ++b)
+  ASSERT_EQ(fastened.boltPositionsM.size(), weightless.boltPositionsM.size());
+  for (size_t b = 0; b < fastened.boltPositionsM.size(); ++b)
     for (int side = 0; side < 2; ++side)
-      EXPECT_NEAR(fastened.boltPositions_m[b][side], weightless.boltPositions_m[b][side], 1e-9) << b;
+      EXPECT_NEAR(fastened.boltPositionsM[b][side], weightless.boltPositionsM[b][side], 1e-9) << b;
 }
 
 // The joined run's warm start (startFrom, gravitySteps = 0): a run started from an equilibrium
@@ -190,7 +190,7 @@ TEST(Simulation, AWarmStartFromAnEquilibriumUnderSelfWeightStaysThere) {
   options.model.gravity = true;
   const SimulationRun first = simulateRods(grid.network, nullptr, options);
   ASSERT_TRUE(first.solver.converged) << first.solver.reason;
-  ASSERT_GT(first.maxSag_m, 1e-4);  // ~2.5 mm: the start really carries its weight
+  ASSERT_GT(first.maxSagM, 1e-4);  // ~2.5 mm: the start really carries its weight
   RodNetwork warm = grid.network;
   startFrom(warm, first);
   SimulationOptions again = options;
@@ -204,12 +204,12 @@ TEST(Simulation, AWarmStartFromAnEquilibriumUnderSelfWeightStaysThere) {
   // A wrong guess (a centreline on the wrong side of the contact surface, a lost twist) would
   // move it by a thickness (5 mm) or more.
   EXPECT_LT(2 * second.solver.iterations, first.solver.iterations) << first.solver.iterations;
-  EXPECT_LT(second.maxSag_m, 0.1 * first.maxSag_m);
+  EXPECT_LT(second.maxSagM, 0.1 * first.maxSagM);
   double moved = 0.0;
   for (size_t r = 0; r < first.centrelines.size(); ++r)
     for (size_t i = 0; i < first.centrelines[r].size(); ++i)
       moved = std::max(moved, (second.centrelines[r][i] - first.centrelines[r][i]).norm());
-  EXPECT_LT(moved, 0.1 * first.maxSag_m);
+  EXPECT_LT(moved, 0.1 * first.maxSagM);
   // Same equilibrium: the same energy to the solver's tolerance.
   EXPECT_NEAR(second.solver.energy, first.solver.energy, 1e-6 * std::abs(first.solver.energy));
   // Mismatched runs are refused, naming the counts.
@@ -240,7 +240,7 @@ TEST(Simulation, HistoryRecordsTheErrorFromTheGuessToTheFinalState) {
   const SimulationRun run = simulateRods(grid.network, &surface, options);
   ASSERT_TRUE(run.deviation.has_value());
   EXPECT_EQ(run.solver.iterations, reference.solver.iterations);
-  EXPECT_EQ(run.deviation->rmse_m, reference.deviation->rmse_m);
+  EXPECT_EQ(run.deviation->rmseM, reference.deviation->rmseM);
   const int k = run.solver.iterations;
   ASSERT_GE(k, 4);
   // One load step (no gravity): iterations 0, 3, 6, ... below k, then the final state.
@@ -251,11 +251,11 @@ TEST(Simulation, HistoryRecordsTheErrorFromTheGuessToTheFinalState) {
     EXPECT_LE(run.history[i].seconds, run.history[i + 1].seconds);
   }
   // The start is the guess: only the chordal error of the mesh (ContactPointsOfTheGuessLieOnTheSurface).
-  EXPECT_LT(run.history.front().max_m, 0.05 * 0.05 / (8.0 * 3.0) * 1.01);
+  EXPECT_LT(run.history.front().maxM, 0.05 * 0.05 / (8.0 * 3.0) * 1.01);
   EXPECT_EQ(run.history.back().iteration, k);
-  EXPECT_EQ(run.history.back().rmse_m, run.deviation->rmse_m);
-  EXPECT_EQ(run.history.back().max_m, run.deviation->max_m);
-  EXPECT_GT(run.history.back().rmse_m, 10.0 * run.history.front().rmse_m);  // the deployment moved it
+  EXPECT_EQ(run.history.back().rmseM, run.deviation->rmseM);
+  EXPECT_EQ(run.history.back().maxM, run.deviation->maxM);
+  EXPECT_GT(run.history.back().rmseM, 10.0 * run.history.front().rmseM);  // the deployment moved it
   EXPECT_LE(run.history.back().seconds, run.solver.seconds);
   EXPECT_GT(run.historySeconds, 0.0);
   EXPECT_LT(run.historySeconds, run.solver.seconds);
@@ -270,7 +270,7 @@ TEST(Simulation, HistoryIsTheDeployedRunsOnly) {
   const SimulationResult result = simulateGrid(grid.network, grid.surface, options);
   ASSERT_TRUE(result.withoutNotches.has_value());
   ASSERT_GE(result.deployed.history.size(), 2u);
-  EXPECT_EQ(result.deployed.history.back().rmse_m, result.deployed.deviation->rmse_m);
+  EXPECT_EQ(result.deployed.history.back().rmseM, result.deployed.deviation->rmseM);
   EXPECT_TRUE(result.withoutNotches->history.empty());
   EXPECT_EQ(result.withoutNotches->solver.observations, 0);
 }
@@ -290,13 +290,13 @@ TEST(Simulation, HistoryAcrossLoadStepsSamplesEachStateOnce) {
   EXPECT_EQ(run.history[0].iteration, 0);
   for (size_t i = 0; i + 1 < run.history.size(); ++i) EXPECT_LT(run.history[i].iteration, run.history[i + 1].iteration);
   EXPECT_EQ(run.history.back().iteration, run.solver.iterations);
-  EXPECT_EQ(run.history.back().rmse_m, run.deviation->rmse_m);
+  EXPECT_EQ(run.history.back().rmseM, run.deviation->rmseM);
 }
 
 TEST(Simulation, TimeLimitIsAResultWithAReason) {
   const SampleGrid grid = smallVault();
   SimulationOptions options;
-  options.solver.timeLimit_s = 1e-4;
+  options.solver.timeLimitS = 1e-4;
   const SimulationRun run = simulateRods(grid.network, nullptr, options);
   EXPECT_FALSE(run.solver.converged);
   EXPECT_FALSE(run.solver.reason.empty());

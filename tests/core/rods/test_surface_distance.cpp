@@ -33,9 +33,9 @@ TEST(SurfaceDistance, DeviationStatsAreRmsMaxAndNormalisedRms) {
   const std::vector<Eigen::Vector3d> points{{0.2, 0.2, 0.3}, {0.7, 0.4, -0.4}};
   const DeviationStats stats = measureDeviation(points, surface, 5.0);
   EXPECT_EQ(stats.points, 2);
-  EXPECT_NEAR(stats.rmse_m, std::sqrt((0.09 + 0.16) / 2.0), 1e-15);
-  EXPECT_NEAR(stats.max_m, 0.4, 1e-15);
-  EXPECT_NEAR(stats.nrmse, stats.rmse_m / 5.0, 1e-15);
+  EXPECT_NEAR(stats.rmseM, std::sqrt((0.09 + 0.16) / 2.0), 1e-15);
+  EXPECT_NEAR(stats.maxM, 0.4, 1e-15);
+  EXPECT_NEAR(stats.nrmse, stats.rmseM / 5.0, 1e-15);
   EXPECT_THROW(measureDeviation(points, surface, 0.0), InvalidInput);
 }
 

@@ -48,7 +48,8 @@ std::vector<fabrication::SharedBoundary> sharedLamellae(const patching::PatchGra
     const auto &a = b.uses[0], &c = b.uses[1];
     if (!grids[a.patch] || !grids[c.patch]) continue;
     const PatchSide sideA(a.side), sideB(c.side);
-    const BoundaryLamella la = boundaryLamella(*grids[a.patch], sideA), lb = boundaryLamella(*grids[c.patch], sideB);
+    const BoundaryLamella la = boundaryLamella(*grids[a.patch], sideA),
+                          lb = boundaryLamella(*grids[c.patch], sideB);
     // Each lamella runs against the shared segment when its side runs against the segment or
     // against its own corners, not both.
     const bool againstA = sideA.againstCorners() != a.reversed;
@@ -70,7 +71,8 @@ int supportDesignBoundary(const patching::PatchGraph& graph, const std::vector<E
     EggGrid* grid = grids[use.patch];
     if (!grid) continue;
     for (int c : sideConnections(*grid, PatchSide(use.side))) {
-      const bool known = std::any_of(grid->anchors.begin(), grid->anchors.end(), [&](const GridAnchor& a) { return a.connection == c; });
+      const bool known = std::any_of(grid->anchors.begin(), grid->anchors.end(),
+                                     [&](const GridAnchor& a) { return a.connection == c; });
       if (known) continue;
       grid->anchors.push_back({c, "design boundary support"});
       ++added;

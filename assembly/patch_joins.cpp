@@ -8,22 +8,28 @@
 namespace egg::assembly {
 namespace {
 
-int layerOf(Family family, bool swapped) { return (family == Family::U ? 0 : 1) ^ (swapped ? 1 : 0); }
+int layerOf(Family family, bool swapped) {
+  return (family == Family::U ? 0 : 1) ^ (swapped ? 1 : 0);
+}
 
 // The connections along a boundary lamella: where the other family's members end on it, with the
 // position and the arc length s_bar along the lamella.
-std::vector<std::pair<Eigen::Vector3d, double>> connectionsAlong(const EggGrid& grid, const BoundaryLamella& lamella) {
+std::vector<std::pair<Eigen::Vector3d, double>> connectionsAlong(const EggGrid& grid,
+                                                                 const BoundaryLamella& lamella) {
   std::vector<std::pair<Eigen::Vector3d, double>> out;
   for (const auto& c : grid.connections) {
-    if (lamella.family == Family::U && c.memberU == lamella.member) out.push_back({c.spatial, c.sBarU});
-    if (lamella.family == Family::V && c.memberV == lamella.member) out.push_back({c.spatial, c.sBarV});
+    if (lamella.family == Family::U && c.memberU == lamella.member)
+      out.push_back({c.spatial, c.sBarU});
+    if (lamella.family == Family::V && c.memberV == lamella.member)
+      out.push_back({c.spatial, c.sBarV});
   }
   return out;
 }
 
 }  // namespace
 
-std::vector<char> layerSwaps(const patching::PatchGraph& graph, const std::vector<const EggGrid*>& grids) {
+std::vector<char> layerSwaps(const patching::PatchGraph& graph,
+                             const std::vector<const EggGrid*>& grids) {
   std::vector<char> swapped(grids.size(), 0), seen(grids.size(), 0);
   for (size_t root = 0; root < grids.size(); ++root) {
     if (seen[root] || !grids[root]) continue;
@@ -57,7 +63,8 @@ PatchJoins patchJoins(const patching::PatchGraph& graph, const std::vector<const
     if (!grids[ua.patch] || !grids[ub.patch]) continue;
     const EggGrid& ga = *grids[ua.patch];
     const EggGrid& gb = *grids[ub.patch];
-    const BoundaryLamella la = boundaryLamella(ga, PatchSide(ua.side)), lb = boundaryLamella(gb, PatchSide(ub.side));
+    const BoundaryLamella la = boundaryLamella(ga, PatchSide(ua.side)),
+                          lb = boundaryLamella(gb, PatchSide(ub.side));
     if (layerOf(la.family, swapped[ua.patch]) == layerOf(lb.family, swapped[ub.patch])) {
       ++out.sidesSkipped;
       continue;
@@ -67,9 +74,10 @@ PatchJoins patchJoins(const patching::PatchGraph& graph, const std::vector<const
     const double lengthB = (lb.family == Family::U ? gb.u : gb.v)[lb.member].planarLength;
     int bolts = 0;
     for (const auto& [pa, sa] : ca) {
-      const auto nearest = std::min_element(cb.begin(), cb.end(), [&](const auto& x, const auto& y) {
-        return (x.first - pa).squaredNorm() < (y.first - pa).squaredNorm();
-      });
+      const auto nearest =
+          std::min_element(cb.begin(), cb.end(), [&](const auto& x, const auto& y) {
+            return (x.first - pa).squaredNorm() < (y.first - pa).squaredNorm();
+          });
       if (nearest == cb.end() || (nearest->first - pa).norm() > toleranceM) continue;
       out.bolts.push_back({ua.patch, la.rod, std::clamp(sa, 0.0, lengthA), ub.patch, lb.rod,
                            std::clamp(nearest->second, 0.0, lengthB)});

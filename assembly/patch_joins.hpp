@@ -17,7 +17,8 @@ namespace egg::assembly {
 // Per patch: 1 where its layers are swapped (v members below u) so that neighbours' boundary
 // lamellas lie in different layers. Breadth first over the whole shared sides from each
 // unvisited patch with a grid; where a cycle disagrees, the first choice stands.
-std::vector<char> layerSwaps(const patching::PatchGraph& graph, const std::vector<const EggGrid*>& grids);
+std::vector<char> layerSwaps(const patching::PatchGraph& graph,
+                             const std::vector<const EggGrid*>& grids);
 
 struct PatchJoins {
   std::vector<rods::PatchJoin> bolts;  // patch ids are layout patch ids, rods as rodNetworkFromGrid

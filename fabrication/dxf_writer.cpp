@@ -23,21 +23,26 @@ DL_Attributes attributesOf(Layer layer) {
   return DL_Attributes(layerName(layer), 256, -1, "BYLAYER", 1.0);
 }
 
-void writePolyline(DL_Dxf& dxf, DL_WriterA& dw, Layer layer, const std::vector<Eigen::Vector2d>& points,
-                   const std::vector<double>& bulges, bool closed) {
-  dxf.writePolyline(dw, DL_PolylineData(static_cast<int>(points.size()), 0, 0, closed ? 1 : 0), attributesOf(layer));
+void writePolyline(DL_Dxf& dxf, DL_WriterA& dw, Layer layer,
+                   const std::vector<Eigen::Vector2d>& points, const std::vector<double>& bulges,
+                   bool closed) {
+  dxf.writePolyline(dw, DL_PolylineData(static_cast<int>(points.size()), 0, 0, closed ? 1 : 0),
+                    attributesOf(layer));
   for (size_t i = 0; i < points.size(); ++i) {
-    dxf.writeVertex(dw, DL_VertexData(points[i].x(), points[i].y(), 0.0, bulges.empty() ? 0.0 : bulges[i]));
+    dxf.writeVertex(
+        dw, DL_VertexData(points[i].x(), points[i].y(), 0.0, bulges.empty() ? 0.0 : bulges[i]));
   }
   dxf.writePolylineEnd(dw);
 }
 
 void writeEntities(DL_Dxf& dxf, DL_WriterA& dw, const Drawing& d) {
   for (const auto& c : d.circles) {
-    dxf.writeCircle(dw, DL_CircleData(c.centre.x(), c.centre.y(), 0.0, c.radius), attributesOf(c.layer));
+    dxf.writeCircle(dw, DL_CircleData(c.centre.x(), c.centre.y(), 0.0, c.radius),
+                    attributesOf(c.layer));
   }
   for (const auto& s : d.slots) {
-    // Counter-clockwise: straight side, half circle (bulge 1) around b, straight side, half circle around a.
+    // Counter-clockwise: straight side, half circle (bulge 1) around b, straight side, half circle
+    // around a.
     writePolyline(dxf, dw, s.layer, slotCorners(s), {0.0, 1.0, 0.0, 1.0}, true);
   }
   for (const auto& p : d.polylines) {
@@ -48,8 +53,8 @@ void writeEntities(DL_Dxf& dxf, DL_WriterA& dw, const Drawing& d) {
     // other than left/baseline the alignment point (codes 11/21) places the text.
     const int h = t.align == TextAlign::Left ? 0 : 1;
     dxf.writeText(dw,
-                  DL_TextData(t.anchor.x(), t.anchor.y(), 0.0, t.anchor.x(), t.anchor.y(), 0.0, t.height, 1.0, 0, h, 2,
-                              t.text, "Standard", 0.0),
+                  DL_TextData(t.anchor.x(), t.anchor.y(), 0.0, t.anchor.x(), t.anchor.y(), 0.0,
+                              t.height, 1.0, 0, h, 2, t.text, "Standard", 0.0),
                   attributesOf(t.layer));
   }
 }
@@ -62,7 +67,11 @@ std::string withObjectOwners(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) lines.push_back(line);
-  const auto code = [&](size_t i) { return lines[i].find_first_not_of(' ') == std::string::npos ? std::string() : lines[i].substr(lines[i].find_first_not_of(' ')); };
+  const auto code = [&](size_t i) {
+    return lines[i].find_first_not_of(' ') == std::string::npos
+               ? std::string()
+               : lines[i].substr(lines[i].find_first_not_of(' '));
+  };
   size_t begin = lines.size(), end = lines.size();
   for (size_t i = 0; i + 1 < lines.size(); i += 2) {
     if (code(i) == "2" && lines[i + 1] == "OBJECTS") begin = i + 2;
@@ -98,7 +107,11 @@ std::string withObjectOwners(const std::string& text) {
       out += lines[i + 1] + "\n";
       ++i;
       const auto owner = ownerOf.find(handle);
-      out += "330\n" + (handle == root ? std::string("0") : owner != ownerOf.end() ? owner->second : root) + "\n";
+      out += "330\n" +
+             (handle == root           ? std::string("0")
+              : owner != ownerOf.end() ? owner->second
+                                       : root) +
+             "\n";
     }
   }
   return out;
@@ -109,7 +122,8 @@ std::string withObjectOwners(const std::string& text) {
 std::string toDxf(const Drawing& d) {
   // dxflib writes only to a named file: write into a private temporary file and read it back, so
   // that the caller places the text atomically (core/io/atomic_file.hpp).
-  const auto tmp = std::filesystem::temp_directory_path() / ("egg_dxf_" + temporarySuffix() + ".dxf");
+  const auto tmp =
+      std::filesystem::temp_directory_path() / ("egg_dxf_" + temporarySuffix() + ".dxf");
   {
     DL_Dxf dxf;
     std::unique_ptr<DL_WriterA> dw(dxf.out(tmp.string().c_str(), DL_Codes::AC1015));
@@ -139,7 +153,8 @@ std::string toDxf(const Drawing& d) {
     dw->tableLayers(4);
     dxf.writeLayer(*dw, DL_LayerData("0", 0), DL_Attributes("", 7, -1, "CONTINUOUS", 1.0));
     for (Layer layer : {Layer::Cut, Layer::Engrave, Layer::Label}) {
-      dxf.writeLayer(*dw, DL_LayerData(layerName(layer), 0), DL_Attributes("", colourOf(layer), -1, "CONTINUOUS", 1.0));
+      dxf.writeLayer(*dw, DL_LayerData(layerName(layer), 0),
+                     DL_Attributes("", colourOf(layer), -1, "CONTINUOUS", 1.0));
     }
     dw->tableEnd();
     dw->tableStyle(1);

@@ -35,14 +35,16 @@ bool LamellaFeature::holds(int patch, int index) const {
 namespace {
 
 std::string lamellaId(int patchId, Family family, int index) {
-  return "P" + std::to_string(patchId) + "-" + (family == Family::U ? "U" : "V") + std::to_string(index);
+  return "P" + std::to_string(patchId) + "-" + (family == Family::U ? "U" : "V") +
+         std::to_string(index);
 }
 
 std::string connectionId(int patchId, int i, int j) {
   return "P" + std::to_string(patchId) + "-C" + std::to_string(i) + "-" + std::to_string(j);
 }
 
-LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member, const FabricationOptions& options) {
+LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member,
+                       const FabricationOptions& options) {
   const EggGrid& grid = *patch.grid;
   LamellaPlan plan;
   plan.patchId = patch.patchId;
@@ -82,8 +84,9 @@ LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member, 
   for (const auto& f : plan.features) {
     if (f.minXMm(d) < -1e-9 || f.maxXMm(d) > plan.lengthMm + 1e-9) {
       std::ostringstream msg;
-      msg << "lamella " << plan.id << ": the " << (f.kind == FeatureKind::Slot ? "slot" : "hole") << " of connection "
-          << f.connectionId << " reaches beyond the strip end (raise fabrication.end_overhang_mm)";
+      msg << "lamella " << plan.id << ": the " << (f.kind == FeatureKind::Slot ? "slot" : "hole")
+          << " of connection " << f.connectionId
+          << " reaches beyond the strip end (raise fabrication.end_overhang_mm)";
       throw InvalidInput(msg.str());
     }
   }
@@ -92,20 +95,25 @@ LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member, 
 
 }  // namespace
 
-std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
+std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches,
+                                      const FabricationOptions& options,
                                       const std::vector<SharedBoundary>& shared) {
   std::vector<LamellaPlan> plans;
   for (const auto& patch : patches) {
-    if (!patch.grid) throw InvalidInput("fabrication: patch " + std::to_string(patch.patchId) + " has no grid");
+    if (!patch.grid)
+      throw InvalidInput("fabrication: patch " + std::to_string(patch.patchId) + " has no grid");
     const EggGrid& grid = *patch.grid;
     if (grid.connections.size() != grid.u.size() * grid.v.size()) {
-      throw InvalidInput("fabrication: patch " + std::to_string(patch.patchId) + ": the grid has " +
-                         std::to_string(grid.connections.size()) + " connections, expected u x v = " +
-                         std::to_string(grid.u.size() * grid.v.size()));
+      throw InvalidInput(
+          "fabrication: patch " + std::to_string(patch.patchId) + ": the grid has " +
+          std::to_string(grid.connections.size()) +
+          " connections, expected u x v = " + std::to_string(grid.u.size() * grid.v.size()));
     }
-    if (patch.deployedCentrelines && patch.deployedCentrelines->size() != grid.u.size() + grid.v.size()) {
+    if (patch.deployedCentrelines &&
+        patch.deployedCentrelines->size() != grid.u.size() + grid.v.size()) {
       throw InvalidInput("fabrication: patch " + std::to_string(patch.patchId) + ": " +
-                         std::to_string(patch.deployedCentrelines->size()) + " deployed centrelines for " +
+                         std::to_string(patch.deployedCentrelines->size()) +
+                         " deployed centrelines for " +
                          std::to_string(grid.u.size() + grid.v.size()) + " members");
     }
     for (const auto& m : grid.u) plans.push_back(planMember(patch, m, options));
@@ -113,12 +121,14 @@ std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patch
   }
   mergeSharedBoundaries(plans, shared, 0.5);
   const double piece = longestPieceMm(options);
-  const std::string field = piece < options.stockLengthMm ? "fabrication.sheet_mm (the longest strip a sheet holds)"
-                                                             : "fabrication.stock_length_mm";
+  const std::string field = piece < options.stockLengthMm
+                                ? "fabrication.sheet_mm (the longest strip a sheet holds)"
+                                : "fabrication.stock_length_mm";
   for (auto& plan : plans) {
     try {
-      placeSplices(plan, piece, options.effectiveSpliceClearanceMm(), options.boltDiameterMm, field, options.effectiveMinSpliceClearanceMm(),
-                   options.spliceJoint, options.scarfLengthMm());
+      placeSplices(plan, piece, options.effectiveSpliceClearanceMm(), options.boltDiameterMm, field,
+                   options.effectiveMinSpliceClearanceMm(), options.spliceJoint,
+                   options.scarfLengthMm());
     } catch (const InvalidInput& e) {
       // Slots that leave no room for any splice within a stock length (overlapping slots on the
       // Yas canopy's 45 m lamellas): no cut file can make it; the rest of the grid still can.
@@ -143,12 +153,15 @@ using Interval = std::pair<double, double>;
 // What is cut out of the strip (holes, slots with their round ends), merged where they overlap.
 std::vector<Interval> mergedCutOuts(const LamellaPlan& plan, double boltDiameterMm) {
   std::vector<Interval> cutOut;
-  for (const auto& f : plan.features) cutOut.emplace_back(f.minXMm(boltDiameterMm), f.maxXMm(boltDiameterMm));
+  for (const auto& f : plan.features)
+    cutOut.emplace_back(f.minXMm(boltDiameterMm), f.maxXMm(boltDiameterMm));
   std::sort(cutOut.begin(), cutOut.end());
   std::vector<Interval> merged;
   for (const auto& e : cutOut) {
-    if (!merged.empty() && e.first <= merged.back().second) merged.back().second = std::max(merged.back().second, e.second);
-    else merged.push_back(e);
+    if (!merged.empty() && e.first <= merged.back().second)
+      merged.back().second = std::max(merged.back().second, e.second);
+    else
+      merged.push_back(e);
   }
   return merged;
 }
@@ -160,10 +173,13 @@ struct Splicer {
   double stockLengthMm, scarfLengthMm;
   std::vector<Interval> merged;  // the cut-outs
   double longestScarf = 0.0;
-  std::vector<Interval> gaps;    // where a feather end may lie
+  std::vector<Interval> gaps;  // where a feather end may lie
 
   Splicer(LamellaPlan& plan_, double stockLengthMm_, double boltDiameterMm, double scarfLengthMm_)
-      : plan(plan_), stockLengthMm(stockLengthMm_), scarfLengthMm(scarfLengthMm_), merged(mergedCutOuts(plan_, boltDiameterMm)) {
+      : plan(plan_),
+        stockLengthMm(stockLengthMm_),
+        scarfLengthMm(scarfLengthMm_),
+        merged(mergedCutOuts(plan_, boltDiameterMm)) {
     // (Scarf joints: see furthestScarf.)
     const double endClear = boltDiameterMm / 2.0;
     longestScarf = 2.0 * scarfLengthMm;
@@ -177,7 +193,8 @@ struct Splicer {
   // Free length from x to the nearest cut-out (zero inside one).
   double freeAt(double x) const {
     double free = std::numeric_limits<double>::infinity();
-    for (const auto& [lo, hi] : merged) free = std::min(free, x < lo ? lo - x : x > hi ? x - hi : 0.0);
+    for (const auto& [lo, hi] : merged)
+      free = std::min(free, x < lo ? lo - x : x > hi ? x - hi : 0.0);
     return free;
   }
   // The furthest position in (start, start + stock] keeping `clear` from every cut-out: the stock
@@ -213,8 +230,10 @@ struct Splicer {
         const double lo = std::max({aLo, bLo + scarfLengthMm, start + scarfLengthMm + 1e-6});
         if (hi < lo) continue;
         const double begin = std::max(bLo, std::min(bHi, hi - scarfLengthMm));
-        if (begin <= start || hi - begin > longestScarf + 1e-9 || hi - begin < scarfLengthMm - 1e-9) continue;
-        if (!best || hi > best->first + 1e-9 || (std::abs(hi - best->first) <= 1e-9 && begin > best->second))
+        if (begin <= start || hi - begin > longestScarf + 1e-9 || hi - begin < scarfLengthMm - 1e-9)
+          continue;
+        if (!best || hi > best->first + 1e-9 ||
+            (std::abs(hi - best->first) <= 1e-9 && begin > best->second))
           best = std::make_pair(hi, begin);
       }
     }
@@ -258,8 +277,8 @@ struct Splicer {
   }
   // No position between `start` and `reach` keeps the minimum clearance: says why, and how long
   // the pieces would have to be.
-  [[noreturn]] void throwUnspliceable(double start, double reach, double clearanceMm, const std::string& field,
-                                      double minClearanceMm) const {
+  [[noreturn]] void throwUnspliceable(double start, double reach, double clearanceMm,
+                                      const std::string& field, double minClearanceMm) const {
     double widest = 0.0;
     for (size_t k = 0; k <= merged.size(); ++k) {
       const double lo = std::max(start, k == 0 ? 0.0 : merged[k - 1].second);
@@ -271,7 +290,8 @@ struct Splicer {
     double needed = 0.0, zoneLo = 0.0, zoneHi = 0.0;
     bool open = false;
     for (const auto& [lo, hi] : merged) {
-      const double a = std::max(0.0, lo - minClearanceMm), b = std::min(plan.lengthMm, hi + minClearanceMm);
+      const double a = std::max(0.0, lo - minClearanceMm),
+                   b = std::min(plan.lengthMm, hi + minClearanceMm);
       if (open && a <= zoneHi) {
         zoneHi = std::max(zoneHi, b);
       } else {
@@ -281,12 +301,13 @@ struct Splicer {
     }
     if (open) needed = std::max(needed, zoneHi - zoneLo);
     std::ostringstream msg;
-    msg << field << ": lamella " << plan.id << " (" << plan.lengthMm << " mm) cannot be spliced between " << start
-        << " and " << reach << " mm (one stock length): its holes and slots leave gaps of at most "
-        << widest << " mm there, and a splice needs a gap of 2 x " << minClearanceMm
+    msg << field << ": lamella " << plan.id << " (" << plan.lengthMm
+        << " mm) cannot be spliced between " << start << " and " << reach
+        << " mm (one stock length): its holes and slots leave gaps of at most " << widest
+        << " mm there, and a splice needs a gap of 2 x " << minClearanceMm
         << " mm (fabrication.min_splice_clearance_mm each side; " << clearanceMm
-        << " mm preferred, fabrication.splice_clearance_mm); it would take pieces of up to " << std::ceil(needed)
-        << " mm";
+        << " mm preferred, fabrication.splice_clearance_mm); it would take pieces of up to "
+        << std::ceil(needed) << " mm";
     msg << "; fabrication.splice_joint \"plate_or_scarf\" glues a scarf where no plate fits";
     throw InvalidInput(msg.str());
   }
@@ -294,8 +315,9 @@ struct Splicer {
 
 }  // namespace
 
-void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
-                  const std::string& field, double minClearanceMm, SpliceJoint joint, double scarfLengthMm) {
+void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm,
+                  double boltDiameterMm, const std::string& field, double minClearanceMm,
+                  SpliceJoint joint, double scarfLengthMm) {
   plan.splicesMm.clear();
   plan.spliceClearancesMm.clear();
   plan.spliceIsScarf.clear();
@@ -303,7 +325,8 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
   const bool plates = joint != SpliceJoint::Scarf, scarfs = joint != SpliceJoint::Plate;
   if (scarfs && !(scarfLengthMm > 0.0 && scarfLengthMm < stockLengthMm))
     throw InvalidInput("fabrication.scarf_slope: a scarf of " + std::to_string(scarfLengthMm) +
-                       " mm does not fit a piece of at most " + std::to_string(stockLengthMm) + " mm");
+                       " mm does not fit a piece of at most " + std::to_string(stockLengthMm) +
+                       " mm");
   if (minClearanceMm < 0.0) minClearanceMm = clearanceMm;
   Splicer splicer(plan, stockLengthMm, boltDiameterMm, scarfLengthMm);
   double start = 0.0;
@@ -342,18 +365,22 @@ void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, d
   plan.segments.push_back({start, plan.lengthMm});
 }
 
-int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<SharedBoundary>& shared, double toleranceMm) {
+int mergeSharedBoundaries(std::vector<LamellaPlan>& plans,
+                          const std::vector<SharedBoundary>& shared, double toleranceMm) {
   auto find = [&](int patch, Family family, int index) -> std::ptrdiff_t {
     for (size_t i = 0; i < plans.size(); ++i) {
-      if (plans[i].patchId == patch && plans[i].family == family && plans[i].index == index) return static_cast<std::ptrdiff_t>(i);
+      if (plans[i].patchId == patch && plans[i].family == family && plans[i].index == index)
+        return static_cast<std::ptrdiff_t>(i);
     }
     return -1;
   };
   int merged = 0;
   for (const auto& side : shared) {
-    const std::string what = "fabrication: shared side " + lamellaId(side.patchA, side.familyA, side.indexA) + " = " +
+    const std::string what = "fabrication: shared side " +
+                             lamellaId(side.patchA, side.familyA, side.indexA) + " = " +
                              lamellaId(side.patchB, side.familyB, side.indexB);
-    const std::ptrdiff_t ia = find(side.patchA, side.familyA, side.indexA), ib = find(side.patchB, side.familyB, side.indexB);
+    const std::ptrdiff_t ia = find(side.patchA, side.familyA, side.indexA),
+                         ib = find(side.patchB, side.familyB, side.indexB);
     if (ia < 0 || ib < 0 || ia == ib) throw InvalidInput(what + ": no such pair of lamellas");
     LamellaPlan& a = plans[ia];
     const LamellaPlan& b = plans[ib];
@@ -370,17 +397,21 @@ int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<Sha
       f.slideMm = side.reversed ? -f.slideMm : f.slideMm;
       LamellaFeature* same = nullptr;
       for (auto& g : a.features) {
-        if (g.kind == FeatureKind::Hole && f.kind == FeatureKind::Hole && std::abs(g.xMm - f.xMm) <= toleranceMm) same = &g;
+        if (g.kind == FeatureKind::Hole && f.kind == FeatureKind::Hole &&
+            std::abs(g.xMm - f.xMm) <= toleranceMm)
+          same = &g;
       }
       if (same) {
         same->alsoConnections.emplace_back(f.patchId, f.connection);
-        same->alsoConnections.insert(same->alsoConnections.end(), f.alsoConnections.begin(), f.alsoConnections.end());
+        same->alsoConnections.insert(same->alsoConnections.end(), f.alsoConnections.begin(),
+                                     f.alsoConnections.end());
         ++merged;
       } else {
         a.features.push_back(f);
       }
     }
-    std::sort(a.features.begin(), a.features.end(), [](const LamellaFeature& x, const LamellaFeature& y) { return x.xMm < y.xMm; });
+    std::sort(a.features.begin(), a.features.end(),
+              [](const LamellaFeature& x, const LamellaFeature& y) { return x.xMm < y.xMm; });
     plans.erase(plans.begin() + ib);
   }
   return merged;

@@ -16,12 +16,13 @@ enum class FeatureKind { Hole, Slot };
 // it carries (a boundary lamella shared by two patches holds the holes of both).
 struct LamellaFeature {
   FeatureKind kind = FeatureKind::Hole;
-  double xMm = 0.0;          // bolt centre in the cut (planar) state, from the strip's start
-  double slideMm = 0.0;      // slots: the bolt moves from xMm to xMm + slideMm while deploying (l = s - s_bar)
+  double xMm = 0.0;  // bolt centre in the cut (planar) state, from the strip's start
+  double slideMm =
+      0.0;  // slots: the bolt moves from xMm to xMm + slideMm while deploying (l = s - s_bar)
   int patchId = 0;
-  int connection = 0;        // index into that patch's EggGrid::connections
-  std::string connectionId;  // engraved next to the hole: "P<patch>-C<i>-<j>"
-  bool demotedNotch = false;  // a notch shorter than min_notch_mm, cut as a plain hole
+  int connection = 0;                 // index into that patch's EggGrid::connections
+  std::string connectionId;           // engraved next to the hole: "P<patch>-C<i>-<j>"
+  bool demotedNotch = false;          // a notch shorter than min_notch_mm, cut as a plain hole
   bool droppedBoundaryNotch = false;  // a boundary member's notch (no notches there, 3.5.3)
   // Further connections this one bolt holds: a shared boundary lamella's hole where the members
   // of both patches meet it (mergeSharedBoundaries). (patch, connection) pairs.
@@ -41,21 +42,24 @@ struct LamellaSegment {
 };
 
 struct LamellaPlan {
-  std::string id;             // "P<patch>-U<index>" or "P<patch>-V<index>"
+  std::string id;  // "P<patch>-U<index>" or "P<patch>-V<index>"
   int patchId = 0;
   Family family = Family::U;
   int index = 0;
   bool boundary = false;
-  double lengthMm = 0.0;      // whole strip, overhangs included
+  double lengthMm = 0.0;  // whole strip, overhangs included
   double widthMm = 0.0;
   double overhangMm = 0.0;
-  std::vector<LamellaFeature> features;  // sorted along the strip
-  std::vector<double> splicesMm;         // cut positions of the splices, ascending
-  std::vector<double> spliceClearancesMm;  // per splice: the free length from the cut (a scarf: its nearer feather end) to the nearest hole or slot
+  std::vector<LamellaFeature> features;    // sorted along the strip
+  std::vector<double> splicesMm;           // cut positions of the splices, ascending
+  std::vector<double> spliceClearancesMm;  // per splice: the free length from the cut (a scarf: its
+                                           // nearer feather end) to the nearest hole or slot
   // Per splice: a glued scarf (true) or a butt joint with bolted plates. At scarf k the pieces
-  // overlap on the slope: from segments[k + 1].startMm to segments[k].endMm; splicesMm is its middle.
+  // overlap on the slope: from segments[k + 1].startMm to segments[k].endMm; splicesMm is its
+  // middle.
   std::vector<bool> spliceIsScarf;
-  std::vector<LamellaSegment> segments;  // pieces between splices (at least one; none when unspliceable)
+  std::vector<LamellaSegment>
+      segments;  // pieces between splices (at least one; none when unspliceable)
   // Why no splice positions exist (placeSplices' message): the lamella is planned but not cut.
   std::string unspliceable;
 };
@@ -78,7 +82,8 @@ struct SharedBoundary {
 // longestPieceMm(options); a lamella that cannot be spliced keeps no segments and the reason in
 // `unspliceable` (the others can still be cut). Throws InvalidInput naming the patch when a grid is
 // missing or inconsistent.
-std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
+std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patches,
+                                      const FabricationOptions& options,
                                       const std::vector<SharedBoundary>& shared = {});
 
 // Moves the holes of every shared side's lamella B onto lamella A (x mirrored when reversed), one
@@ -86,7 +91,8 @@ std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patch
 // and removes B. Returns how many holes were merged into existing ones. Throws InvalidInput naming
 // the side when a lamella is missing, not a boundary member, or the two lengths differ by more than
 // `toleranceMm`. Call before placeSplices.
-int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<SharedBoundary>& shared, double toleranceMm);
+int mergeSharedBoundaries(std::vector<LamellaPlan>& plans,
+                          const std::vector<SharedBoundary>& shared, double toleranceMm);
 
 // Cut positions so that no segment exceeds `stockLengthMm` and every cut lies at least
 // `clearanceMm` from every hole and slot (Section 3.5: architectural lamellas of 20-40 m never come
@@ -102,9 +108,10 @@ int mergeSharedBoundaries(std::vector<LamellaPlan>& plans, const std::vector<Sha
 // (slots merged into a slit) one scarf
 // length ending at the stock length, through the slit; "plate_or_scarf": plates, and a scarf where
 // a stretch has no position for a plate. With scarfs allowed it does not throw for want of room.
-void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm, double boltDiameterMm,
-                  const std::string& field = "fabrication.stock_length_mm", double minClearanceMm = -1.0,
-                  SpliceJoint joint = SpliceJoint::Plate, double scarfLengthMm = 0.0);
+void placeSplices(LamellaPlan& plan, double stockLengthMm, double clearanceMm,
+                  double boltDiameterMm, const std::string& field = "fabrication.stock_length_mm",
+                  double minClearanceMm = -1.0, SpliceJoint joint = SpliceJoint::Plate,
+                  double scarfLengthMm = 0.0);
 
 // The longest piece a lamella is cut in: the stock length, or the sheet's usable first side when
 // that is shorter (a strip cut from a sheet is no longer than the sheet).

@@ -16,16 +16,18 @@ struct Shelf {
 
 }  // namespace
 
-Nesting nestParts(const std::vector<NestPart>& parts, std::array<double, 2> sheetMm, double kerfMm, double marginMm,
-                  const std::string& field) {
+Nesting nestParts(const std::vector<NestPart>& parts, std::array<double, 2> sheetMm, double kerfMm,
+                  double marginMm, const std::string& field) {
   const double usableX = sheetMm[0] - 2.0 * marginMm, usableY = sheetMm[1] - 2.0 * marginMm;
   constexpr double slack = 1e-9;
   for (const auto& p : parts) {
     if (p.lengthMm > usableX + slack || p.widthMm > usableY + slack) {
       std::ostringstream msg;
-      msg << field << ": part " << p.name << " (" << p.lengthMm << " x " << p.widthMm << " mm) does not fit a "
-          << sheetMm[0] << " x " << sheetMm[1] << " mm sheet with a " << marginMm << " mm margin";
-      if (p.lengthMm > usableX + slack && p.lengthMm <= usableY + slack) msg << " (strips run along the sheet's first side)";
+      msg << field << ": part " << p.name << " (" << p.lengthMm << " x " << p.widthMm
+          << " mm) does not fit a " << sheetMm[0] << " x " << sheetMm[1] << " mm sheet with a "
+          << marginMm << " mm margin";
+      if (p.lengthMm > usableX + slack && p.lengthMm <= usableY + slack)
+        msg << " (strips run along the sheet's first side)";
       if (p.lengthMm > usableX + slack && field == "fabrication.sheet_mm") {
         msg << "; a shorter fabrication.stock_length_mm splices long lamellas";
       }

@@ -9,9 +9,9 @@
 namespace egg::fabrication {
 
 struct NestPart {
-  std::string name;          // for the error message of a part that does not fit
-  double lengthMm = 0.0;     // along the sheet's first side (x)
-  double widthMm = 0.0;      // along the second side (y)
+  std::string name;       // for the error message of a part that does not fit
+  double lengthMm = 0.0;  // along the sheet's first side (x)
+  double widthMm = 0.0;   // along the second side (y)
 };
 
 struct NestPlacement {
@@ -22,13 +22,13 @@ struct NestPlacement {
 struct Nesting {
   std::vector<NestPlacement> placements;  // one per part, in the input order
   int sheets = 0;
-  double yield = 0.0;        // parts' area over the sheets' area
+  double yield = 0.0;  // parts' area over the sheets' area
 };
 
 // Places every part at least `marginMm` inside a sheet of `sheetMm` and `kerfMm` from its
 // neighbours. Throws InvalidInput naming the part and `field` (e.g. "fabrication.sheet_mm") when a
 // part does not fit an empty sheet.
-Nesting nestParts(const std::vector<NestPart>& parts, std::array<double, 2> sheetMm, double kerfMm, double marginMm,
-                  const std::string& field);
+Nesting nestParts(const std::vector<NestPart>& parts, std::array<double, 2> sheetMm, double kerfMm,
+                  double marginMm, const std::string& field);
 
 }  // namespace egg::fabrication

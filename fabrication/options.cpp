@@ -58,21 +58,25 @@ void FabricationOptions::validate() const {
   requirePositive("fabrication.sheet_mm", sheetMm[1]);
   requireNonNegative("fabrication.kerf_mm", kerfMm);
   requireNonNegative("fabrication.margin_mm", marginMm);
-  if (2.0 * marginMm >= std::min(sheetMm[0], sheetMm[1])) fail("fabrication.margin_mm", "leaves no room on the sheet");
+  if (2.0 * marginMm >= std::min(sheetMm[0], sheetMm[1]))
+    fail("fabrication.margin_mm", "leaves no room on the sheet");
   requirePositive("fabrication.bolt_diameter_mm", boltDiameterMm);
   if (boltDiameterMm >= lamellaWidthMm) {
-    fail("fabrication.bolt_diameter_mm", "must be smaller than the lamella width (lamella.width_m)");
+    fail("fabrication.bolt_diameter_mm",
+         "must be smaller than the lamella width (lamella.width_m)");
   }
   requireNonNegative("fabrication.min_notch_mm", minNotchMm);
   requirePositive("fabrication.stock_length_mm", stockLengthMm);
   if (endOverhangMm) {
     requireNonNegative("fabrication.end_overhang_mm", *endOverhangMm);
     if (*endOverhangMm < boltDiameterMm / 2.0) {
-      fail("fabrication.end_overhang_mm", "must be at least half the bolt diameter (the end holes would be open)");
+      fail("fabrication.end_overhang_mm",
+           "must be at least half the bolt diameter (the end holes would be open)");
     }
   }
   if (spliceClearanceMm) requireNonNegative("fabrication.splice_clearance_mm", *spliceClearanceMm);
-  if (minSpliceClearanceMm) requireNonNegative("fabrication.min_splice_clearance_mm", *minSpliceClearanceMm);
+  if (minSpliceClearanceMm)
+    requireNonNegative("fabrication.min_splice_clearance_mm", *minSpliceClearanceMm);
   if (!std::isfinite(scarfSlope) || scarfSlope < 4.0 || scarfSlope > 40.0) {
     std::ostringstream msg;
     msg << "must lie in [4, 40] (the run of the scarf per unit of thickness), got " << scarfSlope;
@@ -89,14 +93,17 @@ void FabricationOptions::validate() const {
     requirePositive("fabrication.sticker_sheet_mm", (*stickerSheetMm)[0]);
     requirePositive("fabrication.sticker_sheet_mm", (*stickerSheetMm)[1]);
     if (2.0 * marginMm >= std::min((*stickerSheetMm)[0], (*stickerSheetMm)[1])) {
-      fail("fabrication.sticker_sheet_mm", "leaves no room inside the margin (fabrication.margin_mm)");
+      fail("fabrication.sticker_sheet_mm",
+           "leaves no room inside the margin (fabrication.margin_mm)");
     }
   }
-  if (groundHeightM && !std::isfinite(*groundHeightM)) fail("fabrication.ground_height_m", "must be a finite number");
+  if (groundHeightM && !std::isfinite(*groundHeightM))
+    fail("fabrication.ground_height_m", "must be a finite number");
   if (supportBlockMm) {
     requirePositive("fabrication.support_block_mm", *supportBlockMm);
     if (*supportBlockMm <= 2.0 * boltDiameterMm) {
-      fail("fabrication.support_block_mm", "must exceed twice the bolt diameter (room for the bolt hole)");
+      fail("fabrication.support_block_mm",
+           "must exceed twice the bolt diameter (room for the bolt hole)");
     }
   }
 }

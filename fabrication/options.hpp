@@ -33,17 +33,21 @@ enum class SpliceJoint { Plate, Scarf, PlateOrScarf };
 const char* toString(SpliceJoint joint);
 
 struct FabricationOptions {
-  double lamellaWidthMm = 250.0;          // w, across the strip (scene lamella.width_m)
-  double lamellaThicknessMm = 40.0;       // t, the weak axis the lamella bends about (lamella.thickness_m)
+  double lamellaWidthMm = 250.0;  // w, across the strip (scene lamella.width_m)
+  double lamellaThicknessMm =
+      40.0;  // t, the weak axis the lamella bends about (lamella.thickness_m)
   std::string material = "poplar_plywood";  // core/materials name (lamella.material)
-  std::array<double, 2> sheetMm{2500.0, 1250.0};  // stock sheet or laser bed; strips run along the first side
-  double kerfMm = 0.2;                     // width the cutter removes: gap between nested parts
-  double marginMm = 10.0;                  // unused border around every sheet
-  double boltDiameterMm = 8.0;            // hole diameter and slot width
-  double minNotchMm = 1.0;                // shorter notches are cut as plain holes (mesh noise, 2.4.5)
-  double stockLengthMm = 6000.0;          // longest piece a lamella can be cut from (and at most the sheet's first side); longer ones are spliced
-  std::optional<double> endOverhangMm;    // strip beyond the end connections; default half the width
-  std::optional<double> spliceClearanceMm;  // no hole or slot this close to a splice; default the width
+  std::array<double, 2> sheetMm{
+      2500.0, 1250.0};            // stock sheet or laser bed; strips run along the first side
+  double kerfMm = 0.2;            // width the cutter removes: gap between nested parts
+  double marginMm = 10.0;         // unused border around every sheet
+  double boltDiameterMm = 8.0;    // hole diameter and slot width
+  double minNotchMm = 1.0;        // shorter notches are cut as plain holes (mesh noise, 2.4.5)
+  double stockLengthMm = 6000.0;  // longest piece a lamella can be cut from (and at most the
+                                  // sheet's first side); longer ones are spliced
+  std::optional<double> endOverhangMm;  // strip beyond the end connections; default half the width
+  std::optional<double>
+      spliceClearanceMm;  // no hole or slot this close to a splice; default the width
   // Where a stock length has no position that clear (slots nearly as long as their spacing), the
   // splice goes to the middle of the widest gap if that keeps this much each side. Default 3.5 d:
   // the new end is then 4 d from the nearest bolt centre, the least end distance of a bolt from an
@@ -59,14 +63,16 @@ struct FabricationOptions {
   // stress over its length against scarf_efficiency x the strength, on the net width where it
   // crosses a hole or slot.
   SpliceJoint spliceJoint = SpliceJoint::Plate;
-  double scarfSlope = 12.0;        // 1:12, the usual slope for structural scarfs in plywood and LVL
-  double scarfEfficiency = 0.85;   // strength of the glued joint over that of the plain strip
-  std::optional<double> labelHeightMm;    // engraved text height; default 0.35 w (clamped to 1..30 mm)
-  double stickerMarginMm = 2.0;           // PTFE sticker beyond the swept contact area (3.5.1)
+  double scarfSlope = 12.0;       // 1:12, the usual slope for structural scarfs in plywood and LVL
+  double scarfEfficiency = 0.85;  // strength of the glued joint over that of the plain strip
+  std::optional<double>
+      labelHeightMm;             // engraved text height; default 0.35 w (clamped to 1..30 mm)
+  double stickerMarginMm = 2.0;  // PTFE sticker beyond the swept contact area (3.5.1)
   std::optional<std::array<double, 2>> stickerSheetMm;  // PTFE foil sheet; default sheet_mm
-  std::optional<double> groundHeightM;    // ground plane z; default 0.1 m below the lowest support
-  std::optional<double> supportBlockMm;   // footprint side of a support block; default 3 w
-  bool supportsAtBoundaryConnections = false;  // a support at every boundary connection (3.5.2 iv), not only at anchors
+  std::optional<double> groundHeightM;   // ground plane z; default 0.1 m below the lowest support
+  std::optional<double> supportBlockMm;  // footprint side of a support block; default 3 w
+  bool supportsAtBoundaryConnections =
+      false;  // a support at every boundary connection (3.5.2 iv), not only at anchors
 
   // Throws InvalidInput naming the scene field ("fabrication.sheet_mm: ...").
   void validate() const;
@@ -74,7 +80,8 @@ struct FabricationOptions {
   double effectiveEndOverhangMm() const { return endOverhangMm.value_or(lamellaWidthMm / 2.0); }
   double effectiveSpliceClearanceMm() const { return spliceClearanceMm.value_or(lamellaWidthMm); }
   double effectiveMinSpliceClearanceMm() const {
-    return std::min(minSpliceClearanceMm.value_or(3.5 * boltDiameterMm), effectiveSpliceClearanceMm());
+    return std::min(minSpliceClearanceMm.value_or(3.5 * boltDiameterMm),
+                    effectiveSpliceClearanceMm());
   }
   double effectiveLabelHeightMm() const;
   double scarfLengthMm() const { return scarfSlope * lamellaThicknessMm; }

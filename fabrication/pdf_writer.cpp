@@ -63,7 +63,8 @@ void drawPage(cairo_t* cr, const Drawing& d) {
   for (const auto& p : d.polylines) {
     if (p.points.size() < 2) continue;
     cairo_move_to(cr, p.points[0].x(), p.points[0].y());
-    for (size_t i = 1; i < p.points.size(); ++i) cairo_line_to(cr, p.points[i].x(), p.points[i].y());
+    for (size_t i = 1; i < p.points.size(); ++i)
+      cairo_line_to(cr, p.points[i].x(), p.points[i].y());
     if (p.closed) cairo_close_path(cr);
     stroke(cr, p.layer);
   }
@@ -88,9 +89,10 @@ void drawPage(cairo_t* cr, const Drawing& d) {
 
 std::string toPdf(const std::vector<Drawing>& pages) {
   std::string bytes;
-  const double w0 = pages.empty() ? 210.0 : pages[0].widthMm, h0 = pages.empty() ? 297.0 : pages[0].heightMm;
-  cairo_surface_t* surface =
-      cairo_pdf_surface_create_for_stream(appendToString, &bytes, w0 * kPointsPerMm, h0 * kPointsPerMm);
+  const double w0 = pages.empty() ? 210.0 : pages[0].widthMm,
+               h0 = pages.empty() ? 297.0 : pages[0].heightMm;
+  cairo_surface_t* surface = cairo_pdf_surface_create_for_stream(
+      appendToString, &bytes, w0 * kPointsPerMm, h0 * kPointsPerMm);
   cairo_t* cr = cairo_create(surface);
   for (const auto& page : pages) {
     cairo_pdf_surface_set_size(surface, page.widthMm * kPointsPerMm, page.heightMm * kPointsPerMm);
@@ -103,8 +105,9 @@ std::string toPdf(const std::vector<Drawing>& pages) {
   const cairo_status_t surfaceStatus = cairo_surface_status(surface);
   cairo_surface_destroy(surface);
   if (status != CAIRO_STATUS_SUCCESS || surfaceStatus != CAIRO_STATUS_SUCCESS) {
-    throw WriteError(std::string("cairo could not write the PDF: ") +
-                     cairo_status_to_string(status != CAIRO_STATUS_SUCCESS ? status : surfaceStatus));
+    throw WriteError(
+        std::string("cairo could not write the PDF: ") +
+        cairo_status_to_string(status != CAIRO_STATUS_SUCCESS ? status : surfaceStatus));
   }
   return bytes;
 }

@@ -5,7 +5,9 @@
 
 namespace egg::fabrication {
 
-double textLengthMm(const std::string& text, double heightMm) { return 0.6 * heightMm * static_cast<double>(text.size()); }
+double textLengthMm(const std::string& text, double heightMm) {
+  return 0.6 * heightMm * static_cast<double>(text.size());
+}
 
 std::string segmentLabel(const LamellaPlan& plan, int segment) {
   if (plan.segments.size() <= 1) return plan.id;
@@ -19,12 +21,15 @@ void drawArrow(Drawing& drawing, const Eigen::Vector2d& from, double length, dou
   const double back = length > 0 ? -head : head;
   drawing.polylines.push_back({Layer::Engrave, {from, tip}, false});
   drawing.polylines.push_back(
-      {Layer::Engrave, {tip + Eigen::Vector2d(back, head / 2.0), tip, tip + Eigen::Vector2d(back, -head / 2.0)}, false});
+      {Layer::Engrave,
+       {tip + Eigen::Vector2d(back, head / 2.0), tip, tip + Eigen::Vector2d(back, -head / 2.0)},
+       false});
 }
 
 }  // namespace
 
-std::vector<Eigen::Vector2d> clippedStadium(double x0, double x1, double radius, double lo, double hi) {
+std::vector<Eigen::Vector2d> clippedStadium(double x0, double x1, double radius, double lo,
+                                            double hi) {
   // The stadium's outline (convex: two half circles joined by straight sides), 32 segments per
   // half circle, then clipped to lo <= x <= hi (Sutherland-Hodgman against the two lines).
   const double a = std::min(x0, x1), b = std::max(x0, x1);
@@ -43,7 +48,8 @@ std::vector<Eigen::Vector2d> clippedStadium(double x0, double x1, double radius,
     const size_t n = in.size();
     for (size_t i = 0; i < n; ++i) {
       const Eigen::Vector2d &p = in[i], &q = in[(i + 1) % n];
-      const bool pIn = keepAbove ? p.x() >= bound : p.x() <= bound, qIn = keepAbove ? q.x() >= bound : q.x() <= bound;
+      const bool pIn = keepAbove ? p.x() >= bound : p.x() <= bound,
+                 qIn = keepAbove ? q.x() >= bound : q.x() <= bound;
       if (pIn) out.push_back(p);
       if (pIn != qIn) {
         const double t = (bound - p.x()) / (q.x() - p.x());
@@ -63,8 +69,13 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
   const double w = plan.widthMm, L = seg.lengthMm();
   const double d = options.boltDiameterMm, r = d / 2.0;
   const double h = options.effectiveLabelHeightMm(), hc = 0.7 * h;
-  auto at = [&](double x, double y) { return Eigen::Vector2d(origin + Eigen::Vector2d(x - seg.startMm, y)); };
-  drawing.polylines.push_back({Layer::Cut, {at(seg.startMm, 0), at(seg.endMm, 0), at(seg.endMm, w), at(seg.startMm, w)}, true});
+  auto at = [&](double x, double y) {
+    return Eigen::Vector2d(origin + Eigen::Vector2d(x - seg.startMm, y));
+  };
+  drawing.polylines.push_back(
+      {Layer::Cut,
+       {at(seg.startMm, 0), at(seg.endMm, 0), at(seg.endMm, w), at(seg.startMm, w)},
+       true});
   // Occupied stretches along the strip (features and their labels), for the lamella label.
   std::vector<std::pair<double, double>> occupied;
   for (const auto& f : plan.features) {
@@ -74,15 +85,18 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
     if (f.maxXMm(d) <= seg.startMm + 1e-6 || f.minXMm(d) >= seg.endMm - 1e-6) continue;
     if (f.minXMm(d) < seg.startMm - 1e-6 || f.maxXMm(d) > seg.endMm + 1e-6) {
       std::vector<Eigen::Vector2d> outline;
-      for (const auto& p : clippedStadium(f.xMm, f.xMm + f.slideMm, r, seg.startMm, seg.endMm)) outline.push_back(at(p.x(), w / 2.0 + p.y()));
+      for (const auto& p : clippedStadium(f.xMm, f.xMm + f.slideMm, r, seg.startMm, seg.endMm))
+        outline.push_back(at(p.x(), w / 2.0 + p.y()));
       if (outline.size() >= 3) drawing.polylines.push_back({Layer::Cut, outline, true});
       continue;
     }
     const Eigen::Vector2d centre = at(f.xMm, w / 2.0);
     if (f.kind == FeatureKind::Slot) {
       drawing.slots.push_back({Layer::Cut, centre, centre + Eigen::Vector2d(f.slideMm, 0.0), r});
-      const double length = f.slideMm > 0 ? std::max(f.slideMm, 2.0 * h) : std::min(f.slideMm, -2.0 * h);
-      drawArrow(drawing, at(f.xMm, (w / 2.0 - r) / 2.0), length, std::min(0.5 * h, (w / 2.0 - r) / 2.0));
+      const double length =
+          f.slideMm > 0 ? std::max(f.slideMm, 2.0 * h) : std::min(f.slideMm, -2.0 * h);
+      drawArrow(drawing, at(f.xMm, (w / 2.0 - r) / 2.0), length,
+                std::min(0.5 * h, (w / 2.0 - r) / 2.0));
     } else {
       drawing.circles.push_back({Layer::Cut, centre, r});
     }
@@ -92,22 +106,29 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
     double labelStart = f.maxXMm(d) + 0.25 * h;
     if (labelStart + labelLength > seg.endMm) labelStart = f.minXMm(d) - 0.25 * h - labelLength;
     drawing.texts.push_back({Layer::Label, at(labelStart, w / 2.0), hc, text, TextAlign::Left});
-    occupied.emplace_back(std::min(labelStart, f.minXMm(d)), std::max(labelStart + labelLength, f.maxXMm(d)));
+    occupied.emplace_back(std::min(labelStart, f.minXMm(d)),
+                          std::max(labelStart + labelLength, f.maxXMm(d)));
   }
   for (size_t k = 0; k < plan.splicesMm.size(); ++k) {
     if (k < plan.spliceIsScarf.size() && plan.spliceIsScarf[k]) {
       // A scarf: the line where the slope starts, the other piece's feather end.
       const double begin = plan.segments[k + 1].startMm, end = plan.segments[k].endMm;
-      const double x = segment == static_cast<int>(k) ? begin : segment == static_cast<int>(k) + 1 ? end : -1.0;
+      const double x = segment == static_cast<int>(k)       ? begin
+                       : segment == static_cast<int>(k) + 1 ? end
+                                                            : -1.0;
       if (x >= 0.0) drawing.polylines.push_back({Layer::Engrave, {at(x, 0.0), at(x, w)}, false});
       continue;
     }
     // The mark half the splice's clearance in from the cut (the clearance of the splice: a tight
     // one keeps less than splice_clearance_mm, placeSplices).
     const double splice = plan.splicesMm[k];
-    const double clearance = k < plan.spliceClearancesMm.size() ? std::min(plan.spliceClearancesMm[k], options.effectiveSpliceClearanceMm())
-                                                                : options.effectiveSpliceClearanceMm();
-    const double x = splice == seg.startMm ? splice + clearance / 2.0 : splice == seg.endMm ? splice - clearance / 2.0 : -1;
+    const double clearance =
+        k < plan.spliceClearancesMm.size()
+            ? std::min(plan.spliceClearancesMm[k], options.effectiveSpliceClearanceMm())
+            : options.effectiveSpliceClearanceMm();
+    const double x = splice == seg.startMm ? splice + clearance / 2.0
+                     : splice == seg.endMm ? splice - clearance / 2.0
+                                           : -1;
     if (x < 0) continue;
     drawing.polylines.push_back({Layer::Engrave, {at(x, 0.0), at(x, w)}, false});
   }
@@ -119,11 +140,13 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
     cursor = std::max(cursor, hi);
   }
   if (seg.endMm - cursor > bestHi - bestLo) bestLo = cursor, bestHi = seg.endMm;
-  drawing.texts.push_back({Layer::Label, at((bestLo + bestHi) / 2.0, w / 2.0), h, segmentLabel(plan, segment), TextAlign::Centre});
+  drawing.texts.push_back({Layer::Label, at((bestLo + bestHi) / 2.0, w / 2.0), h,
+                           segmentLabel(plan, segment), TextAlign::Centre});
   (void)L;
 }
 
-void drawSticker(const Sticker& s, const Eigen::Vector2d& origin, const FabricationOptions& options, Drawing& drawing) {
+void drawSticker(const Sticker& s, const Eigen::Vector2d& origin, const FabricationOptions& options,
+                 Drawing& drawing) {
   const double w = s.widthMm, L = s.lengthMm, r = options.boltDiameterMm / 2.0;
   auto at = [&](double x, double y) { return Eigen::Vector2d(origin + Eigen::Vector2d(x, y)); };
   drawing.polylines.push_back({Layer::Cut, {at(0, 0), at(L, 0), at(L, w), at(0, w)}, true});
@@ -134,7 +157,8 @@ void drawSticker(const Sticker& s, const Eigen::Vector2d& origin, const Fabricat
     drawing.circles.push_back({Layer::Cut, bolt, r});
   }
   // Labels in the longer end beside the cut-out.
-  const double lo = std::min(s.boltXMm, s.boltXMm + s.slideMm) - r, hi = std::max(s.boltXMm, s.boltXMm + s.slideMm) + r;
+  const double lo = std::min(s.boltXMm, s.boltXMm + s.slideMm) - r,
+               hi = std::max(s.boltXMm, s.boltXMm + s.slideMm) + r;
   const double x = lo > L - hi ? lo / 2.0 : (hi + L) / 2.0;
   const double h = std::min(options.effectiveLabelHeightMm(), 0.3 * w);
   drawing.texts.push_back({Layer::Label, at(x, 0.7 * w), h, s.connectionId, TextAlign::Centre});

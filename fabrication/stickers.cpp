@@ -6,7 +6,8 @@
 namespace egg::fabrication {
 
 double contactHalfLengthMm(double widthMm, double angleRad) {
-  const double s = std::max(std::sin(angleRad), 1e-3);  // nearly parallel lamellas: capped, stays finite
+  const double s =
+      std::max(std::sin(angleRad), 1e-3);  // nearly parallel lamellas: capped, stays finite
   return widthMm * (1.0 + std::abs(std::cos(angleRad))) / (2.0 * s);
 }
 
@@ -30,8 +31,8 @@ Eigen::Vector3d tangentAt(const std::vector<Eigen::Vector3d>& polyline, double s
 
 // The holes and slots of one connection, on whichever lamellas carry them (a shared boundary
 // lamella holds the other patch's connections too): two for a connection of two lamellas.
-std::vector<std::pair<const LamellaPlan*, const LamellaFeature*>> featuresOf(const std::vector<LamellaPlan>& plans,
-                                                                            int patchId, int connection) {
+std::vector<std::pair<const LamellaPlan*, const LamellaFeature*>> featuresOf(
+    const std::vector<LamellaPlan>& plans, int patchId, int connection) {
   std::vector<std::pair<const LamellaPlan*, const LamellaFeature*>> found;
   for (const auto& p : plans) {
     for (const auto& f : p.features) {
@@ -43,7 +44,8 @@ std::vector<std::pair<const LamellaPlan*, const LamellaFeature*>> featuresOf(con
 
 }  // namespace
 
-std::vector<Sticker> planStickers(const FabricationPatch& patch, const std::vector<LamellaPlan>& plans,
+std::vector<Sticker> planStickers(const FabricationPatch& patch,
+                                  const std::vector<LamellaPlan>& plans,
                                   const FabricationOptions& options) {
   std::vector<Sticker> stickers;
   const EggGrid& grid = *patch.grid;
@@ -55,13 +57,17 @@ std::vector<Sticker> planStickers(const FabricationPatch& patch, const std::vect
       const GridMember& mv = grid.v[j];
       const auto features = featuresOf(plans, patch.patchId, i * nv + j);
       if (features.size() != 2) continue;
-      if (features[0].second->kind != FeatureKind::Slot && features[1].second->kind != FeatureKind::Slot) continue;
+      if (features[0].second->kind != FeatureKind::Slot &&
+          features[1].second->kind != FeatureKind::Slot)
+        continue;
       const Eigen::Vector2d du = mu.planarEnd - mu.planarStart, dv = mv.planarEnd - mv.planarStart;
       const double planar = crossingAngle({du.x(), du.y(), 0.0}, {dv.x(), dv.y(), 0.0});
-      const double deployed = crossingAngle(tangentAt(mu.spatial, c.sU), tangentAt(mv.spatial, c.sV));
+      const double deployed =
+          crossingAngle(tangentAt(mu.spatial, c.sU), tangentAt(mv.spatial, c.sV));
       const double w = options.lamellaWidthMm;
       // The other lamella's footprint is widest at the angle furthest from a right angle.
-      const double half = std::max(contactHalfLengthMm(w, planar), contactHalfLengthMm(w, deployed));
+      const double half =
+          std::max(contactHalfLengthMm(w, planar), contactHalfLengthMm(w, deployed));
       for (const auto& [planPointer, f] : features) {
         const LamellaPlan& plan = *planPointer;
         Sticker s;

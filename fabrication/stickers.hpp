@@ -11,15 +11,16 @@
 namespace egg::fabrication {
 
 struct Sticker {
-  std::string id;             // "<connection id>/<lamella id>"
+  std::string id;  // "<connection id>/<lamella id>"
   std::string connectionId;
   std::string lamellaId;
-  double lengthMm = 0.0;      // along the lamella
-  double widthMm = 0.0;       // across: the lamella width
-  double boltXMm = 0.0;       // bolt centre in the planar state, from the sticker's start
-  double slideMm = 0.0;       // slot: the bolt moves to boltXMm + slideMm (0: a plain hole)
+  double lengthMm = 0.0;  // along the lamella
+  double widthMm = 0.0;   // across: the lamella width
+  double boltXMm = 0.0;   // bolt centre in the planar state, from the sticker's start
+  double slideMm = 0.0;   // slot: the bolt moves to boltXMm + slideMm (0: a plain hole)
   double planarAngleRad = 0.0, deployedAngleRad = 0.0;  // crossing angles of the two lamellas
-  bool clipped = false;       // shortened to half the way to the neighbouring connections (or the strip end)
+  bool clipped =
+      false;  // shortened to half the way to the neighbouring connections (or the strip end)
   double areaM2() const { return lengthMm * widthMm * 1e-6; }
 };
 
@@ -35,7 +36,8 @@ double crossingAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 // reaches at most halfway to the neighbouring connections on its lamella and not beyond the strip
 // (at the small crossing angles of a compact planar grid the swept footprint would otherwise run
 // over the next connections), and always covers the slot plus a bolt radius.
-std::vector<Sticker> planStickers(const FabricationPatch& patch, const std::vector<LamellaPlan>& plans,
+std::vector<Sticker> planStickers(const FabricationPatch& patch,
+                                  const std::vector<LamellaPlan>& plans,
                                   const FabricationOptions& options);
 
 }  // namespace egg::fabrication

@@ -38,7 +38,8 @@ std::vector<double> polylineTwistRate(const std::vector<Eigen::Vector3d>& points
       continue;
     }
     const Eigen::Vector3d t = segment / length;
-    const Eigen::Vector3d n0 = normals[i] - normals[i].dot(t) * t, n1 = normals[i + 1] - normals[i + 1].dot(t) * t;
+    const Eigen::Vector3d n0 = normals[i] - normals[i].dot(t) * t,
+                          n1 = normals[i + 1] - normals[i + 1].dot(t) * t;
     const double angle = std::atan2(t.dot(n0.cross(n1)), n0.dot(n1));
     rate.push_back(angle / length);
   }
@@ -50,8 +51,10 @@ namespace {
 void finish(LamellaStress& s, double thicknessM, const MaterialProperties& material) {
   s.maxBendingStressPa = material.youngsModulusPa * s.maxCurvaturePerM * thicknessM / 2.0;
   s.maxTorsionStressPa = material.shearModulusPa * s.maxTwistRateRadPerM * thicknessM;
-  const double bendingRatio = material.bendingStrengthPa > 0 ? s.maxBendingStressPa / material.bendingStrengthPa : 0.0;
-  const double torsionRatio = material.shearStrengthPa > 0 ? s.maxTorsionStressPa / material.shearStrengthPa : 0.0;
+  const double bendingRatio =
+      material.bendingStrengthPa > 0 ? s.maxBendingStressPa / material.bendingStrengthPa : 0.0;
+  const double torsionRatio =
+      material.shearStrengthPa > 0 ? s.maxTorsionStressPa / material.shearStrengthPa : 0.0;
   s.stressRatio = std::max(bendingRatio, torsionRatio);
 }
 
@@ -59,7 +62,8 @@ void finish(LamellaStress& s, double thicknessM, const MaterialProperties& mater
 
 double curvatureWindowM(const std::vector<Eigen::Vector3d>& centreline, double lamellaWidthM) {
   std::vector<double> segments;
-  for (size_t i = 0; i + 1 < centreline.size(); ++i) segments.push_back((centreline[i + 1] - centreline[i]).norm());
+  for (size_t i = 0; i + 1 < centreline.size(); ++i)
+    segments.push_back((centreline[i + 1] - centreline[i]).norm());
   double median = 0.0;
   if (!segments.empty()) {
     std::nth_element(segments.begin(), segments.begin() + segments.size() / 2, segments.end());
@@ -68,8 +72,9 @@ double curvatureWindowM(const std::vector<Eigen::Vector3d>& centreline, double l
   return std::max(2.0 * lamellaWidthM, 3.0 * median);
 }
 
-LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, const std::vector<Eigen::Vector3d>* normals,
-                            double thicknessM, const MaterialProperties& material, double windowM) {
+LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline,
+                            const std::vector<Eigen::Vector3d>* normals, double thicknessM,
+                            const MaterialProperties& material, double windowM) {
   LamellaStress s;
   const bool useNormals = normals && normals->size() == centreline.size();
   const size_t n = centreline.size();
@@ -85,7 +90,8 @@ LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, cons
     // Lilium's base side (vertices 1 mm apart whose mesh normals differ by 0.09 rad) at 41 rad/m,
     // 197 times the shear strength.
     double central = 0.0;
-    for (size_t i = 1; i + 1 < n; ++i) central = std::max(central, std::min(arc[i], arc[n - 1] - arc[i]));
+    for (size_t i = 1; i + 1 < n; ++i)
+      central = std::max(central, std::min(arc[i], arc[n - 1] - arc[i]));
     if (central > 0.0) windowM = std::min(windowM, central);
     bool measured = false;
     size_t j = 0, k = 0;
@@ -94,13 +100,15 @@ LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, cons
       while (j + 1 < i && arc[i] - arc[j + 1] >= windowM) ++j;
       k = std::max(k, i + 1);
       while (k + 1 < n && arc[k] - arc[i] < windowM) ++k;
-      const Eigen::Vector3d kappa = polylineCurvature({centreline[j], centreline[i], centreline[k]})[1];
+      const Eigen::Vector3d kappa =
+          polylineCurvature({centreline[j], centreline[i], centreline[k]})[1];
       measured = true;
       double curvature = kappa.norm();
       if (useNormals) {
         curvature = std::abs(kappa.dot((*normals)[i].normalized()));
         // The turn of the normal from j to k about the chord, over the arc between them.
-        const double rate = polylineTwistRate({centreline[j], centreline[k]}, {(*normals)[j], (*normals)[k]})[0];
+        const double rate =
+            polylineTwistRate({centreline[j], centreline[k]}, {(*normals)[j], (*normals)[k]})[0];
         const double chord = (centreline[k] - centreline[j]).norm();
         const double twist = std::abs(rate) * chord / (arc[k] - arc[j]);
         s.maxTwistRateRadPerM = std::max(s.maxTwistRateRadPerM, twist);
@@ -120,7 +128,8 @@ LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, cons
   double along = 0.0;
   for (size_t i = 0; i < kappa.size(); ++i) {
     if (i > 0) along += (centreline[i] - centreline[i - 1]).norm();
-    const double k = useNormals ? std::abs(kappa[i].dot((*normals)[i].normalized())) : kappa[i].norm();
+    const double k =
+        useNormals ? std::abs(kappa[i].dot((*normals)[i].normalized())) : kappa[i].norm();
     s.maxCurvaturePerM = std::max(s.maxCurvaturePerM, k);
     s.bendingArcM.push_back(along);
     s.bendingPa.push_back(material.youngsModulusPa * k * thicknessM / 2.0);
@@ -140,13 +149,15 @@ LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, cons
   return s;
 }
 
-double maxStressOver(const std::vector<double>& arc, const std::vector<double>& values, double from, double to) {
+double maxStressOver(const std::vector<double>& arc, const std::vector<double>& values, double from,
+                     double to) {
   double best = 0.0, nearest = 0.0, nearestGap = std::numeric_limits<double>::infinity();
   bool inside = false;
   const double middle = (from + to) / 2.0;
   for (size_t i = 0; i < arc.size() && i < values.size(); ++i) {
     if (arc[i] >= from && arc[i] <= to) best = std::max(best, values[i]), inside = true;
-    if (std::abs(arc[i] - middle) < nearestGap) nearestGap = std::abs(arc[i] - middle), nearest = values[i];
+    if (std::abs(arc[i] - middle) < nearestGap)
+      nearestGap = std::abs(arc[i] - middle), nearest = values[i];
   }
   return inside ? best : nearest;
 }

@@ -21,21 +21,23 @@ std::vector<double> polylineTwistRate(const std::vector<Eigen::Vector3d>& points
                                       const std::vector<Eigen::Vector3d>& normals);
 
 struct LamellaStress {
-  double maxCurvaturePerM = 0.0;       // largest weak-axis curvature along the lamella
-  double maxBendingStressPa = 0.0;    // E kappa t / 2
+  double maxCurvaturePerM = 0.0;    // largest weak-axis curvature along the lamella
+  double maxBendingStressPa = 0.0;  // E kappa t / 2
   double maxTwistRateRadPerM = 0.0;
-  double maxTorsionStressPa = 0.0;    // G theta' t
-  double stressRatio = 0.0;            // max(sigma / f_m, tau / f_v)
-  bool fromSimulation = false;         // bending from the deployed centreline (else the traced geodesic)
+  double maxTorsionStressPa = 0.0;  // G theta' t
+  double stressRatio = 0.0;         // max(sigma / f_m, tau / f_v)
+  bool fromSimulation = false;  // bending from the deployed centreline (else the traced geodesic)
   // Where along the lamella (arc length from its first point, m) each stress was measured: the
   // splice checks read them over a joint's length (maxStressOver).
   std::vector<double> bendingArcM, bendingPa, torsionArcM, torsionPa;
-  std::vector<double> scarfRatios;     // per splice (fabricate): a scarf's stress over its strength, 0 for a plate
+  std::vector<double>
+      scarfRatios;  // per splice (fabricate): a scarf's stress over its strength, 0 for a plate
 };
 
 // The largest of `values` measured at arc lengths within [from, to]; with none there, the one
 // measured nearest to the middle (0 when nothing was measured).
-double maxStressOver(const std::vector<double>& arc, const std::vector<double>& values, double from, double to);
+double maxStressOver(const std::vector<double>& arc, const std::vector<double>& values, double from,
+                     double to);
 
 // Bending: with `normals` (one per point) the normal curvature kappa . n, else the whole curvature
 // (a deployed lamella is a geodesic: its curvature is normal curvature). Torsion: from `normals`
@@ -47,8 +49,9 @@ double maxStressOver(const std::vector<double>& arc, const std::vector<double>& 
 // which cannot bend over less than about its width anyway. A polyline with no vertex a window from
 // both ends is measured over the window its most central vertex allows (the whole lamella), never
 // vertex by vertex.
-LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline, const std::vector<Eigen::Vector3d>* normals,
-                            double thicknessM, const MaterialProperties& material, double windowM = 0.0);
+LamellaStress lamellaStress(const std::vector<Eigen::Vector3d>& centreline,
+                            const std::vector<Eigen::Vector3d>* normals, double thicknessM,
+                            const MaterialProperties& material, double windowM = 0.0);
 
 // The window fabricate() measures over: twice the lamella width, and at least three median segments
 // of the polyline (its resolution).

@@ -14,8 +14,9 @@
 
 namespace egg::fabrication {
 
-std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
-                                  double* groundHeightM, int* innerAnchors) {
+std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches,
+                                  const FabricationOptions& options, double* groundHeightM,
+                                  int* innerAnchors) {
   std::vector<Support> supports;
   if (innerAnchors) *innerAnchors = 0;
   for (const auto& patch : patches) {
@@ -36,11 +37,13 @@ std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, 
         if (innerAnchors && chosen.insert(a.connection).second) ++*innerAnchors;
         continue;
       }
-      if (chosen.insert(a.connection).second) picks.emplace_back(a.connection, "anchor: " + a.reason);
+      if (chosen.insert(a.connection).second)
+        picks.emplace_back(a.connection, "anchor: " + a.reason);
     }
     if (options.supportsAtBoundaryConnections) {
       for (int k = 0; k < static_cast<int>(grid.connections.size()); ++k) {
-        if (grid.connections[k].onBoundary && onFreeSide(k) && chosen.insert(k).second) picks.emplace_back(k, "boundary connection");
+        if (grid.connections[k].onBoundary && onFreeSide(k) && chosen.insert(k).second)
+          picks.emplace_back(k, "boundary connection");
       }
     }
     std::sort(picks.begin(), picks.end());
@@ -53,7 +56,8 @@ std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, 
       Support s;
       s.patchId = patch.patchId;
       s.connection = k;
-      s.connectionId = "P" + std::to_string(patch.patchId) + "-C" + std::to_string(k / nv) + "-" + std::to_string(k % nv);
+      s.connectionId = "P" + std::to_string(patch.patchId) + "-C" + std::to_string(k / nv) + "-" +
+                       std::to_string(k % nv);
       s.reason = reason;
       s.position = c.spatial;
       s.normal = c.normal.normalized();
@@ -84,8 +88,8 @@ std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, 
   return supports;
 }
 
-TriangleMesh supportSolid(const Support& support, double blockMm, double holeDiameterMm, double holeDepthMm,
-                          double* bottomDropMm) {
+TriangleMesh supportSolid(const Support& support, double blockMm, double holeDiameterMm,
+                          double holeDepthMm, double* bottomDropMm) {
   const Eigen::Vector3d n = support.normal;
   const double h = support.heightM * 1000.0;
   const double half = blockMm / 2.0;
@@ -98,7 +102,8 @@ TriangleMesh supportSolid(const Support& support, double blockMm, double holeDia
   const Eigen::Vector2d corners[4] = {{-half, -half}, {half, -half}, {half, half}, {-half, half}};
   for (int side = 0; side < 4; ++side) {
     for (int k = 0; k < perSide; ++k) {
-      ring.push_back(corners[side] + (corners[(side + 1) % 4] - corners[side]) * (double(k) / perSide));
+      ring.push_back(corners[side] +
+                     (corners[(side + 1) % 4] - corners[side]) * (double(k) / perSide));
     }
   }
   const int m = static_cast<int>(ring.size());
@@ -107,7 +112,8 @@ TriangleMesh supportSolid(const Support& support, double blockMm, double holeDia
   // The bottom is the ground (z = 0) unless the plane comes closer than 5 mm to it.
   const double bottom = std::min(0.0, lowestTop - 5.0);
   if (bottomDropMm) *bottomDropMm = -bottom;
-  // The blind hole stays inside the block: its end above the bottom, its side off the block's sides.
+  // The blind hole stays inside the block: its end above the bottom, its side off the block's
+  // sides.
   double depth = std::min(holeDepthMm, 0.8 * (h - bottom) / n.z());
   const double sideways = std::sqrt(std::max(0.0, 1.0 - n.z() * n.z()));
   if (sideways > 1e-9) depth = std::min(depth, 0.9 * (half - holeDiameterMm / 2.0) / sideways);
@@ -169,7 +175,8 @@ std::string toBinaryStl(const TriangleMesh& mesh, const std::string& header) {
   };
   put32(static_cast<uint32_t>(mesh.triangles.size()));
   for (const auto& t : mesh.triangles) {
-    const Eigen::Vector3d &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    const Eigen::Vector3d &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]],
+                          &c = mesh.vertices[t[2]];
     Eigen::Vector3d normal = (b - a).cross(c - a);
     if (normal.norm() > 0.0) normal.normalize();
     for (int i = 0; i < 3; ++i) putFloat(normal[i]);
@@ -183,13 +190,14 @@ std::string toBinaryStl(const TriangleMesh& mesh, const std::string& header) {
 
 std::string supportsCsv(const std::vector<Support>& supports) {
   std::ostringstream s;
-  s << "id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind,block_mm,below_ground_mm\n";
+  s << "id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind,"
+       "block_mm,below_ground_mm\n";
   char line[512];
   for (const auto& p : supports) {
-    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f,%.3f,%.6f,%s,", p.id.c_str(),
-                  p.connectionId.c_str(), p.reason.c_str(), p.position.x(), p.position.y(), p.position.z(),
-                  p.normal.x(), p.normal.y(), p.normal.z(), p.inclinationDeg, p.directionDeg, p.heightM,
-                  p.block ? "block" : "bracket");
+    std::snprintf(line, sizeof line, "%s,%s,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.3f,%.3f,%.6f,%s,",
+                  p.id.c_str(), p.connectionId.c_str(), p.reason.c_str(), p.position.x(),
+                  p.position.y(), p.position.z(), p.normal.x(), p.normal.y(), p.normal.z(),
+                  p.inclinationDeg, p.directionDeg, p.heightM, p.block ? "block" : "bracket");
     s << line;
     if (p.block && p.blockMm > 0.0) {
       std::snprintf(line, sizeof line, "%.0f,%.1f", p.blockMm, p.belowGroundMm);

@@ -12,21 +12,22 @@
 namespace egg::fabrication {
 
 struct Support {
-  std::string id;                 // "S<nnn>"
-  std::string connectionId;       // the connection it holds
+  std::string id;            // "S<nnn>"
+  std::string connectionId;  // the connection it holds
   int patchId = 0;
   int connection = 0;
-  std::string reason;             // "anchor: corner", "anchor: boundary curvature extremum", "boundary connection"
+  std::string
+      reason;  // "anchor: corner", "anchor: boundary curvature extremum", "boundary connection"
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // metres
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // unit, pointing up
-  double inclinationDeg = 0.0;    // angle of the contact plane to the horizontal
-  double directionDeg = 0.0;      // azimuth (from +x towards +y) the contact plane falls towards
-  double heightM = 0.0;           // the point above the ground plane
+  double inclinationDeg = 0.0;  // angle of the contact plane to the horizontal
+  double directionDeg = 0.0;    // azimuth (from +x towards +y) the contact plane falls towards
+  double heightM = 0.0;         // the point above the ground plane
   // A contact plane steeper than 80 degrees (a near-vertical wall, as at the Lilium's base) cannot
   // sit on a block: it needs a bracket fixed to the wall, which is listed but not drawn.
   bool block = true;
-  double blockMm = 0.0;           // footprint side of its block (fabricate(); 0 for a bracket)
-  double belowGroundMm = 0.0;     // how far the block reaches below the ground (supportSolid's drop)
+  double blockMm = 0.0;        // footprint side of its block (fabricate(); 0 for a bracket)
+  double belowGroundMm = 0.0;  // how far the block reaches below the ground (supportSolid's drop)
 };
 
 struct TriangleMesh {
@@ -39,15 +40,16 @@ struct TriangleMesh {
 // connection, one per point (within 1 mm) where patches meet, with the ground plane of the options
 // (or 0.1 m below the lowest). A support whose plane is steeper than 80° is a bracket (block =
 // false). innerAnchors: how many anchors were left out because they lie on shared sides only.
-std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches, const FabricationOptions& options,
+std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches,
+                                  const FabricationOptions& options,
                                   double* groundHeightM = nullptr, int* innerAnchors = nullptr);
 
 // The block of one support in millimetres, in a frame with the point above the origin and z = 0 at
 // the bottom face: a square footprint of `blockMm`, the top face on the contact plane, a blind bolt
 // hole of `holeDiameterMm` along the normal, `holeDepthMm` deep. Raises the bottom below the ground
 // where the contact plane would cut it (reported by bottomDropMm). A closed 2-manifold.
-TriangleMesh supportSolid(const Support& support, double blockMm, double holeDiameterMm, double holeDepthMm,
-                          double* bottomDropMm = nullptr);
+TriangleMesh supportSolid(const Support& support, double blockMm, double holeDiameterMm,
+                          double holeDepthMm, double* bottomDropMm = nullptr);
 
 // Binary STL of a mesh (facet normals from the winding).
 std::string toBinaryStl(const TriangleMesh& mesh, const std::string& header);

@@ -45,7 +45,9 @@ bool insidePolygon(const Polygon& poly, const Vec2& q) {
   bool in = false;
   for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
     const Vec2 &a = poly[i], &b = poly[j];
-    if ((a.y() > q.y()) != (b.y() > q.y()) && q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x()) in = !in;
+    if ((a.y() > q.y()) != (b.y() > q.y()) &&
+        q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x())
+      in = !in;
   }
   return in;
 }
@@ -55,7 +57,8 @@ double distanceToPolygon(const Polygon& poly, const Vec2& q) {
   for (size_t i = 0; i < poly.size(); ++i) {
     const Vec2 &a = poly[i], &b = poly[(i + 1) % poly.size()];
     const Vec2 d = b - a;
-    const double t = d.squaredNorm() > 0 ? std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    const double t =
+        d.squaredNorm() > 0 ? std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
     best = std::min(best, (a + t * d - q).norm());
   }
   return best;
@@ -66,7 +69,8 @@ std::vector<char> convexHullMarks(const Polygon& polygon) {
   std::vector<size_t> order(polygon.size());
   std::iota(order.begin(), order.end(), size_t{0});
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return polygon[a].x() < polygon[b].x() || (polygon[a].x() == polygon[b].x() && polygon[a].y() < polygon[b].y());
+    return polygon[a].x() < polygon[b].x() ||
+           (polygon[a].x() == polygon[b].x() && polygon[a].y() < polygon[b].y());
   });
   const auto cross = [&](size_t o, size_t a, size_t b) {
     const Vec2 u = polygon[a] - polygon[o], w = polygon[b] - polygon[o];
@@ -77,7 +81,8 @@ std::vector<char> convexHullMarks(const Polygon& polygon) {
     const size_t start = hull.size();
     for (size_t k = 0; k < order.size(); ++k) {
       const size_t i = pass == 0 ? order[k] : order[order.size() - 1 - k];
-      while (hull.size() >= start + 2 && cross(hull[hull.size() - 2], hull.back(), i) <= 0) hull.pop_back();
+      while (hull.size() >= start + 2 && cross(hull[hull.size() - 2], hull.back(), i) <= 0)
+        hull.pop_back();
       hull.push_back(i);
     }
     hull.pop_back();
@@ -120,14 +125,19 @@ Footprint footprintOf(const TriMesh& mesh, const Plan& plan) {
     loops.push_back(std::move(loop));
     loops3d.push_back(std::move(loop3d));
   }
-  if (loops.empty()) throw InvalidInput("workflow 2: the surface has no boundary (a closed surface cannot be laid out in plan)");
+  if (loops.empty())
+    throw InvalidInput(
+        "workflow 2: the surface has no boundary (a closed surface cannot be laid out in plan)");
   std::vector<size_t> order(loops.size());
   std::iota(order.begin(), order.end(), size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return std::abs(signedArea(loops[a])) > std::abs(signedArea(loops[b])); });
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return std::abs(signedArea(loops[a])) > std::abs(signedArea(loops[b]));
+  });
   Footprint f;
   f.outer = loops[order[0]];
   f.outer3d = loops3d[order[0]];
-  if (signedArea(f.outer) < 0) std::reverse(f.outer.begin(), f.outer.end()), std::reverse(f.outer3d.begin(), f.outer3d.end());
+  if (signedArea(f.outer) < 0)
+    std::reverse(f.outer.begin(), f.outer.end()), std::reverse(f.outer3d.begin(), f.outer3d.end());
   for (size_t i = 1; i < order.size(); ++i) f.holes.push_back(loops[order[i]]);
   f.tolerance = 0.5 * meanEdgeLength(mesh);
   return f;
@@ -160,7 +170,8 @@ Arc arcOf(const Footprint& foot, size_t from, size_t to) {
     if (i == to) break;
   }
   arc.s.push_back(0.0);
-  for (size_t i = 1; i < arc.points.size(); ++i) arc.s.push_back(arc.s.back() + (arc.points[i] - arc.points[i - 1]).norm());
+  for (size_t i = 1; i < arc.points.size(); ++i)
+    arc.s.push_back(arc.s.back() + (arc.points[i] - arc.points[i - 1]).norm());
   return arc;
 }
 
@@ -183,7 +194,8 @@ PlanLifter::PlanLifter(const TriMesh& surface, const Plan& plan) : plan_(plan) {
   if (faces_.empty()) return;
   // About two faces per bin.
   const Vec2 extent = (hi - lo).cwiseMax(Vec2::Constant(1e-9));
-  const double binSide = std::sqrt(extent.x() * extent.y() * 2.0 / static_cast<double>(faces_.size()));
+  const double binSide =
+      std::sqrt(extent.x() * extent.y() * 2.0 / static_cast<double>(faces_.size()));
   nx_ = std::clamp(static_cast<int>(std::ceil(extent.x() / binSide)), 1, 4096);
   ny_ = std::clamp(static_cast<int>(std::ceil(extent.y() / binSide)), 1, 4096);
   lo_ = lo;
@@ -197,7 +209,8 @@ PlanLifter::PlanLifter(const TriMesh& surface, const Plan& plan) : plan_(plan) {
     const int y0 = std::clamp(static_cast<int>((flo.y() - lo_.y()) / cell_.y()), 0, ny_ - 1);
     const int y1 = std::clamp(static_cast<int>((fhi.y() - lo_.y()) / cell_.y()), 0, ny_ - 1);
     for (int x = x0; x <= x1; ++x)
-      for (int y = y0; y <= y1; ++y) bins_[static_cast<size_t>(x) * ny_ + y].push_back(static_cast<int>(f));
+      for (int y = y0; y <= y1; ++y)
+        bins_[static_cast<size_t>(x) * ny_ + y].push_back(static_cast<int>(f));
   }
 }
 
@@ -214,8 +227,11 @@ bool barycentric(const std::array<Vec2, 3>& r, const Vec2& q, double& b0, double
 }
 }  // namespace
 
-std::optional<Eigen::Vector3d> PlanLifter::liftInBins(const Vec2& q, const std::optional<Eigen::Vector3d>& near, int* sheets) const {
-  const int x = static_cast<int>(std::floor((q.x() - lo_.x()) / cell_.x())), y = static_cast<int>(std::floor((q.y() - lo_.y()) / cell_.y()));
+std::optional<Eigen::Vector3d> PlanLifter::liftInBins(const Vec2& q,
+                                                      const std::optional<Eigen::Vector3d>& near,
+                                                      int* sheets) const {
+  const int x = static_cast<int>(std::floor((q.x() - lo_.x()) / cell_.x())),
+            y = static_cast<int>(std::floor((q.y() - lo_.y()) / cell_.y()));
   if (bins_.empty() || x < 0 || y < 0 || x >= nx_ || y >= ny_) return std::nullopt;
   std::optional<Eigen::Vector3d> best;
   double bestScore = -std::numeric_limits<double>::infinity();
@@ -233,7 +249,8 @@ std::optional<Eigen::Vector3d> PlanLifter::liftInBins(const Vec2& q, const std::
   return best;
 }
 
-Eigen::Vector3d PlanLifter::lift(const Vec2& q, const std::optional<Eigen::Vector3d>& near, int* sheets) const {
+Eigen::Vector3d PlanLifter::lift(const Vec2& q, const std::optional<Eigen::Vector3d>& near,
+                                 int* sheets) const {
   if (auto inside = liftInBins(q, near, sheets)) return *inside;
   if (sheets) *sheets = 0;
   // Off the surface in plan: the nearest point of the face whose barycentric excess is least.

@@ -19,14 +19,14 @@ using Clock = std::chrono::steady_clock;
 
 // Where the circle crosses one mesh edge: from the inside vertex (d < r) towards the outside one.
 struct Crossing {
-  int inside = -1, outside = -1;  // vertices
-  int face = -1;                  // a face holding the edge, for the surface point
-  double t = 0.0;                 // fraction from `inside` to `outside`
-  double lo = 0.0, hi = 1.0;      // bracket of t
-  double fLo = 0.0, fHi = 0.0;    // d - r at the bracket ends (fLo < 0 <= fHi)
-  int lastSide = 0;               // Illinois: which end moved last (-1 lo, +1 hi)
+  int inside = -1, outside = -1;     // vertices
+  int face = -1;                     // a face holding the edge, for the surface point
+  double t = 0.0;                    // fraction from `inside` to `outside`
+  double lo = 0.0, hi = 1.0;         // bracket of t
+  double fLo = 0.0, fHi = 0.0;       // d - r at the bracket ends (fLo < 0 <= fHi)
+  int lastSide = 0;                  // Illinois: which end moved last (-1 lo, +1 hi)
   double prevT = -1.0, prevF = 0.0;  // the evaluation before the last (secant)
-  double bestT = 0.0;             // the evaluated t closest to the circle so far
+  double bestT = 0.0;                // the evaluated t closest to the circle so far
   double error = std::numeric_limits<double>::infinity();  // its |d - r|
 };
 
@@ -42,7 +42,8 @@ SurfacePoint edgePoint(const TriMesh& mesh, const Crossing& c, double t) {
 }
 
 // Regula falsi with the Illinois modification (the end that stays put twice has its value halved),
-// so the bracket shrinks from both sides even where d(t) is curved; the fallback of the secant step.
+// so the bracket shrinks from both sides even where d(t) is curved; the fallback of the secant
+// step.
 double nextGuess(const Crossing& c) {
   if (!std::isfinite(c.fHi)) return 0.5 * (c.lo + c.hi);
   const double t = c.lo - c.fLo * (c.hi - c.lo) / (c.fHi - c.fLo);
@@ -61,18 +62,22 @@ void SurfacePeakOptions::validate() const {
   }
 }
 
-std::vector<SurfacePeak> findSurfacePeaks(const TriMesh& surface, const SurfacePeakOptions& options) {
+std::vector<SurfacePeak> findSurfacePeaks(const TriMesh& surface,
+                                          const SurfacePeakOptions& options) {
   options.validate();
-  if (surface.n_vertices() == 0) throw InvalidInput("findSurfacePeaks: the surface has no vertices");
+  if (surface.n_vertices() == 0)
+    throw InvalidInput("findSurfacePeaks: the surface has no vertices");
   const CurvatureField field = computeCurvature(surface, options.curvature);
   const double diagonal = boundingBox(surface).size().norm();
   // r = pi / sqrt(K) < diagonal  <=>  K > (pi / diagonal)^2.
-  const double threshold = options.minGaussian > 0.0 ? options.minGaussian : std::pow(std::numbers::pi / diagonal, 2);
+  const double threshold =
+      options.minGaussian > 0.0 ? options.minGaussian : std::pow(std::numbers::pi / diagonal, 2);
   PeakOptions peakOptions = options.peaks;
   // The raw search only needs averaged K > 0 and every candidate whose nearby maximum passes: the
   // averaged K is never above the nearby maximum, so filtering on the latter below loses nothing.
   peakOptions.minGaussian = std::max(peakOptions.minGaussian, 0.0);
-  std::vector<CurvaturePeak> raw = findGaussianPeaks(surface, field.gaussian, field.mixedArea, peakOptions);
+  std::vector<CurvaturePeak> raw =
+      findGaussianPeaks(surface, field.gaussian, field.mixedArea, peakOptions);
   std::stable_sort(raw.begin(), raw.end(), [](const CurvaturePeak& a, const CurvaturePeak& b) {
     if (a.gaussianAveraged != b.gaussianAveraged) return a.gaussianAveraged > b.gaussianAveraged;
     return a.vertex < b.vertex;
@@ -96,15 +101,17 @@ std::vector<SurfacePeak> findSurfacePeaks(const TriMesh& surface, const SurfaceP
   return kept;
 }
 
-InjectivityCircle injectivityCircle(const TriMesh& surface, const geodesic::DistanceSolver& solver, const SurfacePeak& peak) {
+InjectivityCircle injectivityCircle(const TriMesh& surface, const geodesic::DistanceSolver& solver,
+                                    const SurfacePeak& peak) {
   const auto start = Clock::now();
   const int nv = static_cast<int>(surface.n_vertices());
   if (peak.vertex < 0 || peak.vertex >= nv)
-    throw InvalidInput("injectivityCircle: peak vertex " + std::to_string(peak.vertex) + " is not a vertex of the surface (" +
-                       std::to_string(nv) + " vertices)");
+    throw InvalidInput("injectivityCircle: peak vertex " + std::to_string(peak.vertex) +
+                       " is not a vertex of the surface (" + std::to_string(nv) + " vertices)");
   if (solver.vertexCount() != nv)
     throw InvalidInput("injectivityCircle: the distance solver was built on another mesh");
-  if (!(peak.radiusM > 0.0)) throw InvalidInput("injectivityCircle: the peak's radius must be positive");
+  if (!(peak.radiusM > 0.0))
+    throw InvalidInput("injectivityCircle: the peak's radius must be positive");
   InjectivityCircle circle;
   circle.peakVertex = peak.vertex;
   circle.centre = toEigen(surface.point(TriMesh::VertexHandle(peak.vertex)));
@@ -187,7 +194,8 @@ InjectivityCircle injectivityCircle(const TriMesh& surface, const geodesic::Dist
     }
     active = std::move(still);
   }
-  for (const Crossing& c : crossings) circle.maxDistanceErrorM = std::max(circle.maxDistanceErrorM, c.error);
+  for (const Crossing& c : crossings)
+    circle.maxDistanceErrorM = std::max(circle.maxDistanceErrorM, c.error);
 
   // Chain the segments: open pieces start at a crossing nothing precedes (its edge is on the
   // surface boundary); what remains are loops, each started at its lowest edge.
@@ -201,8 +209,10 @@ InjectivityCircle injectivityCircle(const TriMesh& surface, const geodesic::Dist
       line.points.push_back(edgePoint(surface, crossings[c], crossings[c].bestT));
       line.positions.push_back(position(surface, line.points.back()));
     }
-    for (size_t i = 1; i < line.positions.size(); ++i) line.lengthM += (line.positions[i] - line.positions[i - 1]).norm();
-    if (loop && line.positions.size() > 1) line.lengthM += (line.positions.front() - line.positions.back()).norm();
+    for (size_t i = 1; i < line.positions.size(); ++i)
+      line.lengthM += (line.positions[i] - line.positions[i - 1]).norm();
+    if (loop && line.positions.size() > 1)
+      line.lengthM += (line.positions.front() - line.positions.back()).norm();
     return line;
   };
   for (int e = 0; e < ne; ++e) {
@@ -221,10 +231,12 @@ InjectivityCircle injectivityCircle(const TriMesh& surface, const geodesic::Dist
   return circle;
 }
 
-std::vector<InjectivityCircle> injectivityCircles(const TriMesh& surface, const geodesic::DistanceSolver& solver,
+std::vector<InjectivityCircle> injectivityCircles(const TriMesh& surface,
+                                                  const geodesic::DistanceSolver& solver,
                                                   const std::vector<SurfacePeak>& peaks) {
   std::vector<InjectivityCircle> circles(peaks.size());
-  tbb::parallel_for(size_t(0), peaks.size(), [&](size_t i) { circles[i] = injectivityCircle(surface, solver, peaks[i]); });
+  tbb::parallel_for(size_t(0), peaks.size(),
+                    [&](size_t i) { circles[i] = injectivityCircle(surface, solver, peaks[i]); });
   return circles;
 }
 

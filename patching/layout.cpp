@@ -19,11 +19,14 @@ void LayoutOptions::validate() const { patch.validate(); }
 
 namespace {
 
-std::string format(const Eigen::Vector3d& p) { return fmt::format("({:.4g}, {:.4g}, {:.4g})", p.x(), p.y(), p.z()); }
+std::string format(const Eigen::Vector3d& p) {
+  return fmt::format("({:.4g}, {:.4g}, {:.4g})", p.x(), p.y(), p.z());
+}
 
 double maxCornerOffset(const TriMesh& surface, const LayoutOptions& options) {
-  return options.patch.maxCornerOffsetM > 0.0 ? options.patch.maxCornerOffsetM
-                                              : std::max(2.0 * meanEdgeLength(surface), 0.01 * boundingBox(surface).size().norm());
+  return options.patch.maxCornerOffsetM > 0.0
+             ? options.patch.maxCornerOffsetM
+             : std::max(2.0 * meanEdgeLength(surface), 0.01 * boundingBox(surface).size().norm());
 }
 
 // The surface vertices a point's barycentric weights rest on (weights above `eps`).
@@ -65,12 +68,14 @@ int commonFace(const TriMesh& mesh, const SurfacePoint& p, const SurfacePoint& q
 
 std::vector<double> cumulative(const std::vector<Eigen::Vector3d>& positions) {
   std::vector<double> s{0.0};
-  for (size_t i = 1; i < positions.size(); ++i) s.push_back(s.back() + (positions[i] - positions[i - 1]).norm());
+  for (size_t i = 1; i < positions.size(); ++i)
+    s.push_back(s.back() + (positions[i] - positions[i - 1]).norm());
   return s;
 }
 
 // Inserts a point into a curve at arc length s; returns the point and its index in points.
-std::pair<SurfacePoint, size_t> insertIntoCurve(const TriMesh& surface, LayoutCurve& curve, double s) {
+std::pair<SurfacePoint, size_t> insertIntoCurve(const TriMesh& surface, LayoutCurve& curve,
+                                                double s) {
   const auto arc = cumulative(curve.positions);
   s = std::clamp(s, 0.0, arc.back());
   size_t hi = std::upper_bound(arc.begin(), arc.end(), s) - arc.begin();
@@ -92,10 +97,12 @@ std::pair<SurfacePoint, size_t> insertIntoCurve(const TriMesh& surface, LayoutCu
   return {point, hi};
 }
 
-void traceCurve(const TriMesh& surface, const geodesic::DistanceSolver& solver, const PatchLayout& layout, LayoutCurve& curve) {
+void traceCurve(const TriMesh& surface, const geodesic::DistanceSolver& solver,
+                const PatchLayout& layout, LayoutCurve& curve) {
   const auto path = solver.path(layout.cornerPoints[curve.from], layout.cornerPoints[curve.to]);
   if (!std::isfinite(path.length) || path.points.size() < 2)
-    throw InvalidInput(fmt::format("layout: corners {} and {} are not connected on the surface", curve.from, curve.to));
+    throw InvalidInput(fmt::format("layout: corners {} and {} are not connected on the surface",
+                                   curve.from, curve.to));
   curve.points = path.points;
   curve.positions = path.positions;
   curve.bendVertices = path.bendVertices;
@@ -138,15 +145,18 @@ int addCornerOnCurve(PatchLayout& layout, int curveId, double s) {
   const int corner = addCorner(layout, point);
   // Keep the curve's corners in order along it.
   std::vector<std::pair<double, int>> along;
-  for (int c : curve.corners) along.emplace_back(nearestArcLength(layout, curveId, layout.corners[c]), c);
+  for (int c : curve.corners)
+    along.emplace_back(nearestArcLength(layout, curveId, layout.corners[c]), c);
   along.emplace_back(s, corner);
-  std::stable_sort(along.begin(), along.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::stable_sort(along.begin(), along.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
   curve.corners.clear();
   for (const auto& [arc, c] : along) curve.corners.push_back(c);
   return corner;
 }
 
-int addCurve(PatchLayout& layout, const geodesic::DistanceSolver& solver, int from, int to, const LayoutOptions&) {
+int addCurve(PatchLayout& layout, const geodesic::DistanceSolver& solver, int from, int to,
+             const LayoutOptions&) {
   LayoutCurve curve;
   curve.from = from, curve.to = to, curve.corners = {from, to};
   traceCurve(*layout.surface, solver, layout, curve);
@@ -155,8 +165,10 @@ int addCurve(PatchLayout& layout, const geodesic::DistanceSolver& solver, int fr
   return static_cast<int>(layout.curves.size()) - 1;
 }
 
-PatchLayout makeLayout(const TriMesh& surface, const geodesic::DistanceSolver& solver, const std::vector<Eigen::Vector3d>& requested,
-                       const std::vector<std::array<int, 4>>& patches, const LayoutOptions& options) {
+PatchLayout makeLayout(const TriMesh& surface, const geodesic::DistanceSolver& solver,
+                       const std::vector<Eigen::Vector3d>& requested,
+                       const std::vector<std::array<int, 4>>& patches,
+                       const LayoutOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
   if (surface.n_faces() == 0) throw InvalidInput("layout: the surface has no faces");
@@ -164,24 +176,29 @@ PatchLayout makeLayout(const TriMesh& surface, const geodesic::DistanceSolver& s
   layout.surface = &surface;
   const double maxOffset = maxCornerOffset(surface, options);
   for (size_t k = 0; k < requested.size(); ++k) {
-    if (!requested[k].allFinite()) throw InvalidInput(fmt::format("corner {} is not a finite point", k));
+    if (!requested[k].allFinite())
+      throw InvalidInput(fmt::format("corner {} is not a finite point", k));
     const SurfacePoint p = geodesic::snapToSurface(surface, requested[k]);
     addCorner(layout, p);
     layout.cornerOffsets[k] = (layout.corners[k] - requested[k]).norm();
     if (layout.cornerOffsets[k] > maxOffset)
-      throw InvalidInput(fmt::format("corner {} {} lies {:.4g} m off the surface (more than {:.4g} m)", k, format(requested[k]),
-                                     layout.cornerOffsets[k], maxOffset));
+      throw InvalidInput(
+          fmt::format("corner {} {} lies {:.4g} m off the surface (more than {:.4g} m)", k,
+                      format(requested[k]), layout.cornerOffsets[k], maxOffset));
   }
   std::set<std::pair<int, int>> sides;
   for (size_t p = 0; p < patches.size(); ++p) {
     const auto& q = patches[p];
     for (int k = 0; k < 4; ++k) {
       if (q[k] < 0 || q[k] >= static_cast<int>(requested.size()))
-        throw InvalidInput(fmt::format("patch {}: corner index {} is not a corner (there are {})", p, q[k], requested.size()));
+        throw InvalidInput(fmt::format("patch {}: corner index {} is not a corner (there are {})",
+                                       p, q[k], requested.size()));
       for (int j = 0; j < k; ++j)
-        if (q[j] == q[k]) throw InvalidInput(fmt::format("patch {}: corner {} appears twice", p, q[k]));
+        if (q[j] == q[k])
+          throw InvalidInput(fmt::format("patch {}: corner {} appears twice", p, q[k]));
     }
-    for (int k = 0; k < 4; ++k) sides.insert({std::min(q[k], q[(k + 1) % 4]), std::max(q[k], q[(k + 1) % 4])});
+    for (int k = 0; k < 4; ++k)
+      sides.insert({std::min(q[k], q[(k + 1) % 4]), std::max(q[k], q[(k + 1) % 4])});
   }
   for (size_t k = 0; k < requested.size(); ++k)
     for (size_t j = 0; j < k; ++j)
@@ -194,7 +211,8 @@ PatchLayout makeLayout(const TriMesh& surface, const geodesic::DistanceSolver& s
   // consecutive corners x, y: t is a T-junction on it.
   std::vector<std::pair<int, int>> pairs(sides.begin(), sides.end());
   std::stable_sort(pairs.begin(), pairs.end(), [&](const auto& a, const auto& b) {
-    return (layout.corners[a.first] - layout.corners[a.second]).norm() > (layout.corners[b.first] - layout.corners[b.second]).norm();
+    return (layout.corners[a.first] - layout.corners[a.second]).norm() >
+           (layout.corners[b.first] - layout.corners[b.second]).norm();
   });
   const auto onOneCurve = [&](int a, int b) {
     for (const auto& c : layout.curves) {
@@ -204,7 +222,9 @@ PatchLayout makeLayout(const TriMesh& surface, const geodesic::DistanceSolver& s
     }
     return false;
   };
-  const auto isSide = [&](int a, int b) { return sides.count({std::min(a, b), std::max(a, b)}) > 0; };
+  const auto isSide = [&](int a, int b) {
+    return sides.count({std::min(a, b), std::max(a, b)}) > 0;
+  };
   for (const auto& [a, b] : pairs) {
     if (onOneCurve(a, b)) continue;
     LayoutCurve curve;
@@ -231,9 +251,13 @@ PatchLayout makeLayout(const TriMesh& surface, const geodesic::DistanceSolver& s
   for (size_t done = 0; done < layout.curves.size();) {
     std::vector<int> ready;
     for (size_t c = 0; c < layout.curves.size(); ++c)
-      if (!traced[c] && final[layout.curves[c].from] && final[layout.curves[c].to]) ready.push_back(static_cast<int>(c));
-    if (ready.empty()) throw InvalidInput("layout: T-junction corners that lie on each other's sides form a cycle");
-    tbb::parallel_for(size_t(0), ready.size(), [&](size_t i) { traceCurve(surface, solver, layout, layout.curves[ready[i]]); });
+      if (!traced[c] && final[layout.curves[c].from] && final[layout.curves[c].to])
+        ready.push_back(static_cast<int>(c));
+    if (ready.empty())
+      throw InvalidInput("layout: T-junction corners that lie on each other's sides form a cycle");
+    tbb::parallel_for(size_t(0), ready.size(), [&](size_t i) {
+      traceCurve(surface, solver, layout, layout.curves[ready[i]]);
+    });
     layout.propagations += static_cast<int>(ready.size());
     for (int c : ready) {
       traced[c] = 1;
@@ -247,9 +271,11 @@ PatchLayout makeLayout(const TriMesh& surface, const geodesic::DistanceSolver& s
         const Eigen::Vector3d moved = position(surface, point);
         const double offset = (moved - requested[t]).norm();
         if (offset > maxOffset)
-          throw InvalidInput(fmt::format("corner {} {} is a T-junction on the side from corner {} to corner {} but lies {:.4g} m "
-                                         "off that geodesic (more than {:.4g} m)",
-                                         t, format(requested[t]), curve.from, curve.to, offset, maxOffset));
+          throw InvalidInput(
+              fmt::format("corner {} {} is a T-junction on the side from corner {} to corner {} "
+                          "but lies {:.4g} m "
+                          "off that geodesic (more than {:.4g} m)",
+                          t, format(requested[t]), curve.from, curve.to, offset, maxOffset));
         layout.cornerPoints[t] = point;
         layout.corners[t] = moved;
         layout.cornerOffsets[t] = offset;
@@ -258,7 +284,8 @@ PatchLayout makeLayout(const TriMesh& surface, const geodesic::DistanceSolver& s
     }
   }
   finishLayout(layout, options);
-  layout.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  layout.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return layout;
 }
 
@@ -266,7 +293,8 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
   const TriMesh& surface = *layout.surface;
   std::vector<std::vector<SurfacePoint>> polylines;
   for (const auto& c : layout.curves) polylines.push_back(c.points);
-  layout.mesh = buildLayoutMesh(surface, layout.cornerPoints, polylines, options.patch.mergeFraction);
+  layout.mesh =
+      buildLayoutMesh(surface, layout.cornerPoints, polylines, options.patch.mergeFraction);
   layout.cornerVertex = layout.mesh.pointVertices;
   const auto& mesh = layout.mesh.mesh;
   const auto vertexPosition = [&](int v) { return toEigen(mesh.point(TriMesh::VertexHandle(v))); };
@@ -286,9 +314,11 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
     int at = curve.bendVertices.front();
     for (int v : curve.bendVertices)
       if (surface.is_boundary(TriMesh::VertexHandle(v))) at = v;
-    problem(c, fmt::format("the side from corner {} to corner {} wraps around the surface boundary or a hole near {} (it turns {:.3g} rad "
+    problem(c, fmt::format("the side from corner {} to corner {} wraps around the surface boundary "
+                           "or a hole near {} (it turns {:.3g} rad "
                            "round it): it is not a geodesic there",
-                           curve.from, curve.to, format(toEigen(surface.point(TriMesh::VertexHandle(at)))), wrap));
+                           curve.from, curve.to,
+                           format(toEigen(surface.point(TriMesh::VertexHandle(at)))), wrap));
   }
   std::map<int, int> cornerOfVertex;  // corners some patch uses (an unused corner may lie anywhere)
   for (const auto& q : layout.patches)
@@ -299,15 +329,16 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
     for (int v : layout.mesh.chains[c]) {
       if (auto it = cornerOfVertex.find(v); it != cornerOfVertex.end()) {
         if (!std::count(corners.begin(), corners.end(), it->second))
-          problem(c, fmt::format("the side from corner {} to corner {} runs through corner {}", layout.curves[c].from,
-                                 layout.curves[c].to, it->second));
+          problem(c, fmt::format("the side from corner {} to corner {} runs through corner {}",
+                                 layout.curves[c].from, layout.curves[c].to, it->second));
         continue;
       }
       auto [it, inserted] = curveOfVertex.emplace(v, static_cast<int>(c));
       if (!inserted && it->second != static_cast<int>(c)) {
         const auto& other = layout.curves[it->second];
-        const std::string what = fmt::format("the sides {}-{} and {}-{} cross at {}", other.from, other.to, layout.curves[c].from,
-                                             layout.curves[c].to, format(vertexPosition(v)));
+        const std::string what =
+            fmt::format("the sides {}-{} and {}-{} cross at {}", other.from, other.to,
+                        layout.curves[c].from, layout.curves[c].to, format(vertexPosition(v)));
         problem(c, what);
         problem(it->second, what);
       }
@@ -326,8 +357,9 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
       const int v = layout.cornerVertex[corner];
       while (at < chain.size() && chain[at] != v) ++at;
       if (at == chain.size())
-        throw SolverFailure(fmt::format("layout: corner {} is not on the side from corner {} to corner {}", corner,
-                                        layout.curves[c].from, layout.curves[c].to));
+        throw SolverFailure(
+            fmt::format("layout: corner {} is not on the side from corner {} to corner {}", corner,
+                        layout.curves[c].from, layout.curves[c].to));
       cuts.push_back(at);
     }
     for (size_t i = 0; i + 1 < cuts.size(); ++i) {
@@ -336,7 +368,9 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
       seg.chain.assign(chain.begin() + cuts[i], chain.begin() + cuts[i + 1] + 1);
       seg.arcLength.push_back(0.0);
       for (size_t j = 1; j < seg.chain.size(); ++j)
-        seg.arcLength.push_back(seg.arcLength.back() + (vertexPosition(seg.chain[j]) - vertexPosition(seg.chain[j - 1])).norm());
+        seg.arcLength.push_back(
+            seg.arcLength.back() +
+            (vertexPosition(seg.chain[j]) - vertexPosition(seg.chain[j - 1])).norm());
       seg.length = seg.arcLength.back();
       segmentsOfCurve[c].push_back(static_cast<int>(layout.segments.size()));
       layout.segments.push_back(std::move(seg));
@@ -351,16 +385,21 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
       bool found = false;
       for (size_t c = 0; c < layout.curves.size() && !found; ++c) {
         const auto& corners = layout.curves[c].corners;
-        const auto ia = std::find(corners.begin(), corners.end(), a), ib = std::find(corners.begin(), corners.end(), b);
+        const auto ia = std::find(corners.begin(), corners.end(), a),
+                   ib = std::find(corners.begin(), corners.end(), b);
         if (ia == corners.end() || ib == corners.end()) continue;
         found = true;
         const long i = ia - corners.begin(), j = ib - corners.begin();
         if (i < j)
-          for (long s = i; s < j; ++s) layout.patchSides[p][k].emplace_back(segmentsOfCurve[c][s], false);
+          for (long s = i; s < j; ++s)
+            layout.patchSides[p][k].emplace_back(segmentsOfCurve[c][s], false);
         else
-          for (long s = i - 1; s >= j; --s) layout.patchSides[p][k].emplace_back(segmentsOfCurve[c][s], true);
+          for (long s = i - 1; s >= j; --s)
+            layout.patchSides[p][k].emplace_back(segmentsOfCurve[c][s], true);
       }
-      if (!found) throw InvalidInput(fmt::format("patch {}: no side of the layout joins corners {} and {}", p, a, b));
+      if (!found)
+        throw InvalidInput(
+            fmt::format("patch {}: no side of the layout joins corners {} and {}", p, a, b));
     }
 }
 

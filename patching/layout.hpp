@@ -20,27 +20,28 @@ class DistanceSolver;
 namespace egg::patching {
 
 struct LayoutOptions {
-  PatchOptions patch;  // corner snapping, criterion (iv) margin, straight-boundary tolerance, merging
+  PatchOptions
+      patch;  // corner snapping, criterion (iv) margin, straight-boundary tolerance, merging
   void validate() const;
 };
 
 // One traced shortest geodesic between two corners of the layout; it may carry further corners
 // (T-junctions) along it, which cut it into segments.
 struct LayoutCurve {
-  int from = -1, to = -1;                    // corner ids at its ends
-  std::vector<SurfacePoint> points;          // on the surface, from -> to (T corners included)
+  int from = -1, to = -1;            // corner ids at its ends
+  std::vector<SurfacePoint> points;  // on the surface, from -> to (T corners included)
   std::vector<Eigen::Vector3d> positions;
-  std::vector<int> corners;                  // corner ids along it, in order, from ... to
-  std::vector<int> bendVertices;             // surface vertices it bends at
+  std::vector<int> corners;       // corner ids along it, in order, from ... to
+  std::vector<int> bendVertices;  // surface vertices it bends at
   double length = 0.0;
 };
 
 // A piece of a curve between two consecutive corners on it: the unit patches share.
 struct LayoutSegment {
   int curve = -1;
-  int from = -1, to = -1;                    // corner ids, in the curve's direction
-  std::vector<int> chain;                    // layout-mesh vertices, from -> to
-  std::vector<double> arcLength;             // cumulative along the chain (metres)
+  int from = -1, to = -1;         // corner ids, in the curve's direction
+  std::vector<int> chain;         // layout-mesh vertices, from -> to
+  std::vector<double> arcLength;  // cumulative along the chain (metres)
   double length = 0.0;
 };
 
@@ -49,18 +50,19 @@ using PatchSideSegments = std::vector<std::pair<int, bool>>;
 
 struct PatchLayout {
   const TriMesh* surface = nullptr;
-  std::vector<SurfacePoint> cornerPoints;          // on the surface
-  std::vector<Eigen::Vector3d> corners;            // positions
-  std::vector<double> cornerOffsets;               // how far each requested corner was moved (snapping, T-junctions)
+  std::vector<SurfacePoint> cornerPoints;  // on the surface
+  std::vector<Eigen::Vector3d> corners;    // positions
+  std::vector<double>
+      cornerOffsets;  // how far each requested corner was moved (snapping, T-junctions)
   std::vector<LayoutCurve> curves;
-  std::vector<std::array<int, 4>> patches;         // corner ids in order around each patch
+  std::vector<std::array<int, 4>> patches;  // corner ids in order around each patch
   // Derived by finishLayout:
   LayoutMesh mesh;
-  std::vector<int> cornerVertex;                   // corner -> layout-mesh vertex
+  std::vector<int> cornerVertex;  // corner -> layout-mesh vertex
   std::vector<LayoutSegment> segments;
   std::vector<std::array<PatchSideSegments, 4>> patchSides;
-  std::vector<std::string> curveProblems;          // per curve: why it cannot bound a patch ("" = fine)
-  int propagations = 0;                            // traces spent
+  std::vector<std::string> curveProblems;  // per curve: why it cannot bound a patch ("" = fine)
+  int propagations = 0;                    // traces spent
   double seconds = 0.0;
 };
 
@@ -69,7 +71,8 @@ struct PatchLayout {
 // curve a - b: t is moved onto it. Throws InvalidInput naming the corner or patch for corners off
 // the surface, repeated corners in a patch, or a quad that uses an edge twice.
 PatchLayout makeLayout(const TriMesh& surface, const geodesic::DistanceSolver& surfaceSolver,
-                       const std::vector<Eigen::Vector3d>& corners, const std::vector<std::array<int, 4>>& patches,
+                       const std::vector<Eigen::Vector3d>& corners,
+                       const std::vector<std::array<int, 4>>& patches,
                        const LayoutOptions& options = {});
 
 // Corner on curve `curve` at arc length `s` (a new T-junction; the curve is not retraced).
@@ -77,7 +80,8 @@ int addCornerOnCurve(PatchLayout& layout, int curve, double arcLength);
 // A new corner inside the surface (for a split at a peak).
 int addCorner(PatchLayout& layout, const SurfacePoint& point);
 // A new curve traced between two corners.
-int addCurve(PatchLayout& layout, const geodesic::DistanceSolver& surfaceSolver, int from, int to, const LayoutOptions& options);
+int addCurve(PatchLayout& layout, const geodesic::DistanceSolver& surfaceSolver, int from, int to,
+             const LayoutOptions& options);
 
 // Builds the layout mesh, the segments and the patch sides; records curve problems (sides that
 // cross, wrap around a hole). Throws InvalidInput for a patch side no curve carries.
@@ -87,14 +91,14 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options);
 // InfeasiblePatch (sides that cross or leave the surface, a hole inside, criterion iv).
 struct LayoutPatch {
   Patch patch;
-  std::vector<int> layoutVertex;   // per patch vertex: layout-mesh vertex
-  std::vector<int> surfaceFace;    // per patch face: the surface face it lies in
-  std::vector<int> layoutFace;     // per patch face: layout-mesh face
+  std::vector<int> layoutVertex;  // per patch vertex: layout-mesh vertex
+  std::vector<int> surfaceFace;   // per patch face: the surface face it lies in
+  std::vector<int> layoutFace;    // per patch face: layout-mesh face
 };
 LayoutPatch cutLayoutPatch(const PatchLayout& layout, int index, const LayoutOptions& options = {});
 
-
-// Point of a curve at arc length s (on the surface) and the arc length of the curve's point nearest to `p`.
+// Point of a curve at arc length s (on the surface) and the arc length of the curve's point nearest
+// to `p`.
 SurfacePoint curvePoint(const PatchLayout& layout, int curve, double arcLength);
 double nearestArcLength(const PatchLayout& layout, int curve, const Eigen::Vector3d& p);
 

@@ -38,10 +38,10 @@ EdgeKey edgeKey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
 // Where a surface point is, once snapped: at a vertex, on an edge, or inside a face.
 struct Location {
   enum Kind { Vertex, Edge, Face } kind = Vertex;
-  int vertex = -1;        // Vertex
-  EdgeKey edge{-1, -1};   // Edge (a < b)
-  double t = 0.0;         // Edge: from a to b
-  int face = -1;          // Face
+  int vertex = -1;                                    // Vertex
+  EdgeKey edge{-1, -1};                               // Edge (a < b)
+  double t = 0.0;                                     // Edge: from a to b
+  int face = -1;                                      // Face
   Eigen::Vector3d weights = Eigen::Vector3d::Zero();  // Face
 };
 
@@ -80,7 +80,8 @@ class Builder {
       auto& list = edgePoints_[loc.edge];
       for (const auto& [t, id] : list)
         if (std::abs(t - loc.t) <= merge_) return id;
-      const int id = newVertex((1.0 - loc.t) * positions_[loc.edge.first] + loc.t * positions_[loc.edge.second]);
+      const int id = newVertex((1.0 - loc.t) * positions_[loc.edge.first] +
+                               loc.t * positions_[loc.edge.second]);
       list.emplace_back(loc.t, id);
       for (int f : facesOf(loc)) touched_.insert(f);
       return id;
@@ -89,8 +90,9 @@ class Builder {
     for (const auto& [w, id] : list)
       if ((w - loc.weights).cwiseAbs().maxCoeff() <= merge_) return id;
     const auto ids = faceVertices(surface_, loc.face);
-    const int id = newVertex(loc.weights[0] * positions_[ids[0]] + loc.weights[1] * positions_[ids[1]] +
-                             loc.weights[2] * positions_[ids[2]]);
+    const int id =
+        newVertex(loc.weights[0] * positions_[ids[0]] + loc.weights[1] * positions_[ids[1]] +
+                  loc.weights[2] * positions_[ids[2]]);
     list.emplace_back(loc.weights, id);
     touched_.insert(loc.face);
     return id;
@@ -120,7 +122,8 @@ class Builder {
     std::vector<int> common;
     std::set_intersection(fp.begin(), fp.end(), fq.begin(), fq.end(), std::back_inserter(common));
     if (common.empty())
-      throw SolverFailure("layout mesh: a step of side " + std::to_string(polyline) + " leaves its surface face");
+      throw SolverFailure("layout mesh: a step of side " + std::to_string(polyline) +
+                          " leaves its surface face");
     steps_.push_back({polyline, common.front(), ip, iq});
     touched_.insert(common.front());
   }
@@ -170,15 +173,17 @@ class Builder {
   }
 
   void triangulateFace(int f, const std::array<int, 3>& ids, const std::vector<size_t>& steps,
-                       std::vector<std::vector<int>>& stepChains, std::vector<std::array<int, 3>>& triangles,
-                       std::vector<int>& parent) {
+                       std::vector<std::vector<int>>& stepChains,
+                       std::vector<std::array<int, 3>>& triangles, std::vector<int>& parent) {
     // The face in its own plane: a at the origin, b on the x axis, c above it (counter-clockwise,
     // the orientation of the face).
     const Eigen::Vector3d pa = positions_[ids[0]], pb = positions_[ids[1]], pc = positions_[ids[2]];
     const Eigen::Vector3d ex = (pb - pa).normalized();
     const Eigen::Vector3d normal = (pb - pa).cross(pc - pa).normalized();
     const Eigen::Vector3d ey = normal.cross(ex);
-    const auto planar = [&](const Eigen::Vector3d& p) { return Point2((p - pa).dot(ex), (p - pa).dot(ey)); };
+    const auto planar = [&](const Eigen::Vector3d& p) {
+      return Point2((p - pa).dot(ex), (p - pa).dot(ey));
+    };
 
     Triangulation cdt;
     std::unordered_map<int, Triangulation::Vertex_handle> handles;
@@ -187,7 +192,8 @@ class Builder {
       if (it != handles.end()) return it->second;
       auto vh = cdt.insert(planar(positions_[id]));
       if (vh->info().id >= 0 && vh->info().id != id)
-        throw SolverFailure("layout mesh: two inserted points coincide in surface face " + std::to_string(f));
+        throw SolverFailure("layout mesh: two inserted points coincide in surface face " +
+                            std::to_string(f));
       vh->info().id = id;
       handles.emplace(id, vh);
       return vh;
@@ -202,7 +208,8 @@ class Builder {
         along.insert(along.end(), inner.begin(), inner.end());
       }
       along.push_back(b);
-      for (size_t i = 0; i + 1 < along.size(); ++i) cdt.insert_constraint(insert(along[i]), insert(along[i + 1]));
+      for (size_t i = 0; i + 1 < along.size(); ++i)
+        cdt.insert_constraint(insert(along[i]), insert(along[i + 1]));
     }
     if (auto it = facePoints_.find(f); it != facePoints_.end())
       for (const auto& [w, id] : it->second) insert(id);
@@ -212,7 +219,8 @@ class Builder {
       stepConstraints.emplace_back(cdt.insert_constraint(vp, vq), steps_[s].from);
     }
 
-    // Vertices CGAL made at crossings of constraints get ids and positions (back to 3D in the face).
+    // Vertices CGAL made at crossings of constraints get ids and positions (back to 3D in the
+    // face).
     const Eigen::Vector3d origin = pa;
     for (auto vh : cdt.finite_vertex_handles()) {
       if (vh->info().id >= 0) continue;
@@ -236,14 +244,16 @@ class Builder {
     }
     for (auto fh : cdt.finite_face_handles()) {
       if (outside.count(fh)) continue;
-      triangles.push_back({fh->vertex(0)->info().id, fh->vertex(1)->info().id, fh->vertex(2)->info().id});
+      triangles.push_back(
+          {fh->vertex(0)->info().id, fh->vertex(1)->info().id, fh->vertex(2)->info().id});
       parent.push_back(f);
     }
 
     for (size_t k = 0; k < steps.size(); ++k) {
       const auto [cid, from] = stepConstraints[k];
       std::vector<int> chain;
-      for (auto it = cdt.vertices_in_constraint_begin(cid); it != cdt.vertices_in_constraint_end(cid); ++it)
+      for (auto it = cdt.vertices_in_constraint_begin(cid);
+           it != cdt.vertices_in_constraint_end(cid); ++it)
         chain.push_back((*it)->info().id);
       if (!chain.empty() && chain.front() != from) std::reverse(chain.begin(), chain.end());
       stepChains[steps[k]] = std::move(chain);
@@ -262,14 +272,16 @@ class Builder {
 }  // namespace
 
 LayoutMesh buildLayoutMesh(const TriMesh& surface, const std::vector<SurfacePoint>& points,
-                           const std::vector<std::vector<SurfacePoint>>& polylines, double mergeFraction) {
+                           const std::vector<std::vector<SurfacePoint>>& polylines,
+                           double mergeFraction) {
   if (surface.n_faces() == 0) throw InvalidInput("layout: the surface has no faces");
   Builder builder(surface, mergeFraction);
   std::vector<int> pointIds;
   for (const auto& p : points) pointIds.push_back(builder.idOf(builder.locate(p)));
   for (size_t k = 0; k < polylines.size(); ++k) {
     const auto& line = polylines[k];
-    for (size_t i = 1; i < line.size(); ++i) builder.addStep(static_cast<int>(k), builder.locate(line[i - 1]), builder.locate(line[i]));
+    for (size_t i = 1; i < line.size(); ++i)
+      builder.addStep(static_cast<int>(k), builder.locate(line[i - 1]), builder.locate(line[i]));
   }
   LayoutMesh out = builder.build(polylines.size());
   out.pointVertices = std::move(pointIds);

@@ -16,10 +16,10 @@ namespace egg::patching {
 
 struct LayoutMesh {
   TriMesh mesh;
-  std::vector<int> parentFace;              // per mesh face: the surface face it lies in
-  std::vector<int> surfaceVertex;           // per mesh vertex: the surface vertex it is, or -1
-  std::vector<int> pointVertices;           // per requested point: its mesh vertex
-  std::vector<std::vector<int>> chains;     // per polyline: mesh vertices from its start to its end
+  std::vector<int> parentFace;           // per mesh face: the surface face it lies in
+  std::vector<int> surfaceVertex;        // per mesh vertex: the surface vertex it is, or -1
+  std::vector<int> pointVertices;        // per requested point: its mesh vertex
+  std::vector<std::vector<int>> chains;  // per polyline: mesh vertices from its start to its end
 };
 
 // Inserts `points` (corners) and `polylines` (shortest geodesics traced on `surface`: consecutive
@@ -28,6 +28,7 @@ struct LayoutMesh {
 // meet and even cross (the crossing becomes a vertex of both chains); the layout decides whether
 // that is allowed. Throws SolverFailure when a step of a polyline leaves its face.
 LayoutMesh buildLayoutMesh(const TriMesh& surface, const std::vector<SurfacePoint>& points,
-                           const std::vector<std::vector<SurfacePoint>>& polylines, double mergeFraction = 1e-6);
+                           const std::vector<std::vector<SurfacePoint>>& polylines,
+                           double mergeFraction = 1e-6);
 
 }  // namespace egg::patching

@@ -20,7 +20,9 @@ namespace {
 using EdgeKey = std::pair<int, int>;
 EdgeKey edgeKey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
 
-std::string format(const Eigen::Vector3d& p) { return fmt::format("({:.4g}, {:.4g}, {:.4g})", p.x(), p.y(), p.z()); }
+std::string format(const Eigen::Vector3d& p) {
+  return fmt::format("({:.4g}, {:.4g}, {:.4g})", p.x(), p.y(), p.z());
+}
 
 // A breadth-first flood of faces that does not cross `constrained` edges.
 struct Flood {
@@ -81,13 +83,15 @@ LayoutPatch cutLayoutPatch(const PatchLayout& layout, int index, const LayoutOpt
       if (corner) continue;
       auto [it, inserted] = owner.emplace(v, k);
       if (!inserted && it->second != k)
-        throw InfeasiblePatch(fmt::format("boundaries {} and {} cross at {}", it->second, k, format(vertexPosition(v))));
+        throw InfeasiblePatch(fmt::format("boundaries {} and {} cross at {}", it->second, k,
+                                          format(vertexPosition(v))));
     }
   }
   for (int k = 0; k < 4; ++k)
     for (int c = 0; c < 4; ++c)
       if (c != k && c != (k + 1) % 4 && owner.count(layout.cornerVertex[corners[c]]))
-        throw InfeasiblePatch(fmt::format("boundary {} runs through corner {} (collinear or crossing corners)", k, c));
+        throw InfeasiblePatch(fmt::format(
+            "boundary {} runs through corner {} (collinear or crossing corners)", k, c));
 
   // Flood both sides of side 0's first edge in lockstep.
   Flood left, right;
@@ -104,9 +108,12 @@ LayoutPatch cutLayoutPatch(const PatchLayout& layout, int index, const LayoutOpt
   while (!inside) {
     const bool leftAlive = !left.touchesBoundary, rightAlive = !right.touchesBoundary;
     if (!leftAlive && !rightAlive)
-      throw InfeasiblePatch("the region inside the four boundaries contains part of the surface boundary or a hole");
-    if (leftAlive && left.done()) inside = &left;
-    else if (rightAlive && right.done()) inside = &right;
+      throw InfeasiblePatch(
+          "the region inside the four boundaries contains part of the surface boundary or a hole");
+    if (leftAlive && left.done())
+      inside = &left;
+    else if (rightAlive && right.done())
+      inside = &right;
     else {
       if (leftAlive) left.step(mesh, constrained);
       if (rightAlive) right.step(mesh, constrained);
@@ -114,7 +121,8 @@ LayoutPatch cutLayoutPatch(const PatchLayout& layout, int index, const LayoutOpt
   }
   // Both sides of side 0 in one region: the sides do not separate the surface.
   if (inside->faces.count(inside == &left ? rightSeed : leftSeed))
-    throw InfeasiblePatch("the four boundaries do not enclose a region: they cross or leave the surface");
+    throw InfeasiblePatch(
+        "the four boundaries do not enclose a region: they cross or leave the surface");
 
   // The patch mesh, renumbered.
   LayoutPatch out;
@@ -144,7 +152,8 @@ LayoutPatch cutLayoutPatch(const PatchLayout& layout, int index, const LayoutOpt
     double s = 0.0;
     for (size_t i = 0; i < chains[k].size(); ++i) {
       const auto it = renumber.find(chains[k][i]);
-      if (it == renumber.end()) throw SolverFailure(fmt::format("layout patch {}: side {} is not on the patch", index, k));
+      if (it == renumber.end())
+        throw SolverFailure(fmt::format("layout patch {}: side {} is not on the patch", index, k));
       if (i > 0) s += (vertexPosition(chains[k][i]) - vertexPosition(chains[k][i - 1])).norm();
       patch.sides[k].push_back(it->second);
       patch.sideArcLength[k].push_back(s);
@@ -154,8 +163,10 @@ LayoutPatch cutLayoutPatch(const PatchLayout& layout, int index, const LayoutOpt
   refreshPatchGeometry(patch);
   for (int k = 0; k < 4; ++k)
     if (patch.innerAngles[k] >= M_PI - options.patch.angleMargin)
-      throw InfeasiblePatch(fmt::format("inner angle at corner {} is {:.6g} rad, not below pi: the patch is not convex (criterion iv)", k,
-                                        patch.innerAngles[k]));
+      throw InfeasiblePatch(
+          fmt::format("inner angle at corner {} is {:.6g} rad, not below pi: the patch is not "
+                      "convex (criterion iv)",
+                      k, patch.innerAngles[k]));
   patch.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;
 }

@@ -32,7 +32,8 @@ PatchGraph buildPatchGraph(const PatchLayout& layout, const std::vector<bool>& u
       double at = 0.0;
       for (const auto& [seg, reversed] : side) {
         const double length = layout.segments[seg].length;
-        BoundaryUse use{static_cast<int>(p), k, total > 0 ? at / total : 0.0, total > 0 ? (at + length) / total : 1.0, reversed};
+        BoundaryUse use{static_cast<int>(p), k, total > 0 ? at / total : 0.0,
+                        total > 0 ? (at + length) / total : 1.0, reversed};
         uses[seg].push_back(use);
         at += length;
       }
@@ -45,11 +46,16 @@ PatchGraph buildPatchGraph(const PatchLayout& layout, const std::vector<bool>& u
     b.id = static_cast<int>(s);
     b.uses = uses[s];
     b.lengthM = layout.segments[s].length;
-    const bool partial = std::any_of(b.uses.begin(), b.uses.end(), [](const BoundaryUse& u) { return u.from > 0.0 || u.to < 1.0; });
-    b.kind = b.uses.size() == 1 ? BoundaryKind::Free : partial ? BoundaryKind::TJunction : BoundaryKind::Shared;
+    const bool partial = std::any_of(b.uses.begin(), b.uses.end(), [](const BoundaryUse& u) {
+      return u.from > 0.0 || u.to < 1.0;
+    });
+    b.kind = b.uses.size() == 1 ? BoundaryKind::Free
+             : partial          ? BoundaryKind::TJunction
+                                : BoundaryKind::Shared;
     for (size_t i = 0; i < b.uses.size(); ++i)
       for (size_t j = 0; j < i; ++j)
-        adjacent.insert({std::min(b.uses[i].patch, b.uses[j].patch), std::max(b.uses[i].patch, b.uses[j].patch)});
+        adjacent.insert({std::min(b.uses[i].patch, b.uses[j].patch),
+                         std::max(b.uses[i].patch, b.uses[j].patch)});
     graph.boundaries.push_back(std::move(b));
   }
   graph.adjacent.assign(adjacent.begin(), adjacent.end());
@@ -86,7 +92,8 @@ PatchGraph buildPatchGraph(const PatchLayout& layout, const std::vector<bool>& u
   const int n = static_cast<int>(layout.patches.size());
   const auto nodeId = [](int patch, Family f) { return 2 * patch + (f == Family::U ? 0 : 1); };
   std::vector<std::set<int>> neighbours(2 * n);
-  std::vector<std::map<int, std::set<int>>> neighboursBySide(2 * n);  // node -> side -> neighbour nodes
+  std::vector<std::map<int, std::set<int>>> neighboursBySide(2 *
+                                                             n);  // node -> side -> neighbour nodes
   for (const auto& b : graph.boundaries) {
     if (b.uses.size() < 2) continue;
     for (size_t i = 0; i < b.uses.size(); ++i)
@@ -155,7 +162,8 @@ double faceArea(const TriMesh& mesh, int f) {
 }
 }  // namespace
 
-Coverage computeCoverage(const PatchLayout& layout, const std::vector<std::vector<int>>& patchFaces) {
+Coverage computeCoverage(const PatchLayout& layout,
+                         const std::vector<std::vector<int>>& patchFaces) {
   const TriMesh& mesh = layout.mesh.mesh;
   Coverage out;
   std::vector<char> covered(mesh.n_faces(), 0);
@@ -170,7 +178,8 @@ Coverage computeCoverage(const PatchLayout& layout, const std::vector<std::vecto
   // Cut-offs: flood the uncovered faces without crossing a layout side.
   std::set<std::pair<int, int>> constrained;
   for (const auto& chain : layout.mesh.chains)
-    for (size_t i = 1; i < chain.size(); ++i) constrained.insert({std::min(chain[i - 1], chain[i]), std::max(chain[i - 1], chain[i])});
+    for (size_t i = 1; i < chain.size(); ++i)
+      constrained.insert({std::min(chain[i - 1], chain[i]), std::max(chain[i - 1], chain[i])});
   std::vector<char> seen(mesh.n_faces(), 0);
   for (auto seed : mesh.faces()) {
     if (covered[seed.idx()] || seen[seed.idx()]) continue;
@@ -192,13 +201,15 @@ Coverage computeCoverage(const PatchLayout& layout, const std::vector<std::vecto
         const int x = mesh.from_vertex_handle(heh).idx(), y = mesh.to_vertex_handle(heh).idx();
         if (constrained.count({std::min(x, y), std::max(x, y)})) continue;
         const auto g = mesh.opposite_face_handle(heh);
-        if (g.is_valid() && !covered[g.idx()] && !seen[g.idx()]) seen[g.idx()] = 1, stack.push_back(g.idx());
+        if (g.is_valid() && !covered[g.idx()] && !seen[g.idx()])
+          seen[g.idx()] = 1, stack.push_back(g.idx());
       }
     }
     cut.centroid = cut.areaM2 > 0 ? Eigen::Vector3d(weighted / cut.areaM2) : weighted;
     out.cutOffs.push_back(std::move(cut));
   }
-  std::stable_sort(out.cutOffs.begin(), out.cutOffs.end(), [](const CutOff& a, const CutOff& b) { return a.areaM2 > b.areaM2; });
+  std::stable_sort(out.cutOffs.begin(), out.cutOffs.end(),
+                   [](const CutOff& a, const CutOff& b) { return a.areaM2 > b.areaM2; });
   return out;
 }
 

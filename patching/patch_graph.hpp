@@ -14,8 +14,9 @@ namespace egg::patching {
 struct BoundaryUse {
   int patch = -1;
   int side = -1;
-  double from = 0.0, to = 1.0;  // fractions along side k (corner k -> k+1) where the segment starts and ends
-  bool reversed = false;        // the side runs against the segment's direction
+  double from = 0.0,
+         to = 1.0;  // fractions along side k (corner k -> k+1) where the segment starts and ends
+  bool reversed = false;  // the side runs against the segment's direction
 };
 
 // How a boundary segment of the layout is used: by one patch (free: the design boundary), by
@@ -25,7 +26,7 @@ enum class BoundaryKind { Free, Shared, TJunction };
 const char* toString(BoundaryKind kind);
 
 struct Boundary {
-  int id = -1;                  // = segment id
+  int id = -1;  // = segment id
   BoundaryKind kind = BoundaryKind::Free;
   std::vector<BoundaryUse> uses;  // one (free) or two (shared) patches
   double lengthM = 0.0;
@@ -47,7 +48,7 @@ struct ChainNode {
 struct MemberChain {
   std::vector<ChainNode> nodes;  // in order along the members (a ring: first follows last)
   bool ring = false;
-  bool branching = false;        // a T-junction: some node continues into two patches on one side
+  bool branching = false;  // a T-junction: some node continues into two patches on one side
 };
 
 struct PatchGraph {
@@ -75,6 +76,7 @@ struct Coverage {
   std::vector<CutOff> cutOffs;  // largest first
 };
 // `patchFaces[p]`: the layout-mesh faces of patch p (LayoutPatch::layoutFace; empty if not cut).
-Coverage computeCoverage(const PatchLayout& layout, const std::vector<std::vector<int>>& patchFaces);
+Coverage computeCoverage(const PatchLayout& layout,
+                         const std::vector<std::vector<int>>& patchFaces);
 
 }  // namespace egg::patching

@@ -26,8 +26,9 @@ struct Projection {
   double py(double y) const { return top + (ymax - y) * scale; }
 };
 
-
-std::string point(const Projection& p, const Eigen::Vector3d& q) { return fmt::format("{:.1f},{:.1f}", p.px(q.x()), p.py(q.y())); }
+std::string point(const Projection& p, const Eigen::Vector3d& q) {
+  return fmt::format("{:.1f},{:.1f}", p.px(q.x()), p.py(q.y()));
+}
 
 std::string pointList(const Projection& p, const std::vector<Eigen::Vector3d>& points) {
   std::string out;
@@ -39,23 +40,25 @@ std::string pointList(const Projection& p, const std::vector<Eigen::Vector3d>& p
 }
 
 // Text with a white halo, so labels stay readable over the colour map and the lines.
-std::string label(double x, double y, const std::string& text, double size, const std::string& extra = "",
-                  const std::string& anchor = "middle") {
+std::string label(double x, double y, const std::string& text, double size,
+                  const std::string& extra = "", const std::string& anchor = "middle") {
   return fmt::format(
-      "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{:.0f}\" text-anchor=\"{}\" paint-order=\"stroke\" stroke=\"#fff\" "
+      "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{:.0f}\" text-anchor=\"{}\" "
+      "paint-order=\"stroke\" stroke=\"#fff\" "
       "stroke-width=\"3\" stroke-linejoin=\"round\"{}>{}</text>\n",
       x, y, size, anchor, extra, escapeXml(text));
 }
 
 // Diverging ColorBrewer RdBu: blue for negative K, white at 0, red for positive; v in [-1, 1].
 std::string divergingColour(double v) {
-  static const std::array<std::array<double, 3>, 5> stops{{{33, 102, 172}, {146, 197, 222}, {247, 247, 247},
-                                                          {244, 165, 130}, {178, 24, 43}}};
+  static const std::array<std::array<double, 3>, 5> stops{
+      {{33, 102, 172}, {146, 197, 222}, {247, 247, 247}, {244, 165, 130}, {178, 24, 43}}};
   const double s = (std::clamp(v, -1.0, 1.0) + 1.0) * 2.0;  // 0 .. 4
   const int i = std::min(3, static_cast<int>(s));
   const double f = s - i;
   std::array<int, 3> c{};
-  for (int k = 0; k < 3; ++k) c[k] = static_cast<int>(std::lround(stops[i][k] * (1 - f) + stops[i + 1][k] * f));
+  for (int k = 0; k < 3; ++k)
+    c[k] = static_cast<int>(std::lround(stops[i][k] * (1 - f) + stops[i + 1][k] * f));
   return fmt::format("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
 }
 
@@ -147,13 +150,15 @@ struct Legend {
   std::string svg;
   void gap(double h) { y += h; }
   void text(const std::string& t, double size = 12, const std::string& extra = "") {
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{:.0f}\"{}>{}</text>\n", x, y + size, size, extra, escapeXml(t));
+    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{:.0f}\"{}>{}</text>\n", x,
+                       y + size, size, extra, escapeXml(t));
     y += size + 5;
   }
   // A swatch (any SVG drawn in a 30 x 14 box at (sx, sy)) and its text.
   void item(const std::string& swatch, const std::string& t) {
     svg += fmt::format("<g transform=\"translate({:.1f},{:.1f})\">{}</g>\n", x, y, swatch);
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\">{}</text>\n", x + 40, y + 11, escapeXml(t));
+    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\">{}</text>\n", x + 40,
+                       y + 11, escapeXml(t));
     y += 20;
   }
 };
@@ -161,16 +166,21 @@ struct Legend {
 // Throws InvalidInput when the drawing's parts do not fit together.
 void validateDrawing(const PlanDrawing& drawing) {
   drawing.options.validate();
-  if (drawing.surface == nullptr || drawing.surface->n_faces() == 0) throw InvalidInput("plan.svg: no surface to draw");
+  if (drawing.surface == nullptr || drawing.surface->n_faces() == 0)
+    throw InvalidInput("plan.svg: no surface to draw");
   const TriMesh& surface = *drawing.surface;
   const int nv = static_cast<int>(surface.n_vertices());
   if (drawing.gaussian.size() != 0 && drawing.gaussian.size() != nv)
-    throw InvalidInput(fmt::format("plan.svg: {} curvature values for {} surface vertices", drawing.gaussian.size(), nv));
-  if (drawing.coverage != nullptr && drawing.layout == nullptr) throw InvalidInput("plan.svg: cut-offs need the layout");
+    throw InvalidInput(fmt::format("plan.svg: {} curvature values for {} surface vertices",
+                                   drawing.gaussian.size(), nv));
+  if (drawing.coverage != nullptr && drawing.layout == nullptr)
+    throw InvalidInput("plan.svg: cut-offs need the layout");
   const PatchLayout* layout = drawing.layout;
   const int patchCount = layout ? static_cast<int>(layout->patches.size()) : 0;
-  if (!drawing.patchProblems.empty() && static_cast<int>(drawing.patchProblems.size()) != patchCount)
-    throw InvalidInput(fmt::format("plan.svg: {} patch problems for {} patches", drawing.patchProblems.size(), patchCount));
+  if (!drawing.patchProblems.empty() &&
+      static_cast<int>(drawing.patchProblems.size()) != patchCount)
+    throw InvalidInput(fmt::format("plan.svg: {} patch problems for {} patches",
+                                   drawing.patchProblems.size(), patchCount));
   if (layout && layout->patchSides.size() != layout->patches.size())
     throw InvalidInput("plan.svg: the layout is not finished (finishLayout)");
 }
@@ -179,15 +189,16 @@ void validateDrawing(const PlanDrawing& drawing) {
 struct Page {
   Projection proj;
   double margin = 0.0, titleHeight = 0.0, legendWidth = 0.0;
-  double dx = 0.0;                          // the plan's width [m]
-  double mapBottom = 0.0, mapRight = 0.0;   // [px]
+  double dx = 0.0;                         // the plan's width [m]
+  double mapBottom = 0.0, mapRight = 0.0;  // [px]
 };
 
 // Page: the map on the left (width_px wide, at most 1.4 times as tall), the legend on the right.
 Page pageOf(const PlanDrawing& drawing) {
   const BoundingBox box = boundingBox(*drawing.surface);
   Page page;
-  page.margin = 30.0, page.titleHeight = drawing.title.empty() ? 0.0 : 34.0, page.legendWidth = 300.0;
+  page.margin = 30.0, page.titleHeight = drawing.title.empty() ? 0.0 : 34.0,
+  page.legendWidth = 300.0;
   page.dx = std::max(box.size().x(), 1e-9);
   const double margin = page.margin, dx = page.dx, dy = std::max(box.size().y(), 1e-9);
   const double mapWidth = drawing.options.widthPx;
@@ -202,7 +213,7 @@ Page pageOf(const PlanDrawing& drawing) {
 // The K colour map and the scale its colours were capped at.
 struct CurvatureMap {
   std::string svg;
-  double kScale = 1.0;       // |K| of the saturated colours
+  double kScale = 1.0;            // |K| of the saturated colours
   double kMin = 0.0, kMax = 0.0;  // over the face means
 };
 
@@ -212,26 +223,33 @@ CurvatureMap curvatureMap(const PlanDrawing& drawing, const Projection& proj) {
   const TriMesh& surface = *drawing.surface;
   const int nv = static_cast<int>(surface.n_vertices());
   CurvatureMap out;
-  const Eigen::VectorXd gaussian = drawing.gaussian.size() == nv ? drawing.gaussian : computeCurvature(surface).gaussian;
+  const Eigen::VectorXd gaussian =
+      drawing.gaussian.size() == nv ? drawing.gaussian : computeCurvature(surface).gaussian;
   std::vector<double> faceK(surface.n_faces());
   for (auto fh : surface.faces()) {
     const auto fv = faceVertices(surface, fh.idx());
     faceK[fh.idx()] = (gaussian(fv[0]) + gaussian(fv[1]) + gaussian(fv[2])) / 3.0;
   }
   std::vector<double> magnitudes(faceK.size());
-  std::transform(faceK.begin(), faceK.end(), magnitudes.begin(), [](double k) { return std::abs(k); });
+  std::transform(faceK.begin(), faceK.end(), magnitudes.begin(),
+                 [](double k) { return std::abs(k); });
   const size_t rank = std::min(magnitudes.size() - 1,
-                               static_cast<size_t>(std::floor(drawing.options.curvaturePercentile / 100.0 * (magnitudes.size() - 1))));
+                               static_cast<size_t>(std::floor(drawing.options.curvaturePercentile /
+                                                              100.0 * (magnitudes.size() - 1))));
   std::nth_element(magnitudes.begin(), magnitudes.begin() + rank, magnitudes.end());
   const double kScale = out.kScale = std::max(magnitudes[rank], 1e-9);
   const auto [kMinIt, kMaxIt] = std::minmax_element(faceK.begin(), faceK.end());
   out.kMin = *kMinIt, out.kMax = *kMaxIt;
   std::vector<std::string> bins(2 * kHalfBins + 1);
   for (auto fh : surface.faces()) {
-    const int bin = static_cast<int>(std::lround(std::clamp(faceK[fh.idx()] / kScale, -1.0, 1.0) * kHalfBins)) + kHalfBins;
+    const int bin =
+        static_cast<int>(std::lround(std::clamp(faceK[fh.idx()] / kScale, -1.0, 1.0) * kHalfBins)) +
+        kHalfBins;
     std::string& d = bins[bin];
     const auto fv = faceVertices(surface, fh.idx());
-    for (int k = 0; k < 3; ++k) d.append(k == 0 ? "M" : "L").append(point(proj, toEigen(surface.point(TriMesh::VertexHandle(fv[k])))));
+    for (int k = 0; k < 3; ++k)
+      d.append(k == 0 ? "M" : "L")
+          .append(point(proj, toEigen(surface.point(TriMesh::VertexHandle(fv[k])))));
     d += "Z";
   }
   std::string& body = out.svg;
@@ -239,7 +257,10 @@ CurvatureMap curvatureMap(const PlanDrawing& drawing, const Projection& proj) {
   for (int b = 0; b < static_cast<int>(bins.size()); ++b)
     if (!bins[b].empty()) {
       const std::string colour = divergingColour(binValue(b));
-      body += fmt::format("<path fill=\"{0}\" stroke=\"{0}\" stroke-width=\"0.6\" stroke-linejoin=\"round\" d=\"{1}\"/>\n", colour, bins[b]);
+      body += fmt::format(
+          "<path fill=\"{0}\" stroke=\"{0}\" stroke-width=\"0.6\" stroke-linejoin=\"round\" "
+          "d=\"{1}\"/>\n",
+          colour, bins[b]);
     }
   body += "</g>\n";
   return out;
@@ -267,7 +288,8 @@ Eigen::Vector3d cutOffLabelPoint(const TriMesh& lm, const CutOff& cut) {
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) c += toEigen(lm.point(TriMesh::VertexHandle(fv[k]))) / 3.0;
     const double dist = (c - cut.centroid).head<2>().norm();
-    if (depth[f] > bestDepth || (depth[f] == bestDepth && dist < best)) bestDepth = depth[f], best = dist, at = c;
+    if (depth[f] > bestDepth || (depth[f] == bestDepth && dist < best))
+      bestDepth = depth[f], best = dist, at = c;
   }
   return at;
 }
@@ -281,16 +303,23 @@ std::string cutOffsSvg(const PlanDrawing& drawing, const Projection& proj) {
     std::string d;
     for (int f : cut.faces) {
       if (f < 0 || f >= static_cast<int>(lm.n_faces()))
-        throw InvalidInput(fmt::format("plan.svg: cut-off {} lists face {} of a layout mesh with {} faces", c, f, lm.n_faces()));
+        throw InvalidInput(
+            fmt::format("plan.svg: cut-off {} lists face {} of a layout mesh with {} faces", c, f,
+                        lm.n_faces()));
       const auto fv = faceVertices(lm, f);
-      for (int k = 0; k < 3; ++k) d.append(k == 0 ? "M" : "L").append(point(proj, toEigen(lm.point(TriMesh::VertexHandle(fv[k])))));
+      for (int k = 0; k < 3; ++k)
+        d.append(k == 0 ? "M" : "L")
+            .append(point(proj, toEigen(lm.point(TriMesh::VertexHandle(fv[k])))));
       d += "Z";
     }
-    body += fmt::format("<g id=\"cutoff-{}\" class=\"cutoff\"><g opacity=\"0.45\"><path fill=\"#808080\" stroke=\"#808080\" "
-                        "stroke-width=\"0.6\" d=\"{}\"/></g><path fill=\"url(#hatch-cutoff)\" d=\"{}\"/></g>\n",
-                        c, d, d);
+    body += fmt::format(
+        "<g id=\"cutoff-{}\" class=\"cutoff\"><g opacity=\"0.45\"><path fill=\"#808080\" "
+        "stroke=\"#808080\" "
+        "stroke-width=\"0.6\" d=\"{}\"/></g><path fill=\"url(#hatch-cutoff)\" d=\"{}\"/></g>\n",
+        c, d, d);
     const Eigen::Vector3d at = cutOffLabelPoint(lm, cut);
-    body += label(proj.px(at.x()), proj.py(at.y()) + 4, fmt::format("cut-off {:.3g} m²", cut.areaM2), 11, " fill=\"#333\"");
+    body += label(proj.px(at.x()), proj.py(at.y()) + 4,
+                  fmt::format("cut-off {:.3g} m²", cut.areaM2), 11, " fill=\"#333\"");
   }
   return body;
 }
@@ -303,16 +332,19 @@ std::string outlineSvg(const TriMesh& surface, const Projection& proj) {
   for (size_t i = 0; i < loops.size(); ++i)
     if (std::abs(signedAreaXY(loops[i])) > std::abs(signedAreaXY(loops[outer]))) outer = i;
   for (size_t i = 0; i < loops.size(); ++i)
-    body += fmt::format("<polygon id=\"{}\" fill=\"none\" stroke=\"#1a1a1a\" stroke-width=\"2.5\" stroke-linejoin=\"round\" points=\"{}\"/>\n",
-                        i == outer ? std::string("outline") : fmt::format("hole-{}", i < outer ? i : i - 1), pointList(proj, loops[i]));
+    body += fmt::format(
+        "<polygon id=\"{}\" fill=\"none\" stroke=\"#1a1a1a\" stroke-width=\"2.5\" "
+        "stroke-linejoin=\"round\" points=\"{}\"/>\n",
+        i == outer ? std::string("outline") : fmt::format("hole-{}", i < outer ? i : i - 1),
+        pointList(proj, loops[i]));
   return body;
 }
 
 // Patch outlines with their ids; infeasible ones hatched, labelled with the index of their reason.
 // The outlines go to `body`, the ids to `labels`, the distinct problems, in order of first
 // appearance, to `reasons`.
-void patchOutlinesSvg(const PlanDrawing& drawing, const Projection& proj, std::string& body, std::string& labels,
-                      std::vector<std::string>& reasons) {
+void patchOutlinesSvg(const PlanDrawing& drawing, const Projection& proj, std::string& body,
+                      std::string& labels, std::vector<std::string>& reasons) {
   const PatchLayout* layout = drawing.layout;
   const int patchCount = layout ? static_cast<int>(layout->patches.size()) : 0;
   for (int p = 0; p < patchCount; ++p) {
@@ -324,48 +356,64 @@ void patchOutlinesSvg(const PlanDrawing& drawing, const Projection& proj, std::s
       if (it == reasons.end()) reasons.push_back(problem);
     }
     const auto outline = patchOutline(*layout, p);
-    body += fmt::format("<polygon id=\"patch-{}\" class=\"patch{}\" fill=\"{}\" stroke=\"#000\" stroke-width=\"2\" "
-                        "stroke-linejoin=\"round\" points=\"{}\"/>\n",
-                        p, reason >= 0 ? " infeasible" : "", reason >= 0 ? "url(#hatch-infeasible)" : "none", pointList(proj, outline));
+    body += fmt::format(
+        "<polygon id=\"patch-{}\" class=\"patch{}\" fill=\"{}\" stroke=\"#000\" stroke-width=\"2\" "
+        "stroke-linejoin=\"round\" points=\"{}\"/>\n",
+        p, reason >= 0 ? " infeasible" : "", reason >= 0 ? "url(#hatch-infeasible)" : "none",
+        pointList(proj, outline));
     const Eigen::Vector2d c = centroidXY(outline);
-    labels += label(proj.px(c.x()), proj.py(c.y()) + 6, reason >= 0 ? fmt::format("{} [{}]", p, reason + 1) : std::to_string(p), 17,
+    labels += label(proj.px(c.x()), proj.py(c.y()) + 6,
+                    reason >= 0 ? fmt::format("{} [{}]", p, reason + 1) : std::to_string(p), 17,
                     fmt::format(" id=\"patch-label-{}\" font-weight=\"bold\"", p));
   }
 }
 
 // Injectivity circles, then the p_max markers and their labels on top of everything. The circles
-// go to `body` (a note for each that encloses the whole surface to `notes`), the markers to `labels`.
-void circlesAndPeaksSvg(const PlanDrawing& drawing, const Page& page, std::string& body, std::string& labels, std::vector<std::string>& notes) {
+// go to `body` (a note for each that encloses the whole surface to `notes`), the markers to
+// `labels`.
+void circlesAndPeaksSvg(const PlanDrawing& drawing, const Page& page, std::string& body,
+                        std::string& labels, std::vector<std::string>& notes) {
   const Projection& proj = page.proj;
   for (size_t i = 0; i < drawing.circles.size(); ++i) {
     const InjectivityCircle& circle = drawing.circles[i];
-    body += fmt::format("<g id=\"circle-{}\" class=\"circle\" fill=\"none\" stroke=\"#7b1fa2\" stroke-width=\"2.5\" "
-                        "stroke-dasharray=\"9 5\" stroke-linejoin=\"round\">\n",
-                        i);
+    body += fmt::format(
+        "<g id=\"circle-{}\" class=\"circle\" fill=\"none\" stroke=\"#7b1fa2\" "
+        "stroke-width=\"2.5\" "
+        "stroke-dasharray=\"9 5\" stroke-linejoin=\"round\">\n",
+        i);
     for (const auto& line : circle.polylines)
-      body += fmt::format("<{} points=\"{}\"/>\n", line.closed ? "polygon" : "polyline", pointList(proj, line.positions));
+      body += fmt::format("<{} points=\"{}\"/>\n", line.closed ? "polygon" : "polyline",
+                          pointList(proj, line.positions));
     body += "</g>\n";
     if (circle.coversSurface)
-      notes.push_back(fmt::format("circle {} (r = {} m) encloses the whole surface", i, number(circle.radiusM)));
+      notes.push_back(fmt::format("circle {} (r = {} m) encloses the whole surface", i,
+                                  number(circle.radiusM)));
   }
   std::vector<std::pair<Eigen::Vector3d, std::string>> markers;
   std::set<int> peakVertices;
   for (const auto& peak : drawing.peaks) {
-    markers.emplace_back(peak.position, fmt::format("K {} /m², r = {} m", number(peak.gaussianMax), number(peak.radiusM)));
+    markers.emplace_back(peak.position, fmt::format("K {} /m², r = {} m", number(peak.gaussianMax),
+                                                    number(peak.radiusM)));
     peakVertices.insert(peak.vertex);
   }
   for (const auto& circle : drawing.circles)
-    if (!peakVertices.count(circle.peakVertex)) markers.emplace_back(circle.centre, fmt::format("r = {} m", number(circle.radiusM)));
+    if (!peakVertices.count(circle.peakVertex))
+      markers.emplace_back(circle.centre, fmt::format("r = {} m", number(circle.radiusM)));
   for (size_t i = 0; i < markers.size(); ++i) {
     const double x = proj.px(markers[i].first.x()), y = proj.py(markers[i].first.y());
-    labels += fmt::format("<g id=\"pmax-{}\" class=\"pmax\"><circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"6\" fill=\"#7b1fa2\" stroke=\"#fff\" "
-                          "stroke-width=\"2\"/><path d=\"M{:.1f},{:.1f}h8M{:.1f},{:.1f}v8\" stroke=\"#fff\" stroke-width=\"1.5\"/></g>\n",
-                          i, x, y, x - 4, y, x, y - 4);
-    // Beside the marker, on the side where it stays inside the map (width estimated at 0.6 em a character).
+    labels += fmt::format(
+        "<g id=\"pmax-{}\" class=\"pmax\"><circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"6\" "
+        "fill=\"#7b1fa2\" stroke=\"#fff\" "
+        "stroke-width=\"2\"/><path d=\"M{:.1f},{:.1f}h8M{:.1f},{:.1f}v8\" stroke=\"#fff\" "
+        "stroke-width=\"1.5\"/></g>\n",
+        i, x, y, x - 4, y, x, y - 4);
+    // Beside the marker, on the side where it stays inside the map (width estimated at 0.6 em a
+    // character).
     const std::string text = fmt::format("p{}  {}", i, markers[i].second);
     const bool left = x + 10 + 0.6 * 12 * static_cast<double>(text.size()) > page.mapRight;
     const double ty = y - 8 < proj.top + 12 ? y + 20 : y - 8;
-    labels += label(left ? x - 10 : x + 10, ty, text, 12, " fill=\"#4a0072\"", left ? "end" : "start");
+    labels +=
+        label(left ? x - 10 : x + 10, ty, text, 12, " fill=\"#4a0072\"", left ? "end" : "start");
   }
 }
 
@@ -378,50 +426,77 @@ std::string scaleBarSvg(const Page& page) {
   const double barM = roundLength(0.2 * page.dx), barPx = barM * proj.scale;
   const double barY = scaleBarY(page), barX = page.margin;
   std::string scaleBar = fmt::format(
-      "<g id=\"scale\"><rect id=\"scale-bar\" x=\"{:.3f}\" y=\"{:.1f}\" width=\"{:.3f}\" height=\"8\" fill=\"#fff\" stroke=\"#000\" "
-      "stroke-width=\"1.2\"/><rect x=\"{:.3f}\" y=\"{:.1f}\" width=\"{:.3f}\" height=\"8\" fill=\"#000\"/>\n",
+      "<g id=\"scale\"><rect id=\"scale-bar\" x=\"{:.3f}\" y=\"{:.1f}\" width=\"{:.3f}\" "
+      "height=\"8\" fill=\"#fff\" stroke=\"#000\" "
+      "stroke-width=\"1.2\"/><rect x=\"{:.3f}\" y=\"{:.1f}\" width=\"{:.3f}\" height=\"8\" "
+      "fill=\"#000\"/>\n",
       barX, barY, barPx, barX, barY, 0.5 * barPx);
-  scaleBar += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\">0</text>", barX - 3, barY + 24);
-  scaleBar += fmt::format("<text id=\"scale-label\" x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\" text-anchor=\"middle\">{} m</text></g>\n",
-                          barX + barPx, barY + 24, fmt::format("{:g}", barM));
+  scaleBar +=
+      fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\">0</text>", barX - 3, barY + 24);
+  scaleBar += fmt::format(
+      "<text id=\"scale-label\" x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\" "
+      "text-anchor=\"middle\">{} m</text></g>\n",
+      barX + barPx, barY + 24, fmt::format("{:g}", barM));
   const double northX = page.mapRight - 10, northY = barY - 6;
-  scaleBar += fmt::format("<g id=\"north\"><path d=\"M{0:.1f},{1:.1f}l-7,18l7,-5l7,5z\" fill=\"#000\"/>"
-                          "<text x=\"{0:.1f}\" y=\"{2:.1f}\" font-size=\"13\" font-weight=\"bold\" text-anchor=\"middle\">N</text></g>\n",
-                          northX, northY, northY + 32);
+  scaleBar += fmt::format(
+      "<g id=\"north\"><path d=\"M{0:.1f},{1:.1f}l-7,18l7,-5l7,5z\" fill=\"#000\"/>"
+      "<text x=\"{0:.1f}\" y=\"{2:.1f}\" font-size=\"13\" font-weight=\"bold\" "
+      "text-anchor=\"middle\">N</text></g>\n",
+      northX, northY, northY + 32);
   return scaleBar;
 }
 
 // Legend.
-Legend legendOf(const PlanDrawing& drawing, const Page& page, const CurvatureMap& kMap, const std::vector<std::string>& reasons,
-                const std::vector<std::string>& notes) {
+Legend legendOf(const PlanDrawing& drawing, const Page& page, const CurvatureMap& kMap,
+                const std::vector<std::string>& reasons, const std::vector<std::string>& notes) {
   const double kScale = kMap.kScale;
   Legend legend;
   legend.x = page.mapRight + page.margin, legend.y = page.proj.top;
   legend.text("Gaussian curvature K [1/m²]", 13, " font-weight=\"bold\"");
   const double barWidth = 240.0, cell = barWidth / (2 * kHalfBins + 1);
   for (int b = 0; b <= 2 * kHalfBins; ++b)
-    legend.svg += fmt::format("<rect x=\"{:.2f}\" y=\"{:.1f}\" width=\"{:.2f}\" height=\"14\" fill=\"{}\"/>\n", legend.x + b * cell,
-                              legend.y, cell + 0.3, divergingColour(binValue(b)));
-  legend.svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"14\" fill=\"none\" stroke=\"#555\"/>\n", legend.x,
-                            legend.y, barWidth);
+    legend.svg += fmt::format(
+        "<rect x=\"{:.2f}\" y=\"{:.1f}\" width=\"{:.2f}\" height=\"14\" fill=\"{}\"/>\n",
+        legend.x + b * cell, legend.y, cell + 0.3, divergingColour(binValue(b)));
+  legend.svg += fmt::format(
+      "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"14\" fill=\"none\" "
+      "stroke=\"#555\"/>\n",
+      legend.x, legend.y, barWidth);
   legend.y += 16;
-  for (auto [frac, text, anchor] : {std::tuple{0.0, fmt::format("−{}", number(kScale)), "start"}, std::tuple{0.5, std::string("0"), "middle"},
+  for (auto [frac, text, anchor] : {std::tuple{0.0, fmt::format("−{}", number(kScale)), "start"},
+                                    std::tuple{0.5, std::string("0"), "middle"},
                                     std::tuple{1.0, fmt::format("+{}", number(kScale)), "end"}})
-    legend.svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" text-anchor=\"{}\">{}</text>\n",
-                              legend.x + frac * barWidth, legend.y + 11, anchor, escapeXml(text));
+    legend.svg += fmt::format(
+        "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" text-anchor=\"{}\">{}</text>\n",
+        legend.x + frac * barWidth, legend.y + 11, anchor, escapeXml(text));
   legend.y += 16;
-  legend.text(fmt::format("colours capped at the {:g}th percentile of |K|", drawing.options.curvaturePercentile), 10);
-  legend.text(fmt::format("K from {} to {} /m² (face means)", number(kMap.kMin), number(kMap.kMax)), 10);
+  legend.text(fmt::format("colours capped at the {:g}th percentile of |K|",
+                          drawing.options.curvaturePercentile),
+              10);
+  legend.text(fmt::format("K from {} to {} /m² (face means)", number(kMap.kMin), number(kMap.kMax)),
+              10);
   legend.gap(10);
-  legend.item("<path d=\"M0,7h30\" stroke=\"#1a1a1a\" stroke-width=\"2.5\"/>", "design outline and holes");
-  legend.item("<rect x=\"1\" y=\"1\" width=\"28\" height=\"12\" fill=\"none\" stroke=\"#000\" stroke-width=\"2\"/>", "patch outline and id");
-  legend.item("<rect x=\"1\" y=\"1\" width=\"28\" height=\"12\" fill=\"url(#hatch-infeasible)\" stroke=\"#000\" stroke-width=\"2\"/>",
-              "infeasible patch  [reason]");
-  legend.item("<path d=\"M0,7h30\" stroke=\"#7b1fa2\" stroke-width=\"2.5\" stroke-dasharray=\"9 5\"/>", "injectivity circle r = π/√K_max");
-  legend.item("<circle cx=\"15\" cy=\"7\" r=\"6\" fill=\"#7b1fa2\" stroke=\"#fff\" stroke-width=\"2\"/>", "p_max, peak of K");
-  legend.item("<rect x=\"1\" y=\"1\" width=\"28\" height=\"12\" fill=\"#b8b8b8\"/><rect x=\"1\" y=\"1\" width=\"28\" height=\"12\" "
-              "fill=\"url(#hatch-cutoff)\"/>",
-              "cut-off (not covered by a patch)");
+  legend.item("<path d=\"M0,7h30\" stroke=\"#1a1a1a\" stroke-width=\"2.5\"/>",
+              "design outline and holes");
+  legend.item(
+      "<rect x=\"1\" y=\"1\" width=\"28\" height=\"12\" fill=\"none\" stroke=\"#000\" "
+      "stroke-width=\"2\"/>",
+      "patch outline and id");
+  legend.item(
+      "<rect x=\"1\" y=\"1\" width=\"28\" height=\"12\" fill=\"url(#hatch-infeasible)\" "
+      "stroke=\"#000\" stroke-width=\"2\"/>",
+      "infeasible patch  [reason]");
+  legend.item(
+      "<path d=\"M0,7h30\" stroke=\"#7b1fa2\" stroke-width=\"2.5\" stroke-dasharray=\"9 5\"/>",
+      "injectivity circle r = π/√K_max");
+  legend.item(
+      "<circle cx=\"15\" cy=\"7\" r=\"6\" fill=\"#7b1fa2\" stroke=\"#fff\" stroke-width=\"2\"/>",
+      "p_max, peak of K");
+  legend.item(
+      "<rect x=\"1\" y=\"1\" width=\"28\" height=\"12\" fill=\"#b8b8b8\"/><rect x=\"1\" y=\"1\" "
+      "width=\"28\" height=\"12\" "
+      "fill=\"url(#hatch-cutoff)\"/>",
+      "cut-off (not covered by a patch)");
   if (!reasons.empty()) {
     legend.gap(8);
     legend.text("Infeasible patches", 13, " font-weight=\"bold\"");
@@ -433,7 +508,9 @@ Legend legendOf(const PlanDrawing& drawing, const Page& page, const CurvatureMap
   if (drawing.coverage != nullptr || !notes.empty()) {
     legend.gap(8);
     if (drawing.coverage != nullptr)
-      legend.text(fmt::format("coverage {:.1f} % of {:.4g} m²", 100.0 * drawing.coverage->fraction, drawing.coverage->surfaceAreaM2), 11);
+      legend.text(fmt::format("coverage {:.1f} % of {:.4g} m²", 100.0 * drawing.coverage->fraction,
+                              drawing.coverage->surfaceAreaM2),
+                  11);
     for (const auto& note : notes)
       for (const auto& line : wrap(note, 44)) legend.text(line, 11);
   }
@@ -443,26 +520,33 @@ Legend legendOf(const PlanDrawing& drawing, const Page& page, const CurvatureMap
 }
 
 // The SVG document round the map's body and the legend.
-std::string documentSvg(const PlanDrawing& drawing, const Page& page, const std::string& body, const Legend& legend) {
+std::string documentSvg(const PlanDrawing& drawing, const Page& page, const std::string& body,
+                        const Legend& legend) {
   const double margin = page.margin;
   const double width = legend.x + page.legendWidth;
   const double height = std::max(scaleBarY(page) + 40, legend.y + margin);
   std::string svg = fmt::format(
       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0:.0f}\" height=\"{1:.0f}\" viewBox=\"0 0 {0:.0f} {1:.0f}\" "
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0:.0f}\" height=\"{1:.0f}\" viewBox=\"0 "
+      "0 {0:.0f} {1:.0f}\" "
       "data-px-per-m=\"{2:.9g}\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\">\n",
       width, height, page.proj.scale);
-  svg += "<defs>\n"
-         "<pattern id=\"hatch-cutoff\" width=\"8\" height=\"8\" patternUnits=\"userSpaceOnUse\" patternTransform=\"rotate(45)\">"
-         "<line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"8\" stroke=\"#444\" stroke-width=\"1.1\"/></pattern>\n"
-         "<pattern id=\"hatch-infeasible\" width=\"10\" height=\"10\" patternUnits=\"userSpaceOnUse\" patternTransform=\"rotate(-45)\">"
-         "<rect width=\"10\" height=\"10\" fill=\"#9e9e9e\" fill-opacity=\"0.45\"/>"
-         "<line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"10\" stroke=\"#424242\" stroke-width=\"2\"/></pattern>\n"
-         "</defs>\n";
+  svg +=
+      "<defs>\n"
+      "<pattern id=\"hatch-cutoff\" width=\"8\" height=\"8\" patternUnits=\"userSpaceOnUse\" "
+      "patternTransform=\"rotate(45)\">"
+      "<line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"8\" stroke=\"#444\" stroke-width=\"1.1\"/></pattern>\n"
+      "<pattern id=\"hatch-infeasible\" width=\"10\" height=\"10\" patternUnits=\"userSpaceOnUse\" "
+      "patternTransform=\"rotate(-45)\">"
+      "<rect width=\"10\" height=\"10\" fill=\"#9e9e9e\" fill-opacity=\"0.45\"/>"
+      "<line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"10\" stroke=\"#424242\" "
+      "stroke-width=\"2\"/></pattern>\n"
+      "</defs>\n";
   svg += fmt::format("<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n");
   if (!drawing.title.empty())
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"20\" font-weight=\"bold\">{}</text>\n", margin, margin + 10,
-                       escapeXml(drawing.title));
+    svg += fmt::format(
+        "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"20\" font-weight=\"bold\">{}</text>\n", margin,
+        margin + 10, escapeXml(drawing.title));
   svg += body + legend.svg + "</svg>\n";
   return svg;
 }
@@ -471,9 +555,11 @@ std::string documentSvg(const PlanDrawing& drawing, const Page& page, const std:
 
 void PlanSvgOptions::validate() const {
   if (!(widthPx >= 200.0 && widthPx <= 20000.0))
-    throw InvalidInput(fmt::format("PlanSvgOptions.width_px must be in [200, 20000], got {}", widthPx));
+    throw InvalidInput(
+        fmt::format("PlanSvgOptions.width_px must be in [200, 20000], got {}", widthPx));
   if (!(curvaturePercentile > 0.0 && curvaturePercentile <= 100.0))
-    throw InvalidInput(fmt::format("PlanSvgOptions.curvature_percentile must be in (0, 100], got {}", curvaturePercentile));
+    throw InvalidInput(fmt::format(
+        "PlanSvgOptions.curvature_percentile must be in (0, 100], got {}", curvaturePercentile));
 }
 
 std::string planSvg(const PlanDrawing& drawing) {
@@ -494,7 +580,8 @@ std::string planSvg(const PlanDrawing& drawing) {
   return documentSvg(drawing, page, body, legend);
 }
 
-
-void writePlanSvg(const std::filesystem::path& path, const PlanDrawing& drawing) { writeFileAtomically(path, planSvg(drawing)); }
+void writePlanSvg(const std::filesystem::path& path, const PlanDrawing& drawing) {
+  writeFileAtomically(path, planSvg(drawing));
+}
 
 }  // namespace egg::patching

@@ -18,20 +18,22 @@ namespace egg::patching {
 
 struct PlanSvgOptions {
   double widthPx = 1000.0;            // width of the map (the legend column comes on top)
-  double curvaturePercentile = 98.0;  // the K colour scale is symmetric, +-this percentile of |K| over the faces, so noise does not wash it out
-  void validate() const;               // throws InvalidInput naming the field
+  double curvaturePercentile = 98.0;  // the K colour scale is symmetric, +-this percentile of |K|
+                                      // over the faces, so noise does not wash it out
+  void validate() const;              // throws InvalidInput naming the field
 };
 
 // What to draw. Pointers are optional (nullptr = leave it out) and must outlive the call.
 struct PlanDrawing {
-  const TriMesh* surface = nullptr;           // required: outline, holes, K map
-  Eigen::VectorXd gaussian;                   // per surface vertex [1/m^2]; empty = computeCurvature's
-  const PatchLayout* layout = nullptr;        // patch outlines from its sides
-  std::vector<std::string> patchProblems;     // per layout patch: why it is infeasible ("" = fine); may be empty
-  std::vector<SurfacePeak> peaks;             // p_max markers
+  const TriMesh* surface = nullptr;     // required: outline, holes, K map
+  Eigen::VectorXd gaussian;             // per surface vertex [1/m^2]; empty = computeCurvature's
+  const PatchLayout* layout = nullptr;  // patch outlines from its sides
+  std::vector<std::string>
+      patchProblems;  // per layout patch: why it is infeasible ("" = fine); may be empty
+  std::vector<SurfacePeak> peaks;  // p_max markers
   std::vector<InjectivityCircle> circles;
-  const Coverage* coverage = nullptr;         // cut-offs (faces of layout->mesh); needs `layout`
-  std::string title;                          // e.g. the scene name
+  const Coverage* coverage = nullptr;  // cut-offs (faces of layout->mesh); needs `layout`
+  std::string title;                   // e.g. the scene name
   PlanSvgOptions options;
 };
 

@@ -42,15 +42,19 @@ DesignedPatch evaluate(const PatchLayout& layout, int p, const LayoutDesignOptio
   return out;
 }
 
-int curveOfSide(const PatchLayout& layout, int p, int k) { return layout.segments[layout.patchSides[p][k].front().first].curve; }
+int curveOfSide(const PatchLayout& layout, int p, int k) {
+  return layout.segments[layout.patchSides[p][k].front().first].curve;
+}
 
 // A corner on side k of patch p at the point of the side nearest to `point`, kept clear of the
 // side's ends (a tenth of the side) so that no sliver patch appears; an existing corner of the
 // curve close to it (2 % of the side) is reused.
-int cornerOnSide(PatchLayout& layout, int p, int k, const Eigen::Vector3d& point, std::set<int>& changedCurves) {
+int cornerOnSide(PatchLayout& layout, int p, int k, const Eigen::Vector3d& point,
+                 std::set<int>& changedCurves) {
   const int curve = curveOfSide(layout, p, k);
   const int a = layout.patches[p][k], b = layout.patches[p][(k + 1) % 4];
-  const double sa = nearestArcLength(layout, curve, layout.corners[a]), sb = nearestArcLength(layout, curve, layout.corners[b]);
+  const double sa = nearestArcLength(layout, curve, layout.corners[a]),
+               sb = nearestArcLength(layout, curve, layout.corners[b]);
   const double lo = std::min(sa, sb), hi = std::max(sa, sb), margin = 0.1 * (hi - lo);
   const double s = std::clamp(nearestArcLength(layout, curve, point), lo + margin, hi - margin);
   for (int c : layout.curves[curve].corners) {
@@ -64,14 +68,17 @@ int cornerOnSide(PatchLayout& layout, int p, int k, const Eigen::Vector3d& point
 
 double sideDistance(const Patch& patch, int k, const Eigen::Vector3d& p) {
   double best = std::numeric_limits<double>::infinity();
-  for (int v : patch.sides[k]) best = std::min(best, (toEigen(patch.mesh.point(TriMesh::VertexHandle(v))) - p).norm());
+  for (int v : patch.sides[k])
+    best = std::min(best, (toEigen(patch.mesh.point(TriMesh::VertexHandle(v))) - p).norm());
   return best;
 }
 
 // Splits patch p by a new side between the start and end sides of `family` through the two
 // points (each is moved to the nearest point of its side). Returns the two children.
-std::vector<int> splitAlong(PatchLayout& layout, const geodesic::DistanceSolver& solver, int p, Family family, const Patch& patch,
-                            Eigen::Vector3d first, Eigen::Vector3d second, const LayoutOptions& options, std::set<int>& changed) {
+std::vector<int> splitAlong(PatchLayout& layout, const geodesic::DistanceSolver& solver, int p,
+                            Family family, const Patch& patch, Eigen::Vector3d first,
+                            Eigen::Vector3d second, const LayoutOptions& options,
+                            std::set<int>& changed) {
   const int startSide = familySide(family, false).first, endSide = familySide(family, true).first;
   if (sideDistance(patch, startSide, first) + sideDistance(patch, endSide, second) >
       sideDistance(patch, startSide, second) + sideDistance(patch, endSide, first))
@@ -92,8 +99,9 @@ std::vector<int> splitAlong(PatchLayout& layout, const geodesic::DistanceSolver&
 }
 
 // Splits patch p by a corner at `peak` with sides to the nearest points of its four sides.
-std::vector<int> splitAtCorner(PatchLayout& layout, const geodesic::DistanceSolver& solver, int p, const Eigen::Vector3d& peak,
-                               const LayoutOptions& options, std::set<int>& changed) {
+std::vector<int> splitAtCorner(PatchLayout& layout, const geodesic::DistanceSolver& solver, int p,
+                               const Eigen::Vector3d& peak, const LayoutOptions& options,
+                               std::set<int>& changed) {
   const auto c = layout.patches[p];
   std::array<int, 4> x{};
   for (int k = 0; k < 4; ++k) x[k] = cornerOnSide(layout, p, k, peak, changed);
@@ -104,18 +112,21 @@ std::vector<int> splitAtCorner(PatchLayout& layout, const geodesic::DistanceSolv
   layout.patches.push_back({x[0], c[1], x[1], m});
   layout.patches.push_back({m, x[1], c[2], x[2]});
   layout.patches.push_back({x[3], m, x[2], c[3]});
-  return {static_cast<int>(n), static_cast<int>(n + 1), static_cast<int>(n + 2), static_cast<int>(n + 3)};
+  return {static_cast<int>(n), static_cast<int>(n + 1), static_cast<int>(n + 2),
+          static_cast<int>(n + 3)};
 }
 
 const char* familyName(Family f) { return f == Family::U ? "u" : "v"; }
 
 }  // namespace
 
-LayoutDesign designLayout(PatchLayout layout, const geodesic::DistanceSolver& solver, const LayoutDesignOptions& options) {
+LayoutDesign designLayout(PatchLayout layout, const geodesic::DistanceSolver& solver,
+                          const LayoutDesignOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
   LayoutDesign out;
-  const double minSide = options.minSideM > 0.0 ? options.minSideM : 2.5 * meanEdgeLength(*layout.surface);
+  const double minSide =
+      options.minSideM > 0.0 ? options.minSideM : 2.5 * meanEdgeLength(*layout.surface);
   std::vector<char> alive(layout.patches.size(), 1);
   std::vector<std::optional<DesignedPatch>> designed(layout.patches.size());
   std::vector<int> dirty(layout.patches.size());
@@ -126,8 +137,10 @@ LayoutDesign designLayout(PatchLayout layout, const geodesic::DistanceSolver& so
     ++out.rounds;
     std::vector<DesignedPatch> results(dirty.size());
     const auto designStart = std::chrono::steady_clock::now();
-    tbb::parallel_for(size_t(0), dirty.size(), [&](size_t i) { results[i] = evaluate(layout, dirty[i], options); });
-    out.designSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - designStart).count();
+    tbb::parallel_for(size_t(0), dirty.size(),
+                      [&](size_t i) { results[i] = evaluate(layout, dirty[i], options); });
+    out.designSeconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - designStart).count();
     out.evaluations += static_cast<int>(dirty.size());
     for (size_t i = 0; i < dirty.size(); ++i) designed[dirty[i]] = std::move(results[i]);
     dirty.clear();
@@ -138,11 +151,14 @@ LayoutDesign designLayout(PatchLayout layout, const geodesic::DistanceSolver& so
     std::vector<int> children;
     const size_t existing = layout.patches.size();  // children made in this round wait for the next
     for (size_t p = 0; p < existing; ++p) {
-      if (!alive[p] || !designed[p] || designed[p]->feasible() || !designed[p]->design || !stopped[p].empty()) continue;
+      if (!alive[p] || !designed[p] || designed[p]->feasible() || !designed[p]->design ||
+          !stopped[p].empty())
+        continue;
       const PatchDesign& d = *designed[p]->design;
       const Patch& patch = d.patch;
       if (splits >= options.maxSplits) {
-        stopped[p] = fmt::format("the split budget (patching.max_splits = {}) is spent", options.maxSplits);
+        stopped[p] =
+            fmt::format("the split budget (patching.max_splits = {}) is spent", options.maxSplits);
         continue;
       }
       bool u = d.failure.familyU, v = d.failure.familyV;
@@ -158,9 +174,11 @@ LayoutDesign designLayout(PatchLayout layout, const geodesic::DistanceSolver& so
       double shortest = std::numeric_limits<double>::infinity();
       for (int k : cut) shortest = std::min(shortest, patch.sideLengths[k]);
       if (shortest < 2.0 * minSide) {
-        stopped[p] = fmt::format("the sides a split would halve are {:.3g} m long, less than twice the minimum patch size "
-                                 "({:.3g} m): not split further",
-                                 shortest, minSide);
+        stopped[p] = fmt::format(
+            "the sides a split would halve are {:.3g} m long, less than twice the minimum patch "
+            "size "
+            "({:.3g} m): not split further",
+            shortest, minSide);
         continue;
       }
       SplitRecord record;
@@ -175,11 +193,13 @@ LayoutDesign designLayout(PatchLayout layout, const geodesic::DistanceSolver& so
           // that long avoids the peak just as the members do.
           const Family failing = u ? Family::U : Family::V;
           const Family other = failing == Family::U ? Family::V : Family::U;
-          made = splitAlong(layout, solver, static_cast<int>(p), other, patch, d.failure.peak, d.failure.peak, options.layout,
-                            changedCurves);
-          record.kind = fmt::format("side over p_max across the {} members ({})", familyName(failing), eta ? "eta" : "slopes");
+          made = splitAlong(layout, solver, static_cast<int>(p), other, patch, d.failure.peak,
+                            d.failure.peak, options.layout, changedCurves);
+          record.kind = fmt::format("side over p_max across the {} members ({})",
+                                    familyName(failing), eta ? "eta" : "slopes");
         } else {
-          made = splitAtCorner(layout, solver, static_cast<int>(p), d.failure.peak, options.layout, changedCurves);
+          made = splitAtCorner(layout, solver, static_cast<int>(p), d.failure.peak, options.layout,
+                               changedCurves);
           record.kind = fmt::format("corner at p_max ({}, u and v)", eta ? "eta" : "slopes");
         }
       } catch (const InvalidInput& e) {
@@ -202,7 +222,8 @@ LayoutDesign designLayout(PatchLayout layout, const geodesic::DistanceSolver& so
     for (size_t p = 0; p < layout.patches.size(); ++p) {
       if (!alive[p]) continue;
       for (int k = 0; k < 4; ++k)
-        if (changedCurves.count(curveOfSide(layout, static_cast<int>(p), k))) again.insert(static_cast<int>(p));
+        if (changedCurves.count(curveOfSide(layout, static_cast<int>(p), k)))
+          again.insert(static_cast<int>(p));
     }
     dirty.assign(again.begin(), again.end());
   }

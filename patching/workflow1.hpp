@@ -23,25 +23,26 @@
 namespace egg::patching {
 
 struct LayoutDesignOptions {
-  EggOptions design;            // per-patch design (eta_max, maps, Problem 2.3); smoothing as set there
+  EggOptions design;  // per-patch design (eta_max, maps, Problem 2.3); smoothing as set there
   LayoutOptions layout;
-  bool split = false;           // Workflow 1: split infeasible patches (else: the layout as given)
-  int maxSplits = 64;           // splits before giving up
-  double minSideM = 0.0;        // no split makes a side shorter than this (0 = 2.5 mean edge lengths of the surface)
+  bool split = false;  // Workflow 1: split infeasible patches (else: the layout as given)
+  int maxSplits = 64;  // splits before giving up
+  double minSideM =
+      0.0;  // no split makes a side shorter than this (0 = 2.5 mean edge lengths of the surface)
   void validate() const;
 };
 
 struct SplitRecord {
-  int parent = -1;              // patch id in the layout (before compaction)
+  int parent = -1;  // patch id in the layout (before compaction)
   std::vector<int> children;
-  std::string kind;             // "side over p_max (eta, u)", "corner at p_max (slopes, u and v)", ...
+  std::string kind;  // "side over p_max (eta, u)", "corner at p_max (slopes, u and v)", ...
   Eigen::Vector3d peak = Eigen::Vector3d::Zero();
 };
 
 struct DesignedPatch {
-  std::optional<LayoutPatch> cut;      // empty if the patch could not be cut
-  std::optional<PatchDesign> design;   // empty if not cut or the design threw
-  std::string failure;                 // why it carries no grid ("" = feasible)
+  std::optional<LayoutPatch> cut;     // empty if the patch could not be cut
+  std::optional<PatchDesign> design;  // empty if not cut or the design threw
+  std::string failure;                // why it carries no grid ("" = feasible)
   bool feasible() const { return failure.empty() && design && design->feasible; }
 };
 
@@ -51,12 +52,13 @@ struct LayoutDesign {
   std::vector<SplitRecord> splits;     // in the order they were made (ids before compaction)
   int evaluations = 0;                 // patch designs computed (trial and final)
   int rounds = 0;
-  double designSeconds = 0.0;          // wall time of the (parallel) patch designs
-  double seconds = 0.0;                // all of it
+  double designSeconds = 0.0;  // wall time of the (parallel) patch designs
+  double seconds = 0.0;        // all of it
 };
 
 // Designs every patch (in parallel; results do not depend on the thread count) and, with
 // options.split, runs Workflow 1 on the layout. Input errors propagate (InvalidInput).
-LayoutDesign designLayout(PatchLayout layout, const geodesic::DistanceSolver& surfaceSolver, const LayoutDesignOptions& options);
+LayoutDesign designLayout(PatchLayout layout, const geodesic::DistanceSolver& surfaceSolver,
+                          const LayoutDesignOptions& options);
 
 }  // namespace egg::patching

@@ -3,9 +3,9 @@
 
 #include "core/errors.hpp"
 #include "core/geodesic/distance_solver.hpp"
-#include "patching/injectivity.hpp"
 #include "patching/footprint.hpp"
 #include "patching/hole_box.hpp"
+#include "patching/injectivity.hpp"
 #include "patching/layout.hpp"
 
 #include <fmt/core.h>
@@ -21,11 +21,15 @@ namespace egg::patching {
 
 void Workflow2Options::validate() const {
   if (!(maxPatchSizeM > 0.0)) throw InvalidInput("patching.max_patch_size_m must be positive");
-  if (!(holeMarginRelative >= 0.0 && holeMarginRelative < 1.0)) throw InvalidInput("workflow 2: hole margin must lie in [0, 1)");
-  if (!(peakSnapFraction >= 0.0 && peakSnapFraction <= 0.5)) throw InvalidInput("workflow 2: peak snap fraction must lie in [0, 0.5]");
+  if (!(holeMarginRelative >= 0.0 && holeMarginRelative < 1.0))
+    throw InvalidInput("workflow 2: hole margin must lie in [0, 1)");
+  if (!(peakSnapFraction >= 0.0 && peakSnapFraction <= 0.5))
+    throw InvalidInput("workflow 2: peak snap fraction must lie in [0, 0.5]");
   const bool screened = blockGrid[0] == 0 && blockGrid[1] == 0;
   if (!screened && (blockGrid[0] < 1 || blockGrid[0] > 16 || blockGrid[1] < 1 || blockGrid[1] > 16))
-    throw InvalidInput(fmt::format("patching.block_grid must be two patch counts in 1..16, got [{}, {}]", blockGrid[0], blockGrid[1]));
+    throw InvalidInput(
+        fmt::format("patching.block_grid must be two patch counts in 1..16, got [{}, {}]",
+                    blockGrid[0], blockGrid[1]));
 }
 
 namespace {
@@ -35,9 +39,11 @@ namespace {
 // its grid of nu x nv patches.
 struct Block {
   std::function<Vec2(double)> bottom, top, left, right;  // C0(u), C2(u), D3(v), D1(v)
-  std::function<Eigen::Vector3d(double)> bottom3d, top3d, left3d, right3d;  // the same in space, for sides on the boundary
+  std::function<Eigen::Vector3d(double)> bottom3d, top3d, left3d,
+      right3d;  // the same in space, for sides on the boundary
   int nu = 1, nv = 1;
-  bool bottomOnBoundary = false, topOnBoundary = false, leftOnBoundary = false, rightOnBoundary = false;
+  bool bottomOnBoundary = false, topOnBoundary = false, leftOnBoundary = false,
+       rightOnBoundary = false;
   Vec2 coons(double u, double v) const {
     const Vec2 p00 = bottom(0), p10 = bottom(1), p01 = top(0), p11 = top(1);
     return (1 - v) * bottom(u) + v * top(u) + (1 - u) * left(v) + u * right(v) -
@@ -72,7 +78,9 @@ struct HoleBox {
 
 const std::array<Vec2, 4> kQuadrant{Vec2(-1, -1), Vec2(1, -1), Vec2(1, 1), Vec2(-1, 1)};
 
-Vec2 HoleBox::corner(int k, double scale) const { return centre + scale * kQuadrant[k].cwiseProduct(half); }
+Vec2 HoleBox::corner(int k, double scale) const {
+  return centre + scale * kQuadrant[k].cwiseProduct(half);
+}
 
 HoleBox holeBoxOf(const Polygon& hole, double margin) {
   Vec2 lo = hole.front(), hi = hole.front();
@@ -81,30 +89,33 @@ HoleBox holeBoxOf(const Polygon& hole, double margin) {
 }
 
 struct GridTrial {
-  std::vector<std::vector<Vec2>> plan;  // [i][j]
+  std::vector<std::vector<Vec2>> plan;        // [i][j]
   std::vector<std::array<int, 2>> holeCells;  // per hole: the cell (i, j) holding its box
   bool holesFit = true;                       // every hole's box inside a cell of its own
   double worstDiagonalM = 0.0;
-  bool worstAlongU = true;        // the worst cell is longer along u
+  bool worstAlongU = true;                // the worst cell is longer along u
   std::vector<std::vector<char>> onPeak;  // [i][j]: the node moved onto a peak
   std::vector<char> peakOnNode;           // per peak
   int snapped = 0;
-  int peaksLeftInside = 0;        // peaks not on a node whose circle is smaller than the cells
+  int peaksLeftInside = 0;  // peaks not on a node whose circle is smaller than the cells
 };
 
 // Whether interior node (i, j) of plan grid g may move to `to`: its move along each grid direction
 // stays within `fraction` of the shorter grid line from it in that direction, so that the four
 // cells round it stay convex and none shrinks to a sliver.
-bool snapAllowed(const std::vector<std::vector<Vec2>>& g, int i, int j, const Vec2& to, double fraction) {
+bool snapAllowed(const std::vector<std::vector<Vec2>>& g, int i, int j, const Vec2& to,
+                 double fraction) {
   const Vec2 du = g[i + 1][j] - g[i - 1][j], dv = g[i][j + 1] - g[i][j - 1];
   const double su = std::min((g[i + 1][j] - g[i][j]).norm(), (g[i][j] - g[i - 1][j]).norm());
   const double sv = std::min((g[i][j + 1] - g[i][j]).norm(), (g[i][j] - g[i][j - 1]).norm());
   if (!(du.norm() > 0 && dv.norm() > 0)) return false;
   const Vec2 move = to - g[i][j];
-  return std::abs(move.dot(du.normalized())) <= fraction * su && std::abs(move.dot(dv.normalized())) <= fraction * sv;
+  return std::abs(move.dot(du.normalized())) <= fraction * su &&
+         std::abs(move.dot(dv.normalized())) <= fraction * sv;
 }
 
-GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, const std::vector<PlanPeak>& peaks, double snapFraction,
+GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter,
+                  const std::vector<PlanPeak>& peaks, double snapFraction,
                   const std::vector<HoleBox>& holes = {}) {
   GridTrial t;
   t.plan.assign(nu + 1, std::vector<Vec2>(nv + 1));
@@ -119,7 +130,8 @@ GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, cons
     double best = std::numeric_limits<double>::infinity();
     for (int i = 1; i < nu; ++i)
       for (int j = 1; j < nv; ++j)
-        if (!taken[i][j] && (t.plan[i][j] - peaks[k].at).norm() < best) best = (t.plan[i][j] - peaks[k].at).norm(), bi = i, bj = j;
+        if (!taken[i][j] && (t.plan[i][j] - peaks[k].at).norm() < best)
+          best = (t.plan[i][j] - peaks[k].at).norm(), bi = i, bj = j;
     if (bi >= 0 && snapAllowed(t.plan, bi, bj, peaks[k].at, snapFraction)) {
       t.plan[bi][bj] = peaks[k].at;
       taken[bi][bj] = 1;
@@ -133,7 +145,9 @@ GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, cons
     for (int sweep = 0; sweep < 40; ++sweep)
       for (int i = 1; i < nu; ++i)
         for (int j = 1; j < nv; ++j)
-          if (!taken[i][j]) t.plan[i][j] = 0.25 * (t.plan[i - 1][j] + t.plan[i + 1][j] + t.plan[i][j - 1] + t.plan[i][j + 1]);
+          if (!taken[i][j])
+            t.plan[i][j] =
+                0.25 * (t.plan[i - 1][j] + t.plan[i + 1][j] + t.plan[i][j - 1] + t.plan[i][j + 1]);
   std::vector<std::vector<Eigen::Vector3d>> space(nu + 1, std::vector<Eigen::Vector3d>(nv + 1));
   for (int i = 0; i <= nu; ++i)
     for (int j = 0; j <= nv; ++j) {
@@ -147,7 +161,10 @@ GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, cons
     double length = 0.0;
     Eigen::Vector3d last = space[i0][j0];
     for (int k = 1; k <= samples; ++k) {
-      const Eigen::Vector3d x = k == samples ? space[i1][j1] : lifter.lift(lerp(t.plan[i0][j0], t.plan[i1][j1], double(k) / samples), last);
+      const Eigen::Vector3d x =
+          k == samples
+              ? space[i1][j1]
+              : lifter.lift(lerp(t.plan[i0][j0], t.plan[i1][j1], double(k) / samples), last);
       length += (x - last).norm();
       last = x;
     }
@@ -155,10 +172,12 @@ GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, cons
   };
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j) {
-      const double diag = std::max(overSurface(i, j, i + 1, j + 1), overSurface(i + 1, j, i, j + 1));
+      const double diag =
+          std::max(overSurface(i, j, i + 1, j + 1), overSurface(i + 1, j, i, j + 1));
       if (diag > t.worstDiagonalM)
         t.worstDiagonalM = diag,
-        t.worstAlongU = overSurface(i, j, i + 1, j) + overSurface(i, j + 1, i + 1, j + 1) >= overSurface(i, j, i, j + 1) + overSurface(i + 1, j, i + 1, j + 1);
+        t.worstAlongU = overSurface(i, j, i + 1, j) + overSurface(i, j + 1, i + 1, j + 1) >=
+                        overSurface(i, j, i, j + 1) + overSurface(i + 1, j, i + 1, j + 1);
     }
   // Holes: each box must lie inside one cell, which becomes a ring of four patches round it.
   for (const auto& hole : holes) {
@@ -167,14 +186,16 @@ GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, cons
       for (int j = 0; j < nv && cell[0] < 0; ++j) {
         const Polygon quad{t.plan[i][j], t.plan[i + 1][j], t.plan[i + 1][j + 1], t.plan[i][j + 1]};
         bool inside = true;
-        for (int k = 0; k < 4; ++k) inside = inside && insidePolygon(quad, hole.corner(k, 1.25));  // room for the ring
+        for (int k = 0; k < 4; ++k)
+          inside = inside && insidePolygon(quad, hole.corner(k, 1.25));  // room for the ring
         if (inside) cell = {i, j};
       }
     if (cell[0] < 0 || std::count(t.holeCells.begin(), t.holeCells.end(), cell)) t.holesFit = false;
     t.holeCells.push_back(cell);
   }
   // Expression 3.1 is "only useful as a quick check" (3.4.1): members cross a cell in about its
-  // diagonal, and a 1.5 x 2 m cell of a bump whose circle is 2.51 m already fails η; hence the margin.
+  // diagonal, and a 1.5 x 2 m cell of a bump whose circle is 2.51 m already fails η; hence the
+  // margin.
   const double peakReach = 1.5;
   for (size_t k = 0; k < peaks.size(); ++k)
     if (!onNode[k] && peaks[k].radiusM < peakReach * t.worstDiagonalM) ++t.peaksLeftInside;
@@ -183,9 +204,9 @@ GridTrial tryGrid(const Block& b, int nu, int nv, const PlanLifter& lifter, cons
 
 // The four outer corners of the footprint and the boundary arcs between them.
 struct OuterCorners {
-  Vec2 centre, half;               // the footprint's box
-  std::array<size_t, 4> index{};   // into foot.outer
-  std::array<Arc, 4> arcs;         // arcs[k]: corner k -> corner k + 1
+  Vec2 centre, half;              // the footprint's box
+  std::array<size_t, 4> index{};  // into foot.outer
+  std::array<Arc, 4> arcs;        // arcs[k]: corner k -> corner k + 1
 };
 
 // Outer corners: the boundary points extreme in the four diagonal directions of its box. Only
@@ -224,34 +245,41 @@ Block outerBlock(const std::array<Arc, 4>& arcs, size_t holes, Workflow2Layout& 
   b.top3d = [a = arcs[2]](double u) { return a.at3d(1.0 - u); };
   b.left3d = [a = arcs[3]](double v) { return a.at3d(1.0 - v); };
   b.bottomOnBoundary = b.topOnBoundary = b.leftOnBoundary = b.rightOnBoundary = true;
-  out.notes.push_back(holes == 0 ? "one block between the four outer corners"
-                                 : fmt::format("one block between the four outer corners, each of its {} holes in a cell of its own "
-                                               "cut into a ring of four patches round the hole's box",
-                                               holes));
+  out.notes.push_back(holes == 0
+                          ? "one block between the four outer corners"
+                          : fmt::format("one block between the four outer corners, each of its {} "
+                                        "holes in a cell of its own "
+                                        "cut into a ring of four patches round the hole's box",
+                                        holes));
   return b;
 }
 
 // A single hole: a ring of four blocks between the outer corners and the box round the hole.
-std::vector<Block> ringBlocks(const std::array<Arc, 4>& arcs, const Footprint& foot, const Plan& plan, const PlanLifter& lifter,
-                              const TriMesh& surface, const geodesic::DistanceSolver* solver, const Workflow2Options& options,
-                              Workflow2Layout& out) {
+std::vector<Block> ringBlocks(const std::array<Arc, 4>& arcs, const Footprint& foot,
+                              const Plan& plan, const PlanLifter& lifter, const TriMesh& surface,
+                              const geodesic::DistanceSolver* solver,
+                              const Workflow2Options& options, Workflow2Layout& out) {
   // The box tangent to the hole, inflated a little so that its sides clear the hole; with the
   // solver, its corners then move in until the traced sides just clear it.
   const HoleBox box = holeBoxOf(foot.holes[0], options.holeMarginRelative);
   std::array<double, 4> scale{1.0, 1.0, 1.0, 1.0};
   const auto cornerAt = [&](int k) { return box.corner(k, scale[k]); };
   if (solver) {
-    const double clearance = tightenHoleBox(scale, cornerAt, foot.holes[0], plan, lifter, surface, *solver, foot.tolerance);
+    const double clearance = tightenHoleBox(scale, cornerAt, foot.holes[0], plan, lifter, surface,
+                                            *solver, foot.tolerance);
     if (clearance >= 0)
-      out.notes.push_back(fmt::format("box round the hole tightened to sides {:.2f} m clear of it (corners at {:.3f}, {:.3f}, {:.3f}, {:.3f} of the "
-                                      "tangent box)",
-                                      clearance, scale[0], scale[1], scale[2], scale[3]));
+      out.notes.push_back(
+          fmt::format("box round the hole tightened to sides {:.2f} m clear of it (corners at "
+                      "{:.3f}, {:.3f}, {:.3f}, {:.3f} of the "
+                      "tangent box)",
+                      clearance, scale[0], scale[1], scale[2], scale[3]));
   }
   std::array<Vec2, 4> inner;
   for (int k = 0; k < 4; ++k) inner[k] = cornerAt(k);
   std::vector<Block> blocks;
   for (int k = 0; k < 4; ++k) {
-    const Vec2 o0 = arcs[k].points.front(), o1 = arcs[k].points.back(), i0 = inner[k], i1 = inner[(k + 1) % 4];
+    const Vec2 o0 = arcs[k].points.front(), o1 = arcs[k].points.back(), i0 = inner[k],
+               i1 = inner[(k + 1) % 4];
     Block b;
     b.bottom = [a = arcs[k]](double u) { return a.at(u); };
     b.bottom3d = [a = arcs[k]](double u) { return a.at3d(u); };
@@ -261,19 +289,22 @@ std::vector<Block> ringBlocks(const std::array<Arc, 4>& arcs, const Footprint& f
     b.bottomOnBoundary = true;
     blocks.push_back(b);
   }
-  out.notes.push_back("a ring of four blocks between the outer corners and the box tangent to the hole");
+  out.notes.push_back(
+      "a ring of four blocks between the outer corners and the box tangent to the hole");
   return blocks;
 }
 
 // Peaks for corners: not on the boundary, nor next to a hole (twice its box): the ring round the
 // hole has its sides there already, and a corner moved there would cut through the hole's cell.
-std::vector<PlanPeak> cornerPeaks(const TriMesh& surface, const Plan& plan, const std::vector<HoleBox>& holeBoxes) {
+std::vector<PlanPeak> cornerPeaks(const TriMesh& surface, const Plan& plan,
+                                  const std::vector<HoleBox>& holeBoxes) {
   const auto surfacePeaks = findSurfacePeaks(surface);
   std::vector<PlanPeak> peaks;
   for (const auto& peak : surfacePeaks) {
     const Vec2 at = plan(peak.position);
     const bool byHole = std::any_of(holeBoxes.begin(), holeBoxes.end(), [&](const HoleBox& h) {
-      return std::abs(at.x() - h.centre.x()) <= 2 * h.half.x() && std::abs(at.y() - h.centre.y()) <= 2 * h.half.y();
+      return std::abs(at.x() - h.centre.x()) <= 2 * h.half.x() &&
+             std::abs(at.y() - h.centre.y()) <= 2 * h.half.y();
     });
     if (!peak.onBoundary && !byHole) peaks.push_back({at, peak.radiusM});
   }
@@ -282,40 +313,56 @@ std::vector<PlanPeak> cornerPeaks(const TriMesh& surface, const Plan& plan, cons
 
 // One block: every grid up to 16 x 16 (or the architect's) screened, the one predicting the fewest
 // patches kept (its peaks on nodes, each hole in a cell of its own); sets the block's nu x nv.
-GridTrial screenGrids(Block& b, const PlanLifter& lifter, const std::vector<PlanPeak>& peaks, const std::vector<HoleBox>& holeBoxes,
-                      const Workflow2Options& options, Workflow2Layout& out) {
+GridTrial screenGrids(Block& b, const PlanLifter& lifter, const std::vector<PlanPeak>& peaks,
+                      const std::vector<HoleBox>& holeBoxes, const Workflow2Options& options,
+                      Workflow2Layout& out) {
   GridTrial chosen;
   const int bound = 16;
   int bestPredicted = std::numeric_limits<int>::max();
   double bestDiagonal = std::numeric_limits<double>::infinity();
   const bool given = options.blockGrid[0] > 0;
-  for (int nu = given ? options.blockGrid[0] : 1; nu <= (given ? options.blockGrid[0] : bound); ++nu)
-    for (int nv = given ? options.blockGrid[1] : 1; nv <= (given ? options.blockGrid[1] : bound); ++nv) {
+  for (int nu = given ? options.blockGrid[0] : 1; nu <= (given ? options.blockGrid[0] : bound);
+       ++nu)
+    for (int nv = given ? options.blockGrid[1] : 1; nv <= (given ? options.blockGrid[1] : bound);
+         ++nv) {
       if (nu * nv > bestPredicted) continue;  // cannot win
       GridTrial t = tryGrid(b, nu, nv, lifter, peaks, options.peakSnapFraction, holeBoxes);
       ++out.candidatesScreened;
-      if (t.worstDiagonalM > options.maxPatchSizeM * (1 + 1e-9) || !t.holesFit) continue;  // a cell of exactly the size fits
-      const int predicted = nu * nv + 3 * t.peaksLeftInside + 3 * static_cast<int>(holeBoxes.size());
-      if (predicted < bestPredicted || (predicted == bestPredicted && t.worstDiagonalM < bestDiagonal))
-        bestPredicted = predicted, bestDiagonal = t.worstDiagonalM, b.nu = nu, b.nv = nv, chosen = std::move(t);
+      if (t.worstDiagonalM > options.maxPatchSizeM * (1 + 1e-9) || !t.holesFit)
+        continue;  // a cell of exactly the size fits
+      const int predicted =
+          nu * nv + 3 * t.peaksLeftInside + 3 * static_cast<int>(holeBoxes.size());
+      if (predicted < bestPredicted ||
+          (predicted == bestPredicted && t.worstDiagonalM < bestDiagonal))
+        bestPredicted = predicted, bestDiagonal = t.worstDiagonalM, b.nu = nu, b.nv = nv,
+        chosen = std::move(t);
     }
   if (bestPredicted == std::numeric_limits<int>::max() && given)
-    throw InvalidInput(fmt::format("patching.block_grid [{}, {}]: a cell is larger than patching.max_patch_size_m = {} m across{}",
-                                   options.blockGrid[0], options.blockGrid[1], options.maxPatchSizeM,
-                                   holeBoxes.empty() ? "" : ", or a hole does not sit in a cell of its own"));
+    throw InvalidInput(
+        fmt::format("patching.block_grid [{}, {}]: a cell is larger than patching.max_patch_size_m "
+                    "= {} m across{}",
+                    options.blockGrid[0], options.blockGrid[1], options.maxPatchSizeM,
+                    holeBoxes.empty() ? "" : ", or a hole does not sit in a cell of its own"));
   if (bestPredicted == std::numeric_limits<int>::max())
-    throw InvalidInput(fmt::format("workflow 2: no grid of up to {} x {} patches has cells within patching.max_patch_size_m = {} m{}", bound,
-                                   bound, options.maxPatchSizeM,
-                                   holeBoxes.empty() ? "" : " and each hole in a cell of its own (holes too close together or too large)"));
+    throw InvalidInput(fmt::format(
+        "workflow 2: no grid of up to {} x {} patches has cells within patching.max_patch_size_m = "
+        "{} m{}",
+        bound, bound, options.maxPatchSizeM,
+        holeBoxes.empty()
+            ? ""
+            : " and each hole in a cell of its own (holes too close together or too large)"));
   return chosen;
 }
 
 // The ring of four blocks: a block whose worst cell is too large gets one more patch across its
 // longer direction (along v for all four at once, so that their grids meet), until all fit.
-void growRingGrids(std::vector<Block>& blocks, const PlanLifter& lifter, const Workflow2Options& options, Workflow2Layout& out) {
+void growRingGrids(std::vector<Block>& blocks, const PlanLifter& lifter,
+                   const Workflow2Options& options, Workflow2Layout& out) {
   if (options.blockGrid[0] > 0)
-    throw InvalidInput("patching.block_grid applies to a surface with no hole or several; around a single hole Workflow 2 "
-                       "lays a ring of four blocks whose grids follow from max_patch_size_m");
+    throw InvalidInput(
+        "patching.block_grid applies to a surface with no hole or several; around a single hole "
+        "Workflow 2 "
+        "lays a ring of four blocks whose grids follow from max_patch_size_m");
   for (int guard = 0; guard < 200; ++guard) {
     bool changed = false;
     for (auto& b : blocks) {
@@ -339,13 +386,16 @@ struct LayoutNodes {
   double mergeTolerance = 0.0;
   std::vector<Vec2> nodes;
   std::vector<char> onBoundary, fixedNode;  // fixed: on the boundary or on the box around the hole
-  std::vector<std::optional<Eigen::Vector3d>> onSurface;  // boundary nodes: their point of the boundary in space
-  std::vector<std::optional<Eigen::Vector3d>> startedOn;  // boundary nodes: where they were before being pulled in
-  std::vector<std::array<int, 3>> interiorOf;             // interior nodes: (block, i, j) in the plain grids below
-  std::vector<std::vector<std::vector<int>>> grid;        // per block: node ids [i][j]
+  std::vector<std::optional<Eigen::Vector3d>>
+      onSurface;  // boundary nodes: their point of the boundary in space
+  std::vector<std::optional<Eigen::Vector3d>>
+      startedOn;  // boundary nodes: where they were before being pulled in
+  std::vector<std::array<int, 3>>
+      interiorOf;  // interior nodes: (block, i, j) in the plain grids below
+  std::vector<std::vector<std::vector<int>>> grid;  // per block: node ids [i][j]
   std::vector<std::vector<std::vector<Vec2>>> plainGrids;
   std::vector<std::pair<int, int>> boundaryChords;  // consecutive boundary nodes
-  std::vector<std::pair<int, int>> inwards;         // boundary node -> its neighbour one step inside
+  std::vector<std::pair<int, int>> inwards;  // boundary node -> its neighbour one step inside
   std::map<std::array<int, 2>, std::array<int, 4>> ringOfCell;  // cell -> its box's corner nodes
   Vec2 blockCentre = Vec2::Zero();
   std::vector<char> moved;
@@ -408,15 +458,16 @@ void addBoundaryChords(const Block& b, const std::vector<std::vector<int>>& g, L
   for (int i = 0; i <= b.nu; ++i)
     for (int j = 0; j <= b.nv; ++j)
       if (net.onBoundary[g[i][j]]) {
-        const int ii = std::clamp(i, 1, std::max(1, b.nu - 1)), jj = std::clamp(j, 1, std::max(1, b.nv - 1));
+        const int ii = std::clamp(i, 1, std::max(1, b.nu - 1)),
+                  jj = std::clamp(j, 1, std::max(1, b.nv - 1));
         const int to = (b.nu >= 2 || b.nv >= 2) ? g[std::min(ii, b.nu)][std::min(jj, b.nv)] : -1;
         net.inwards.emplace_back(g[i][j], to);
       }
 }
 
 // Nodes, shared where blocks meet (same plan point to rounding).
-LayoutNodes gridNodes(const std::vector<Block>& blocks, const GridTrial& chosen, bool singleBlock, const PlanLifter& lifter,
-                      double mergeTolerance, Workflow2Layout& out) {
+LayoutNodes gridNodes(const std::vector<Block>& blocks, const GridTrial& chosen, bool singleBlock,
+                      const PlanLifter& lifter, double mergeTolerance, Workflow2Layout& out) {
   LayoutNodes net;
   net.mergeTolerance = mergeTolerance;
   net.grid.resize(blocks.size());
@@ -432,9 +483,11 @@ LayoutNodes gridNodes(const std::vector<Block>& blocks, const GridTrial& chosen,
         const int id = net.grid[bi][i][j] = net.nodeId(plain[i][j], boundaryPoint.has_value());
         if (boundaryPoint) net.onSurface[id] = net.startedOn[id] = boundaryPoint;
         const bool onHoleBox = !singleBlock && j == b.nv;
-        if (boundaryPoint || onHoleBox || (singleBlock && chosen.onPeak[i][j])) net.fixedNode[id] = 1;
+        if (boundaryPoint || onHoleBox || (singleBlock && chosen.onPeak[i][j]))
+          net.fixedNode[id] = 1;
         if (singleBlock && chosen.onPeak[i][j]) ++out.peaksSnapped;
-        if (i > 0 && i < b.nu && j > 0 && j < b.nv && net.interiorOf[id][0] < 0) net.interiorOf[id] = {static_cast<int>(bi), i, j};
+        if (i > 0 && i < b.nu && j > 0 && j < b.nv && net.interiorOf[id][0] < 0)
+          net.interiorOf[id] = {static_cast<int>(bi), i, j};
       }
     addBoundaryChords(b, net.grid[bi], net);
   }
@@ -443,13 +496,16 @@ LayoutNodes gridNodes(const std::vector<Block>& blocks, const GridTrial& chosen,
 
 // Each hole's cell becomes a ring of four patches round the hole's box (its corners moved in
 // until the traced sides just clear the hole, with the solver).
-void addHoleRings(const std::vector<HoleBox>& holeBoxes, const GridTrial& chosen, const Footprint& foot, const Plan& plan,
-                  const PlanLifter& lifter, const TriMesh& surface, const geodesic::DistanceSolver* solver, LayoutNodes& net,
+void addHoleRings(const std::vector<HoleBox>& holeBoxes, const GridTrial& chosen,
+                  const Footprint& foot, const Plan& plan, const PlanLifter& lifter,
+                  const TriMesh& surface, const geodesic::DistanceSolver* solver, LayoutNodes& net,
                   Workflow2Layout& out) {
   for (size_t h = 0; h < holeBoxes.size(); ++h) {
     std::array<double, 4> scale{1.0, 1.0, 1.0, 1.0};
     const auto cornerAt = [&](int k) { return holeBoxes[h].corner(k, scale[k]); };
-    if (solver && tightenHoleBox(scale, cornerAt, foot.holes[h], plan, lifter, surface, *solver, foot.tolerance) >= 0) ++out.holeBoxesTightened;
+    if (solver && tightenHoleBox(scale, cornerAt, foot.holes[h], plan, lifter, surface, *solver,
+                                 foot.tolerance) >= 0)
+      ++out.holeBoxesTightened;
     std::array<int, 4> ring{};
     for (int k = 0; k < 4; ++k) {
       ring[k] = net.nodeId(cornerAt(k), false);
@@ -473,7 +529,8 @@ void pullInOffConcaveStretches(const Footprint& foot, LayoutNodes& net, Workflow
 
 // High K first (Algorithm 2): an interior node near a K peak becomes a corner at p_max (one
 // block: done while screening).
-void snapNodesToPeaks(const std::vector<PlanPeak>& peaks, const Workflow2Options& options, LayoutNodes& net, Workflow2Layout& out) {
+void snapNodesToPeaks(const std::vector<PlanPeak>& peaks, const Workflow2Options& options,
+                      LayoutNodes& net, Workflow2Layout& out) {
   std::vector<char> snapped(net.nodes.size(), 0);
   for (const auto& peak : peaks) {
     int best = -1;
@@ -484,7 +541,8 @@ void snapNodesToPeaks(const std::vector<PlanPeak>& peaks, const Workflow2Options
       if (d < bestDistance) bestDistance = d, best = static_cast<int>(i);
     }
     const auto [block, gi, gj] = best >= 0 ? net.interiorOf[best] : std::array<int, 3>{-1, -1, -1};
-    if (block >= 0 && snapAllowed(net.plainGrids[block], gi, gj, peak.at, options.peakSnapFraction)) {
+    if (block >= 0 &&
+        snapAllowed(net.plainGrids[block], gi, gj, peak.at, options.peakSnapFraction)) {
       net.nodes[best] = peak.at;
       snapped[best] = 1;
       ++out.peaksSnapped;
@@ -509,14 +567,17 @@ int inwardOf(const LayoutNodes& net, int node) {
   return -1;
 }
 
-// The point `step` along a polyline from its start (its end when shorter; `from` when it has one point).
-Eigen::Vector3d pointAlong(const std::vector<Eigen::Vector3d>& positions, double step, const Eigen::Vector3d& from) {
+// The point `step` along a polyline from its start (its end when shorter; `from` when it has one
+// point).
+Eigen::Vector3d pointAlong(const std::vector<Eigen::Vector3d>& positions, double step,
+                           const Eigen::Vector3d& from) {
   double walked = 0.0;
   Eigen::Vector3d moved = from;
   for (size_t i = 1; i < positions.size(); ++i) {
     const double piece = (positions[i] - positions[i - 1]).norm();
     if (walked + piece >= step) {
-      moved = positions[i - 1] + (step - walked) / std::max(piece, 1e-300) * (positions[i] - positions[i - 1]);
+      moved = positions[i - 1] +
+              (step - walked) / std::max(piece, 1e-300) * (positions[i] - positions[i - 1]);
       break;
     }
     walked += piece;
@@ -531,13 +592,16 @@ Eigen::Vector3d pointAlong(const std::vector<Eigen::Vector3d>& positions, double
 // angle reflex; its two neighbours along the boundary move in instead, along the surface (in
 // plan a step near a vertical wall would climb it) by a tenth of their side, which leaves the
 // corner an angle of about pi - 0.2 and two thin cut-offs.
-void moveNeighboursOfStraightCorners(const TriMesh& surface, const Footprint& foot, const std::array<size_t, 4>& cornerIndex, const Plan& plan,
-                                     const geodesic::DistanceSolver& solver, LayoutNodes& net, Workflow2Layout& out) {
+void moveNeighboursOfStraightCorners(const TriMesh& surface, const Footprint& foot,
+                                     const std::array<size_t, 4>& cornerIndex, const Plan& plan,
+                                     const geodesic::DistanceSolver& solver, LayoutNodes& net,
+                                     Workflow2Layout& out) {
   const double cornerAngleMargin = 0.1, neighbourStep = 0.1;
   std::vector<int> outerCorners;
   for (size_t k = 0; k < 4; ++k)
     for (size_t i = 0; i < net.nodes.size(); ++i)
-      if (net.onSurface[i] && (net.nodes[i] - foot.outer[cornerIndex[k]]).norm() <= net.mergeTolerance)
+      if (net.onSurface[i] &&
+          (net.nodes[i] - foot.outer[cornerIndex[k]]).norm() <= net.mergeTolerance)
         outerCorners.push_back(static_cast<int>(i));
   auto& lifted = net.lifted;
   for (int node : outerCorners) {
@@ -549,12 +613,17 @@ void moveNeighboursOfStraightCorners(const TriMesh& surface, const Footprint& fo
     const auto toA = solver.path(from, geodesic::snapToSurface(surface, lifted[along[0]]));
     const auto toB = solver.path(from, geodesic::snapToSurface(surface, lifted[along[1]]));
     if (toA.positions.size() < 2 || toB.positions.size() < 2) continue;
-    const double angle = M_PI + geodesicTurningAtBoundary(surface, boundaryVertexAt(surface, lifted[node]), toA.positions[1], toB.positions[1]);
+    const double angle =
+        M_PI + geodesicTurningAtBoundary(surface, boundaryVertexAt(surface, lifted[node]),
+                                         toA.positions[1], toB.positions[1]);
     if (angle <= M_PI - cornerAngleMargin) continue;
     for (size_t side = 0; side < 2; ++side) {
       const int neighbour = along[side], towards = inwardOf(net, neighbour);
-      if (towards < 0 || !net.onSurface[neighbour] || std::count(outerCorners.begin(), outerCorners.end(), neighbour)) continue;
-      const auto inward = solver.path(geodesic::snapToSurface(surface, lifted[neighbour]), geodesic::snapToSurface(surface, lifted[towards]));
+      if (towards < 0 || !net.onSurface[neighbour] ||
+          std::count(outerCorners.begin(), outerCorners.end(), neighbour))
+        continue;
+      const auto inward = solver.path(geodesic::snapToSurface(surface, lifted[neighbour]),
+                                      geodesic::snapToSurface(surface, lifted[towards]));
       const double step = neighbourStep * (side == 0 ? toA.length : toB.length);
       const Eigen::Vector3d moved = pointAlong(inward.positions, step, lifted[neighbour]);
       lifted[neighbour] = moved;
@@ -567,12 +636,14 @@ void moveNeighboursOfStraightCorners(const TriMesh& surface, const Footprint& fo
 
 // Each boundary chord traced on the surface; where it bends round a boundary vertex its ends are
 // pulled further in (and lifted again).
-void pullInWrappingChords(const TriMesh& surface, const PlanLifter& lifter, const geodesic::DistanceSolver& solver,
-                          const Workflow2Options& options, LayoutNodes& net, int& overhangs, Workflow2Layout& out) {
+void pullInWrappingChords(const TriMesh& surface, const PlanLifter& lifter,
+                          const geodesic::DistanceSolver& solver, const Workflow2Options& options,
+                          LayoutNodes& net, int& overhangs, Workflow2Layout& out) {
   for (int round = 0; round < 12; ++round) {
     std::vector<char> bad(net.nodes.size(), 0);
     for (const auto& [a, b] : net.boundaryChords) {
-      const auto path = solver.path(geodesic::snapToSurface(surface, net.lifted[a]), geodesic::snapToSurface(surface, net.lifted[b]));
+      const auto path = solver.path(geodesic::snapToSurface(surface, net.lifted[a]),
+                                    geodesic::snapToSurface(surface, net.lifted[b]));
       const double wrap = boundaryWrapTurning(surface, path.positions, path.bendVertices);
       if (wrap > options.boundaryWrapToleranceRad) bad[a] = bad[b] = 1;
     }
@@ -584,7 +655,8 @@ void pullInWrappingChords(const TriMesh& surface, const PlanLifter& lifter, cons
 }
 
 // The patches: a grid cell each, or a ring of four round the box in a hole's cell.
-void addQuads(const std::vector<Block>& blocks, const LayoutNodes& net, bool singleBlock, Workflow2Layout& out) {
+void addQuads(const std::vector<Block>& blocks, const LayoutNodes& net, bool singleBlock,
+              Workflow2Layout& out) {
   for (size_t bi = 0; bi < blocks.size(); ++bi)
     for (int i = 0; i < blocks[bi].nu; ++i)
       for (int j = 0; j < blocks[bi].nv; ++j) {
@@ -596,26 +668,36 @@ void addQuads(const std::vector<Block>& blocks, const LayoutNodes& net, bool sin
           continue;
         }
         for (int k = 0; k < 4; ++k)  // the patch between cell side k and box side k
-          out.quads.push_back({cell[k], cell[(k + 1) % 4], ring->second[(k + 1) % 4], ring->second[k]});
+          out.quads.push_back(
+              {cell[k], cell[(k + 1) % 4], ring->second[(k + 1) % 4], ring->second[k]});
       }
 }
 
 // How the layout was made, for the report.
-void addSummaryNotes(const std::vector<Block>& blocks, const Workflow2Options& options, Workflow2Layout& out) {
+void addSummaryNotes(const std::vector<Block>& blocks, const Workflow2Options& options,
+                     Workflow2Layout& out) {
   std::string counts;
-  for (const auto& b : blocks) counts += fmt::format("{}{}x{}", counts.empty() ? "" : ", ", b.nu, b.nv);
-  out.notes.push_back(fmt::format("patches per block: {} (cells up to {:.3g} m across in space; {} grids screened)", counts, options.maxPatchSizeM,
-                                  out.candidatesScreened));
-  if (out.peaksSnapped) out.notes.push_back(fmt::format("{} grid corner(s) moved onto K peaks", out.peaksSnapped));
+  for (const auto& b : blocks)
+    counts += fmt::format("{}{}x{}", counts.empty() ? "" : ", ", b.nu, b.nv);
+  out.notes.push_back(
+      fmt::format("patches per block: {} (cells up to {:.3g} m across in space; {} grids screened)",
+                  counts, options.maxPatchSizeM, out.candidatesScreened));
+  if (out.peaksSnapped)
+    out.notes.push_back(fmt::format("{} grid corner(s) moved onto K peaks", out.peaksSnapped));
   if (out.cornersMovedOffStraightBoundary)
-    out.notes.push_back(fmt::format("{} outer corner(s) on a boundary running on straight there (an inner angle near pi): their neighbours moved in",
-                                    out.cornersMovedOffStraightBoundary));
-  if (out.nodesPulledIn) out.notes.push_back(fmt::format("boundary corners pulled inwards {} time(s) off concave stretches", out.nodesPulledIn));
+    out.notes.push_back(
+        fmt::format("{} outer corner(s) on a boundary running on straight there (an inner angle "
+                    "near pi): their neighbours moved in",
+                    out.cornersMovedOffStraightBoundary));
+  if (out.nodesPulledIn)
+    out.notes.push_back(fmt::format(
+        "boundary corners pulled inwards {} time(s) off concave stretches", out.nodesPulledIn));
 }
 
 }  // namespace
 
-Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& options, const geodesic::DistanceSolver* solver) {
+Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& options,
+                              const geodesic::DistanceSolver* solver) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
   if (surface.n_faces() == 0) throw InvalidInput("workflow 2: the surface has no faces");
@@ -625,25 +707,31 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
   const PlanLifter lifter(surface, plan);
   out.holes = static_cast<int>(foot.holes.size());
 
-  // Blocks: one between the outer corners (no hole, or several), or a ring of four round a single hole.
+  // Blocks: one between the outer corners (no hole, or several), or a ring of four round a single
+  // hole.
   const OuterCorners corners = outerCornersOf(foot);
   const bool singleBlock = foot.holes.size() != 1;
-  std::vector<Block> blocks = singleBlock ? std::vector<Block>{outerBlock(corners.arcs, foot.holes.size(), out)}
-                                          : ringBlocks(corners.arcs, foot, plan, lifter, surface, solver, options, out);
+  std::vector<Block> blocks =
+      singleBlock ? std::vector<Block>{outerBlock(corners.arcs, foot.holes.size(), out)}
+                  : ringBlocks(corners.arcs, foot, plan, lifter, surface, solver, options, out);
   out.blocks = static_cast<int>(blocks.size());
 
   std::vector<HoleBox> holeBoxes;
   if (foot.holes.size() > 1)
-    for (const auto& hole : foot.holes) holeBoxes.push_back(holeBoxOf(hole, options.holeMarginRelative));
+    for (const auto& hole : foot.holes)
+      holeBoxes.push_back(holeBoxOf(hole, options.holeMarginRelative));
   const std::vector<PlanPeak> peaks = cornerPeaks(surface, plan, holeBoxes);
 
   // Each block's grid of patches.
   GridTrial chosen;
-  if (singleBlock) chosen = screenGrids(blocks.front(), lifter, peaks, holeBoxes, options, out);
-  else growRingGrids(blocks, lifter, options, out);
+  if (singleBlock)
+    chosen = screenGrids(blocks.front(), lifter, peaks, holeBoxes, options, out);
+  else
+    growRingGrids(blocks, lifter, options, out);
 
   // The corner nodes: placed, pulled in off concave stretches, snapped to peaks, lifted.
-  LayoutNodes net = gridNodes(blocks, chosen, singleBlock, lifter, 1e-6 * std::max(corners.half.x(), corners.half.y()), out);
+  LayoutNodes net = gridNodes(blocks, chosen, singleBlock, lifter,
+                              1e-6 * std::max(corners.half.x(), corners.half.y()), out);
   addHoleRings(holeBoxes, chosen, foot, plan, lifter, surface, solver, net, out);
   net.blockCentre = [&] {
     Vec2 c = Vec2::Zero();
@@ -665,7 +753,9 @@ Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& op
     pullInWrappingChords(surface, lifter, *solver, options, net, overhangs, out);
   }
   out.corners = net.lifted;
-  if (overhangs) out.notes.push_back(fmt::format("{} corner(s) over a part of the surface that the plan sees twice", overhangs));
+  if (overhangs)
+    out.notes.push_back(
+        fmt::format("{} corner(s) over a part of the surface that the plan sees twice", overhangs));
   addQuads(blocks, net, singleBlock, out);
   addSummaryNotes(blocks, options, out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

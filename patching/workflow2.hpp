@@ -32,10 +32,13 @@ class DistanceSolver;
 namespace egg::patching {
 
 struct Workflow2Options {
-  double maxPatchSizeM = 40.0;     // largest patch diagonal proposed (handling on site, 3.5.3)
+  double maxPatchSizeM = 40.0;       // largest patch diagonal proposed (handling on site, 3.5.3)
   double holeMarginRelative = 0.03;  // the box around a hole, inflated by this fraction of its size
-  double boundaryWrapToleranceRad = PatchOptions{}.boundaryWrapToleranceRad;  // a traced side along the boundary may turn this much round it
-  double peakSnapFraction = 0.45;  // a grid node moves onto a K peak within this fraction of its cells along each grid direction
+  double boundaryWrapToleranceRad =
+      PatchOptions{}.boundaryWrapToleranceRad;  // a traced side along the boundary may turn this
+                                                // much round it
+  double peakSnapFraction = 0.45;  // a grid node moves onto a K peak within this fraction of its
+                                   // cells along each grid direction
   // The architect's grid of patches for a surface with no hole or several ({0, 0}: screen every
   // grid up to 16 x 16 and keep the one predicting the fewest patches). Its cells must still fit
   // maxPatchSizeM; Workflow 1 may split its patches further.
@@ -44,22 +47,24 @@ struct Workflow2Options {
 };
 
 struct Workflow2Layout {
-  std::vector<Eigen::Vector3d> corners;    // on the surface
-  std::vector<std::array<int, 4>> quads;   // corner indices, counter-clockwise seen from above
+  std::vector<Eigen::Vector3d> corners;   // on the surface
+  std::vector<std::array<int, 4>> quads;  // corner indices, counter-clockwise seen from above
   int blocks = 0;
   int holes = 0;
   int peaksSnapped = 0;
   int nodesPulledIn = 0;
   int cornersMovedOffStraightBoundary = 0;
-  int holeBoxesTightened = 0;             // boxes round holes whose traced sides were moved in to just clear them
-  int candidatesScreened = 0;             // grids tried (cheap: plan nodes lifted, cell chords measured)
-  std::vector<std::string> notes;          // how the layout was made, for the report
+  int holeBoxesTightened =
+      0;  // boxes round holes whose traced sides were moved in to just clear them
+  int candidatesScreened = 0;      // grids tried (cheap: plan nodes lifted, cell chords measured)
+  std::vector<std::string> notes;  // how the layout was made, for the report
   double seconds = 0.0;
 };
 
 // With `solver` (on `surface`) every boundary chord is traced, and a chord that bends round a
 // boundary vertex (hugging a wall the plan view cannot see) has its ends pulled in further.
-// Throws InvalidInput when the surface has no boundary, or no screened grid fits (the size, the holes).
+// Throws InvalidInput when the surface has no boundary, or no screened grid fits (the size, the
+// holes).
 Workflow2Layout proposeLayout(const TriMesh& surface, const Workflow2Options& options = {},
                               const geodesic::DistanceSolver* solver = nullptr);
 

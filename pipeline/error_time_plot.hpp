@@ -3,8 +3,8 @@
 // from the design surface (RMSE and max, Sections 2.6.2, 3.5.2) as the Newton iterations of a run
 // go by (SimulationRun::history, recorded through the solver's observer). report.json carries each
 // run's history (simulation.patches[].history, simulation.joined.history); report.html draws it.
-#include "pipeline/plot_frame.hpp"
 #include "core/rods/simulation.hpp"
+#include "pipeline/plot_frame.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -20,7 +20,8 @@ inline constexpr int kErrorHistoryEvery = 8;
 // report.json history: [{seconds, iteration, load_step, rmse_m, max_error_m}], oldest first.
 nlohmann::json historyJson(const std::vector<rods::DeviationSample>& history);
 // Reads it back; throws InvalidInput naming `where` and the key when it is malformed.
-std::vector<rods::DeviationSample> historyFromJson(const nlohmann::json& history, const std::string& where);
+std::vector<rods::DeviationSample> historyFromJson(const nlohmann::json& history,
+                                                   const std::string& where);
 
 struct ErrorTimeSeries {
   std::string label;  // "patch 3", "joined"
@@ -31,8 +32,9 @@ struct ErrorTimeSeries {
 // (0 to the largest time and error, errors with 8 % headroom).
 PlotFrame errorTimeFrame(int panel, const std::vector<ErrorTimeSeries>& series);
 
-// <svg id="`id`"> (without the namespace, as the page's other charts) with both panels, a polyline per series
-// and a legend; `title` above. Series without samples are left out.
-std::string errorTimeSvg(const std::string& id, const std::string& title, const std::vector<ErrorTimeSeries>& series);
+// <svg id="`id`"> (without the namespace, as the page's other charts) with both panels, a polyline
+// per series and a legend; `title` above. Series without samples are left out.
+std::string errorTimeSvg(const std::string& id, const std::string& title,
+                         const std::vector<ErrorTimeSeries>& series);
 
 }  // namespace egg::pipeline

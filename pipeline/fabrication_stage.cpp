@@ -10,17 +10,20 @@ fabrication::FabricationOutputs fabricationOutputsFromScene(const Scene& scene) 
   return {scene.wants("cut_files"), scene.wants("stickers"), scene.wants("supports")};
 }
 
-FabricationStageResult fabricateScene(const Scene& scene, const std::vector<fabrication::FabricationPatch>& patches,
-                                           const std::filesystem::path& runDir,
-                                           const std::vector<fabrication::SharedBoundary>& shared) {
+FabricationStageResult fabricateScene(const Scene& scene,
+                                      const std::vector<fabrication::FabricationPatch>& patches,
+                                      const std::filesystem::path& runDir,
+                                      const std::vector<fabrication::SharedBoundary>& shared) {
   FabricationStageResult stage;
   stage.result = fabrication::fabricate(patches, scene.fabricationOptions(), shared);
-  stage.files = fabrication::writeFabricationFiles(stage.result, runDir, fabricationOutputsFromScene(scene));
+  stage.files =
+      fabrication::writeFabricationFiles(stage.result, runDir, fabricationOutputsFromScene(scene));
   stage.report = fabrication::fabricationReport(stage.result, stage.files);
   if (!stage.result.unspliceable.empty()) {
-    stage.failures.push_back("fabrication: " + std::to_string(stage.result.unspliceable.size()) +
-                             " lamellas cannot be spliced and are not in the cut files; the first: " +
-                             stage.result.unspliceable.front());
+    stage.failures.push_back(
+        "fabrication: " + std::to_string(stage.result.unspliceable.size()) +
+        " lamellas cannot be spliced and are not in the cut files; the first: " +
+        stage.result.unspliceable.front());
   }
   return stage;
 }
@@ -31,7 +34,8 @@ bool fabricationWanted(const Scene& scene) {
 }
 
 std::string fabricationDisabled(const Scene& scene) {
-  return scene.fabrication.enabled ? std::string() : "the scene disables it (fabrication.enabled = false)";
+  return scene.fabrication.enabled ? std::string()
+                                   : "the scene disables it (fabrication.enabled = false)";
 }
 
 std::string fabricationSkipReason(const RunState& state) {
@@ -45,20 +49,24 @@ void fabricationStage(RunState& state) {
     if (!p.egg) continue;
     fabrication::FabricationPatch entry{p.id, &p.egg->grid, std::nullopt};
     if (p.simulation) entry.deployedCentrelines = p.simulation->deployed.centrelines;
-    entry.freeSides = assembly::freeSides(state.patching->graph, p.id);  // supports only on the design boundary
+    entry.freeSides =
+        assembly::freeSides(state.patching->graph, p.id);  // supports only on the design boundary
     grids.push_back(std::move(entry));
   }
   // The grid decides whether its parts can be cut (a part wider than the sheet; a lamella whose
   // slots leave no place for a splice is left out and listed, fab.failures): a failure of this
-  // run with its report, not bad input (the options themselves were checked when the scene was read).
+  // run with its report, not bad input (the options themselves were checked when the scene was
+  // read).
   try {
-    FabricationStageResult fab = fabricateScene(state.scene, grids, state.staging,
-                                                assembly::sharedLamellae(state.patching->graph, gridsOf(state.patches)));
+    FabricationStageResult fab =
+        fabricateScene(state.scene, grids, state.staging,
+                       assembly::sharedLamellae(state.patching->graph, gridsOf(state.patches)));
     state.report.stageRan("fabrication", watch.seconds());
     state.report.section("fabrication") = fab.report;
     state.failures.insert(state.failures.end(), fab.failures.begin(), fab.failures.end());
   } catch (const InvalidInput& e) {
-    state.report.stageSkipped("fabrication", std::string("the grid cannot be cut with these settings: ") + e.what());
+    state.report.stageSkipped(
+        "fabrication", std::string("the grid cannot be cut with these settings: ") + e.what());
     state.failures.push_back(std::string("fabrication: ") + e.what());
   }
 }

@@ -2,9 +2,8 @@
 // The fabrication stage (Sections 3.5, 3.6.1): cut files, stickers, supports and the BOM of the
 // traced grids (fabrication/fabricate.hpp), with its options and files from the scene, and
 // stresses from the deployed centrelines where the simulation ran.
-#include "pipeline/scene.hpp"
 #include "fabrication/fabricate.hpp"
-
+#include "pipeline/scene.hpp"
 
 namespace egg::pipeline {
 
@@ -20,15 +19,17 @@ struct FabricationStageResult {
   fabrication::FabricationResult result;
   std::vector<std::string> files;  // written, relative to the run folder
   nlohmann::json report;           // report.json "fabrication"
-  std::vector<std::string> failures;  // for the run's failures (exit 1): lamellas that could not be cut
+  std::vector<std::string>
+      failures;  // for the run's failures (exit 1): lamellas that could not be cut
 };
 
 // The whole stage in one call: fabricate with the scene's options, write what its outputs ask for
 // below `runDir` (bom.csv always), and the report section. Throws as fabricate() and
 // writeFabricationFiles() do (InvalidInput: bad input; WriteError: a file).
-FabricationStageResult fabricateScene(const Scene& scene, const std::vector<fabrication::FabricationPatch>& patches,
-                                           const std::filesystem::path& runDir,
-                                           const std::vector<fabrication::SharedBoundary>& shared = {});
+FabricationStageResult fabricateScene(const Scene& scene,
+                                      const std::vector<fabrication::FabricationPatch>& patches,
+                                      const std::filesystem::path& runDir,
+                                      const std::vector<fabrication::SharedBoundary>& shared = {});
 
 // Stage table row: the scene may switch it off; nothing to cut without a solved grid. A grid whose
 // parts cannot be cut with the scene's settings (a part wider than the sheet) is a failure of

@@ -24,8 +24,8 @@ using nlohmann::json;
 namespace {
 
 // The report's EggResult of a traced design.
-EggResult eggResult(const patching::DesignedPatch& designed, FamilyMembers u, FamilyMembers v, EggGrid grid, double membersSeconds,
-                    double tracingSeconds) {
+EggResult eggResult(const patching::DesignedPatch& designed, FamilyMembers u, FamilyMembers v,
+                    EggGrid grid, double membersSeconds, double tracingSeconds) {
   const PatchDesign& design = *designed.design;
   EggResult result;
   result.patch = design.patch;
@@ -58,13 +58,15 @@ std::vector<SolvedPatch> layoutPatches(const PatchingRun& run) {
   return out;
 }
 
-void tracePatches(PatchingRun& run, std::vector<SolvedPatch>& out, const propagation::LayoutPropagation* members,
+void tracePatches(PatchingRun& run, std::vector<SolvedPatch>& out,
+                  const propagation::LayoutPropagation* members,
                   propagation::LayoutTracing* tracing) {
   if (members) {
     // Several patches: the propagated members (Problem 3.3), traced in member order so that
     // neighbours' member ends coincide on their shared sides (propagation/chain_tracing.hpp).
     std::vector<const PatchDesign*> designs;
-    for (const auto& designed : run.layout.patches) designs.push_back(designed.feasible() ? &*designed.design : nullptr);
+    for (const auto& designed : run.layout.patches)
+      designs.push_back(designed.feasible() ? &*designed.design : nullptr);
     propagation::LayoutTracing traced = propagation::traceLayout(designs, *members);
     for (size_t i = 0; i < out.size(); ++i) {
       auto& t = traced.patches[i];
@@ -73,7 +75,8 @@ void tracePatches(PatchingRun& run, std::vector<SolvedPatch>& out, const propaga
         out[i].failure = t.failure;
         continue;
       }
-      out[i].egg = eggResult(run.layout.patches[i], std::move(*t.u), std::move(*t.v), std::move(*t.grid), t.membersSeconds, t.tracingSeconds);
+      out[i].egg = eggResult(run.layout.patches[i], std::move(*t.u), std::move(*t.v),
+                             std::move(*t.grid), t.membersSeconds, t.tracingSeconds);
       t.grid.reset();
     }
     if (tracing) *tracing = std::move(traced);
@@ -93,7 +96,8 @@ void tracePatches(PatchingRun& run, std::vector<SolvedPatch>& out, const propaga
       watch.restart();
       EggGrid grid = traceDesignGrid(design, u, v, design.options.grid);
       const double tracingSeconds = watch.seconds();
-      patch.egg = eggResult(designed, std::move(u), std::move(v), std::move(grid), membersSeconds, tracingSeconds);
+      patch.egg = eggResult(designed, std::move(u), std::move(v), std::move(grid), membersSeconds,
+                            tracingSeconds);
     } catch (const InfeasiblePatch& e) {
       patch.failure = std::string("infeasible: ") + e.what();
     } catch (const SolverFailure& e) {
@@ -105,7 +109,10 @@ void tracePatches(PatchingRun& run, std::vector<SolvedPatch>& out, const propaga
 json patchEntry(const SolvedPatch& patch) {
   json corners = json::array();
   for (const auto& c : patch.corners) corners.push_back({c.x(), c.y(), c.z()});
-  json entry{{"id", patch.id}, {"corners", corners}, {"corner_ids", patch.cornerIds}, {"feasible", patch.egg.has_value()}};
+  json entry{{"id", patch.id},
+             {"corners", corners},
+             {"corner_ids", patch.cornerIds},
+             {"feasible", patch.egg.has_value()}};
   if (!patch.egg) {
     entry["reason"] = patch.failure;
     return entry;
@@ -118,7 +125,9 @@ json patchEntry(const SolvedPatch& patch) {
       {"inner_angles_rad", r.patch.innerAngles},
       {"eta_u", r.uniqueness.etaU},
       {"eta_v", r.uniqueness.etaV},
-      {"injectivity_bound_m", std::isfinite(r.uniqueness.injectivityBoundM) ? json(r.uniqueness.injectivityBoundM) : json(nullptr)},
+      {"injectivity_bound_m", std::isfinite(r.uniqueness.injectivityBoundM)
+                                  ? json(r.uniqueness.injectivityBoundM)
+                                  : json(nullptr)},
       {"smoothing_rounds", r.uniqueness.smoothingRounds},
       {"smoothing_displacement_m", r.uniqueness.smoothingDisplacementM},
       {"alpha_bar_rad", r.alphaBar.alphaBar},
@@ -146,7 +155,8 @@ json patchEntry(const SolvedPatch& patch) {
 
 namespace {
 
-std::string polylinesObj(const std::vector<std::vector<Eigen::Vector3d>>& lines, const std::string& comment) {
+std::string polylinesObj(const std::vector<std::vector<Eigen::Vector3d>>& lines,
+                         const std::string& comment) {
   std::ostringstream out;
   out.precision(10);
   out << "# " << comment << "\n";
@@ -163,7 +173,8 @@ std::string polylinesObj(const std::vector<std::vector<Eigen::Vector3d>>& lines,
 
 }  // namespace
 
-void writePatchFiles(const SolvedPatch& patch, const std::filesystem::path& dir, const Scene& scene) {
+void writePatchFiles(const SolvedPatch& patch, const std::filesystem::path& dir,
+                     const Scene& scene) {
   if (!patch.egg) return;
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -173,9 +184,10 @@ void writePatchFiles(const SolvedPatch& patch, const std::filesystem::path& dir,
   writeGridObj(patch.egg->grid, (dir / "grid.obj").string());
   writePlanarSvg(patch.egg->grid, (dir / "planar.svg").string());
   if (patch.simulation) {
-    writeFileAtomically(dir / "deployed.obj",
-                        polylinesObj(patch.simulation->deployed.centrelines,
-                                     fmt::format("eggshell patch {}: deployed lamella centrelines (m)", patch.id)));
+    writeFileAtomically(
+        dir / "deployed.obj",
+        polylinesObj(patch.simulation->deployed.centrelines,
+                     fmt::format("eggshell patch {}: deployed lamella centrelines (m)", patch.id)));
   }
 }
 
@@ -198,14 +210,18 @@ void addPatchEntries(RunState& state) {
       const EggResult& egg = *p.egg;
       const AlphaBarOptions& bounds = designed.design->options.alphaBar;
       const auto sides = [&](Family f) {
-        return std::array<double, 2>{familySideLength(egg.patch, f, false), familySideLength(egg.patch, f, true)};
+        return std::array<double, 2>{familySideLength(egg.patch, f, false),
+                                     familySideLength(egg.patch, f, true)};
       };
-      entry["cladding"] = claddingEntry(egg.alphaBar.claddingU, egg.alphaBar.claddingV, egg.membersU, egg.membersV, sides(Family::U),
-                                        sides(Family::V), bounds.slopeMin, bounds.slopeMax, bounds.cladding.infiniteSlopeFactor);
+      entry["cladding"] =
+          claddingEntry(egg.alphaBar.claddingU, egg.alphaBar.claddingV, egg.membersU, egg.membersV,
+                        sides(Family::U), sides(Family::V), bounds.slopeMin, bounds.slopeMax,
+                        bounds.cladding.infiniteSlopeFactor);
     }
     state.report.section("patches").push_back(entry);
     if (!designed.feasible() || (gridNeeded && !p.egg))
-      state.failures.push_back(fmt::format("patch {}: {}", p.id, p.failure.empty() ? designed.failure : p.failure));
+      state.failures.push_back(
+          fmt::format("patch {}: {}", p.id, p.failure.empty() ? designed.failure : p.failure));
   }
 }
 
@@ -214,8 +230,10 @@ std::string gridSkipReason(const RunState& state) {
 }
 
 void gridStage(RunState& state) {
-  tracePatches(*state.patching, state.patches, state.members ? &*state.members : nullptr, &state.tracing);
-  if (state.members) state.report.section("propagation") = propagationSection(*state.members, state.tracing);
+  tracePatches(*state.patching, state.patches, state.members ? &*state.members : nullptr,
+               &state.tracing);
+  if (state.members)
+    state.report.section("propagation") = propagationSection(*state.members, state.tracing);
 }
 
 }  // namespace egg::pipeline

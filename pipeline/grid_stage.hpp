@@ -23,7 +23,8 @@ std::vector<SolvedPatch> layoutPatches(const PatchingRun& run);
 // coincide (the gaps go to `tracing`); without, each patch places its own (2.4.4), patches in
 // parallel. Results do not depend on the thread count. A patch whose grid cannot be traced keeps
 // its reason.
-void tracePatches(PatchingRun& run, std::vector<SolvedPatch>& patches, const propagation::LayoutPropagation* members = nullptr,
+void tracePatches(PatchingRun& run, std::vector<SolvedPatch>& patches,
+                  const propagation::LayoutPropagation* members = nullptr,
                   propagation::LayoutTracing* tracing = nullptr);
 
 // report.json entry of one patch (docs/architecture.md "Report").
@@ -36,7 +37,8 @@ void addPatchEntries(RunState& state);
 
 // Files of one patch into `dir` (grid.json always; grid.obj, planar.svg and deployed.obj when the
 // scene asks for previews).
-void writePatchFiles(const SolvedPatch& patch, const std::filesystem::path& dir, const Scene& scene);
+void writePatchFiles(const SolvedPatch& patch, const std::filesystem::path& dir,
+                     const Scene& scene);
 
 // Stage table row: nothing to trace without a feasible design.
 std::string gridSkipReason(const RunState& state);

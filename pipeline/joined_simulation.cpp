@@ -14,7 +14,8 @@
 
 namespace egg::pipeline {
 
-JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene) {
+JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>& patches,
+                         const TriMesh& surface, const Scene& scene) {
   const Stopwatch watch;
   JoinedRun out;
   try {
@@ -22,12 +23,14 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
     out.swapped = assembly::layerSwaps(run.graph, grids);
     // Coinciding ends: C0 leaves them ~1e-15 m apart; a tenth of the lamella width separates them
     // from the next member on the side by far.
-    assembly::PatchJoins joins = assembly::patchJoins(run.graph, grids, out.swapped, 0.1 * scene.lamella.widthM);
+    assembly::PatchJoins joins =
+        assembly::patchJoins(run.graph, grids, out.swapped, 0.1 * scene.lamella.widthM);
     out.joins = std::move(joins.bolts);
     out.sidesJoined = joins.sidesJoined;
     out.sidesSkipped = joins.sidesSkipped;
     assembly::GridToRodsOptions convert = gridToRodsOptions(scene);
-    // Every patch keeps a network (empty for one without a grid) so that rod indices stay per patch.
+    // Every patch keeps a network (empty for one without a grid) so that rod indices stay per
+    // patch.
     std::vector<rods::RodNetwork> networks;
     std::vector<int> solvedIndex(patches.size(), -1);
     for (size_t p = 0; p < patches.size(); ++p) {
@@ -53,15 +56,17 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
     for (auto& j : out.joins) j.patchA = solvedIndex[j.patchA], j.patchB = solvedIndex[j.patchB];
     const rods::JoinedNetwork joined = rods::joinPatches(networks, out.joins);
     for (auto& j : out.joins) {  // back to layout patch ids for the report
-      j.patchA = static_cast<int>(std::find(solvedIndex.begin(), solvedIndex.end(), j.patchA) - solvedIndex.begin());
-      j.patchB = static_cast<int>(std::find(solvedIndex.begin(), solvedIndex.end(), j.patchB) - solvedIndex.begin());
+      j.patchA = static_cast<int>(std::find(solvedIndex.begin(), solvedIndex.end(), j.patchA) -
+                                  solvedIndex.begin());
+      j.patchB = static_cast<int>(std::find(solvedIndex.begin(), solvedIndex.end(), j.patchB) -
+                                  solvedIndex.begin());
     }
     rods::SimulationOptions options = rodsOptions(scene);
     options.compareWithoutNotches = false;  // RMS1/RMS2 stay a per-patch figure
     options.scaleFactor = boundingBox(surface).size().norm();
     if (out.warmStart) {
-      options.gravitySteps = 0;                        // the start carries its weight already
-      options.solver.stiffnessContinuation = false;   // and is no far-off guess to soften towards
+      options.gravitySteps = 0;                      // the start carries its weight already
+      options.solver.stiffnessContinuation = false;  // and is no far-off guess to soften towards
     }
     out.simulation = rods::simulateGrid(joined.network, surface, options);
   } catch (const Error& e) {
@@ -90,10 +95,11 @@ nlohmann::json joinedSection(const JoinedRun& joined) {
   j["energy_j"] = run.solver.energy;
   j["gradient_norm_n_nm"] = run.solver.gradientNorm;  // over positions (N) and twists (N m)
   j["decrement_j"] = run.solver.decrement;            // last Newton decrement g^T H^-1 g
-  j["max_sag_m"] = run.maxSagM;  // under self-weight, from the start state (warm) or the weightless equilibrium
+  j["max_sag_m"] =
+      run.maxSagM;  // under self-weight, from the start state (warm) or the weightless equilibrium
   j["max_sag_from"] = joined.warmStart ? "patch_by_patch_equilibria" : "weightless_equilibrium";
   j["unknowns"] = run.unknowns;
-  j["factorisations"] = run.solver.factorisations;        // Cholesky, shift trials included
+  j["factorisations"] = run.solver.factorisations;         // Cholesky, shift trials included
   j["energy_evaluations"] = run.solver.energyEvaluations;  // line-search trials
   j["status"] = rods::toString(run.solver.status);
   if (!joined.simulation->converged) j["reason"] = joined.simulation->reason;
@@ -112,8 +118,10 @@ std::string collapsedWhileHeld(const std::vector<SolvedPatch>& patches) {
   for (const auto& p : patches) {
     if (p.simulation && p.deployedStatus() == rods::SolverStatus::Collapsed) {
       return fmt::format(
-          "patch {} collapses under its own weight even held at every connection of its four sides; the joined "
-          "structure holds it on less (a neighbour instead of supports along the shared sides), so it cannot stand "
+          "patch {} collapses under its own weight even held at every connection of its four "
+          "sides; the joined "
+          "structure holds it on less (a neighbour instead of supports along the shared sides), so "
+          "it cannot stand "
           "near the design either and is not simulated",
           p.id);
     }
@@ -121,8 +129,11 @@ std::string collapsedWhileHeld(const std::vector<SolvedPatch>& patches) {
   return {};
 }
 
-std::optional<rods::SimulationRun> addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
-                                                       const Scene& scene, bool propagated, int solved, nlohmann::json& simulation,
+std::optional<rods::SimulationRun> addJoinedSimulation(const PatchingRun& run,
+                                                       const std::vector<SolvedPatch>& patches,
+                                                       const TriMesh& surface, const Scene& scene,
+                                                       bool propagated, int solved,
+                                                       nlohmann::json& simulation,
                                                        bool patchesHeldAllRound) {
   simulation["patch_by_patch"] = {{"rmse_m", simulation["rmse_m"]},
                                   {"max_error_m", simulation["max_error_m"]},
@@ -130,10 +141,14 @@ std::optional<rods::SimulationRun> addJoinedSimulation(const PatchingRun& run, c
                                   {"iterations", simulation["iterations"]},  // summed over patches
                                   {"seconds", simulation.value("seconds", 0.0)}};
   std::string skipped;
-  if (!scene.simulation.joinPatches) skipped = "the scene does not join patches (simulation.join_patches = false)";
-  else if (!propagated) skipped = "no propagated members: one patch, or no neighbours' member ends to bolt together";
-  else if (solved < 2) skipped = "fewer than two solved patches";
-  else if (patchesHeldAllRound) skipped = collapsedWhileHeld(patches);
+  if (!scene.simulation.joinPatches)
+    skipped = "the scene does not join patches (simulation.join_patches = false)";
+  else if (!propagated)
+    skipped = "no propagated members: one patch, or no neighbours' member ends to bolt together";
+  else if (solved < 2)
+    skipped = "fewer than two solved patches";
+  else if (patchesHeldAllRound)
+    skipped = collapsedWhileHeld(patches);
   if (!skipped.empty()) {
     simulation["joined"] = {{"ran", false}, {"skipped_reason", skipped}};
     return std::nullopt;

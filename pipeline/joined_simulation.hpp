@@ -2,10 +2,10 @@
 // The joined simulation of a multi-patch grid (beyond the paper, whose patches were simulated
 // apart, 3.7.1): the patches' rod networks side by side, with the two boundary lamellas of every
 // shared side bolted together at the member ends they share (assembly/patch_joins.hpp).
+#include "core/rods/joined_network.hpp"
 #include "pipeline/patching_stage.hpp"
 #include "pipeline/run_state.hpp"
 #include "pipeline/scene.hpp"
-#include "core/rods/joined_network.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -16,17 +16,19 @@
 namespace egg::pipeline {
 
 struct JoinedRun {
-  std::optional<rods::SimulationResult> simulation;  // the joined structure (with notches as the scene says)
+  std::optional<rods::SimulationResult>
+      simulation;  // the joined structure (with notches as the scene says)
   std::vector<rods::PatchJoin> joins;
-  std::vector<char> swapped;     // per patch: u members on top
-  int sidesJoined = 0;           // shared sides carrying at least one bolt
-  int sidesSkipped = 0;          // shared sides whose lamellas fell in one layer
-  bool warmStart = false;        // started from the converged patch-by-patch equilibria
-  std::string failure;           // an error of the joined run (not non-convergence)
+  std::vector<char> swapped;  // per patch: u members on top
+  int sidesJoined = 0;        // shared sides carrying at least one bolt
+  int sidesSkipped = 0;       // shared sides whose lamellas fell in one layer
+  bool warmStart = false;     // started from the converged patch-by-patch equilibria
+  std::string failure;        // an error of the joined run (not non-convergence)
   double seconds = 0.0;
 };
 
-JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene);
+JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>& patches,
+                         const TriMesh& surface, const Scene& scene);
 
 // report.json simulation.joined{}.
 nlohmann::json joinedSection(const JoinedRun& joined);
@@ -38,8 +40,11 @@ nlohmann::json joinedSection(const JoinedRun& joined);
 // patch that collapsed there skips the joined run (collapsedWhileHeld), which would only spend its
 // whole iteration budget falling (Yas: 500 iterations, ~8 minutes on 142k unknowns).
 // Returns the joined run's deployed state when it ran (for the report's deviation figure).
-std::optional<rods::SimulationRun> addJoinedSimulation(const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
-                                                       const Scene& scene, bool propagated, int solved, nlohmann::json& simulation,
+std::optional<rods::SimulationRun> addJoinedSimulation(const PatchingRun& run,
+                                                       const std::vector<SolvedPatch>& patches,
+                                                       const TriMesh& surface, const Scene& scene,
+                                                       bool propagated, int solved,
+                                                       nlohmann::json& simulation,
                                                        bool patchesHeldAllRound = false);
 
 // Why the joined run is pointless, or empty: the first patch whose patch-by-patch run (held along

@@ -28,7 +28,10 @@ void renderBrief(const json& v, int depth, std::string& out, std::size_t limit) 
       for (auto it = v.begin(); it != v.end() && out.size() <= limit; ++it) {
         if (!first) out += ", ";
         first = false;
-        if (!array) out += json(it.key().substr(0, limit)).dump(-1, ' ', false, json::error_handler_t::replace) + ": ";
+        if (!array)
+          out +=
+              json(it.key().substr(0, limit)).dump(-1, ' ', false, json::error_handler_t::replace) +
+              ": ";
         renderBrief(it.value(), depth + 1, out, limit);
       }
     }
@@ -47,9 +50,8 @@ std::string brief(const json& v, std::size_t limit) {
   return out;
 }
 
-
 JsonSection::JsonSection(const json& node, std::string path, std::string origin)
-  : node_(node), path_(std::move(path)), origin_(std::move(origin)) {
+    : node_(node), path_(std::move(path)), origin_(std::move(origin)) {
   if (!node_.is_object()) fail("", "must be an object");
 }
 
@@ -98,9 +100,12 @@ int JsonSection::integer(const std::string& key, int fallback, int lo, int hi) {
   if (!v.is_number_integer()) fail(key, "must be an integer, got " + brief(v));
   // An unsigned above LLONG_MAX would wrap to a negative long long: compare it as unsigned.
   if (v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(hi))
-    fail(key, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + brief(v));
+    fail(key,
+         "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + brief(v));
   const long long x = v.get<long long>();
-  if (x < lo || x > hi) fail(key, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(x));
+  if (x < lo || x > hi)
+    fail(key, "must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+                  std::to_string(x));
   return static_cast<int>(x);
 }
 
@@ -118,7 +123,8 @@ std::string JsonSection::text(const std::string& key, const std::string& fallbac
   return v.get<std::string>();
 }
 
-std::array<double, 2> JsonSection::pair(const std::string& key, std::array<double, 2> fallback, double lo, double hi) {
+std::array<double, 2> JsonSection::pair(const std::string& key, std::array<double, 2> fallback,
+                                        double lo, double hi) {
   if (!has(key)) return fallback;
   const json& v = node_.at(key);
   if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
@@ -126,7 +132,8 @@ std::array<double, 2> JsonSection::pair(const std::string& key, std::array<doubl
   }
   std::array<double, 2> out{v[0].get<double>(), v[1].get<double>()};
   for (double x : out) {
-    if (!std::isfinite(x) || x < lo || x > hi) fail(key, "values must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    if (!std::isfinite(x) || x < lo || x > hi)
+      fail(key, "values must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
   }
   return out;
 }
@@ -146,6 +153,5 @@ void JsonSection::rejectUnknownKeys() const {
     }
   }
 }
-
 
 }  // namespace egg::pipeline

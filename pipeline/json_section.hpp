@@ -36,7 +36,8 @@ class JsonSection {
   int integer(const std::string& key, int fallback, int lo, int hi);
   bool boolean(const std::string& key, bool fallback);
   std::string text(const std::string& key, const std::string& fallback);
-  std::array<double, 2> pair(const std::string& key, std::array<double, 2> fallback, double lo, double hi);
+  std::array<double, 2> pair(const std::string& key, std::array<double, 2> fallback, double lo,
+                             double hi);
   // The object under `key` (an empty one when absent).
   JsonSection child(const std::string& key);
 

@@ -1,7 +1,7 @@
 #include "pipeline/patching_stage.hpp"
+#include "core/timing.hpp"
 #include "pipeline/grid_stage.hpp"
 #include "pipeline/run_state.hpp"
-#include "core/timing.hpp"
 
 #include "core/errors.hpp"
 #include "core/geodesic/distance_solver.hpp"
@@ -26,7 +26,8 @@ const char* familyName(Family f) { return f == Family::U ? "u" : "v"; }
 
 }  // namespace
 
-PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& surfaceSolver, const Scene& scene) {
+PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& surfaceSolver,
+                        const Scene& scene) {
   const std::string origin = scene.path.string();
   PatchingRun run;
   const bool given = layoutIsGiven(scene);
@@ -58,7 +59,10 @@ PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& 
     try {
       return patching::makeLayout(surface, surfaceSolver, corners, quads, options.layout);
     } catch (const InvalidInput& e) {
-      throw InvalidInput(origin + (workflow2 ? ": patching (Workflow 2's initial layout): " : ": patching.patches: ") + e.what());
+      throw InvalidInput(
+          origin +
+          (workflow2 ? ": patching (Workflow 2's initial layout): " : ": patching.patches: ") +
+          e.what());
     }
   }();
   run.layout = patching::designLayout(std::move(layout), surfaceSolver, options);
@@ -70,9 +74,11 @@ PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& 
   }
   run.graph = patching::buildPatchGraph(run.layout.layout, usable);
   run.coverage = patching::computeCoverage(run.layout.layout, faces);
-  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const double total =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   run.designSeconds = run.layout.designSeconds;
-  run.layoutSeconds = total - run.designSeconds;  // corners, traces, splits, layout mesh, graph, coverage
+  run.layoutSeconds =
+      total - run.designSeconds;  // corners, traces, splits, layout mesh, graph, coverage
   return run;
 }
 
@@ -80,7 +86,10 @@ void addPatchingReport(const PatchingRun& run, json& report) {
   const auto& L = run.layout;
   json splits = json::array();
   for (const auto& s : L.splits)
-    splits.push_back({{"parent", s.parent}, {"children", s.children}, {"kind", s.kind}, {"p_max_m", point(s.peak)}});
+    splits.push_back({{"parent", s.parent},
+                      {"children", s.children},
+                      {"kind", s.kind},
+                      {"p_max_m", point(s.peak)}});
   report["patching"] = {{"workflow", run.workflow},
                         {"patches", L.patches.size()},
                         {"splits", L.splits.size()},
@@ -98,9 +107,17 @@ void addPatchingReport(const PatchingRun& run, json& report) {
     json patches = json::array(), uses = json::array();
     for (const auto& u : b.uses) {
       patches.push_back(u.patch);
-      uses.push_back({{"patch", u.patch}, {"side", u.side}, {"from", u.from}, {"to", u.to}, {"reversed", u.reversed}});
+      uses.push_back({{"patch", u.patch},
+                      {"side", u.side},
+                      {"from", u.from},
+                      {"to", u.to},
+                      {"reversed", u.reversed}});
     }
-    boundaries.push_back({{"id", b.id}, {"kind", toString(b.kind)}, {"patches", patches}, {"length_m", b.lengthM}, {"on_patches", uses}});
+    boundaries.push_back({{"id", b.id},
+                          {"kind", toString(b.kind)},
+                          {"patches", patches},
+                          {"length_m", b.lengthM},
+                          {"on_patches", uses}});
   }
   if (run.initial) {
     report["patching"]["workflow2"] = {{"blocks", run.initial->blocks},
@@ -121,12 +138,14 @@ void addPatchingReport(const PatchingRun& run, json& report) {
   json chains = json::array();
   for (const auto& c : run.graph.chains) {
     json nodes = json::array();
-    for (const auto& n : c.nodes) nodes.push_back({{"patch", n.patch}, {"family", familyName(n.family)}});
+    for (const auto& n : c.nodes)
+      nodes.push_back({{"patch", n.patch}, {"family", familyName(n.family)}});
     chains.push_back({{"nodes", nodes}, {"ring", c.ring}, {"branching", c.branching}});
   }
   report["chains"] = chains;
   json cutOffs = json::array();
-  for (const auto& c : run.coverage.cutOffs) cutOffs.push_back({{"area_m2", c.areaM2}, {"centroid_m", point(c.centroid)}});
+  for (const auto& c : run.coverage.cutOffs)
+    cutOffs.push_back({{"area_m2", c.areaM2}, {"centroid_m", point(c.centroid)}});
   report["coverage"] = {{"covered_area_m2", run.coverage.coveredAreaM2},
                         {"surface_area_m2", run.coverage.surfaceAreaM2},
                         {"fraction", run.coverage.fraction},
@@ -140,7 +159,11 @@ void writePatchesJson(const PatchingRun& run, const std::filesystem::path& file)
   for (const auto& c : layout.curves) {
     json polyline = json::array();
     for (const auto& p : c.positions) polyline.push_back(point(p));
-    sides.push_back({{"from", c.from}, {"to", c.to}, {"corners", c.corners}, {"length_m", c.length}, {"polyline_m", polyline}});
+    sides.push_back({{"from", c.from},
+                     {"to", c.to},
+                     {"corners", c.corners},
+                     {"length_m", c.length},
+                     {"polyline_m", polyline}});
   }
   for (size_t p = 0; p < layout.patches.size(); ++p) {
     const auto& d = run.layout.patches[p];
@@ -149,21 +172,28 @@ void writePatchesJson(const PatchingRun& run, const std::filesystem::path& file)
     if (d.cut) entry["area_m2"] = d.cut->patch.area;
     patches.push_back(entry);
   }
-  json doc{{"units", {{"length", "m"}}}, {"workflow", run.workflow}, {"corners_m", corners}, {"sides", sides}, {"patches", patches}};
+  json doc{{"units", {{"length", "m"}}},
+           {"workflow", run.workflow},
+           {"corners_m", corners},
+           {"sides", sides},
+           {"patches", patches}};
   json report;
   addPatchingReport(run, report);
-  for (const char* key : {"boundaries", "t_junctions", "chains", "coverage"}) doc[key] = report[key];
+  for (const char* key : {"boundaries", "t_junctions", "chains", "coverage"})
+    doc[key] = report[key];
   doc["splits"] = report["patching"]["split_log"];
   writeFileAtomically(file, doc.dump(1) + "\n");
 }
 
-void writePlan(const PatchingRun& run, const TriMesh& surface, const geodesic::DistanceSolver& surfaceSolver, const Scene& scene,
+void writePlan(const PatchingRun& run, const TriMesh& surface,
+               const geodesic::DistanceSolver& surfaceSolver, const Scene& scene,
                const std::filesystem::path& file, json& report) {
   const auto started = std::chrono::steady_clock::now();
   patching::PlanDrawing drawing;
   drawing.surface = &surface;
   drawing.layout = &run.layout.layout;
-  for (const auto& p : run.layout.patches) drawing.patchProblems.push_back(p.feasible() ? "" : p.failure);
+  for (const auto& p : run.layout.patches)
+    drawing.patchProblems.push_back(p.feasible() ? "" : p.failure);
   drawing.peaks = patching::findSurfacePeaks(surface);
   drawing.circles = patching::injectivityCircles(surface, surfaceSolver, drawing.peaks);
   drawing.coverage = &run.coverage;
@@ -182,7 +212,8 @@ void writePlan(const PatchingRun& run, const TriMesh& surface, const geodesic::D
                      {"circle_length_m", circle.lengthM}});
   }
   report["peaks"] = peaks;
-  report["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  report["seconds"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
 void patchingStage(RunState& state) {

@@ -20,7 +20,8 @@ std::string skipReason(const Stage& stage, const RunState& state) {
     if (std::string why = stage.disabled(state.scene); !why.empty()) return why;
   }
   if (!stageNeeded(stage.id, state.scene.outputs))
-    return "no requested output needs it (outputs: " + nlohmann::json(state.scene.outputs).dump() + ")";
+    return "no requested output needs it (outputs: " + nlohmann::json(state.scene.outputs).dump() +
+           ")";
   return stage.skipReason ? stage.skipReason(state) : std::string();
 }
 
@@ -29,12 +30,14 @@ void writeOutputs(RunState& state) {
   const Scene& scene = state.scene;
   state.progress("writing", 0.9);
   if (scene.wants("previews") || scene.wants("report"))
-    for (const auto& p : state.patches) writePatchFiles(p, state.staging / fmt::format("patch_{:03d}", p.id), scene);
+    for (const auto& p : state.patches)
+      writePatchFiles(p, state.staging / fmt::format("patch_{:03d}", p.id), scene);
   if (scene.wants("plan")) {
     state.progress("plan", 0.95);
     writePatchesJson(*state.patching, state.staging / "patches.json");
     nlohmann::json plan;
-    writePlan(*state.patching, state.surface->mesh, *state.surfaceSolver, scene, state.staging / "plan.svg", plan);
+    writePlan(*state.patching, state.surface->mesh, *state.surfaceSolver, scene,
+              state.staging / "plan.svg", plan);
     state.report.section("plan") = plan;
   }
 }
@@ -45,8 +48,9 @@ void checkOutputsCanBeProduced(const Scene& scene) {
   const std::string origin = scene.path.string();
   for (const char* output : {"cut_files", "stickers", "supports"})
     if (scene.wants(output) && !scene.fabrication.enabled)
-      throw InvalidInput(fmt::format("{}: outputs: \"{}\" needs the fabrication stage, but fabrication.enabled is false",
-                                     origin, output));
+      throw InvalidInput(fmt::format(
+          "{}: outputs: \"{}\" needs the fabrication stage, but fabrication.enabled is false",
+          origin, output));
 }
 
 PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {

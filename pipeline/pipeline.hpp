@@ -18,18 +18,18 @@ namespace egg::pipeline {
 void checkOutputsCanBeProduced(const Scene& scene);
 
 struct PipelineOptions {
-  std::filesystem::path outDir = "out";   // the run folder; replaced whole at the end
+  std::filesystem::path outDir = "out";  // the run folder; replaced whole at the end
   std::function<void(const std::string& stage, double fraction)> progress;  // optional
 };
 
 struct PipelineResult {
-  nlohmann::json report;                   // what report.json holds
-  std::filesystem::path outDir;           // absolute path of the written run folder
+  nlohmann::json report;         // what report.json holds
+  std::filesystem::path outDir;  // absolute path of the written run folder
   double seconds = 0.0;
   // Exit code 1: patches the EGG criteria reject in the final layout (a patch Workflow 1 split is
   // not one), grids that cannot be traced, a deployment that does not converge.
   std::vector<std::string> failures;
-  bool nothingRequested = false;           // outputs: []: no stage ran, nothing was written
+  bool nothingRequested = false;  // outputs: []: no stage ran, nothing was written
 };
 
 // Runs the scene. Input errors (InvalidInput, IoError) are thrown before anything is written;

@@ -12,11 +12,15 @@ struct PlotFrame {
   bool logY = false;  // y data plotted as log10 (yMin > 0)
 
   double px(double x) const { return left + width * (x - xMin) / (xMax - xMin); }
-  // y clamped into the range, so that an outlier stays on the frame's edge (a log of y <= 0 at the bottom).
+  // y clamped into the range, so that an outlier stays on the frame's edge (a log of y <= 0 at the
+  // bottom).
   double py(double y) const {
     double t;
-    if (logY) t = y > 0.0 ? (std::log10(y) - std::log10(yMin)) / (std::log10(yMax) - std::log10(yMin)) : 0.0;
-    else t = (y - yMin) / (yMax - yMin);
+    if (logY)
+      t = y > 0.0 ? (std::log10(y) - std::log10(yMin)) / (std::log10(yMax) - std::log10(yMin))
+                  : 0.0;
+    else
+      t = (y - yMin) / (yMax - yMin);
     return top + height * (1.0 - std::clamp(t, 0.0, 1.0));
   }
 };

@@ -14,12 +14,15 @@ int designedCount(const PatchingRun& run) {
                                         [](const auto& p) { return p.feasible(); }));
 }
 
-std::optional<propagation::LayoutPropagation> propagateMembers(const PatchingRun& run, const Scene& scene) {
+std::optional<propagation::LayoutPropagation> propagateMembers(const PatchingRun& run,
+                                                               const Scene& scene) {
   if (run.layout.patches.size() < 2) return std::nullopt;
   std::vector<propagation::PatchSideData> sides;
   for (const auto& designed : run.layout.patches) {
-    if (designed.feasible()) sides.push_back(propagation::patchSideData(*designed.design, scene.lamella.widthM));
-    else sides.emplace_back();
+    if (designed.feasible())
+      sides.push_back(propagation::patchSideData(*designed.design, scene.lamella.widthM));
+    else
+      sides.emplace_back();
   }
   propagation::PropagationOptions options;
   const MemberOptions& members = scene.design().members;
@@ -29,13 +32,15 @@ std::optional<propagation::LayoutPropagation> propagateMembers(const PatchingRun
   return propagation::propagateLayout(run.graph, sides, options);
 }
 
-
-json propagationSection(const propagation::LayoutPropagation& members, const propagation::LayoutTracing& tracing) {
+json propagationSection(const propagation::LayoutPropagation& members,
+                        const propagation::LayoutTracing& tracing) {
   json chains = json::array();
   for (const auto& chain : members.chains) {
     json nodes = json::array();
     for (const auto& n : chain.nodes)
-      nodes.push_back({{"patch", n.patch}, {"family", n.family == Family::U ? "u" : "v"}, {"forward", n.forward}});
+      nodes.push_back({{"patch", n.patch},
+                       {"family", n.family == Family::U ? "u" : "v"},
+                       {"forward", n.forward}});
     chains.push_back({{"graph_chain", chain.graphChain},
                       {"nodes", nodes},
                       {"ring", chain.ring},
@@ -48,7 +53,8 @@ json propagationSection(const propagation::LayoutPropagation& members, const pro
   json fallbacks = json::array();
   for (const auto& f : members.fallbacks) {
     json patches = json::array();
-    for (const auto& n : f.nodes) patches.push_back({{"patch", n.patch}, {"family", n.family == Family::U ? "u" : "v"}});
+    for (const auto& n : f.nodes)
+      patches.push_back({{"patch", n.patch}, {"family", n.family == Family::U ? "u" : "v"}});
     fallbacks.push_back({{"graph_chain", f.graphChain}, {"nodes", patches}, {"reason", f.reason}});
   }
   json gaps = json::array();
@@ -78,7 +84,8 @@ json propagationSection(const propagation::LayoutPropagation& members, const pro
 }
 
 std::string propagationSkipReason(const RunState& state) {
-  if (state.patching->layout.patches.size() == 1) return "one patch: no boundary to continue members across";
+  if (state.patching->layout.patches.size() == 1)
+    return "one patch: no boundary to continue members across";
   if (designedCount(*state.patching) == 0) return "no feasible patch design";
   return {};
 }

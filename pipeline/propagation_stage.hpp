@@ -19,11 +19,13 @@ struct RunState;
 int designedCount(const PatchingRun& run);
 
 // The propagated members; empty for a single patch.
-std::optional<propagation::LayoutPropagation> propagateMembers(const PatchingRun& run, const Scene& scene);
+std::optional<propagation::LayoutPropagation> propagateMembers(const PatchingRun& run,
+                                                               const Scene& scene);
 
 // report.json propagation{}: c0_max_gap_m, evenness before/after Problem 3.3, per chain and side
 // (the grid stage writes it, once the members are traced).
-nlohmann::json propagationSection(const propagation::LayoutPropagation& members, const propagation::LayoutTracing& tracing);
+nlohmann::json propagationSection(const propagation::LayoutPropagation& members,
+                                  const propagation::LayoutTracing& tracing);
 
 // Stage table row: one patch or no feasible design leaves nothing to propagate.
 std::string propagationSkipReason(const RunState& state);

@@ -26,7 +26,9 @@ json RunReport::finish(double totalSeconds) const {
   for (StageId id : allStages()) {
     const std::string stage = toString(id);
     if (!out["stages"].contains(stage)) {
-      out["stages"][stage] = {{"ran", false}, {"seconds", 0.0}, {"skipped_reason", "the run recorded no outcome for this stage"}};
+      out["stages"][stage] = {{"ran", false},
+                              {"seconds", 0.0},
+                              {"skipped_reason", "the run recorded no outcome for this stage"}};
     }
   }
   // A section whose stage did not run carries the stage's verdict, so a reader of one section
@@ -45,7 +47,8 @@ json RunReport::finish(double totalSeconds) const {
   sectionOf("fabrication", "fabrication");
   out["timings"] = {{"total_s", totalSeconds}};
   json stageSeconds = json::object();
-  for (StageId id : allStages()) stageSeconds[std::string(toString(id)) + "_s"] = out["stages"][toString(id)]["seconds"];
+  for (StageId id : allStages())
+    stageSeconds[std::string(toString(id)) + "_s"] = out["stages"][toString(id)]["seconds"];
   out["timings"]["stages"] = stageSeconds;
   return out;
 }

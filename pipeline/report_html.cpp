@@ -1,12 +1,12 @@
 #include "pipeline/report_html.hpp"
 
+#include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
+#include "core/io/xml_text.hpp"
 #include "pipeline/cladding_plot.hpp"
 #include "pipeline/error_time_plot.hpp"
 #include "pipeline/stages.hpp"
 #include "pipeline/svg_png.hpp"
-#include "core/errors.hpp"
-#include "core/io/atomic_file.hpp"
-#include "core/io/xml_text.hpp"
 
 #include <fmt/core.h>
 #include <tbb/parallel_for.h>
@@ -25,13 +25,16 @@ using nlohmann::json;
 std::string text(const json& value, int digits = 4) {
   if (value.is_null()) return "&ndash;";
   if (value.is_boolean()) return value.get<bool>() ? "yes" : "no";
-  if (value.is_number_integer() || value.is_number_unsigned()) return fmt::format("{}", value.get<long long>());
+  if (value.is_number_integer() || value.is_number_unsigned())
+    return fmt::format("{}", value.get<long long>());
   if (value.is_number()) return fmt::format("{:.{}g}", value.get<double>(), digits);
   if (value.is_string()) return escapeXml(value.get<std::string>());
   return escapeXml(value.dump());
 }
 
-json at(const json& j, const std::string& key) { return j.is_object() && j.contains(key) ? j[key] : json(); }
+json at(const json& j, const std::string& key) {
+  return j.is_object() && j.contains(key) ? j[key] : json();
+}
 
 double number(const json& j, const std::string& key, double fallback = 0.0) {
   const json v = at(j, key);
@@ -41,53 +44,64 @@ double number(const json& j, const std::string& key, double fallback = 0.0) {
 // A table of key figures: (label, value) rows.
 std::string figures(const std::vector<std::pair<std::string, std::string>>& rows) {
   std::string out = "<table class=\"figures\">\n";
-  for (const auto& [label, value] : rows) out += "<tr><th>" + escapeXml(label) + "</th><td>" + value + "</td></tr>\n";
+  for (const auto& [label, value] : rows)
+    out += "<tr><th>" + escapeXml(label) + "</th><td>" + value + "</td></tr>\n";
   return out + "</table>\n";
 }
 
 // Horizontal bars, one per (label, value), scaled to the largest; `marker` > 0 draws a vertical
 // line at that value (a stress ratio of 1). Inline SVG.
-std::string barChart(const std::string& id, const std::vector<std::pair<std::string, double>>& bars, const std::string& unit,
-                     double marker = 0.0) {
+std::string barChart(const std::string& id, const std::vector<std::pair<std::string, double>>& bars,
+                     const std::string& unit, double marker = 0.0) {
   const double rowHeight = 18.0, labelWidth = 170.0, plotWidth = 520.0;
   double largest = marker;
   for (const auto& b : bars) largest = std::max(largest, std::isfinite(b.second) ? b.second : 0.0);
   if (largest <= 0.0) largest = 1.0;
   const double height = rowHeight * static_cast<double>(bars.size()) + 24.0;
   std::string svg = fmt::format(
-      "<svg id=\"{}\" class=\"chart\" width=\"{:.0f}\" height=\"{:.0f}\" viewBox=\"0 0 {:.0f} {:.0f}\" role=\"img\">\n", id,
-      labelWidth + plotWidth + 90.0, height, labelWidth + plotWidth + 90.0, height);
+      "<svg id=\"{}\" class=\"chart\" width=\"{:.0f}\" height=\"{:.0f}\" viewBox=\"0 0 {:.0f} "
+      "{:.0f}\" role=\"img\">\n",
+      id, labelWidth + plotWidth + 90.0, height, labelWidth + plotWidth + 90.0, height);
   for (size_t i = 0; i < bars.size(); ++i) {
     const double y = rowHeight * static_cast<double>(i);
     const double value = std::isfinite(bars[i].second) ? std::max(0.0, bars[i].second) : 0.0;
     const double w = plotWidth * value / largest;
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"end\" font-size=\"12\">{}</text>", labelWidth - 6.0,
-                       y + 13.0, escapeXml(bars[i].first));
-    svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.2f}\" height=\"{:.1f}\" fill=\"#4a7fb5\" data-value=\"{:.6g}\"/>",
-                       labelWidth, y + 3.0, w, rowHeight - 5.0, value);
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\">{:.3g} {}</text>\n", labelWidth + w + 4.0, y + 13.0,
-                       value, escapeXml(unit));
+    svg += fmt::format(
+        "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"end\" font-size=\"12\">{}</text>",
+        labelWidth - 6.0, y + 13.0, escapeXml(bars[i].first));
+    svg += fmt::format(
+        "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.2f}\" height=\"{:.1f}\" fill=\"#4a7fb5\" "
+        "data-value=\"{:.6g}\"/>",
+        labelWidth, y + 3.0, w, rowHeight - 5.0, value);
+    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\">{:.3g} {}</text>\n",
+                       labelWidth + w + 4.0, y + 13.0, value, escapeXml(unit));
   }
   if (marker > 0.0) {
     const double x = labelWidth + plotWidth * marker / largest;
-    svg += fmt::format("<line x1=\"{:.1f}\" y1=\"0\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#c62828\" stroke-dasharray=\"4 3\"/>", x, x,
-                       height - 20.0);
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"#c62828\" text-anchor=\"middle\">{:.3g}</text>\n", x,
-                       height - 6.0, marker);
+    svg += fmt::format(
+        "<line x1=\"{:.1f}\" y1=\"0\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#c62828\" "
+        "stroke-dasharray=\"4 3\"/>",
+        x, x, height - 20.0);
+    svg += fmt::format(
+        "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"#c62828\" "
+        "text-anchor=\"middle\">{:.3g}</text>\n",
+        x, height - 6.0, marker);
   }
   return svg + "</svg>\n";
 }
 
 std::string stageTimes(const json& report) {
-  std::string out = "<h2 id=\"stage-times\">Stage times</h2>\n<table class=\"list\"><tr><th>stage</th><th>ran</th><th>s</th><th>why not</th></tr>\n";
+  std::string out =
+      "<h2 id=\"stage-times\">Stage times</h2>\n<table "
+      "class=\"list\"><tr><th>stage</th><th>ran</th><th>s</th><th>why not</th></tr>\n";
   std::vector<std::pair<std::string, double>> bars;
   const json stages = at(report, "stages");
   for (StageId id : allStages()) {
     const std::string stage = toString(id);
     const json s = at(stages, stage);
     const bool ran = at(s, "ran").is_boolean() && s["ran"].get<bool>();
-    out += "<tr><td>" + escapeXml(stage) + "</td><td>" + (ran ? "yes" : "no") + "</td><td>" + text(at(s, "seconds")) + "</td><td>" +
-           text(at(s, "skipped_reason")) + "</td></tr>\n";
+    out += "<tr><td>" + escapeXml(stage) + "</td><td>" + (ran ? "yes" : "no") + "</td><td>" +
+           text(at(s, "seconds")) + "</td><td>" + text(at(s, "skipped_reason")) + "</td></tr>\n";
     bars.emplace_back(stage, number(s, "seconds"));
   }
   out += "</table>\n";
@@ -99,7 +113,9 @@ std::string planSection(const std::string& planSvg) {
   std::string out = "<h2 id=\"plan\">Plan of patches</h2>\n";
   const size_t start = planSvg.find("<svg");
   if (start == std::string::npos) {
-    return out + "<p class=\"missing\">No plan: the scene's outputs do not contain \"plan\" (plan.svg).</p>\n";
+    return out +
+           "<p class=\"missing\">No plan: the scene's outputs do not contain \"plan\" "
+           "(plan.svg).</p>\n";
   }
   // plan.svg inlined: without its XML declaration, scaled to the page.
   std::string svg = planSvg.substr(start);
@@ -111,13 +127,16 @@ std::string patchesSection(const json& report) {
   std::string out = "<h2 id=\"patches\">Patches</h2>\n";
   const json patches = at(report, "patches");
   if (!patches.is_array() || patches.empty()) return out + "<p class=\"missing\">No patches.</p>\n";
-  out += "<table class=\"list\"><tr><th>patch</th><th>feasible</th><th>area m&sup2;</th><th>members u &times; v</th>"
-         "<th>&eta; u</th><th>&eta; v</th><th>max notch m</th><th>why not</th></tr>\n";
+  out +=
+      "<table class=\"list\"><tr><th>patch</th><th>feasible</th><th>area m&sup2;</th><th>members u "
+      "&times; v</th>"
+      "<th>&eta; u</th><th>&eta; v</th><th>max notch m</th><th>why not</th></tr>\n";
   for (const auto& p : patches) {
-    out += "<tr><td>" + text(at(p, "id")) + "</td><td>" + text(at(p, "feasible")) + "</td><td>" + text(at(p, "area_m2")) +
-           "</td><td>" + text(at(p, "members_u")) + " &times; " + text(at(p, "members_v")) + "</td><td>" + text(at(p, "eta_u"), 6) +
-           "</td><td>" + text(at(p, "eta_v"), 6) + "</td><td>" + text(at(p, "max_notch_m")) + "</td><td>" + text(at(p, "reason")) +
-           "</td></tr>\n";
+    out += "<tr><td>" + text(at(p, "id")) + "</td><td>" + text(at(p, "feasible")) + "</td><td>" +
+           text(at(p, "area_m2")) + "</td><td>" + text(at(p, "members_u")) + " &times; " +
+           text(at(p, "members_v")) + "</td><td>" + text(at(p, "eta_u"), 6) + "</td><td>" +
+           text(at(p, "eta_v"), 6) + "</td><td>" + text(at(p, "max_notch_m")) + "</td><td>" +
+           text(at(p, "reason")) + "</td></tr>\n";
   }
   return out + "</table>\n";
 }
@@ -127,16 +146,22 @@ std::string patchesSection(const json& report) {
 std::string patchGridsSection(const std::vector<std::pair<int, std::string>>& planarSvgs) {
   std::string out = "<h2 id=\"patch-grids\">Planar grids of the patches</h2>\n";
   if (planarSvgs.empty())
-    return out + "<p class=\"missing\">No planar grids: the scene's outputs do not contain \"previews\" (patch_NNN/planar.svg).</p>\n";
-  out += "<p>The flat grid of each patch before deployment: U members blue, V members orange, boundary members thick.</p>\n";
+    return out +
+           "<p class=\"missing\">No planar grids: the scene's outputs do not contain \"previews\" "
+           "(patch_NNN/planar.svg).</p>\n";
+  out +=
+      "<p>The flat grid of each patch before deployment: U members blue, V members orange, "
+      "boundary members thick.</p>\n";
   for (const auto& [id, text] : planarSvgs) {
     const size_t start = text.find("<svg");
     const size_t end = text.rfind("</svg>");
     if (start == std::string::npos || end == std::string::npos) continue;
     std::string svg = text.substr(start, end + 6 - start);
     svg.insert(4, fmt::format(" id=\"patch-grid-{}\" style=\"width:280px;height:auto\"", id));
-    out += fmt::format("<figure class=\"figure\" style=\"display:inline-block;margin:4px\">{}<figcaption>patch {}</figcaption></figure>\n",
-                       svg, id);
+    out += fmt::format(
+        "<figure class=\"figure\" style=\"display:inline-block;margin:4px\">{}<figcaption>patch "
+        "{}</figcaption></figure>\n",
+        svg, id);
   }
   return out;
 }
@@ -147,36 +172,50 @@ std::string claddingSection(const json& report) {
   std::string figures;
   for (const auto& p : at(report, "patches")) {
     const auto plot = claddingFromReport(p);
-    if (plot) figures += "<div class=\"figure\" style=\"margin:4px\">\n" + claddingSvg(*plot) + "</div>\n";
+    if (plot)
+      figures += "<div class=\"figure\" style=\"margin:4px\">\n" + claddingSvg(*plot) + "</div>\n";
   }
-  if (figures.empty()) return out + "<p class=\"missing\">No cladding functions: no patch grid was traced.</p>\n";
+  if (figures.empty())
+    return out + "<p class=\"missing\">No cladding functions: no patch grid was traced.</p>\n";
   return out +
-         "<p>F pairs a member's start on one side of the patch with its end on the opposite side (Section 2.4.3); the dots are the "
-         "members. Below each, the slopes of F's segments (dx<sub>2</sub>/dx<sub>1</sub> of the side parameters, log scale) against "
-         "the band (k<sub>min</sub>, k<sub>max</sub>) of patching.slope_bounds that Problem 2.3 keeps them in; red: outside.</p>\n" +
+         "<p>F pairs a member's start on one side of the patch with its end on the opposite side "
+         "(Section 2.4.3); the dots are the "
+         "members. Below each, the slopes of F's segments (dx<sub>2</sub>/dx<sub>1</sub> of the "
+         "side parameters, log scale) against "
+         "the band (k<sub>min</sub>, k<sub>max</sub>) of patching.slope_bounds that Problem 2.3 "
+         "keeps them in; red: outside.</p>\n" +
          figures;
 }
 
-// The error of each simulation run against its wall time (simulation.patches[].history, joined.history).
+// The error of each simulation run against its wall time (simulation.patches[].history,
+// joined.history).
 std::string errorTimeSection(const json& report) {
   std::string out = "<h2 id=\"error-time\">Simulation: error against run time</h2>\n";
   const json sim = at(report, "simulation");
   std::vector<ErrorTimeSeries> patches;
   for (const auto& p : at(sim, "patches"))
     if (at(p, "history").is_array() && !p["history"].empty())
-      patches.push_back({"patch " + at(p, "patch").dump(), historyFromJson(p["history"], "simulation.patches[].history")});
+      patches.push_back({"patch " + at(p, "patch").dump(),
+                         historyFromJson(p["history"], "simulation.patches[].history")});
   const json joined = at(sim, "joined");
   const bool joinedHistory = at(joined, "history").is_array() && !joined["history"].empty();
   if (patches.empty() && !joinedHistory)
     return out + "<p class=\"missing\">No error history: the simulation did not run.</p>\n";
-  out += fmt::format("<p>RMSE and largest distance of the contact points from the design surface while Newton runs (every {} "
-                     "iteration{} and at the end of every load step), against the run's wall time without the time spent measuring.</p>\n",
-                     kErrorHistoryEvery, kErrorHistoryEvery == 1 ? "" : "s");
+  out += fmt::format(
+      "<p>RMSE and largest distance of the contact points from the design surface while Newton "
+      "runs (every {} "
+      "iteration{} and at the end of every load step), against the run's wall time without the "
+      "time spent measuring.</p>\n",
+      kErrorHistoryEvery, kErrorHistoryEvery == 1 ? "" : "s");
   if (!patches.empty())
-    out += errorTimeSvg("error-time-patches", "Patch by patch (each patch's own clock; the patches run in parallel)", patches);
+    out += errorTimeSvg("error-time-patches",
+                        "Patch by patch (each patch's own clock; the patches run in parallel)",
+                        patches);
   if (joinedHistory)
-    out += errorTimeSvg("error-time-joined", "Joined structure (from the patch-by-patch equilibria when they converged)",
-                        {{"joined", historyFromJson(joined["history"], "simulation.joined.history")}});
+    out +=
+        errorTimeSvg("error-time-joined",
+                     "Joined structure (from the patch-by-patch equilibria when they converged)",
+                     {{"joined", historyFromJson(joined["history"], "simulation.joined.history")}});
   return out;
 }
 
@@ -194,12 +233,15 @@ std::string simulationSection(const json& report) {
                   {"iterations", text(at(sim, "iterations"))}});
   const json patches = at(sim, "patches");
   if (!patches.is_array() || patches.empty()) return out;
-  out += "<table class=\"list\"><tr><th>patch</th><th>converged</th><th>iterations</th><th>RMSE m</th><th>max error m</th>"
-         "<th>s</th><th>failure</th></tr>\n";
+  out +=
+      "<table class=\"list\"><tr><th>patch</th><th>converged</th><th>iterations</th><th>RMSE "
+      "m</th><th>max error m</th>"
+      "<th>s</th><th>failure</th></tr>\n";
   std::vector<std::pair<std::string, double>> bars;
   for (const auto& p : patches) {
-    out += "<tr><td>" + text(at(p, "patch")) + "</td><td>" + text(at(p, "converged")) + "</td><td>" + text(at(p, "iterations")) +
-           "</td><td>" + text(at(p, "rmse_m")) + "</td><td>" + text(at(p, "max_error_m")) + "</td><td>" + text(at(p, "seconds")) +
+    out += "<tr><td>" + text(at(p, "patch")) + "</td><td>" + text(at(p, "converged")) +
+           "</td><td>" + text(at(p, "iterations")) + "</td><td>" + text(at(p, "rmse_m")) +
+           "</td><td>" + text(at(p, "max_error_m")) + "</td><td>" + text(at(p, "seconds")) +
            "</td><td>" + text(at(p, "failure")) + "</td></tr>\n";
     bars.emplace_back("patch " + at(p, "patch").dump(), number(p, "max_error_m"));
   }
@@ -213,16 +255,19 @@ std::string fabricationSection(const json& report) {
   if (!(at(fab, "ran").is_boolean() && fab["ran"].get<bool>())) {
     return out + "<p class=\"missing\">Not run: " + text(at(fab, "skipped_reason")) + "</p>\n";
   }
-  out += figures({{"material", text(at(fab, "material"))},
-                  {"lamellas", text(at(fab, "lamellae"))},
-                  {"total length (m)", text(at(fab, "total_length_m"))},
-                  {"mass (kg)", text(at(fab, "mass_kg"))},
-                  {"sheets (yield)", text(at(fab, "sheets")) + " (" + text(at(fab, "yield")) + ")"},
-                  {"bolts / notches / splices", text(at(fab, "bolts")) + " / " + text(at(fab, "notches")) + " / " + text(at(fab, "splices"))},
-                  {"supports", text(at(fab, "supports"))},
-                  {"max stress ratio", text(at(fab, "max_stress_ratio")) + " (" + text(at(fab, "max_stress_lamella")) + ")"},
-                  {"max bending stress (Pa)", text(at(fab, "max_bending_stress_pa"))},
-                  {"max torsion stress (Pa)", text(at(fab, "max_torsion_stress_pa"))}});
+  out += figures(
+      {{"material", text(at(fab, "material"))},
+       {"lamellas", text(at(fab, "lamellae"))},
+       {"total length (m)", text(at(fab, "total_length_m"))},
+       {"mass (kg)", text(at(fab, "mass_kg"))},
+       {"sheets (yield)", text(at(fab, "sheets")) + " (" + text(at(fab, "yield")) + ")"},
+       {"bolts / notches / splices", text(at(fab, "bolts")) + " / " + text(at(fab, "notches")) +
+                                         " / " + text(at(fab, "splices"))},
+       {"supports", text(at(fab, "supports"))},
+       {"max stress ratio",
+        text(at(fab, "max_stress_ratio")) + " (" + text(at(fab, "max_stress_lamella")) + ")"},
+       {"max bending stress (Pa)", text(at(fab, "max_bending_stress_pa"))},
+       {"max torsion stress (Pa)", text(at(fab, "max_torsion_stress_pa"))}});
   const json unspliced = at(fab, "unspliceable_lamellae");
   if (unspliced.is_array() && !unspliced.empty()) {
     out += "<div class=\"failures\"><p>" + std::to_string(unspliced.size()) +
@@ -230,11 +275,14 @@ std::string fabricationSection(const json& report) {
     for (const auto& u : unspliced) out += "<li>" + text(u) + "</li>\n";
     out += "</ul></div>\n";
   }
-  // Stress ratios (Section 3.5.2): a histogram in bins of 0.1 up to the largest, and the highest ten.
+  // Stress ratios (Section 3.5.2): a histogram in bins of 0.1 up to the largest, and the highest
+  // ten.
   const json stress = at(fab, "lamella_stress");
   if (stress.is_array() && !stress.empty()) {
     std::vector<std::pair<std::string, double>> lamellas;
-    for (const auto& s : stress) lamellas.emplace_back(at(s, "id").is_string() ? s["id"].get<std::string>() : "?", number(s, "ratio"));
+    for (const auto& s : stress)
+      lamellas.emplace_back(at(s, "id").is_string() ? s["id"].get<std::string>() : "?",
+                            number(s, "ratio"));
     double largest = 0.0;
     for (const auto& l : lamellas) largest = std::max(largest, l.second);
     const int bins = std::max(1, static_cast<int>(std::ceil(largest / 0.1 - 1e-9)));
@@ -243,18 +291,23 @@ std::string fabricationSection(const json& report) {
       const bool last = b == std::min(bins, 40) - 1;
       int count = 0;
       for (const auto& l : lamellas) {
-        const int bin = std::min(static_cast<int>(std::floor(l.second / 0.1)), std::min(bins, 40) - 1);
+        const int bin =
+            std::min(static_cast<int>(std::floor(l.second / 0.1)), std::min(bins, 40) - 1);
         count += bin == b ? 1 : 0;
       }
-      histogram.emplace_back(fmt::format("{:.1f}{}{:.1f}", 0.1 * b, last && bins > 40 ? " and over " : " - ",
-                                         last && bins > 40 ? largest : 0.1 * (b + 1)),
-                             count);
+      histogram.emplace_back(
+          fmt::format("{:.1f}{}{:.1f}", 0.1 * b, last && bins > 40 ? " and over " : " - ",
+                      last && bins > 40 ? largest : 0.1 * (b + 1)),
+          count);
     }
-    out += "<p>Stress ratio max(&sigma;/f<sub>m</sub>, &tau;/f<sub>v</sub>) of the " + std::to_string(lamellas.size()) +
-           " lamellas (count per bin):</p>\n" + barChart("stress-histogram", histogram, "lamellas");
-    std::sort(lamellas.begin(), lamellas.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    out += "<p>Stress ratio max(&sigma;/f<sub>m</sub>, &tau;/f<sub>v</sub>) of the " +
+           std::to_string(lamellas.size()) + " lamellas (count per bin):</p>\n" +
+           barChart("stress-histogram", histogram, "lamellas");
+    std::sort(lamellas.begin(), lamellas.end(),
+              [](const auto& a, const auto& b) { return a.second > b.second; });
     if (lamellas.size() > 10) lamellas.resize(10);
-    out += "<p>The highest ten (the dashed line is the strength):</p>\n" + barChart("stress-top", lamellas, "", 1.0);
+    out += "<p>The highest ten (the dashed line is the strength):</p>\n" +
+           barChart("stress-top", lamellas, "", 1.0);
   }
   return out;
 }
@@ -262,7 +315,8 @@ std::string fabricationSection(const json& report) {
 // bom.csv as a table; the last column (the note) keeps any further commas.
 std::string bomSection(const std::string& bom) {
   std::string out = "<h2 id=\"bom\">Bill of materials</h2>\n";
-  if (bom.empty()) return out + "<p class=\"missing\">No bom.csv: the fabrication stage did not run.</p>\n";
+  if (bom.empty())
+    return out + "<p class=\"missing\">No bom.csv: the fabrication stage did not run.</p>\n";
   std::istringstream in(bom);
   std::string line;
   std::vector<std::vector<std::string>> rows;
@@ -298,11 +352,13 @@ std::string bomSection(const std::string& bom) {
     return t + "</table>\n";
   };
   out += tableOf(false);
-  return out + "<details><summary>Every lamella and splice joint (" + std::to_string(rows.size() - 1) + " rows in all)</summary>\n" +
-         tableOf(true) + "</details>\n";
+  return out + "<details><summary>Every lamella and splice joint (" +
+         std::to_string(rows.size() - 1) + " rows in all)</summary>\n" + tableOf(true) +
+         "</details>\n";
 }
 
-const char* kStyle = R"(body{font-family:"DejaVu Sans",Helvetica,Arial,sans-serif;margin:24px;color:#222;max-width:1400px}
+const char* kStyle =
+    R"(body{font-family:"DejaVu Sans",Helvetica,Arial,sans-serif;margin:24px;color:#222;max-width:1400px}
 h1{font-size:24px}h2{font-size:19px;margin-top:32px;border-bottom:1px solid #ccc}
 table{border-collapse:collapse;margin:8px 0}th,td{padding:2px 8px;text-align:left;font-size:13px;vertical-align:top}
 table.list tr:nth-child(even){background:#f3f5f8}table.list th{background:#dde4ee}
@@ -312,23 +368,31 @@ svg.chart{display:block;margin:8px 0}.figure{border:1px solid #ddd;display:inlin
 
 // deployed.svg inlined (it is an <svg id="deployed">, so it also gets its PNG preview).
 std::string deployedSection(const std::string& deployedSvg) {
-  std::string out = "<h2 id=\"deployed-grid\">Deployed grid: deviation from the design surface</h2>\n";
+  std::string out =
+      "<h2 id=\"deployed-grid\">Deployed grid: deviation from the design surface</h2>\n";
   const size_t start = deployedSvg.find("<svg");
   if (start == std::string::npos)
-    return out + "<p class=\"missing\">No deployed grid: the simulation did not run (deployed.svg).</p>\n";
+    return out +
+           "<p class=\"missing\">No deployed grid: the simulation did not run "
+           "(deployed.svg).</p>\n";
   return out + "<div class=\"figure\">\n" + deployedSvg.substr(start) + "</div>\n";
 }
 
 }  // namespace
 
 std::string reportHtml(const json& report, const std::string& planSvg, const std::string& bomCsv,
-                       const std::vector<std::pair<int, std::string>>& planarSvgs, const std::string& deployedSvg) {
+                       const std::vector<std::pair<int, std::string>>& planarSvgs,
+                       const std::string& deployedSvg) {
   const json scene = at(report, "scene");
-  const std::string name = at(scene, "name").is_string() ? scene["name"].get<std::string>() : "eggshell run";
-  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escapeXml(name) +
-                     " &ndash; eggshell report</title>\n<style>\n" + kStyle + "\n</style>\n</head>\n<body>\n";
+  const std::string name =
+      at(scene, "name").is_string() ? scene["name"].get<std::string>() : "eggshell run";
+  std::string html =
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" +
+      escapeXml(name) + " &ndash; eggshell report</title>\n<style>\n" + kStyle +
+      "\n</style>\n</head>\n<body>\n";
   html += "<h1>" + escapeXml(name) + "</h1>\n<p>Scene " + text(at(scene, "path")) +
-          "; everything below is report.json of this run (metres, radians and seconds; cut files in millimetres).</p>\n";
+          "; everything below is report.json of this run (metres, radians and seconds; cut files "
+          "in millimetres).</p>\n";
   const json failures = at(report, "failures");
   if (failures.is_array() && !failures.empty()) {
     html += "<div class=\"failures\" id=\"failures\"><p>The run failed:</p><ul>\n";
@@ -336,21 +400,25 @@ std::string reportHtml(const json& report, const std::string& planSvg, const std
     html += "</ul></div>\n";
   }
   std::vector<std::string> warnings;
-  for (const auto& w : at(report, "warnings")) warnings.push_back(w.is_string() ? w.get<std::string>() : w.dump());
-  for (const auto& w : at(at(report, "fabrication"), "warnings")) warnings.push_back("fabrication: " + (w.is_string() ? w.get<std::string>() : w.dump()));
+  for (const auto& w : at(report, "warnings"))
+    warnings.push_back(w.is_string() ? w.get<std::string>() : w.dump());
+  for (const auto& w : at(at(report, "fabrication"), "warnings"))
+    warnings.push_back("fabrication: " + (w.is_string() ? w.get<std::string>() : w.dump()));
   if (!warnings.empty()) {
-    html += "<div class=\"warnings\" id=\"warnings\"><details><summary>" + std::to_string(warnings.size()) +
-            " warnings</summary><ul>\n";
+    html += "<div class=\"warnings\" id=\"warnings\"><details><summary>" +
+            std::to_string(warnings.size()) + " warnings</summary><ul>\n";
     for (const auto& w : warnings) html += "<li>" + escapeXml(w) + "</li>\n";
     html += "</ul></details></div>\n";
   }
-  html += stageTimes(report) + planSection(planSvg) + patchesSection(report) + patchGridsSection(planarSvgs) + claddingSection(report) +
-          simulationSection(report) + errorTimeSection(report) + deployedSection(deployedSvg) +
-          fabricationSection(report) + bomSection(bomCsv);
+  html += stageTimes(report) + planSection(planSvg) + patchesSection(report) +
+          patchGridsSection(planarSvgs) + claddingSection(report) + simulationSection(report) +
+          errorTimeSection(report) + deployedSection(deployedSvg) + fabricationSection(report) +
+          bomSection(bomCsv);
   return html + "</body>\n</html>\n";
 }
 
-std::vector<std::pair<std::string, std::string>> reportFigures(const std::string& html, const std::string& planSvg) {
+std::vector<std::pair<std::string, std::string>> reportFigures(const std::string& html,
+                                                               const std::string& planSvg) {
   std::vector<std::pair<std::string, std::string>> out;
   const size_t planStart = planSvg.find("<svg");
   const size_t planEnd = planSvg.rfind("</svg>");
@@ -358,11 +426,13 @@ std::vector<std::pair<std::string, std::string>> reportFigures(const std::string
     out.emplace_back("plan", planSvg.substr(planStart, planEnd + 6 - planStart));
   // The page's own charts: each an <svg id="..."> without nesting. The inline copy needs no
   // namespace inside HTML; a stand-alone SVG does, so librsvg reads it as SVG.
-  for (size_t at = html.find("<svg id=\""); at != std::string::npos; at = html.find("<svg id=\"", at + 1)) {
+  for (size_t at = html.find("<svg id=\""); at != std::string::npos;
+       at = html.find("<svg id=\"", at + 1)) {
     const size_t idStart = at + 9, idEnd = html.find('"', idStart), end = html.find("</svg>", at);
     if (idEnd == std::string::npos || end == std::string::npos) break;
     std::string svg = html.substr(at, end + 6 - at);
-    if (svg.find("xmlns=") == std::string::npos) svg.insert(4, " xmlns=\"http://www.w3.org/2000/svg\"");
+    if (svg.find("xmlns=") == std::string::npos)
+      svg.insert(4, " xmlns=\"http://www.w3.org/2000/svg\"");
     out.emplace_back(html.substr(idStart, idEnd - idStart), std::move(svg));
   }
   return out;
@@ -384,9 +454,11 @@ std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, co
     const std::string text = readIfThere(file.c_str());
     if (!text.empty()) planar.emplace_back(id, text);
   }
-  const std::string html = reportHtml(report, planSvg, readIfThere("bom.csv"), planar, readIfThere("deployed.svg"));
+  const std::string html =
+      reportHtml(report, planSvg, readIfThere("bom.csv"), planar, readIfThere("deployed.svg"));
   writeFileAtomically(runDir / "report.html", html);
-  // PNG previews of the same figures (issue 18): the plan wide enough to read, the charts at their size.
+  // PNG previews of the same figures (issue 18): the plan wide enough to read, the charts at their
+  // size.
   std::vector<std::string> previews;
   const auto dir = runDir / "preview";
   std::error_code error;
@@ -401,7 +473,8 @@ std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, co
   // Rasterised side by side (each with its own librsvg handle and cairo surface): 16 figures of
   // the Great Court took ~0.6 s one after the other. An exception in any is rethrown here.
   tbb::parallel_for(size_t{0}, figures.size(), [&](size_t k) {
-    writePngFromSvg(figures[k].second, runDir / previews[k], figures[k].first == "plan" ? kPlanPreviewPx : kChartPreviewPx);
+    writePngFromSvg(figures[k].second, runDir / previews[k],
+                    figures[k].first == "plan" ? kPlanPreviewPx : kChartPreviewPx);
   });
   return previews;
 }

@@ -17,13 +17,17 @@ namespace egg::pipeline {
 // The page from the report document (report.json), the text of plan.svg and of bom.csv (either
 // may be empty: that section then says why it is missing). Every text from the report is escaped.
 // `planarSvgs` are (patch id, patch_NNN/planar.svg text), inlined as the planar-grids section;
-// `deployedSvg` the text of deployed.svg (deviation_plan.hpp), inlined after the simulation figures.
-std::string reportHtml(const nlohmann::json& report, const std::string& planSvg, const std::string& bomCsv,
-                       const std::vector<std::pair<int, std::string>>& planarSvgs = {}, const std::string& deployedSvg = {});
+// `deployedSvg` the text of deployed.svg (deviation_plan.hpp), inlined after the simulation
+// figures.
+std::string reportHtml(const nlohmann::json& report, const std::string& planSvg,
+                       const std::string& bomCsv,
+                       const std::vector<std::pair<int, std::string>>& planarSvgs = {},
+                       const std::string& deployedSvg = {});
 
 // The figures of the page as stand-alone SVG texts, (id, svg): plan.svg when given, then every
 // chart of `html` (the output of reportHtml), each with the SVG namespace so it renders alone.
-std::vector<std::pair<std::string, std::string>> reportFigures(const std::string& html, const std::string& planSvg);
+std::vector<std::pair<std::string, std::string>> reportFigures(const std::string& html,
+                                                               const std::string& planSvg);
 
 // Widths of the PNG previews in pixels.
 inline constexpr int kPlanPreviewPx = 1200;
@@ -32,6 +36,7 @@ inline constexpr int kChartPreviewPx = 800;
 // Reads `runDir`/plan.svg, deployed.svg and bom.csv when present, writes `runDir`/report.html
 // atomically and a PNG of each figure under `runDir`/preview/ (svg_png.hpp). Returns the PNGs'
 // paths relative to `runDir` (report.json's outputs.previews). Throws WriteError naming the file.
-std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, const nlohmann::json& report);
+std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir,
+                                         const nlohmann::json& report);
 
 }  // namespace egg::pipeline

@@ -3,14 +3,14 @@
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
 #include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <random>
 #include <system_error>
-#include <sys/stat.h>
-#include <unistd.h>
 
 namespace egg::pipeline {
 
@@ -31,13 +31,15 @@ long long mtimeNs(const fs::path& file) {
 // Every file of a run folder but the marker, relative paths with size and modification time.
 json listRunFiles(const fs::path& folder) {
   json files = json::array();
-  for (auto it = fs::recursive_directory_iterator(folder); it != fs::recursive_directory_iterator(); ++it) {
+  for (auto it = fs::recursive_directory_iterator(folder); it != fs::recursive_directory_iterator();
+       ++it) {
     const fs::file_status status = it->symlink_status();
     if (fs::is_directory(status)) continue;
     const fs::path relative = it->path().lexically_relative(folder);
     if (relative == fs::path(kRunMarker)) continue;
     if (!fs::is_regular_file(status)) {
-      files.push_back({{"path", relative.string()}, {"bytes", -1}, {"mtime_ns", -1}});  // never matches
+      files.push_back(
+          {{"path", relative.string()}, {"bytes", -1}, {"mtime_ns", -1}});  // never matches
       continue;
     }
     files.push_back({{"path", relative.string()},
@@ -49,7 +51,9 @@ json listRunFiles(const fs::path& folder) {
 
 std::string markerText(const json& files) {
   json marker{{"eggshell_run", kManifestVersion},
-              {"note", "eggshell run folder: replaced whole by the next egg run into it, if it holds only these files"},
+              {"note",
+               "eggshell run folder: replaced whole by the next egg run into it, if it holds only "
+               "these files"},
               {"files", files}};
   return marker.dump(1) + "\n";
 }
@@ -60,7 +64,8 @@ std::string runFolderReplaceProblem(const fs::path& folder) {
   std::error_code ec;
   const fs::file_status status = fs::symlink_status(folder, ec);
   if (ec || !fs::exists(status)) return "";
-  if (fs::is_symlink(status)) return "is a symbolic link (give the folder it points to, or another --out)";
+  if (fs::is_symlink(status))
+    return "is a symbolic link (give the folder it points to, or another --out)";
   if (!fs::is_directory(status)) return "exists and is not a folder";
   const bool empty = fs::is_empty(folder, ec);
   if (ec) return "cannot be read: " + ec.message();
@@ -74,8 +79,8 @@ std::string runFolderReplaceProblem(const fs::path& folder) {
   } catch (const std::exception&) {
     marker = nullptr;
   }
-  if (!marker.is_object() || marker.value("eggshell_run", 0) != kManifestVersion || !marker.contains("files") ||
-      !marker["files"].is_array()) {
+  if (!marker.is_object() || marker.value("eggshell_run", 0) != kManifestVersion ||
+      !marker.contains("files") || !marker["files"].is_array()) {
     return std::string("holds an eggshell marker (") + kRunMarker +
            ") without the list of the files the run wrote (an interrupted or older run); "
            "move what you want to keep and remove the folder yourself";
@@ -95,9 +100,12 @@ std::string runFolderReplaceProblem(const fs::path& folder) {
     const std::string path = f["path"].get<std::string>();
     const auto it = written.find(path);
     if (it == written.end())
-      return "holds " + abbreviate(path) + ", which the earlier run did not write; move it out or choose another --out";
-    if (it->second.first != f["bytes"].get<long long>() || it->second.second != f["mtime_ns"].get<long long>())
-      return "holds " + abbreviate(path) + ", changed since the earlier run wrote it; move it out or choose another --out";
+      return "holds " + abbreviate(path) +
+             ", which the earlier run did not write; move it out or choose another --out";
+    if (it->second.first != f["bytes"].get<long long>() ||
+        it->second.second != f["mtime_ns"].get<long long>())
+      return "holds " + abbreviate(path) +
+             ", changed since the earlier run wrote it; move it out or choose another --out";
   }
   return "";
 }
@@ -105,11 +113,13 @@ std::string runFolderReplaceProblem(const fs::path& folder) {
 StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::move(target)) {
   if (target_.empty()) throw InvalidInput("output folder: empty path");
   if (target_.native().find('\0') != std::string::npos)
-    throw InvalidInput("output folder " + abbreviate(target_.string()) + ": the path contains a NUL character");
+    throw InvalidInput("output folder " + abbreviate(target_.string()) +
+                       ": the path contains a NUL character");
   target_ = fs::absolute(target_).lexically_normal();
   if (target_.filename().empty()) target_ = target_.parent_path();
   const std::string name = target_.filename().string();
-  if (name.empty() || target_ == target_.root_path()) throw InvalidInput("output folder: cannot be the root folder");
+  if (name.empty() || target_ == target_.root_path())
+    throw InvalidInput("output folder: cannot be the root folder");
   if (const std::string problem = portableNameProblem(name, kMaxRunFolderName); !problem.empty())
     throw InvalidInput("output folder " + abbreviate(target_.string()) + ": the name " + problem);
   const fs::path parent = target_.parent_path();
@@ -119,7 +129,8 @@ StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::mo
   recoverInterruptedRuns();
   if (const std::string problem = runFolderReplaceProblem(target_); !problem.empty())
     throw InvalidInput(target_.string() + ": " + problem + "; refusing to replace it");
-  staging_ = parent / ("." + name + ".staging-" + std::to_string(::getpid()) + "-" + temporarySuffix());
+  staging_ =
+      parent / ("." + name + ".staging-" + std::to_string(::getpid()) + "-" + temporarySuffix());
   fs::create_directory(staging_, ec);
   if (ec) throw WriteError(staging_.string() + ": cannot create staging folder: " + ec.message());
   try {
@@ -145,7 +156,8 @@ void StagedDirectory::recoverInterruptedRuns() {
     const std::string entry = it->path().filename().string();
     std::error_code typeError;
     if (!fs::is_directory(it->symlink_status(typeError)) || typeError) continue;
-    for (auto [prefix, list] : {std::pair{&previousPrefix, &previous}, std::pair{&stagingPrefix, &staging}}) {
+    for (auto [prefix, list] :
+         {std::pair{&previousPrefix, &previous}, std::pair{&stagingPrefix, &staging}}) {
       const pid_t pid = leftoverPid(entry, *prefix);
       if (pid > 0 && pid != ::getpid() && !processAlive(pid)) list->push_back(it->path());
     }
@@ -156,18 +168,24 @@ void StagedDirectory::recoverInterruptedRuns() {
   };
   auto isOurs = [](const fs::path& folder) {
     std::error_code e;
-    return fs::is_regular_file(fs::symlink_status(folder / kRunMarker, e)) || fs::is_empty(folder, e);
+    return fs::is_regular_file(fs::symlink_status(folder / kRunMarker, e)) ||
+           fs::is_empty(folder, e);
   };
   // A kill between the two renames of commit(): the earlier run is only in .NAME.previous-*.
-  std::sort(previous.begin(), previous.end(), [](const fs::path& a, const fs::path& b) { return mtimeNs(a) > mtimeNs(b); });
+  std::sort(previous.begin(), previous.end(),
+            [](const fs::path& a, const fs::path& b) { return mtimeNs(a) > mtimeNs(b); });
   for (const fs::path& p : previous) {
     std::error_code e;
     if (!fs::exists(fs::symlink_status(target_, e))) {
       fs::rename(p, target_, e);
-      if (!e) note("recovered the earlier run " + target_.string() + " from an interrupted commit (" + p.filename().string() + ")");
+      if (!e)
+        note("recovered the earlier run " + target_.string() + " from an interrupted commit (" +
+             p.filename().string() + ")");
     } else if (isOurs(p)) {
       fs::remove_all(p, e);
-      if (!e) note("removed " + p.string() + ", an earlier run an interrupted commit had already replaced");
+      if (!e)
+        note("removed " + p.string() +
+             ", an earlier run an interrupted commit had already replaced");
     }
   }
   for (const fs::path& s : staging) {
@@ -189,7 +207,8 @@ void StagedDirectory::commit() {
   std::error_code ec;
   // The run took a while: the target is checked again (a file added meanwhile is never lost).
   if (const std::string problem = runFolderReplaceProblem(target_); !problem.empty())
-    throw InvalidInput(target_.string() + ": " + problem + "; refusing to replace it (the results are not written)");
+    throw InvalidInput(target_.string() + ": " + problem +
+                       "; refusing to replace it (the results are not written)");
   try {
     writeFileAtomically(staging_ / kRunMarker, markerText(listRunFiles(staging_)));
   } catch (const WriteError&) {
@@ -203,20 +222,22 @@ void StagedDirectory::commit() {
     throw WriteError(target_.string() + ": cannot inspect the output folder: " + ec.message());
   const bool exists = fs::exists(targetStatus);
   if (exists) {
-    previous = target_.parent_path() /
-               ("." + target_.filename().string() + ".previous-" + std::to_string(::getpid()) + "-" + temporarySuffix());
+    previous = target_.parent_path() / ("." + target_.filename().string() + ".previous-" +
+                                        std::to_string(::getpid()) + "-" + temporarySuffix());
     fs::rename(target_, previous, ec);
-    if (ec) throw WriteError(target_.string() + ": cannot replace the earlier results: " + ec.message());
+    if (ec)
+      throw WriteError(target_.string() + ": cannot replace the earlier results: " + ec.message());
   }
   fs::rename(staging_, target_, ec);
   if (ec) {
-    std::string message = target_.string() + ": cannot move the results into place: " + ec.message();
+    std::string message =
+        target_.string() + ": cannot move the results into place: " + ec.message();
     if (!previous.empty()) {
       std::error_code restore;
       fs::rename(previous, target_, restore);  // put the old results back
       if (restore) {
-        message += "; the earlier results could not be put back either (" + restore.message() + ") and are in " +
-                   previous.string() + " (the next run puts them back)";
+        message += "; the earlier results could not be put back either (" + restore.message() +
+                   ") and are in " + previous.string() + " (the next run puts them back)";
       }
     }
     throw WriteError(message);

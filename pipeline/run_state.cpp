@@ -4,8 +4,12 @@
 
 namespace egg::pipeline {
 
-RunState::RunState(const Scene& scene, std::filesystem::path staging, std::function<void(const std::string&, double)> progress)
-    : scene(scene), staging(std::move(staging)), report(sceneToJson(scene)), progress(std::move(progress)) {
+RunState::RunState(const Scene& scene, std::filesystem::path staging,
+                   std::function<void(const std::string&, double)> progress)
+    : scene(scene),
+      staging(std::move(staging)),
+      report(sceneToJson(scene)),
+      progress(std::move(progress)) {
   if (!this->progress) this->progress = [](const std::string&, double) {};
 }
 
@@ -22,7 +26,8 @@ std::vector<EggGrid*> editableGridsOf(std::vector<SolvedPatch>& patches) {
 }
 
 int solvedCount(const std::vector<SolvedPatch>& patches) {
-  return static_cast<int>(std::count_if(patches.begin(), patches.end(), [](const SolvedPatch& p) { return p.egg.has_value(); }));
+  return static_cast<int>(std::count_if(patches.begin(), patches.end(),
+                                        [](const SolvedPatch& p) { return p.egg.has_value(); }));
 }
 
 }  // namespace egg::pipeline

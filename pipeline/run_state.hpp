@@ -29,8 +29,11 @@ struct SolvedPatch {
   std::optional<EggResult> egg;            // empty when the patch is infeasible or not traced
   std::string failure;                     // why not (InfeasiblePatch / SolverFailure message)
   std::optional<rods::SimulationResult> simulation;
-  std::string simulationFailure;  // why the simulation could not run (an error, not non-convergence)
-  rods::SolverStatus deployedStatus() const { return simulation->deployed.solver.status; }  // needs simulation
+  std::string
+      simulationFailure;  // why the simulation could not run (an error, not non-convergence)
+  rods::SolverStatus deployedStatus() const {
+    return simulation->deployed.solver.status;
+  }  // needs simulation
 };
 
 // Per layout patch id, the traced grid or nullptr (the assembly library's input).
@@ -40,21 +43,22 @@ std::vector<EggGrid*> editableGridsOf(std::vector<SolvedPatch>& patches);
 int solvedCount(const std::vector<SolvedPatch>& patches);
 
 struct RunState {
-  RunState(const Scene& scene, std::filesystem::path staging, std::function<void(const std::string&, double)> progress);
+  RunState(const Scene& scene, std::filesystem::path staging,
+           std::function<void(const std::string&, double)> progress);
 
   const Scene& scene;
   const std::filesystem::path staging;  // the run folder's staging folder: every file goes below it
   RunReport report;
-  std::vector<std::string> failures;    // exit code 1, in the order the stages found them
+  std::vector<std::string> failures;  // exit code 1, in the order the stages found them
   std::function<void(const std::string& stage, double fraction)> progress;  // never empty
 
-  std::optional<LoadedSurface> surface;                  // surface
+  std::optional<LoadedSurface> surface;                   // surface
   std::optional<geodesic::DistanceSolver> surfaceSolver;  // patching (and the plan's circles)
-  std::optional<PatchingRun> patching;                   // patching, design
+  std::optional<PatchingRun> patching;                    // patching, design
   std::optional<propagation::LayoutPropagation> members;  // propagation (several patches)
-  propagation::LayoutTracing tracing;                    // grid, with propagated members
-  std::vector<SolvedPatch> patches;                      // patching (ids, corners), grid, simulation
-  std::optional<rods::SimulationRun> joined;             // simulation: the joined structure's deployment
+  propagation::LayoutTracing tracing;                     // grid, with propagated members
+  std::vector<SolvedPatch> patches;           // patching (ids, corners), grid, simulation
+  std::optional<rods::SimulationRun> joined;  // simulation: the joined structure's deployment
 };
 
 }  // namespace egg::pipeline

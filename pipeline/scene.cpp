@@ -39,7 +39,9 @@ bool Scene::wants(const std::string& output) const {
   return std::find(outputs.begin(), outputs.end(), output) != outputs.end();
 }
 
-bool layoutIsGiven(const Scene& scene) { return !scene.patching.quads.empty() && !scene.patching.workflowGiven; }
+bool layoutIsGiven(const Scene& scene) {
+  return !scene.patching.quads.empty() && !scene.patching.workflowGiven;
+}
 
 EggOptions Scene::eggOptions() const {
   EggOptions options = design();
@@ -65,14 +67,14 @@ double defaultSampleEdgeLength(const std::string& sample) {
   return 0.25;
 }
 
-
 Scene parseScene(const json& document, const std::filesystem::path& origin) {
   Scene scene;
   scene.path = origin;
   const auto& sections = sceneSections();
   JsonSection top(document, "", origin.string());
   for (const SceneField& f : sections.front().fields) f.read(top, scene);
-  if (!top.has("surface")) top.fail("surface", "is required ({\"sample\": ...} or {\"file\": ...})");
+  if (!top.has("surface"))
+    top.fail("surface", "is required ({\"sample\": ...} or {\"file\": ...})");
   for (size_t i = 1; i < sections.size(); ++i) {
     JsonSection section = top.child(sections[i].key);
     readSection(sections[i], section, scene);
@@ -85,7 +87,9 @@ Scene parseSceneText(const std::string& text, const std::filesystem::path& origi
   const std::string where = abbreviate(origin.string());
   // One linear pass first: nesting, numbers that overflow a double, valid JSON, named by position.
   const JsonCheck check = checkJsonText(text, kMaxSceneDepth);
-  if (!check.ok) throw InvalidInput(where + ": " + (check.path.empty() ? "" : check.path + ": ") + check.problem);
+  if (!check.ok)
+    throw InvalidInput(where + ": " + (check.path.empty() ? "" : check.path + ": ") +
+                       check.problem);
   json document;
   try {
     document = json::parse(text);
@@ -121,18 +125,23 @@ std::string sceneReferenceMarkdown() {
   const Scene defaults;
   std::string out =
       "# Scene file reference\n\n"
-      "Generated from `pipeline/scene_fields.cpp` by `egg scene-reference`; a test keeps this file equal to it.\n"
-      "A scene is a JSON object; every key but `surface` has a default, and an unknown key is an error.\n"
+      "Generated from `pipeline/scene_fields.cpp` by `egg scene-reference`; a test keeps this file "
+      "equal to it.\n"
+      "A scene is a JSON object; every key but `surface` has a default, and an unknown key is an "
+      "error.\n"
       "Lengths are metres unless the key ends in `_mm`; angles are radians.\n";
   for (const SceneSection& section : sceneSections()) {
-    out += "\n## " + (section.key.empty() ? std::string("Top level") : "`" + section.key + "`") + "\n\n" + section.doc + "\n\n";
+    out += "\n## " + (section.key.empty() ? std::string("Top level") : "`" + section.key + "`") +
+           "\n\n" + section.doc + "\n\n";
     out += "| key | value | default | what it does |\n|---|---|---|---|\n";
     for (const SceneField& f : section.fields) {
       // No default value: required, unset (its doc names what is derived instead) or empty.
       const std::optional<json> value = f.write(defaults);
-      const bool none = !value || (value->is_string() && value->get_ref<const std::string&>().empty()) ||
+      const bool none = !value ||
+                        (value->is_string() && value->get_ref<const std::string&>().empty()) ||
                         ((value->is_array() || value->is_object()) && value->empty());
-      out += "| `" + f.key + "` | " + f.type + " | " + (none ? std::string("none") : "`" + value->dump() + "`") + " | " + f.doc + " |\n";
+      out += "| `" + f.key + "` | " + f.type + " | " +
+             (none ? std::string("none") : "`" + value->dump() + "`") + " | " + f.doc + " |\n";
     }
   }
   return out;

@@ -33,8 +33,9 @@ struct SurfaceSource {
 
 // "patching": how the surface is split into patches (Sections 3.3, 3.4) and each one designed.
 struct PatchingChoice {
-  int workflow = 2;            // Workflow 1 or 2 of Section 3.4.3
-  bool workflowGiven = false;  // the scene names a workflow (a layout without one is taken as given)
+  int workflow = 2;  // Workflow 1 or 2 of Section 3.4.3
+  bool workflowGiven =
+      false;  // the scene names a workflow (a layout without one is taken as given)
   // Smooth a patch whose eta fails (Section 2.3.3). Default: yes for a given layout (it cannot be
   // changed), no in the workflows, which split instead (smoothing alters the design, 3.1).
   std::optional<bool> smoothing;
@@ -101,7 +102,8 @@ struct Scene {
   Lamella lamella;
   SimulationChoice simulation;
   FabricationChoice fabrication;
-  std::vector<std::string> outputs{"report", "plan", "cut_files", "stickers", "supports", "previews"};
+  std::vector<std::string> outputs{"report",   "plan",     "cut_files",
+                                   "stickers", "supports", "previews"};
 
   bool wants(const std::string& output) const;
   // Every patch's design options (patching.layout.design) as the scene sets them, the lamella

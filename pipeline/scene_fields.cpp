@@ -23,7 +23,9 @@ std::string numberText(double x) {
   return out.str();
 }
 
-std::string range(double lo, double hi) { return "[" + numberText(lo) + ", " + numberText(hi) + "]"; }
+std::string range(double lo, double hi) {
+  return "[" + numberText(lo) + ", " + numberText(hi) + "]";
+}
 
 std::string alternatives(const std::vector<std::string>& names) {
   std::string out;
@@ -42,7 +44,8 @@ namespace {
 constexpr std::size_t kMaxPatches = 1000;
 
 Eigen::Vector3d point3(const json& v, const JsonSection& where, const std::string& key) {
-  if (!v.is_array() || v.size() != 3) where.fail(key, "a corner must be [x, y, z], got " + brief(v));
+  if (!v.is_array() || v.size() != 3)
+    where.fail(key, "a corner must be [x, y, z], got " + brief(v));
   Eigen::Vector3d p;
   for (int i = 0; i < 3; ++i) {
     if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
@@ -60,10 +63,12 @@ void readName(JsonSection& j, Scene& scene) {
   scene.name = j.text("name", scene.path.stem().string());
   // The name becomes the default run folder out/<name>: a plain, portable folder name, never a
   // path that climbs out of out/ or names out/ itself, short enough for the staging folder's name.
-  if (const std::string problem = portableNameProblem(scene.name, kMaxRunFolderName); !problem.empty())
+  if (const std::string problem = portableNameProblem(scene.name, kMaxRunFolderName);
+      !problem.empty())
     j.fail("name", "must be a plain folder name (" + problem + "), got " + brief(json(scene.name)));
   if (scene.name.front() == '.')
-    j.fail("name", "must be a plain name (no '/', '\\', not starting with '.'), got " + brief(json(scene.name)));
+    j.fail("name", "must be a plain name (no '/', '\\', not starting with '.'), got " +
+                       brief(json(scene.name)));
 }
 
 void readOutputs(JsonSection& j, Scene& scene) {
@@ -74,7 +79,8 @@ void readOutputs(JsonSection& j, Scene& scene) {
   for (const Output& output : outputTable()) known.emplace_back(output.name);
   scene.outputs.clear();
   for (const auto& item : v) {
-    if (!item.is_string() || std::find(known.begin(), known.end(), item.get<std::string>()) == known.end()) {
+    if (!item.is_string() ||
+        std::find(known.begin(), known.end(), item.get<std::string>()) == known.end()) {
       std::string list;
       for (const auto& name : known) list += (list.empty() ? "" : ", ") + name;
       j.fail("outputs", "unknown output " + brief(item) + " (known: " + list + ")");
@@ -130,18 +136,21 @@ void readWorkflow(JsonSection& j, Scene& scene) {
 void readBlockGrid(JsonSection& j, Scene& scene) {
   if (!j.has("block_grid")) return;
   const json& v = j.raw("block_grid");
-  if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer() || v[0].get<int>() < 1 ||
-      v[0].get<int>() > 16 || v[1].get<int>() < 1 || v[1].get<int>() > 16)
-    j.fail("block_grid", "must be two patch counts [along u, along v], each 1..16, got " + brief(v));
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer() ||
+      v[0].get<int>() < 1 || v[0].get<int>() > 16 || v[1].get<int>() < 1 || v[1].get<int>() > 16)
+    j.fail("block_grid",
+           "must be two patch counts [along u, along v], each 1..16, got " + brief(v));
   scene.patching.workflow2.blockGrid = {v[0].get<int>(), v[1].get<int>()};
 }
 
 void readCorners(JsonSection& j, Scene& scene) {
   if (!j.has("corners")) return;
   const json& corners = j.raw("corners");
-  if (!corners.is_array() || corners.empty()) j.fail("corners", "must be a non-empty array of points [x, y, z]");
+  if (!corners.is_array() || corners.empty())
+    j.fail("corners", "must be a non-empty array of points [x, y, z]");
   if (corners.size() > 4 * kMaxPatches)
-    j.fail("corners", "has " + std::to_string(corners.size()) + " corners; at most " + std::to_string(4 * kMaxPatches));
+    j.fail("corners", "has " + std::to_string(corners.size()) + " corners; at most " +
+                          std::to_string(4 * kMaxPatches));
   for (size_t i = 0; i < corners.size(); ++i)
     scene.patching.corners.push_back(point3(corners[i], j, "corners[" + std::to_string(i) + "]"));
 }
@@ -149,25 +158,31 @@ void readCorners(JsonSection& j, Scene& scene) {
 void readPatches(JsonSection& j, Scene& scene) {
   PatchingChoice& out = scene.patching;
   if (!j.has("patches")) {
-    if (!out.corners.empty()) j.fail("corners", "given without \"patches\" (quads of corner indices)");
+    if (!out.corners.empty())
+      j.fail("corners", "given without \"patches\" (quads of corner indices)");
     return;
   }
   const json& patches = j.raw("patches");
-  if (!patches.is_array()) j.fail("patches", "must be an array of patches, each four corners [x, y, z] (or four corner indices)");
+  if (!patches.is_array())
+    j.fail("patches",
+           "must be an array of patches, each four corners [x, y, z] (or four corner indices)");
   if (patches.size() > kMaxPatches)
-    j.fail("patches", "has " + std::to_string(patches.size()) + " patches; at most " + std::to_string(kMaxPatches));
+    j.fail("patches", "has " + std::to_string(patches.size()) + " patches; at most " +
+                          std::to_string(kMaxPatches));
   const bool indexed = !out.corners.empty();
   for (size_t i = 0; i < patches.size(); ++i) {
     const std::string key = "patches[" + std::to_string(i) + "]";
-    if (!patches[i].is_array() || patches[i].size() != 4) j.fail(key, "a patch must have exactly four corners");
+    if (!patches[i].is_array() || patches[i].size() != 4)
+      j.fail(key, "a patch must have exactly four corners");
     std::array<Eigen::Vector3d, 4> corners;
     std::array<int, 4> quad{};
     for (int c = 0; c < 4; ++c) {
       const json& v = patches[i][c];
       if (indexed) {
-        if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() >= static_cast<long long>(out.corners.size()))
-          j.fail(key, "with \"corners\" given, a patch is four indices into it (0 .. " + std::to_string(out.corners.size() - 1) +
-                          "), got " + brief(v));
+        if (!v.is_number_integer() || v.get<long long>() < 0 ||
+            v.get<long long>() >= static_cast<long long>(out.corners.size()))
+          j.fail(key, "with \"corners\" given, a patch is four indices into it (0 .. " +
+                          std::to_string(out.corners.size() - 1) + "), got " + brief(v));
         quad[c] = static_cast<int>(v.get<long long>());
         corners[c] = out.corners[quad[c]];
       } else {
@@ -175,8 +190,10 @@ void readPatches(JsonSection& j, Scene& scene) {
         // Corners given twice (by neighbouring patches) are one corner of the layout.
         int found = -1;
         for (size_t k = 0; k < out.corners.size() && found < 0; ++k)
-          if ((out.corners[k] - corners[c]).norm() <= 1e-9 * (1.0 + corners[c].norm())) found = static_cast<int>(k);
-        if (found < 0) found = static_cast<int>(out.corners.size()), out.corners.push_back(corners[c]);
+          if ((out.corners[k] - corners[c]).norm() <= 1e-9 * (1.0 + corners[c].norm()))
+            found = static_cast<int>(k);
+        if (found < 0)
+          found = static_cast<int>(out.corners.size()), out.corners.push_back(corners[c]);
         quad[c] = found;
       }
     }
@@ -187,14 +204,16 @@ void readPatches(JsonSection& j, Scene& scene) {
 
 void checkPatching(JsonSection& j, Scene& scene) {
   const PatchingChoice& p = scene.patching;
-  if (scene.design().uniqueness.etaMax <= 1.0) j.fail("eta_max", "must be greater than 1 (a ratio of geodesic lengths)");
+  if (scene.design().uniqueness.etaMax <= 1.0)
+    j.fail("eta_max", "must be greater than 1 (a ratio of geodesic lengths)");
   const AlphaBarOptions& a = scene.design().alphaBar;
   if (a.slopeMin >= 1.0 || a.slopeMax <= 1.0)
     j.fail("slope_bounds", "must be [k_min, k_max] with k_min < 1 < k_max (Problem 2.3)");
   if (p.workflowGiven && p.workflow == 1 && p.quads.empty())
     j.fail("workflow", "Workflow 1 splits an initial layout: give it as \"patches\"");
   if (p.workflow2.blockGrid[0] > 0 && !p.quads.empty())
-    j.fail("block_grid", "sets Workflow 2's grid of patches; this scene gives its layout as \"patches\"");
+    j.fail("block_grid",
+           "sets Workflow 2's grid of patches; this scene gives its layout as \"patches\"");
 }
 
 // --- grid -------------------------------------------------------------------------------------
@@ -217,10 +236,15 @@ void readAlphaBar(JsonSection& j, Scene& scene) {
   AlphaBarOptions& a = scene.design().alphaBar;
   if (v.is_string()) {
     const std::string mode = v.get<std::string>();
-    if (mode == "min") a.choice = AlphaBarChoice::Min;
-    else if (mode == "max") a.choice = AlphaBarChoice::Max;
-    else if (mode == "unrolled") a.choice = AlphaBarChoice::Unrolled;
-    else j.fail("alpha_bar", "must be \"min\", \"max\", \"unrolled\" or an angle in radians, got " + brief(v));
+    if (mode == "min")
+      a.choice = AlphaBarChoice::Min;
+    else if (mode == "max")
+      a.choice = AlphaBarChoice::Max;
+    else if (mode == "unrolled")
+      a.choice = AlphaBarChoice::Unrolled;
+    else
+      j.fail("alpha_bar",
+             "must be \"min\", \"max\", \"unrolled\" or an angle in radians, got " + brief(v));
   } else if (v.is_number()) {
     const double angle = v.get<double>();
     if (!(angle > 0.0 && angle < M_PI)) j.fail("alpha_bar", "an angle must lie in (0, pi) radians");
@@ -244,7 +268,8 @@ json alphaBarJson(const AlphaBarOptions& a) {
 void checkGrid(JsonSection& j, Scene& scene) {
   const int proxy = scene.design().maps.proxyVertices;
   if (proxy > 0 && proxy < 8)
-    j.fail("map_proxy_vertices", "must be 0 (maps on the patch itself) or at least 8, got " + std::to_string(proxy));
+    j.fail("map_proxy_vertices",
+           "must be 0 (maps on the patch itself) or at least 8, got " + std::to_string(proxy));
 }
 
 // --- lamella, fabrication ---------------------------------------------------------------------
@@ -266,7 +291,8 @@ void readStickerSheet(JsonSection& j, Scene& scene) {
 
 void checkFabrication(JsonSection& j, Scene& scene) {
   const fabrication::FabricationOptions& f = scene.fabrication.options;
-  if (2.0 * f.marginMm >= std::min(f.sheetMm[0], f.sheetMm[1])) j.fail("margin_mm", "leaves no room on the sheet");
+  if (2.0 * f.marginMm >= std::min(f.sheetMm[0], f.sheetMm[1]))
+    j.fail("margin_mm", "leaves no room on the sheet");
 }
 
 std::string materialNames() {
@@ -285,66 +311,101 @@ std::vector<SceneSection> makeSections() {
   std::vector<SceneSection> sections;
 
   sections.push_back(
-      {"", "The scene itself.",
-       {{"name", "string", "the scene's name: the default run folder out/<name> (default: the file's stem)", readName,
+      {"",
+       "The scene itself.",
+       {{"name", "string",
+         "the scene's name: the default run folder out/<name> (default: the file's stem)", readName,
          [](const Scene& s) { return some(s.name); }},
-        {"outputs", "array of names", "what the run writes: report, plan, cut_files, stickers, supports, previews (default: all)",
+        {"outputs", "array of names",
+         "what the run writes: report, plan, cut_files, stickers, supports, previews (default: "
+         "all)",
          readOutputs, [](const Scene& s) { return some(s.outputs); }}},
        {}});
 
   sections.push_back(
-      {"surface", "The design surface (Section 4.4.1): a procedural sample or a mesh file. Required.",
-       {{"sample", "string", "a procedural sample (`egg surface --list`); exactly one of sample and file", readSample,
+      {"surface",
+       "The design surface (Section 4.4.1): a procedural sample or a mesh file. Required.",
+       {{"sample", "string",
+         "a procedural sample (`egg surface --list`); exactly one of sample and file", readSample,
          [](const Scene& s) { return isSample(s) ? some(s.surface.sample) : std::nullopt; }},
-        {"file", "string", "a mesh file (OBJ, STL, PLY, OFF, glTF), relative to the scene's folder", readFile,
+        {"file", "string", "a mesh file (OBJ, STL, PLY, OFF, glTF), relative to the scene's folder",
+         readFile,
          [](const Scene& s) { return isSample(s) ? std::nullopt : some(s.surface.file.string()); }},
-        {"params", "object of numbers", "the sample's parameters (`egg surface --list`)", readParams,
+        {"params", "object of numbers", "the sample's parameters (`egg surface --list`)",
+         readParams,
          [](const Scene& s) { return isSample(s) ? some(s.surface.params) : std::nullopt; }},
-        {"edge_length_m", "number in (0, 10000]", "target triangle edge length of a sample (default: the sample's own)",
+        {"edge_length_m", "number in (0, 10000]",
+         "target triangle edge length of a sample (default: the sample's own)",
          [](JsonSection& j, Scene& s) {
-           s.surface.edgeLengthM = j.positive("edge_length_m", isSample(s) ? defaultSampleEdgeLength(s.surface.sample) : 1.0, 1e4);
+           s.surface.edgeLengthM = j.positive(
+               "edge_length_m", isSample(s) ? defaultSampleEdgeLength(s.surface.sample) : 1.0, 1e4);
          },
          [](const Scene& s) { return isSample(s) ? some(s.surface.edgeLengthM) : std::nullopt; }},
         {"scale_to_m", "number in (0, 1e+06]", "a mesh file's coordinates times this are metres",
-         [](JsonSection& j, Scene& s) { s.surface.scaleToM = j.positive("scale_to_m", s.surface.scaleToM, 1e6); },
+         [](JsonSection& j, Scene& s) {
+           s.surface.scaleToM = j.positive("scale_to_m", s.surface.scaleToM, 1e6);
+         },
          [](const Scene& s) { return isSample(s) ? std::nullopt : some(s.surface.scaleToM); }},
-        boolean("keep_largest_component", [](Scene& s) -> auto& { return s.surface.keepLargestComponent; },
-                "keep the largest connected component of a mesh file (with a warning) instead of failing")},
+        boolean(
+            "keep_largest_component",
+            [](Scene & s) -> auto& { return s.surface.keepLargestComponent; },
+            "keep the largest connected component of a mesh file (with a warning) instead of "
+            "failing")},
        checkSurface});
 
   sections.push_back(
-      {"patching", "How the surface is split into geodesic patches (Sections 3.3, 3.4) and each is checked.",
+      {"patching",
+       "How the surface is split into geodesic patches (Sections 3.3, 3.4) and each is checked.",
        {{"workflow", "integer in [1, 2]",
-         "Workflow 1 (split a given layout) or 2 (propose one, then split), Section 3.4.3; a layout without it is taken as given",
+         "Workflow 1 (split a given layout) or 2 (propose one, then split), Section 3.4.3; a "
+         "layout without it is taken as given",
          readWorkflow,
          [](const Scene& s) {
-           return s.patching.workflowGiven || s.patching.quads.empty() ? some(s.patching.workflow) : std::nullopt;
+           return s.patching.workflowGiven || s.patching.quads.empty() ? some(s.patching.workflow)
+                                                                       : std::nullopt;
          }},
-        number("eta_max", [](Scene& s) -> auto& { return s.design().uniqueness.etaMax; }, 1.0, 2.0,
-               "largest ratio of geodesic lengths a patch may have (uniqueness, Sections 2.3.3, 3.4.1)"),
-        {"slope_bounds", "two numbers in [1e-06, 1e+06]", "[k_min, k_max] of the cladding functions' slopes (Problem 2.3)",
+        number(
+            "eta_max", [](Scene & s) -> auto& { return s.design().uniqueness.etaMax; }, 1.0, 2.0,
+            "largest ratio of geodesic lengths a patch may have (uniqueness, Sections 2.3.3, "
+            "3.4.1)"),
+        {"slope_bounds", "two numbers in [1e-06, 1e+06]",
+         "[k_min, k_max] of the cladding functions' slopes (Problem 2.3)",
          [](JsonSection& j, Scene& s) {
            AlphaBarOptions& a = s.design().alphaBar;
            const auto bounds = j.pair("slope_bounds", {a.slopeMin, a.slopeMax}, 1e-6, 1e6);
            a.slopeMin = bounds[0], a.slopeMax = bounds[1];
          },
-         [](const Scene& s) { return some(std::array<double, 2>{s.design().alphaBar.slopeMin, s.design().alphaBar.slopeMax}); }},
-        positive("max_patch_size_m", [](Scene& s) -> auto& { return s.patching.workflow2.maxPatchSizeM; }, 1e5,
-                 "largest patch diagonal Workflow 2 proposes (handling on site, 3.5.3)"),
-        {"block_grid", "two integers in [1, 16]", "Workflow 2's grid of patches [along u, along v] (default: screened)",
-         readBlockGrid,
-         [](const Scene& s) { return s.patching.workflow2.blockGrid[0] > 0 ? some(s.patching.workflow2.blockGrid) : std::nullopt; }},
-        integer("max_splits", [](Scene& s) -> auto& { return s.patching.layout.maxSplits; }, 0, 10000,
-                "Workflow 1: splits before it gives up"),
+         [](const Scene& s) {
+           return some(
+               std::array<double, 2>{s.design().alphaBar.slopeMin, s.design().alphaBar.slopeMax});
+         }},
+        positive(
+            "max_patch_size_m",
+            [](Scene & s) -> auto& { return s.patching.workflow2.maxPatchSizeM; }, 1e5,
+            "largest patch diagonal Workflow 2 proposes (handling on site, 3.5.3)"),
+        {"block_grid", "two integers in [1, 16]",
+         "Workflow 2's grid of patches [along u, along v] (default: screened)", readBlockGrid,
+         [](const Scene& s) {
+           return s.patching.workflow2.blockGrid[0] > 0 ? some(s.patching.workflow2.blockGrid)
+                                                        : std::nullopt;
+         }},
+        integer(
+            "max_splits", [](Scene & s) -> auto& { return s.patching.layout.maxSplits; }, 0, 10000,
+            "Workflow 1: splits before it gives up"),
         {"smoothing", "true or false",
-         "smooth a patch whose eta fails (2.3.3); default: yes for a given layout, no in the workflows (they split)",
+         "smooth a patch whose eta fails (2.3.3); default: yes for a given layout, no in the "
+         "workflows (they split)",
          [](JsonSection& j, Scene& s) {
            if (j.has("smoothing")) s.patching.smoothing = j.boolean("smoothing", true);
          },
-         [](const Scene& s) { return s.patching.smoothing ? some(*s.patching.smoothing) : std::nullopt; }},
-        number("min_patch_size_m", [](Scene& s) -> auto& { return s.patching.layout.minSideM; }, 0.0, 1e5,
-               "Workflow 1: no split makes a side shorter than this (0: 2.5 mean edge lengths)"),
-        {"corners", "array of [x, y, z]", "a given layout's corners on the surface, metres (with patches as index quads)",
+         [](const Scene& s) {
+           return s.patching.smoothing ? some(*s.patching.smoothing) : std::nullopt;
+         }},
+        number(
+            "min_patch_size_m", [](Scene & s) -> auto& { return s.patching.layout.minSideM; }, 0.0,
+            1e5, "Workflow 1: no split makes a side shorter than this (0: 2.5 mean edge lengths)"),
+        {"corners", "array of [x, y, z]",
+         "a given layout's corners on the surface, metres (with patches as index quads)",
          readCorners,
          [](const Scene& s) {
            json corners = json::array();
@@ -352,92 +413,153 @@ std::vector<SceneSection> makeSections() {
            return corners.empty() ? std::nullopt : some(corners);
          }},
         {"patches", "array of four corners",
-         "a given layout: per patch four corners [x, y, z], or four indices into corners (a corner may lie on another "
+         "a given layout: per patch four corners [x, y, z], or four indices into corners (a corner "
+         "may lie on another "
          "patch's side: a T-junction)",
-         readPatches, [](const Scene& s) { return s.patching.quads.empty() ? std::nullopt : some(s.patching.quads); }}},
+         readPatches,
+         [](const Scene& s) {
+           return s.patching.quads.empty() ? std::nullopt : some(s.patching.quads);
+         }}},
        checkPatching});
 
   sections.push_back(
-      {"grid", "Every patch's planar grid (Sections 2.4.3-2.4.6).",
+      {"grid",
+       "Every patch's planar grid (Sections 2.4.3-2.4.6).",
        {{"members_per_family", "\"auto\" or an integer in [2, 10000]",
-         "members of each family, boundary members included; auto: from the spacing below (2.4.4)", readMembersPerFamily,
-         [](const Scene& s) { return s.design().members.count > 0 ? some(s.design().members.count) : some("auto"); }},
-        number("member_spacing_factor", [](Scene& s) -> auto& { return s.design().members.spacingFactor; }, 2.0, 1000.0,
-               "auto members: target spacing between members = this x the lamella width (2.4.4)"),
-        integer("map_resolution", [](Scene& s) -> auto& { return s.design().maps.resolution; }, 8, 2000,
-                "samples per side of the distance maps (2.4.1)"),
-        number("map_tolerance_relative", [](Scene& s) -> auto& { return s.design().maps.toleranceRelative; }, 0.0, 0.1,
-               "largest miss of a map row interpolated between exact ones, over the shorter side; 0: every row exact"),
-        integer("map_proxy_vertices", [](Scene& s) -> auto& { return s.design().maps.proxyVertices; }, 0, 10000000,
-                "distance maps on a coarse proxy of at most this many vertices (0: on the patch itself)"),
-        number("min_planar_angle_rad", [](Scene& s) -> auto& { return s.design().alphaBar.minPlanarAngle; }, 0.0, 0.78,
-               "smallest inner angle of the planar quad, so that the cut grid does not fold flat (criterion iv)"),
+         "members of each family, boundary members included; auto: from the spacing below (2.4.4)",
+         readMembersPerFamily,
+         [](const Scene& s) {
+           return s.design().members.count > 0 ? some(s.design().members.count) : some("auto");
+         }},
+        number(
+            "member_spacing_factor",
+            [](Scene & s) -> auto& { return s.design().members.spacingFactor; }, 2.0, 1000.0,
+            "auto members: target spacing between members = this x the lamella width (2.4.4)"),
+        integer(
+            "map_resolution", [](Scene & s) -> auto& { return s.design().maps.resolution; }, 8,
+            2000, "samples per side of the distance maps (2.4.1)"),
+        number(
+            "map_tolerance_relative",
+            [](Scene & s) -> auto& { return s.design().maps.toleranceRelative; }, 0.0, 0.1,
+            "largest miss of a map row interpolated between exact ones, over the shorter side; 0: "
+            "every row exact"),
+        integer(
+            "map_proxy_vertices", [](Scene & s) -> auto& { return s.design().maps.proxyVertices; },
+            0, 10000000,
+            "distance maps on a coarse proxy of at most this many vertices (0: on the patch "
+            "itself)"),
+        number(
+            "min_planar_angle_rad",
+            [](Scene & s) -> auto& { return s.design().alphaBar.minPlanarAngle; }, 0.0, 0.78,
+            "smallest inner angle of the planar quad, so that the cut grid does not fold flat "
+            "(criterion iv)"),
         {"alpha_bar", "\"min\", \"max\", \"unrolled\" or radians in (0, pi)",
          "which alpha_bar of the feasible range the grid is built at (Problem 2.3)", readAlphaBar,
          [](const Scene& s) { return some(alphaBarJson(s.design().alphaBar)); }}},
        checkGrid});
 
   sections.push_back(
-      {"lamella", "The section and material every member is cut from.",
-       {positive("width_m", [](Scene& s) -> auto& { return s.lamella.widthM; }, 10.0, "section width w (strong axis)"),
-        positive("thickness_m", [](Scene& s) -> auto& { return s.lamella.thicknessM; }, 10.0,
-                 "section thickness t (weak axis), at most the width"),
-        {"material", "string", "the material (E, G, density, strengths) from the catalogue: " + materialNames(),
-         [](JsonSection& j, Scene& s) { s.lamella.material = j.text("material", s.lamella.material); },
+      {"lamella",
+       "The section and material every member is cut from.",
+       {positive(
+            "width_m", [](Scene & s) -> auto& { return s.lamella.widthM; }, 10.0,
+            "section width w (strong axis)"),
+        positive(
+            "thickness_m", [](Scene & s) -> auto& { return s.lamella.thicknessM; }, 10.0,
+            "section thickness t (weak axis), at most the width"),
+        {"material", "string",
+         "the material (E, G, density, strengths) from the catalogue: " + materialNames(),
+         [](JsonSection& j, Scene& s) {
+           s.lamella.material = j.text("material", s.lamella.material);
+         },
          [](const Scene& s) { return some(s.lamella.material); }}},
        checkLamella});
 
   sections.push_back(
-      {"simulation", "The deployment with discrete elastic rods and sliding bolts (Section 2.5).",
-       {boolean("enabled", [](Scene& s) -> auto& { return s.simulation.enabled; }, "simulate the deployed grid"),
-        boolean("gravity", [](Scene& s) -> auto& { return s.simulation.rods.model.gravity; },
-                "self-weight from the material's density (3.5.2)"),
-        number("friction_mu", [](Scene& s) -> auto& { return s.simulation.rods.model.frictionMu; }, 0.0, 2.0,
-               "pseudo-friction coefficient of E_p (2.5)"),
-        boolean("notches", [](Scene& s) -> auto& { return s.simulation.rods.model.notches; },
-                "bolts slide in their notches (RMS2 of 2.6.2); false: plain holes"),
-        boolean("compare_without_notches", [](Scene& s) -> auto& { return s.simulation.rods.compareWithoutNotches; },
-                "also simulate every patch with plain holes (RMS1 of 2.6.2): a second full run per patch"),
-        choice("supports", [](Scene& s) -> auto& { return s.simulation.supports; },
-               {{SupportChoice::Auto, "auto"}, {SupportChoice::Anchors, "anchors"}, {SupportChoice::DesignBoundary, "design_boundary"}},
-               "where the grid is held: anchors (corners, curvature extrema, 2.4.6), design_boundary (also every connection "
-               "on a side no other patch shares, 3.5.3), auto: anchors for one patch, design_boundary for several"),
-        boolean("hold_shared_sides", [](Scene& s) -> auto& { return s.simulation.holdSharedSides; },
-                "patch by patch with design_boundary supports, also hold the sides shared with a neighbour (Fig. 3.17)"),
-        boolean("join_patches", [](Scene& s) -> auto& { return s.simulation.joinPatches; },
-                "also simulate the whole structure, neighbours bolted along their shared lamellas (3.5.3)"),
-        boolean("fasten_bolts", [](Scene& s) -> auto& { return s.simulation.rods.fastenBoltsUnderLoad; },
-                "under self-weight, bolts tightened at the weightless equilibrium before the grid carries its weight"),
-        number("newton_tolerance", [](Scene& s) -> auto& { return s.simulation.rods.solver.tolerance; }, 1e-16, 1e-2,
-               "Newton stops when its decrement falls below this x the energy scale"),
-        number("time_limit_s", [](Scene& s) -> auto& { return s.simulation.rods.solver.timeLimitS; }, 0.1, 1e6,
-               "wall-clock hang guard of each solve (the iteration limit, not this, decides results)")},
+      {"simulation",
+       "The deployment with discrete elastic rods and sliding bolts (Section 2.5).",
+       {boolean(
+            "enabled", [](Scene & s) -> auto& { return s.simulation.enabled; },
+            "simulate the deployed grid"),
+        boolean(
+            "gravity", [](Scene & s) -> auto& { return s.simulation.rods.model.gravity; },
+            "self-weight from the material's density (3.5.2)"),
+        number(
+            "friction_mu", [](Scene & s) -> auto& { return s.simulation.rods.model.frictionMu; },
+            0.0, 2.0, "pseudo-friction coefficient of E_p (2.5)"),
+        boolean(
+            "notches", [](Scene & s) -> auto& { return s.simulation.rods.model.notches; },
+            "bolts slide in their notches (RMS2 of 2.6.2); false: plain holes"),
+        boolean(
+            "compare_without_notches",
+            [](Scene & s) -> auto& { return s.simulation.rods.compareWithoutNotches; },
+            "also simulate every patch with plain holes (RMS1 of 2.6.2): a second full run per "
+            "patch"),
+        choice(
+            "supports", [](Scene & s) -> auto& { return s.simulation.supports; },
+            {{SupportChoice::Auto, "auto"},
+             {SupportChoice::Anchors, "anchors"},
+             {SupportChoice::DesignBoundary, "design_boundary"}},
+            "where the grid is held: anchors (corners, curvature extrema, 2.4.6), design_boundary "
+            "(also every connection "
+            "on a side no other patch shares, 3.5.3), auto: anchors for one patch, design_boundary "
+            "for several"),
+        boolean(
+            "hold_shared_sides", [](Scene & s) -> auto& { return s.simulation.holdSharedSides; },
+            "patch by patch with design_boundary supports, also hold the sides shared with a "
+            "neighbour (Fig. 3.17)"),
+        boolean(
+            "join_patches", [](Scene & s) -> auto& { return s.simulation.joinPatches; },
+            "also simulate the whole structure, neighbours bolted along their shared lamellas "
+            "(3.5.3)"),
+        boolean(
+            "fasten_bolts",
+            [](Scene & s) -> auto& { return s.simulation.rods.fastenBoltsUnderLoad; },
+            "under self-weight, bolts tightened at the weightless equilibrium before the grid "
+            "carries its weight"),
+        number(
+            "newton_tolerance",
+            [](Scene & s) -> auto& { return s.simulation.rods.solver.tolerance; }, 1e-16, 1e-2,
+            "Newton stops when its decrement falls below this x the energy scale"),
+        number(
+            "time_limit_s", [](Scene & s) -> auto& { return s.simulation.rods.solver.timeLimitS; },
+            0.1, 1e6,
+            "wall-clock hang guard of each solve (the iteration limit, not this, decides "
+            "results)")},
        {}});
 
   const auto fab = [](auto member) {
-    return [member](Scene& s) -> auto& { return member(s.fabrication.options); };
+    return [member](Scene & s) -> auto& { return member(s.fabrication.options); };
   };
   sections.push_back(
-      {"fabrication", "What the workshop cuts (Sections 3.5, 3.6.1); lengths in millimetres.",
-       {boolean("enabled", [](Scene& s) -> auto& { return s.fabrication.enabled; }, "write cut files, stickers, supports, BOM"),
+      {"fabrication",
+       "What the workshop cuts (Sections 3.5, 3.6.1); lengths in millimetres.",
+       {boolean(
+            "enabled", [](Scene & s) -> auto& { return s.fabrication.enabled; },
+            "write cut files, stickers, supports, BOM"),
         pair("sheet_mm", fab([](auto& f) -> auto& { return f.sheetMm; }), 1.0, 1e5,
              "stock sheet or laser bed; strips run along the first side"),
         positive("bolt_diameter_mm", fab([](auto& f) -> auto& { return f.boltDiameterMm; }), 1000.0,
                  "hole diameter and slot width"),
-        number("kerf_mm", fab([](auto& f) -> auto& { return f.kerfMm; }), 0.0, 100.0, "width the cutter removes between parts"),
-        number("margin_mm", fab([](auto& f) -> auto& { return f.marginMm; }), 0.0, 1e4, "unused border of every sheet"),
+        number("kerf_mm", fab([](auto& f) -> auto& { return f.kerfMm; }), 0.0, 100.0,
+               "width the cutter removes between parts"),
+        number("margin_mm", fab([](auto& f) -> auto& { return f.marginMm; }), 0.0, 1e4,
+               "unused border of every sheet"),
         number("min_notch_mm", fab([](auto& f) -> auto& { return f.minNotchMm; }), 0.0, 1e4,
                "shorter notches are cut as plain holes (mesh noise, 2.4.5)"),
         positive("stock_length_mm", fab([](auto& f) -> auto& { return f.stockLengthMm; }), 1e6,
                  "longest piece a lamella is cut from; longer lamellas are spliced"),
-        optionalNumber("end_overhang_mm", fab([](auto& f) -> auto& { return f.endOverhangMm; }), 0.0, 1e4,
-                       "strip beyond the end connections (default: half the width)"),
-        optionalNumber("splice_clearance_mm", fab([](auto& f) -> auto& { return f.spliceClearanceMm; }), 0.0, 1e5,
+        optionalNumber("end_overhang_mm", fab([](auto& f) -> auto& { return f.endOverhangMm; }),
+                       0.0, 1e4, "strip beyond the end connections (default: half the width)"),
+        optionalNumber("splice_clearance_mm",
+                       fab([](auto& f) -> auto& { return f.spliceClearanceMm; }), 0.0, 1e5,
                        "no hole or slot this close to a splice (default: the width)"),
-        optionalNumber("min_splice_clearance_mm", fab([](auto& f) -> auto& { return f.minSpliceClearanceMm; }), 0.0, 1e5,
-                       "where no position is that clear, at least this (default 3.5 bolt diameters, EN 1995-1-1 8.4)"),
-        optionalNumber("label_height_mm", fab([](auto& f) -> auto& { return f.labelHeightMm; }), 0.1, 1000.0,
-                       "engraved text height (default 0.35 w, 1..30 mm)"),
+        optionalNumber("min_splice_clearance_mm",
+                       fab([](auto& f) -> auto& { return f.minSpliceClearanceMm; }), 0.0, 1e5,
+                       "where no position is that clear, at least this (default 3.5 bolt "
+                       "diameters, EN 1995-1-1 8.4)"),
+        optionalNumber("label_height_mm", fab([](auto& f) -> auto& { return f.labelHeightMm; }),
+                       0.1, 1000.0, "engraved text height (default 0.35 w, 1..30 mm)"),
         choice("splice_joint", fab([](auto& f) -> auto& { return f.spliceJoint; }),
                {{fabrication::SpliceJoint::Plate, "plate"},
                 {fabrication::SpliceJoint::Scarf, "scarf"},
@@ -445,20 +567,23 @@ std::vector<SceneSection> makeSections() {
                "splices as bolted plates, glued scarfs, or plates with scarfs where no plate fits"),
         number("scarf_slope", fab([](auto& f) -> auto& { return f.scarfSlope; }), 4.0, 40.0,
                "scarf run per unit of thickness (1:12)"),
-        number("scarf_efficiency", fab([](auto& f) -> auto& { return f.scarfEfficiency; }), 0.01, 1.0,
-               "glued joint strength over the plain strip's"),
-        number("sticker_margin_mm", fab([](auto& f) -> auto& { return f.stickerMarginMm; }), 0.0, 1000.0,
-               "PTFE sticker beyond the swept contact area (3.5.1)"),
-        {"sticker_sheet_mm", "two numbers in [1, 100000], optional", "PTFE foil sheet (default: sheet_mm)", readStickerSheet,
+        number("scarf_efficiency", fab([](auto& f) -> auto& { return f.scarfEfficiency; }), 0.01,
+               1.0, "glued joint strength over the plain strip's"),
+        number("sticker_margin_mm", fab([](auto& f) -> auto& { return f.stickerMarginMm; }), 0.0,
+               1000.0, "PTFE sticker beyond the swept contact area (3.5.1)"),
+        {"sticker_sheet_mm", "two numbers in [1, 100000], optional",
+         "PTFE foil sheet (default: sheet_mm)", readStickerSheet,
          [](const Scene& s) {
            const auto& sheet = s.fabrication.options.stickerSheetMm;
            return sheet ? some(*sheet) : std::nullopt;
          }},
-        optionalNumber("ground_height_m", fab([](auto& f) -> auto& { return f.groundHeightM; }), -1e5, 1e5,
+        optionalNumber("ground_height_m", fab([](auto& f) -> auto& { return f.groundHeightM; }),
+                       -1e5, 1e5,
                        "ground plane z of the supports, metres (default: 0.1 m below the lowest)"),
-        optionalNumber("support_block_mm", fab([](auto& f) -> auto& { return f.supportBlockMm; }), 1.0, 1e5,
-                       "footprint side of a support block (default 3 w)"),
-        boolean("supports_at_boundary_connections", fab([](auto& f) -> auto& { return f.supportsAtBoundaryConnections; }),
+        optionalNumber("support_block_mm", fab([](auto& f) -> auto& { return f.supportBlockMm; }),
+                       1.0, 1e5, "footprint side of a support block (default 3 w)"),
+        boolean("supports_at_boundary_connections",
+                fab([](auto& f) -> auto& { return f.supportsAtBoundaryConnections; }),
                 "a support at every boundary connection (3.5.2 iv), not only at anchors")},
        checkFabrication});
   return sections;

@@ -17,7 +17,7 @@
 namespace egg::pipeline {
 
 struct SceneField {
-  std::string key;  // the JSON key, snake_case with its unit ("friction_mu", "kerf_mm")
+  std::string key;   // the JSON key, snake_case with its unit ("friction_mu", "kerf_mm")
   std::string type;  // for the reference: "number in [0, 2]", "true or false", ...
   std::string doc;   // one line: what it does, with the thesis section
   // Reads the key (absent: leaves the default) or throws InvalidInput naming it.
@@ -48,7 +48,9 @@ using ValueOf = std::remove_reference_t<std::invoke_result_t<Member, Scene&>>;
 
 template <class Member>
 auto writer(Member member) {
-  return [member](const Scene& s) -> std::optional<nlohmann::json> { return nlohmann::json(member(const_cast<Scene&>(s))); };
+  return [member](const Scene& s) -> std::optional<nlohmann::json> {
+    return nlohmann::json(member(const_cast<Scene&>(s)));
+  };
 }
 
 // "[lo, hi]" and a number as the reference writes them.
@@ -61,7 +63,8 @@ template <class Member>
 SceneField number(std::string key, Member member, double lo, double hi, std::string doc) {
   const std::string k = key;
   return {std::move(key), "number in " + range(lo, hi), std::move(doc),
-          [=](JsonSection& j, Scene& s) { member(s) = j.number(k, member(s), lo, hi); }, writer(member)};
+          [=](JsonSection& j, Scene& s) { member(s) = j.number(k, member(s), lo, hi); },
+          writer(member)};
 }
 
 // A number in (0, hi].
@@ -69,14 +72,16 @@ template <class Member>
 SceneField positive(std::string key, Member member, double hi, std::string doc) {
   const std::string k = key;
   return {std::move(key), "number in (0, " + numberText(hi) + "]", std::move(doc),
-          [=](JsonSection& j, Scene& s) { member(s) = j.positive(k, member(s), hi); }, writer(member)};
+          [=](JsonSection& j, Scene& s) { member(s) = j.positive(k, member(s), hi); },
+          writer(member)};
 }
 
 template <class Member>
 SceneField integer(std::string key, Member member, int lo, int hi, std::string doc) {
   const std::string k = key;
   return {std::move(key), "integer in " + range(lo, hi), std::move(doc),
-          [=](JsonSection& j, Scene& s) { member(s) = j.integer(k, member(s), lo, hi); }, writer(member)};
+          [=](JsonSection& j, Scene& s) { member(s) = j.integer(k, member(s), lo, hi); },
+          writer(member)};
 }
 
 template <class Member>
@@ -90,7 +95,8 @@ template <class Member>
 SceneField pair(std::string key, Member member, double lo, double hi, std::string doc) {
   const std::string k = key;
   return {std::move(key), "two numbers in " + range(lo, hi), std::move(doc),
-          [=](JsonSection& j, Scene& s) { member(s) = j.pair(k, member(s), lo, hi); }, writer(member)};
+          [=](JsonSection& j, Scene& s) { member(s) = j.pair(k, member(s), lo, hi); },
+          writer(member)};
 }
 
 // A std::optional<double>: absent keeps the derived default, named in `doc`.
@@ -109,8 +115,8 @@ SceneField optionalNumber(std::string key, Member member, double lo, double hi, 
 
 // An enum spelled by name: `names` lists every value with its spelling.
 template <class Member>
-SceneField choice(std::string key, Member member, std::vector<std::pair<ValueOf<Member>, std::string>> names,
-                  std::string doc) {
+SceneField choice(std::string key, Member member,
+                  std::vector<std::pair<ValueOf<Member>, std::string>> names, std::string doc) {
   std::vector<std::string> spellings;
   for (const auto& entry : names) spellings.push_back(entry.second);
   const std::string spelled = alternatives(spellings);

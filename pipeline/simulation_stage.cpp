@@ -38,8 +38,8 @@ assembly::GridToRodsOptions gridToRodsOptions(const Scene& scene) {
   return convert;
 }
 
-void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene, bool holdSharedSides,
-                     const std::function<void(int, int)>& patchDone) {
+void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene,
+                     bool holdSharedSides, const std::function<void(int, int)>& patchDone) {
   // Notches on: the simulation switches them off itself for the comparison run.
   const assembly::GridToRodsOptions convert = gridToRodsOptions(scene);
   // Patches in parallel, each simulation on one thread when there are several (the rods code's
@@ -82,25 +82,29 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
     if (!patch.simulationFailure.empty()) {
       converged = false;
       if (reason.empty()) reason = fmt::format("patch {}: {}", patch.id, patch.simulationFailure);
-      perPatch.push_back({{"patch", patch.id}, {"converged", false}, {"failure", patch.simulationFailure}});
+      perPatch.push_back(
+          {{"patch", patch.id}, {"converged", false}, {"failure", patch.simulationFailure}});
       continue;
     }
     if (!patch.simulation) continue;
     const auto& sim = *patch.simulation;
     converged = converged && sim.converged;
-    if (!sim.converged && reason.empty()) reason = fmt::format("patch {}: {}", patch.id, sim.reason);
+    if (!sim.converged && reason.empty())
+      reason = fmt::format("patch {}: {}", patch.id, sim.reason);
     iterations += sim.deployed.solver.iterations;
-    json entry{{"patch", patch.id},
-               {"converged", sim.converged},
-               {"iterations", sim.deployed.solver.iterations},
-               {"status", rods::toString(sim.deployed.solver.status)},
-               {"energy_j", sim.deployed.solver.energy},
-               {"gradient_norm_n_nm", sim.deployed.solver.gradientNorm},  // over positions (N) and twists (N m)
-               {"decrement_j", sim.deployed.solver.decrement},            // last Newton decrement g^T H^-1 g
-               {"unknowns", sim.deployed.unknowns},
-               {"factorisations", sim.deployed.solver.factorisations},      // Cholesky, shift trials included
-               {"energy_evaluations", sim.deployed.solver.energyEvaluations},  // line-search trials
-               {"seconds", sim.seconds}};
+    json entry{
+        {"patch", patch.id},
+        {"converged", sim.converged},
+        {"iterations", sim.deployed.solver.iterations},
+        {"status", rods::toString(sim.deployed.solver.status)},
+        {"energy_j", sim.deployed.solver.energy},
+        {"gradient_norm_n_nm",
+         sim.deployed.solver.gradientNorm},              // over positions (N) and twists (N m)
+        {"decrement_j", sim.deployed.solver.decrement},  // last Newton decrement g^T H^-1 g
+        {"unknowns", sim.deployed.unknowns},
+        {"factorisations", sim.deployed.solver.factorisations},  // Cholesky, shift trials included
+        {"energy_evaluations", sim.deployed.solver.energyEvaluations},  // line-search trials
+        {"seconds", sim.seconds}};
     // Under self-weight, how far the grid sagged from its weightless equilibrium (a "collapsed"
     // status means it fell through: Section 3.5.2, Fig. 3.11).
     if (scene.simulation.rods.model.gravity) entry["max_sag_m"] = sim.deployed.maxSagM;
@@ -129,7 +133,8 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
                {"max_error_m", points ? json(maxError) : json(nullptr)},
                {"nrmse", points ? json(nrmseWorst) : json(nullptr)},
                {"nrmse_normalised_by", "patch bounding-box diagonal (worst patch)"},
-               {"rmse_no_notches_m", pointsPlain ? json(std::sqrt(sumSquaresPlain / pointsPlain)) : json(nullptr)},
+               {"rmse_no_notches_m",
+                pointsPlain ? json(std::sqrt(sumSquaresPlain / pointsPlain)) : json(nullptr)},
                {"gravity", options.model.gravity},
                {"bolts_fastened_under_load", options.model.gravity && options.fastenBoltsUnderLoad},
                {"notches", options.model.notches},
@@ -143,10 +148,11 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
 namespace {
 
 // deployed.svg: the joined structure when it ran, else every patch's own deployment (3.5.2).
-void writeDeployedPlan(const rods::SimulationRun* joined, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
-                       const std::filesystem::path& file) {
+void writeDeployedPlan(const rods::SimulationRun* joined, const std::vector<SolvedPatch>& patches,
+                       const TriMesh& surface, const std::filesystem::path& file) {
   std::vector<const rods::SimulationRun*> runs;
-  if (joined) runs.push_back(joined);
+  if (joined)
+    runs.push_back(joined);
   else
     for (const auto& p : patches)
       if (p.simulation) runs.push_back(&p.simulation->deployed);
@@ -160,14 +166,19 @@ void writeDeployedPlan(const rods::SimulationRun* joined, const std::vector<Solv
       for (const auto& p : points) rod.distanceM.push_back(distance.distance(p));
       rods.push_back(std::move(rod));
     }
-  writeFileAtomically(file, deployedPlanSvg(rods, joined ? "Deployed grid (joined structure), seen from above, coloured by the distance to the design surface"
-                                                         : "Deployed grid (each patch on its own supports), seen from above, coloured by the distance to the design surface"));
+  writeFileAtomically(
+      file,
+      deployedPlanSvg(rods, joined ? "Deployed grid (joined structure), seen from above, coloured "
+                                     "by the distance to the design surface"
+                                   : "Deployed grid (each patch on its own supports), seen from "
+                                     "above, coloured by the distance to the design surface"));
 }
 
 }  // namespace
 
 std::string simulationDisabled(const Scene& scene) {
-  return scene.simulation.enabled ? std::string() : "the scene disables it (simulation.enabled = false)";
+  return scene.simulation.enabled ? std::string()
+                                  : "the scene disables it (simulation.enabled = false)";
 }
 
 std::string simulationSkipReason(const RunState& state) {
@@ -178,35 +189,45 @@ void simulationStage(RunState& state) {
   const Scene& scene = state.scene;
   const Stopwatch watch;
   const SupportChoice supports = scene.simulation.supports;
-  const bool boundarySupports = supports == SupportChoice::DesignBoundary ||
-                                (supports == SupportChoice::Auto && state.patching->layout.patches.size() > 1);
+  const bool boundarySupports =
+      supports == SupportChoice::DesignBoundary ||
+      (supports == SupportChoice::Auto && state.patching->layout.patches.size() > 1);
   if (boundarySupports)
     state.report.document()["supports"] = {
-        {"design_boundary_anchors", assembly::supportDesignBoundary(state.patching->graph, editableGridsOf(state.patches))}};
+        {"design_boundary_anchors",
+         assembly::supportDesignBoundary(state.patching->graph, editableGridsOf(state.patches))}};
   // Patch by patch, each patch is held along all its sides, as the thesis simulated them (Fig.
   // 3.17); the joined run holds the design boundary only and its bolts do the rest.
   const bool heldAllRound = boundarySupports && scene.simulation.holdSharedSides;
   std::mutex progressMutex;  // patches finish on TBB's threads
-  simulatePatches(state.patches, state.surface->mesh, scene, heldAllRound, [&](int done, int total) {
-    const std::lock_guard<std::mutex> lock(progressMutex);
-    state.progress(fmt::format("simulation: patch {} of {}", done, total), 0.6 + 0.12 * done / std::max(total, 1));
-  });
-  if (scene.simulation.joinPatches && state.members.has_value()) state.progress("simulation: joined", 0.72);
+  simulatePatches(state.patches, state.surface->mesh, scene, heldAllRound,
+                  [&](int done, int total) {
+                    const std::lock_guard<std::mutex> lock(progressMutex);
+                    state.progress(fmt::format("simulation: patch {} of {}", done, total),
+                                   0.6 + 0.12 * done / std::max(total, 1));
+                  });
+  if (scene.simulation.joinPatches && state.members.has_value())
+    state.progress("simulation: joined", 0.72);
   json& section = state.report.section("simulation");
   section = simulationSection(state.patches, scene);
   section["seconds"] = watch.seconds();  // patch by patch (wall, patches in parallel)
-  state.joined = addJoinedSimulation(*state.patching, state.patches, state.surface->mesh, scene, state.members.has_value(),
-                                     solvedCount(state.patches), section, heldAllRound);
+  state.joined = addJoinedSimulation(*state.patching, state.patches, state.surface->mesh, scene,
+                                     state.members.has_value(), solvedCount(state.patches), section,
+                                     heldAllRound);
   if (scene.wants("report"))
-    writeDeployedPlan(state.joined ? &*state.joined : nullptr, state.patches, state.surface->mesh, state.staging / "deployed.svg");
+    writeDeployedPlan(state.joined ? &*state.joined : nullptr, state.patches, state.surface->mesh,
+                      state.staging / "deployed.svg");
   // A deployment that did not reach equilibrium is a failure of the run (exit 1), whose report
   // still carries every figure.
   if (!section["converged"].get<bool>())
-    state.failures.push_back("simulation: " + section.value("reason", std::string("did not converge")));
+    state.failures.push_back("simulation: " +
+                             section.value("reason", std::string("did not converge")));
   const auto& joinedReport = section["joined"];
   if (joinedReport["ran"].get<bool>() && !joinedReport["converged"].get<bool>())
-    state.failures.push_back("joined simulation: " +
-                             joinedReport.value("failure", joinedReport.value("reason", std::string("did not converge"))));
+    state.failures.push_back(
+        "joined simulation: " +
+        joinedReport.value("failure",
+                           joinedReport.value("reason", std::string("did not converge"))));
 }
 
 }  // namespace egg::pipeline

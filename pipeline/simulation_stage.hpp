@@ -30,8 +30,10 @@ assembly::GridToRodsOptions gridToRodsOptions(const Scene& scene);
 // supports along all their boundaries: Fig. 3.17, 3.7.1). Without, a patch's lamellas end in free
 // cantilevers at a shared side, where in the built structure the neighbour holds them: a 20 m
 // cantilever of 25 x 4 cm poplar sags w L^4 / (8 EI) ~ 80 m in linear theory, i.e. it hangs down.
-// `patchDone(done, total)` (optional) is called after each patch, from the worker thread that ran it.
-void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene, bool holdSharedSides = false,
+// `patchDone(done, total)` (optional) is called after each patch, from the worker thread that ran
+// it.
+void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, const Scene& scene,
+                     bool holdSharedSides = false,
                      const std::function<void(int, int)>& patchDone = {});
 
 // report.json simulation{} of the patch-by-patch runs (errors pooled over all patches).

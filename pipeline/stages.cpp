@@ -25,9 +25,9 @@ const char* toString(StageId stage) {
 }
 
 const std::vector<StageId>& allStages() {
-  static const std::vector<StageId> stages{StageId::Surface,     StageId::Patching, StageId::Design,
-                                           StageId::Propagation, StageId::Grid,     StageId::Simulation,
-                                           StageId::Fabrication};
+  static const std::vector<StageId> stages{
+      StageId::Surface, StageId::Patching,   StageId::Design,     StageId::Propagation,
+      StageId::Grid,    StageId::Simulation, StageId::Fabrication};
   return stages;
 }
 
@@ -38,10 +38,21 @@ const std::vector<Stage>& stageTable() {
       {S::Patching, {S::Surface}, 0.1, nullptr, nullptr, patchingStage},
       {S::Design, {S::Patching}, 0.1, nullptr, nullptr, nullptr},
       {S::Propagation, {S::Design}, 0.25, nullptr, propagationSkipReason, propagationStage},
-      {S::Grid, {S::Design, S::Propagation}, 0.3, nullptr, gridSkipReason, gridStage, addPatchEntries},
+      {S::Grid,
+       {S::Design, S::Propagation},
+       0.3,
+       nullptr,
+       gridSkipReason,
+       gridStage,
+       addPatchEntries},
       {S::Simulation, {S::Grid}, 0.6, simulationDisabled, simulationSkipReason, simulationStage},
       // Stresses come from the deployed centrelines when the simulation ran, else from the design.
-      {S::Fabrication, {S::Grid}, 0.8, fabricationDisabled, fabricationSkipReason, fabricationStage},
+      {S::Fabrication,
+       {S::Grid},
+       0.8,
+       fabricationDisabled,
+       fabricationSkipReason,
+       fabricationStage},
   };
   return table;
 }
@@ -49,8 +60,12 @@ const std::vector<Stage>& stageTable() {
 const std::vector<Output>& outputTable() {
   using S = StageId;
   static const std::vector<Output> table{
-      {"report", {S::Grid, S::Simulation}, "report.json, report.html, deployed.svg, patch_NNN/grid.json"},
-      {"previews", {S::Grid, S::Simulation}, "report.html's PNG previews, patch_NNN/grid.obj, planar.svg, deployed.obj"},
+      {"report",
+       {S::Grid, S::Simulation},
+       "report.json, report.html, deployed.svg, patch_NNN/grid.json"},
+      {"previews",
+       {S::Grid, S::Simulation},
+       "report.html's PNG previews, patch_NNN/grid.obj, planar.svg, deployed.obj"},
       {"plan", {S::Design}, "patches.json, plan.svg"},
       {"cut_files", {S::Fabrication}, "cut/sheet_NN.svg, .dxf, sheets.pdf, bom.csv"},
       {"stickers", {S::Fabrication}, "cut/stickers_NN.svg, .dxf, stickers.pdf"},
@@ -64,8 +79,10 @@ namespace {
 bool reaches(StageId from, StageId target) {
   if (from == target) return true;
   const auto& table = stageTable();
-  const auto row = std::find_if(table.begin(), table.end(), [&](const Stage& s) { return s.id == from; });
-  return std::any_of(row->needs.begin(), row->needs.end(), [&](StageId need) { return reaches(need, target); });
+  const auto row =
+      std::find_if(table.begin(), table.end(), [&](const Stage& s) { return s.id == from; });
+  return std::any_of(row->needs.begin(), row->needs.end(),
+                     [&](StageId need) { return reaches(need, target); });
 }
 
 }  // namespace

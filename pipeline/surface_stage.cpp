@@ -1,6 +1,6 @@
 #include "pipeline/surface_stage.hpp"
-#include "pipeline/run_state.hpp"
 #include "core/timing.hpp"
+#include "pipeline/run_state.hpp"
 
 #include "core/curvature/curvature.hpp"
 #include "core/errors.hpp"
@@ -8,8 +8,8 @@
 #include "core/mesh/validate.hpp"
 #include "samples/generators/samples.hpp"
 
-#include <chrono>
 #include <fmt/core.h>
+#include <chrono>
 
 namespace egg::pipeline {
 namespace {
@@ -36,7 +36,8 @@ LoadedSurface fromFile(const std::filesystem::path& file, double scaleToM, bool 
   return out;
 }
 
-LoadedSurface fromSample(const std::string& name, const samples::Params& params, double edgeLengthM) {
+LoadedSurface fromSample(const std::string& name, const samples::Params& params,
+                         double edgeLengthM) {
   const auto start = Clock::now();
   LoadedSurface out;
   out.mesh = samples::generateSample(name, params, edgeLengthM);
@@ -46,7 +47,8 @@ LoadedSurface fromSample(const std::string& name, const samples::Params& params,
 }
 
 bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 }  // namespace
@@ -56,7 +58,8 @@ LoadedSurface loadSurface(const SurfaceSource& spec) {
   return fromFile(spec.file, spec.scaleToM, spec.keepLargestComponent);
 }
 
-LoadedSurface loadSurfaceArgumentDetailed(const std::string& argument, std::optional<double> edgeLengthM) {
+LoadedSurface loadSurfaceArgumentDetailed(const std::string& argument,
+                                          std::optional<double> edgeLengthM) {
   if (samples::isSample(argument)) {
     return fromSample(argument, {}, edgeLengthM.value_or(defaultSampleEdgeLength(argument)));
   }
@@ -67,7 +70,8 @@ LoadedSurface loadSurfaceArgumentDetailed(const std::string& argument, std::opti
   }
   if (!std::filesystem::exists(argument)) {
     std::string names;
-    for (const auto& info : samples::listSamples()) names += (names.empty() ? "" : ", ") + info.name;
+    for (const auto& info : samples::listSamples())
+      names += (names.empty() ? "" : ", ") + info.name;
     throw IoError(argument + ": no such file, and not a sample name (samples: " + names + ")");
   }
   return fromFile(argument, 1.0, false);
@@ -96,14 +100,17 @@ nlohmann::json surfaceSummary(const LoadedSurface& surface) {
       {"gaussian_curvature",
        {{"min_per_m2", curvature.gaussianMin},
         {"max_per_m2", curvature.gaussianMax},
-        {"injectivity_bound_m", std::isfinite(bound) ? nlohmann::json(bound) : nlohmann::json(nullptr)}}},
+        {"injectivity_bound_m",
+         std::isfinite(bound) ? nlohmann::json(bound) : nlohmann::json(nullptr)}}},
       {"validation", {{"ok", check.acceptable()}, {"issues", issues}}},
       {"warnings", surface.warnings},
       {"seconds", surface.seconds},
   };
 }
 
-TriMesh loadSurfaceArgument(const std::string& argument) { return loadSurfaceArgumentDetailed(argument).mesh; }
+TriMesh loadSurfaceArgument(const std::string& argument) {
+  return loadSurfaceArgumentDetailed(argument).mesh;
+}
 
 void surfaceStage(RunState& state) {
   const Stopwatch watch;

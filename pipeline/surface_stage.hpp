@@ -2,8 +2,8 @@
 // Turning what the user names into a validated surface mesh: a procedural sample, a mesh file
 // (through assimp), or a scene file's `surface` section. Shared by every subcommand that takes
 // a SURFACE argument (DESIGN.md "The egg command").
-#include "pipeline/scene.hpp"
 #include "core/mesh/mesh.hpp"
+#include "pipeline/scene.hpp"
 
 #include <nlohmann/json.hpp>
 

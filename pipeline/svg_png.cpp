@@ -12,10 +12,14 @@
 namespace egg::pipeline {
 
 void writePngFromSvg(const std::string& svgText, const std::filesystem::path& path, int widthPx) {
-  if (widthPx <= 0 || widthPx > 20000) throw InvalidInput("PNG preview " + path.string() + ": width " + std::to_string(widthPx) + " px out of range");
+  if (widthPx <= 0 || widthPx > 20000)
+    throw InvalidInput("PNG preview " + path.string() + ": width " + std::to_string(widthPx) +
+                       " px out of range");
   GError* error = nullptr;
   std::unique_ptr<RsvgHandle, void (*)(void*)> handle(
-      rsvg_handle_new_from_data(reinterpret_cast<const guint8*>(svgText.data()), svgText.size(), &error), g_object_unref);
+      rsvg_handle_new_from_data(reinterpret_cast<const guint8*>(svgText.data()), svgText.size(),
+                                &error),
+      g_object_unref);
   if (!handle) {
     const std::string why = error ? error->message : "unknown";
     if (error) g_error_free(error);
@@ -27,9 +31,11 @@ void writePngFromSvg(const std::string& svgText, const std::filesystem::path& pa
     gboolean hasWidth = FALSE, hasHeight = FALSE, hasViewBox = FALSE;
     RsvgLength lw, lh;
     RsvgRectangle viewBox;
-    rsvg_handle_get_intrinsic_dimensions(handle.get(), &hasWidth, &lw, &hasHeight, &lh, &hasViewBox, &viewBox);
+    rsvg_handle_get_intrinsic_dimensions(handle.get(), &hasWidth, &lw, &hasHeight, &lh, &hasViewBox,
+                                         &viewBox);
     if (!hasViewBox || viewBox.width <= 0.0 || viewBox.height <= 0.0)
-      throw InvalidInput("PNG preview " + path.string() + ": the SVG has neither a size in pixels nor a viewBox");
+      throw InvalidInput("PNG preview " + path.string() +
+                         ": the SVG has neither a size in pixels nor a viewBox");
     w = viewBox.width;
     h = viewBox.height;
   }
@@ -39,7 +45,8 @@ void writePngFromSvg(const std::string& svgText, const std::filesystem::path& pa
   std::unique_ptr<cairo_t, void (*)(cairo_t*)> cr(cairo_create(surface.get()), cairo_destroy);
   cairo_set_source_rgb(cr.get(), 1.0, 1.0, 1.0);  // a white page, as in the browser
   cairo_paint(cr.get());
-  const RsvgRectangle viewport{0.0, 0.0, static_cast<double>(widthPx), static_cast<double>(heightPx)};
+  const RsvgRectangle viewport{0.0, 0.0, static_cast<double>(widthPx),
+                               static_cast<double>(heightPx)};
   if (!rsvg_handle_render_document(handle.get(), cr.get(), &viewport, &error)) {
     const std::string why = error ? error->message : "unknown";
     if (error) g_error_free(error);
@@ -56,7 +63,8 @@ void writePngFromSvg(const std::string& svgText, const std::filesystem::path& pa
   }
   std::error_code renameError;
   std::filesystem::rename(tmp, path, renameError);
-  if (renameError) throw WriteError("cannot write PNG preview " + path.string() + ": " + renameError.message());
+  if (renameError)
+    throw WriteError("cannot write PNG preview " + path.string() + ": " + renameError.message());
 }
 
 }  // namespace egg::pipeline

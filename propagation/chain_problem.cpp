@@ -17,37 +17,46 @@ void ChainProblem::validate() const {
   for (size_t i = 0; i < maps.size(); ++i)
     if (!maps[i]) throw InvalidInput("ChainProblem.maps[" + std::to_string(i) + "] is null");
   if (boundaries.size() != maps.size() + 1)
-    throw InvalidInput("ChainProblem.boundaries: expected " + std::to_string(maps.size() + 1) + " (one more than maps), got " +
-                       std::to_string(boundaries.size()));
+    throw InvalidInput("ChainProblem.boundaries: expected " + std::to_string(maps.size() + 1) +
+                       " (one more than maps), got " + std::to_string(boundaries.size()));
   for (size_t i = 0; i < boundaries.size(); ++i) {
     const auto& b = boundaries[i];
     if (!(b.weight >= 0.0) || !(b.minGap >= 0.0) || !(b.minGap < 1.0) || !(b.lengthM > 0.0))
-      throw InvalidInput("ChainProblem.boundaries[" + std::to_string(i) + "]: weight >= 0, length > 0 and 0 <= minGap < 1 required");
+      throw InvalidInput("ChainProblem.boundaries[" + std::to_string(i) +
+                         "]: weight >= 0, length > 0 and 0 <= minGap < 1 required");
   }
-  if (members < 2) throw InvalidInput("ChainProblem.members must be at least 2 (the boundary members)");
+  if (members < 2)
+    throw InvalidInput("ChainProblem.members must be at least 2 (the boundary members)");
   for (size_t k = 0; k < originals.size(); ++k) {
     const auto& o = originals[k];
-    if (o.boundary < 0 || o.boundary >= static_cast<int>(boundaries.size()) || !(o.value > 0.0) || !(o.value < 1.0))
-      throw InvalidInput("ChainProblem.originals[" + std::to_string(k) + "]: needs a boundary of the chain and a value in (0, 1)");
+    if (o.boundary < 0 || o.boundary >= static_cast<int>(boundaries.size()) || !(o.value > 0.0) ||
+        !(o.value < 1.0))
+      throw InvalidInput("ChainProblem.originals[" + std::to_string(k) +
+                         "]: needs a boundary of the chain and a value in (0, 1)");
   }
   for (size_t k = 0; k < closed.size(); ++k) {
     const auto& c = closed[k];
-    if (c.boundary < 0 || c.boundary >= static_cast<int>(boundaries.size()) || !(c.from >= 0.0) || !(c.to <= 1.0) || !(c.from < c.to))
-      throw InvalidInput("ChainProblem.closed[" + std::to_string(k) + "]: needs a boundary of the chain and 0 <= from < to <= 1");
+    if (c.boundary < 0 || c.boundary >= static_cast<int>(boundaries.size()) || !(c.from >= 0.0) ||
+        !(c.to <= 1.0) || !(c.from < c.to))
+      throw InvalidInput("ChainProblem.closed[" + std::to_string(k) +
+                         "]: needs a boundary of the chain and 0 <= from < to <= 1");
   }
 }
 
 void ChainOptions::validate() const {
-  if (!(relativeTolerance > 0.0)) throw InvalidInput("ChainOptions.relativeTolerance must be positive");
+  if (!(relativeTolerance > 0.0))
+    throw InvalidInput("ChainOptions.relativeTolerance must be positive");
   if (maxIterations < 1) throw InvalidInput("ChainOptions.maxIterations must be at least 1");
-  if (!(minOrderGap > 0.0) || !(minOrderGap < 0.1)) throw InvalidInput("ChainOptions.minOrderGap must be in (0, 0.1)");
+  if (!(minOrderGap > 0.0) || !(minOrderGap < 0.1))
+    throw InvalidInput("ChainOptions.minOrderGap must be in (0, 0.1)");
 }
 
 namespace {
 
 // Positions and their derivatives dp_ij / dt_j (member j moves only with its own start t_j).
 void propagateWithDerivatives(const ChainProblem& problem, const std::vector<double>& start,
-                              std::vector<std::vector<double>>& p, std::vector<std::vector<double>>* d) {
+                              std::vector<std::vector<double>>& p,
+                              std::vector<std::vector<double>>* d) {
   const size_t n = problem.maps.size(), m = start.size();
   p.assign(n + 1, std::vector<double>(m));
   if (d) d->assign(n + 1, std::vector<double>(m, 1.0));
@@ -66,13 +75,15 @@ void propagateWithDerivatives(const ChainProblem& problem, const std::vector<dou
 
 }  // namespace
 
-std::vector<std::vector<double>> propagateMembers(const ChainProblem& problem, const std::vector<double>& start) {
+std::vector<std::vector<double>> propagateMembers(const ChainProblem& problem,
+                                                  const std::vector<double>& start) {
   std::vector<std::vector<double>> p;
   propagateWithDerivatives(problem, start, p, nullptr);
   return p;
 }
 
-double chainObjective(const ChainProblem& problem, const std::vector<double>& start, std::vector<double>* gradient) {
+double chainObjective(const ChainProblem& problem, const std::vector<double>& start,
+                      std::vector<double>* gradient) {
   std::vector<std::vector<double>> p, d;
   propagateWithDerivatives(problem, start, p, gradient ? &d : nullptr);
   const size_t m = start.size();
@@ -93,7 +104,8 @@ double chainObjective(const ChainProblem& problem, const std::vector<double>& st
 }
 
 namespace {
-// A parameter on boundary `boundary` pulled back to boundary 0 through G^-1 (back-propagation, Fig. 3.8).
+// A parameter on boundary `boundary` pulled back to boundary 0 through G^-1 (back-propagation,
+// Fig. 3.8).
 double pullBack(const ChainProblem& problem, int boundary, double t) {
   for (int i = boundary - 1; i >= 0; --i) t = problem.maps[i]->inverse(t);
   return t;
@@ -105,11 +117,14 @@ std::vector<double> fixedStarts(const ChainProblem& problem, std::vector<bool>* 
   std::vector<double> fixed{0.0, 1.0};
   for (const auto& o : problem.originals) fixed.push_back(pullBack(problem, o.boundary, o.value));
   std::sort(fixed.begin(), fixed.end());
-  fixed.erase(std::unique(fixed.begin(), fixed.end(), [](double a, double b) { return std::abs(a - b) < 1e-12; }), fixed.end());
+  fixed.erase(std::unique(fixed.begin(), fixed.end(),
+                          [](double a, double b) { return std::abs(a - b) < 1e-12; }),
+              fixed.end());
   if (closedGaps) {
     closedGaps->assign(fixed.size() - 1, false);
     for (const auto& range : problem.closed) {
-      const double from = pullBack(problem, range.boundary, range.from), to = pullBack(problem, range.boundary, range.to);
+      const double from = pullBack(problem, range.boundary, range.from),
+                   to = pullBack(problem, range.boundary, range.to);
       for (size_t g = 0; g + 1 < fixed.size(); ++g)
         if (fixed[g] >= from - 1e-12 && fixed[g + 1] <= to + 1e-12) (*closedGaps)[g] = true;
     }
@@ -122,13 +137,15 @@ std::vector<double> plainStart(const ChainProblem& problem, std::vector<bool>* f
   const std::vector<double> fixed = fixedStarts(problem, &closed);
   const int free = problem.members - static_cast<int>(fixed.size());
   if (free < 0)
-    throw InvalidInput("ChainProblem: " + std::to_string(fixed.size()) + " fixed members (boundaries and originals) but only " +
+    throw InvalidInput("ChainProblem: " + std::to_string(fixed.size()) +
+                       " fixed members (boundaries and originals) but only " +
                        std::to_string(problem.members) + " members in all");
   double open = 0.0;
   for (size_t g = 0; g + 1 < fixed.size(); ++g)
     if (!closed[g]) open += fixed[g + 1] - fixed[g];
   if (free > 0 && !(open > 0.0))
-    throw InvalidInput("ChainProblem: " + std::to_string(free) + " free members but every gap between fixed members is closed");
+    throw InvalidInput("ChainProblem: " + std::to_string(free) +
+                       " free members but every gap between fixed members is closed");
   // Largest remainder: each gap gets free members in proportion to its length.
   const size_t gaps = fixed.size() - 1;
   std::vector<int> count(gaps, 0);
@@ -140,7 +157,8 @@ std::vector<double> plainStart(const ChainProblem& problem, std::vector<bool>* f
     given += count[g];
     remainder.push_back({share - count[g], g});
   }
-  std::stable_sort(remainder.begin(), remainder.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::stable_sort(remainder.begin(), remainder.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
   // Only open gaps take the remainder (a closed one has share and remainder 0, sorted last).
   std::vector<size_t> openGaps;
   for (const auto& r : remainder)
@@ -167,8 +185,8 @@ namespace {
 struct SolveData {
   const ChainProblem* problem;
   const ChainOptions* options;
-  std::vector<double> start;  // all members; the free ones overwritten from x
-  std::vector<int> freeIndex; // variable k -> member
+  std::vector<double> start;   // all members; the free ones overwritten from x
+  std::vector<int> freeIndex;  // variable k -> member
   int evaluations = 0;
   void load(const double* x) {
     for (size_t k = 0; k < freeIndex.size(); ++k) start[freeIndex[k]] = x[k];
@@ -207,7 +225,8 @@ struct ConstraintData {
   std::vector<int> variableOf;  // member -> variable or -1
 };
 
-void constraintCallback(unsigned m, double* result, unsigned n, const double* x, double* grad, void* raw) {
+void constraintCallback(unsigned m, double* result, unsigned n, const double* x, double* grad,
+                        void* raw) {
   auto& data = *static_cast<ConstraintData*>(raw);
   data.solve->load(x);
   std::vector<std::vector<double>> p, d;
@@ -223,11 +242,12 @@ void constraintCallback(unsigned m, double* result, unsigned n, const double* x,
 }
 
 // Over the pairs with a free member: two fixed members' spacing is given, no optimum can change it.
-double worstViolation(const ChainProblem& problem, const std::vector<double>& bounds, const std::vector<double>& start,
-                      const std::vector<bool>& fixed) {
+double worstViolation(const ChainProblem& problem, const std::vector<double>& bounds,
+                      const std::vector<double>& start, const std::vector<bool>& fixed) {
   const auto p = propagateMembers(problem, start);
   double worst = -1.0;
-  for (const auto& [i, j] : constraintPairs(problem, fixed)) worst = std::max(worst, bounds[i] - (p[i][j] - p[i][j - 1]));
+  for (const auto& [i, j] : constraintPairs(problem, fixed))
+    worst = std::max(worst, bounds[i] - (p[i][j] - p[i][j - 1]));
   return worst;
 }
 
@@ -237,12 +257,15 @@ struct SlsqpRun {
   int evaluations = 0;
 };
 
-SlsqpRun runSlsqp(const ChainProblem& problem, const ChainOptions& options, const std::vector<double>& initial,
-                  const std::vector<bool>& fixed, const std::vector<double>& bounds) {
+SlsqpRun runSlsqp(const ChainProblem& problem, const ChainOptions& options,
+                  const std::vector<double>& initial, const std::vector<bool>& fixed,
+                  const std::vector<double>& bounds) {
   SolveData data{&problem, &options, initial, {}, 0, bounds};
   std::vector<int> variableOf(initial.size(), -1);
   for (size_t j = 0; j < fixed.size(); ++j)
-    if (!fixed[j]) variableOf[j] = static_cast<int>(data.freeIndex.size()), data.freeIndex.push_back(static_cast<int>(j));
+    if (!fixed[j])
+      variableOf[j] = static_cast<int>(data.freeIndex.size()),
+      data.freeIndex.push_back(static_cast<int>(j));
   const unsigned n = static_cast<unsigned>(data.freeIndex.size());
   ConstraintData constraints{&data, constraintPairs(problem, fixed), variableOf};
   nlopt_opt opt = nlopt_create(NLOPT_LD_SLSQP, n);
@@ -250,8 +273,8 @@ SlsqpRun runSlsqp(const ChainProblem& problem, const ChainOptions& options, cons
   nlopt_set_upper_bounds1(opt, 1.0);
   nlopt_set_min_objective(opt, objectiveCallback, &data);
   const std::vector<double> tolerances(constraints.pairs.size(), 1e-12);
-  nlopt_add_inequality_mconstraint(opt, static_cast<unsigned>(constraints.pairs.size()), constraintCallback, &constraints,
-                                   tolerances.data());
+  nlopt_add_inequality_mconstraint(opt, static_cast<unsigned>(constraints.pairs.size()),
+                                   constraintCallback, &constraints, tolerances.data());
   nlopt_set_ftol_rel(opt, options.relativeTolerance);
   nlopt_set_xtol_abs1(opt, 1e-14);
   nlopt_set_maxeval(opt, options.maxIterations);
@@ -289,7 +312,8 @@ ChainSolution solveChain(const ChainProblem& problem, const ChainOptions& option
   for (size_t i = 0; i < problem.boundaries.size(); ++i) {
     double cap = 1.0;
     for (size_t a = 0, b = 1; b < out.fixed.size(); ++b)
-      if (out.fixed[b]) cap = std::min(cap, (plain[i][b] - plain[i][a]) / static_cast<double>(b - a)), a = b;
+      if (out.fixed[b])
+        cap = std::min(cap, (plain[i][b] - plain[i][a]) / static_cast<double>(b - a)), a = b;
     const double asked = problem.boundaries[i].minGap;
     if (asked > cap) ++capped;
     required.push_back(std::max(std::min(asked, cap), options.minOrderGap));
@@ -313,7 +337,9 @@ ChainSolution solveChain(const ChainProblem& problem, const ChainOptions& option
   SlsqpRun run = runSlsqp(problem, options, out.start, out.fixed, required);
   out.iterations = run.evaluations;
   out.status = nlopt_result_to_string(run.result);
-  if (capped > 0) out.status += " (footprint capped at equal spacing on " + std::to_string(capped) + " boundaries)";
+  if (capped > 0)
+    out.status +=
+        " (footprint capped at equal spacing on " + std::to_string(capped) + " boundaries)";
   if (!accept(run, required)) {
     // The footprints cannot all be met (a side too short for its members at the smallest angle
     // they meet it at, 2.4.4): asked for no more than the plain propagation already has on each
@@ -326,11 +352,14 @@ ChainSolution solveChain(const ChainProblem& problem, const ChainOptions& option
         if (b == i) smallest = std::min(smallest, plain[i][j] - plain[i][j - 1]);
       if (smallest < relaxed[i]) relaxed[i] = std::max(smallest, options.minOrderGap), ++loosened;
     }
-    SlsqpRun second = loosened > 0 ? runSlsqp(problem, options, out.start, out.fixed, relaxed) : SlsqpRun{};
+    SlsqpRun second =
+        loosened > 0 ? runSlsqp(problem, options, out.start, out.fixed, relaxed) : SlsqpRun{};
     out.iterations += second.evaluations;
     if (loosened > 0 && accept(second, relaxed) && out.evennessAfter < out.evennessBefore) {
-      out.status += std::string(" (footprint not met; then ") + nlopt_result_to_string(second.result) + " with the spacing of the plain propagation on " +
-                    std::to_string(loosened) + " boundaries)";
+      out.status += std::string(" (footprint not met; then ") +
+                    nlopt_result_to_string(second.result) +
+                    " with the spacing of the plain propagation on " + std::to_string(loosened) +
+                    " boundaries)";
     } else {
       out.start = out.startBefore;
       out.evennessAfter = out.evennessBefore;

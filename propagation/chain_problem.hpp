@@ -5,7 +5,8 @@
 // i+1 it lies at G_i(t_i) (the cladding function of patch i, forwards or backwards: side_map.hpp),
 // which is what keeps neighbouring patches' members C0 at their shared sides. The free members'
 // t minimise
-//     sum_i omega_i <du_i, du_i>,   du_i = differences of consecutive member parameters on boundary i,
+//     sum_i omega_i <du_i, du_i>,   du_i = differences of consecutive member parameters on boundary
+//     i,
 // where a parameter is the arc length along the boundary over its length l_i (the 1/l_i of the
 // thesis: every side counts by its spacing relative to its length), subject to ordering and the
 // minimum spacing of the lamella footprint (d+-, Section 2.4.4) on every boundary. The member
@@ -27,8 +28,8 @@ struct ChainBoundary {
 };
 
 struct ChainOriginal {
-  int boundary = 0;      // where the member is fixed
-  double value = 0.5;    // its parameter there, in (0, 1)
+  int boundary = 0;    // where the member is fixed
+  double value = 0.5;  // its parameter there, in (0, 1)
 };
 
 // A range of a boundary where a neighbour across a T-junction has already placed its members
@@ -44,7 +45,7 @@ struct ChainProblem {
   int members = 2;                        // per boundary, both boundary members (0 and 1) included
   std::vector<ChainOriginal> originals;
   std::vector<ChainClosedRange> closed;
-  void validate() const;                  // throws InvalidInput naming the field
+  void validate() const;  // throws InvalidInput naming the field
 };
 
 struct ChainOptions {
@@ -65,13 +66,15 @@ struct ChainSolution {
   double evennessAfter = 0.0;                  // objective of `start` (<= before)
   int iterations = 0;                          // objective evaluations of SLSQP
   bool optimised = false;                      // SLSQP's point was accepted
-  std::string status;                          // NLopt's result, or why the plain propagation was kept
+  std::string status;  // NLopt's result, or why the plain propagation was kept
 };
 
 // The positions of members given by their parameters on boundary 0 on every boundary.
-std::vector<std::vector<double>> propagateMembers(const ChainProblem& problem, const std::vector<double>& start);
+std::vector<std::vector<double>> propagateMembers(const ChainProblem& problem,
+                                                  const std::vector<double>& start);
 // Problem 3.3's objective for the members at `start`; with `gradient`, d/d start[k] for every k.
-double chainObjective(const ChainProblem& problem, const std::vector<double>& start, std::vector<double>* gradient = nullptr);
+double chainObjective(const ChainProblem& problem, const std::vector<double>& start,
+                      std::vector<double>* gradient = nullptr);
 // The plain propagation: fixed members (0, 1, the originals pulled back to boundary 0 through
 // G^-1) and the free members spaced equally on boundary 0 between them, the free count shared
 // out by gap length. Throws InvalidInput when the originals leave fewer members than they need.
@@ -79,7 +82,8 @@ double chainObjective(const ChainProblem& problem, const std::vector<double>& st
 std::vector<double> plainStart(const ChainProblem& problem, std::vector<bool>* fixed = nullptr);
 // The fixed members on boundary 0 (0, 1 and the originals pulled back, increasing) and, per gap
 // between consecutive ones, whether it is closed (lies inside a closed range).
-std::vector<double> fixedStarts(const ChainProblem& problem, std::vector<bool>* closedGaps = nullptr);
+std::vector<double> fixedStarts(const ChainProblem& problem,
+                                std::vector<bool>* closedGaps = nullptr);
 ChainSolution solveChain(const ChainProblem& problem, const ChainOptions& options = {});
 
 }  // namespace egg::propagation

@@ -19,7 +19,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 int familyIndex(Family f) { return f == Family::U ? 0 : 1; }
-const std::vector<GridMember>& familyMembers(const EggGrid& grid, Family f) { return f == Family::U ? grid.u : grid.v; }
+const std::vector<GridMember>& familyMembers(const EggGrid& grid, Family f) {
+  return f == Family::U ? grid.u : grid.v;
+}
 
 // One member of one patch's family that a joint names.
 struct Instance {
@@ -41,24 +43,31 @@ struct Run {
   std::vector<int> members;
   std::vector<Instance::Link> steps;  // steps[k]: member k+1's x1 from member k's x2
   bool freeStart = false;             // the first start lies on no joint: it may move
-  std::optional<double> fixedTarget;  // x2 the last member must reach (a fixed boundary member there)
-  int headOn = -1;                    // the run whose last end this one's last end meets
-  int waitFor = -1;                   // matches that run's traced end
+  std::optional<double>
+      fixedTarget;   // x2 the last member must reach (a fixed boundary member there)
+  int headOn = -1;   // the run whose last end this one's last end meets
+  int waitFor = -1;  // matches that run's traced end
 };
 
-double linkValue(const Instance::Link& link, double otherValue) { return link.offset + link.scale * otherValue; }
+double linkValue(const Instance::Link& link, double otherValue) {
+  return link.offset + link.scale * otherValue;
+}
 Instance::Link reversedLink(int other, bool otherAtEnd, const MemberJoint& j, bool thisIsA) {
   // x_b = offset + scale x_a; seen from a: x_a = (x_b - offset) / scale.
   if (thisIsA) return {other, otherAtEnd, -j.offset / j.scale, 1.0 / j.scale};
   return {other, otherAtEnd, j.offset, j.scale};
 }
 
-using PatchStarts = std::vector<std::array<std::vector<double>, 2>>;  // per patch and family: the members' x1
+using PatchStarts =
+    std::vector<std::array<std::vector<double>, 2>>;  // per patch and family: the members' x1
 
-bool usable(const std::vector<const PatchDesign*>& designs, int p) { return designs[p] && designs[p]->feasible; }
+bool usable(const std::vector<const PatchDesign*>& designs, int p) {
+  return designs[p] && designs[p]->feasible;
+}
 
 // Instances of the members the joints name.
-std::vector<Instance> instancesOf(const std::vector<const PatchDesign*>& designs, const LayoutPropagation& propagation, const PatchStarts& x1) {
+std::vector<Instance> instancesOf(const std::vector<const PatchDesign*>& designs,
+                                  const LayoutPropagation& propagation, const PatchStarts& x1) {
   std::vector<Instance> inst;
   std::map<std::tuple<int, int, int>, int> instanceOf;
   const auto instance = [&](const MemberEnd& e) {
@@ -74,7 +83,9 @@ std::vector<Instance> instancesOf(const std::vector<const PatchDesign*>& designs
   };
   for (const auto& j : propagation.joints) {
     if (!usable(designs, j.a.patch) || !usable(designs, j.b.patch)) continue;
-    if (x1[j.a.patch][familyIndex(j.a.family)].empty() || x1[j.b.patch][familyIndex(j.b.family)].empty()) continue;
+    if (x1[j.a.patch][familyIndex(j.a.family)].empty() ||
+        x1[j.b.patch][familyIndex(j.b.family)].empty())
+      continue;
     const int a = instance(j.a), b = instance(j.b);
     (j.a.atEnd ? inst[a].atEnd : inst[a].atStart).push_back(reversedLink(b, j.b.atEnd, j, true));
     (j.b.atEnd ? inst[b].atEnd : inst[b].atStart).push_back(reversedLink(a, j.a.atEnd, j, false));
@@ -90,7 +101,8 @@ std::vector<Run> runsOf(const std::vector<Instance>& inst, std::vector<int>& run
     return nullptr;
   };
   const auto hasPrevious = [&](int i) {
-    return std::any_of(inst[i].atStart.begin(), inst[i].atStart.end(), [&](const auto& l) { return !inst[l.other].boundary && l.otherAtEnd; });
+    return std::any_of(inst[i].atStart.begin(), inst[i].atStart.end(),
+                       [&](const auto& l) { return !inst[l.other].boundary && l.otherAtEnd; });
   };
   std::vector<Run> runs;
   runOfLast.assign(inst.size(), -1);
@@ -119,19 +131,24 @@ std::vector<Run> runsOf(const std::vector<Instance>& inst, std::vector<int>& run
 }
 
 // Head-on pairs: the run whose start may move matches the other's traced end.
-void pairHeadOnRuns(std::vector<Run>& runs, const std::vector<Instance>& inst, const std::vector<int>& runOfLast) {
+void pairHeadOnRuns(std::vector<Run>& runs, const std::vector<Instance>& inst,
+                    const std::vector<int>& runOfLast) {
   for (size_t r = 0; r < runs.size(); ++r) {
     if (runs[r].fixedTarget) continue;
     for (const auto& l : inst[runs[r].members.back()].atEnd)
-      if (!inst[l.other].boundary && l.otherAtEnd && runOfLast[l.other] >= 0) runs[r].headOn = runOfLast[l.other];
+      if (!inst[l.other].boundary && l.otherAtEnd && runOfLast[l.other] >= 0)
+        runs[r].headOn = runOfLast[l.other];
   }
   for (size_t r = 0; r < runs.size(); ++r) {
     Run& run = runs[r];
-    if (run.headOn < 0 || run.waitFor >= 0 || runs[run.headOn].waitFor == static_cast<int>(r)) continue;
+    if (run.headOn < 0 || run.waitFor >= 0 || runs[run.headOn].waitFor == static_cast<int>(r))
+      continue;
     Run& other = runs[run.headOn];
     // Both free: the later one moves. Neither: both are held.
-    if (run.freeStart && (!other.freeStart || static_cast<int>(r) > run.headOn)) run.waitFor = run.headOn;
-    else if (other.freeStart) other.waitFor = static_cast<int>(r);
+    if (run.freeStart && (!other.freeStart || static_cast<int>(r) > run.headOn))
+      run.waitFor = run.headOn;
+    else if (other.freeStart)
+      other.waitFor = static_cast<int>(r);
   }
 }
 
@@ -144,8 +161,13 @@ struct RunTracer {
   std::atomic<int> traces{0};
   std::vector<char> matched, held;
 
-  RunTracer(const std::vector<const PatchDesign*>& designs_, std::vector<Instance>& inst_, std::vector<Run>& runs_)
-      : designs(designs_), inst(inst_), runs(runs_), matched(runs_.size(), 0), held(runs_.size(), 0) {}
+  RunTracer(const std::vector<const PatchDesign*>& designs_, std::vector<Instance>& inst_,
+            std::vector<Run>& runs_)
+      : designs(designs_),
+        inst(inst_),
+        runs(runs_),
+        matched(runs_.size(), 0),
+        held(runs_.size(), 0) {}
 
   // One member traced alone, exactly as buildGrid traces it (same guess, same options).
   void traceOne(Instance& m) {
@@ -156,7 +178,8 @@ struct RunTracer {
     g.x1 = m.x1;
     g.x2 = membersAt(design, m.family, {0.0, m.x1, 1.0}).x2[1];
     std::atomic<int> propagations{0};
-    traceInnerMember(design.patch, *design.solver, design.alphaBar.quad, g, design.options.grid, propagations);
+    traceInnerMember(design.patch, *design.solver, design.alphaBar.quad, g, design.options.grid,
+                     propagations);
     ++traces;
     m.x2 = g.x2;
   }
@@ -164,7 +187,8 @@ struct RunTracer {
     inst[run.members.front()].x1 = start;
     for (size_t k = 0; k < run.members.size(); ++k) {
       traceOne(inst[run.members[k]]);
-      if (k + 1 < run.members.size()) inst[run.members[k + 1]].x1 = linkValue(run.steps[k], inst[run.members[k]].x2);
+      if (k + 1 < run.members.size())
+        inst[run.members[k + 1]].x1 = linkValue(run.steps[k], inst[run.members[k]].x2);
     }
     return inst[run.members.back()].x2;
   }
@@ -191,7 +215,8 @@ struct RunTracer {
       }
       if (!target) return;
       const Instance& last = inst[run.members.back()];
-      const double length = designs[last.patch]->patch.sideLengths[familySide(last.family, true).first];
+      const double length =
+          designs[last.patch]->patch.sideLengths[familySide(last.family, true).first];
       const double tolerance = 1e-10;  // metres along the end side
       double f = end - *target;
       if (!run.freeStart) {
@@ -239,12 +264,14 @@ struct RunTracer {
 
 // One patch's grid, from the starts the tracks settled (`given`: per family, empty = placed by
 // the design's member options).
-void tracePatch(const PatchDesign& design, const std::array<std::vector<double>, 2>& given, TracedPatch& traced) {
+void tracePatch(const PatchDesign& design, const std::array<std::vector<double>, 2>& given,
+                TracedPatch& traced) {
   try {
     auto t = Clock::now();
     const auto members = [&](Family f) {
       const auto& x1 = given[familyIndex(f)];
-      return x1.empty() ? placeDesignMembers(design, f, design.options.members) : membersAt(design, f, x1);
+      return x1.empty() ? placeDesignMembers(design, f, design.options.members)
+                        : membersAt(design, f, x1);
     };
     traced.u = members(Family::U);
     traced.v = members(Family::V);
@@ -271,7 +298,8 @@ const Eigen::Vector3d* endPoint(const std::vector<TracedPatch>& patches, const M
 }
 
 // The gap between the traced member ends of the two patches on one piece.
-SideGap gapOf(const SharedPiece& piece, const LayoutPropagation& propagation, const std::vector<TracedPatch>& patches) {
+SideGap gapOf(const SharedPiece& piece, const LayoutPropagation& propagation,
+              const std::vector<TracedPatch>& patches) {
   SideGap gap;
   gap.boundary = piece.boundary;
   gap.patchA = piece.patchA, gap.patchB = piece.patchB;
@@ -283,11 +311,14 @@ SideGap gapOf(const SharedPiece& piece, const LayoutPropagation& propagation, co
     gap.kind = GapKind::RingCut;
     // Members need not close round a ring (3.7.1): the chain's member j on both sides of the cut.
     const PropagatedChain& chain = propagation.chains[piece.chain];
-    const int n = static_cast<int>(chain.nodes.size()), m = static_cast<int>(chain.solution.start.size());
+    const int n = static_cast<int>(chain.nodes.size()),
+              m = static_cast<int>(chain.solution.start.size());
     for (int j = 1; j + 1 < m; ++j) {
       const PropagatedNode &last = chain.nodes[n - 1], &first = chain.nodes[0];
-      const Eigen::Vector3d* a = endPoint(patches, {last.patch, last.family, chain.memberIndex(n - 1, j), last.forward});
-      const Eigen::Vector3d* b = endPoint(patches, {first.patch, first.family, chain.memberIndex(0, j), !first.forward});
+      const Eigen::Vector3d* a =
+          endPoint(patches, {last.patch, last.family, chain.memberIndex(n - 1, j), last.forward});
+      const Eigen::Vector3d* b =
+          endPoint(patches, {first.patch, first.family, chain.memberIndex(0, j), !first.forward});
       if (a && b) gap.maxGapM = std::max(gap.maxGapM, (*a - *b).norm());
     }
   } else if (piece.membersA != piece.membersB) {
@@ -321,10 +352,12 @@ const char* toString(GapKind kind) {
   return "unknown";
 }
 
-LayoutTracing traceLayout(const std::vector<const PatchDesign*>& designs, const LayoutPropagation& propagation) {
+LayoutTracing traceLayout(const std::vector<const PatchDesign*>& designs,
+                          const LayoutPropagation& propagation) {
   const auto started = Clock::now();
   const size_t count = designs.size();
-  if (propagation.x1.size() != count) throw InvalidInput("traceLayout: the propagation covers another number of patches");
+  if (propagation.x1.size() != count)
+    throw InvalidInput("traceLayout: the propagation covers another number of patches");
   LayoutTracing out;
   out.patches.resize(count);
   PatchStarts x1 = propagation.x1;
@@ -338,7 +371,8 @@ LayoutTracing traceLayout(const std::vector<const PatchDesign*>& designs, const 
   out.rounds += tracer.solveInRounds();
   for (size_t r = 0; r < runs.size(); ++r) {
     // Head-on with neither start free: both held.
-    const bool stuck = runs[r].headOn >= 0 && runs[r].waitFor < 0 && runs[runs[r].headOn].waitFor != static_cast<int>(r);
+    const bool stuck = runs[r].headOn >= 0 && runs[r].waitFor < 0 &&
+                       runs[runs[r].headOn].waitFor != static_cast<int>(r);
     out.matchedRuns += tracer.matched[r], out.heldRuns += tracer.held[r] || stuck;
   }
   out.memberTraces = tracer.traces;

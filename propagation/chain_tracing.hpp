@@ -40,28 +40,29 @@ const char* toString(GapKind kind);
 
 // The traced member ends of the two patches on one shared boundary piece.
 struct SideGap {
-  int boundary = -1;       // PatchGraph boundary id
+  int boundary = -1;  // PatchGraph boundary id
   int patchA = -1, patchB = -1;
   PieceKind piece = PieceKind::WholeSide;
   int membersA = 0, membersB = 0;  // members each side puts on the piece
-  double maxGapM = 0.0;    // largest distance between corresponding member ends
+  double maxGapM = 0.0;            // largest distance between corresponding member ends
   GapKind kind = GapKind::Closed;
 };
 
 struct LayoutTracing {
   std::vector<TracedPatch> patches;
   std::vector<SideGap> gaps;
-  double c0MaxGapM = 0.0;   // over the pieces, ring cuts not included
-  int matchedRuns = 0;      // runs whose start was iterated to meet a fixed end
-  int heldRuns = 0;         // runs with a fixed end but no free start (their gap is reported)
-  int memberTraces = 0;     // single-member traces spent on the tracks (matching included)
-  int rounds = 0;           // rounds of runs (a run matching another's end waits for it)
+  double c0MaxGapM = 0.0;  // over the pieces, ring cuts not included
+  int matchedRuns = 0;     // runs whose start was iterated to meet a fixed end
+  int heldRuns = 0;        // runs with a fixed end but no free start (their gap is reported)
+  int memberTraces = 0;    // single-member traces spent on the tracks (matching included)
+  int rounds = 0;          // rounds of runs (a run matching another's end waits for it)
   double seconds = 0.0;
 };
 
 // `designs[p]` null or infeasible: patch p gets no grid. A family propagation did not cover
 // (fallback, or a lone patch) is placed by placeDesignMembers with the design's member options.
 // Each patch is traced with its design's grid options.
-LayoutTracing traceLayout(const std::vector<const PatchDesign*>& designs, const LayoutPropagation& propagation);
+LayoutTracing traceLayout(const std::vector<const PatchDesign*>& designs,
+                          const LayoutPropagation& propagation);
 
 }  // namespace egg::propagation

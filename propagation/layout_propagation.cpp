@@ -19,9 +19,12 @@
 namespace egg::propagation {
 
 void PropagationOptions::validate() const {
-  if (members && *members < 2) throw InvalidInput("PropagationOptions.members must be at least 2 (the boundary members)");
-  if (!(lamellaWidthM > 0.0)) throw InvalidInput("PropagationOptions.lamellaWidthM must be positive");
-  if (!(spacingFactor > 0.0)) throw InvalidInput("PropagationOptions.spacingFactor must be positive");
+  if (members && *members < 2)
+    throw InvalidInput("PropagationOptions.members must be at least 2 (the boundary members)");
+  if (!(lamellaWidthM > 0.0))
+    throw InvalidInput("PropagationOptions.lamellaWidthM must be positive");
+  if (!(spacingFactor > 0.0))
+    throw InvalidInput("PropagationOptions.spacingFactor must be positive");
   chain.validate();
 }
 
@@ -36,8 +39,10 @@ const char* toString(PieceKind kind) {
 
 std::pair<bool, bool> familySideRole(Family family, int side) {
   const PatchSide patchSide(side);
-  if (patchSide.endingFamily() == family) return {patchSide.isMembersEnd(), patchSide.againstCorners()};
-  throw InvalidInput(fmt::format("side {} carries no end of family {}", side, family == Family::U ? "u" : "v"));
+  if (patchSide.endingFamily() == family)
+    return {patchSide.isMembersEnd(), patchSide.againstCorners()};
+  throw InvalidInput(
+      fmt::format("side {} carries no end of family {}", side, family == Family::U ? "u" : "v"));
 }
 
 std::vector<double> PropagatedChain::startParameters(int node) const {
@@ -68,17 +73,20 @@ struct Link {
 };
 
 // The whole shared side between two nodes, if any.
-std::optional<Link> findLink(const patching::PatchGraph& graph, const patching::ChainNode& a, const patching::ChainNode& b,
-                             std::string& problem) {
+std::optional<Link> findLink(const patching::PatchGraph& graph, const patching::ChainNode& a,
+                             const patching::ChainNode& b, std::string& problem) {
   for (const auto& boundary : graph.boundaries) {
     if (boundary.uses.size() != 2) continue;
     for (int order = 0; order < 2; ++order) {
       const auto& ua = boundary.uses[order];
       const auto& ub = boundary.uses[1 - order];
       if (ua.patch != a.patch || ub.patch != b.patch) continue;
-      if (PatchSide(ua.side).endingFamily() != a.family || PatchSide(ub.side).endingFamily() != b.family) continue;
+      if (PatchSide(ua.side).endingFamily() != a.family ||
+          PatchSide(ub.side).endingFamily() != b.family)
+        continue;
       if (boundary.kind != patching::BoundaryKind::Shared) {
-        problem = fmt::format("patches {} and {} share only part of a side (boundary {}, {})", a.patch, b.patch, boundary.id, toString(boundary.kind));
+        problem = fmt::format("patches {} and {} share only part of a side (boundary {}, {})",
+                              a.patch, b.patch, boundary.id, toString(boundary.kind));
         return std::nullopt;
       }
       return Link{boundary.id, ua, ub};
@@ -104,9 +112,10 @@ struct Built {
 };
 
 // Orients one run of nodes (all usable) into a chain problem; empty with `reason` when it cannot.
-std::optional<Built> buildChain(const patching::PatchGraph& graph, const std::vector<PatchSideData>& patches,
-                                const std::vector<patching::ChainNode>& nodes, bool ring, const PropagationOptions& options,
-                                std::string& reason) {
+std::optional<Built> buildChain(const patching::PatchGraph& graph,
+                                const std::vector<PatchSideData>& patches,
+                                const std::vector<patching::ChainNode>& nodes, bool ring,
+                                const PropagationOptions& options, std::string& reason) {
   const size_t n = nodes.size();
   std::vector<Link> links;  // link k joins node k and k+1 (and, for a ring, the last and node 0)
   for (size_t k = 0; k + 1 < n + (ring ? 1 : 0); ++k) {
@@ -130,7 +139,8 @@ std::optional<Built> buildChain(const patching::PatchGraph& graph, const std::ve
     if (!hasNext && hasPrevious) exit[k] = otherFamilySide(f, entry[k]);
     if (!hasPrevious && hasNext) entry[k] = otherFamilySide(f, exit[k]);
     if (entry[k] == exit[k]) {
-      reason = fmt::format("members would enter and leave patch {} through its side {}", nodes[k].patch, entry[k]);
+      reason = fmt::format("members would enter and leave patch {} through its side {}",
+                           nodes[k].patch, entry[k]);
       return std::nullopt;
     }
   }
@@ -140,10 +150,13 @@ std::optional<Built> buildChain(const patching::PatchGraph& graph, const std::ve
   for (size_t k = 0; k < n; ++k) {
     const Family f = nodes[k].family;
     const bool forward = !familySideRole(f, entry[k]).first;
-    if (k > 0) mirrored = mirrored != (againstSegment(nodes[k - 1].family, links[k - 1].a) != againstSegment(f, links[k - 1].b));
+    if (k > 0)
+      mirrored = mirrored != (againstSegment(nodes[k - 1].family, links[k - 1].a) !=
+                              againstSegment(f, links[k - 1].b));
     built.chain.nodes.push_back({nodes[k].patch, f, forward, mirrored});
     const PatchSideData& data = patches[nodes[k].patch];
-    PiecewiseLinearMap h = forward ? data.cladding[familyIndex(f)] : data.cladding[familyIndex(f)].inverted();
+    PiecewiseLinearMap h =
+        forward ? data.cladding[familyIndex(f)] : data.cladding[familyIndex(f)].inverted();
     built.maps.push_back(std::make_unique<PiecewiseLinearMap>(mirrored ? h.mirrored() : h));
     built.problem.maps.push_back(built.maps.back().get());
   }
@@ -151,7 +164,8 @@ std::optional<Built> buildChain(const patching::PatchGraph& graph, const std::ve
   const auto sideGap = [&](size_t node, int side) {
     const Family f = nodes[node].family;
     const PatchSideData& data = patches[nodes[node].patch];
-    return std::pair{data.sideLengths[side], data.minGapM[familyIndex(f)][familySideRole(f, side).first ? 1 : 0]};
+    return std::pair{data.sideLengths[side],
+                     data.minGapM[familyIndex(f)][familySideRole(f, side).first ? 1 : 0]};
   };
   double longest = 0.0;
   for (size_t i = 0; i <= n; ++i) {
@@ -163,15 +177,20 @@ std::optional<Built> buildChain(const patching::PatchGraph& graph, const std::ve
       if (i == n) b.lengthM = length;
       gap = std::max(gap, g);
     }
-    if (ring && (i == 0 || i == n)) gap = std::max(sideGap(0, entry[0]).second, sideGap(n - 1, exit[n - 1]).second);
+    if (ring && (i == 0 || i == n))
+      gap = std::max(sideGap(0, entry[0]).second, sideGap(n - 1, exit[n - 1]).second);
     b.minGap = std::min(gap / b.lengthM, 0.5);
     longest = std::max(longest, b.lengthM);
     built.problem.boundaries.push_back(b);
-    built.chain.boundaries.push_back(i == 0 ? (ring ? links.back().boundary : -1) : i == n ? (ring ? links.back().boundary : -1)
-                                                                                          : links[i - 1].boundary);
+    built.chain.boundaries.push_back(i == 0   ? (ring ? links.back().boundary : -1)
+                                     : i == n ? (ring ? links.back().boundary : -1)
+                                              : links[i - 1].boundary);
   }
-  built.problem.members = options.members ? *options.members
-                                          : 1 + std::max(1, static_cast<int>(std::lround(longest / (options.spacingFactor * options.lamellaWidthM))));
+  built.problem.members =
+      options.members
+          ? *options.members
+          : 1 + std::max(1, static_cast<int>(std::lround(
+                                longest / (options.spacingFactor * options.lamellaWidthM))));
   return built;
 }
 
@@ -184,9 +203,13 @@ int chainBoundaryOf(const PropagatedChain& chain, int node, int side) {
 }
 double chainOfFamily(const PropagatedNode& n, double x) { return n.mirrored ? 1.0 - x : x; }
 // The family's parameter on side `side` <-> the fraction along the side (corner k -> k+1).
-double sideFraction(Family family, int side, double x) { return familySideRole(family, side).second ? 1.0 - x : x; }
+double sideFraction(Family family, int side, double x) {
+  return familySideRole(family, side).second ? 1.0 - x : x;
+}
 // The fraction along a side <-> the parameter along the piece (its segment's own direction).
-double pieceToSide(const patching::BoundaryUse& u, double rho) { return u.reversed ? u.to - rho * (u.to - u.from) : u.from + rho * (u.to - u.from); }
+double pieceToSide(const patching::BoundaryUse& u, double rho) {
+  return u.reversed ? u.to - rho * (u.to - u.from) : u.from + rho * (u.to - u.from);
+}
 double sideToPiece(const patching::BoundaryUse& u, double s) {
   const double r = (s - u.from) / (u.to - u.from);
   return u.reversed ? 1.0 - r : r;
@@ -197,18 +220,21 @@ std::vector<double> sideParameters(const PropagatedChain& chain, int node, int s
   const auto& t = chain.solution.positions[chainBoundaryOf(chain, node, side)];
   const int m = static_cast<int>(t.size());
   std::vector<double> x(m);
-  for (int j = 0; j < m; ++j) x[chain.memberIndex(node, j)] = chainOfFamily(chain.nodes[node], t[j]);
+  for (int j = 0; j < m; ++j)
+    x[chain.memberIndex(node, j)] = chainOfFamily(chain.nodes[node], t[j]);
   return x;
 }
 
 constexpr double kPieceTolerance = 1e-9;  // parameters this close count as the same point
 
 // The members of a family on a piece: (piece parameter, member index), increasing in the former.
-std::vector<std::pair<double, int>> membersOnPiece(const std::vector<double>& x, Family family, const patching::BoundaryUse& use) {
+std::vector<std::pair<double, int>> membersOnPiece(const std::vector<double>& x, Family family,
+                                                   const patching::BoundaryUse& use) {
   std::vector<std::pair<double, int>> out;
   for (int i = 0; i < static_cast<int>(x.size()); ++i) {
     const double sigma = sideFraction(family, use.side, x[i]);
-    if (sigma >= use.from - kPieceTolerance && sigma <= use.to + kPieceTolerance) out.push_back({sideToPiece(use, sigma), i});
+    if (sigma >= use.from - kPieceTolerance && sigma <= use.to + kPieceTolerance)
+      out.push_back({sideToPiece(use, sigma), i});
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -217,16 +243,22 @@ std::vector<std::pair<double, int>> membersOnPiece(const std::vector<double>& x,
 struct NodeKey {
   int patch;
   Family family;
-  bool operator<(const NodeKey& o) const { return std::tie(patch, family) < std::tie(o.patch, o.family); }
+  bool operator<(const NodeKey& o) const {
+    return std::tie(patch, family) < std::tie(o.patch, o.family);
+  }
 };
-NodeKey keyOf(const patching::BoundaryUse& use) { return {use.patch, PatchSide(use.side).endingFamily()}; }
+NodeKey keyOf(const patching::BoundaryUse& use) {
+  return {use.patch, PatchSide(use.side).endingFamily()};
+}
 
 using Fallback = std::function<void(std::vector<patching::ChainNode>, std::string)>;
 
 // A branching chain (see the header): sub-chains of whole sides, solved breadth first over the
 // T-junction pieces that join them, each taking its solved neighbours' members as originals.
-void propagateBranching(const patching::PatchGraph& graph, const std::vector<PatchSideData>& patches, const patching::MemberChain& chain,
-                        const PropagationOptions& options, const Fallback& fallback, const std::function<void(Built&)>& record,
+void propagateBranching(const patching::PatchGraph& graph,
+                        const std::vector<PatchSideData>& patches,
+                        const patching::MemberChain& chain, const PropagationOptions& options,
+                        const Fallback& fallback, const std::function<void(Built&)>& record,
                         const LayoutPropagation& out) {
   std::set<NodeKey> nodes;
   for (const auto& n : chain.nodes)
@@ -237,8 +269,10 @@ void propagateBranching(const patching::PatchGraph& graph, const std::vector<Pat
     if (b.uses.size() != 2) continue;
     const NodeKey a = keyOf(b.uses[0]), c = keyOf(b.uses[1]);
     if (!nodes.count(a) || !nodes.count(c)) continue;
-    if (b.kind == patching::BoundaryKind::Shared) whole[a].push_back(c), whole[c].push_back(a);
-    else if (b.kind == patching::BoundaryKind::TJunction) tPieces.push_back(&b);
+    if (b.kind == patching::BoundaryKind::Shared)
+      whole[a].push_back(c), whole[c].push_back(a);
+    else if (b.kind == patching::BoundaryKind::TJunction)
+      tPieces.push_back(&b);
   }
   // Sub-chains: a family has one start and one end side, so whole sides link it to at most two
   // neighbours: paths, or rings.
@@ -271,7 +305,8 @@ void propagateBranching(const patching::PatchGraph& graph, const std::vector<Pat
     }
     const int index = static_cast<int>(subs.size());
     std::vector<patching::ChainNode> sub;
-    for (const auto& m : (order.size() == component.size() ? order : component)) sub.push_back({m.patch, m.family}), subOf[m] = index;
+    for (const auto& m : (order.size() == component.size() ? order : component))
+      sub.push_back({m.patch, m.family}), subOf[m] = index;
     if (order.size() != component.size()) {
       fallback(sub, "whole shared sides join these patches in no path or ring");
       sub.clear();
@@ -285,7 +320,8 @@ void propagateBranching(const patching::PatchGraph& graph, const std::vector<Pat
   while (queue.size() < subs.size()) {
     int best = -1;
     for (size_t s = 0; s < subs.size(); ++s)
-      if (!queued[s] && (best < 0 || subs[s].size() > subs[best].size())) best = static_cast<int>(s);
+      if (!queued[s] && (best < 0 || subs[s].size() > subs[best].size()))
+        best = static_cast<int>(s);
     queue.push_back(best), queued[best] = 1;
     for (size_t i = queue.size() - 1; i < queue.size(); ++i)
       for (const auto* b : tPieces) {
@@ -313,12 +349,16 @@ void propagateBranching(const patching::PatchGraph& graph, const std::vector<Pat
       for (int u = 0; u < 2; ++u) {
         const auto &use = b->uses[u], &other = b->uses[1 - u];
         const NodeKey key = keyOf(use);
-        const auto it = std::find_if(subs[s].begin(), subs[s].end(), [&](const auto& n) { return n.patch == key.patch && n.family == key.family; });
+        const auto it = std::find_if(subs[s].begin(), subs[s].end(), [&](const auto& n) {
+          return n.patch == key.patch && n.family == key.family;
+        });
         if (it == subs[s].end()) continue;
         const int k = static_cast<int>(it - subs[s].begin());
         const int boundary = chainBoundaryOf(built->chain, k, use.side);
         const PropagatedNode& node = built->chain.nodes[k];
-        const auto chainAt = [&](double sigma) { return chainOfFamily(node, sideFraction(key.family, use.side, sigma)); };
+        const auto chainAt = [&](double sigma) {
+          return chainOfFamily(node, sideFraction(key.family, use.side, sigma));
+        };
         // A T-junction of boundary members: a piece ending inside the side ends at a smaller
         // patch's corner, whose boundary member the member here continues (Fig. 3.8).
         if (use.from > kPieceTolerance) addOriginal(boundary, chainAt(use.from));
@@ -326,7 +366,8 @@ void propagateBranching(const patching::PatchGraph& graph, const std::vector<Pat
         const NodeKey otherKey = keyOf(other);
         const auto [oc, on] = out.nodeOf[otherKey.patch][familyIndex(otherKey.family)];
         if (oc < 0) continue;  // not solved yet (or not propagated): it will take ours
-        for (const auto& [rho, i] : membersOnPiece(sideParameters(out.chains[oc], on, other.side), otherKey.family, other))
+        for (const auto& [rho, i] :
+             membersOnPiece(sideParameters(out.chains[oc], on, other.side), otherKey.family, other))
           addOriginal(boundary, chainAt(pieceToSide(use, rho)));
         const double t0 = chainAt(use.from), t1 = chainAt(use.to);
         problem.closed.push_back({boundary, std::min(t0, t1), std::max(t0, t1)});
@@ -346,7 +387,8 @@ void propagateBranching(const patching::PatchGraph& graph, const std::vector<Pat
           if (closedGaps[g]) continue;
           long most = 0;
           for (size_t i = 0; i < across.size(); ++i)
-            most = std::max(most, std::lround((across[i][g + 1] - across[i][g]) * problem.boundaries[i].lengthM / spacingM));
+            most = std::max(most, std::lround((across[i][g + 1] - across[i][g]) *
+                                              problem.boundaries[i].lengthM / spacingM));
           free += static_cast<int>(std::max(0L, most - 1));
         }
         problem.members = static_cast<int>(fixed.size()) + free;
@@ -374,7 +416,7 @@ void addJoints(const patching::PatchGraph& graph, LayoutPropagation& out) {
     piece.patchA = ua.patch, piece.patchB = ub.patch;
     const PropagatedChain &chainA = out.chains[ca], &chainB = out.chains[cb];
     const bool ringCut = ca == cb && chainA.ring && boundary.id == chainA.boundaries.front();
-    piece.kind = ringCut ? PieceKind::RingCut
+    piece.kind = ringCut                                           ? PieceKind::RingCut
                  : boundary.kind == patching::BoundaryKind::Shared ? PieceKind::WholeSide
                                                                    : PieceKind::TJunction;
     if (ringCut) piece.chain = ca;
@@ -384,23 +426,31 @@ void addJoints(const patching::PatchGraph& graph, LayoutPropagation& out) {
     piece.membersB = static_cast<int>(onB.size());
     if (!ringCut) {
       if (onA.size() != onB.size()) {
-        out.notes.push_back(fmt::format("boundary {} (patches {}, {}): {} members on one side, {} on the other", boundary.id, ua.patch,
-                                        ub.patch, onA.size(), onB.size()));
+        out.notes.push_back(
+            fmt::format("boundary {} (patches {}, {}): {} members on one side, {} on the other",
+                        boundary.id, ua.patch, ub.patch, onA.size(), onB.size()));
       } else {
         // x_b as an affine function of x_a through the piece's own parameter.
         const auto map = [&](double xa) {
-          return sideFraction(kb.family, ub.side, pieceToSide(ub, sideToPiece(ua, sideFraction(ka.family, ua.side, xa))));
+          return sideFraction(
+              kb.family, ub.side,
+              pieceToSide(ub, sideToPiece(ua, sideFraction(ka.family, ua.side, xa))));
         };
         const double offset = map(0.0), scale = map(1.0) - map(0.0);
-        const int countA = static_cast<int>(chainA.solution.start.size()), countB = static_cast<int>(chainB.solution.start.size());
+        const int countA = static_cast<int>(chainA.solution.start.size()),
+                  countB = static_cast<int>(chainB.solution.start.size());
         for (size_t k = 0; k < onA.size(); ++k) {
           if (std::abs(onA[k].first - onB[k].first) > kPieceTolerance)
-            out.notes.push_back(fmt::format("boundary {}: member {} of patch {} and member {} of patch {} lie {:.3g} apart (piece parameter)",
-                                            boundary.id, onA[k].second, ua.patch, onB[k].second, ub.patch,
-                                            std::abs(onA[k].first - onB[k].first)));
+            out.notes.push_back(
+                fmt::format("boundary {}: member {} of patch {} and member {} of patch {} lie "
+                            "{:.3g} apart (piece parameter)",
+                            boundary.id, onA[k].second, ua.patch, onB[k].second, ub.patch,
+                            std::abs(onA[k].first - onB[k].first)));
           const int ia = onA[k].second, ib = onB[k].second;
-          const bool boundaryA = ia == 0 || ia == countA - 1, boundaryB = ib == 0 || ib == countB - 1;
-          if (boundaryA && boundaryB) continue;  // two patch sides meeting at a corner: nothing to trace
+          const bool boundaryA = ia == 0 || ia == countA - 1,
+                     boundaryB = ib == 0 || ib == countB - 1;
+          if (boundaryA && boundaryB)
+            continue;  // two patch sides meeting at a corner: nothing to trace
           MemberJoint joint;
           joint.boundary = boundary.id;
           joint.a = {ua.patch, ka.family, ia, familySideRole(ka.family, ua.side).first};
@@ -417,7 +467,8 @@ void addJoints(const patching::PatchGraph& graph, LayoutPropagation& out) {
 
 }  // namespace
 
-LayoutPropagation propagateLayout(const patching::PatchGraph& graph, const std::vector<PatchSideData>& patches,
+LayoutPropagation propagateLayout(const patching::PatchGraph& graph,
+                                  const std::vector<PatchSideData>& patches,
                                   const PropagationOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
@@ -429,7 +480,8 @@ LayoutPropagation propagateLayout(const patching::PatchGraph& graph, const std::
     const int index = static_cast<int>(out.chains.size());
     for (size_t k = 0; k < built.chain.nodes.size(); ++k) {
       const auto& node = built.chain.nodes[k];
-      out.x1[node.patch][familyIndex(node.family)] = built.chain.startParameters(static_cast<int>(k));
+      out.x1[node.patch][familyIndex(node.family)] =
+          built.chain.startParameters(static_cast<int>(k));
       out.nodeOf[node.patch][familyIndex(node.family)] = {index, static_cast<int>(k)};
     }
     out.evennessBefore += built.chain.solution.evennessBefore;
@@ -442,35 +494,45 @@ LayoutPropagation propagateLayout(const patching::PatchGraph& graph, const std::
     const auto& chain = graph.chains[c];
     for (const auto& node : chain.nodes)
       if (node.patch < 0 || node.patch >= static_cast<int>(patches.size()))
-        throw InvalidInput(fmt::format("propagateLayout: chain {} names patch {}, of {} patches", c, node.patch, patches.size()));
+        throw InvalidInput(fmt::format("propagateLayout: chain {} names patch {}, of {} patches", c,
+                                       node.patch, patches.size()));
     const auto fallback = [&](std::vector<patching::ChainNode> nodes, std::string reason) {
       out.fallbacks.push_back({static_cast<int>(c), std::move(nodes), std::move(reason)});
     };
     if (chain.branching) {
-      propagateBranching(graph, patches, chain, options, fallback, [&](Built& b) { record(b, static_cast<int>(c)); }, out);
+      propagateBranching(
+          graph, patches, chain, options, fallback,
+          [&](Built& b) { record(b, static_cast<int>(c)); }, out);
       continue;
     }
     // Runs of usable nodes; a ring broken by an unusable patch opens there.
     std::vector<patching::ChainNode> nodes = chain.nodes;
     bool ring = chain.ring;
-    const auto unusable = [&](const patching::ChainNode& node) { return !patches[node.patch].usable; };
+    const auto unusable = [&](const patching::ChainNode& node) {
+      return !patches[node.patch].usable;
+    };
     if (ring && std::any_of(nodes.begin(), nodes.end(), unusable)) {
       std::rotate(nodes.begin(), std::find_if(nodes.begin(), nodes.end(), unusable), nodes.end());
       ring = false;
     }
     std::vector<std::vector<patching::ChainNode>> runs{{}};
     for (const auto& node : nodes) {
-      if (unusable(node)) runs.push_back({});
-      else runs.back().push_back(node);
+      if (unusable(node))
+        runs.push_back({});
+      else
+        runs.back().push_back(node);
     }
     for (auto& run : runs) {
       if (run.empty()) continue;
       if (run.size() == 1) {
-        fallback(run, "the family continues into no usable patch: the patch places its own members (2.4.4)");
+        fallback(
+            run,
+            "the family continues into no usable patch: the patch places its own members (2.4.4)");
         continue;
       }
       std::string reason;
-      auto built = buildChain(graph, patches, run, ring && run.size() == nodes.size(), options, reason);
+      auto built =
+          buildChain(graph, patches, run, ring && run.size() == nodes.size(), options, reason);
       if (!built) {
         fallback(run, reason);
         continue;

@@ -28,18 +28,20 @@ namespace egg::propagation {
 
 // What propagation reads of one patch's design (patch_sides.hpp builds it from a PatchDesign).
 struct PatchSideData {
-  bool usable = false;                        // designed and feasible
-  std::array<PiecewiseLinearMap, 2> cladding; // F_u, F_v: x1 on the family's start side -> x2 on its end side
-  std::array<double, 4> sideLengths{};        // metres, side k = corner k -> k+1
+  bool usable = false;  // designed and feasible
+  std::array<PiecewiseLinearMap, 2>
+      cladding;  // F_u, F_v: x1 on the family's start side -> x2 on its end side
+  std::array<double, 4> sideLengths{};  // metres, side k = corner k -> k+1
   // Smallest distance (metres along the side) between two members' ends: the lamella footprint
   // w / sin(angle) at the smallest angle the family meets its [start, end] side at (2.4.4).
   std::array<std::array<double, 2>, 2> minGapM{};
 };
 
 struct PropagationOptions {
-  std::optional<int> members;    // per chain, both boundary members included; empty = spacing rule
-  double lamellaWidthM = 0.05;   // w
-  double spacingFactor = 8.0;    // spacing rule: intervals = round(longest side of the chain / (factor * w))
+  std::optional<int> members;   // per chain, both boundary members included; empty = spacing rule
+  double lamellaWidthM = 0.05;  // w
+  double spacingFactor =
+      8.0;  // spacing rule: intervals = round(longest side of the chain / (factor * w))
   ChainOptions chain;
   void validate() const;
 };
@@ -48,16 +50,16 @@ struct PropagationOptions {
 struct PropagatedNode {
   int patch = -1;
   Family family = Family::U;
-  bool forward = true;   // enters at the family's start side (F), else at its end side (F^-1)
+  bool forward = true;  // enters at the family's start side (F), else at its end side (F^-1)
   // The chain's parameter on the node's two boundaries is 1 - the family's own parameter.
   bool mirrored = false;
 };
 
 struct PropagatedChain {
-  int graphChain = -1;               // index into PatchGraph::chains
+  int graphChain = -1;  // index into PatchGraph::chains
   std::vector<PropagatedNode> nodes;
-  bool ring = false;                 // boundary n is boundary 0 again (cut open: need not close)
-  std::vector<int> boundaries;       // per chain boundary: PatchGraph boundary id, -1 for a free side
+  bool ring = false;            // boundary n is boundary 0 again (cut open: need not close)
+  std::vector<int> boundaries;  // per chain boundary: PatchGraph boundary id, -1 for a free side
   ChainSolution solution;
   // Members' start parameters x1 of node k (increasing, 0 .. 1) from the chain's positions.
   std::vector<double> startParameters(int node) const;
@@ -116,12 +118,13 @@ struct LayoutPropagation {
   int originals = 0;
   std::vector<MemberJoint> joints;  // every pair of member ends that must coincide (C0)
   std::vector<SharedPiece> pieces;
-  std::vector<std::string> notes;   // members a piece's two sides could not agree on
+  std::vector<std::string> notes;  // members a piece's two sides could not agree on
   double seconds = 0.0;
 };
 
 // Throws InvalidInput on bad options or when `patches` does not match the graph.
-LayoutPropagation propagateLayout(const patching::PatchGraph& graph, const std::vector<PatchSideData>& patches,
+LayoutPropagation propagateLayout(const patching::PatchGraph& graph,
+                                  const std::vector<PatchSideData>& patches,
                                   const PropagationOptions& options = {});
 
 // Which side (start = false, end = true) of `family` side k is, and whether the family's

@@ -20,7 +20,8 @@ PatchSideData patchSideData(const PatchDesign& design, double lamellaWidthM) {
   data.sideLengths = design.patch.sideLengths;
   if (!design.feasible) return data;
   for (Family family : {Family::U, Family::V}) {
-    const CladdingFunction& f = family == Family::U ? design.alphaBar.claddingU : design.alphaBar.claddingV;
+    const CladdingFunction& f =
+        family == Family::U ? design.alphaBar.claddingU : design.alphaBar.claddingV;
     const int index = family == Family::U ? 0 : 1;
     data.cladding[index] = claddingMap(f);
     double smallest[2] = {M_PI / 2, M_PI / 2};
@@ -28,7 +29,8 @@ PatchSideData patchSideData(const PatchDesign& design, double lamellaWidthM) {
       const auto angles = boundaryAngles(design.alphaBar.quad, family, knot.x(), knot.y());
       for (int end = 0; end < 2; ++end) smallest[end] = std::min(smallest[end], angles[end]);
     }
-    for (int end = 0; end < 2; ++end) data.minGapM[index][end] = lamellaFootprint(lamellaWidthM, smallest[end]);
+    for (int end = 0; end < 2; ++end)
+      data.minGapM[index][end] = lamellaFootprint(lamellaWidthM, smallest[end]);
   }
   return data;
 }

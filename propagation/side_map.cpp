@@ -9,12 +9,15 @@ namespace egg::propagation {
 
 PiecewiseLinearMap::PiecewiseLinearMap() : knots_{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 1)} {}
 
-PiecewiseLinearMap::PiecewiseLinearMap(std::vector<Eigen::Vector2d> knots) : knots_(std::move(knots)) {
-  if (knots_.size() < 2 || knots_.front() != Eigen::Vector2d(0, 0) || knots_.back() != Eigen::Vector2d(1, 1))
+PiecewiseLinearMap::PiecewiseLinearMap(std::vector<Eigen::Vector2d> knots)
+    : knots_(std::move(knots)) {
+  if (knots_.size() < 2 || knots_.front() != Eigen::Vector2d(0, 0) ||
+      knots_.back() != Eigen::Vector2d(1, 1))
     throw InvalidInput("PiecewiseLinearMap: the knots must run from (0, 0) to (1, 1)");
   for (size_t k = 1; k < knots_.size(); ++k)
     if (!(knots_[k].x() > knots_[k - 1].x()) || !(knots_[k].y() > knots_[k - 1].y()))
-      throw InvalidInput("PiecewiseLinearMap: knot " + std::to_string(k) + " does not increase strictly in both coordinates");
+      throw InvalidInput("PiecewiseLinearMap: knot " + std::to_string(k) +
+                         " does not increase strictly in both coordinates");
 }
 
 namespace {
@@ -58,7 +61,8 @@ PiecewiseLinearMap PiecewiseLinearMap::inverted() const {
 
 PiecewiseLinearMap PiecewiseLinearMap::mirrored() const {
   std::vector<Eigen::Vector2d> out;
-  for (auto it = knots_.rbegin(); it != knots_.rend(); ++it) out.emplace_back(1.0 - it->x(), 1.0 - it->y());
+  for (auto it = knots_.rbegin(); it != knots_.rend(); ++it)
+    out.emplace_back(1.0 - it->x(), 1.0 - it->y());
   out.front() = Eigen::Vector2d(0, 0);  // exact ends despite rounding of 1 - x
   out.back() = Eigen::Vector2d(1, 1);
   return PiecewiseLinearMap(std::move(out));

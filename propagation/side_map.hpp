@@ -14,7 +14,7 @@ namespace egg::propagation {
 class SideMap {
  public:
   virtual ~SideMap() = default;
-  virtual double value(double x) const = 0;    // x clamped to [0, 1]
+  virtual double value(double x) const = 0;  // x clamped to [0, 1]
   // dvalue/dx; at a kink of a piecewise-linear map, the slope of the segment starting there
   // (right-continuous, as claddingSlope in core/egg/patch_design.hpp; at x = 1 the last one).
   virtual double slope(double x) const = 0;

@@ -5,15 +5,15 @@
 #include "pipeline/surface_stage.hpp"
 
 #include "core/errors.hpp"
-#include "core/io/atomic_file.hpp"
 #include "core/geodesic/distance_solver.hpp"
 #include "core/geodesic/exact_reference.hpp"
+#include "core/io/atomic_file.hpp"
 #include "samples/generators/samples.hpp"
 
 #include <fmt/core.h>
-#include <nlohmann/json.hpp>
 #include <sys/resource.h>
 #include <time.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -49,7 +49,8 @@ TriMesh bumpWithVertices(int vertices) {
   for (const auto& info : samples::listSamples()) {
     if (info.name == "bump") params = info.defaults;
   }
-  const double area = params.count("length") && params.count("width") ? params["length"] * params["width"] : 100.0;
+  const double area =
+      params.count("length") && params.count("width") ? params["length"] * params["width"] : 100.0;
   double edge = std::sqrt(2.0 * area / (std::sqrt(3.0) * vertices));
   TriMesh mesh = samples::generateSample("bump", {}, edge);
   const double ratio = double(mesh.n_vertices()) / vertices;
@@ -85,7 +86,8 @@ SurfacePoint intoFace(SurfacePoint p) {
 // field, the windows created, and the worst and mean relative errors at the vertices (farther than
 // two mean edges) and at the opposite side's points (side-to-side, as the distance maps use them).
 nlohmann::json toleranceTable(const TriMesh& mesh, const std::vector<SurfacePoint>& sources,
-                              const std::vector<SurfacePoint>& targets, const std::vector<double>& tolerances) {
+                              const std::vector<SurfacePoint>& targets,
+                              const std::vector<double>& tolerances) {
   geodesic::DistanceSolverOptions exactOptions = geodesic::DistanceSolverOptions::exact();
   const geodesic::DistanceSolver exact(mesh, exactOptions);
   std::vector<geodesic::DistanceField> reference;
@@ -105,23 +107,28 @@ nlohmann::json toleranceTable(const TriMesh& mesh, const std::vector<SurfacePoin
       windows += static_cast<double>(field.windowsCreated);
       const auto& ref = reference[i];
       for (size_t v = 0; v < ref.vertexDistances.size(); ++v) {
-        if (!(ref.vertexDistances[v] > 2.0 * solver.meanEdgeLength()) || !std::isfinite(ref.vertexDistances[v])) continue;
-        const double e = std::abs(field.vertexDistances[v] - ref.vertexDistances[v]) / ref.vertexDistances[v];
+        if (!(ref.vertexDistances[v] > 2.0 * solver.meanEdgeLength()) ||
+            !std::isfinite(ref.vertexDistances[v]))
+          continue;
+        const double e =
+            std::abs(field.vertexDistances[v] - ref.vertexDistances[v]) / ref.vertexDistances[v];
         worstVertex = std::max(worstVertex, e);
         sumVertex += e;
         ++counted;
       }
       for (size_t j = 0; j < targets.size(); ++j) {
-        const double e = std::abs(field.targetDistances[j] - ref.targetDistances[j]) / ref.targetDistances[j];
+        const double e =
+            std::abs(field.targetDistances[j] - ref.targetDistances[j]) / ref.targetDistances[j];
         worstSide = std::max(worstSide, e);
       }
     }
-    rows.push_back({{"saddle_angle_tolerance_rad", tolerance},
-                    {"ms_per_source", median(ms)},
-                    {"windows_per_source", windows / static_cast<double>(sources.size())},
-                    {"max_relative_error_vertices", worstVertex},
-                    {"mean_relative_error_vertices", counted ? sumVertex / static_cast<double>(counted) : 0.0},
-                    {"max_relative_error_side_to_side", worstSide}});
+    rows.push_back(
+        {{"saddle_angle_tolerance_rad", tolerance},
+         {"ms_per_source", median(ms)},
+         {"windows_per_source", windows / static_cast<double>(sources.size())},
+         {"max_relative_error_vertices", worstVertex},
+         {"mean_relative_error_vertices", counted ? sumVertex / static_cast<double>(counted) : 0.0},
+         {"max_relative_error_side_to_side", worstSide}});
   }
   return rows;
 }
@@ -139,19 +146,27 @@ struct EngineRow {
 
 nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
   using Engine = geodesic::DistanceSolverOptions::Engine;
-  std::vector<EngineRow> meshes = {{"bump", 0.1699}, {"sphere", 0.2567}, {"sphere", 0.12835}, {"plane", 0.08495}};
+  std::vector<EngineRow> meshes = {
+      {"bump", 0.1699}, {"sphere", 0.2567}, {"sphere", 0.12835}, {"plane", 0.08495}};
   if (args.engineRows == "large") meshes.push_back({"bump", 0.02459});
-  table << "\nengines (issue 19): median thread CPU ms per vertex source of the stored-window, front-only and"
-           " wavefront engines; f/s, w/s, w/f = time ratios;\nwin = windows created; MB = counted working memory"
-           " of one field; err = max relative difference at the vertices against the exact mode\n(tolerance 0,"
-           " stored; skipped above 50k vertices); f-s, w-s = against the stored engine; RSS MB = the process's"
-           " peak RSS\nbefore the row's first stored field (mesh, tables, the front and wavefront fields, earlier"
+  table << "\nengines (issue 19): median thread CPU ms per vertex source of the stored-window, "
+           "front-only and"
+           " wavefront engines; f/s, w/s, w/f = time ratios;\nwin = windows created; MB = counted "
+           "working memory"
+           " of one field; err = max relative difference at the vertices against the exact "
+           "mode\n(tolerance 0,"
+           " stored; skipped above 50k vertices); f-s, w-s = against the stored engine; RSS MB = "
+           "the process's"
+           " peak RSS\nbefore the row's first stored field (mesh, tables, the front and wavefront "
+           "fields, earlier"
            " rows)\n";
   table << fmt::format(
-      "{:>7} {:>8} {:>9} {:>9} {:>9} {:>5} {:>5} {:>5} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} "
+      "{:>7} {:>8} {:>9} {:>9} {:>9} {:>5} {:>5} {:>5} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>8} "
+      "{:>8} {:>8} {:>8} "
       "{:>7}\n",
-      "sample", "verts", "stored ms", "front ms", "wave ms", "f/s", "w/s", "w/f", "strd win", "front win", "wave win",
-      "strd MB", "frntMB", "waveMB", "strd err", "wave err", "f-s", "w-s", "RSS MB");
+      "sample", "verts", "stored ms", "front ms", "wave ms", "f/s", "w/s", "w/f", "strd win",
+      "front win", "wave win", "strd MB", "frntMB", "waveMB", "strd err", "wave err", "f-s", "w-s",
+      "RSS MB");
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& row : meshes) {
     const TriMesh mesh = samples::generateSample(row.sample, {}, row.edge);
@@ -162,14 +177,16 @@ nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
     exactOptions.engine = Engine::StoredWindows;
     exactOptions.saddleAngleTolerance = 0.0;
     exactOptions.imageMergeTolerance = 0.0;
-    const geodesic::DistanceSolver stored(mesh, storedOptions), front(mesh, frontOptions), wave(mesh, waveOptions);
+    const geodesic::DistanceSolver stored(mesh, storedOptions), front(mesh, frontOptions),
+        wave(mesh, waveOptions);
     const int nv = static_cast<int>(mesh.n_vertices());
     const bool large = nv > 50000;
     std::unique_ptr<geodesic::DistanceSolver> exact;
     if (!large) exact = std::make_unique<geodesic::DistanceSolver>(mesh, exactOptions);
     const int count = large ? 1 : std::max(1, args.engineSources);
     std::vector<double> storedMs, frontMs, waveMs;
-    double storedWindows = 0, frontWindows = 0, waveWindows = 0, storedBytes = 0, frontBytes = 0, waveBytes = 0;
+    double storedWindows = 0, frontWindows = 0, waveWindows = 0, storedBytes = 0, frontBytes = 0,
+           waveBytes = 0;
     double storedErr = 0, waveErr = 0, frontBetween = 0, waveBetween = 0, rssBeforeStored = 0;
     auto worst = [&](const std::vector<double>& a, const std::vector<double>& ref, double& into) {
       for (size_t v = 0; v < ref.size(); ++v) {
@@ -209,11 +226,13 @@ nlohmann::json engineTable(const BenchArgs& args, std::ostream& table) {
     const double sm = median(storedMs), fm = median(frontMs), wm = median(waveMs);
     auto errText = [&](double e) { return exact ? fmt::format("{:.1e}", e) : std::string("-"); };
     table << fmt::format(
-        "{:>7} {:>8} {:>9.1f} {:>9.1f} {:>9.1f} {:>5.2f} {:>5.2f} {:>5.2f} {:>9.0f} {:>9.0f} {:>9.0f} {:>8.1f} {:>7.1f} "
+        "{:>7} {:>8} {:>9.1f} {:>9.1f} {:>9.1f} {:>5.2f} {:>5.2f} {:>5.2f} {:>9.0f} {:>9.0f} "
+        "{:>9.0f} {:>8.1f} {:>7.1f} "
         "{:>7.1f} {:>8} {:>8} {:>8.1e} {:>8.1e} {:>7.0f}\n",
-        row.sample, nv, sm, fm, wm, fm / sm, wm / sm, wm / fm, storedWindows / count, frontWindows / count,
-        waveWindows / count, storedBytes / 1e6, frontBytes / 1e6, waveBytes / 1e6, errText(storedErr),
-        errText(waveErr), frontBetween, waveBetween, rssBeforeStored);
+        row.sample, nv, sm, fm, wm, fm / sm, wm / sm, wm / fm, storedWindows / count,
+        frontWindows / count, waveWindows / count, storedBytes / 1e6, frontBytes / 1e6,
+        waveBytes / 1e6, errText(storedErr), errText(waveErr), frontBetween, waveBetween,
+        rssBeforeStored);
     table.flush();
     auto orNull = [&](double e) { return exact ? nlohmann::json(e) : nlohmann::json(nullptr); };
     rows.push_back({{"sample", row.sample},
@@ -271,16 +290,18 @@ int runBench(const BenchArgs& args) {
   }
   // Phase 2: ms per source, ours and CGAL's, interleaved source by source so that a change in
   // machine load hits both; and our error against CGAL on the same sources.
-  table << "ms/src: median thread CPU time per single-source field (one thread each); speedup = their ratio;\n"
-               "map speedup = CGAL ms/src over the map's wall time per source on `threads` threads.\n";
-  table << fmt::format("{:>7} {:>11} {:>11} {:>8} {:>11} {:>9} {:>10} {:>7} {:>9} {:>11}\n", "verts", "ours ms/src",
-                           "cgal ms/src", "speedup", "max rel err", "precomp s",
-                           fmt::format("map{} s", args.sources), "threads", "map spdup", "ours RSS MB");
+  table << "ms/src: median thread CPU time per single-source field (one thread each); speedup = "
+           "their ratio;\n"
+           "map speedup = CGAL ms/src over the map's wall time per source on `threads` threads.\n";
+  table << fmt::format("{:>7} {:>11} {:>11} {:>8} {:>11} {:>9} {:>10} {:>7} {:>9} {:>11}\n",
+                       "verts", "ours ms/src", "cgal ms/src", "speedup", "max rel err", "precomp s",
+                       fmt::format("map{} s", args.sources), "threads", "map spdup", "ours RSS MB");
   for (size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     const geodesic::DistanceSolver solver(c.mesh);
     const int cgalCount = k < args.cgalSources.size() ? args.cgalSources[k] : 0;
-    const int count = std::max(cgalCount, std::min<int>(args.timedSources, static_cast<int>(c.sources.size())));
+    const int count =
+        std::max(cgalCount, std::min<int>(args.timedSources, static_cast<int>(c.sources.size())));
     // Per-source cost as thread CPU time (both engines are single-threaded here): other jobs on a
     // shared machine inflate wall time, but barely the CPU time a thread is charged. Medians.
     std::vector<double> oursMsList, cgalMsList;
@@ -306,11 +327,15 @@ int runBench(const BenchArgs& args) {
     // The issue's target arithmetic: the whole map's wall time per source (on `threads` threads)
     // against CGAL's time per source.
     const double mapSpeedup = cgalMs / (1e3 * c.mapSeconds / args.sources);
-    table << fmt::format("{:>7} {:>11.2f} {:>11.1f} {:>7.1f}x {:>11.2e} {:>9.4f} {:>10.3f} {:>7} {:>8.1f}x {:>11.0f}\n",
-                             c.mesh.n_vertices(), oursMs, cgalMs, speedup, cgalCount > 0 ? maxError : NAN,
-                             c.precompute, c.mapSeconds, args.threads, mapSpeedup, c.rss);
+    table << fmt::format(
+        "{:>7} {:>11.2f} {:>11.1f} {:>7.1f}x {:>11.2e} {:>9.4f} {:>10.3f} {:>7} {:>8.1f}x "
+        "{:>11.0f}\n",
+        c.mesh.n_vertices(), oursMs, cgalMs, speedup, cgalCount > 0 ? maxError : NAN, c.precompute,
+        c.mapSeconds, args.threads, mapSpeedup, c.rss);
     table.flush();
-    auto orNull = [&](double x) { return cgalCount > 0 ? nlohmann::json(x) : nlohmann::json(nullptr); };
+    auto orNull = [&](double x) {
+      return cgalCount > 0 ? nlohmann::json(x) : nlohmann::json(nullptr);
+    };
     rows.push_back({{"vertices", c.mesh.n_vertices()},
                     {"ours_ms_per_source", oursMs},
                     {"cgal_ms_per_source", orNull(cgalMs)},
@@ -326,22 +351,26 @@ int runBench(const BenchArgs& args) {
   table << fmt::format("peak RSS with CGAL: {:.0f} MB\n", peakRssMb());
   nlohmann::json toleranceRows = nlohmann::json::array();
   if (!args.saddleTolerances.empty()) {
-    table << "\nerror against time by saddleAngleTolerance (reference: tolerance 0 in the same run; "
-                 "vertices farther than 2 mean edges; side = the opposite side's points)\n";
-    table << fmt::format("{:>7} {:>10} {:>11} {:>9} {:>12} {:>13} {:>12}\n", "verts", "tolerance", "ms/src",
-                             "windows", "max rel err", "mean rel err", "side max err");
+    table
+        << "\nerror against time by saddleAngleTolerance (reference: tolerance 0 in the same run; "
+           "vertices farther than 2 mean edges; side = the opposite side's points)\n";
+    table << fmt::format("{:>7} {:>10} {:>11} {:>9} {:>12} {:>13} {:>12}\n", "verts", "tolerance",
+                         "ms/src", "windows", "max rel err", "mean rel err", "side max err");
     for (const Case& c : cases) {
-      const int count = std::min<int>(std::max(args.timedSources, 1), static_cast<int>(c.sources.size()));
+      const int count =
+          std::min<int>(std::max(args.timedSources, 1), static_cast<int>(c.sources.size()));
       std::vector<SurfacePoint> sources;
-      for (int i = 0; i < count; ++i) sources.push_back(intoFace(c.sources[(2 * i + 1) * c.sources.size() / (2 * count)]));
+      for (int i = 0; i < count; ++i)
+        sources.push_back(intoFace(c.sources[(2 * i + 1) * c.sources.size() / (2 * count)]));
       const auto targets = sidePoints(c.mesh, args.sources, true);
       for (auto& row : toleranceTable(c.mesh, sources, targets, args.saddleTolerances)) {
         table << fmt::format("{:>7} {:>10.2g} {:>11.2f} {:>9.0f} {:>12.2e} {:>13.2e} {:>12.2e}\n",
-                                 c.mesh.n_vertices(), row["saddle_angle_tolerance_rad"].get<double>(),
-                                 row["ms_per_source"].get<double>(), row["windows_per_source"].get<double>(),
-                                 row["max_relative_error_vertices"].get<double>(),
-                                 row["mean_relative_error_vertices"].get<double>(),
-                                 row["max_relative_error_side_to_side"].get<double>());
+                             c.mesh.n_vertices(), row["saddle_angle_tolerance_rad"].get<double>(),
+                             row["ms_per_source"].get<double>(),
+                             row["windows_per_source"].get<double>(),
+                             row["max_relative_error_vertices"].get<double>(),
+                             row["mean_relative_error_vertices"].get<double>(),
+                             row["max_relative_error_side_to_side"].get<double>());
         row["vertices"] = c.mesh.n_vertices();
         toleranceRows.push_back(row);
       }
@@ -349,19 +378,24 @@ int runBench(const BenchArgs& args) {
   }
   if (!args.csv.empty()) {
     std::ostringstream file;
-    file << "vertices,ours_ms_per_source,cgal_ms_per_source,speedup,max_relative_error_vs_cgal,precompute_seconds,"
+    file << "vertices,ours_ms_per_source,cgal_ms_per_source,speedup,max_relative_error_vs_cgal,"
+            "precompute_seconds,"
             "map_sources,map_seconds,map_speedup,threads,peak_rss_mb\n";
     for (const auto& r : rows) {
-      auto num = [](const nlohmann::json& j) { return j.is_null() ? std::string("") : fmt::format("{}", j.get<double>()); };
+      auto num = [](const nlohmann::json& j) {
+        return j.is_null() ? std::string("") : fmt::format("{}", j.get<double>());
+      };
       file << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", r["vertices"].get<size_t>(),
-                          num(r["ours_ms_per_source"]), num(r["cgal_ms_per_source"]), num(r["speedup"]),
-                          num(r["max_relative_error_vs_cgal"]), num(r["precompute_seconds"]),
-                          r["map_sources"].get<int>(), num(r["map_seconds"]), num(r["map_speedup"]),
-                          r["threads"].get<int>(), num(r["peak_rss_mb"]));
+                          num(r["ours_ms_per_source"]), num(r["cgal_ms_per_source"]),
+                          num(r["speedup"]), num(r["max_relative_error_vs_cgal"]),
+                          num(r["precompute_seconds"]), r["map_sources"].get<int>(),
+                          num(r["map_seconds"]), num(r["map_speedup"]), r["threads"].get<int>(),
+                          num(r["peak_rss_mb"]));
     }
     writeFileAtomically(args.csv, file.str());
   }
-  const nlohmann::json engineRows = args.engineRows == "none" ? nlohmann::json::array() : engineTable(args, table);
+  const nlohmann::json engineRows =
+      args.engineRows == "none" ? nlohmann::json::array() : engineTable(args, table);
   if (args.json) {
     nlohmann::json out = rows;
     if (!args.saddleTolerances.empty() || args.engineRows != "none") {
@@ -378,30 +412,38 @@ int runBench(const BenchArgs& args) {
 
 void registerGeodesicBench(CLI::App& bench, Action& action) {
   auto args = std::make_shared<BenchArgs>();
-  auto* cmd = bench.add_subcommand(
-      "geodesic", "Geodesic engine vs CGAL's exact Surface_mesh_shortest_path on the bump sample: ms per source, "
-                  "speed-up, max error, distance-map wall time, precomputation, peak RSS");
+  auto* cmd =
+      bench.add_subcommand("geodesic",
+                           "Geodesic engine vs CGAL's exact Surface_mesh_shortest_path on the bump "
+                           "sample: ms per source, "
+                           "speed-up, max error, distance-map wall time, precomputation, peak RSS");
   cmd->add_option("--sizes", args->sizes, "approximate vertex counts of the bump patches")
       ->delimiter(',')
       ->check(CLI::Range(100, 1000000));
   cmd->add_option("--sources", args->sources, "sources (and targets) of the timed distance map")
       ->check(CLI::Range(1, 100000));
-  cmd->add_option("--threads", args->threads, "threads of the distance map")->check(CLI::Range(1, kMaxThreads));
-  cmd->add_option("--timed-sources", args->timedSources, "single-thread sources timed for ms per source")
+  cmd->add_option("--threads", args->threads, "threads of the distance map")
+      ->check(CLI::Range(1, kMaxThreads));
+  cmd->add_option("--timed-sources", args->timedSources,
+                  "single-thread sources timed for ms per source")
       ->check(CLI::Range(0, 10000));
   cmd->add_option("--cgal-sources", args->cgalSources, "CGAL sources per size (0 skips CGAL)")
       ->delimiter(',')
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--saddle-tolerance", args->saddleTolerances,
-                  "also tabulate error against time over these saddleAngleTolerance values (radians; 0 = exact), "
+                  "also tabulate error against time over these saddleAngleTolerance values "
+                  "(radians; 0 = exact), "
                   "reference: the exact mode of the same run")
       ->delimiter(',')
       ->check(finiteRange(0.0, 0.0999));
   cmd->add_option("--engine-rows", args->engineRows,
-                  "stored-window, front-only and wavefront engines on the bump, sphere cap and plane of issue 19: none, "
-                  "standard, or large (adds the 418k-triangle bump: minutes, gigabytes for the stored engine)")
+                  "stored-window, front-only and wavefront engines on the bump, sphere cap and "
+                  "plane of issue 19: none, "
+                  "standard, or large (adds the 418k-triangle bump: minutes, gigabytes for the "
+                  "stored engine)")
       ->check(CLI::IsMember({"none", "standard", "large"}));
-  cmd->add_option("--engine-sources", args->engineSources, "vertex sources per row of the engine table (large row: 1)")
+  cmd->add_option("--engine-sources", args->engineSources,
+                  "vertex sources per row of the engine table (large row: 1)")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_flag("--json", args->json, "also print the table as JSON");

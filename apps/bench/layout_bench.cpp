@@ -1,17 +1,17 @@
 // `egg bench layout`: the multi-patch stages (patching, design, grid) of a 2 x 2 layout on a bump,
 // on 1 and on 2 threads in alternation (so both see the same machine load), medians and their
 // ratio: patches are designed and traced in parallel, and the speed-up says how well.
-#include "apps/egg/commands.hpp"
 #include "apps/bench/bench_stats.hpp"
+#include "apps/egg/commands.hpp"
+#include "core/geodesic/distance_solver.hpp"
 #include "core/timing.hpp"
 #include "pipeline/grid_stage.hpp"
 #include "pipeline/patching_stage.hpp"
 #include "pipeline/surface_stage.hpp"
-#include "core/geodesic/distance_solver.hpp"
 
 #include <fmt/core.h>
-#include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -38,7 +38,7 @@ int runLayoutBench(const LayoutBenchArgs& args) {
     "lamella": {{"width_m": 0.05, "thickness_m": 0.005}},
     "outputs": ["report"]}})",
                                                                    args.edgeLength)),
-                                  "bench_layout.json");
+                                 "bench_layout.json");
   const LoadedSurface surface = loadSurface(scene.surface);
   const geodesic::DistanceSolver solver(surface.mesh);
   std::map<int, std::vector<double>> wall, design;
@@ -61,18 +61,26 @@ int runLayoutBench(const LayoutBenchArgs& args) {
     }
   const double t1 = median(wall[1]), t2 = median(wall[2]);
   if (args.json) {
-    std::cout << nlohmann::json{{"patches", 4}, {"patch_vertices_total", vertices}, {"repeats", args.repeats},
-                                {"wall_1_thread_s", t1}, {"wall_2_threads_s", t2}, {"speedup", t1 / t2},
+    std::cout << nlohmann::json{{"patches", 4},
+                                {"patch_vertices_total", vertices},
+                                {"repeats", args.repeats},
+                                {"wall_1_thread_s", t1},
+                                {"wall_2_threads_s", t2},
+                                {"speedup", t1 / t2},
                                 {"design_per_patch_1_thread_s", median(design[1])}}
                      .dump(2)
               << "\n";
     return kExitOk;
   }
-  fmt::print("egg bench layout: 4 patches of a 2 x 2 layout on a 1 m bump ({} patch vertices in all), patching + design + grid\n",
-             vertices);
+  fmt::print(
+      "egg bench layout: 4 patches of a 2 x 2 layout on a 1 m bump ({} patch vertices in all), "
+      "patching + design + grid\n",
+      vertices);
   fmt::print("medians of {} runs, 1 and 2 threads alternating\n", args.repeats);
   fmt::print("{:>8} {:>10} {:>18}\n", "threads", "wall_s", "design/patch_s");
-  for (int threads : {1, 2}) fmt::print("{:>8} {:>10.3f} {:>18.3f}\n", threads, median(wall[threads]), median(design[threads]));
+  for (int threads : {1, 2})
+    fmt::print("{:>8} {:>10.3f} {:>18.3f}\n", threads, median(wall[threads]),
+               median(design[threads]));
   fmt::print("speed-up 2 threads / 1 thread: {:.2f}x\n", t1 / t2);
   return kExitOk;
 }
@@ -81,10 +89,13 @@ int runLayoutBench(const LayoutBenchArgs& args) {
 
 void registerLayoutBench(CLI::App& bench, Action& action) {
   auto args = std::make_shared<LayoutBenchArgs>();
-  auto* cmd = bench.add_subcommand("layout", "Multi-patch stages (patching, design, grid) of a 2 x 2 layout on 1 and 2 threads: "
-                                             "median wall times and the speed-up");
+  auto* cmd = bench.add_subcommand(
+      "layout",
+      "Multi-patch stages (patching, design, grid) of a 2 x 2 layout on 1 and 2 threads: "
+      "median wall times and the speed-up");
   cmd->add_option("--repeats", args->repeats, "runs per thread count")->check(CLI::Range(1, 1000));
-  cmd->add_option("--edge-length", args->edgeLength, "mesh edge length of the bump (m)")->check(CLI::Range(0.02, 2.0));
+  cmd->add_option("--edge-length", args->edgeLength, "mesh edge length of the bump (m)")
+      ->check(CLI::Range(0.02, 2.0));
   cmd->add_flag("--json", args->json, "print the figures as JSON only");
   cmd->callback([args, &action] { action = [args] { return runLayoutBench(*args); }; });
 }

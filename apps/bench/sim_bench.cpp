@@ -1,13 +1,13 @@
 // `egg bench sim` (time against error of the rod simulation at several tolerances) and
 // `egg stress` (stiff and extreme cases: converge or say why, never NaN, never hang).
-#include "apps/egg/commands.hpp"
 #include "apps/bench/bench_stats.hpp"
+#include "apps/egg/commands.hpp"
 
+#include "apps/bench/stress_suite.hpp"
+#include "apps/egg/progress.hpp"
 #include "core/rods/sample_grids.hpp"
 #include "core/rods/simulation.hpp"
 #include "core/rods/stress_cases.hpp"
-#include "apps/egg/progress.hpp"
-#include "apps/bench/stress_suite.hpp"
 
 #include <unistd.h>
 #include <filesystem>
@@ -20,10 +20,10 @@
 
 #include <algorithm>
 #include <fstream>
-#include <optional>
 #include <iostream>
-#include <sstream>
 #include <memory>
+#include <optional>
+#include <sstream>
 
 namespace egg::app {
 namespace {
@@ -67,15 +67,22 @@ TimedRun timedRun(const rods::RodNetwork& network, const rods::SurfaceDistance& 
 int runSimBench(const SimBenchArgs& args) {
   if (args.repeats < 1) throw InvalidInput("--repeats must be >= 1");
   nlohmann::json rows = nlohmann::json::array();
-  fmt::print(tableStream(args.json), "egg bench sim: cylinder vault R 5 m, 8 m long, exact geodesic grid at +-45 deg, lamellas 50 x 5 mm,\n"
-             "supports at every member end, notches +-{:.0f} % of the spacing on inner bolts{}, {} thread(s);\n"
+  fmt::print(tableStream(args.json),
+             "egg bench sim: cylinder vault R 5 m, 8 m long, exact geodesic grid at +-45 deg, "
+             "lamellas 50 x 5 mm,\n"
+             "supports at every member end, notches +-{:.0f} % of the spacing on inner bolts{}, {} "
+             "thread(s);\n"
              "seconds = median of {} runs (solver + setup, one simulation){}\n",
-             100.0 * args.notchFraction, args.gravity ? ", self-weight" : "", args.threads, args.repeats,
-             args.reference ? ";\nplain_s = the same grid with plain holes (no sliding, RMS1 run), ratio = seconds / plain_s"
+             100.0 * args.notchFraction, args.gravity ? ", self-weight" : "", args.threads,
+             args.repeats,
+             args.reference ? ";\nplain_s = the same grid with plain holes (no sliding, RMS1 run), "
+                              "ratio = seconds / plain_s"
                             : "");
-  fmt::print(tableStream(args.json), "{:>7} {:>8} {:>8} {:>5} {:>9} {:>5} {:>8} {:>15} {:>9} {:>4} {:>9} {:>9} {:>8} {:>5} {:>6}\n", "spacing",
-             "vertices", "unknowns", "bolts", "tolerance", "iters", "seconds", "(min..max)", "grad_norm", "conv",
-             "rmse_mm", "max_mm", "plain_s", "iters", "ratio");
+  fmt::print(tableStream(args.json),
+             "{:>7} {:>8} {:>8} {:>5} {:>9} {:>5} {:>8} {:>15} {:>9} {:>4} {:>9} {:>9} {:>8} {:>5} "
+             "{:>6}\n",
+             "spacing", "vertices", "unknowns", "bolts", "tolerance", "iters", "seconds",
+             "(min..max)", "grad_norm", "conv", "rmse_mm", "max_mm", "plain_s", "iters", "ratio");
   for (double spacing : args.spacings) {
     rods::CylinderGridParameters parameters;
     parameters.spacingM = spacing;
@@ -99,15 +106,18 @@ int runSimBench(const SimBenchArgs& args) {
       const double rmse = run.deviation ? run.deviation->rmseM : 0.0;
       const double maxError = run.deviation ? run.deviation->maxM : 0.0;
       const double ratio = plain ? notched.medianSeconds / plain->medianSeconds : 0.0;
-      fmt::print(tableStream(args.json), "{:>7.2f} {:>8} {:>8} {:>5} {:>9.0e} {:>5} {:>8.3f} {:>15} {:>9.2e} {:>4} {:>9.4f} {:>9.4f} {:>8} {:>5} {:>6}\n",
+      fmt::print(tableStream(args.json),
+                 "{:>7.2f} {:>8} {:>8} {:>5} {:>9.0e} {:>5} {:>8.3f} {:>15} {:>9.2e} {:>4} "
+                 "{:>9.4f} {:>9.4f} {:>8} {:>5} {:>6}\n",
                  spacing, run.vertices, run.unknowns, grid.network.connections.size(), tolerance,
                  run.solver.iterations, notched.medianSeconds,
-                 fmt::format("({:.3f}..{:.3f})", notched.minSeconds, notched.maxSeconds), run.solver.gradientNorm,
-                 run.solver.converged ? "yes" : "no", 1e3 * rmse, 1e3 * maxError,
-                 plain ? fmt::format("{:.3f}", plain->medianSeconds) : "-",
+                 fmt::format("({:.3f}..{:.3f})", notched.minSeconds, notched.maxSeconds),
+                 run.solver.gradientNorm, run.solver.converged ? "yes" : "no", 1e3 * rmse,
+                 1e3 * maxError, plain ? fmt::format("{:.3f}", plain->medianSeconds) : "-",
                  plain ? std::to_string(plain->run.solver.iterations) : "-",
                  plain ? fmt::format("{:.2f}", ratio) : "-");
-      if (!run.solver.converged) fmt::print(tableStream(args.json), "        not converged: {}\n", run.solver.reason);
+      if (!run.solver.converged)
+        fmt::print(tableStream(args.json), "        not converged: {}\n", run.solver.reason);
       nlohmann::json row{{"spacing_m", spacing},
                          {"vertices", run.vertices},
                          {"unknowns", run.unknowns},
@@ -136,18 +146,23 @@ int runSimBench(const SimBenchArgs& args) {
   }
   if (!args.csv.empty()) {
     std::ostringstream file;
-    file << "spacing_m,vertices,unknowns,bolts,tolerance,iterations,seconds,seconds_min,seconds_max,gradient_norm,"
-            "converged,rmse_m,max_error_m,plain_seconds,plain_iterations,plain_rmse_m,ratio_to_plain\n";
+    file << "spacing_m,vertices,unknowns,bolts,tolerance,iterations,seconds,seconds_min,seconds_"
+            "max,gradient_norm,"
+            "converged,rmse_m,max_error_m,plain_seconds,plain_iterations,plain_rmse_m,ratio_to_"
+            "plain\n";
     for (const auto& r : rows) {
-      auto number = [&](const char* key) { return r.contains(key) ? fmt::format("{}", r[key].get<double>()) : std::string(); };
-      file << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r["spacing_m"].get<double>(),
-                          r["vertices"].get<int>(), r["unknowns"].get<int>(), r["bolts"].get<size_t>(),
-                          r["tolerance"].get<double>(), r["iterations"].get<int>(), r["seconds"].get<double>(),
-                          r["seconds_min"].get<double>(), r["seconds_max"].get<double>(),
-                          r["gradient_norm"].get<double>(), r["converged"].get<bool>() ? 1 : 0,
-                          r["rmse_m"].get<double>(), r["max_error_m"].get<double>(), number("plain_seconds"),
-                          r.contains("plain_iterations") ? std::to_string(r["plain_iterations"].get<int>()) : "",
-                          number("plain_rmse_m"), number("ratio_to_plain"));
+      auto number = [&](const char* key) {
+        return r.contains(key) ? fmt::format("{}", r[key].get<double>()) : std::string();
+      };
+      file << fmt::format(
+          "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r["spacing_m"].get<double>(),
+          r["vertices"].get<int>(), r["unknowns"].get<int>(), r["bolts"].get<size_t>(),
+          r["tolerance"].get<double>(), r["iterations"].get<int>(), r["seconds"].get<double>(),
+          r["seconds_min"].get<double>(), r["seconds_max"].get<double>(),
+          r["gradient_norm"].get<double>(), r["converged"].get<bool>() ? 1 : 0,
+          r["rmse_m"].get<double>(), r["max_error_m"].get<double>(), number("plain_seconds"),
+          r.contains("plain_iterations") ? std::to_string(r["plain_iterations"].get<int>()) : "",
+          number("plain_rmse_m"), number("ratio_to_plain"));
     }
     writeFileAtomically(args.csv, file.str());
   }
@@ -161,7 +176,8 @@ struct StressArgs {
   bool json = false;
   std::string suite = "all";
   bool keep = false;
-  std::string largeMeshStages = "geodesic";  // the 1M-face case: "surface" (load + curvature) or also "geodesic"
+  std::string largeMeshStages =
+      "geodesic";  // the 1M-face case: "surface" (load + curvature) or also "geodesic"
 };
 
 // The pipeline suite (stress_suite.hpp): each case is `egg run` (or surface + geodesic) in a child.
@@ -180,10 +196,13 @@ bool runPipelineSuite(const StressArgs& args, nlohmann::json& rows) {
     return 127;
   };
   std::FILE* out = tableStream(args.json);
-  fmt::print(out, "\negg stress --suite pipeline: fixed scenes and meshes through the real pipeline, one child process\n"
-                  "per case (time limit each; peak memory = the child's VmHWM); ok = converged or a stated reason\n");
-  fmt::print(out, "{:<17} {:<21} {:>6} {:>9} {:>9} {:>8} {:>8}  {:<4} {} [{}]\n", "case", "class", "iters", "rmse_m", "max_err_m",
-             "seconds", "peak_MB", "ok", "result", "stages");
+  fmt::print(out,
+             "\negg stress --suite pipeline: fixed scenes and meshes through the real pipeline, "
+             "one child process\n"
+             "per case (time limit each; peak memory = the child's VmHWM); ok = converged or a "
+             "stated reason\n");
+  fmt::print(out, "{:<17} {:<21} {:>6} {:>9} {:>9} {:>8} {:>8}  {:<4} {} [{}]\n", "case", "class",
+             "iters", "rmse_m", "max_err_m", "seconds", "peak_MB", "ok", "result", "stages");
   bool ok = true;
   // On a terminal, which case is running (the row appears when it ends; cases take up to minutes).
   ProgressLine bar(!args.json);
@@ -191,17 +210,21 @@ bool runPipelineSuite(const StressArgs& args, nlohmann::json& rows) {
   for (size_t k = 0; k < cases.size(); ++k) {
     PipelineStressCase c = cases[k];
     if (c.surfaceOnly && args.largeMeshStages == "surface") c.geodesic = false;
-    bar.update(static_cast<double>(k) / cases.size(), fmt::format("case {} of {}: {}", k + 1, cases.size(), c.name));
+    bar.update(static_cast<double>(k) / cases.size(),
+               fmt::format("case {} of {}: {}", k + 1, cases.size(), c.name));
     const PipelineStressRow r = runPipelineStressCase(c, command, work);
     bar.clear();
     ok = ok && r.ok;
-    fmt::print(out, "{:<17} {:<21} {:>6} {:>9.3g} {:>9.3g} {:>8.2f} {:>8.0f}  {:<4} {} [{}]\n", r.name, r.kind, r.iterations,
-               r.rmseM, r.maxErrorM, r.seconds, r.peakRssMb, r.ok ? "yes" : "NO", r.result, r.stages);
+    fmt::print(out, "{:<17} {:<21} {:>6} {:>9.3g} {:>9.3g} {:>8.2f} {:>8.0f}  {:<4} {} [{}]\n",
+               r.name, r.kind, r.iterations, r.rmseM, r.maxErrorM, r.seconds, r.peakRssMb,
+               r.ok ? "yes" : "NO", r.result, r.stages);
     std::fflush(out);
     rows.push_back(r.toJson());
   }
-  if (!args.keep) fs::remove_all(work);
-  else fmt::print(out, "case folders kept in {}\n", work.string());
+  if (!args.keep)
+    fs::remove_all(work);
+  else
+    fmt::print(out, "case folders kept in {}\n", work.string());
   return ok;
 }
 
@@ -215,21 +238,32 @@ int runStress(const StressArgs& args) {
     if (args.json) std::cout << nlohmann::json{{"pipeline", prow}}.dump(2) << "\n";
     return ok ? kExitOk : kExitFailure;
   }
-  fmt::print(tableStream(args.json), "egg stress: cylinder vault (radius = length = 3 f, spacing 0.75 f, width 0.05 f) under self-weight;\n"
+  fmt::print(tableStream(args.json),
+             "egg stress: cylinder vault (radius = length = 3 f, spacing 0.75 f, width 0.05 f) "
+             "under self-weight;\n"
              "every case converges or says why, never NaN (limits: {} s, {} iterations)\n",
              args.timeLimit, args.maxIterations);
-  fmt::print(tableStream(args.json), "sag = largest displacement from the weightless equilibrium, in % of the vault's extent; a converged\n"
-             "case that sags several % has found a collapsed equilibrium (the jump of Fig. 3.11)\n");
-  fmt::print(tableStream(args.json), "{:<28} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>10} {:>9} {:>7}  {}\n", "case", "scale_m", "w:t", "E_GPa",
-             "rho", "iters", "seconds", "rmse_m", "nrmse", "sag_%", "result");
+  fmt::print(
+      tableStream(args.json),
+      "sag = largest displacement from the weightless equilibrium, in % of the vault's extent; a "
+      "converged\n"
+      "case that sags several % has found a collapsed equilibrium (the jump of Fig. 3.11)\n");
+  fmt::print(tableStream(args.json),
+             "{:<28} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>10} {:>9} {:>7}  {}\n", "case",
+             "scale_m", "w:t", "E_GPa", "rho", "iters", "seconds", "rmse_m", "nrmse", "sag_%",
+             "result");
   for (const rods::StressCase& c : rods::stressCases()) {
     const rods::StressOutcome o = rods::runStressCase(c, args.timeLimit, args.maxIterations);
     allFinite = allFinite && o.finite;
-    const std::string result = !o.finite ? "NON-FINITE" : o.converged ? "converged" : "stopped: " + o.reason;
+    const std::string result = !o.finite     ? "NON-FINITE"
+                               : o.converged ? "converged"
+                                             : "stopped: " + o.reason;
     const double sagPercent = o.extentM > 0.0 ? 100.0 * o.sagM / o.extentM : 0.0;
-    fmt::print(tableStream(args.json), "{:<28} {:>9.3g} {:>6.0f} {:>8.3g} {:>6.0f} {:>6} {:>8.2f} {:>10.3g} {:>9.3g} {:>7.2f}  {}\n", c.name,
-               3.0 * c.scale, c.widthToThickness, 1e-9 * c.youngsModulusPa, c.densityKgM3, o.iterations, o.seconds,
-               o.rmseM, o.nrmse, sagPercent, result);
+    fmt::print(tableStream(args.json),
+               "{:<28} {:>9.3g} {:>6.0f} {:>8.3g} {:>6.0f} {:>6} {:>8.2f} {:>10.3g} {:>9.3g} "
+               "{:>7.2f}  {}\n",
+               c.name, 3.0 * c.scale, c.widthToThickness, 1e-9 * c.youngsModulusPa, c.densityKgM3,
+               o.iterations, o.seconds, o.rmseM, o.nrmse, sagPercent, result);
     rows.push_back({{"case", c.name},
                     {"span_m", 3.0 * c.scale},
                     {"width_to_thickness", c.widthToThickness},
@@ -252,8 +286,10 @@ int runStress(const StressArgs& args) {
   nlohmann::json prow = nlohmann::json::array();
   if (args.suite == "all") pipelineOk = runPipelineSuite(args, prow);
   // --suite rods keeps the rod table's JSON array as before; all: both tables under their names.
-  if (args.json && args.suite == "rods") std::cout << rows.dump(2) << "\n";
-  else if (args.json) std::cout << nlohmann::json{{"rods", rows}, {"pipeline", prow}}.dump(2) << "\n";
+  if (args.json && args.suite == "rods")
+    std::cout << rows.dump(2) << "\n";
+  else if (args.json)
+    std::cout << nlohmann::json{{"rods", rows}, {"pipeline", prow}}.dump(2) << "\n";
   return allFinite && pipelineOk ? kExitOk : kExitFailure;
 }
 
@@ -262,9 +298,10 @@ int runStress(const StressArgs& args) {
 void registerSimBench(CLI::App& bench, Action& action) {
   auto args = std::make_shared<SimBenchArgs>();
   auto* cmd = bench.add_subcommand(
-      "sim", "Rod simulation (DER, sliding bolts, notches) on a patch-like grid of ~400-800 vertices: "
-             "Newton iterations, median wall time and RMSE to the design surface at several tolerances, "
-             "against the same grid with plain holes");
+      "sim",
+      "Rod simulation (DER, sliding bolts, notches) on a patch-like grid of ~400-800 vertices: "
+      "Newton iterations, median wall time and RMSE to the design surface at several tolerances, "
+      "against the same grid with plain holes");
   cmd->add_option("--spacings", args->spacings,
                   "member spacings in m (1.0 -> 416 vertices, 0.8 -> 640, 0.72 -> 784)")
       ->delimiter(',')
@@ -272,13 +309,16 @@ void registerSimBench(CLI::App& bench, Action& action) {
   cmd->add_option("--tolerances", args->tolerances, "relative Newton-decrement tolerances")
       ->delimiter(',')
       ->check(finiteRange(1e-15, 1.0));
-  cmd->add_option("--notch-fraction", args->notchFraction, "notch length on each side of inner bolts, in spacings")
+  cmd->add_option("--notch-fraction", args->notchFraction,
+                  "notch length on each side of inner bolts, in spacings")
       ->check(finiteRange(0.0, 0.45));
   cmd->add_flag("--gravity", args->gravity, "add self-weight");
-  cmd->add_option("--threads", args->threads, "threads assembling the Hessian")->check(CLI::Range(1, kMaxThreads));
+  cmd->add_option("--threads", args->threads, "threads assembling the Hessian")
+      ->check(CLI::Range(1, kMaxThreads));
   cmd->add_option("--repeats", args->repeats, "runs per row; the table shows the median time")
       ->check(CLI::Range(1, 1000));
-  cmd->add_flag("!--no-reference", args->reference, "skip the plain-hole reference run of each row");
+  cmd->add_flag("!--no-reference", args->reference,
+                "skip the plain-hole reference run of each row");
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_flag("--json", args->json, "also print the table as JSON");
   cmd->callback([args, &action] { action = [args] { return runSimBench(*args); }; });
@@ -286,21 +326,32 @@ void registerSimBench(CLI::App& bench, Action& action) {
 
 void registerStressCommand(CLI::App& parent, Action& action) {
   auto args = std::make_shared<StressArgs>();
-  auto* cmd = parent.add_subcommand(
-      "stress", "Stiff and extreme cases. Suite 'rods': the simulation on a cylinder vault (width:thickness 5-100, "
-                "E 0.5-210 GPa, 0.1-220 m, 400-7850 kg/m3). Suite 'pipeline' (fixed, egg run per case in a child "
-                "with a time limit): wt_5, wt_100, E_4GPa_birch, E_210GPa_steel, scale_0.1m, scale_220m, nearly_flat, "
-                "sharp_k_peak, alpha_bar_max, alpha_bar_0.05 (near-collapsed quads), sliver_triangles, holes, "
-                "disconnected, non_manifold (typed error expected), million_faces (surface + curvature + one geodesic "
-                "field only). Each case converges or reports why; exit 1 on a non-finite result, a crash or a timeout");
-  cmd->add_option("--suite", args->suite, "rods, pipeline or all")->check(CLI::IsMember({"rods", "pipeline", "all"}));
-  cmd->add_flag("--keep", args->keep, "keep the pipeline cases' folders (scenes, meshes, logs, reports)");
+  auto* cmd = parent.add_subcommand("stress",
+                                    "Stiff and extreme cases. Suite 'rods': the simulation on a "
+                                    "cylinder vault (width:thickness 5-100, "
+                                    "E 0.5-210 GPa, 0.1-220 m, 400-7850 kg/m3). Suite 'pipeline' "
+                                    "(fixed, egg run per case in a child "
+                                    "with a time limit): wt_5, wt_100, E_4GPa_birch, "
+                                    "E_210GPa_steel, scale_0.1m, scale_220m, nearly_flat, "
+                                    "sharp_k_peak, alpha_bar_max, alpha_bar_0.05 (near-collapsed "
+                                    "quads), sliver_triangles, holes, "
+                                    "disconnected, non_manifold (typed error expected), "
+                                    "million_faces (surface + curvature + one geodesic "
+                                    "field only). Each case converges or reports why; exit 1 on a "
+                                    "non-finite result, a crash or a timeout");
+  cmd->add_option("--suite", args->suite, "rods, pipeline or all")
+      ->check(CLI::IsMember({"rods", "pipeline", "all"}));
+  cmd->add_flag("--keep", args->keep,
+                "keep the pipeline cases' folders (scenes, meshes, logs, reports)");
   cmd->add_option("--large-mesh-stages", args->largeMeshStages,
-                  "the 1M-face case: surface (load + curvature) or geodesic (also one exact field over 500k vertices, "
+                  "the 1M-face case: surface (load + curvature) or geodesic (also one exact field "
+                  "over 500k vertices, "
                   "~55 s on 2 cores with the wavefront engine)")
       ->check(CLI::IsMember({"surface", "geodesic"}));
-  cmd->add_option("--time-limit", args->timeLimit, "seconds per case")->check(finiteRange(1e-3, 86400.0));
-  cmd->add_option("--max-iterations", args->maxIterations, "Newton iterations per case")->check(CLI::Range(1, 1000000));
+  cmd->add_option("--time-limit", args->timeLimit, "seconds per case")
+      ->check(finiteRange(1e-3, 86400.0));
+  cmd->add_option("--max-iterations", args->maxIterations, "Newton iterations per case")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--json", args->json, "also print the table as JSON");
   cmd->callback([args, &action] { action = [args] { return runStress(*args); }; });
 }

@@ -21,7 +21,8 @@ namespace egg::app {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-ChildOutcome runChild(const std::function<int()>& body, double timeLimitS, const fs::path& logFile) {
+ChildOutcome runChild(const std::function<int()>& body, double timeLimitS,
+                      const fs::path& logFile) {
   ChildOutcome out;
   std::fflush(nullptr);
   const Stopwatch watch;
@@ -66,8 +67,10 @@ ChildOutcome runChild(const std::function<int()>& body, double timeLimitS, const
   out.seconds = watch.seconds();
   out.peakRssMb = usage.ru_maxrss / 1024.0;  // kB on Linux
   if (!out.timedOut) {
-    if (WIFSIGNALED(status)) out.signal = WTERMSIG(status);
-    else if (WIFEXITED(status)) out.exitCode = WEXITSTATUS(status);
+    if (WIFSIGNALED(status))
+      out.signal = WTERMSIG(status);
+    else if (WIFEXITED(status))
+      out.exitCode = WEXITSTATUS(status);
   }
   std::ifstream in(logFile);
   std::stringstream text;
@@ -84,7 +87,8 @@ struct Obj {
   std::string text;
   int vertices = 0;
 };
-void addGrid(Obj& obj, int nx, int ny, double lx, double ly, const std::function<double(double, double)>& height,
+void addGrid(Obj& obj, int nx, int ny, double lx, double ly,
+             const std::function<double(double, double)>& height,
              const std::function<bool(double, double)>& skip = {}, double offsetX = 0.0) {
   const int base = obj.vertices;
   std::string& s = obj.text;
@@ -99,12 +103,14 @@ void addGrid(Obj& obj, int nx, int ny, double lx, double ly, const std::function
     for (int i = 0; i < nx; ++i) {
       const double cx = -lx / 2 + lx * (i + 0.5) / nx, cy = -ly / 2 + ly * (j + 0.5) / ny;
       if (skip && skip(cx, cy)) continue;
-      s += fmt::format("f {} {} {}\nf {} {} {}\n", id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1),
-                       id(i, j + 1));
+      s += fmt::format("f {} {} {}\nf {} {} {}\n", id(i, j), id(i + 1, j), id(i + 1, j + 1),
+                       id(i, j), id(i + 1, j + 1), id(i, j + 1));
     }
 }
 std::function<double(double, double)> bump(double h, double sigma) {
-  return [h, sigma](double x, double y) { return h * std::exp(-(x * x + y * y) / (2 * sigma * sigma)); };
+  return [h, sigma](double x, double y) {
+    return h * std::exp(-(x * x + y * y) / (2 * sigma * sigma));
+  };
 }
 void save(const fs::path& p, const Obj& obj) {
   std::ofstream f(p);
@@ -138,7 +144,8 @@ json meshScene(const std::string& name) {
 json scaledScene(const std::string& name, double f) {
   json s = baseScene(name);
   s["grid"]["members_per_family"] = 8;
-  s["surface"]["params"] = {{"length", 10 * f}, {"width", 10 * f}, {"height", 2 * f}, {"sigma", 2 * f}};
+  s["surface"]["params"] = {
+      {"length", 10 * f}, {"width", 10 * f}, {"height", 2 * f}, {"sigma", 2 * f}};
   s["surface"]["edge_length_m"] = 0.4 * f;
   s["patching"]["max_patch_size_m"] = 15 * f;
   s["lamella"]["width_m"] = 0.02 * f;
@@ -152,7 +159,8 @@ json scaledScene(const std::string& name, double f) {
 
 std::vector<PipelineStressCase> pipelineStressCases() {
   std::vector<PipelineStressCase> cases;
-  auto add = [&](std::string name, std::string kind, std::string description, json scene) -> PipelineStressCase& {
+  auto add = [&](std::string name, std::string kind, std::string description,
+                 json scene) -> PipelineStressCase& {
     cases.push_back({name, kind, description, std::move(scene), {}, false, true, 60.0});
     return cases.back();
   };
@@ -174,8 +182,10 @@ std::vector<PipelineStressCase> pipelineStressCases() {
     s["lamella"]["material"] = "steel_s235";
     add("E_210GPa_steel", "youngs_modulus", "bump 10 m, steel S235 E 210 GPa", s);
   }
-  add("scale_0.1m", "scale", "bump 0.1 m, lamella 0.2 x 0.02 mm (all lengths x 0.01)", scaledScene("s01", 0.01));
-  add("scale_220m", "scale", "bump 220 m, lamella 440 x 44 mm (all lengths x 22)", scaledScene("s220", 22.0));
+  add("scale_0.1m", "scale", "bump 0.1 m, lamella 0.2 x 0.02 mm (all lengths x 0.01)",
+      scaledScene("s01", 0.01));
+  add("scale_220m", "scale", "bump 220 m, lamella 440 x 44 mm (all lengths x 22)",
+      scaledScene("s220", 22.0));
   {
     json s = baseScene("flat");
     s["surface"]["params"]["height"] = 0.01;
@@ -185,7 +195,8 @@ std::vector<PipelineStressCase> pipelineStressCases() {
     json s = baseScene("peak");
     s["surface"]["params"]["height"] = 3.0;
     s["surface"]["params"]["sigma"] = 0.7;
-    add("sharp_k_peak", "sharp_k_peak", "bump 10 m, 3 m high, sigma 0.7 m (eta far above 1.0015)", s);
+    add("sharp_k_peak", "sharp_k_peak", "bump 10 m, 3 m high, sigma 0.7 m (eta far above 1.0015)",
+        s);
   }
   {
     json s = baseScene("amax");
@@ -193,23 +204,26 @@ std::vector<PipelineStressCase> pipelineStressCases() {
     add("alpha_bar_max", "near_collapsed_quads", "bump 10 m, alpha_bar at its upper bound", s);
     s = baseScene("asmall");
     s["grid"]["alpha_bar"] = 0.05;
-    add("alpha_bar_0.05", "near_collapsed_quads", "bump 10 m, alpha_bar 0.05 rad (quads nearly collapsed)", s);
+    add("alpha_bar_0.05", "near_collapsed_quads",
+        "bump 10 m, alpha_bar 0.05 rad (quads nearly collapsed)", s);
   }
-  add("sliver_triangles", "sliver_triangles", "bump 10 m as 200 x 4 cells (triangles 50:1)", meshScene("sliver"))
+  add("sliver_triangles", "sliver_triangles", "bump 10 m as 200 x 4 cells (triangles 50:1)",
+      meshScene("sliver"))
       .writeMesh = [](const fs::path& p) {
     Obj o;
     addGrid(o, 200, 4, 10, 10, bump(2, 2));
     save(p, o);
   };
-  add("holes", "holes", "bump 10 m, 40 x 40 cells, two round holes r 1.2 m", meshScene("holes")).writeMesh =
-      [](const fs::path& p) {
-        Obj o;
-        addGrid(o, 40, 40, 10, 10, bump(2, 2), [](double x, double y) {
-          return std::hypot(x - 2.5, y - 2.5) < 1.2 || std::hypot(x + 2.5, y + 2.5) < 1.2;
-        });
-        save(p, o);
-      };
-  add("disconnected", "disconnected", "two bumps 10 m apart, keep_largest_component false", meshScene("disc"))
+  add("holes", "holes", "bump 10 m, 40 x 40 cells, two round holes r 1.2 m", meshScene("holes"))
+      .writeMesh = [](const fs::path& p) {
+    Obj o;
+    addGrid(o, 40, 40, 10, 10, bump(2, 2), [](double x, double y) {
+      return std::hypot(x - 2.5, y - 2.5) < 1.2 || std::hypot(x + 2.5, y + 2.5) < 1.2;
+    });
+    save(p, o);
+  };
+  add("disconnected", "disconnected", "two bumps 10 m apart, keep_largest_component false",
+      meshScene("disc"))
       .writeMesh = [](const fs::path& p) {
     Obj o;
     addGrid(o, 20, 20, 10, 10, bump(2, 2));
@@ -217,7 +231,8 @@ std::vector<PipelineStressCase> pipelineStressCases() {
     save(p, o);
   };
   cases.back().scene["surface"]["keep_largest_component"] = false;
-  add("non_manifold", "non_manifold", "bump 10 m plus a fin: one edge with three faces", meshScene("nonman"))
+  add("non_manifold", "non_manifold", "bump 10 m plus a fin: one edge with three faces",
+      meshScene("nonman"))
       .writeMesh = [](const fs::path& p) {
     Obj o;
     addGrid(o, 20, 20, 10, 10, bump(2, 2));
@@ -230,7 +245,8 @@ std::vector<PipelineStressCase> pipelineStressCases() {
   };
   PipelineStressCase& big =
       add("million_faces", "million_faces",
-          "bump 100 m, 708 x 707 cells = 1,001,112 faces: surface load + curvature (egg surface --stats) "
+          "bump 100 m, 708 x 707 cells = 1,001,112 faces: surface load + curvature (egg surface "
+          "--stats) "
           "+ one geodesic field (egg geodesic); patching and later stages skipped at this size",
           meshScene("million"));
   big.surfaceOnly = true;
@@ -265,26 +281,35 @@ PipelineStressRow classify(const PipelineStressCase& c, const ChildOutcome& o, c
       }
     if (report.contains("simulation")) {
       const json& sim = report["simulation"];
-      for (const char* k : {"rmse_m", "max_error_m", "nrmse"}) finite = finite && finiteNumber(sim, k);
+      for (const char* k : {"rmse_m", "max_error_m", "nrmse"})
+        finite = finite && finiteNumber(sim, k);
       row.iterations = sim.value("iterations", 0);
-      if (sim.contains("rmse_m") && sim["rmse_m"].is_number()) row.rmseM = sim["rmse_m"].get<double>();
-      if (sim.contains("max_error_m") && sim["max_error_m"].is_number()) row.maxErrorM = sim["max_error_m"].get<double>();
+      if (sim.contains("rmse_m") && sim["rmse_m"].is_number())
+        row.rmseM = sim["rmse_m"].get<double>();
+      if (sim.contains("max_error_m") && sim["max_error_m"].is_number())
+        row.maxErrorM = sim["max_error_m"].get<double>();
     }
     if (report.contains("patches") && report["patches"].is_array())
       for (const json& p : report["patches"])
-        for (const char* k : {"eta_u", "eta_v", "alpha_bar_rad", "area_m2"}) finite = finite && finiteNumber(p, k);
+        for (const char* k : {"eta_u", "eta_v", "alpha_bar_rad", "area_m2"})
+          finite = finite && finiteNumber(p, k);
   }
   auto firstLine = [](const std::string& text) {
     std::istringstream in(text);
     std::string line, last;
     while (std::getline(in, line))
-      if (line.find("error") != std::string::npos || line.find("egg:") != std::string::npos) return line.substr(0, 160);
-      else if (!line.empty()) last = line;
+      if (line.find("error") != std::string::npos || line.find("egg:") != std::string::npos)
+        return line.substr(0, 160);
+      else if (!line.empty())
+        last = line;
     return last.substr(0, 160);
   };
-  if (o.timedOut) row.result = fmt::format("TIMEOUT after {:.0f} s", c.timeLimitS);
-  else if (o.signal != 0) row.result = fmt::format("CRASH (signal {})", o.signal);
-  else if (!finite) row.result = "NON-FINITE: " + firstLine(o.output);
+  if (o.timedOut)
+    row.result = fmt::format("TIMEOUT after {:.0f} s", c.timeLimitS);
+  else if (o.signal != 0)
+    row.result = fmt::format("CRASH (signal {})", o.signal);
+  else if (!finite)
+    row.result = "NON-FINITE: " + firstLine(o.output);
   else if (o.exitCode == 0) {
     row.ok = true;
     row.result = "converged";
@@ -300,12 +325,15 @@ PipelineStressRow classify(const PipelineStressCase& c, const ChildOutcome& o, c
 }
 
 json PipelineStressRow::toJson() const {
-  return {{"case", name},       {"class", kind},          {"stages", stages},  {"ok", ok},
-          {"result", result},   {"iterations", iterations}, {"rmse_m", rmseM}, {"max_error_m", maxErrorM},
+  return {{"case", name},       {"class", kind},
+          {"stages", stages},   {"ok", ok},
+          {"result", result},   {"iterations", iterations},
+          {"rmse_m", rmseM},    {"max_error_m", maxErrorM},
           {"seconds", seconds}, {"peak_rss_mb", peakRssMb}};
 }
 
-PipelineStressRow runPipelineStressCase(const PipelineStressCase& c, const EggCommand& command, const fs::path& workDir) {
+PipelineStressRow runPipelineStressCase(const PipelineStressCase& c, const EggCommand& command,
+                                        const fs::path& workDir) {
   const fs::path dir = workDir / c.name;
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -317,25 +345,34 @@ PipelineStressRow runPipelineStressCase(const PipelineStressCase& c, const EggCo
     f << scene.dump(2);
   }
   if (!c.surfaceOnly) {
-    const ChildOutcome o = runChild([&] { return command({"run", (dir / "scene.json").string(), "-o", (dir / "out").string(), "-q", "-j", "1"}); },
-                                    c.timeLimitS, dir / "log.txt");
+    const ChildOutcome o = runChild(
+        [&] {
+          return command({"run", (dir / "scene.json").string(), "-o", (dir / "out").string(), "-q",
+                          "-j", "1"});
+        },
+        c.timeLimitS, dir / "log.txt");
     json report;
     std::ifstream r(dir / "out" / "report.json");
     if (r) report = json::parse(r, nullptr, false);
     if (report.is_discarded()) report = json();
     return classify(c, o, report);
   }
-  // Large mesh: load + curvature, then one geodesic field, each a child (a fifth and four fifths of the limit).
-  ChildOutcome a = runChild([&] { return command({"surface", (dir / "mesh.obj").string(), "--stats", "--json"}); },
-                            (c.geodesic ? 0.2 : 1.0) * c.timeLimitS, dir / "surface.txt");
+  // Large mesh: load + curvature, then one geodesic field, each a child (a fifth and four fifths of
+  // the limit).
+  ChildOutcome a = runChild(
+      [&] {
+        return command({"surface", (dir / "mesh.obj").string(), "--stats", "--json"});
+      },
+      (c.geodesic ? 0.2 : 1.0) * c.timeLimitS, dir / "surface.txt");
   ChildOutcome total = a;
   std::string stages = "surface,curvature";
   if (c.geodesic && !a.timedOut && a.signal == 0 && a.exitCode == 0) {
     ChildOutcome b = runChild(
-        // The wavefront engine (the default): memory O(front) (~0.4 GB at this size instead of ~6 GB stored).
+        // The wavefront engine (the default): memory O(front) (~0.4 GB at this size instead of ~6
+        // GB stored).
         [&] {
-          return command({"geodesic", (dir / "mesh.obj").string(), "--source", "0,0,20", "--engine", "wavefront", "--out", (dir / "d.csv").string(),
-                          "--json"});
+          return command({"geodesic", (dir / "mesh.obj").string(), "--source", "0,0,20", "--engine",
+                          "wavefront", "--out", (dir / "d.csv").string(), "--json"});
         },
         0.8 * c.timeLimitS, dir / "geodesic.txt");
     total = b;

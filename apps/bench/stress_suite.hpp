@@ -16,26 +16,28 @@ namespace egg::app {
 
 struct ChildOutcome {
   bool timedOut = false;
-  int exitCode = -1;     // valid when signal == 0 and !timedOut
-  int signal = 0;        // the signal that ended the child (a crash), 0 if it exited
+  int exitCode = -1;  // valid when signal == 0 and !timedOut
+  int signal = 0;     // the signal that ended the child (a crash), 0 if it exited
   double seconds = 0.0;
   double peakRssMb = 0.0;  // the child's own peak resident set (wait4 rusage)
-  std::string output;    // the child's stdout and stderr, interleaved
+  std::string output;      // the child's stdout and stderr, interleaved
 };
 
 // Forks; the child sends stdout and stderr to a file, runs `body` and exits with its return code
 // (an escaping exception: code 3 with its message). Killed (with its process group) after
 // timeLimit_s. Never throws for what the child does.
-ChildOutcome runChild(const std::function<int()>& body, double timeLimitS, const std::filesystem::path& logFile);
+ChildOutcome runChild(const std::function<int()>& body, double timeLimitS,
+                      const std::filesystem::path& logFile);
 
 struct PipelineStressCase {
   std::string name;
-  std::string kind;         // the class: width_thickness, youngs_modulus, scale, ...
+  std::string kind;  // the class: width_thickness, youngs_modulus, scale, ...
   std::string description;
-  nlohmann::json scene;     // an `egg run` scene; surface.file "mesh.obj" when writeMesh is set
+  nlohmann::json scene;  // an `egg run` scene; surface.file "mesh.obj" when writeMesh is set
   std::function<void(const std::filesystem::path&)> writeMesh;  // writes the case's OBJ
-  bool surfaceOnly = false; // `egg surface --stats` + `egg geodesic` instead of `egg run`
-  bool geodesic = true;     // surfaceOnly: also the geodesic field (`egg stress --large-mesh-stages surface` drops it)
+  bool surfaceOnly = false;  // `egg surface --stats` + `egg geodesic` instead of `egg run`
+  bool geodesic = true;  // surfaceOnly: also the geodesic field (`egg stress --large-mesh-stages
+                         // surface` drops it)
   double timeLimitS = 60.0;
 };
 
@@ -44,14 +46,15 @@ std::vector<PipelineStressCase> pipelineStressCases();
 
 struct PipelineStressRow {
   std::string name, kind, stages, result;
-  bool ok = false;          // converged or a stated reason; false: NaN, crash, timeout
+  bool ok = false;  // converged or a stated reason; false: NaN, crash, timeout
   int iterations = 0;
   double rmseM = 0.0, maxErrorM = 0.0, seconds = 0.0, peakRssMb = 0.0;
   nlohmann::json toJson() const;
 };
 
 // Interprets one child's outcome plus the report it wrote (null if none).
-PipelineStressRow classify(const PipelineStressCase& c, const ChildOutcome& o, const nlohmann::json& report);
+PipelineStressRow classify(const PipelineStressCase& c, const ChildOutcome& o,
+                           const nlohmann::json& report);
 
 // Runs a case; `command` runs `egg` with the given arguments (exec in `egg stress`).
 using EggCommand = std::function<int(const std::vector<std::string>& args)>;

@@ -2,16 +2,16 @@
 #include "apps/bench/sweep.hpp"
 
 #include "apps/egg/commands.hpp"
-#include "pipeline/scene.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "pipeline/scene.hpp"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
 #include <algorithm>
 #include <iostream>
-#include <unistd.h>
 #include <memory>
 #include <system_error>
 
@@ -63,12 +63,16 @@ struct Axis {
 };
 
 Axis axisOf(const json& group, const std::string& where) {
-  if (!group.is_object() || group.empty()) throw InvalidInput(where + ": must be an object {\"key\": [values], ...}");
+  if (!group.is_object() || group.empty())
+    throw InvalidInput(where + ": must be an object {\"key\": [values], ...}");
   Axis axis;
   for (const auto& [key, list] : group.items()) {
-    if (!list.is_array() || list.empty()) throw InvalidInput(fmt::format("{}: key '{}': must be a non-empty list of values", where, abbreviate(key, 80)));
+    if (!list.is_array() || list.empty())
+      throw InvalidInput(fmt::format("{}: key '{}': must be a non-empty list of values", where,
+                                     abbreviate(key, 80)));
     if (!axis.values.empty() && list.size() != axis.size())
-      throw InvalidInput(fmt::format("{}: key '{}': {} values, but the group's other keys have {}", where, abbreviate(key, 80), list.size(), axis.size()));
+      throw InvalidInput(fmt::format("{}: key '{}': {} values, but the group's other keys have {}",
+                                     where, abbreviate(key, 80), list.size(), axis.size()));
     axis.keys.push_back(key);
     axis.values.emplace_back(list.begin(), list.end());
   }
@@ -80,10 +84,13 @@ Axis axisOf(const json& group, const std::string& where) {
 void anchorFiles(json& node, const fs::path& folder) {
   if (node.is_object()) {
     for (auto& [key, value] : node.items()) {
-      const bool fileKey = key == "file" || (key.size() > 5 && key.compare(key.size() - 5, 5, "_file") == 0);
-      if (fileKey && value.is_string() && !value.get<std::string>().empty() && fs::path(value.get<std::string>()).is_relative())
+      const bool fileKey =
+          key == "file" || (key.size() > 5 && key.compare(key.size() - 5, 5, "_file") == 0);
+      if (fileKey && value.is_string() && !value.get<std::string>().empty() &&
+          fs::path(value.get<std::string>()).is_relative())
         value = (folder / value.get<std::string>()).lexically_normal().string();
-      else anchorFiles(value, folder);
+      else
+        anchorFiles(value, folder);
     }
   } else if (node.is_array()) {
     for (auto& value : node) anchorFiles(value, folder);
@@ -102,23 +109,30 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
   }
   if (!sweep.is_object()) throw InvalidInput(where + ": must be a JSON object");
   for (const auto& [key, value] : sweep.items())
-    if (key != "base" && key != "parameters" && key != "zip") throw InvalidInput(fmt::format("{}: unknown key '{}' (base, parameters, zip)", where, abbreviate(key, 80)));
-  if (!sweep.contains("base") || !sweep["base"].is_string()) throw InvalidInput(where + ": base: must name the base scene file");
-  const fs::path basePath = fs::path(sweep["base"].get<std::string>()).is_absolute()
-                                ? fs::path(sweep["base"].get<std::string>())
-                                : options.sweepFile.parent_path() / sweep["base"].get<std::string>();
+    if (key != "base" && key != "parameters" && key != "zip")
+      throw InvalidInput(
+          fmt::format("{}: unknown key '{}' (base, parameters, zip)", where, abbreviate(key, 80)));
+  if (!sweep.contains("base") || !sweep["base"].is_string())
+    throw InvalidInput(where + ": base: must name the base scene file");
+  const fs::path basePath =
+      fs::path(sweep["base"].get<std::string>()).is_absolute()
+          ? fs::path(sweep["base"].get<std::string>())
+          : options.sweepFile.parent_path() / sweep["base"].get<std::string>();
   const Scene baseScene = loadScene(basePath);  // a bad base stops here, naming its file
   json base = json::parse(readRegularFile(basePath, 1 << 24, "scene file"));
   anchorFiles(base, fs::absolute(basePath).parent_path());
 
   std::vector<Axis> axes;
   if (sweep.contains("parameters")) {
-    if (!sweep["parameters"].is_object()) throw InvalidInput(where + ": parameters: must be an object {\"key\": [values]}");
-    for (const auto& [key, list] : sweep["parameters"].items()) axes.push_back(axisOf(json{{key, list}}, where + ": parameters"));
+    if (!sweep["parameters"].is_object())
+      throw InvalidInput(where + ": parameters: must be an object {\"key\": [values]}");
+    for (const auto& [key, list] : sweep["parameters"].items())
+      axes.push_back(axisOf(json{{key, list}}, where + ": parameters"));
   }
   if (sweep.contains("zip")) {
     if (!sweep["zip"].is_array()) throw InvalidInput(where + ": zip: must be a list of groups");
-    for (size_t g = 0; g < sweep["zip"].size(); ++g) axes.push_back(axisOf(sweep["zip"][g], fmt::format("{}: zip[{}]", where, g)));
+    for (size_t g = 0; g < sweep["zip"].size(); ++g)
+      axes.push_back(axisOf(sweep["zip"][g], fmt::format("{}: zip[{}]", where, g)));
   }
   if (axes.empty()) throw InvalidInput(where + ": no parameters to sweep");
   SweepExpansion expansion;
@@ -126,11 +140,13 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
   size_t total = 1;
   for (const auto& axis : axes) {
     total *= axis.size();
-    if (total > kMaxVariants) throw InvalidInput(fmt::format("{}: more than {} variants", where, kMaxVariants));
+    if (total > kMaxVariants)
+      throw InvalidInput(fmt::format("{}: more than {} variants", where, kMaxVariants));
     for (const auto& key : axis.keys) {
       const auto pointer = pointerOf(key, where);
       if (!base.contains(pointer))
-        throw InvalidInput(fmt::format("{}: key '{}' is not in the base scene {}", where, abbreviate(key, 80), basePath.string()));
+        throw InvalidInput(fmt::format("{}: key '{}' is not in the base scene {}", where,
+                                       abbreviate(key, 80), basePath.string()));
       if (std::find(pointers.begin(), pointers.end(), pointer) != pointers.end())
         throw InvalidInput(fmt::format("{}: key '{}' is swept twice", where, abbreviate(key, 80)));
       pointers.push_back(pointer);
@@ -140,13 +156,15 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
 
   const fs::path out = fs::absolute(options.out).lexically_normal();
   std::error_code ec;
-  if (fs::exists(out) && !fs::is_directory(out)) throw InvalidInput(out.string() + ": exists and is not a folder");
+  if (fs::exists(out) && !fs::is_directory(out))
+    throw InvalidInput(out.string() + ": exists and is not a folder");
   if (fs::is_directory(out) && !fs::is_empty(out) && !options.force)
     throw InvalidInput(out.string() + ": exists and is not empty (--force writes into it)");
   // Everything goes to a staging folder beside DIR first: a bad variant writes nothing.
   const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
   fs::create_directories(parent);
-  const fs::path staging = parent / (temporaryFilePrefix() + std::to_string(::getpid()) + "-" + temporarySuffix());
+  const fs::path staging =
+      parent / (temporaryFilePrefix() + std::to_string(::getpid()) + "-" + temporarySuffix());
   fs::create_directories(staging / "scenes");
   try {
     std::string jobs, csv = "variant";
@@ -160,7 +178,8 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
       size_t rest = v;
       // The last axis varies fastest (odometer order).
       std::vector<size_t> index(axes.size());
-      for (size_t a = axes.size(); a-- > 0;) index[a] = rest % axes[a].size(), rest /= axes[a].size();
+      for (size_t a = axes.size(); a-- > 0;)
+        index[a] = rest % axes[a].size(), rest /= axes[a].size();
       size_t column = 0;
       for (size_t a = 0; a < axes.size(); ++a)
         for (size_t k = 0; k < axes[a].keys.size(); ++k, ++column) {
@@ -175,7 +194,8 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
         throw InvalidInput(fmt::format("{}: variant {}: {}", where, id, e.what()));
       }
       writeFileAtomically(staging / "scenes" / (id + ".json"), scene.dump(2) + "\n");
-      jobs += fmt::format("{} run {} -o {} -q\n", shellQuote(egg), shellQuote(sceneFile.string()), shellQuote((out / "runs" / id).string()));
+      jobs += fmt::format("{} run {} -o {} -q\n", shellQuote(egg), shellQuote(sceneFile.string()),
+                          shellQuote((out / "runs" / id).string()));
       csv += id;
       for (const auto& value : row) csv += "," + csvField(value);
       csv += "\n";
@@ -184,18 +204,23 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
     }
     writeFileAtomically(staging / "jobs.txt", jobs);
     writeFileAtomically(staging / "variants.csv", csv);
-    writeFileAtomically(staging / "slurm.sh",
-                        fmt::format("#!/bin/bash\n# egg sweep: one array task per line of jobs.txt (submit with sbatch slurm.sh).\n"
-                                    "#SBATCH --job-name=egg-sweep\n#SBATCH --array=1-{}\n#SBATCH --output={}/slurm-%A_%a.out\n"
-                                    "cd {} || exit 1\nsed -n \"${{SLURM_ARRAY_TASK_ID}}p\" jobs.txt | bash\n",
-                                    total, out.string(), shellQuote(out.string())));
-    fs::permissions(staging / "slurm.sh", fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
+    writeFileAtomically(
+        staging / "slurm.sh",
+        fmt::format("#!/bin/bash\n# egg sweep: one array task per line of jobs.txt (submit with "
+                    "sbatch slurm.sh).\n"
+                    "#SBATCH --job-name=egg-sweep\n#SBATCH --array=1-{}\n#SBATCH "
+                    "--output={}/slurm-%A_%a.out\n"
+                    "cd {} || exit 1\nsed -n \"${{SLURM_ARRAY_TASK_ID}}p\" jobs.txt | bash\n",
+                    total, out.string(), shellQuote(out.string())));
+    fs::permissions(staging / "slurm.sh", fs::perms::owner_exec | fs::perms::group_exec,
+                    fs::perm_options::add);
     if (!fs::exists(out)) {
       fs::rename(staging, out);
     } else {
       // --force into an existing DIR: only the files this command writes are replaced.
       fs::remove_all(out / "scenes");
-      for (const char* name : {"scenes", "jobs.txt", "variants.csv", "slurm.sh"}) fs::rename(staging / name, out / name);
+      for (const char* name : {"scenes", "jobs.txt", "variants.csv", "slurm.sh"})
+        fs::rename(staging / name, out / name);
       fs::remove_all(staging);
     }
   } catch (...) {
@@ -211,28 +236,39 @@ void registerSweepCommand(CLI::App& parent, Action& action) {
     bool force = false;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = parent.add_subcommand("sweep", "Expand a parameter grid over a base scene into scenes and a job list for GNU parallel or "
-                                                 "Slurm (--out DIR), or merge the runs' reports (--collect DIR)");
-  cmd->add_option("sweep", args->sweep, "Sweep file: {\"base\": scene, \"parameters\": {key: [values]}, \"zip\": [{key: [values], ...}]}");
+  CLI::App* cmd = parent.add_subcommand(
+      "sweep",
+      "Expand a parameter grid over a base scene into scenes and a job list for GNU parallel or "
+      "Slurm (--out DIR), or merge the runs' reports (--collect DIR)");
+  cmd->add_option("sweep", args->sweep,
+                  "Sweep file: {\"base\": scene, \"parameters\": {key: [values]}, \"zip\": [{key: "
+                  "[values], ...}]}");
   cmd->add_option("--out,-o", args->out, "Folder for scenes/, jobs.txt, variants.csv, slurm.sh");
   cmd->add_flag("--force", args->force, "Write into an existing non-empty --out folder");
-  cmd->add_option("--collect", args->collect, "Merge DIR/runs/*/report.json into DIR/sweep.csv and DIR/sweep.svg");
+  cmd->add_option("--collect", args->collect,
+                  "Merge DIR/runs/*/report.json into DIR/sweep.csv and DIR/sweep.svg");
   cmd->callback([args, &action] {
     action = [args]() {
       if (!args->collect.empty()) {
-        if (!args->sweep.empty() || !args->out.empty()) throw InvalidInput("egg sweep: --collect DIR takes no sweep file and no --out");
+        if (!args->sweep.empty() || !args->out.empty())
+          throw InvalidInput("egg sweep: --collect DIR takes no sweep file and no --out");
         const int missing = collectSweep(args->collect);
-        std::cout << fmt::format("egg sweep: wrote {} and {}\n", (fs::path(args->collect) / "sweep.csv").string(),
+        std::cout << fmt::format("egg sweep: wrote {} and {}\n",
+                                 (fs::path(args->collect) / "sweep.csv").string(),
                                  (fs::path(args->collect) / "sweep.svg").string());
         return missing == 0 ? kExitOk : kExitFailure;
       }
-      if (args->sweep.empty() || args->out.empty()) throw InvalidInput("egg sweep: give SWEEP.json --out DIR, or --collect DIR");
-      SweepExpandOptions options{args->sweep, args->out, fs::read_symlink("/proc/self/exe"), args->force};
+      if (args->sweep.empty() || args->out.empty())
+        throw InvalidInput("egg sweep: give SWEEP.json --out DIR, or --collect DIR");
+      SweepExpandOptions options{args->sweep, args->out, fs::read_symlink("/proc/self/exe"),
+                                 args->force};
       const SweepExpansion expansion = expandSweep(options);
-      std::cout << fmt::format("egg sweep: {} variants; run them with\n  parallel --joblog {} < {}\nor\n  sbatch {}\nthen egg sweep --collect {}\n",
-                               expansion.variants.size(), shellQuote((fs::path(args->out) / "joblog.txt").string()),
-                               shellQuote((fs::path(args->out) / "jobs.txt").string()), shellQuote((fs::path(args->out) / "slurm.sh").string()),
-                               shellQuote(args->out));
+      std::cout << fmt::format(
+          "egg sweep: {} variants; run them with\n  parallel --joblog {} < {}\nor\n  sbatch "
+          "{}\nthen egg sweep --collect {}\n",
+          expansion.variants.size(), shellQuote((fs::path(args->out) / "joblog.txt").string()),
+          shellQuote((fs::path(args->out) / "jobs.txt").string()),
+          shellQuote((fs::path(args->out) / "slurm.sh").string()), shellQuote(args->out));
       return kExitOk;
     };
   });

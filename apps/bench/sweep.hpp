@@ -17,17 +17,17 @@ struct SweepExpandOptions {
 };
 
 struct SweepExpansion {
-  std::vector<std::string> keys;                   // JSON pointers, in column order
-  std::vector<std::string> variants;               // v001, v002, ...
-  std::vector<std::vector<std::string>> values;    // per variant, per key: the value as JSON text
+  std::vector<std::string> keys;                 // JSON pointers, in column order
+  std::vector<std::string> variants;             // v001, v002, ...
+  std::vector<std::vector<std::string>> values;  // per variant, per key: the value as JSON text
 };
 
 // Expands the sweep and writes DIR/scenes/<variant>.json, DIR/jobs.txt, DIR/variants.csv and
 // DIR/slurm.sh. Throws InvalidInput naming the sweep file and key (nothing written then).
 SweepExpansion expandSweep(const SweepExpandOptions& options);
 
-// Reads DIR/variants.csv and DIR/runs/<variant>/report.json; writes DIR/sweep.csv and DIR/sweep.svg.
-// Returns how many variants have no usable report (missing or failed).
+// Reads DIR/variants.csv and DIR/runs/<variant>/report.json; writes DIR/sweep.csv and
+// DIR/sweep.svg. Returns how many variants have no usable report (missing or failed).
 int collectSweep(const std::filesystem::path& dir);
 
 // A word for a POSIX shell: single-quoted, a quote inside as '\''.

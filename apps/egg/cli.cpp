@@ -23,8 +23,9 @@ int runCli(int argc, char** argv) {
   registerGeodesicCommand(app, action);
   registerStressCommand(app, action);
   registerSweepCommand(app, action);
-  CLI::App* bench = app.add_subcommand(
-      "bench", "Benchmarks: error against run time, with a reference measured in the same run (CSV + table).");
+  CLI::App* bench = app.add_subcommand("bench",
+                                       "Benchmarks: error against run time, with a reference "
+                                       "measured in the same run (CSV + table).");
   bench->require_subcommand(1);
   registerGeodesicBench(*bench, action);
   registerGridBench(*bench, action);

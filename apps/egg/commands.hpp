@@ -18,20 +18,23 @@ constexpr int kExitBadInput = 2;
 
 using Action = std::function<int()>;
 
-void registerSurfaceCommand(CLI::App& parent, Action& action);  // surface.cpp
-void registerRunCommand(CLI::App& parent, Action& action);      // run.cpp
+void registerSurfaceCommand(CLI::App& parent, Action& action);         // surface.cpp
+void registerRunCommand(CLI::App& parent, Action& action);             // run.cpp
 void registerSceneReferenceCommand(CLI::App& parent, Action& action);  // scene_reference.cpp
 // `egg bench <kind>`: bench is a group; each benchmark registers under it.
 // (Helpers add their register functions here, one line each, and one call in cli.cpp.)
-void registerGeodesicCommand(CLI::App& parent, Action& action);  // geodesic_commands.cpp (egg geodesic)
-void registerGeodesicBench(CLI::App& bench, Action& action);     // apps/bench/geodesic_bench.cpp
-void registerSimBench(CLI::App& bench, Action& action);          // sim_commands.cpp (egg bench sim)
-void registerGridBench(CLI::App& bench, Action& action);         // grid_commands.cpp (egg bench grid)
-void registerLayoutBench(CLI::App& bench, Action& action);       // layout_bench.cpp (egg bench layout)
-void registerPatchingBench(CLI::App& bench, Action& action);     // patching_bench.cpp (egg bench patching)
-void registerPipelineBench(CLI::App& bench, Action& action);     // pipeline_bench.cpp (egg bench pipeline)
-void registerStressCommand(CLI::App& parent, Action& action);    // sim_commands.cpp (egg stress)
-void registerSweepCommand(CLI::App& parent, Action& action);     // sweep.cpp (egg sweep)
+void registerGeodesicCommand(CLI::App& parent,
+                             Action& action);  // geodesic_commands.cpp (egg geodesic)
+void registerGeodesicBench(CLI::App& bench, Action& action);  // apps/bench/geodesic_bench.cpp
+void registerSimBench(CLI::App& bench, Action& action);       // sim_commands.cpp (egg bench sim)
+void registerGridBench(CLI::App& bench, Action& action);      // grid_commands.cpp (egg bench grid)
+void registerLayoutBench(CLI::App& bench, Action& action);    // layout_bench.cpp (egg bench layout)
+void registerPatchingBench(CLI::App& bench,
+                           Action& action);  // patching_bench.cpp (egg bench patching)
+void registerPipelineBench(CLI::App& bench,
+                           Action& action);  // pipeline_bench.cpp (egg bench pipeline)
+void registerStressCommand(CLI::App& parent, Action& action);  // sim_commands.cpp (egg stress)
+void registerSweepCommand(CLI::App& parent, Action& action);   // sweep.cpp (egg sweep)
 
 // A CLI11 check for a floating-point option: a finite number in [lo, hi]. CLI11's own Range and
 // PositiveNumber let NaN through (every comparison with NaN is false).
@@ -39,10 +42,11 @@ inline CLI::Validator finiteRange(double lo, double hi) {
   return CLI::Validator(
       [lo, hi](std::string& text) -> std::string {
         double x = 0.0;
-        if (!CLI::detail::lexical_cast(text, x)) return "'" + text.substr(0, 40) + "' is not a number";
+        if (!CLI::detail::lexical_cast(text, x))
+          return "'" + text.substr(0, 40) + "' is not a number";
         if (!std::isfinite(x) || x < lo || x > hi)
-          return "'" + text.substr(0, 40) + "' is not a finite number in [" + CLI::detail::to_string(lo) + ", " +
-                 CLI::detail::to_string(hi) + "]";
+          return "'" + text.substr(0, 40) + "' is not a finite number in [" +
+                 CLI::detail::to_string(lo) + ", " + CLI::detail::to_string(hi) + "]";
         return "";
       },
       "FINITE in [" + CLI::detail::to_string(lo) + " - " + CLI::detail::to_string(hi) + "]");

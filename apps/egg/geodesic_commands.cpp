@@ -3,15 +3,15 @@
 #include "pipeline/surface_stage.hpp"
 
 #include "core/errors.hpp"
-#include "core/io/atomic_file.hpp"
 #include "core/geodesic/distance_solver.hpp"
 #include "core/geodesic/exact_reference.hpp"
+#include "core/io/atomic_file.hpp"
 #include "samples/generators/samples.hpp"
 
 #include <fmt/core.h>
-#include <nlohmann/json.hpp>
 #include <sys/resource.h>
 #include <time.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -24,7 +24,6 @@
 namespace egg::app {
 using namespace egg::pipeline;
 namespace {
-
 
 Eigen::Vector3d parsePoint(const std::string& text) {
   std::stringstream in(text);
@@ -57,11 +56,15 @@ int runGeodesic(const GeodesicArgs& args) {
   const TriMesh mesh = loadSurfaceArgument(args.surface);
   const Eigen::Vector3d requested = parsePoint(args.source);
   geodesic::DistanceSolverOptions options;
-  if (args.exact) options = geodesic::DistanceSolverOptions::exact();
-  else options.imageMergeTolerance = args.mergeTolerance;
-  if (args.engine == "stored") options.engine = geodesic::DistanceSolverOptions::Engine::StoredWindows;
+  if (args.exact)
+    options = geodesic::DistanceSolverOptions::exact();
+  else
+    options.imageMergeTolerance = args.mergeTolerance;
+  if (args.engine == "stored")
+    options.engine = geodesic::DistanceSolverOptions::Engine::StoredWindows;
   if (args.engine == "front") options.engine = geodesic::DistanceSolverOptions::Engine::FrontOnly;
-  if (args.engine == "wavefront") options.engine = geodesic::DistanceSolverOptions::Engine::Wavefront;
+  if (args.engine == "wavefront")
+    options.engine = geodesic::DistanceSolverOptions::Engine::Wavefront;
   const geodesic::DistanceSolver solver(mesh, options);
   const SurfacePoint source = geodesic::snapToSurface(mesh, requested);
   const Eigen::Vector3d snapped = position(mesh, source);
@@ -80,8 +83,10 @@ int runGeodesic(const GeodesicArgs& args) {
   double maxDistance = 0.0;
   int unreachable = 0;
   for (double d : field.vertexDistances) {
-    if (std::isfinite(d)) maxDistance = std::max(maxDistance, d);
-    else ++unreachable;
+    if (std::isfinite(d))
+      maxDistance = std::max(maxDistance, d);
+    else
+      ++unreachable;
   }
   nlohmann::json summary = {{"vertices", mesh.n_vertices()},
                             {"source_requested_m", {requested.x(), requested.y(), requested.z()}},
@@ -98,12 +103,13 @@ int runGeodesic(const GeodesicArgs& args) {
   if (args.json) {
     std::cout << summary.dump(2) << "\n";
   } else {
-    std::cout << fmt::format("source    ({:.6g}, {:.6g}, {:.6g}) snapped to the surface ({:.3g} m away)\n",
-                             snapped.x(), snapped.y(), snapped.z(), (snapped - requested).norm());
-    std::cout << fmt::format("distances {} vertices, max {:.6g} m, {} unreachable\n", mesh.n_vertices(), maxDistance,
-                             unreachable);
-    std::cout << fmt::format("time      {:.3f} s (+ {:.3f} s precomputation)\nwritten   {}\n", field.seconds,
-                             solver.precomputeSeconds(), args.out);
+    std::cout << fmt::format(
+        "source    ({:.6g}, {:.6g}, {:.6g}) snapped to the surface ({:.3g} m away)\n", snapped.x(),
+        snapped.y(), snapped.z(), (snapped - requested).norm());
+    std::cout << fmt::format("distances {} vertices, max {:.6g} m, {} unreachable\n",
+                             mesh.n_vertices(), maxDistance, unreachable);
+    std::cout << fmt::format("time      {:.3f} s (+ {:.3f} s precomputation)\nwritten   {}\n",
+                             field.seconds, solver.precomputeSeconds(), args.out);
   }
   return kExitOk;
 }
@@ -113,20 +119,27 @@ int runGeodesic(const GeodesicArgs& args) {
 void registerGeodesicCommand(CLI::App& parent, Action& action) {
   auto args = std::make_shared<GeodesicArgs>();
   auto* cmd = parent.add_subcommand(
-      "geodesic", "Geodesic distances (the polyhedral distance, within 1e-5) from a point on SURFACE to every "
-                  "vertex, written as x,y,z,distance CSV");
-  cmd->add_option("SURFACE", args->surface, "sample name, mesh file, or scene file (its surface)")->required();
-  cmd->add_option("--source", args->source, "source point x,y,z in metres (snapped to the surface)")->required();
-  cmd->add_option("--out", args->out, "output CSV (x,y,z,distance per vertex; inf if unreachable)")->required();
+      "geodesic",
+      "Geodesic distances (the polyhedral distance, within 1e-5) from a point on SURFACE to every "
+      "vertex, written as x,y,z,distance CSV");
+  cmd->add_option("SURFACE", args->surface, "sample name, mesh file, or scene file (its surface)")
+      ->required();
+  cmd->add_option("--source", args->source, "source point x,y,z in metres (snapped to the surface)")
+      ->required();
+  cmd->add_option("--out", args->out, "output CSV (x,y,z,distance per vertex; inf if unreachable)")
+      ->required();
   cmd->add_option("--engine", args->engine,
-                  "stored (every window kept), front (only the queued windows, far less memory) or wavefront "
+                  "stored (every window kept), front (only the queued windows, far less memory) or "
+                  "wavefront "
                   "(the same, queued per edge, VTP-style); default: the solver's")
       ->check(CLI::IsMember({"stored", "front", "wavefront"}));
-  cmd->add_flag("--exact", args->exact,
-               "the exact polyhedral distance: every saddle a pseudo-source, no near images merged");
-  cmd->add_option("--merge-tolerance", args->mergeTolerance,
-                  "near images merged within this fraction of the edge length (DistanceSolverOptions::"
-                  "imageMergeTolerance; 0: off)")
+  cmd->add_flag(
+      "--exact", args->exact,
+      "the exact polyhedral distance: every saddle a pseudo-source, no near images merged");
+  cmd->add_option(
+         "--merge-tolerance", args->mergeTolerance,
+         "near images merged within this fraction of the edge length (DistanceSolverOptions::"
+         "imageMergeTolerance; 0: off)")
       ->capture_default_str()
       ->excludes("--exact");
   cmd->add_flag("--json", args->json, "print the summary as JSON");

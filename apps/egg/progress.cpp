@@ -2,10 +2,10 @@
 
 #include <fmt/core.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <unistd.h>
 
 namespace egg::app {
 
@@ -14,22 +14,26 @@ std::string progressText(double fraction, const std::string& what, double elapse
   fraction = std::clamp(fraction, 0.0, 1.0);
   width = std::max(width, 1);
   const int filled = static_cast<int>(std::floor(fraction * width + 1e-9));
-  return fmt::format("[{}{}] {:>3.0f}% {} ({:.1f} s)", std::string(filled, '#'), std::string(width - filled, '.'),
-                     std::floor(100.0 * fraction + 1e-9), what, elapsedS);
+  return fmt::format("[{}{}] {:>3.0f}% {} ({:.1f} s)", std::string(filled, '#'),
+                     std::string(width - filled, '.'), std::floor(100.0 * fraction + 1e-9), what,
+                     elapsedS);
 }
 
 bool ProgressLine::stderrIsTerminal() { return isatty(STDERR_FILENO) != 0; }
 
-ProgressLine::ProgressLine(bool enabled) : enabled_(enabled && stderrIsTerminal()), started_(std::chrono::steady_clock::now()) {}
+ProgressLine::ProgressLine(bool enabled)
+    : enabled_(enabled && stderrIsTerminal()), started_(std::chrono::steady_clock::now()) {}
 
 ProgressLine::~ProgressLine() { finish(); }
 
 void ProgressLine::update(double fraction, const std::string& what) {
   if (!enabled_) return;
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
   std::string line = progressText(fraction, what, elapsed);
   const size_t length = line.size();
-  if (length < lastLength_) line += std::string(lastLength_ - length, ' ');  // wipe a longer previous line
+  if (length < lastLength_)
+    line += std::string(lastLength_ - length, ' ');  // wipe a longer previous line
   lastLength_ = length;
   std::cerr << '\r' << line << std::flush;
   drawn_ = true;

@@ -1,14 +1,14 @@
 #include "apps/egg/commands.hpp"
-#include "pipeline/pipeline.hpp"
 #include "apps/egg/progress.hpp"
+#include "pipeline/pipeline.hpp"
 
 #include <fmt/core.h>
 
 #include <tbb/global_control.h>
 
 #include <iostream>
-#include <optional>
 #include <memory>
+#include <optional>
 
 namespace egg::app {
 using namespace egg::pipeline;
@@ -23,33 +23,44 @@ void registerRunCommand(CLI::App& parent, Action& action) {
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = parent.add_subcommand(
-      "run", "Run the whole pipeline on a scene file and write report.json and the requested outputs.");
+      "run",
+      "Run the whole pipeline on a scene file and write report.json and the requested outputs.");
   cmd->add_option("scene", args->scene, "Scene file (default: samples/great_court.json)");
-  cmd->add_option("--out,-o", args->out, "Run folder (default: out/<scene name>); replaced whole when the run completes");
+  cmd->add_option("--out,-o", args->out,
+                  "Run folder (default: out/<scene name>); replaced whole when the run completes");
   cmd->add_flag("--json", args->json, "Print the report as JSON on stdout");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress on stderr");
-  cmd->add_option("-j,--threads", args->threads, "Worker threads (default: all cores); results do not depend on it")
+  cmd->add_option("-j,--threads", args->threads,
+                  "Worker threads (default: all cores); results do not depend on it")
       ->check(CLI::Range(1, kMaxThreads));
   cmd->callback([args, &action] {
     action = [args]() {
       const Scene scene = loadScene(args->scene);
       std::optional<tbb::global_control> threadLimit;
-      if (args->threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(args->threads));
+      if (args->threads > 0)
+        threadLimit.emplace(tbb::global_control::max_allowed_parallelism,
+                            static_cast<size_t>(args->threads));
       PipelineOptions options;
-      options.outDir = args->out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args->out);
+      options.outDir = args->out.empty() ? std::filesystem::path("out") / scene.name
+                                         : std::filesystem::path(args->out);
       ProgressLine bar(!args->quiet);  // drawn only on a terminal
-      if (bar.shown()) options.progress = [&bar](const std::string& stage, double fraction) { bar.update(fraction, stage); };
+      if (bar.shown())
+        options.progress = [&bar](const std::string& stage, double fraction) {
+          bar.update(fraction, stage);
+        };
       const PipelineResult result = runPipeline(scene, options);
       bar.finish();
       if (result.nothingRequested) {
-        std::cout << fmt::format("egg run: {}: the scene asks for no outputs (\"outputs\": []): nothing to do\n", scene.name);
+        std::cout << fmt::format(
+            "egg run: {}: the scene asks for no outputs (\"outputs\": []): nothing to do\n",
+            scene.name);
         return kExitOk;
       }
       if (args->json) {
         std::cout << result.report.dump(2) << "\n";
       } else {
-        std::cout << fmt::format("egg run: {} done in {:.2f} s; results in {}\n", scene.name, result.seconds,
-                                 result.outDir.string());
+        std::cout << fmt::format("egg run: {} done in {:.2f} s; results in {}\n", scene.name,
+                                 result.seconds, result.outDir.string());
       }
       for (const auto& failure : result.failures) std::cerr << "egg run: " << failure << "\n";
       return result.failures.empty() ? kExitOk : kExitFailure;

@@ -11,14 +11,17 @@ namespace egg::app {
 
 void registerSceneReferenceCommand(CLI::App& parent, Action& action) {
   auto out = std::make_shared<std::string>();
-  CLI::App* cmd = parent.add_subcommand(
-      "scene-reference", "Print the scene file reference (Markdown): every key with its type, range, default and meaning.");
+  CLI::App* cmd = parent.add_subcommand("scene-reference",
+                                        "Print the scene file reference (Markdown): every key with "
+                                        "its type, range, default and meaning.");
   cmd->add_option("--out,-o", *out, "write it to this file instead of stdout");
   cmd->callback([out, &action] {
     action = [out] {
       const std::string text = pipeline::sceneReferenceMarkdown();
-      if (out->empty()) std::cout << text;
-      else writeFileAtomically(*out, text);
+      if (out->empty())
+        std::cout << text;
+      else
+        writeFileAtomically(*out, text);
       return kExitOk;
     };
   });

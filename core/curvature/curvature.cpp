@@ -2,10 +2,10 @@
 
 #include "core/errors.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <Eigen/Eigenvalues>
 
 #include <chrono>
 #include <cmath>
@@ -36,7 +36,8 @@ Corner corner(const TriMesh& mesh, int face) {
 }
 
 // Vertices within `rings` edges of `v` (v included, first).
-void gatherRings(const TriMesh& mesh, int v, int rings, std::vector<int>& stamp, int stampValue, std::vector<int>& out) {
+void gatherRings(const TriMesh& mesh, int v, int rings, std::vector<int>& stamp, int stampValue,
+                 std::vector<int>& out) {
   out.clear();
   out.push_back(v);
   stamp[v] = stampValue;
@@ -78,14 +79,16 @@ PrincipalFit fitPrincipal(const TriMesh& mesh, const Eigen::Vector3d& p, const E
   if (count < unknowns) return fit;
   double scale = 0.0;
   for (int i = 1; i <= count; ++i)
-    scale = std::max(scale, (toEigen(mesh.point(TriMesh::VertexHandle(neighbourhood[i]))) - p).norm());
+    scale =
+        std::max(scale, (toEigen(mesh.point(TriMesh::VertexHandle(neighbourhood[i]))) - p).norm());
   if (!(scale > 0.0)) return fit;
   // Scaled coordinates (x/s, y/s, z/s) for conditioning. Column order: x, y, x^2, xy, y^2, then
   // the higher degrees.
   Eigen::MatrixXd A(count, unknowns);
   Eigen::VectorXd rhs(count);
   for (int i = 1; i <= count; ++i) {
-    const Eigen::Vector3d q = (toEigen(mesh.point(TriMesh::VertexHandle(neighbourhood[i]))) - p) / scale;
+    const Eigen::Vector3d q =
+        (toEigen(mesh.point(TriMesh::VertexHandle(neighbourhood[i]))) - p) / scale;
     const double x = q.dot(t1), y = q.dot(t2);
     double xPower[5] = {1.0, x, x * x, x * x * x, x * x * x * x};
     double yPower[5] = {1.0, y, y * y, y * y * y, y * y * y * y};
@@ -100,8 +103,9 @@ PrincipalFit fitPrincipal(const TriMesh& mesh, const Eigen::Vector3d& p, const E
   Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(unknowns, unknowns);
   normal.selfadjointView<Eigen::Lower>().rankUpdate(A.transpose());
   Eigen::LLT<Eigen::MatrixXd> cholesky(normal);
-  const Eigen::VectorXd coef = cholesky.info() == Eigen::Success ? Eigen::VectorXd(cholesky.solve(A.transpose() * rhs))
-                                                                : Eigen::VectorXd(A.colPivHouseholderQr().solve(rhs));
+  const Eigen::VectorXd coef = cholesky.info() == Eigen::Success
+                                   ? Eigen::VectorXd(cholesky.solve(A.transpose() * rhs))
+                                   : Eigen::VectorXd(A.colPivHouseholderQr().solve(rhs));
   if (!coef.allFinite()) return fit;
   // Back to metres: z = s g(x/s, y/s), so second derivatives divide by s, first ones do not.
   const double fx = coef(0), fy = coef(1);
@@ -116,7 +120,9 @@ PrincipalFit fitPrincipal(const TriMesh& mesh, const Eigen::Vector3d& p, const E
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> solver(second, first);
   if (solver.info() != Eigen::Success) return fit;
   const Eigen::Vector3d xu = t1 + fx * n, xv = t2 + fy * n;  // tangent basis of the fitted surface
-  auto toWorld = [&](const Eigen::Vector2d& a) { return Eigen::Vector3d((a(0) * xu + a(1) * xv).normalized()); };
+  auto toWorld = [&](const Eigen::Vector2d& a) {
+    return Eigen::Vector3d((a(0) * xu + a(1) * xv).normalized());
+  };
   fit.kappaMin = solver.eigenvalues()(0);
   fit.kappaMax = solver.eigenvalues()(1);
   fit.directionMin = toWorld(solver.eigenvectors().col(0));
@@ -129,13 +135,17 @@ PrincipalFit fitPrincipal(const TriMesh& mesh, const Eigen::Vector3d& p, const E
 
 void CurvatureOptions::validate() const {
   if (fitRings < 1 || fitRings > 5)
-    throw InvalidInput("CurvatureOptions.fit_rings must be in [1, 5], got " + std::to_string(fitRings));
+    throw InvalidInput("CurvatureOptions.fit_rings must be in [1, 5], got " +
+                       std::to_string(fitRings));
   if (fitDegree < 2 || fitDegree > 4)
-    throw InvalidInput("CurvatureOptions.fit_degree must be 2, 3 or 4, got " + std::to_string(fitDegree));
+    throw InvalidInput("CurvatureOptions.fit_degree must be 2, 3 or 4, got " +
+                       std::to_string(fitDegree));
   if (boundaryFitDegree < 2 || boundaryFitDegree > 4)
-    throw InvalidInput("CurvatureOptions.boundary_fit_degree must be 2, 3 or 4, got " + std::to_string(boundaryFitDegree));
+    throw InvalidInput("CurvatureOptions.boundary_fit_degree must be 2, 3 or 4, got " +
+                       std::to_string(boundaryFitDegree));
   if (minFitPoints < 5 || minFitPoints > 500)
-    throw InvalidInput("CurvatureOptions.min_fit_points must be in [5, 500], got " + std::to_string(minFitPoints));
+    throw InvalidInput("CurvatureOptions.min_fit_points must be in [5, 500], got " +
+                       std::to_string(minFitPoints));
 }
 
 Eigen::VectorXd angleDefects(const TriMesh& mesh) {
@@ -146,7 +156,8 @@ Eigen::VectorXd angleDefects(const TriMesh& mesh) {
   }
   Eigen::VectorXd defect(mesh.n_vertices());
   for (auto vh : mesh.vertices())
-    defect(vh.idx()) = (mesh.is_boundary(vh) ? std::numbers::pi : 2.0 * std::numbers::pi) - sum(vh.idx());
+    defect(vh.idx()) =
+        (mesh.is_boundary(vh) ? std::numbers::pi : 2.0 * std::numbers::pi) - sum(vh.idx());
   return defect;
 }
 
@@ -173,7 +184,8 @@ double injectivityRadiusBound(double gaussianMax) {
 
 CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& options) {
   options.validate();
-  if (mesh.n_vertices() == 0 || mesh.n_faces() == 0) throw InvalidInput("computeCurvature: the mesh is empty");
+  if (mesh.n_vertices() == 0 || mesh.n_faces() == 0)
+    throw InvalidInput("computeCurvature: the mesh is empty");
   const auto start = std::chrono::steady_clock::now();
   const int n = static_cast<int>(mesh.n_vertices());
   CurvatureField field;
@@ -196,7 +208,9 @@ CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& opt
   struct Scratch {
     std::vector<int> stamp, neighbourhood;
   };
-  tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch{std::vector<int>(n, -1), {}}; });
+  tbb::enumerable_thread_specific<Scratch> scratch([n] {
+    return Scratch{std::vector<int>(n, -1), {}};
+  });
   tbb::parallel_for(tbb::blocked_range<int>(0, n, 64), [&](const tbb::blocked_range<int>& range) {
     auto& [stamp, neighbourhood] = scratch.local();
     for (int v = range.begin(); v < range.end(); ++v) {
@@ -205,12 +219,16 @@ CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& opt
       const Eigen::Vector3d p = toEigen(mesh.point(vh));
       PrincipalFit fit;
       // A one-sided neighbourhood makes a high-degree fit extrapolate wildly at the vertex (a
-      // corner of the great_court roof gave K = -0.38 / m^2 with degree 4); a quadric is stable there.
-      const int degree = field.onBoundary[v] ? std::min(options.fitDegree, options.boundaryFitDegree) : options.fitDegree;
+      // corner of the great_court roof gave K = -0.38 / m^2 with degree 4); a quadric is stable
+      // there.
+      const int degree = field.onBoundary[v]
+                             ? std::min(options.fitDegree, options.boundaryFitDegree)
+                             : options.fitDegree;
       for (int rings = options.fitRings; rings <= options.fitRings + 2; ++rings) {
         gatherRings(mesh, v, rings, stamp, v * 8 + rings, neighbourhood);
         const int wanted = std::max(options.minFitPoints, 2 * monomialCount(degree));
-        if (static_cast<int>(neighbourhood.size()) - 1 < wanted && rings < options.fitRings + 2) continue;
+        if (static_cast<int>(neighbourhood.size()) - 1 < wanted && rings < options.fitRings + 2)
+          continue;
         fit = fitPrincipal(mesh, p, field.normals[v], neighbourhood, degree);
         break;
       }
@@ -225,7 +243,8 @@ CurvatureField computeCurvature(const TriMesh& mesh, const CurvatureOptions& opt
       // A failed fit (too few neighbours, a singular system) must not read as K = 0: that would
       // lower K_max and loosen the injectivity bound of Eq. 2.1. Fall back to the angle defect.
       if (!fit.ok && defectUsable) field.gaussian(v) = defect(v) / field.mixedArea(v);
-      field.gaussianAngleDefect(v) = defectUsable ? defect(v) / field.mixedArea(v) : field.gaussian(v);
+      field.gaussianAngleDefect(v) =
+          defectUsable ? defect(v) / field.mixedArea(v) : field.gaussian(v);
     }
   });
   field.vertexGaussianMax = 0;

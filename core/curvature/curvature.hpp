@@ -19,7 +19,8 @@
 // noisy meshes should be smoothed first (core/mesh/smoothing.hpp) or fitted over wider rings.
 //
 // Sign convention: principal and mean curvature are positive where the surface bends away from the
-// vertex normal (normals follow the face orientation; a sphere with outward normals has kappa = 1/R).
+// vertex normal (normals follow the face orientation; a sphere with outward normals has kappa =
+// 1/R).
 #include "core/mesh/laplacian.hpp"  // mixedVoronoiAreas
 #include "core/mesh/mesh.hpp"
 
@@ -44,17 +45,18 @@ struct CurvatureOptions {
 };
 
 struct CurvatureField {
-  Eigen::VectorXd gaussian;               // K = kappa_max * kappa_min of the fit [1/m^2]
-  Eigen::VectorXd gaussianAngleDefect;  // angle defect / mixed area inside, the fit on the boundary
-                                          // (where the defect measures the boundary's turning) [1/m^2]
-  Eigen::VectorXd mean;          // H = (kappa_max + kappa_min) / 2 [1/m]
-  Eigen::VectorXd kappaMax;     // larger principal curvature [1/m]
-  Eigen::VectorXd kappaMin;     // smaller principal curvature [1/m]
+  Eigen::VectorXd gaussian;  // K = kappa_max * kappa_min of the fit [1/m^2]
+  Eigen::VectorXd
+      gaussianAngleDefect;   // angle defect / mixed area inside, the fit on the boundary
+                             // (where the defect measures the boundary's turning) [1/m^2]
+  Eigen::VectorXd mean;      // H = (kappa_max + kappa_min) / 2 [1/m]
+  Eigen::VectorXd kappaMax;  // larger principal curvature [1/m]
+  Eigen::VectorXd kappaMin;  // smaller principal curvature [1/m]
   std::vector<Eigen::Vector3d> directionMax;  // unit tangent direction of kappa_max
   std::vector<Eigen::Vector3d> directionMin;  // unit tangent direction of kappa_min
-  std::vector<Eigen::Vector3d> normals;        // unit vertex normals (angle-weighted)
-  Eigen::VectorXd mixedArea;    // mixed Voronoi area per vertex [m^2]
-  std::vector<char> onBoundary; // 1 for boundary vertices
+  std::vector<Eigen::Vector3d> normals;       // unit vertex normals (angle-weighted)
+  Eigen::VectorXd mixedArea;                  // mixed Voronoi area per vertex [m^2]
+  std::vector<char> onBoundary;               // 1 for boundary vertices
   // Summary of `gaussian`.
   double gaussianMax = 0.0;
   double gaussianMin = 0.0;

@@ -12,7 +12,8 @@ namespace {
 
 // Vertices within Euclidean distance `radius` of v, reached through vertices that are themselves
 // within the radius (a graph walk, so the far side of a thin fold is not included).
-void ball(const TriMesh& mesh, int v, double radius, std::vector<int>& stamp, std::vector<int>& out) {
+void ball(const TriMesh& mesh, int v, double radius, std::vector<int>& stamp,
+          std::vector<int>& out) {
   out.clear();
   out.push_back(v);
   stamp[v] = v;
@@ -37,14 +38,16 @@ void PeakOptions::validate() const {
   if (!std::isfinite(minGaussian)) fail("min_gaussian", minGaussian, "must be finite");
   if (!(smoothingRadiusM >= 0.0 && std::isfinite(smoothingRadiusM)))
     fail("smoothing_radius_m", smoothingRadiusM, "must be >= 0 (0 = automatic)");
-  if (!(separationM >= 0.0 && std::isfinite(separationM))) fail("separation_m", separationM, "must be >= 0 (0 = automatic)");
+  if (!(separationM >= 0.0 && std::isfinite(separationM)))
+    fail("separation_m", separationM, "must be >= 0 (0 = automatic)");
 }
 
-Eigen::VectorXd averageOverBall(const TriMesh& mesh, const Eigen::VectorXd& field, const Eigen::VectorXd& vertexArea,
-                                double radiusM) {
+Eigen::VectorXd averageOverBall(const TriMesh& mesh, const Eigen::VectorXd& field,
+                                const Eigen::VectorXd& vertexArea, double radiusM) {
   const int n = static_cast<int>(mesh.n_vertices());
   if (field.size() != n || vertexArea.size() != n)
-    throw InvalidInput("averageOverBall: field and area must have one value per vertex (" + std::to_string(n) + ")");
+    throw InvalidInput("averageOverBall: field and area must have one value per vertex (" +
+                       std::to_string(n) + ")");
   Eigen::VectorXd averaged(n);
   std::vector<int> stamp(n, -1), members;
   for (int v = 0; v < n; ++v) {
@@ -54,7 +57,8 @@ Eigen::VectorXd averageOverBall(const TriMesh& mesh, const Eigen::VectorXd& fiel
     const Eigen::Vector3d centre = toEigen(mesh.point(TriMesh::VertexHandle(v)));
     double weighted = 0.0, area = 0.0;
     for (int w : members) {
-      const double q = (toEigen(mesh.point(TriMesh::VertexHandle(w))) - centre).squaredNorm() / (radiusM * radiusM);
+      const double q = (toEigen(mesh.point(TriMesh::VertexHandle(w))) - centre).squaredNorm() /
+                       (radiusM * radiusM);
       const double weight = vertexArea(w) * (1.0 - q) * (1.0 - q);
       weighted += weight * field(w), area += weight;
     }
@@ -64,14 +68,16 @@ Eigen::VectorXd averageOverBall(const TriMesh& mesh, const Eigen::VectorXd& fiel
 }
 
 std::vector<CurvaturePeak> findGaussianPeaks(const TriMesh& mesh, const Eigen::VectorXd& gaussian,
-                                             const Eigen::VectorXd& vertexArea, const PeakOptions& options) {
+                                             const Eigen::VectorXd& vertexArea,
+                                             const PeakOptions& options) {
   options.validate();
   const int n = static_cast<int>(mesh.n_vertices());
   if (gaussian.size() != n)
-    throw InvalidInput("findGaussianPeaks: gaussian has " + std::to_string(gaussian.size()) + " values for " +
-                       std::to_string(n) + " vertices");
+    throw InvalidInput("findGaussianPeaks: gaussian has " + std::to_string(gaussian.size()) +
+                       " values for " + std::to_string(n) + " vertices");
   if (n == 0) return {};
-  const double radius = options.smoothingRadiusM > 0.0 ? options.smoothingRadiusM : 2.0 * meanEdgeLength(mesh);
+  const double radius =
+      options.smoothingRadiusM > 0.0 ? options.smoothingRadiusM : 2.0 * meanEdgeLength(mesh);
   const double separation = options.separationM > 0.0 ? options.separationM : radius;
   const Eigen::VectorXd averaged = averageOverBall(mesh, gaussian, vertexArea, radius);
 
@@ -100,7 +106,8 @@ std::vector<CurvaturePeak> findGaussianPeaks(const TriMesh& mesh, const Eigen::V
     peak.onBoundary = boundary;
     peaks.push_back(peak);
   }
-  std::sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) { return a.gaussianAveraged > b.gaussianAveraged; });
+  std::sort(peaks.begin(), peaks.end(),
+            [](const auto& a, const auto& b) { return a.gaussianAveraged > b.gaussianAveraged; });
   return peaks;
 }
 

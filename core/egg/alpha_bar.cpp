@@ -16,11 +16,13 @@ namespace egg {
 
 void AlphaBarOptions::validate() const {
   if (!(slopeMin > 0.0)) throw InvalidInput("patching.slope_bounds[0] (k_min) must be > 0");
-  if (!(slopeMax > slopeMin)) throw InvalidInput("patching.slope_bounds[1] (k_max) must exceed k_min");
+  if (!(slopeMax > slopeMin))
+    throw InvalidInput("patching.slope_bounds[1] (k_max) must exceed k_min");
   if (choice == AlphaBarChoice::Given && !(givenAlphaBar > 0.0 && givenAlphaBar < M_PI))
     throw InvalidInput("grid.alpha_bar must lie in (0, pi) radians");
   if (!(unrolledTolerance >= 0.0)) throw InvalidInput("alpha_bar unrolled_tolerance must be >= 0");
-  if (!(minPlanarAngle >= 0.0 && minPlanarAngle < M_PI / 4)) throw InvalidInput("grid.min_planar_angle_rad must lie in [0, pi/4)");
+  if (!(minPlanarAngle >= 0.0 && minPlanarAngle < M_PI / 4))
+    throw InvalidInput("grid.min_planar_angle_rad must lie in [0, pi/4)");
   if (scanSamples < 3) throw InvalidInput("alpha_bar scan_samples must be >= 3");
   if (maxEvaluations < 1) throw InvalidInput("alpha_bar max_evaluations must be >= 1");
   if (!(tolerance > 0.0)) throw InvalidInput("alpha_bar tolerance must be > 0");
@@ -28,9 +30,18 @@ void AlphaBarOptions::validate() const {
 }
 
 void parseAlphaBarChoice(const std::string& text, AlphaBarOptions& options) {
-  if (text == "min") { options.choice = AlphaBarChoice::Min; return; }
-  if (text == "max") { options.choice = AlphaBarChoice::Max; return; }
-  if (text == "unrolled") { options.choice = AlphaBarChoice::Unrolled; return; }
+  if (text == "min") {
+    options.choice = AlphaBarChoice::Min;
+    return;
+  }
+  if (text == "max") {
+    options.choice = AlphaBarChoice::Max;
+    return;
+  }
+  if (text == "unrolled") {
+    options.choice = AlphaBarChoice::Unrolled;
+    return;
+  }
   size_t used = 0;
   double value = std::numeric_limits<double>::quiet_NaN();
   try {
@@ -39,7 +50,9 @@ void parseAlphaBarChoice(const std::string& text, AlphaBarOptions& options) {
     used = 0;
   }
   if (used != text.size() || !(value > 0.0 && value < M_PI))
-    throw InvalidInput("grid.alpha_bar must be \"min\", \"max\", \"unrolled\" or radians in (0, pi), got \"" + text + "\"");
+    throw InvalidInput(
+        "grid.alpha_bar must be \"min\", \"max\", \"unrolled\" or radians in (0, pi), got \"" +
+        text + "\"");
   options.choice = AlphaBarChoice::Given;
   options.givenAlphaBar = value;
 }
@@ -56,7 +69,8 @@ struct Evaluator {
   double scale;
   int count = 0;
 
-  AlphaBarEvaluation operator()(double alphaBar, CladdingFunction* u = nullptr, CladdingFunction* v = nullptr) {
+  AlphaBarEvaluation operator()(double alphaBar, CladdingFunction* u = nullptr,
+                                CladdingFunction* v = nullptr) {
     ++count;
     AlphaBarEvaluation e;
     e.alphaBar = alphaBar;
@@ -86,15 +100,17 @@ struct Evaluator {
     if (!quad) return 1.0;
     if (which == 0) return diagonalProduct(maps, *quad) / (scale * scale);
     const Family family = which == 1 ? Family::U : Family::V;
-    return slopeViolation(claddingFunction(maps.map(family), *quad, family, scale, options.cladding), options.slopeMin,
-                          options.slopeMax);
+    return slopeViolation(
+        claddingFunction(maps.map(family), *quad, family, scale, options.cladding),
+        options.slopeMin, options.slopeMax);
   }
 };
 
 // The three constraint functions of Problem 2.3 at one angle, each feasible where negative.
 constexpr int kConstraints = 3;
 using Constraints = std::array<double, kConstraints>;
-const char* const kConstraintNames[kConstraints] = {"(e - e_bar)(f - f_bar)", "slopes of F_u", "slopes of F_v"};
+const char* const kConstraintNames[kConstraints] = {"(e - e_bar)(f - f_bar)", "slopes of F_u",
+                                                    "slopes of F_v"};
 
 struct Sample {
   double alpha = 0.0;
@@ -111,7 +127,8 @@ Sample sampleAt(Evaluator& evaluate, double alpha) {
 // returns the end of the final bracket on the feasible (negative) side. Regula falsi with the
 // Illinois modification keeps the bracket, so a jump (a topology change of the cladding curve)
 // is located as surely as a smooth root.
-double constraintRoot(Evaluator& evaluate, int c, const Sample& first, const Sample& second, double tolerance) {
+double constraintRoot(Evaluator& evaluate, int c, const Sample& first, const Sample& second,
+                      double tolerance) {
   IllinoisBracket r{first.alpha, second.alpha, first.g[c], second.g[c]};
   const bool bNegative = r.gb < 0.0;
   while (std::abs(r.b - r.a) > tolerance) {
@@ -138,7 +155,8 @@ double constraintRoot(Evaluator& evaluate, int c, const Sample& first, const Sam
 bool refineScan(Evaluator& evaluate, std::vector<Sample>& samples, double minWidth, int budget) {
   constexpr double kLocalSafety = 4.0, kGlobalFloor = 0.25;
   const auto rate = [&](size_t k, int c) {  // |dg_c / d alpha| over interval k = (k-1, k)
-    return std::abs(samples[k].g[c] - samples[k - 1].g[c]) / (samples[k].alpha - samples[k - 1].alpha);
+    return std::abs(samples[k].g[c] - samples[k - 1].g[c]) /
+           (samples[k].alpha - samples[k - 1].alpha);
   };
   Constraints global{};
   for (size_t k = 1; k < samples.size(); ++k)
@@ -162,8 +180,10 @@ bool refineScan(Evaluator& evaluate, std::vector<Sample>& samples, double minWid
     const Sample &a = samples[k - 1], &b = samples[k];
     if (a.feasible || b.feasible) return false;
     for (int c = 0; c < kConstraints; ++c)
-      if (a.g[c] > 0.0 && b.g[c] > 0.0) return bound(k) < 0.0;  // some constraint positive at both ends
-    return false;  // every constraint is negative at one end or changes sign: handled by root location
+      if (a.g[c] > 0.0 && b.g[c] > 0.0)
+        return bound(k) < 0.0;  // some constraint positive at both ends
+    return false;  // every constraint is negative at one end or changes sign: handled by root
+                   // location
   };
   bool certified = true;
   for (int spent = 0;;) {
@@ -197,8 +217,8 @@ double bisectFeasibility(Evaluator& evaluate, double in, double out, double tole
 // The feasible set from the refined samples: each constraint's negative set is bounded by its own
 // sign changes (located separately), and the feasible set is their intersection. A stretch where
 // two constraints' negative sets overlap only slightly is thereby found whatever its width.
-std::vector<AngleInterval> feasibleSet(Evaluator& evaluate, const std::vector<Sample>& samples, double tolerance,
-                                       std::string& active) {
+std::vector<AngleInterval> feasibleSet(Evaluator& evaluate, const std::vector<Sample>& samples,
+                                       double tolerance, std::string& active) {
   // Breakpoints: (angle, constraint, becomes negative there).
   struct Breakpoint {
     double alpha;
@@ -215,17 +235,20 @@ std::vector<AngleInterval> feasibleSet(Evaluator& evaluate, const std::vector<Sa
       for (int o = 0; o < kConstraints; ++o)
         if (o != c && a.g[o] >= 0.0 && b.g[o] >= 0.0) relevant = false;
       const bool entering = b.g[c] < 0.0;
-      const double root = relevant ? constraintRoot(evaluate, c, a, b, tolerance) : (entering ? b.alpha : a.alpha);
+      const double root =
+          relevant ? constraintRoot(evaluate, c, a, b, tolerance) : (entering ? b.alpha : a.alpha);
       breaks.push_back({root, c, entering});
     }
   }
-  std::sort(breaks.begin(), breaks.end(), [](const Breakpoint& x, const Breakpoint& y) { return x.alpha < y.alpha; });
+  std::sort(breaks.begin(), breaks.end(),
+            [](const Breakpoint& x, const Breakpoint& y) { return x.alpha < y.alpha; });
   // Sweep: count constraints negative; the first sample gives the start state.
   std::array<bool, kConstraints> negative{};
   for (int c = 0; c < kConstraints; ++c) negative[c] = samples.front().g[c] < 0.0;
   const auto allNegative = [&] { return negative[0] && negative[1] && negative[2]; };
   std::vector<AngleInterval> intervals;
-  std::vector<std::array<int, 2>> limits;  // constraint bounding each interval at lo and hi (-1: the convex range)
+  std::vector<std::array<int, 2>>
+      limits;  // constraint bounding each interval at lo and hi (-1: the convex range)
   bool open = allNegative();
   AngleInterval current{samples.front().alpha, samples.front().alpha};
   int openedBy = -1;
@@ -235,7 +258,8 @@ std::vector<AngleInterval> feasibleSet(Evaluator& evaluate, const std::vector<Sa
     if (now && !open) current.lo = b.alpha, openedBy = b.constraint;
     if (!now && open) {
       current.hi = b.alpha;
-      if (current.hi > current.lo) intervals.push_back(current), limits.push_back({openedBy, b.constraint});
+      if (current.hi > current.lo)
+        intervals.push_back(current), limits.push_back({openedBy, b.constraint});
     }
     open = now;
   }
@@ -251,8 +275,10 @@ std::vector<AngleInterval> feasibleSet(Evaluator& evaluate, const std::vector<Sa
     AngleInterval interval = intervals[i];
     const double middle = 0.5 * (interval.lo + interval.hi);
     if (!evaluate(middle).feasible) continue;
-    if (!evaluate(interval.lo).feasible) interval.lo = bisectFeasibility(evaluate, middle, interval.lo, tolerance);
-    if (!evaluate(interval.hi).feasible) interval.hi = bisectFeasibility(evaluate, middle, interval.hi, tolerance);
+    if (!evaluate(interval.lo).feasible)
+      interval.lo = bisectFeasibility(evaluate, middle, interval.lo, tolerance);
+    if (!evaluate(interval.hi).feasible)
+      interval.hi = bisectFeasibility(evaluate, middle, interval.hi, tolerance);
     checked.push_back(interval);
     if (i == 0) active = limits[i][0] < 0 ? "convex range" : kConstraintNames[limits[i][0]];
   }
@@ -261,7 +287,8 @@ std::vector<AngleInterval> feasibleSet(Evaluator& evaluate, const std::vector<Sa
 
 }  // namespace
 
-AlphaBarEvaluation evaluateAlphaBar(const PatchDistanceMaps& maps, double alphaBar, const AlphaBarOptions& options) {
+AlphaBarEvaluation evaluateAlphaBar(const PatchDistanceMaps& maps, double alphaBar,
+                                    const AlphaBarOptions& options) {
   Evaluator evaluate{maps, options, meanSide(maps)};
   return evaluate(alphaBar);
 }
@@ -275,7 +302,8 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
 
   const auto range = convexAlphaRange(maps.sides, 1e-9, options.minPlanarAngle);
   if (!range)
-    throw InfeasiblePatch("no convex planar quad with inner angles above " + std::to_string(options.minPlanarAngle) +
+    throw InfeasiblePatch("no convex planar quad with inner angles above " +
+                          std::to_string(options.minPlanarAngle) +
                           " rad has the side lengths of this patch (criterion iv)");
   result.convexRange = *range;
 
@@ -292,11 +320,13 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
   });
   evaluate.count += samplesCount;
   double leastViolation = std::numeric_limits<double>::infinity();
-  for (const auto& sample : samples) leastViolation = std::min(leastViolation, *std::max_element(sample.g.begin(), sample.g.end()));
+  for (const auto& sample : samples)
+    leastViolation = std::min(leastViolation, *std::max_element(sample.g.begin(), sample.g.end()));
   // Stretches narrower than 1/256 of the scan spacing (about 2e-4 rad on a typical convex range)
   // are not searched for: far below any construction tolerance of alpha_bar.
   const double spacing = (range->hi - range->lo) / (samplesCount - 1);
-  const bool certified = refineScan(evaluate, samples, std::max(options.tolerance, spacing / 256), options.maxEvaluations);
+  const bool certified = refineScan(evaluate, samples, std::max(options.tolerance, spacing / 256),
+                                    options.maxEvaluations);
   for (const auto& sample : samples)
     leastViolation = std::min(leastViolation, *std::max_element(sample.g.begin(), sample.g.end()));
   std::string activeAtMin;
@@ -315,8 +345,9 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
       if (!result.rangeFound) {
         std::ostringstream message;
         message << "no feasible alpha_bar in the convex range [" << range->lo << ", " << range->hi
-                << "] rad: (e - e_bar)(f - f_bar) < 0 and slopes in (" << options.slopeMin << ", " << options.slopeMax
-                << ") cannot hold together (least violation " << leastViolation << ")";
+                << "] rad: (e - e_bar)(f - f_bar) < 0 and slopes in (" << options.slopeMin << ", "
+                << options.slopeMax << ") cannot hold together (least violation " << leastViolation
+                << ")";
         throw InfeasiblePatch(message.str());
       }
       result.alphaBar = options.choice == AlphaBarChoice::Min ? result.alphaMin : result.alphaMax;
@@ -331,23 +362,27 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
       status << "given";
       break;
   }
-  status << "; " << result.feasibleIntervals.size() << " feasible interval(s) from " << samples.size()
-         << " samples (" << samples.size() - samplesCount << " added by refinement)";
+  status << "; " << result.feasibleIntervals.size() << " feasible interval(s) from "
+         << samples.size() << " samples (" << samples.size() - samplesCount
+         << " added by refinement)";
   if (result.rangeFound) status << ", alpha_min limited by " << activeAtMin;
   if (!certified) status << "; refinement budget spent before every gap was cleared";
 
   auto chosen = evaluate(result.alphaBar, &result.claddingU, &result.claddingV);
   if (options.choice == AlphaBarChoice::Unrolled && chosen.closable && !chosen.bijective) {
     AlphaBarOptions loose = options;
-    loose.cladding.degenerateTolerance = std::max(options.cladding.degenerateTolerance, options.unrolledTolerance);
+    loose.cladding.degenerateTolerance =
+        std::max(options.cladding.degenerateTolerance, options.unrolledTolerance);
     Evaluator nearDevelopable{maps, loose, meanSide(maps)};
     chosen = nearDevelopable(result.alphaBar, &result.claddingU, &result.claddingV);
-    if (result.claddingU.degenerate && result.claddingV.degenerate) status << " (near-developable: maps agree within tolerance)";
+    if (result.claddingU.degenerate && result.claddingV.degenerate)
+      status << " (near-developable: maps agree within tolerance)";
   }
   if (!chosen.closable) {
     std::ostringstream message;
-    message << "alpha_bar = " << result.alphaBar << " rad gives no convex planar quad (convex range [" << range->lo
-            << ", " << range->hi << "])";
+    message << "alpha_bar = " << result.alphaBar
+            << " rad gives no convex planar quad (convex range [" << range->lo << ", " << range->hi
+            << "])";
     throw InfeasiblePatch(message.str());
   }
   if (!chosen.bijective)
@@ -364,7 +399,8 @@ AlphaBarResult solveAlphaBar(const PatchDistanceMaps& maps, const AlphaBarOption
     }
   result.evaluations = evaluate.count;
   result.status = status.str();
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
 }
 

@@ -9,8 +9,10 @@
 namespace egg {
 
 void CladdingOptions::validate() const {
-  if (!(degenerateTolerance >= 0.0)) throw InvalidInput("cladding.degenerate_tolerance must be >= 0");
-  if (!(infiniteSlopeFactor > 0.0)) throw InvalidInput("cladding.infinite_slope_factor must be > 0");
+  if (!(degenerateTolerance >= 0.0))
+    throw InvalidInput("cladding.degenerate_tolerance must be >= 0");
+  if (!(infiniteSlopeFactor > 0.0))
+    throw InvalidInput("cladding.infinite_slope_factor must be > 0");
 }
 
 namespace {
@@ -20,9 +22,11 @@ struct MapGrid {
   int n1, n2, horizontal, vertical;
   MapGrid(int a, int b) : n1(a), n2(b), horizontal((a - 1) * b), vertical(a * (b - 1)) {}
   int edgeCount() const { return horizontal + vertical + (n1 - 1) * (n2 - 1); }
-  int hEdge(int i, int j) const { return i * n2 + j; }                                  // (i,j)-(i+1,j)
-  int vEdge(int i, int j) const { return horizontal + i * (n2 - 1) + j; }              // (i,j)-(i,j+1)
-  int aEdge(int i, int j) const { return horizontal + vertical + i * (n2 - 1) + j; }   // (i+1,j)-(i,j+1)
+  int hEdge(int i, int j) const { return i * n2 + j; }                     // (i,j)-(i+1,j)
+  int vEdge(int i, int j) const { return horizontal + i * (n2 - 1) + j; }  // (i,j)-(i,j+1)
+  int aEdge(int i, int j) const {
+    return horizontal + vertical + i * (n2 - 1) + j;
+  }  // (i+1,j)-(i,j+1)
   // Endpoints of an edge as grid indices.
   std::array<std::array<int, 2>, 2> ends(int e) const {
     if (e < horizontal) return {{{e / n2, e % n2}, {e / n2 + 1, e % n2}}};
@@ -44,7 +48,8 @@ struct MapGrid {
     const auto end = ends(e);
     const int i = end[0][0], j = end[0][1];
     if (e < horizontal) return {j < n2 - 1 ? tri(i, j, 0) : -1, j > 0 ? tri(i, j - 1, 1) : -1};
-    if (e < horizontal + vertical) return {i < n1 - 1 ? tri(i, j, 0) : -1, i > 0 ? tri(i - 1, j, 1) : -1};
+    if (e < horizontal + vertical)
+      return {i < n1 - 1 ? tri(i, j, 0) : -1, i > 0 ? tri(i - 1, j, 1) : -1};
     const int ci = end[1][0], cj = end[0][1];
     return {tri(ci, cj, 0), tri(ci, cj, 1)};
   }
@@ -60,7 +65,9 @@ double boundaryDistanceFromOrigin(const Eigen::Vector2d& p) {
   return 1.0 + p.y();
 }
 
-bool near(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return (a - b).lpNorm<Eigen::Infinity>() <= 1e-12; }
+bool near(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a - b).lpNorm<Eigen::Infinity>() <= 1e-12;
+}
 
 // Curve points closer than this (parameter units) are merged: where the zero set runs through grid
 // vertices, round-off places crossings a few ulps apart in arbitrary directions, and those
@@ -76,15 +83,16 @@ namespace {
 // triangle by triangle, so an evaluation costs O(n) rather than O(n^2) (Problem 2.3 evaluates it
 // a few hundred times).
 template <class PlanarAt>
-CladdingFunction intersectMaps(const DistanceMap& surface, const PlanarAt& planarAt, Family family, double scale,
-                               const CladdingOptions& options) {
+CladdingFunction intersectMaps(const DistanceMap& surface, const PlanarAt& planarAt, Family family,
+                               double scale, const CladdingOptions& options) {
   const int n1 = surface.n1, n2 = surface.n2;
   CladdingFunction result;
   result.family = family;
 
   const auto rawGap = [&](int i, int j) {
     const double g = surface.at(i, j) - planarAt(i, j);
-    if (!std::isfinite(g)) throw SolverFailure("claddingFunction: distance maps hold non-finite values");
+    if (!std::isfinite(g))
+      throw SolverFailure("claddingFunction: distance maps hold non-finite values");
     return g;
   };
   // Maps that agree everywhere: stop at the first node that tells them apart.
@@ -131,8 +139,10 @@ CladdingFunction intersectMaps(const DistanceMap& surface, const PlanarAt& plana
     const auto end = grid.ends(e);
     const double ga = gapAt(end[0]), gb = gapAt(end[1]);
     const double t = ga / (ga - gb);
-    const Eigen::Vector2d a(static_cast<double>(end[0][0]) / (n1 - 1), static_cast<double>(end[0][1]) / (n2 - 1));
-    const Eigen::Vector2d b(static_cast<double>(end[1][0]) / (n1 - 1), static_cast<double>(end[1][1]) / (n2 - 1));
+    const Eigen::Vector2d a(static_cast<double>(end[0][0]) / (n1 - 1),
+                            static_cast<double>(end[0][1]) / (n2 - 1));
+    const Eigen::Vector2d b(static_cast<double>(end[1][0]) / (n1 - 1),
+                            static_cast<double>(end[1][1]) / (n2 - 1));
     if (length) {
       const double da = surface.at(end[0][0], end[0][1]), db = surface.at(end[1][0], end[1][1]);
       *length = da + t * (db - da);
@@ -148,7 +158,8 @@ CladdingFunction intersectMaps(const DistanceMap& surface, const PlanarAt& plana
   // Boundary edges in increasing id order: bottom/top rows of horizontal edges, then the left and
   // right columns of vertical ones (anti-diagonals are interior).
   std::vector<int> boundaryEdges;
-  for (int i = 0; i + 1 < n1; ++i) boundaryEdges.push_back(grid.hEdge(i, 0)), boundaryEdges.push_back(grid.hEdge(i, n2 - 1));
+  for (int i = 0; i + 1 < n1; ++i)
+    boundaryEdges.push_back(grid.hEdge(i, 0)), boundaryEdges.push_back(grid.hEdge(i, n2 - 1));
   for (int j = 0; j + 1 < n2; ++j) boundaryEdges.push_back(grid.vEdge(0, j));
   for (int j = 0; j + 1 < n2; ++j) boundaryEdges.push_back(grid.vEdge(n1 - 1, j));
   std::sort(boundaryEdges.begin(), boundaryEdges.end());
@@ -179,7 +190,8 @@ CladdingFunction intersectMaps(const DistanceMap& surface, const PlanarAt& plana
   int chosen = -1;
   bool reversed = false;
   for (size_t a = 0; a < arcs.size() && chosen < 0; ++a) {
-    const Eigen::Vector2d first = crossingOf(arcs[a].front(), nullptr), last = crossingOf(arcs[a].back(), nullptr);
+    const Eigen::Vector2d first = crossingOf(arcs[a].front(), nullptr),
+                          last = crossingOf(arcs[a].back(), nullptr);
     if (near(first, origin) && near(last, far)) chosen = static_cast<int>(a);
     if (near(last, origin) && near(first, far)) chosen = static_cast<int>(a), reversed = true;
   }
@@ -190,29 +202,37 @@ CladdingFunction intersectMaps(const DistanceMap& surface, const PlanarAt& plana
     double best = std::numeric_limits<double>::infinity();
     for (size_t a = 0; a < arcs.size(); ++a)
       for (bool rev : {false, true}) {
-        const double d = boundaryDistanceFromOrigin(crossingOf(rev ? arcs[a].back() : arcs[a].front(), nullptr));
+        const double d =
+            boundaryDistanceFromOrigin(crossingOf(rev ? arcs[a].back() : arcs[a].front(), nullptr));
         if (d < best) best = d, chosen = static_cast<int>(a), reversed = rev;
       }
   }
 
   const auto push = [&](const Eigen::Vector2d& p, double length) {
-    if (!result.points.empty() && (result.points.back() - p).lpNorm<Eigen::Infinity>() <= kMergeDistance) {
+    if (!result.points.empty() &&
+        (result.points.back() - p).lpNorm<Eigen::Infinity>() <= kMergeDistance) {
       if (near(p, Eigen::Vector2d(1, 1))) result.points.back() = p, result.lengths.back() = length;
       return;
     }
     result.points.push_back(p);
     result.lengths.push_back(length);
   };
-  const auto pushCorner = [&](double x1, double x2) { push(Eigen::Vector2d(x1, x2), surface.interpolate(x1, x2)); };
+  const auto pushCorner = [&](double x1, double x2) {
+    push(Eigen::Vector2d(x1, x2), surface.interpolate(x1, x2));
+  };
   push(origin, surface.at(0, 0));
   if (chosen < 0) {
     pushCorner(1, 0);  // no intersection arc at all: the boundary path, every slope 0 or infinite
   } else {
     std::vector<int> arc = arcs[chosen];
     if (reversed) std::reverse(arc.begin(), arc.end());
-    const Eigen::Vector2d start = crossingOf(arc.front(), nullptr), end = crossingOf(arc.back(), nullptr);
+    const Eigen::Vector2d start = crossingOf(arc.front(), nullptr),
+                          end = crossingOf(arc.back(), nullptr);
     if (start.y() > 1e-12 && start.x() > 1e-12) {  // start on the top or right side
-      if (start.y() >= 1 - 1e-12) pushCorner(0, 1); else pushCorner(1, 0);
+      if (start.y() >= 1 - 1e-12)
+        pushCorner(0, 1);
+      else
+        pushCorner(1, 0);
     }
     for (int e : arc) {
       double length = 0.0;
@@ -220,7 +240,10 @@ CladdingFunction intersectMaps(const DistanceMap& surface, const PlanarAt& plana
       push(p, length);
     }
     if (end.x() < 1 - 1e-12 && end.y() < 1 - 1e-12) {  // end on the bottom or left side
-      if (end.y() <= 1e-12) pushCorner(1, 0); else pushCorner(0, 1);
+      if (end.y() <= 1e-12)
+        pushCorner(1, 0);
+      else
+        pushCorner(0, 1);
     }
   }
   push(far, surface.at(n1 - 1, n2 - 1));
@@ -229,16 +252,19 @@ CladdingFunction intersectMaps(const DistanceMap& surface, const PlanarAt& plana
 
 }  // namespace
 
-CladdingFunction claddingFunction(const DistanceMap& surface, const DistanceMap& planar, Family family, double scale,
-                                  const CladdingOptions& options) {
+CladdingFunction claddingFunction(const DistanceMap& surface, const DistanceMap& planar,
+                                  Family family, double scale, const CladdingOptions& options) {
   if (surface.n1 != planar.n1 || surface.n2 != planar.n2 || surface.n1 < 2 || surface.n2 < 2)
-    throw InvalidInput("claddingFunction: surface and planar distance maps must share a grid of at least 2x2");
-  return intersectMaps(surface, [&](int i, int j) { return planar.at(i, j); }, family, scale, options);
+    throw InvalidInput(
+        "claddingFunction: surface and planar distance maps must share a grid of at least 2x2");
+  return intersectMaps(
+      surface, [&](int i, int j) { return planar.at(i, j); }, family, scale, options);
 }
 
-CladdingFunction claddingFunction(const DistanceMap& surface, const PlanarQuad& quad, Family family, double scale,
-                                  const CladdingOptions& options) {
-  if (surface.n1 < 2 || surface.n2 < 2) throw InvalidInput("claddingFunction: the distance map needs at least 2x2 samples");
+CladdingFunction claddingFunction(const DistanceMap& surface, const PlanarQuad& quad, Family family,
+                                  double scale, const CladdingOptions& options) {
+  if (surface.n1 < 2 || surface.n2 < 2)
+    throw InvalidInput("claddingFunction: the distance map needs at least 2x2 samples");
   // The closed-form planar map node by node, with the arithmetic of planarDistanceMap.
   const auto k = familyCorners(family);
   const auto& c = quad.corners;
@@ -263,8 +289,8 @@ bool CladdingFunction::bijective() const {
 
 namespace {
 
-double interpolateAlong(const std::vector<Eigen::Vector2d>& points, const std::vector<double>* values, int from,
-                        double key) {
+double interpolateAlong(const std::vector<Eigen::Vector2d>& points,
+                        const std::vector<double>* values, int from, double key) {
   key = std::clamp(key, 0.0, 1.0);
   const auto coordinate = [&](size_t k) { return points[k][from]; };
   size_t hi = 1;
@@ -285,9 +311,15 @@ double interpolateAlong(const std::vector<Eigen::Vector2d>& points, const std::v
 
 }  // namespace
 
-double CladdingFunction::evaluate(double x1) const { return interpolateAlong(points, nullptr, 0, x1); }
-double CladdingFunction::inverse(double x2) const { return interpolateAlong(points, nullptr, 1, x2); }
-double CladdingFunction::lengthAt(double x1) const { return interpolateAlong(points, &lengths, 0, x1); }
+double CladdingFunction::evaluate(double x1) const {
+  return interpolateAlong(points, nullptr, 0, x1);
+}
+double CladdingFunction::inverse(double x2) const {
+  return interpolateAlong(points, nullptr, 1, x2);
+}
+double CladdingFunction::lengthAt(double x1) const {
+  return interpolateAlong(points, &lengths, 0, x1);
+}
 
 std::vector<double> segmentSlopes(const CladdingFunction& cladding, double infiniteSlopeFactor) {
   std::vector<double> slopes;

@@ -42,12 +42,12 @@ struct CladdingFunction {
 
 // Intersects the surface map with the planar map (same grid). `scale` is the patch's length scale
 // (mean side length) for the tolerances.
-CladdingFunction claddingFunction(const DistanceMap& surface, const DistanceMap& planar, Family family, double scale,
-                                  const CladdingOptions& options = {});
+CladdingFunction claddingFunction(const DistanceMap& surface, const DistanceMap& planar,
+                                  Family family, double scale, const CladdingOptions& options = {});
 // The same against the planar map of `quad` in closed form (planarDistanceMap), evaluated only at
 // the grid nodes the intersection passes: what Problem 2.3 calls for every candidate alpha_bar.
-CladdingFunction claddingFunction(const DistanceMap& surface, const PlanarQuad& quad, Family family, double scale,
-                                  const CladdingOptions& options = {});
+CladdingFunction claddingFunction(const DistanceMap& surface, const PlanarQuad& quad, Family family,
+                                  double scale, const CladdingOptions& options = {});
 
 // Slopes of the segments by finite differences dx2/dx1 (Section 2.4.3); a vertical segment
 // (dx1 = 0) gets c * dx2 as in the thesis. Zero-length segments are skipped.

@@ -25,13 +25,13 @@ struct DistanceMap {
 
 // Everything the planar side of the solver needs to know about a surface patch.
 struct PatchDistanceMaps {
-  DistanceMap u;             // D_u(u1, u2)
-  DistanceMap v;             // D_v(v1, v2)
-  QuadSides sides{};         // geodesic side lengths (boundary k from corner k to k+1), metres
-  double diagonalE = 0.0;    // e = d(c0, c2), metres
-  double diagonalF = 0.0;    // f = d(c1, c3), metres
-  double alphaSpatial = 0.0; // inner angle of the surface patch at c0 (the "unrolled" alpha_bar)
-  int propagations = 0;      // exact source fields spent on both maps (at most 2 x resolution)
+  DistanceMap u;              // D_u(u1, u2)
+  DistanceMap v;              // D_v(v1, v2)
+  QuadSides sides{};          // geodesic side lengths (boundary k from corner k to k+1), metres
+  double diagonalE = 0.0;     // e = d(c0, c2), metres
+  double diagonalF = 0.0;     // f = d(c1, c3), metres
+  double alphaSpatial = 0.0;  // inner angle of the surface patch at c0 (the "unrolled" alpha_bar)
+  int propagations = 0;       // exact source fields spent on both maps (at most 2 x resolution)
 
   const DistanceMap& map(Family family) const { return family == Family::U ? u : v; }
   // Throws InvalidInput when maps are too small, sizes disagree or values are not finite.

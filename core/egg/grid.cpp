@@ -26,12 +26,14 @@ void GridOptions::validate() const {
 
 int countNotches(const EggGrid& grid, double minimumM) {
   int count = 0;
-  for (const auto& c : grid.connections) count += (std::abs(c.notchU) > minimumM) + (std::abs(c.notchV) > minimumM);
+  for (const auto& c : grid.connections)
+    count += (std::abs(c.notchU) > minimumM) + (std::abs(c.notchV) > minimumM);
   return count;
 }
 
-bool intersectSegments(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1, const Eigen::Vector2d& b0,
-                       const Eigen::Vector2d& b1, double& t, double& s, double slack) {
+bool intersectSegments(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1,
+                       const Eigen::Vector2d& b0, const Eigen::Vector2d& b1, double& t, double& s,
+                       double slack) {
   const Eigen::Vector2d r = a1 - a0, q = b1 - b0, w = b0 - a0;
   const double denom = r.x() * q.y() - r.y() * q.x();
   if (std::abs(denom) <= 1e-300) return false;
@@ -50,7 +52,8 @@ double polylineLength(const std::vector<Eigen::Vector3d>& line) {
 
 std::vector<Eigen::Vector3d> sidePolyline(const Patch& patch, int side, bool reversed) {
   std::vector<Eigen::Vector3d> line;
-  for (int v : patch.sides[side]) line.push_back(toEigen(patch.mesh.point(TriMesh::VertexHandle(v))));
+  for (int v : patch.sides[side])
+    line.push_back(toEigen(patch.mesh.point(TriMesh::VertexHandle(v))));
   if (reversed) std::reverse(line.begin(), line.end());
   return line;
 }
@@ -61,7 +64,8 @@ Eigen::Vector3d vertexNormal(const TriMesh& mesh, int vertex) {
   for (auto fh : mesh.vf_range(TriMesh::VertexHandle(vertex))) {
     const auto ids = faceVertices(mesh, fh.idx());
     const Eigen::Vector3d a = toEigen(mesh.point(TriMesh::VertexHandle(ids[0])));
-    sum += (toEigen(mesh.point(TriMesh::VertexHandle(ids[1]))) - a).cross(toEigen(mesh.point(TriMesh::VertexHandle(ids[2]))) - a);
+    sum += (toEigen(mesh.point(TriMesh::VertexHandle(ids[1]))) - a)
+               .cross(toEigen(mesh.point(TriMesh::VertexHandle(ids[2]))) - a);
   }
   return sum.normalized();
 }
@@ -82,7 +86,8 @@ Eigen::Vector3d nearestNormal(const GridMember& m, const Eigen::Vector3d& p) {
 }
 
 // Curvature maxima along a side (resampled, three-point circles), as arc lengths from its start.
-std::vector<double> boundaryCurvatureMaxima(const std::vector<Eigen::Vector3d>& line, double fraction) {
+std::vector<double> boundaryCurvatureMaxima(const std::vector<Eigen::Vector3d>& line,
+                                            double fraction) {
   const double total = polylineLength(line);
   constexpr int samples = 65;
   std::vector<Eigen::Vector3d> points;
@@ -90,7 +95,8 @@ std::vector<double> boundaryCurvatureMaxima(const std::vector<Eigen::Vector3d>& 
   double before = 0.0;
   for (int k = 0; k < samples; ++k) {
     const double s = total * k / (samples - 1);
-    while (seg + 1 < line.size() && before + (line[seg] - line[seg - 1]).norm() < s) before += (line[seg] - line[seg - 1]).norm(), ++seg;
+    while (seg + 1 < line.size() && before + (line[seg] - line[seg - 1]).norm() < s)
+      before += (line[seg] - line[seg - 1]).norm(), ++seg;
     const double length = (line[seg] - line[seg - 1]).norm();
     const double t = length > 0 ? std::clamp((s - before) / length, 0.0, 1.0) : 0.0;
     points.push_back(line[seg - 1] + t * (line[seg] - line[seg - 1]));
@@ -104,7 +110,9 @@ std::vector<double> boundaryCurvatureMaxima(const std::vector<Eigen::Vector3d>& 
   }
   std::vector<double> smooth(curvature);
   for (int k = 2; k + 2 < samples; ++k)
-    smooth[k] = (curvature[k - 2] + 2 * curvature[k - 1] + 3 * curvature[k] + 2 * curvature[k + 1] + curvature[k + 2]) / 9.0;
+    smooth[k] = (curvature[k - 2] + 2 * curvature[k - 1] + 3 * curvature[k] + 2 * curvature[k + 1] +
+                 curvature[k + 2]) /
+                9.0;
   const double largest = *std::max_element(smooth.begin() + 3, smooth.end() - 3);
   std::vector<double> maxima;
   if (largest <= 1e-12) return maxima;  // a straight side: nothing to anchor
@@ -116,11 +124,13 @@ std::vector<double> boundaryCurvatureMaxima(const std::vector<Eigen::Vector3d>& 
 
 }  // namespace
 
-EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, const PlanarQuad& quad,
-                  const FamilyMembers& u, const FamilyMembers& v, const GridOptions& options) {
+EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver,
+                  const PlanarQuad& quad, const FamilyMembers& u, const FamilyMembers& v,
+                  const GridOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
-  if (u.x1.size() < 2 || v.x1.size() < 2) throw InvalidInput("grid: each family needs at least its two boundary members");
+  if (u.x1.size() < 2 || v.x1.size() < 2)
+    throw InvalidInput("grid: each family needs at least its two boundary members");
   EggGrid grid;
   grid.quad = quad;
   std::atomic<int> propagations{0};
@@ -158,7 +168,8 @@ EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, co
       m.planarEnd = ends[1];
       m.planarLength = (ends[1] - ends[0]).norm();
       m.spatialLength = polylineLength(m.spatial);
-      grid.maxLengthMismatch = std::max(grid.maxLengthMismatch, std::abs(m.spatialLength - m.planarLength) / m.planarLength);
+      grid.maxLengthMismatch = std::max(
+          grid.maxLengthMismatch, std::abs(m.spatialLength - m.planarLength) / m.planarLength);
     }
   grid.propagations = propagations;
 
@@ -173,8 +184,10 @@ EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, co
       c.memberU = i, c.memberV = j;
       c.onBoundary = mu.boundary || mv.boundary;
       double t = 0, s = 0;
-      if (!intersectSegments(mu.planarStart, mu.planarEnd, mv.planarStart, mv.planarEnd, t, s, 1e-6))
-        throw SolverFailure("grid: planar members u" + std::to_string(i) + " and v" + std::to_string(j) + " do not cross");
+      if (!intersectSegments(mu.planarStart, mu.planarEnd, mv.planarStart, mv.planarEnd, t, s,
+                             1e-6))
+        throw SolverFailure("grid: planar members u" + std::to_string(i) + " and v" +
+                            std::to_string(j) + " do not cross");
       t = std::clamp(t, 0.0, 1.0), s = std::clamp(s, 0.0, 1.0);
       c.planar = mu.planarStart + t * (mu.planarEnd - mu.planarStart);
       c.sBarU = t * mu.planarLength;
@@ -185,7 +198,8 @@ EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, co
         if (mu.boundary && mv.boundary) {
           c.sU = i == 0 ? (j == 0 ? 0.0 : mu.spatialLength) : (j == 0 ? 0.0 : mu.spatialLength);
           c.sV = j == 0 ? (i == 0 ? 0.0 : mv.spatialLength) : (i == 0 ? 0.0 : mv.spatialLength);
-          c.spatial = i == 0 ? (j == 0 ? mu.spatial.front() : mu.spatial.back()) : (j == 0 ? mu.spatial.front() : mu.spatial.back());
+          c.spatial = i == 0 ? (j == 0 ? mu.spatial.front() : mu.spatial.back())
+                             : (j == 0 ? mu.spatial.front() : mu.spatial.back());
         } else if (mu.boundary) {  // v member ends on side c0c1 (i = 0) or c3c2
           c.sV = i == 0 ? 0.0 : mv.spatialLength;
           c.sU = (i == 0 ? mv.x1 : mv.x2) * mu.spatialLength;
@@ -200,9 +214,11 @@ EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, co
         c.notchV = mv.boundary ? 0.0 : c.sV - c.sBarV;
         continue;
       }
-      const auto crossing = geodesic::intersectPolylines(mu.spatial, mv.spatial, 1e-9 * mu.spatialLength);
+      const auto crossing =
+          geodesic::intersectPolylines(mu.spatial, mv.spatial, 1e-9 * mu.spatialLength);
       if (!crossing.found)
-        throw SolverFailure("grid: geodesic members u" + std::to_string(i) + " and v" + std::to_string(j) + " do not cross");
+        throw SolverFailure("grid: geodesic members u" + std::to_string(i) + " and v" +
+                            std::to_string(j) + " do not cross");
       c.spatial = crossing.position;
       c.sU = crossing.arcLengthFirst;
       c.sV = crossing.arcLengthSecond;
@@ -211,7 +227,8 @@ EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, co
     }
   });
   for (auto& c : grid.connections) c.normal = nearestNormal(grid.u[c.memberU], c.spatial);
-  for (const auto& c : grid.connections) grid.maxNotch = std::max({grid.maxNotch, std::abs(c.notchU), std::abs(c.notchV)});
+  for (const auto& c : grid.connections)
+    grid.maxNotch = std::max({grid.maxNotch, std::abs(c.notchU), std::abs(c.notchV)});
 
   // Anchors (2.4.6): the corners, and the boundary connections nearest to curvature maxima of the
   // boundary geodesics.
@@ -233,10 +250,14 @@ EggGrid buildGrid(const Patch& patch, const geodesic::DistanceSolver& solver, co
         if (std::abs(along - s) < bestGap) bestGap = std::abs(along - s), bestI = i, bestJ = j;
       };
       const double length = patch.sideLengths[side];
-      if (side == 0) for (int j = 1; j + 1 < nv; ++j) consider(0, j, grid.at(0, j).sU);
-      if (side == 1) for (int i = 1; i + 1 < nu; ++i) consider(i, nv - 1, grid.at(i, nv - 1).sV);
-      if (side == 2) for (int j = 1; j + 1 < nv; ++j) consider(nu - 1, j, length - grid.at(nu - 1, j).sU);
-      if (side == 3) for (int i = 1; i + 1 < nu; ++i) consider(i, 0, length - grid.at(i, 0).sV);
+      if (side == 0)
+        for (int j = 1; j + 1 < nv; ++j) consider(0, j, grid.at(0, j).sU);
+      if (side == 1)
+        for (int i = 1; i + 1 < nu; ++i) consider(i, nv - 1, grid.at(i, nv - 1).sV);
+      if (side == 2)
+        for (int j = 1; j + 1 < nv; ++j) consider(nu - 1, j, length - grid.at(nu - 1, j).sU);
+      if (side == 3)
+        for (int i = 1; i + 1 < nu; ++i) consider(i, 0, length - grid.at(i, 0).sV);
       if (bestI >= 0) addAnchor(bestI, bestJ, "boundary curvature extremum");
     }
   }

@@ -54,7 +54,8 @@ std::string gridJson(const EggResult& r, int patchId) {
   const EggGrid& g = r.grid;
   json doc;
   doc["patch"] = {{"id", patchId},
-                  {"corners_m", json::array({vec(r.patch.corners[0]), vec(r.patch.corners[1]), vec(r.patch.corners[2]), vec(r.patch.corners[3])})},
+                  {"corners_m", json::array({vec(r.patch.corners[0]), vec(r.patch.corners[1]),
+                                             vec(r.patch.corners[2]), vec(r.patch.corners[3])})},
                   {"side_lengths_m", r.patch.sideLengths},
                   {"inner_angles_rad", r.patch.innerAngles},
                   {"area_m2", r.patch.area},
@@ -75,11 +76,14 @@ std::string gridJson(const EggResult& r, int patchId) {
                        {"eta_v", r.uniqueness.etaV},
                        {"eta_before_smoothing", r.uniqueness.etaBeforeSmoothing},
                        {"gaussian_max_per_m2", r.uniqueness.gaussianMax},
-                       {"injectivity_bound_m", std::isfinite(r.uniqueness.injectivityBoundM) ? json(r.uniqueness.injectivityBoundM) : json(nullptr)},
+                       {"injectivity_bound_m", std::isfinite(r.uniqueness.injectivityBoundM)
+                                                   ? json(r.uniqueness.injectivityBoundM)
+                                                   : json(nullptr)},
                        {"longest_geodesic_m", r.uniqueness.longestGeodesicM},
                        {"smoothing_rounds", r.uniqueness.smoothingRounds},
                        {"smoothing_displacement_m", r.uniqueness.smoothingDisplacementM}};
-  doc["planar_quad_m"] = json::array({vec(g.quad.corners[0]), vec(g.quad.corners[1]), vec(g.quad.corners[2]), vec(g.quad.corners[3])});
+  doc["planar_quad_m"] = json::array({vec(g.quad.corners[0]), vec(g.quad.corners[1]),
+                                      vec(g.quad.corners[2]), vec(g.quad.corners[3])});
   doc["members"] = {{"u", members(g.u, r.membersU)}, {"v", members(g.v, r.membersV)}};
   json connections = json::array();
   for (const auto& c : g.connections)
@@ -98,13 +102,18 @@ std::string gridJson(const EggResult& r, int patchId) {
   doc["connections"] = connections;
   json anchors = json::array();
   for (const auto& a : g.anchors)
-    anchors.push_back({{"connection", a.connection}, {"reason", a.reason}, {"spatial_m", vec(g.connections[a.connection].spatial)}});
+    anchors.push_back({{"connection", a.connection},
+                       {"reason", a.reason},
+                       {"spatial_m", vec(g.connections[a.connection].spatial)}});
   doc["anchors"] = anchors;
   doc["max_notch_m"] = g.maxNotch;
   doc["max_length_mismatch_relative"] = g.maxLengthMismatch;
-  doc["timings_s"] = {{"patch", r.seconds.patch},           {"uniqueness", r.seconds.uniqueness},
-                      {"distance_maps", r.seconds.distanceMaps}, {"sqp", r.seconds.sqp},
-                      {"members", r.seconds.members},       {"tracing", r.seconds.tracing},
+  doc["timings_s"] = {{"patch", r.seconds.patch},
+                      {"uniqueness", r.seconds.uniqueness},
+                      {"distance_maps", r.seconds.distanceMaps},
+                      {"sqp", r.seconds.sqp},
+                      {"members", r.seconds.members},
+                      {"tracing", r.seconds.tracing},
                       {"total", r.seconds.total}};
   return doc.dump(1);
 }
@@ -136,17 +145,20 @@ void writePlanarSvg(const EggGrid& grid, const std::string& path) {
   const double extent = std::max((hi - lo).maxCoeff(), 1e-9);
   const double size = 1000.0, margin = 40.0, scale = (size - 2 * margin) / extent;
   const auto map = [&](const Eigen::Vector2d& p) {
-    return Eigen::Vector2d(margin + (p.x() - lo.x()) * scale, size - margin - (p.y() - lo.y()) * scale);
+    return Eigen::Vector2d(margin + (p.x() - lo.x()) * scale,
+                           size - margin - (p.y() - lo.y()) * scale);
   };
   std::ostringstream out;
   out.precision(6);
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << size << "\" height=\"" << size << "\" viewBox=\"0 0 "
-      << size << " " << size << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << size << "\" height=\"" << size
+      << "\" viewBox=\"0 0 " << size << " " << size
+      << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   for (const auto* family : {&grid.u, &grid.v})
     for (const auto& m : *family) {
       const auto a = map(m.planarStart), b = map(m.planarEnd);
-      out << "<line x1=\"" << a.x() << "\" y1=\"" << a.y() << "\" x2=\"" << b.x() << "\" y2=\"" << b.y() << "\" stroke=\""
-          << (m.family == Family::U ? "#1f77b4" : "#ff7f0e") << "\" stroke-width=\"" << (m.boundary ? 3 : 1.5) << "\"/>\n";
+      out << "<line x1=\"" << a.x() << "\" y1=\"" << a.y() << "\" x2=\"" << b.x() << "\" y2=\""
+          << b.y() << "\" stroke=\"" << (m.family == Family::U ? "#1f77b4" : "#ff7f0e")
+          << "\" stroke-width=\"" << (m.boundary ? 3 : 1.5) << "\"/>\n";
     }
   for (const auto& c : grid.connections) {
     const auto p = map(c.planar);
@@ -156,14 +168,16 @@ void writePlanarSvg(const EggGrid& grid, const std::string& path) {
       const GridMember& m = family == 0 ? grid.u[c.memberU] : grid.v[c.memberV];
       const Eigen::Vector2d direction = (m.planarEnd - m.planarStart).normalized();
       const auto q = map(c.planar + notch * direction);
-      out << "<line x1=\"" << p.x() << "\" y1=\"" << p.y() << "\" x2=\"" << q.x() << "\" y2=\"" << q.y()
-          << "\" stroke=\"" << (family == 0 ? "#0b3d66" : "#8a4500") << "\" stroke-width=\"5\" stroke-linecap=\"round\"/>\n";
+      out << "<line x1=\"" << p.x() << "\" y1=\"" << p.y() << "\" x2=\"" << q.x() << "\" y2=\""
+          << q.y() << "\" stroke=\"" << (family == 0 ? "#0b3d66" : "#8a4500")
+          << "\" stroke-width=\"5\" stroke-linecap=\"round\"/>\n";
     }
     out << "<circle cx=\"" << p.x() << "\" cy=\"" << p.y() << "\" r=\"2\" fill=\"black\"/>\n";
   }
   for (const auto& a : grid.anchors) {
     const auto p = map(grid.connections[a.connection].planar);
-    out << "<rect x=\"" << p.x() - 6 << "\" y=\"" << p.y() - 6 << "\" width=\"12\" height=\"12\" fill=\"none\" stroke=\"red\" stroke-width=\"2\"/>\n";
+    out << "<rect x=\"" << p.x() - 6 << "\" y=\"" << p.y() - 6
+        << "\" width=\"12\" height=\"12\" fill=\"none\" stroke=\"red\" stroke-width=\"2\"/>\n";
   }
   out << "</svg>\n";
   writeFileAtomically(path, out.str());

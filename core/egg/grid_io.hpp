@@ -1,8 +1,8 @@
 #pragma once
-// Per-patch outputs (docs/architecture.md "Outputs"): grid JSON (members, connections, notches, anchors,
-// planar and spatial coordinates), OBJ of the spatial grid, SVG preview of the planar grid.
-// Every writer writes a temporary file next to the target and renames it, so a reader never sees
-// a half-written file; failures throw IoError naming the file.
+// Per-patch outputs (docs/architecture.md "Outputs"): grid JSON (members, connections, notches,
+// anchors, planar and spatial coordinates), OBJ of the spatial grid, SVG preview of the planar
+// grid. Every writer writes a temporary file next to the target and renames it, so a reader never
+// sees a half-written file; failures throw IoError naming the file.
 #include "core/egg/solve_patch.hpp"
 
 #include <string>

@@ -25,18 +25,21 @@ constexpr double kMaxAspectRatio = 8.0;
 
 double aspectRatio(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   const double area2 = (b - a).cross(c - a).norm();  // twice the area
-  const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  const double longest =
+      std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
   return area2 > 0.0 ? longest / area2 : INFINITY;  // longest edge / height
 }
 
 class ProxyDecimator {
  public:
-  explicit ProxyDecimator(TriMesh& mesh) : mesh_(mesh), quadric_(mesh.n_vertices(), Eigen::Matrix4d::Zero()) {
+  explicit ProxyDecimator(TriMesh& mesh)
+      : mesh_(mesh), quadric_(mesh.n_vertices(), Eigen::Matrix4d::Zero()) {
     // Garland-Heckbert quadrics of the face planes, area weighted: the squared distance of a
     // point from the planes around a vertex; summed into the surviving vertex at each collapse.
     for (auto fh : mesh_.faces()) {
       auto fv = mesh_.cfv_begin(fh);
-      const Eigen::Vector3d a = toEigen(mesh_.point(*fv)), b = toEigen(mesh_.point(*++fv)), c = toEigen(mesh_.point(*++fv));
+      const Eigen::Vector3d a = toEigen(mesh_.point(*fv)), b = toEigen(mesh_.point(*++fv)),
+                            c = toEigen(mesh_.point(*++fv));
       const Eigen::Vector3d cross = (b - a).cross(c - a);
       const double area = 0.5 * cross.norm();
       if (!(area > 0.0)) continue;
@@ -80,7 +83,8 @@ class ProxyDecimator {
       heap.pop();
       if (stamp != version[v0]) continue;
       const auto h = TriMesh::HalfedgeHandle(halfedge);
-      if (mesh_.status(mesh_.edge_handle(h)).deleted() || mesh_.from_vertex_handle(h).idx() != v0 || !legal(h)) {
+      if (mesh_.status(mesh_.edge_handle(h)).deleted() || mesh_.from_vertex_handle(h).idx() != v0 ||
+          !legal(h)) {
         rank(TriMesh::VertexHandle(v0), true);
         continue;
       }
@@ -117,7 +121,8 @@ class ProxyDecimator {
     }
     if (vl == vr) return false;  // both invalid (an isolated edge) or a degenerate pair of faces
     // Two boundary vertices may only be joined along a boundary edge.
-    if (mesh_.is_boundary(v0) && mesh_.is_boundary(v1) && !mesh_.is_boundary(mesh_.edge_handle(h))) return false;
+    if (mesh_.is_boundary(v0) && mesh_.is_boundary(v1) && !mesh_.is_boundary(mesh_.edge_handle(h)))
+      return false;
     int common = 0;
     for (auto a : mesh_.vv_range(v0)) {
       if (a == v1) continue;
@@ -127,7 +132,8 @@ class ProxyDecimator {
           ++common;
         }
     }
-    if (vl.is_valid() && vr.is_valid() && mesh_.valence(vl) == 3 && mesh_.valence(vr) == 3 && common == 2) {
+    if (vl.is_valid() && vr.is_valid() && mesh_.valence(vl) == 3 && mesh_.valence(vr) == 3 &&
+        common == 2) {
       for (auto a : mesh_.vv_range(vl))
         if (a == vr) return false;
     }
@@ -151,7 +157,9 @@ class ProxyDecimator {
     // A boundary vertex may only slide along a boundary edge into its boundary neighbour: the
     // proxy's sides stay sub-polylines of the fine sides (Section 2.4.2 needs the boundary
     // parameters at constant speed along the sides, which the fine arc lengths provide).
-    if (mesh_.is_boundary(v0) && !(mesh_.is_boundary(mesh_.edge_handle(h)) && mesh_.is_boundary(v1))) return false;
+    if (mesh_.is_boundary(v0) &&
+        !(mesh_.is_boundary(mesh_.edge_handle(h)) && mesh_.is_boundary(v1)))
+      return false;
     if (!linkConditionHolds(h)) return false;
     const Eigen::Vector3d p0 = toEigen(mesh_.point(v0)), p1 = toEigen(mesh_.point(v1));
     const double cosMax = std::cos(kMaxNormalDeviationDeg * M_PI / 180.0);
@@ -170,7 +178,8 @@ class ProxyDecimator {
       for (auto& q : p)
         if (q == p0) q = p1;
       const Eigen::Vector3d after = (p[1] - p[0]).cross(p[2] - p[0]);
-      if (!(after.norm() > 0.0) || before.dot(after) < cosMax * before.norm() * after.norm()) return false;
+      if (!(after.norm() > 0.0) || before.dot(after) < cosMax * before.norm() * after.norm())
+        return false;
       worstAfter = std::max(worstAfter, aspectRatio(p[0], p[1], p[2]));
     }
     return !(worstAfter > kMaxAspectRatio && worstAfter > worstBefore);
@@ -184,13 +193,15 @@ class ProxyDecimator {
 
 MapProxy makeMapProxy(const Patch& patch, int targetVertices) {
   if (targetVertices < 8)
-    throw InvalidInput("grid.map_proxy_vertices must be 0 (maps on the patch itself) or at least 8, got " +
-                       std::to_string(targetVertices));
+    throw InvalidInput(
+        "grid.map_proxy_vertices must be 0 (maps on the patch itself) or at least 8, got " +
+        std::to_string(targetVertices));
   TriMesh mesh = patch.mesh;
   OpenMesh::VPropHandleT<int> fineId;
   mesh.add_property(fineId);
   for (auto vh : mesh.vertices()) mesh.property(fineId, vh) = vh.idx();
-  for (int corner : patch.cornerVertices) mesh.status(TriMesh::VertexHandle(corner)).set_locked(true);
+  for (int corner : patch.cornerVertices)
+    mesh.status(TriMesh::VertexHandle(corner)).set_locked(true);
   ProxyDecimator(mesh).decimateTo(targetVertices);
   mesh.garbage_collection();
 
@@ -211,7 +222,8 @@ MapProxy makeMapProxy(const Patch& patch, int targetVertices) {
   p.innerAngles = patch.innerAngles;
   for (int k = 0; k < 4; ++k) {
     p.cornerVertices[k] = proxyOf[patch.cornerVertices[k]];
-    if (p.cornerVertices[k] < 0) throw SolverFailure("map proxy: corner " + std::to_string(k) + " was collapsed");
+    if (p.cornerVertices[k] < 0)
+      throw SolverFailure("map proxy: corner " + std::to_string(k) + " was collapsed");
     // The surviving vertices of the fine side, in order, with their fine arc lengths.
     const auto& chain = patch.sides[k];
     for (size_t i = 0; i < chain.size(); ++i) {
@@ -221,10 +233,12 @@ MapProxy makeMapProxy(const Patch& patch, int targetVertices) {
       p.sideArcLength[k].push_back(patch.sideArcLength[k][i]);
     }
     for (size_t i = 0; i + 1 < p.sides[k].size(); ++i) {
-      const auto from = TriMesh::VertexHandle(p.sides[k][i]), to = TriMesh::VertexHandle(p.sides[k][i + 1]);
+      const auto from = TriMesh::VertexHandle(p.sides[k][i]),
+                 to = TriMesh::VertexHandle(p.sides[k][i + 1]);
       const auto h = mesh.find_halfedge(from, to);
       if (!h.is_valid() || !mesh.is_boundary(mesh.edge_handle(h)))
-        throw SolverFailure("map proxy: side " + std::to_string(k) + " lost its boundary edge after decimation");
+        throw SolverFailure("map proxy: side " + std::to_string(k) +
+                            " lost its boundary edge after decimation");
     }
   }
   p.mesh = std::move(mesh);

@@ -18,10 +18,12 @@ struct Stencil {
 };
 
 // The nodes of the cubic around sample i: the two bracketing it and one more on each side,
-// shifted inward at the ends of the side. `nodes` is sorted and i lies strictly between two of them.
+// shifted inward at the ends of the side. `nodes` is sorted and i lies strictly between two of
+// them.
 Stencil stencilAround(const std::vector<int>& nodes, int i) {
   const int count = static_cast<int>(nodes.size());
-  const int p = static_cast<int>(std::upper_bound(nodes.begin(), nodes.end(), i) - nodes.begin()) - 1;
+  const int p =
+      static_cast<int>(std::upper_bound(nodes.begin(), nodes.end(), i) - nodes.begin()) - 1;
   Stencil s;
   s.width = std::min(4, count);
   const int first = std::clamp(p - 1, 0, count - s.width);
@@ -29,8 +31,10 @@ Stencil stencilAround(const std::vector<int>& nodes, int i) {
   return s;
 }
 
-// The cubic through the exact rows of the stencil's nodes, at sample i (Lagrange form on the indices).
-void evaluate(const Stencil& s, const std::vector<std::vector<double>>& rows, int i, std::vector<double>& out) {
+// The cubic through the exact rows of the stencil's nodes, at sample i (Lagrange form on the
+// indices).
+void evaluate(const Stencil& s, const std::vector<std::vector<double>>& rows, int i,
+              std::vector<double>& out) {
   double weights[4];
   for (int k = 0; k < s.width; ++k) {
     double w = 1.0;
@@ -71,19 +75,23 @@ struct Settled {
 
 }  // namespace
 
-MapRefinementStats refineMapRows(int n1, int n2, double tolerance, int initialNodes,
-                                 const std::function<std::vector<std::vector<double>>(const std::vector<int>&)>& exactRows,
-                                 std::vector<std::vector<double>>& rows) {
+MapRefinementStats refineMapRows(
+    int n1, int n2, double tolerance, int initialNodes,
+    const std::function<std::vector<std::vector<double>>(const std::vector<int>&)>& exactRows,
+    std::vector<std::vector<double>>& rows) {
   if (n1 < 2 || n2 < 1) throw InvalidInput("refineMapRows: a map needs at least 2 x 1 samples");
-  if (initialNodes < 2) throw InvalidInput("refineMapRows: initialNodes must be >= 2 (both ends of the side)");
+  if (initialNodes < 2)
+    throw InvalidInput("refineMapRows: initialNodes must be >= 2 (both ends of the side)");
   MapRefinementStats stats;
   rows.assign(n1, {});
   const auto compute = [&](const std::vector<int>& indices) {
     auto computed = exactRows(indices);
-    if (computed.size() != indices.size()) throw InvalidInput("refineMapRows: exactRows must return one row per index");
+    if (computed.size() != indices.size())
+      throw InvalidInput("refineMapRows: exactRows must return one row per index");
     for (size_t k = 0; k < indices.size(); ++k) {
       if (computed[k].size() != static_cast<size_t>(n2))
-        throw InvalidInput("refineMapRows: a row has " + std::to_string(computed[k].size()) + " values, not " + std::to_string(n2));
+        throw InvalidInput("refineMapRows: a row has " + std::to_string(computed[k].size()) +
+                           " values, not " + std::to_string(n2));
       rows[indices[k]] = std::move(computed[k]);
     }
     stats.exactRows += static_cast<int>(indices.size());
@@ -95,7 +103,8 @@ MapRefinementStats refineMapRows(int n1, int n2, double tolerance, int initialNo
     compute(nodes);
     return stats;
   }
-  for (int k = 0; k < initialNodes; ++k) nodes.push_back((k * (n1 - 1) + (initialNodes - 1) / 2) / (initialNodes - 1));
+  for (int k = 0; k < initialNodes; ++k)
+    nodes.push_back((k * (n1 - 1) + (initialNodes - 1) / 2) / (initialNodes - 1));
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   compute(nodes);
 
@@ -128,7 +137,8 @@ MapRefinementStats refineMapRows(int n1, int n2, double tolerance, int initialNo
       evaluate(s.checked, rows, i, predicted);
       largest = std::max(largest, largestDifference(filled, predicted));
       if (count >= 5) {
-        const int first = static_cast<int>(std::lower_bound(nodes.begin(), nodes.end(), fill.node[0]) - nodes.begin());
+        const int first = static_cast<int>(
+            std::lower_bound(nodes.begin(), nodes.end(), fill.node[0]) - nodes.begin());
         for (int shift : {-1, 1}) {
           const int f = first + shift;
           if (f < 0 || f + 4 > count) continue;
@@ -170,7 +180,8 @@ MapRefinementStats refineMapRows(int n1, int n2, double tolerance, int initialNo
         }
       }
       std::vector<int> merged;
-      std::merge(nodes.begin(), nodes.end(), middles.begin(), middles.end(), std::back_inserter(merged));
+      std::merge(nodes.begin(), nodes.end(), middles.begin(), middles.end(),
+                 std::back_inserter(merged));
       nodes = std::move(merged);
       // At least 3/4 of the first checks missed far: kinks all along the side (the bench bump of
       // height 2 m, whose maps carry cut-locus kinks before and after smoothing, misses by
@@ -198,7 +209,8 @@ MapRefinementStats refineMapRows(int n1, int n2, double tolerance, int initialNo
     settled = std::move(kept);
   }
   for (int i = 0; i < n1; ++i)
-    if (!std::binary_search(nodes.begin(), nodes.end(), i)) evaluate(stencilAround(nodes, i), rows, i, rows[i]);
+    if (!std::binary_search(nodes.begin(), nodes.end(), i))
+      evaluate(stencilAround(nodes, i), rows, i, rows[i]);
   return stats;
 }
 

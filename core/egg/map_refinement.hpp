@@ -27,8 +27,8 @@
 namespace egg {
 
 struct MapRefinementStats {
-  int exactRows = 0;          // rows computed by an exact source field (initial nodes + checks)
-  int rounds = 0;             // batches after the initial one (check rounds, or the one batch of the rest)
+  int exactRows = 0;  // rows computed by an exact source field (initial nodes + checks)
+  int rounds = 0;     // batches after the initial one (check rounds, or the one batch of the rest)
   int refinedIntervals = 0;   // checks or stencil comparisons that failed and split their interval
   double largestMissM = 0.0;  // largest miss of a check that passed (metres)
 };
@@ -40,8 +40,9 @@ struct MapRefinementStats {
 // between the nodes around them (checked, not guaranteed: a feature narrower than the node
 // spacing that no check or stencil comparison sees is missed).
 // Throws InvalidInput on n1 < 2, initialNodes < 2 or rows of the wrong length.
-MapRefinementStats refineMapRows(int n1, int n2, double tolerance, int initialNodes,
-                                 const std::function<std::vector<std::vector<double>>(const std::vector<int>&)>& exactRows,
-                                 std::vector<std::vector<double>>& rows);
+MapRefinementStats refineMapRows(
+    int n1, int n2, double tolerance, int initialNodes,
+    const std::function<std::vector<std::vector<double>>(const std::vector<int>&)>& exactRows,
+    std::vector<std::vector<double>>& rows);
 
 }  // namespace egg

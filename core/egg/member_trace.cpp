@@ -14,7 +14,9 @@ namespace egg {
 
 namespace {
 
-Eigen::Vector3d vertexPosition(const TriMesh& mesh, int v) { return toEigen(mesh.point(TriMesh::VertexHandle(v))); }
+Eigen::Vector3d vertexPosition(const TriMesh& mesh, int v) {
+  return toEigen(mesh.point(TriMesh::VertexHandle(v)));
+}
 
 Eigen::Vector3d faceNormal(const TriMesh& mesh, int face) {
   const auto ids = faceVertices(mesh, face);
@@ -83,12 +85,12 @@ std::vector<int> facesOf(const TriMesh& mesh, const Support& s) {
 struct Strip {
   // A path that bends around a saddle (or reflex boundary) vertex is unfolded from its last bend:
   // the part before it is kept, and its length is added.
-  int first = 0;                                            // index of the strip's first path point
-  double prefixLength = 0.0;                                // path length up to that point
-  std::vector<int> faces;                                  // faces the geodesic runs through, in order
-  std::vector<std::array<int, 3>> faceIds;                  // their vertices
-  std::vector<std::array<Eigen::Vector2d, 3>> unfolded;     // and their unfolded positions
-  std::vector<Support> crossings;                          // the edges crossed between consecutive faces
+  int first = 0;                            // index of the strip's first path point
+  double prefixLength = 0.0;                // path length up to that point
+  std::vector<int> faces;                   // faces the geodesic runs through, in order
+  std::vector<std::array<int, 3>> faceIds;  // their vertices
+  std::vector<std::array<Eigen::Vector2d, 3>> unfolded;  // and their unfolded positions
+  std::vector<Support> crossings;  // the edges crossed between consecutive faces
   std::vector<std::array<Eigen::Vector2d, 2>> crossings2d;  // those edges (a, b) unfolded
   Eigen::Vector2d source = Eigen::Vector2d::Zero();
   // The boundary edge holding the end point: chain vertices lo, lo + 1 of the end side.
@@ -104,14 +106,16 @@ Eigen::Vector2d unfoldedVertex(const Strip& strip, size_t face, int vertex) {
 
 // Unfolds the faces of `points` into the plane, isometrically face by face. nullopt when the path
 // touches a vertex, runs along an edge, or does not end on the family's end side.
-std::optional<Strip> unfoldStrip(const Patch& patch, Family family, const std::vector<SurfacePoint>& points) {
+std::optional<Strip> unfoldStrip(const Patch& patch, Family family,
+                                 const std::vector<SurfacePoint>& points) {
   const TriMesh& mesh = patch.mesh;
   if (points.size() < 2) return std::nullopt;
   Strip strip;
   // The last bend: the last point before the end that is a mesh vertex.
   for (size_t k = 1; k + 1 < points.size(); ++k)
     if (!supportOf(mesh, points[k])) strip.first = static_cast<int>(k);
-  for (int k = 1; k <= strip.first; ++k) strip.prefixLength += (position(mesh, points[k]) - position(mesh, points[k - 1])).norm();
+  for (int k = 1; k <= strip.first; ++k)
+    strip.prefixLength += (position(mesh, points[k]) - position(mesh, points[k - 1])).norm();
   std::vector<Support> supports;
   for (size_t k = strip.first; k < points.size(); ++k) {
     auto s = supportOf(mesh, points[k]);
@@ -148,7 +152,8 @@ std::optional<Strip> unfoldStrip(const Patch& patch, Family family, const std::v
   strip.unfolded.resize(count);
   {
     const auto ids = faceVertices(mesh, strip.faces[0]);
-    const Eigen::Vector3d p0 = vertexPosition(mesh, ids[0]), p1 = vertexPosition(mesh, ids[1]), p2 = vertexPosition(mesh, ids[2]);
+    const Eigen::Vector3d p0 = vertexPosition(mesh, ids[0]), p1 = vertexPosition(mesh, ids[1]),
+                          p2 = vertexPosition(mesh, ids[2]);
     const double d01 = (p1 - p0).norm(), d02 = (p2 - p0).norm(), d12 = (p2 - p1).norm();
     const double x = (d02 * d02 - d12 * d12 + d01 * d01) / (2 * d01);
     strip.faceIds[0] = ids;
@@ -165,7 +170,8 @@ std::optional<Strip> unfoldStrip(const Patch& patch, Family family, const std::v
     for (int v : strip.faceIds[k - 1])
       if (v != e.a && v != e.b) previousThird = v;
     if (third < 0 || previousThird < 0) return std::nullopt;
-    const Eigen::Vector2d A = unfoldedVertex(strip, k - 1, e.a), B = unfoldedVertex(strip, k - 1, e.b);
+    const Eigen::Vector2d A = unfoldedVertex(strip, k - 1, e.a),
+                          B = unfoldedVertex(strip, k - 1, e.b);
     const Eigen::Vector2d P = unfoldedVertex(strip, k - 1, previousThird);
     const double ab = (B - A).norm();
     const double ac = (vertexPosition(mesh, third) - vertexPosition(mesh, e.a)).norm();
@@ -186,15 +192,19 @@ std::optional<Strip> unfoldStrip(const Patch& patch, Family family, const std::v
   if (s0.face == -2) {
     strip.source = unfoldedVertex(strip, 0, s0.a);
   } else if (s0.onEdge) {
-    strip.source = (1 - s0.t) * unfoldedVertex(strip, 0, s0.a) + s0.t * unfoldedVertex(strip, 0, s0.b);
+    strip.source =
+        (1 - s0.t) * unfoldedVertex(strip, 0, s0.a) + s0.t * unfoldedVertex(strip, 0, s0.b);
   } else {
-    for (int i = 0; i < 3; ++i) strip.source += points[strip.first].barycentric[i] * unfoldedVertex(strip, 0, faceVertices(mesh, s0.face)[i]);
+    for (int i = 0; i < 3; ++i)
+      strip.source += points[strip.first].barycentric[i] *
+                      unfoldedVertex(strip, 0, faceVertices(mesh, s0.face)[i]);
   }
   // The end point's edge on the end side's vertex chain.
   const Support& last = supports.back();
   const auto& chain = patch.sides[familySide(family, true).first];
   for (size_t i = 0; i + 1 < chain.size(); ++i)
-    if ((chain[i] == last.a && chain[i + 1] == last.b) || (chain[i] == last.b && chain[i + 1] == last.a))
+    if ((chain[i] == last.a && chain[i + 1] == last.b) ||
+        (chain[i] == last.b && chain[i + 1] == last.a))
       strip.chainLo = static_cast<int>(i);
   if (strip.chainLo < 0) return std::nullopt;
   strip.endLo = unfoldedVertex(strip, count - 1, chain[strip.chainLo]);
@@ -204,14 +214,16 @@ std::optional<Strip> unfoldStrip(const Patch& patch, Family family, const std::v
 
 // The result of solving the length equation in a strip.
 struct StripSolution {
-  bool matched = false;        // x2 found on the strip's end edge and the straight line stays in the strip
-  double x2 = 0.0;             // matched x2, or the next x2 to trace from
+  bool matched =
+      false;        // x2 found on the strip's end edge and the straight line stays in the strip
+  double x2 = 0.0;  // matched x2, or the next x2 to trace from
   std::vector<SurfacePoint> points;
   std::vector<Eigen::Vector3d> positions;
 };
 
-StripSolution solveInStrip(const Patch& patch, const Strip& strip, const PlanarQuad& quad, const GridMember& m,
-                           double x2Traced, const std::vector<SurfacePoint>& traced, double tolerance) {
+StripSolution solveInStrip(const Patch& patch, const Strip& strip, const PlanarQuad& quad,
+                           const GridMember& m, double x2Traced,
+                           const std::vector<SurfacePoint>& traced, double tolerance) {
   const auto [side, reversed] = familySide(m.family, true);
   const double length = patch.sideLengths[side];
   const auto& arc = patch.sideArcLength[side];
@@ -223,7 +235,8 @@ StripSolution solveInStrip(const Patch& patch, const Strip& strip, const PlanarQ
   };
   // Exact in the strip: geodesic length minus planar length.
   const auto g = [&](double x2) {
-    return strip.prefixLength + (endAt(x2) - strip.source).norm() - planarDistance(quad, m.family, m.x1, x2);
+    return strip.prefixLength + (endAt(x2) - strip.source).norm() -
+           planarDistance(quad, m.family, m.x1, x2);
   };
   double a = std::min(xOf(sLo), xOf(sHi)), b = std::max(xOf(sLo), xOf(sHi));
   double ga = g(a), gb = g(b);
@@ -264,11 +277,14 @@ StripSolution solveInStrip(const Patch& patch, const Strip& strip, const PlanarQ
     if (!(u > 1e-12 && u < 1 - 1e-12 && lambda > previous && lambda < 1.0)) return solution;
     previous = lambda;
     const Support& e = strip.crossings[k];
-    SurfacePoint p = traced[strip.first + k + 1];  // same edge, same face: only the position along it changes
+    SurfacePoint p =
+        traced[strip.first + k + 1];  // same edge, same face: only the position along it changes
     const auto ids = faceVertices(patch.mesh, p.face);
-    for (int i = 0; i < 3; ++i) p.barycentric[i] = ids[i] == e.a ? 1.0 - u : ids[i] == e.b ? u : 0.0;
+    for (int i = 0; i < 3; ++i)
+      p.barycentric[i] = ids[i] == e.a ? 1.0 - u : ids[i] == e.b ? u : 0.0;
     solution.points.push_back(p);
-    solution.positions.push_back((1 - u) * vertexPosition(patch.mesh, e.a) + u * vertexPosition(patch.mesh, e.b));
+    solution.positions.push_back((1 - u) * vertexPosition(patch.mesh, e.a) +
+                                 u * vertexPosition(patch.mesh, e.b));
   }
   const SurfacePoint end = familyBoundaryPoint(patch, m.family, true, x);
   solution.points.push_back(end);
@@ -286,11 +302,14 @@ double polylineLength(const std::vector<Eigen::Vector3d>& line) {
 // ---------------------------------------------------------------------------------------------
 // Fallback: bracket the root with exact fields (one propagation per step).
 
-void matchByFields(const Patch& patch, const geodesic::DistanceSolver& solver, const PlanarQuad& quad, GridMember& m,
-                   const GridOptions& options, std::atomic<int>& propagations) {
+void matchByFields(const Patch& patch, const geodesic::DistanceSolver& solver,
+                   const PlanarQuad& quad, GridMember& m, const GridOptions& options,
+                   std::atomic<int>& propagations) {
   const SurfacePoint start = familyBoundaryPoint(patch, m.family, false, m.x1);
   const auto endPoint = [&](double x2) { return familyBoundaryPoint(patch, m.family, true, x2); };
-  const auto mismatch = [&](double x2, double distance) { return distance - planarDistance(quad, m.family, m.x1, x2); };
+  const auto mismatch = [&](double x2, double distance) {
+    return distance - planarDistance(quad, m.family, m.x1, x2);
+  };
   const double guess = m.x2;
   const int count = options.bracketSamples;
   const double halfWidth = 0.05;
@@ -316,9 +335,11 @@ void matchByFields(const Patch& patch, const geodesic::DistanceSolver& solver, c
     int bracket = -1;
     double a = 0, b = 0, ga = 0, gb = 0;
     for (int k = 1; k < count; ++k) {
-      const double g0 = mismatch(xs[k], field.targetDistances[k]), g1 = mismatch(xs[k + 1], field.targetDistances[k + 1]);
+      const double g0 = mismatch(xs[k], field.targetDistances[k]),
+                   g1 = mismatch(xs[k + 1], field.targetDistances[k + 1]);
       if (std::abs(g0) < std::abs(bestG)) bestG = g0, bestX = xs[k];
-      if ((g0 <= 0) != (g1 <= 0) && (bracket < 0 || std::abs(xs[k] - guess) < std::abs(xs[bracket] - guess)))
+      if ((g0 <= 0) != (g1 <= 0) &&
+          (bracket < 0 || std::abs(xs[k] - guess) < std::abs(xs[bracket] - guess)))
         bracket = k, a = xs[k], b = xs[k + 1], ga = g0, gb = g1;
     }
     if (bracket < 0) {
@@ -347,15 +368,17 @@ void matchByFields(const Patch& patch, const geodesic::DistanceSolver& solver, c
   const auto path = solver.path(start, endPoint(bestX));
   ++propagations;
   if (!std::isfinite(path.length) || path.positions.size() < 2)
-    throw SolverFailure("grid: member " + std::to_string(m.index) + " could not be traced inside the patch");
+    throw SolverFailure("grid: member " + std::to_string(m.index) +
+                        " could not be traced inside the patch");
   setPath(patch, m, bestX, path.points, path.positions);
   m.bracketed = true;
 }
 
 }  // namespace
 
-void traceInnerMember(const Patch& patch, const geodesic::DistanceSolver& solver, const PlanarQuad& quad, GridMember& m,
-                      const GridOptions& options, std::atomic<int>& propagations) {
+void traceInnerMember(const Patch& patch, const geodesic::DistanceSolver& solver,
+                      const PlanarQuad& quad, GridMember& m, const GridOptions& options,
+                      std::atomic<int>& propagations) {
   const SurfacePoint start = familyBoundaryPoint(patch, m.family, false, m.x1);
   const double tolerance = options.lengthTolerance * planarDistance(quad, m.family, m.x1, m.x2);
   const double guess = m.x2;
@@ -383,7 +406,8 @@ void traceInnerMember(const Patch& patch, const geodesic::DistanceSolver& solver
     // after the bend, length equal to the planar segment) is then the member; without this the
     // member fell back to bracketing with full fields (~20 ms on the 3.4k bench patch).
     if (solution.matched) {
-      const double mismatch = polylineLength(solution.positions) - planarDistance(quad, m.family, m.x1, solution.x2);
+      const double mismatch =
+          polylineLength(solution.positions) - planarDistance(quad, m.family, m.x1, solution.x2);
       if (std::abs(mismatch) <= tolerance) {
         setPath(patch, m, solution.x2, solution.points, solution.positions);
         return;

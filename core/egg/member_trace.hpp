@@ -18,7 +18,8 @@ namespace egg {
 
 // Sets m.x2, m.spatial and m.normals of the inner member m (m.family, m.x1 and the guess m.x2
 // given). Counts the propagations spent. Throws SolverFailure if it cannot be traced.
-void traceInnerMember(const Patch& patch, const geodesic::DistanceSolver& solver, const PlanarQuad& quad, GridMember& m,
-                      const GridOptions& options, std::atomic<int>& propagations);
+void traceInnerMember(const Patch& patch, const geodesic::DistanceSolver& solver,
+                      const PlanarQuad& quad, GridMember& m, const GridOptions& options,
+                      std::atomic<int>& propagations);
 
 }  // namespace egg

@@ -28,18 +28,19 @@
 namespace egg {
 
 struct MemberOptions {
-  int count = 0;                  // members per family including both boundary members; 0 = automatic
-  double lamellaWidthM = 0.05;    // w, lamella width (metres)
-  double spacingFactor = 8.0;     // automatic: target spacing between members = factor * w
-  double featureFraction = 0.1;   // curvature extrema with |C''| below this fraction of the largest are ignored
+  int count = 0;                // members per family including both boundary members; 0 = automatic
+  double lamellaWidthM = 0.05;  // w, lamella width (metres)
+  double spacingFactor = 8.0;   // automatic: target spacing between members = factor * w
+  double featureFraction =
+      0.1;  // curvature extrema with |C''| below this fraction of the largest are ignored
   // Automatic placement reads C through a Gaussian of standard deviation smoothingFraction * target
   // spacing: a physical length, so the features found do not depend on how finely C is sampled,
   // as long as C's samples are at most sigma / 1.5 apart along the curve. Coarser samples widen the
   // Gaussian to 1.5 x the longest step (members.cpp: narrower, every sample of the piecewise-linear
-  // C is a curvature extremum of its own); the members are then those of C smoothed over that width.
-  // Half the spacing: features of C closer than about one spacing merge (they could not all get
-  // members), a narrow feature's curvature extrema land about one spacing from its centre, and on
-  // `egg bench grid` sub-millimetre map changes move members by about a millimetre (a quarter of
+  // C is a curvature extremum of its own); the members are then those of C smoothed over that
+  // width. Half the spacing: features of C closer than about one spacing merge (they could not all
+  // get members), a narrow feature's curvature extrema land about one spacing from its centre, and
+  // on `egg bench grid` sub-millimetre map changes move members by about a millimetre (a quarter of
   // the spacing left curvature extrema so flat that they moved by centimetres).
   double smoothingFraction = 0.5;
   // Extrema are bracketed on a scan with this many points per smoothing length and then solved
@@ -49,7 +50,7 @@ struct MemberOptions {
   // less than this fraction are a near-tie: one member is placed between them, weighted by
   // priority, instead of the winner flipping with the last digits of C.
   double tieBand = 0.05;
-  void validate() const;          // throws InvalidInput naming the field
+  void validate() const;  // throws InvalidInput naming the field
 };
 
 // Given: chosen by the caller (membersAt in patch_design.hpp, e.g. by propagation, Section 3.4.4).
@@ -66,8 +67,9 @@ struct FamilyMembers {
 // sideLengths: spatial lengths of the family's start and end sides (metres), which the boundary
 // parameters run along at constant speed. Throws InfeasiblePatch when the cladding function is
 // not bijective, InvalidInput when a fixed count is too dense for the lamella width.
-FamilyMembers placeMembers(const CladdingFunction& cladding, const PlanarQuad& quad, double startSideLength,
-                           double endSideLength, const MemberOptions& options = {});
+FamilyMembers placeMembers(const CladdingFunction& cladding, const PlanarQuad& quad,
+                           double startSideLength, double endSideLength,
+                           const MemberOptions& options = {});
 
 // Minimum distance (metres, along a side) a lamella of width w needs where it crosses that side
 // at angle theta: w / sin(theta) (its footprint on the side), split half to each neighbour.

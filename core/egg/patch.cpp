@@ -18,9 +18,12 @@
 namespace egg {
 
 void PatchOptions::validate() const {
-  if (!(angleMargin >= 0.0 && angleMargin < 1.0)) throw InvalidInput("patch.angle_margin must lie in [0, 1) rad");
-  if (!(boundaryWrapToleranceRad >= 0.0)) throw InvalidInput("patch.boundary_wrap_tolerance_rad must be >= 0");
-  if (!(mergeFraction >= 0.0 && mergeFraction < 0.1)) throw InvalidInput("patch.merge_fraction must lie in [0, 0.1)");
+  if (!(angleMargin >= 0.0 && angleMargin < 1.0))
+    throw InvalidInput("patch.angle_margin must lie in [0, 1) rad");
+  if (!(boundaryWrapToleranceRad >= 0.0))
+    throw InvalidInput("patch.boundary_wrap_tolerance_rad must be >= 0");
+  if (!(mergeFraction >= 0.0 && mergeFraction < 0.1))
+    throw InvalidInput("patch.merge_fraction must lie in [0, 0.1)");
 }
 
 namespace {
@@ -67,7 +70,8 @@ int insertCorner(TriangleSoup& soup, const TriMesh& mesh, const SurfacePoint& po
     splitEdge(soup, a, b, n);
     return n;
   }
-  soup.vertices.push_back(w[0] * soup.vertices[ids[0]] + w[1] * soup.vertices[ids[1]] + w[2] * soup.vertices[ids[2]]);
+  soup.vertices.push_back(w[0] * soup.vertices[ids[0]] + w[1] * soup.vertices[ids[1]] +
+                          w[2] * soup.vertices[ids[2]]);
   // Faces of `mesh` are the soup's triangles in order (meshFromSoup), possibly rotated.
   const auto old = soup.triangles[point.face];
   soup.triangles[point.face] = {old[0], old[1], n};
@@ -78,13 +82,14 @@ int insertCorner(TriangleSoup& soup, const TriMesh& mesh, const SurfacePoint& po
 
 // A point of a traced boundary: a mesh vertex or a point on an edge.
 struct PathNode {
-  int vertex = -1;       // set for a vertex, else the id of the inserted vertex
-  int a = -1, b = -1;    // edge (a < b) for an edge point
-  double t = 0.0;        // position from a to b
+  int vertex = -1;     // set for a vertex, else the id of the inserted vertex
+  int a = -1, b = -1;  // edge (a < b) for an edge point
+  double t = 0.0;      // position from a to b
   bool onEdge() const { return a >= 0; }
 };
 
-using EdgePoints = std::map<EdgeKey, std::vector<std::pair<double, int>>>;  // inserted vertices per edge
+using EdgePoints =
+    std::map<EdgeKey, std::vector<std::pair<double, int>>>;  // inserted vertices per edge
 
 // The surface with the four corners inserted as vertices.
 struct CornersInserted {
@@ -97,8 +102,9 @@ struct CornersInserted {
 //    (the face and the faces across its edges, all an insertion may split) are disjoint, the
 //    usual case, they go into the soup together: one mesh rebuild instead of four (~2.5 ms each
 //    on a 5k-vertex surface). Otherwise one at a time, each snapped on the mesh so far.
-CornersInserted insertCorners(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& requested, double merge, double maxOffset,
-                              Patch& patch) {
+CornersInserted insertCorners(const TriMesh& surface,
+                              const std::array<Eigen::Vector3d, 4>& requested, double merge,
+                              double maxOffset, Patch& patch) {
   CornersInserted c;
   c.soup = soupFromMesh(surface);
   TriangleSoup& soup = c.soup;
@@ -106,13 +112,14 @@ CornersInserted insertCorners(const TriMesh& surface, const std::array<Eigen::Ve
   std::set<int> neighbourhoods;
   bool together = true;
   for (int k = 0; k < 4; ++k) {
-    if (!requested[k].allFinite()) throw InvalidInput("patch corner " + std::to_string(k) + " is not a finite point");
+    if (!requested[k].allFinite())
+      throw InvalidInput("patch corner " + std::to_string(k) + " is not a finite point");
     snapped[k] = geodesic::snapToSurface(surface, requested[k]);
     patch.cornerOffsets[k] = (position(surface, snapped[k]) - requested[k]).norm();
     if (patch.cornerOffsets[k] > maxOffset)
-      throw InvalidInput("patch corner " + std::to_string(k) + " " + format(requested[k]) + " lies " +
-                         std::to_string(patch.cornerOffsets[k]) + " m off the surface (more than " +
-                         std::to_string(maxOffset) + " m)");
+      throw InvalidInput("patch corner " + std::to_string(k) + " " + format(requested[k]) +
+                         " lies " + std::to_string(patch.cornerOffsets[k]) +
+                         " m off the surface (more than " + std::to_string(maxOffset) + " m)");
     std::set<int> faces{snapped[k].face};
     for (auto fh : surface.ff_range(TriMesh::FaceHandle(snapped[k].face))) faces.insert(fh.idx());
     for (int f : faces) together = neighbourhoods.insert(f).second && together;
@@ -129,7 +136,8 @@ CornersInserted insertCorners(const TriMesh& surface, const std::array<Eigen::Ve
     }
     for (int j = 0; j < k; ++j)
       if (cornerIds[j] == cornerIds[k])
-        throw InvalidInput("patch corners " + std::to_string(j) + " and " + std::to_string(k) + " coincide");
+        throw InvalidInput("patch corners " + std::to_string(j) + " and " + std::to_string(k) +
+                           " coincide");
   }
   if (together) work = meshFromSoup(soup);
   return c;
@@ -137,7 +145,8 @@ CornersInserted insertCorners(const TriMesh& surface, const std::array<Eigen::Ve
 
 // One point of boundary k's traced path as a PathNode: a vertex of `work` when it lies (within
 // `merge`) on one, else a point on an edge, inserted into the soup once per edge and position.
-PathNode pathNodeOf(const TriMesh& work, const SurfacePoint& sp, double merge, int k, TriangleSoup& soup, EdgePoints& edgePoints) {
+PathNode pathNodeOf(const TriMesh& work, const SurfacePoint& sp, double merge, int k,
+                    TriangleSoup& soup, EdgePoints& edgePoints) {
   const auto ids = faceVertices(work, sp.face);
   const Eigen::Vector3d& w = sp.barycentric;
   int largest = 0, smallest = 0;
@@ -174,7 +183,8 @@ struct TracedBoundaries {
 };
 
 // 2. The four shortest geodesics.
-TracedBoundaries traceBoundaries(const TriMesh& work, const std::array<int, 4>& cornerIds, const PatchOptions& options, TriangleSoup& soup) {
+TracedBoundaries traceBoundaries(const TriMesh& work, const std::array<int, 4>& cornerIds,
+                                 const PatchOptions& options, TriangleSoup& soup) {
   const double merge = options.mergeFraction;
   const geodesic::DistanceSolver solver(work);
   TracedBoundaries out;
@@ -183,19 +193,24 @@ TracedBoundaries traceBoundaries(const TriMesh& work, const std::array<int, 4>& 
   // The four traces are independent propagations: run them concurrently, then insert them in order.
   std::array<geodesic::GeodesicPath, 4> traced;
   tbb::parallel_for(0, 4, [&](int k) {
-    traced[k] = solver.path(geodesic::vertexPoint(work, cornerIds[k]), geodesic::vertexPoint(work, cornerIds[(k + 1) % 4]));
+    traced[k] = solver.path(geodesic::vertexPoint(work, cornerIds[k]),
+                            geodesic::vertexPoint(work, cornerIds[(k + 1) % 4]));
   });
   for (int k = 0; k < 4; ++k) {
     const auto& path = traced[k];
     if (!std::isfinite(path.length) || path.points.size() < 2)
-      throw InfeasiblePatch("boundary " + std::to_string(k) + ": corners " + std::to_string(k) + " and " +
-                            std::to_string((k + 1) % 4) + " are not connected on the surface");
-    if (const double wrap = boundaryWrapTurning(work, path.positions, path.bendVertices); wrap > options.boundaryWrapToleranceRad) {
+      throw InfeasiblePatch("boundary " + std::to_string(k) + ": corners " + std::to_string(k) +
+                            " and " + std::to_string((k + 1) % 4) +
+                            " are not connected on the surface");
+    if (const double wrap = boundaryWrapTurning(work, path.positions, path.bendVertices);
+        wrap > options.boundaryWrapToleranceRad) {
       int at = path.bendVertices.front();
       for (int v : path.bendVertices)
         if (work.is_boundary(TriMesh::VertexHandle(v))) at = v;
-      throw InfeasiblePatch("boundary " + std::to_string(k) + " wraps around the surface boundary or a hole (turning " +
-                            std::to_string(wrap) + " rad round it, near " + format(toEigen(work.point(TriMesh::VertexHandle(at)))) +
+      throw InfeasiblePatch("boundary " + std::to_string(k) +
+                            " wraps around the surface boundary or a hole (turning " +
+                            std::to_string(wrap) + " rad round it, near " +
+                            format(toEigen(work.point(TriMesh::VertexHandle(at)))) +
                             "): it is not a geodesic there");
     }
     for (const SurfacePoint& sp : path.points) {
@@ -208,7 +223,8 @@ TracedBoundaries traceBoundaries(const TriMesh& work, const std::array<int, 4>& 
 }
 
 // 3. Boundaries may share only their common corners.
-void checkBoundariesApart(const std::array<std::vector<PathNode>, 4>& paths, const std::array<int, 4>& cornerIds, const TriangleSoup& soup) {
+void checkBoundariesApart(const std::array<std::vector<PathNode>, 4>& paths,
+                          const std::array<int, 4>& cornerIds, const TriangleSoup& soup) {
   std::map<int, int> owner;
   for (int k = 0; k < 4; ++k)
     for (const auto& node : paths[k]) {
@@ -216,15 +232,16 @@ void checkBoundariesApart(const std::array<std::vector<PathNode>, 4>& paths, con
       if (corner) continue;
       auto [it, inserted] = owner.emplace(node.vertex, k);
       if (!inserted && it->second != k)
-        throw InfeasiblePatch("boundaries " + std::to_string(it->second) + " and " + std::to_string(k) + " cross at " +
+        throw InfeasiblePatch("boundaries " + std::to_string(it->second) + " and " +
+                              std::to_string(k) + " cross at " +
                               format(soup.vertices[node.vertex]));
     }
   for (int k = 0; k < 4; ++k)
     for (const auto& node : paths[k])
       for (int c = 0; c < 4; ++c)
         if (node.vertex == cornerIds[c] && c != k && c != (k + 1) % 4)
-          throw InfeasiblePatch("boundary " + std::to_string(k) + " runs through corner " + std::to_string(c) +
-                                " (collinear or crossing corners)");
+          throw InfeasiblePatch("boundary " + std::to_string(k) + " runs through corner " +
+                                std::to_string(c) + " (collinear or crossing corners)");
 }
 
 // The faces of `work` holding a path node (the faces round its vertex, or the two on its edge).
@@ -250,7 +267,8 @@ struct BoundarySteps {
 
 // 4. Re-triangulate every face the boundaries cut. Steps of a path either run along an edge of
 //    `work` or cut straight across one face (a geodesic is straight inside a face).
-BoundarySteps boundaryStepsOf(const TriMesh& work, const std::array<std::vector<PathNode>, 4>& paths) {
+BoundarySteps boundaryStepsOf(const TriMesh& work,
+                              const std::array<std::vector<PathNode>, 4>& paths) {
   BoundarySteps out;
   auto& constrained = out.constrained;
   auto& chords = out.chords;
@@ -262,7 +280,8 @@ BoundarySteps boundaryStepsOf(const TriMesh& work, const std::array<std::vector<
       const auto fp = facesOf(work, p), fq = facesOf(work, q);
       std::vector<int> common;
       std::set_intersection(fp.begin(), fp.end(), fq.begin(), fq.end(), std::back_inserter(common));
-      if (common.empty()) throw SolverFailure("patch: a step of boundary " + std::to_string(k) + " leaves its face");
+      if (common.empty())
+        throw SolverFailure("patch: a step of boundary " + std::to_string(k) + " leaves its face");
       chains[k].push_back(q.vertex);
       constrained.insert(edgeKey(p.vertex, q.vertex));
       if (common.size() == 1) {
@@ -272,7 +291,8 @@ BoundarySteps boundaryStepsOf(const TriMesh& work, const std::array<std::vector<
         for (int i = 0; i < 3 && !alongEdge; ++i) {
           const EdgeKey e = edgeKey(ids[i], ids[(i + 1) % 3]);
           const auto onThisEdge = [&](const PathNode& n) {
-            return n.onEdge() ? EdgeKey(n.a, n.b) == e : (n.vertex == e.first || n.vertex == e.second);
+            return n.onEdge() ? EdgeKey(n.a, n.b) == e
+                              : (n.vertex == e.first || n.vertex == e.second);
           };
           alongEdge = onThisEdge(p) && onThisEdge(q);
         }
@@ -300,14 +320,17 @@ std::vector<int> facePolygon(const std::array<int, 3>& ids, const EdgePoints& ed
 }
 
 // Cuts a face's polygon along the chords across it into pieces.
-std::vector<std::vector<int>> cutByChords(const std::vector<int>& polygon, const std::vector<EdgeKey>* faceChords, const TriangleSoup& soup) {
+std::vector<std::vector<int>> cutByChords(const std::vector<int>& polygon,
+                                          const std::vector<EdgeKey>* faceChords,
+                                          const TriangleSoup& soup) {
   std::vector<std::vector<int>> pieces{polygon};
   if (faceChords)
     for (const auto& [x, y] : *faceChords) {
       bool split = false;
       for (size_t p = 0; p < pieces.size() && !split; ++p) {
         auto& piece = pieces[p];
-        const auto ix = std::find(piece.begin(), piece.end(), x), iy = std::find(piece.begin(), piece.end(), y);
+        const auto ix = std::find(piece.begin(), piece.end(), x),
+                   iy = std::find(piece.begin(), piece.end(), y);
         if (ix == piece.end() || iy == piece.end()) continue;
         size_t i = ix - piece.begin(), j = iy - piece.begin();
         if (i > j) std::swap(i, j);
@@ -319,13 +342,15 @@ std::vector<std::vector<int>> cutByChords(const std::vector<int>& polygon, const
         split = true;
       }
       if (!split)
-        throw InfeasiblePatch("two boundaries cross inside a face near " + format(soup.vertices[x]));
+        throw InfeasiblePatch("two boundaries cross inside a face near " +
+                              format(soup.vertices[x]));
     }
   return pieces;
 }
 
 // Each piece is convex (a triangle cut by straight chords); clip ears of positive area.
-void clipEars(const std::vector<std::vector<int>>& pieces, const TriangleSoup& soup, const Eigen::Vector3d& normal, TriangleSoup& cut) {
+void clipEars(const std::vector<std::vector<int>>& pieces, const TriangleSoup& soup,
+              const Eigen::Vector3d& normal, TriangleSoup& cut) {
   for (auto piece : pieces) {
     while (piece.size() > 3) {
       size_t best = piece.size();
@@ -334,7 +359,8 @@ void clipEars(const std::vector<std::vector<int>>& pieces, const TriangleSoup& s
         const auto& a = soup.vertices[piece[(i + piece.size() - 1) % piece.size()]];
         const auto& b = soup.vertices[piece[i]];
         const auto& c = soup.vertices[piece[(i + 1) % piece.size()]];
-        const double area = (b - a).cross(c - a).dot(normal) / ((b - a).norm() * (c - a).norm() + 1e-300);
+        const double area =
+            (b - a).cross(c - a).dot(normal) / ((b - a).norm() * (c - a).norm() + 1e-300);
         if (area > bestArea) bestArea = area, best = i;
       }
       if (best == piece.size()) break;  // only collinear points left: nothing to triangulate
@@ -375,7 +401,8 @@ struct Regions {
 };
 
 // 5. Flood fill the faces without crossing a boundary; keep the region the quad encloses.
-Regions floodFill(const TriMesh& split, const TriangleSoup& cut, const std::set<EdgeKey>& constrained) {
+Regions floodFill(const TriMesh& split, const TriangleSoup& cut,
+                  const std::set<EdgeKey>& constrained) {
   Regions out;
   std::vector<int>& component = out.component;
   std::vector<double>& componentArea = out.area;
@@ -392,7 +419,9 @@ Regions floodFill(const TriMesh& split, const TriangleSoup& cut, const std::set<
       const auto fh = TriMesh::FaceHandle(stack.back());
       stack.pop_back();
       const auto ids = faceVertices(split, fh.idx());
-      componentArea[id] += 0.5 * (cut.vertices[ids[1]] - cut.vertices[ids[0]]).cross(cut.vertices[ids[2]] - cut.vertices[ids[0]]).norm();
+      componentArea[id] += 0.5 * (cut.vertices[ids[1]] - cut.vertices[ids[0]])
+                                     .cross(cut.vertices[ids[2]] - cut.vertices[ids[0]])
+                                     .norm();
       for (auto heh : split.fh_range(fh)) {
         const int a = split.from_vertex_handle(heh).idx(), b = split.to_vertex_handle(heh).idx();
         if (constrained.count(edgeKey(a, b))) continue;
@@ -401,7 +430,8 @@ Regions floodFill(const TriMesh& split, const TriangleSoup& cut, const std::set<
           componentTouchesSurfaceBoundary[id] = 1;
           continue;
         }
-        if (component[opposite.idx()] < 0) component[opposite.idx()] = id, stack.push_back(opposite.idx());
+        if (component[opposite.idx()] < 0)
+          component[opposite.idx()] = id, stack.push_back(opposite.idx());
       }
     }
   }
@@ -420,20 +450,26 @@ int enclosedRegion(const TriMesh& split, const Regions& regions, const std::vect
     if (!split.is_boundary(opp)) right = component[split.face_handle(opp).idx()];
   }
   if (left == right)
-    throw InfeasiblePatch("the four boundaries do not enclose a region: they cross or leave the surface");
+    throw InfeasiblePatch(
+        "the four boundaries do not enclose a region: they cross or leave the surface");
   const auto encloses = [&](int c) { return c >= 0 && !regions.touchesSurfaceBoundary[c]; };
   int inside = -1;
-  if (encloses(left) && encloses(right)) inside = regions.area[left] <= regions.area[right] ? left : right;
-  else if (encloses(left)) inside = left;
-  else if (encloses(right)) inside = right;
+  if (encloses(left) && encloses(right))
+    inside = regions.area[left] <= regions.area[right] ? left : right;
+  else if (encloses(left))
+    inside = left;
+  else if (encloses(right))
+    inside = right;
   else
-    throw InfeasiblePatch("the region inside the four boundaries contains part of the surface boundary or a hole");
+    throw InfeasiblePatch(
+        "the region inside the four boundaries contains part of the surface boundary or a hole");
   return inside;
 }
 
 // 6. The patch mesh, with the boundary chains renumbered.
-void fillPatch(const TriMesh& split, const TriangleSoup& cut, const Regions& regions, int inside, const std::array<int, 4>& cornerIds,
-               const std::array<std::vector<int>, 4>& chains, Patch& patch) {
+void fillPatch(const TriMesh& split, const TriangleSoup& cut, const Regions& regions, int inside,
+               const std::array<int, 4>& cornerIds, const std::array<std::vector<int>, 4>& chains,
+               Patch& patch) {
   TriangleSoup out;
   std::vector<int> renumber(cut.vertices.size(), -1);
   for (auto fh : split.faces()) {
@@ -441,7 +477,9 @@ void fillPatch(const TriMesh& split, const TriangleSoup& cut, const Regions& reg
     std::array<int, 3> t{};
     const auto ids = faceVertices(split, fh.idx());
     for (int i = 0; i < 3; ++i) {
-      if (renumber[ids[i]] < 0) renumber[ids[i]] = static_cast<int>(out.vertices.size()), out.vertices.push_back(cut.vertices[ids[i]]);
+      if (renumber[ids[i]] < 0)
+        renumber[ids[i]] = static_cast<int>(out.vertices.size()),
+        out.vertices.push_back(cut.vertices[ids[i]]);
       t[i] = renumber[ids[i]];
     }
     out.triangles.push_back(t);
@@ -454,7 +492,9 @@ void fillPatch(const TriMesh& split, const TriangleSoup& cut, const Regions& reg
     double s = 0.0;
     for (size_t i = 0; i < chains[k].size(); ++i) {
       const int v = renumber[chains[k][i]];
-      if (v < 0) throw SolverFailure("patch: boundary " + std::to_string(k) + " lost a vertex while cutting");
+      if (v < 0)
+        throw SolverFailure("patch: boundary " + std::to_string(k) +
+                            " lost a vertex while cutting");
       if (i > 0) s += (cut.vertices[chains[k][i]] - cut.vertices[chains[k][i - 1]]).norm();
       patch.sides[k].push_back(v);
       patch.sideArcLength[k].push_back(s);
@@ -466,38 +506,43 @@ void fillPatch(const TriMesh& split, const TriangleSoup& cut, const Regions& reg
 // 7. Criterion (iv): every inner angle below pi.
 void checkInnerAngles(Patch& patch, const PatchOptions& options) {
   for (int k = 0; k < 4; ++k) {
-    patch.innerAngles[k] = vertexAngleSum(patch.mesh, TriMesh::VertexHandle(patch.cornerVertices[k]));
+    patch.innerAngles[k] =
+        vertexAngleSum(patch.mesh, TriMesh::VertexHandle(patch.cornerVertices[k]));
     if (patch.innerAngles[k] >= M_PI - options.angleMargin)
-      throw InfeasiblePatch("inner angle at corner " + std::to_string(k) + " is " + std::to_string(patch.innerAngles[k]) +
+      throw InfeasiblePatch("inner angle at corner " + std::to_string(k) + " is " +
+                            std::to_string(patch.innerAngles[k]) +
                             " rad, not below pi: the patch is not convex (criterion iv)");
   }
 }
 
 }  // namespace
 
-Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& requested, const PatchOptions& options) {
+Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& requested,
+                const PatchOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
   if (surface.n_faces() == 0) throw InvalidInput("patch: the surface has no faces");
   Patch patch;
   const double merge = options.mergeFraction;
-  const double maxOffset = options.maxCornerOffsetM > 0.0
-                               ? options.maxCornerOffsetM
-                               : std::max(2.0 * meanEdgeLength(surface), 0.01 * boundingBox(surface).size().norm());
+  const double maxOffset =
+      options.maxCornerOffsetM > 0.0
+          ? options.maxCornerOffsetM
+          : std::max(2.0 * meanEdgeLength(surface), 0.01 * boundingBox(surface).size().norm());
 
-  CornersInserted corners = insertCorners(surface, requested, merge, maxOffset, patch);            // 1.
+  CornersInserted corners = insertCorners(surface, requested, merge, maxOffset, patch);  // 1.
   const TriMesh& work = corners.work;
   TriangleSoup& soup = corners.soup;
-  const TracedBoundaries boundaries = traceBoundaries(work, corners.cornerIds, options, soup);     // 2.
-  checkBoundariesApart(boundaries.paths, corners.cornerIds, soup);                                 // 3.
-  const BoundarySteps steps = boundaryStepsOf(work, boundaries.paths);                             // 4.
+  const TracedBoundaries boundaries =
+      traceBoundaries(work, corners.cornerIds, options, soup);          // 2.
+  checkBoundariesApart(boundaries.paths, corners.cornerIds, soup);      // 3.
+  const BoundarySteps steps = boundaryStepsOf(work, boundaries.paths);  // 4.
   const TriangleSoup cut = cutFaces(work, soup, boundaries.edgePoints, steps.chords);
   // Drop vertices no triangle uses (none expected) by rebuilding through meshFromSoup later.
   const TriMesh split = meshFromSoup(cut);
-  const Regions regions = floodFill(split, cut, steps.constrained);                                // 5.
+  const Regions regions = floodFill(split, cut, steps.constrained);  // 5.
   const int inside = enclosedRegion(split, regions, steps.chains[0]);
-  fillPatch(split, cut, regions, inside, corners.cornerIds, steps.chains, patch);                  // 6.
-  checkInnerAngles(patch, options);                                                                // 7.
+  fillPatch(split, cut, regions, inside, corners.cornerIds, steps.chains, patch);  // 6.
+  checkInnerAngles(patch, options);                                                // 7.
   patch.propagations = 4;
   patch.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return patch;
@@ -505,7 +550,8 @@ Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& re
 
 void refreshPatchGeometry(Patch& patch) {
   for (int k = 0; k < 4; ++k)
-    patch.innerAngles[k] = vertexAngleSum(patch.mesh, TriMesh::VertexHandle(patch.cornerVertices[k]));
+    patch.innerAngles[k] =
+        vertexAngleSum(patch.mesh, TriMesh::VertexHandle(patch.cornerVertices[k]));
   patch.area = surfaceArea(patch.mesh);
 }
 
@@ -525,10 +571,12 @@ SurfacePoint sidePoint(const Patch& patch, int side, double arcLength) {
     SurfacePoint point;
     point.face = patch.mesh.face_handle(h).idx();
     const auto ids = faceVertices(patch.mesh, point.face);
-    for (int i = 0; i < 3; ++i) point.barycentric[i] = ids[i] == a ? 1.0 - t : ids[i] == b ? t : 0.0;
+    for (int i = 0; i < 3; ++i)
+      point.barycentric[i] = ids[i] == a ? 1.0 - t : ids[i] == b ? t : 0.0;
     return point;
   }
-  throw SolverFailure("patch: side " + std::to_string(side) + " has no edge between consecutive vertices");
+  throw SolverFailure("patch: side " + std::to_string(side) +
+                      " has no edge between consecutive vertices");
 }
 
 }  // namespace egg

@@ -32,21 +32,24 @@ struct PatchOptions {
 };
 
 struct Patch {
-  TriMesh mesh;                                 // the patch alone; its boundary is the geodesic quad
-  std::array<Eigen::Vector3d, 4> corners;       // corner positions (on the surface)
-  std::array<int, 4> cornerVertices{};          // corner vertex ids in `mesh`
-  std::array<std::vector<int>, 4> sides;        // boundary vertex chain of side k, corner k -> corner k+1
-  std::array<std::vector<double>, 4> sideArcLength;  // cumulative length along side k at its chain vertices
-  std::array<double, 4> sideLengths{};          // geodesic side lengths (metres)
-  std::array<double, 4> innerAngles{};          // inner angle at each corner, measured in `mesh` (radians)
-  std::array<double, 4> cornerOffsets{};        // how far each requested corner was moved onto the surface
-  double area = 0.0;                            // m^2
-  int propagations = 0;                         // geodesic propagations on the surface (one per side)
+  TriMesh mesh;                            // the patch alone; its boundary is the geodesic quad
+  std::array<Eigen::Vector3d, 4> corners;  // corner positions (on the surface)
+  std::array<int, 4> cornerVertices{};     // corner vertex ids in `mesh`
+  std::array<std::vector<int>, 4> sides;  // boundary vertex chain of side k, corner k -> corner k+1
+  std::array<std::vector<double>, 4>
+      sideArcLength;                    // cumulative length along side k at its chain vertices
+  std::array<double, 4> sideLengths{};  // geodesic side lengths (metres)
+  std::array<double, 4> innerAngles{};  // inner angle at each corner, measured in `mesh` (radians)
+  std::array<double, 4>
+      cornerOffsets{};   // how far each requested corner was moved onto the surface
+  double area = 0.0;     // m^2
+  int propagations = 0;  // geodesic propagations on the surface (one per side)
   double seconds = 0.0;
 };
 
 // Builds the patch. Corners are taken in order around the quad.
-Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& corners, const PatchOptions& options = {});
+Patch makePatch(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& corners,
+                const PatchOptions& options = {});
 
 // Recomputes inner angles and area after the patch mesh moved (smoothing keeps the boundary).
 void refreshPatchGeometry(Patch& patch);

@@ -47,13 +47,14 @@ Eigen::Vector3d patchCentre(const Patch& patch) {
 }
 
 // Families and p_max of an eta failure: the worst of the checks above eta_max (Section 3.4.1).
-DesignFailure etaFailure(const Patch& patch, const std::vector<EtaCheck>& checks, double etaU, double etaV,
-                         double etaMax) {
+DesignFailure etaFailure(const Patch& patch, const std::vector<EtaCheck>& checks, double etaU,
+                         double etaV, double etaMax) {
   DesignFailure f;
   f.kind = DesignFailureKind::Eta;
   f.familyU = etaU > etaMax;
   f.familyV = etaV > etaMax;
-  if (!f.familyU && !f.familyV) f.familyU = f.familyV = true;  // cannot happen for a failed check; be safe
+  if (!f.familyU && !f.familyV)
+    f.familyU = f.familyV = true;  // cannot happen for a failed check; be safe
   const EtaCheck* worst = nullptr;
   for (const auto& c : checks)
     if (c.eta > etaMax && (!worst || c.eta > worst->eta)) worst = &c;
@@ -83,7 +84,8 @@ DesignFailure slopeFailure(const PatchDesign& d, const std::string& message) {
   f.kind = DesignFailureKind::Slopes;
   std::optional<AlphaBarEvaluation> at;
   if (options.choice == AlphaBarChoice::Given || options.choice == AlphaBarChoice::Unrolled) {
-    const double alpha = options.choice == AlphaBarChoice::Given ? options.givenAlphaBar : d.maps.alphaSpatial;
+    const double alpha =
+        options.choice == AlphaBarChoice::Given ? options.givenAlphaBar : d.maps.alphaSpatial;
     const auto e = evaluateAlphaBar(d.maps, alpha, options);
     if (e.closable) at = e;
   }
@@ -91,7 +93,8 @@ DesignFailure slopeFailure(const PatchDesign& d, const std::string& message) {
     double least = std::numeric_limits<double>::infinity();
     const int n = options.scanSamples;
     for (int k = 0; k < n; ++k) {
-      const auto e = evaluateAlphaBar(d.maps, range->lo + (range->hi - range->lo) * k / (n - 1), options);
+      const auto e =
+          evaluateAlphaBar(d.maps, range->lo + (range->hi - range->lo) * k / (n - 1), options);
       if (!e.closable) continue;
       const double worst = std::max({e.diagonalProduct, e.violationU, e.violationV});
       if (worst < least) least = worst, at = e;
@@ -112,8 +115,9 @@ DesignFailure slopeFailure(const PatchDesign& d, const std::string& message) {
 // (in multi-patch mode splitting replaces it, Section 3.1); the maps are then redone on the
 // smoothed patch. `solver` becomes the smoothed patch's; returns the failure when smoothing
 // leaves a corner's inner angle at pi or above.
-std::optional<DesignFailure> smoothUntilUnique(PatchDesign& d, std::shared_ptr<const geodesic::DistanceSolver>& solver,
-                                               const EggOptions& options) {
+std::optional<DesignFailure> smoothUntilUnique(
+    PatchDesign& d, std::shared_ptr<const geodesic::DistanceSolver>& solver,
+    const EggOptions& options) {
   std::vector<Eigen::Vector3d> original;
   for (auto vh : d.patch.mesh.vertices()) original.push_back(toEigen(d.patch.mesh.point(vh)));
   SmoothingOptions smoothing;
@@ -134,7 +138,8 @@ std::optional<DesignFailure> smoothUntilUnique(PatchDesign& d, std::shared_ptr<c
   report.smoothingRounds = rounds;
   for (auto vh : d.patch.mesh.vertices())
     report.smoothingDisplacementM =
-        std::max(report.smoothingDisplacementM, (toEigen(d.patch.mesh.point(vh)) - original[vh.idx()]).norm());
+        std::max(report.smoothingDisplacementM,
+                 (toEigen(d.patch.mesh.point(vh)) - original[vh.idx()]).norm());
   report.seconds += d.uniqueness.seconds;
   report.checksBeforeSmoothing = d.uniqueness.checks;
   report.etaBeforeSmoothing = std::max(d.uniqueness.etaU, d.uniqueness.etaV);
@@ -146,7 +151,8 @@ std::optional<DesignFailure> smoothUntilUnique(PatchDesign& d, std::shared_ptr<c
   // split this asks for is the one the eta failure before smoothing asked for.
   for (int k = 0; k < 4; ++k) {
     if (d.patch.innerAngles[k] >= M_PI - options.patch.angleMargin) {
-      DesignFailure f = etaFailure(d.patch, before.checks, before.etaU, before.etaV, options.uniqueness.etaMax);
+      DesignFailure f =
+          etaFailure(d.patch, before.checks, before.etaU, before.etaV, options.uniqueness.etaMax);
       f.kind = DesignFailureKind::Convexity;
       f.message = "after smoothing, the inner angle at corner " + std::to_string(k) + " is " +
                   std::to_string(d.patch.innerAngles[k]) + " rad, not below pi (criterion iv)";
@@ -156,7 +162,8 @@ std::optional<DesignFailure> smoothUntilUnique(PatchDesign& d, std::shared_ptr<c
   return std::nullopt;
 }
 
-PatchDesign failed(PatchDesign d, DesignFailure failure, std::chrono::steady_clock::time_point started) {
+PatchDesign failed(PatchDesign d, DesignFailure failure,
+                   std::chrono::steady_clock::time_point started) {
   d.feasible = false;
   d.failure = std::move(failure);
   d.seconds.total = since(started);
@@ -175,7 +182,8 @@ PatchDesign designPatch(Patch patch, const EggOptions& options) {
   // One solver for the whole design (and the grid): its tables serve the eta check, the maps and
   // the tracing.
   auto t = std::chrono::steady_clock::now();
-  std::shared_ptr<const geodesic::DistanceSolver> solver = std::make_shared<geodesic::DistanceSolver>(d.patch.mesh);
+  std::shared_ptr<const geodesic::DistanceSolver> solver =
+      std::make_shared<geodesic::DistanceSolver>(d.patch.mesh);
   d.seconds.uniqueness = since(t);
 
   // The maps and the eta check in one go (Sections 2.4.2, 2.3.3, 3.4.1): the maps hold the
@@ -202,8 +210,9 @@ PatchDesign designPatch(Patch patch, const EggOptions& options) {
       tasks.run([&] {
         if (d.peaks.peaks.empty() || boundCertainlyHolds(d.patch, d.peaks)) return;
         const int n = options.maps.resolution;
-        etaFields = proxy ? uniquenessFieldsViaProxy(d.patch, *solver, *proxy, *proxySolver, d.peaks, n)
-                          : uniquenessFields(d.patch, d.peaks, *solver, n);
+        etaFields =
+            proxy ? uniquenessFieldsViaProxy(d.patch, *solver, *proxy, *proxySolver, d.peaks, n)
+                  : uniquenessFields(d.patch, d.peaks, *solver, n);
       });
     };
     // Should anything below throw, the group is waited for (its tasks use the locals above) before
@@ -223,7 +232,8 @@ PatchDesign designPatch(Patch patch, const EggOptions& options) {
     });
     if (mapsUseProxy(d.patch, options.maps)) {
       proxy = makeMapProxy(d.patch, options.maps.proxyVertices);
-      proxySolver = std::make_unique<geodesic::DistanceSolver>(proxy->patch.mesh, proxySolverOptions(*solver, options.maps));
+      proxySolver = std::make_unique<geodesic::DistanceSolver>(
+          proxy->patch.mesh, proxySolverOptions(*solver, options.maps));
     }
     tasks.run([&] {
       d.maps = proxy ? computeDistanceMaps(*proxy, *proxySolver, options.maps)
@@ -232,7 +242,8 @@ PatchDesign designPatch(Patch patch, const EggOptions& options) {
     etaInputReady();
     tasks.wait();
   }
-  if (proxy && !d.peaks.peaks.empty() && measureDiagonalsNearTheBound(d.maps, d.patch, *solver, d.peaks))
+  if (proxy && !d.peaks.peaks.empty() &&
+      measureDiagonalsNearTheBound(d.maps, d.patch, *solver, d.peaks))
     d.propagations += 2;
   d.propagations += d.maps.propagations + etaFields.propagations();
   d.seconds.distanceMaps = since(t);
@@ -251,10 +262,11 @@ PatchDesign designPatch(Patch patch, const EggOptions& options) {
     const UniquenessReport& u = d.uniqueness;
     DesignFailure f = etaFailure(d.patch, u.checks, u.etaU, u.etaV, options.uniqueness.etaMax);
     std::ostringstream message;
-    message << "shortest geodesics are not unique on this patch: eta_u = " << u.etaU << ", eta_v = " << u.etaV
-            << " > eta_max = " << options.uniqueness.etaMax << " (K_max = " << u.gaussianMax
-            << " 1/m^2, injectivity bound " << u.injectivityBoundM << " m < longest geodesic " << u.longestGeodesicM
-            << " m; smoothing rounds " << u.smoothingRounds << ")";
+    message << "shortest geodesics are not unique on this patch: eta_u = " << u.etaU
+            << ", eta_v = " << u.etaV << " > eta_max = " << options.uniqueness.etaMax
+            << " (K_max = " << u.gaussianMax << " 1/m^2, injectivity bound " << u.injectivityBoundM
+            << " m < longest geodesic " << u.longestGeodesicM << " m; smoothing rounds "
+            << u.smoothingRounds << ")";
     f.message = message.str();
     d.seconds.uniqueness += since(t);
     return failed(std::move(d), std::move(f), started);
@@ -288,7 +300,8 @@ void requireFeasible(const PatchDesign& design) {
 namespace {
 
 const CladdingFunction& designCladding(const PatchDesign& design, Family family) {
-  if (!design.feasible) throw InvalidInput("the patch design is infeasible (" + design.failure.message + ")");
+  if (!design.feasible)
+    throw InvalidInput("the patch design is infeasible (" + design.failure.message + ")");
   return family == Family::U ? design.alphaBar.claddingU : design.alphaBar.claddingV;
 }
 
@@ -304,7 +317,8 @@ double claddingInverse(const PatchDesign& design, Family family, double x2) {
 
 double claddingSlope(const CladdingFunction& cladding, double x1) {
   const auto& p = cladding.points;
-  if (p.size() < 2) throw InvalidInput("claddingSlope: the cladding function has fewer than two points");
+  if (p.size() < 2)
+    throw InvalidInput("claddingSlope: the cladding function has fewer than two points");
   x1 = std::clamp(x1, 0.0, 1.0);
   // The segment CladdingFunction::evaluate interpolates on (cladding.cpp interpolateAlong): the
   // last point with x1 at or below the key starts it, so the slope is right-continuous.
@@ -314,7 +328,8 @@ double claddingSlope(const CladdingFunction& cladding, double x1) {
     (p[mid].x() <= x1 ? lo : top) = mid;
   }
   const Eigen::Vector2d step = p[top] - p[lo];
-  if (!(step.x() > 0.0)) throw InvalidInput("claddingSlope: the cladding function is not bijective (criterion iii)");
+  if (!(step.x() > 0.0))
+    throw InvalidInput("claddingSlope: the cladding function is not bijective (criterion iii)");
   return step.y() / step.x();
 }
 
@@ -329,22 +344,27 @@ CladdingFunction claddingAt(const PatchDesign& design, Family family, double alp
   if (!quad)
     throw InvalidInput("claddingAt: alpha_bar = " + std::to_string(alphaBar) +
                        " rad gives no convex planar quad with this patch's sides (criterion iv)");
-  return claddingFunction(design.maps.map(family), *quad, family, meanSide(design.maps), options.cladding);
+  return claddingFunction(design.maps.map(family), *quad, family, meanSide(design.maps),
+                          options.cladding);
 }
 
-FamilyMembers placeDesignMembers(const PatchDesign& design, Family family, const MemberOptions& options) {
-  return placeMembers(designCladding(design, family), design.alphaBar.quad, familySideLength(design.patch, family, false),
+FamilyMembers placeDesignMembers(const PatchDesign& design, Family family,
+                                 const MemberOptions& options) {
+  return placeMembers(designCladding(design, family), design.alphaBar.quad,
+                      familySideLength(design.patch, family, false),
                       familySideLength(design.patch, family, true), options);
 }
 
 FamilyMembers membersAt(const PatchDesign& design, Family family, const std::vector<double>& x1) {
   const CladdingFunction& cladding = designCladding(design, family);
   if (x1.size() < 2 || x1.front() != 0.0 || x1.back() != 1.0)
-    throw InvalidInput("membersAt: x1 must start at 0 and end at 1 (the boundary members), with at least two members");
+    throw InvalidInput(
+        "membersAt: x1 must start at 0 and end at 1 (the boundary members), with at least two "
+        "members");
   for (size_t k = 1; k < x1.size(); ++k)
     if (!(x1[k] > x1[k - 1]))
-      throw InvalidInput("membersAt: x1 must increase strictly (x1[" + std::to_string(k) + "] = " + std::to_string(x1[k]) +
-                         " after " + std::to_string(x1[k - 1]) + ")");
+      throw InvalidInput("membersAt: x1 must increase strictly (x1[" + std::to_string(k) + "] = " +
+                         std::to_string(x1[k]) + " after " + std::to_string(x1[k - 1]) + ")");
   FamilyMembers members;
   members.family = family;
   for (size_t k = 0; k < x1.size(); ++k) {
@@ -362,7 +382,8 @@ EggGrid traceDesignGrid(const PatchDesign& design, const FamilyMembers& u, const
                         const GridOptions& options) {
   designCladding(design, Family::U);  // feasibility
   if (u.family != Family::U || v.family != Family::V)
-    throw InvalidInput("traceDesignGrid: the first members must be of family u, the second of family v");
+    throw InvalidInput(
+        "traceDesignGrid: the first members must be of family u, the second of family v");
   return buildGrid(design.patch, *design.solver, design.alphaBar.quad, u, v, options);
 }
 

@@ -6,7 +6,8 @@
 //   - evaluate trial patches cheaply (no members, no tracing) and split infeasible ones by the
 //     data of their failure (Workflow 1, Algorithm 1 in Section 3.4.3),
 //   - read F(x1, alpha_bar) and dF/dx1 for propagation's SQP (Problem 3.3, Section 3.4.4),
-//   - trace member coordinates chosen elsewhere (membersAt + traceDesignGrid, Sections 2.4.4-2.4.6).
+//   - trace member coordinates chosen elsewhere (membersAt + traceDesignGrid,
+//   Sections 2.4.4-2.4.6).
 // solveEgg (solve_patch.hpp) is makePatch + designPatch + placeDesignMembers + traceDesignGrid.
 #include "core/egg/alpha_bar.hpp"
 #include "core/egg/grid.hpp"
@@ -34,20 +35,21 @@ struct EggOptions {
 };
 
 // Wall times (seconds) of the parts of one solve. distanceMaps includes the eta check's K peaks
-// and its peak and p1 fields, which run alongside the maps; uniqueness is the solver set-up, the check on
-// the maps and any smoothing (with its own checks); sqp is Problem 2.3; tracing builds the grid.
-// A design fills uniqueness, distanceMaps, sqp and total (its own time); solveEgg the rest.
+// and its peak and p1 fields, which run alongside the maps; uniqueness is the solver set-up, the
+// check on the maps and any smoothing (with its own checks); sqp is Problem 2.3; tracing builds the
+// grid. A design fills uniqueness, distanceMaps, sqp and total (its own time); solveEgg the rest.
 struct EggTimings {
-  double patch = 0.0, uniqueness = 0.0, distanceMaps = 0.0, sqp = 0.0, members = 0.0, tracing = 0.0, total = 0.0;
+  double patch = 0.0, uniqueness = 0.0, distanceMaps = 0.0, sqp = 0.0, members = 0.0, tracing = 0.0,
+         total = 0.0;
 };
 
 // Why a patch cannot carry a grid, as data Workflow 1 splits by (Section 3.4.3): eta fails for one
 // family -> a new side through `peak`, both -> a corner at `peak`; the same for slopes.
 enum class DesignFailureKind {
-  Eta,        // shortest geodesics are not unique (eta > eta_max, Section 2.3.3) and smoothing is off
-  Slopes,     // Problem 2.3 has no feasible alpha_bar (slopes of F outside (k_min, k_max), not
-              // bijective, or (e - e_bar)(f - f_bar) >= 0), or the requested angle is infeasible
-  Convexity   // criterion (iv): an inner angle reached pi after smoothing, or no convex planar quad
+  Eta,     // shortest geodesics are not unique (eta > eta_max, Section 2.3.3) and smoothing is off
+  Slopes,  // Problem 2.3 has no feasible alpha_bar (slopes of F outside (k_min, k_max), not
+           // bijective, or (e - e_bar)(f - f_bar) >= 0), or the requested angle is infeasible
+  Convexity  // criterion (iv): an inner angle reached pi after smoothing, or no convex planar quad
 };
 struct DesignFailure {
   DesignFailureKind kind = DesignFailureKind::Eta;
@@ -68,15 +70,15 @@ struct PatchDesign {
   // The fine patch's solver (it copies the mesh): tracing reuses its tables. Shared, so a design
   // copies cheaply; it is only read (const), safe from several threads.
   std::shared_ptr<const geodesic::DistanceSolver> solver;
-  EggOptions options;             // as designed (claddingAt, placeDesignMembers read them)
-  PatchPeaks peaks;               // interior K peaks, strongest first
+  EggOptions options;  // as designed (claddingAt, placeDesignMembers read them)
+  PatchPeaks peaks;    // interior K peaks, strongest first
   UniquenessReport uniqueness;
-  PatchDistanceMaps maps;         // empty only when the design failed before the maps
-  AlphaBarResult alphaBar;        // valid when feasible: the chosen angle, quad, F_u, F_v
+  PatchDistanceMaps maps;   // empty only when the design failed before the maps
+  AlphaBarResult alphaBar;  // valid when feasible: the chosen angle, quad, F_u, F_v
   bool feasible = false;
-  DesignFailure failure;          // valid when !feasible
-  EggTimings seconds;             // uniqueness, distanceMaps, sqp, total
-  int propagations = 0;           // distance propagations of the design (the patch's own not included)
+  DesignFailure failure;  // valid when !feasible
+  EggTimings seconds;     // uniqueness, distanceMaps, sqp, total
+  int propagations = 0;   // distance propagations of the design (the patch's own not included)
 };
 
 // Designs an already cut patch. Infeasibility (eta, slopes, convexity) is returned in
@@ -103,7 +105,8 @@ double claddingSlope(const CladdingFunction& cladding, double x1);
 CladdingFunction claddingAt(const PatchDesign& design, Family family, double alphaBar);
 
 // Automatic member placement on the design's F (Section 2.4.4), as solveEgg does.
-FamilyMembers placeDesignMembers(const PatchDesign& design, Family family, const MemberOptions& options);
+FamilyMembers placeDesignMembers(const PatchDesign& design, Family family,
+                                 const MemberOptions& options);
 // Members at given start parameters x1 (strictly increasing, x1[0] = 0, x1.back() = 1): x2 = F(x1),
 // lengths from F, origin Boundary at the ends and Given inside. No spacing check (the caller chose
 // them, e.g. propagation). Throws InvalidInput on bad x1 or an infeasible design.

@@ -9,23 +9,33 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
-#include <string>
 #include <cmath>
+#include <string>
 
 namespace egg {
 
 void DistanceMapOptions::validate() const {
-  if (resolution < 3 || resolution > 2000) throw InvalidInput("grid.map_resolution must lie in [3, 2000]");
+  if (resolution < 3 || resolution > 2000)
+    throw InvalidInput("grid.map_resolution must lie in [3, 2000]");
   if (!(toleranceRelative >= 0.0) || !std::isfinite(toleranceRelative))
-    throw InvalidInput("grid.map_tolerance_relative must be a finite number >= 0 (a fraction of the shorter side; 0 = exact rows)");
-  if (initialNodes < 2) throw InvalidInput("distance map initialNodes must be >= 2 (both corners of the start side)");
+    throw InvalidInput(
+        "grid.map_tolerance_relative must be a finite number >= 0 (a fraction of the shorter side; "
+        "0 = exact rows)");
+  if (initialNodes < 2)
+    throw InvalidInput("distance map initialNodes must be >= 2 (both corners of the start side)");
   if (proxyVertices != 0 && (proxyVertices < 8 || proxyVertices > 10000000))
-    throw InvalidInput("grid.map_proxy_vertices must be 0 (maps on the patch itself) or an integer in [8, 1e7], got " +
-                       std::to_string(proxyVertices));
+    throw InvalidInput(
+        "grid.map_proxy_vertices must be 0 (maps on the patch itself) or an integer in [8, 1e7], "
+        "got " +
+        std::to_string(proxyVertices));
   if (!(proxyToleranceRelative >= 0.0) || !std::isfinite(proxyToleranceRelative))
-    throw InvalidInput("distance map proxyToleranceRelative must be a finite number >= 0 (0 = exact rows on the proxy)");
+    throw InvalidInput(
+        "distance map proxyToleranceRelative must be a finite number >= 0 (0 = exact rows on the "
+        "proxy)");
   if (!(proxySaddleAngleTolerance >= 0.0) || !std::isfinite(proxySaddleAngleTolerance))
-    throw InvalidInput("distance map proxySaddleAngleTolerance must be a finite number >= 0 (radians; 0 = exact fields on the proxy)");
+    throw InvalidInput(
+        "distance map proxySaddleAngleTolerance must be a finite number >= 0 (radians; 0 = exact "
+        "fields on the proxy)");
 }
 
 std::pair<int, bool> familySide(Family family, bool end) {
@@ -49,31 +59,35 @@ namespace {
 // Both maps of `patch` measured with `solver` (which must be built on patch.mesh); the adaptive
 // rows refine to `toleranceRelative` times the family's shorter side. Sides, diagonals and alpha
 // are those of `patch`.
-PatchDistanceMaps mapsOn(const Patch& patch, const geodesic::DistanceSolver& solver, int n, double toleranceRelative,
-                         int initialNodes) {
+PatchDistanceMaps mapsOn(const Patch& patch, const geodesic::DistanceSolver& solver, int n,
+                         double toleranceRelative, int initialNodes) {
   PatchDistanceMaps maps;
   maps.sides = patch.sideLengths;
   maps.alphaSpatial = patch.innerAngles[0];
   int propagations[2] = {0, 0};
   const auto familyMap = [&](Family family) {
     std::vector<SurfacePoint> targets;
-    for (int j = 0; j < n; ++j) targets.push_back(familyBoundaryPoint(patch, family, true, static_cast<double>(j) / (n - 1)));
+    for (int j = 0; j < n; ++j)
+      targets.push_back(familyBoundaryPoint(patch, family, true, static_cast<double>(j) / (n - 1)));
     // One batch per call: the initial nodes, then the middles of every interval still under test.
     const auto exactRows = [&](const std::vector<int>& indices) {
       std::vector<SurfacePoint> sources;
-      for (int i : indices) sources.push_back(familyBoundaryPoint(patch, family, false, static_cast<double>(i) / (n - 1)));
+      for (int i : indices)
+        sources.push_back(
+            familyBoundaryPoint(patch, family, false, static_cast<double>(i) / (n - 1)));
       auto fields = solver.distances(sources, targets);
       std::vector<std::vector<double>> rows;
       for (auto& field : fields) {
         for (double d : field.targetDistances)
-          if (!std::isfinite(d)) throw SolverFailure("distance map: a boundary point is unreachable inside the patch");
+          if (!std::isfinite(d))
+            throw SolverFailure("distance map: a boundary point is unreachable inside the patch");
         rows.push_back(std::move(field.targetDistances));
       }
       return rows;
     };
     std::vector<std::vector<double>> rows;
-    const double tolerance = toleranceRelative *
-                             std::min(familySideLength(patch, family, false), familySideLength(patch, family, true));
+    const double tolerance = toleranceRelative * std::min(familySideLength(patch, family, false),
+                                                          familySideLength(patch, family, true));
     const auto stats = refineMapRows(n, n, tolerance, initialNodes, exactRows, rows);
     propagations[family == Family::U ? 0 : 1] = stats.exactRows;
     DistanceMap map(n, n);
@@ -92,10 +106,12 @@ PatchDistanceMaps mapsOn(const Patch& patch, const geodesic::DistanceSolver& sol
 }  // namespace
 
 bool mapsUseProxy(const Patch& patch, const DistanceMapOptions& options) {
-  return options.proxyVertices != 0 && static_cast<int>(patch.mesh.n_vertices()) > options.proxyVertices;
+  return options.proxyVertices != 0 &&
+         static_cast<int>(patch.mesh.n_vertices()) > options.proxyVertices;
 }
 
-geodesic::DistanceSolverOptions proxySolverOptions(const geodesic::DistanceSolver& solver, const DistanceMapOptions& options) {
+geodesic::DistanceSolverOptions proxySolverOptions(const geodesic::DistanceSolver& solver,
+                                                   const DistanceMapOptions& options) {
   geodesic::DistanceSolverOptions proxyOptions = solver.options();
   proxyOptions.saddleAngleTolerance = options.proxySaddleAngleTolerance;
   return proxyOptions;
@@ -109,7 +125,8 @@ PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::Distan
     // its mesh noise is the proxy's (at 1e-4 the 0.6k-vertex bench patch refined 145 of 200 rows
     // and took longer than the 3.4k one). proxyVertices = 0 asks for the rows on the patch at
     // toleranceRelative whatever its size.
-    const double tolerance = options.proxyVertices > 0 ? options.proxyToleranceRelative : options.toleranceRelative;
+    const double tolerance =
+        options.proxyVertices > 0 ? options.proxyToleranceRelative : options.toleranceRelative;
     return mapsOn(patch, solver, options.resolution, tolerance, options.initialNodes);
   }
   // Maps on the proxy (map_proxy.hpp): its own solver, its own row tolerance; the sides, alpha
@@ -119,13 +136,15 @@ PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::Distan
   return computeDistanceMaps(proxy, proxySolver, options);
 }
 
-PatchDistanceMaps computeDistanceMaps(const MapProxy& proxy, const geodesic::DistanceSolver& proxySolver,
+PatchDistanceMaps computeDistanceMaps(const MapProxy& proxy,
+                                      const geodesic::DistanceSolver& proxySolver,
                                       const DistanceMapOptions& options) {
   options.validate();
   // The diagonals (Problem 2.3's (e - e_bar)(f - f_bar) and the injectivity check) are the
   // proxy's too: measured on the patch by directed propagations they cost ~25 ms of CPU at 3.4k
   // vertices (a corner-to-corner ellipse is half the patch) and moved neither alpha_bar nor eta.
-  return mapsOn(proxy.patch, proxySolver, options.resolution, options.proxyToleranceRelative, options.initialNodes);
+  return mapsOn(proxy.patch, proxySolver, options.resolution, options.proxyToleranceRelative,
+                options.initialNodes);
 }
 
 }  // namespace egg

@@ -41,12 +41,13 @@ struct DistanceMapOptions {
   // instead of the fine default 7e-4: less CPU, map errors unchanged (the proxy's own error is
   // ~1e-3 m). Figures for both: docs/measurements.md.
   double proxySaddleAngleTolerance = 3e-3;
-  void validate() const; // throws InvalidInput naming the field
+  void validate() const;  // throws InvalidInput naming the field
 };
 
 // The patch side a family's start side (end = false) or end side runs along, and whether the
 // family's parameter runs against the side's own direction (corner k -> k+1):
-// u runs c0->c3 (side 3 backwards) to c1->c2 (side 1); v runs c0->c1 (side 0) to c3->c2 (side 2 backwards).
+// u runs c0->c3 (side 3 backwards) to c1->c2 (side 1); v runs c0->c1 (side 0) to c3->c2 (side 2
+// backwards).
 std::pair<int, bool> familySide(Family family, bool end);
 
 // The boundary point at parameter x in [0,1] on the family's start side (end = false) or end side.
@@ -63,10 +64,12 @@ PatchDistanceMaps computeDistanceMaps(const Patch& patch, const geodesic::Distan
 // True when the maps are read on a proxy of the patch (options.proxyVertices, map_proxy.hpp).
 bool mapsUseProxy(const Patch& patch, const DistanceMapOptions& options);
 // The proxy solver's options: the patch solver's, with options.proxySaddleAngleTolerance.
-geodesic::DistanceSolverOptions proxySolverOptions(const geodesic::DistanceSolver& solver, const DistanceMapOptions& options);
+geodesic::DistanceSolverOptions proxySolverOptions(const geodesic::DistanceSolver& solver,
+                                                   const DistanceMapOptions& options);
 // The maps on a given proxy of a patch (proxySolver built on proxy.patch.mesh), so the eta check
 // can share it (solveEgg).
-PatchDistanceMaps computeDistanceMaps(const MapProxy& proxy, const geodesic::DistanceSolver& proxySolver,
+PatchDistanceMaps computeDistanceMaps(const MapProxy& proxy,
+                                      const geodesic::DistanceSolver& proxySolver,
                                       const DistanceMapOptions& options);
 
 }  // namespace egg

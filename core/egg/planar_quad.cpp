@@ -6,7 +6,9 @@
 namespace egg {
 namespace {
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 }  // namespace
 
@@ -45,7 +47,8 @@ std::optional<PlanarQuad> planarQuad(const QuadSides& sides, double alphaBar, do
   return quad;
 }
 
-std::optional<AngleInterval> convexAlphaRange(const QuadSides& sides, double margin, double minAngle) {
+std::optional<AngleInterval> convexAlphaRange(const QuadSides& sides, double margin,
+                                              double minAngle) {
   // The closable convex configurations of a four-bar linkage form one interval of the input
   // angle; scan for it and sharpen both ends by bisection.
   constexpr int kSamples = 2048;
@@ -81,7 +84,8 @@ std::array<int, 4> familyCorners(Family family) {
   return family == Family::U ? std::array<int, 4>{0, 3, 1, 2} : std::array<int, 4>{0, 1, 3, 2};
 }
 
-std::array<Eigen::Vector2d, 2> planarMember(const PlanarQuad& quad, Family family, double x1, double x2) {
+std::array<Eigen::Vector2d, 2> planarMember(const PlanarQuad& quad, Family family, double x1,
+                                            double x2) {
   const auto k = familyCorners(family);
   const auto& c = quad.corners;
   return {c[k[0]] + x1 * (c[k[1]] - c[k[0]]), c[k[2]] + x2 * (c[k[3]] - c[k[2]])};

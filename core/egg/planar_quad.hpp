@@ -30,7 +30,8 @@ struct PlanarQuad {
 // The planar quad with the given sides and angle alpha_bar at c0, or nullopt when it cannot be
 // closed (four-bar linkage out of reach) or is not strictly convex: every inner angle must lie in
 // (minAngle, pi - minAngle) (minAngle = 0: plain convexity, criterion iv).
-std::optional<PlanarQuad> planarQuad(const QuadSides& sides, double alphaBar, double minAngle = 0.0);
+std::optional<PlanarQuad> planarQuad(const QuadSides& sides, double alphaBar,
+                                     double minAngle = 0.0);
 
 // Inner angles of a quad (radians, at c0..c3); negative/over-pi values flag a non-convex quad.
 std::array<double, 4> innerAngles(const std::array<Eigen::Vector2d, 4>& corners);
@@ -42,11 +43,13 @@ struct AngleInterval {
   double lo = 0.0;
   double hi = 0.0;
 };
-std::optional<AngleInterval> convexAlphaRange(const QuadSides& sides, double margin = 1e-6, double minAngle = 0.0);
+std::optional<AngleInterval> convexAlphaRange(const QuadSides& sides, double margin = 1e-6,
+                                              double minAngle = 0.0);
 
 // Endpoints of a planar member of `family` with boundary parameters (x1, x2) in [0,1]:
 // start point on the start side, end point on the end side (constant speed).
-std::array<Eigen::Vector2d, 2> planarMember(const PlanarQuad& quad, Family family, double x1, double x2);
+std::array<Eigen::Vector2d, 2> planarMember(const PlanarQuad& quad, Family family, double x1,
+                                            double x2);
 
 // Closed-form planar distance |start(x1) - end(x2)| (the planar distance map, Section 2.4.2).
 double planarDistance(const PlanarQuad& quad, Family family, double x1, double x2);

@@ -11,7 +11,8 @@ double since(std::chrono::steady_clock::time_point t) {
 }
 }  // namespace
 
-EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& corners, const EggOptions& options) {
+EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& corners,
+                   const EggOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   options.validate();
 

@@ -10,7 +10,8 @@
 namespace egg::geodesic {
 
 void BoundaryConnectionOptions::validate() const {
-  if (!std::isfinite(tolerance)) throw InvalidInput("BoundaryConnectionOptions.tolerance must be finite");
+  if (!std::isfinite(tolerance))
+    throw InvalidInput("BoundaryConnectionOptions.tolerance must be finite");
 }
 
 std::vector<std::vector<int>> boundaryLoops(const TriMesh& mesh) {
@@ -30,23 +31,29 @@ std::vector<std::vector<int>> boundaryLoops(const TriMesh& mesh) {
   return loops;
 }
 
-BoundaryConnections findBoundaryConnections(const Eigen::MatrixXd& distanceMap, const std::vector<double>& arcLength,
-                                            double loopLength, const std::vector<char>& bendsInward,
+BoundaryConnections findBoundaryConnections(const Eigen::MatrixXd& distanceMap,
+                                            const std::vector<double>& arcLength, double loopLength,
+                                            const std::vector<char>& bendsInward,
                                             const BoundaryConnectionOptions& options) {
   options.validate();
   const int n = static_cast<int>(arcLength.size());
   if (distanceMap.rows() != n || distanceMap.cols() != n) {
-    throw InvalidInput("findBoundaryConnections: the distance map is " + std::to_string(distanceMap.rows()) + " x " +
-                       std::to_string(distanceMap.cols()) + " but there are " + std::to_string(n) + " samples");
+    throw InvalidInput("findBoundaryConnections: the distance map is " +
+                       std::to_string(distanceMap.rows()) + " x " +
+                       std::to_string(distanceMap.cols()) + " but there are " + std::to_string(n) +
+                       " samples");
   }
   if (static_cast<int>(bendsInward.size()) != n) {
-    throw InvalidInput("findBoundaryConnections: bendsInward has " + std::to_string(bendsInward.size()) +
-                       " entries for " + std::to_string(n) + " samples");
+    throw InvalidInput("findBoundaryConnections: bendsInward has " +
+                       std::to_string(bendsInward.size()) + " entries for " + std::to_string(n) +
+                       " samples");
   }
-  if (!(loopLength > 0.0)) throw InvalidInput("findBoundaryConnections: the loop length must be positive");
+  if (!(loopLength > 0.0))
+    throw InvalidInput("findBoundaryConnections: the loop length must be positive");
   for (int i = 1; i < n; ++i) {
     if (!(arcLength[i] >= arcLength[i - 1]) || arcLength[i] > loopLength) {
-      throw InvalidInput("findBoundaryConnections: arc lengths must increase within [0, loop length]");
+      throw InvalidInput(
+          "findBoundaryConnections: arc lengths must increase within [0, loop length]");
     }
   }
   const double tol = options.tolerance > 0.0 ? options.tolerance : 1e-9 * loopLength;
@@ -130,12 +137,15 @@ BoundaryConnections findBoundaryConnections(const Eigen::MatrixXd& distanceMap, 
   return result;
 }
 
-BoundaryConnections findBoundaryConnections(const Eigen::MatrixXd& distanceMap, const std::vector<double>& arcLength,
-                                            double loopLength, const BoundaryConnectionOptions& options) {
-  return findBoundaryConnections(distanceMap, arcLength, loopLength, std::vector<char>(arcLength.size(), 1), options);
+BoundaryConnections findBoundaryConnections(const Eigen::MatrixXd& distanceMap,
+                                            const std::vector<double>& arcLength, double loopLength,
+                                            const BoundaryConnectionOptions& options) {
+  return findBoundaryConnections(distanceMap, arcLength, loopLength,
+                                 std::vector<char>(arcLength.size(), 1), options);
 }
 
-std::vector<char> boundaryBendsInward(const TriMesh& mesh, const std::vector<int>& loopVertices, double tolerance) {
+std::vector<char> boundaryBendsInward(const TriMesh& mesh, const std::vector<int>& loopVertices,
+                                      double tolerance) {
   std::vector<char> result;
   result.reserve(loopVertices.size());
   for (int v : loopVertices) {

@@ -6,11 +6,11 @@
 // the propagation sifting through the wavefront (docs/measurements.md). The keys of the queued
 // windows all lie within a few edge lengths of the front, so buckets of width ~ edge/1024 hold a
 // handful of entries each: a push is an append and a pop scans the current bucket; should the
-// current bucket hold more than a few entries, it becomes a binary heap until it is empty. Entries beyond the calendar's horizon wait in an overflow heap. The pop
-// order is exactly (key, item), as a heap's, so every bit of the result is the same (unless reset
-// unordered: then only the buckets are in order). On a graded
-// mesh (edges much shorter than the mean somewhere) a bucket can hold thousands of entries; it
-// then costs what one heap of that size costs, not a linear scan per pop.
+// current bucket hold more than a few entries, it becomes a binary heap until it is empty. Entries
+// beyond the calendar's horizon wait in an overflow heap. The pop order is exactly (key, item), as
+// a heap's, so every bit of the result is the same (unless reset unordered: then only the buckets
+// are in order). On a graded mesh (edges much shorter than the mean somewhere) a bucket can hold
+// thousands of entries; it then costs what one heap of that size costs, not a linear scan per pop.
 // Keys below the current bucket (by rounding in a full field, where a child window never lies
 // nearer than its parent; truly lower in a directed one, whose keys are sums of two separate
 // minima, goal_bound.hpp) are kept in the current bucket and still pop in key order. Keys must
@@ -105,7 +105,8 @@ class BucketQueue {
     if (index - current_ < static_cast<long long>(kBuckets)) {
       auto& bucket = buckets_[index & kMask];
       bucket.push_back({key, item});
-      if (index == current_ && currentIsHeap_) std::push_heap(bucket.begin(), bucket.end(), greater);
+      if (index == current_ && currentIsHeap_)
+        std::push_heap(bucket.begin(), bucket.end(), greater);
       ++bucketed_;
     } else {
       overflow_.push_back({key, item});
@@ -162,7 +163,9 @@ class BucketQueue {
 
  public:
   // The order of entries, (key, item): also the wavefront engine's vertex-event heap's.
-  static bool less(const Entry& a, const Entry& b) { return a.key < b.key || (a.key == b.key && a.item < b.item); }
+  static bool less(const Entry& a, const Entry& b) {
+    return a.key < b.key || (a.key == b.key && a.item < b.item);
+  }
   // A function object, not a function: the heap algorithms then inline the comparison (through a
   // function pointer it was a call per sift step).
   struct Greater {
@@ -191,10 +194,12 @@ class BucketQueue {
       // (a fine mesh's): its hundreds of records would evict each other before their pops.
       for (const Entry& e : ahead) {
         if (e.item < 0) continue;
-        const int record = recordOfItem_ ? *reinterpret_cast<const int*>(
-                                               recordOfItem_ + static_cast<std::size_t>(e.item) * mapStride_)
-                                         : e.item;
-        if (record >= 0) __builtin_prefetch(prefetchBase_ + static_cast<std::size_t>(record) * prefetchStride_);
+        const int record = recordOfItem_
+                               ? *reinterpret_cast<const int*>(
+                                     recordOfItem_ + static_cast<std::size_t>(e.item) * mapStride_)
+                               : e.item;
+        if (record >= 0)
+          __builtin_prefetch(prefetchBase_ + static_cast<std::size_t>(record) * prefetchStride_);
       }
     }
   }
@@ -206,7 +211,8 @@ class BucketQueue {
       if (index - current_ >= static_cast<long long>(kBuckets)) break;
       auto& bucket = buckets_[index & kMask];
       bucket.push_back(overflow_.front());
-      if (index == current_ && currentIsHeap_) std::push_heap(bucket.begin(), bucket.end(), greater);
+      if (index == current_ && currentIsHeap_)
+        std::push_heap(bucket.begin(), bucket.end(), greater);
       ++bucketed_;
       std::pop_heap(overflow_.begin(), overflow_.end(), greater);
       overflow_.pop_back();

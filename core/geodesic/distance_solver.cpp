@@ -32,11 +32,15 @@ void DistanceSolverOptions::validate() const {
     throw InvalidInput("DistanceSolverOptions.minWindowWidthRelative must be in [0, 1e-3)");
   }
   if (!(imageMergeTolerance >= 0.0) || !(imageMergeTolerance < 1e-3)) {
-    throw InvalidInput("DistanceSolverOptions.imageMergeTolerance must be in [0, 1e-3) (a fraction of the edge length)");
+    throw InvalidInput(
+        "DistanceSolverOptions.imageMergeTolerance must be in [0, 1e-3) (a fraction of the edge "
+        "length)");
   }
   if (threads < 0) throw InvalidInput("DistanceSolverOptions.threads must be >= 0 (0 = all cores)");
-  if (engine != Engine::StoredWindows && engine != Engine::FrontOnly && engine != Engine::Wavefront) {
-    throw InvalidInput("DistanceSolverOptions.engine must be StoredWindows, FrontOnly or Wavefront");
+  if (engine != Engine::StoredWindows && engine != Engine::FrontOnly &&
+      engine != Engine::Wavefront) {
+    throw InvalidInput(
+        "DistanceSolverOptions.engine must be StoredWindows, FrontOnly or Wavefront");
   }
 }
 
@@ -47,7 +51,8 @@ DistanceSolverOptions DistanceSolverOptions::exact() {
   return options;
 }
 
-DistanceSolver::DistanceSolver(const TriMesh& mesh, const DistanceSolverOptions& options) : options_(options) {
+DistanceSolver::DistanceSolver(const TriMesh& mesh, const DistanceSolverOptions& options)
+    : options_(options) {
   options_.validate();
   const auto start = std::chrono::steady_clock::now();
   tables_ = std::make_unique<detail::MeshTables>(detail::buildTables(mesh, options_));
@@ -67,12 +72,14 @@ detail::Propagation& threadScratch() {
   return state;
 }
 
-DistanceField fieldFrom(const detail::MeshTables& tables, const detail::Propagation& state, double seconds) {
+DistanceField fieldFrom(const detail::MeshTables& tables, const detail::Propagation& state,
+                        double seconds) {
   DistanceField field;
   field.vertexDistances = state.vertexDistance;
   field.targetDistances = state.targetDistance;
   field.windowsCreated = state.windowsCreated;
-  field.peakWindows = static_cast<long>(state.wavefront ? state.slots.size() : state.windows.size());
+  field.peakWindows =
+      static_cast<long>(state.wavefront ? state.slots.size() : state.windows.size());
   field.peakBytes = detail::peakBytes(tables, state);
   field.seconds = seconds;
   return field;
@@ -86,21 +93,26 @@ bool wavefront(const DistanceSolverOptions& options) {
 }
 }  // namespace
 
-DistanceField DistanceSolver::distances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const {
+DistanceField DistanceSolver::distances(const SurfacePoint& source,
+                                        const std::vector<SurfacePoint>& targets) const {
   const auto start = std::chrono::steady_clock::now();
   detail::Propagation& state = threadScratch();
-  detail::propagate(*tables_, options_, source, targets, state, false, storesWindows(options_), wavefront(options_));
+  detail::propagate(*tables_, options_, source, targets, state, false, storesWindows(options_),
+                    wavefront(options_));
   return fieldFrom(*tables_, state, secondsSince(start));
 }
 
-DistanceField DistanceSolver::directedDistances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const {
+DistanceField DistanceSolver::directedDistances(const SurfacePoint& source,
+                                                const std::vector<SurfacePoint>& targets) const {
   const auto start = std::chrono::steady_clock::now();
   detail::Propagation& state = threadScratch();
-  detail::propagate(*tables_, options_, source, targets, state, /*directedAtTargets=*/true, storesWindows(options_), wavefront(options_));
+  detail::propagate(*tables_, options_, source, targets, state, /*directedAtTargets=*/true,
+                    storesWindows(options_), wavefront(options_));
   return fieldFrom(*tables_, state, secondsSince(start));
 }
 
-DistanceField DistanceSolver::distancesFromVertex(int vertex, const std::vector<SurfacePoint>& targets) const {
+DistanceField DistanceSolver::distancesFromVertex(int vertex,
+                                                  const std::vector<SurfacePoint>& targets) const {
   if (vertex < 0 || vertex >= tables_->vertexCount) {
     throw InvalidInput("geodesic: source vertex " + std::to_string(vertex) + " is out of range");
   }
@@ -116,14 +128,15 @@ DistanceField DistanceSolver::distancesFromVertex(int vertex, const std::vector<
   throw InvalidInput("geodesic: source vertex " + std::to_string(vertex) + " belongs to no face");
 }
 
-std::vector<DistanceField> DistanceSolver::distances(const std::vector<SurfacePoint>& sources,
-                                                     const std::vector<SurfacePoint>& targets) const {
+std::vector<DistanceField> DistanceSolver::distances(
+    const std::vector<SurfacePoint>& sources, const std::vector<SurfacePoint>& targets) const {
   std::vector<DistanceField> fields(sources.size());
   auto body = [&](const tbb::blocked_range<size_t>& range) {
     auto& state = threadScratch();
     for (size_t i = range.begin(); i < range.end(); ++i) {
       const auto start = std::chrono::steady_clock::now();
-      detail::propagate(*tables_, options_, sources[i], targets, state, false, storesWindows(options_), wavefront(options_));
+      detail::propagate(*tables_, options_, sources[i], targets, state, false,
+                        storesWindows(options_), wavefront(options_));
       fields[i] = fieldFrom(*tables_, state, secondsSince(start));
     }
   };
@@ -140,7 +153,8 @@ std::vector<DistanceField> DistanceSolver::distances(const std::vector<SurfacePo
 
 double DistanceSolver::distance(const SurfacePoint& from, const SurfacePoint& to) const {
   detail::Propagation& state = threadScratch();
-  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true, storesWindows(options_), wavefront(options_));
+  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true,
+                    storesWindows(options_), wavefront(options_));
   return state.targetDistance[0];
 }
 
@@ -148,7 +162,8 @@ GeodesicPath DistanceSolver::path(const SurfacePoint& from, const SurfacePoint& 
   // The thread's scratch, as for distances(): a fresh state would fault in megabytes per path.
   detail::Propagation& state = threadScratch();
   // Traced back through Window::parent: the windows are kept whatever the engine.
-  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true, /*storeWindows=*/true);
+  detail::propagate(*tables_, options_, from, {to}, state, /*directedAtTargets=*/true,
+                    /*storeWindows=*/true);
   return detail::tracePath(*tables_, state, 0, from, to);
 }
 
@@ -165,7 +180,8 @@ double DistanceSolver::precomputeSeconds() const { return precomputeSeconds_; }
 const DistanceSolverOptions& DistanceSolver::options() const { return options_; }
 
 DistanceField geodesicDistances(const TriMesh& mesh, const SurfacePoint& source,
-                                const std::vector<SurfacePoint>& targets, const DistanceSolverOptions& options) {
+                                const std::vector<SurfacePoint>& targets,
+                                const DistanceSolverOptions& options) {
   return DistanceSolver(mesh, options).distances(source, targets);
 }
 

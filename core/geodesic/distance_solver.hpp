@@ -76,7 +76,8 @@ struct DistanceSolverOptions {
   static DistanceSolverOptions exact();
 };
 
-// A point on the surface given as a vertex (barycentric weight 1 at that vertex of one of its faces).
+// A point on the surface given as a vertex (barycentric weight 1 at that vertex of one of its
+// faces).
 SurfacePoint vertexPoint(const TriMesh& mesh, int vertex);
 
 // The surface point closest (Euclidean) to `point`: the source and target points of the CLI and of
@@ -87,20 +88,21 @@ SurfacePoint snapToSurface(const TriMesh& mesh, const Eigen::Vector3d& point);
 // One single-source field.
 struct DistanceField {
   std::vector<double> vertexDistances;  // per vertex (OpenMesh index), metres; +inf if unreachable
-  std::vector<double> targetDistances;  // per requested target point, same order; +inf if unreachable
-  long windowsCreated = 0;              // diagnostics: windows pushed during the propagation
-  long peakWindows = 0;                 // diagnostics: most windows held at once (all of them when stored)
-  double peakBytes = 0.0;               // diagnostics: the propagation's working memory at its peak, counted
-  double seconds = 0.0;                 // wall time of this field
+  std::vector<double>
+      targetDistances;      // per requested target point, same order; +inf if unreachable
+  long windowsCreated = 0;  // diagnostics: windows pushed during the propagation
+  long peakWindows = 0;     // diagnostics: most windows held at once (all of them when stored)
+  double peakBytes = 0.0;   // diagnostics: the propagation's working memory at its peak, counted
+  double seconds = 0.0;     // wall time of this field
 };
 
 // A shortest geodesic as a polyline on the surface. Interior points lie on edges (where the path
 // crosses an edge) or at vertices (where it bends around a saddle or a boundary vertex).
 struct GeodesicPath {
-  std::vector<SurfacePoint> points;          // from `from` to `to`, both included
-  std::vector<Eigen::Vector3d> positions;    // 3D positions of `points`
-  double length = 0.0;                       // metres; +inf (and no points) if unreachable
-  std::vector<int> bendVertices;             // vertices the path passes through (saddle/reflex boundary)
+  std::vector<SurfacePoint> points;        // from `from` to `to`, both included
+  std::vector<Eigen::Vector3d> positions;  // 3D positions of `points`
+  double length = 0.0;                     // metres; +inf (and no points) if unreachable
+  std::vector<int> bendVertices;  // vertices the path passes through (saddle/reflex boundary)
 };
 
 class DistanceSolver {
@@ -115,15 +117,18 @@ class DistanceSolver {
 
   // Exact distances from `source` (a vertex, a point on an edge or inside a face) to all vertices
   // and to `targets` (any surface points: on the boundary, inside faces, at vertices).
-  DistanceField distances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets = {}) const;
-  DistanceField distancesFromVertex(int vertex, const std::vector<SurfacePoint>& targets = {}) const;
+  DistanceField distances(const SurfacePoint& source,
+                          const std::vector<SurfacePoint>& targets = {}) const;
+  DistanceField distancesFromVertex(int vertex,
+                                    const std::vector<SurfacePoint>& targets = {}) const;
   // The same distances to `targets` by one propagation directed at them (goal_bound.hpp): it stops
   // once every target is final, sweeping about the union of the ellipses d(source, p) + |p t| <=
   // d(source, t). targetDistances are the full field's in exact mode; with skipped near-flat
   // saddles (the default) they may be slightly longer, never shorter (goal_bound.hpp;
   // docs/measurements.md); vertexDistances are only upper bounds. For a
   // few targets close together: the farthest one sets how far the propagation runs.
-  DistanceField directedDistances(const SurfacePoint& source, const std::vector<SurfacePoint>& targets) const;
+  DistanceField directedDistances(const SurfacePoint& source,
+                                  const std::vector<SurfacePoint>& targets) const;
 
   // Many sources at once, in parallel over sources (TBB). Each field is computed by one thread
   // from scratch, so the result is bit-identical for any thread count.

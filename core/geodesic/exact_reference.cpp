@@ -23,7 +23,8 @@ using ShortestPath = CGAL::Surface_mesh_shortest_path<Traits>;
 std::vector<double> referenceDistances(const TriMesh& mesh, const SurfacePoint& source) {
   if (mesh.n_faces() == 0) throw InvalidInput("geodesic reference: the mesh has no faces");
   if (source.face < 0 || source.face >= static_cast<int>(mesh.n_faces())) {
-    throw InvalidInput("geodesic reference: source face " + std::to_string(source.face) + " is out of range");
+    throw InvalidInput("geodesic reference: source face " + std::to_string(source.face) +
+                       " is out of range");
   }
   CgalMesh cgal;
   std::vector<CgalMesh::Vertex_index> vertices;

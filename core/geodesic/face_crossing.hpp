@@ -71,7 +71,8 @@ inline bool Propagator::prune(Window& w, double* endLengths) const {
 }
 
 template <class AddChild>
-void Propagator::crossFace(const Window& w, int index, const FaceCrossing& face, AddChild&& addChild) {
+void Propagator::crossFace(const Window& w, int index, const FaceCrossing& face,
+                           AddChild&& addChild) {
   // No second pruning here (pruned when added): re-pruning at the pop would kill almost no windows
   // for ~10 % of the time (docs/measurements.md). An unpruned window is still a real path, so
   // what it offers and the pruning it feeds stay valid: it only costs its own propagation.
@@ -92,8 +93,10 @@ void Propagator::crossFace(const Window& w, int index, const FaceCrossing& face,
       // through this edge at split.crossing. It and this window's ray to C bound a region; this
       // window's rays on that path's side must cross it and are beaten there, so only the
       // child on the far side can carry shortest paths.
-      if (split.crossing < xc) leftChild = false;
-      else rightChild = false;
+      if (split.crossing < xc)
+        leftChild = false;
+      else
+        rightChild = false;
     } else {
       if (dc < split.distance) split = {dc, xc};
       relaxVertex(c, dc, {Predecessor::ThroughWindow, index}, &w);
@@ -147,7 +150,8 @@ void Propagator::crossFace(const Window& w, int index, const FaceCrossing& face,
   // A child on the edge `halfedge` of the next face, whose frame is `frame` from h's: its ends
   // are the crossings of w's boundary rays, or the edge's start (0) or end (`length`) where w's
   // rays reach that vertex.
-  auto child = [&](int halfedge, double length, const FrameChange& frame, bool fromStart, bool toEnd) {
+  auto child = [&](int halfedge, double length, const FrameChange& frame, bool fromStart,
+                   bool toEnd) {
     Window cw;
     cw.halfedge = halfedge;
     cw.parent = index;
@@ -174,8 +178,10 @@ void Propagator::crossFace(const Window& w, int index, const FaceCrossing& face,
   };
   // On edge A-C (rays left of the opposite vertex), the halfedge A->C of the next face; on edge
   // C-B (rays right of it), C->B. The rays through C end the left child at C and start the right.
-  if (leftChild && face.leftChild >= 0) child(face.leftChild, face.leftLength, face.leftFrame, w.b0 == 0.0, xc < w.b1);
-  if (rightChild && face.rightChild >= 0) child(face.rightChild, face.rightLength, face.rightFrame, xc > w.b0, w.b1 == L);
+  if (leftChild && face.leftChild >= 0)
+    child(face.leftChild, face.leftLength, face.leftFrame, w.b0 == 0.0, xc < w.b1);
+  if (rightChild && face.rightChild >= 0)
+    child(face.rightChild, face.rightLength, face.rightFrame, xc > w.b0, w.b1 == L);
 }
 
 }  // namespace egg::geodesic::detail

@@ -14,23 +14,29 @@
 namespace egg::geodesic {
 
 void GeodesicIntersectionOptions::validate() const {
-  if (!std::isfinite(maxExcess)) throw InvalidInput("GeodesicIntersectionOptions.maxExcess must be finite");
-  if (fitRings < 1 || fitRings > 4) throw InvalidInput("GeodesicIntersectionOptions.fitRings must be in [1, 4]");
+  if (!std::isfinite(maxExcess))
+    throw InvalidInput("GeodesicIntersectionOptions.maxExcess must be finite");
+  if (fitRings < 1 || fitRings > 4)
+    throw InvalidInput("GeodesicIntersectionOptions.fitRings must be in [1, 4]");
 }
 
 GeodesicIntersection intersectGeodesics(const TriMesh& mesh, const std::vector<double>& dA,
-                                        const std::vector<double>& dB, const std::vector<double>& dC,
-                                        const std::vector<double>& dD, double lengthAB, double lengthCD,
+                                        const std::vector<double>& dB,
+                                        const std::vector<double>& dC,
+                                        const std::vector<double>& dD, double lengthAB,
+                                        double lengthCD,
                                         const GeodesicIntersectionOptions& options) {
   options.validate();
   const size_t n = mesh.n_vertices();
   for (const auto* field : {&dA, &dB, &dC, &dD}) {
     if (field->size() != n) {
-      throw InvalidInput("intersectGeodesics: a distance field has " + std::to_string(field->size()) +
-                         " values, the mesh has " + std::to_string(n) + " vertices");
+      throw InvalidInput("intersectGeodesics: a distance field has " +
+                         std::to_string(field->size()) + " values, the mesh has " +
+                         std::to_string(n) + " vertices");
     }
   }
-  if (!(lengthAB > 0.0) || !(lengthCD > 0.0) || !std::isfinite(lengthAB) || !std::isfinite(lengthCD)) {
+  if (!(lengthAB > 0.0) || !(lengthCD > 0.0) || !std::isfinite(lengthAB) ||
+      !std::isfinite(lengthCD)) {
     throw InvalidInput("intersectGeodesics: the geodesic lengths must be positive and finite");
   }
   GeodesicIntersection result;
@@ -58,8 +64,9 @@ GeodesicIntersection intersectGeodesics(const TriMesh& mesh, const std::vector<d
     ++edgeCount;
   }
   meanEdge = edgeCount > 0 ? meanEdge / edgeCount : 0.0;
-  const double maxExcess =
-      options.maxExcess > 0.0 ? options.maxExcess : 2.0 * meanEdge * meanEdge / std::min(lengthAB, lengthCD);
+  const double maxExcess = options.maxExcess > 0.0
+                               ? options.maxExcess
+                               : 2.0 * meanEdge * meanEdge / std::min(lengthAB, lengthCD);
 
   // Local (u, v) coordinates: the tangent plane of the area-weighted vertex normal.
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
@@ -112,7 +119,8 @@ GeodesicIntersection intersectGeodesics(const TriMesh& mesh, const std::vector<d
     const Eigen::Vector2d minimum = hessian.ldlt().solve(-gradient);
     if (!(minimum.norm() <= 0.75 * radius)) continue;
     const double predicted = c[0] * minimum.x() * minimum.x() + c[1] * minimum.x() * minimum.y() +
-                             c[2] * minimum.y() * minimum.y() + c[3] * minimum.x() + c[4] * minimum.y() + c[5];
+                             c[2] * minimum.y() * minimum.y() + c[3] * minimum.x() +
+                             c[4] * minimum.y() + c[5];
     refined = p0 + meanEdge * (minimum.x() * u + minimum.y() * w);
     result.refinedExcess = std::max(0.0, predicted);
     refinedOk = true;

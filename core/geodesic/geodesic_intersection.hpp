@@ -27,20 +27,22 @@ struct GeodesicIntersectionOptions {
 };
 
 struct GeodesicIntersection {
-  bool found = false;               // false: the geodesics do not cross (excess above maxExcess)
-  SurfacePoint point;               // refined intersection
+  bool found = false;  // false: the geodesics do not cross (excess above maxExcess)
+  SurfacePoint point;  // refined intersection
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  int nearestVertex = -1;           // vertex minimising the summed field
-  double vertexExcess = 0.0;        // summed field minus d(A,B) + d(C,D) at that vertex (metres)
-  double refinedExcess = 0.0;       // same, predicted by the fitted paraboloid at `point`
+  int nearestVertex = -1;      // vertex minimising the summed field
+  double vertexExcess = 0.0;   // summed field minus d(A,B) + d(C,D) at that vertex (metres)
+  double refinedExcess = 0.0;  // same, predicted by the fitted paraboloid at `point`
 };
 
 // dA..dD: vertex distance fields from the endpoints A, B (first geodesic) and C, D (second), e.g.
 // DistanceField::vertexDistances. lengthAB = d(A,B), lengthCD = d(C,D) (e.g. target distances).
 // Throws InvalidInput when the field sizes do not match the mesh.
 GeodesicIntersection intersectGeodesics(const TriMesh& mesh, const std::vector<double>& dA,
-                                        const std::vector<double>& dB, const std::vector<double>& dC,
-                                        const std::vector<double>& dD, double lengthAB, double lengthCD,
+                                        const std::vector<double>& dB,
+                                        const std::vector<double>& dC,
+                                        const std::vector<double>& dD, double lengthAB,
+                                        double lengthCD,
                                         const GeodesicIntersectionOptions& options = {});
 
 // Exact intersection of two traced polylines (e.g. DistanceSolver::path results): the first

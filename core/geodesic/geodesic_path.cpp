@@ -56,10 +56,12 @@ void toParentFrame(const MeshTables& t, int child, int parent, double& x, double
   const int tw = t.twin(child);
   const double bx = t.he[parent].length, cx = t.he[parent].oppositeX, cy = t.he[parent].oppositeY;
   const double length = t.he[tw].length;
-  // The child's frame: origin at its from-vertex (C, or A at the parent's origin), x along its edge.
+  // The child's frame: origin at its from-vertex (C, or A at the parent's origin), x along its
+  // edge.
   const bool fromC = tw == t.he[parent].next;
   const double ox = fromC ? cx : 0.0, oy = fromC ? cy : 0.0;
-  const double dx = fromC ? (bx - cx) / length : cx / length, dy = fromC ? -cy / length : cy / length;
+  const double dx = fromC ? (bx - cx) / length : cx / length,
+               dy = fromC ? -cy / length : cy / length;
   const double px = ox + x * dx - y * dy, py = oy + x * dy + y * dx;
   x = px;
   y = py;
@@ -180,8 +182,8 @@ class Tracer {
 
 }  // namespace
 
-GeodesicPath tracePath(const MeshTables& t, const Propagation& s, int targetIndex, const SurfacePoint& source,
-                       const SurfacePoint& target) {
+GeodesicPath tracePath(const MeshTables& t, const Propagation& s, int targetIndex,
+                       const SurfacePoint& source, const SurfacePoint& target) {
   GeodesicPath path;
   if (!(s.targetDistance[targetIndex] < kInfinity)) {
     path.length = kInfinity;
@@ -245,8 +247,10 @@ SurfacePoint vertexPoint(const TriMesh& mesh, int vertex) {
 }
 
 SurfacePoint snapToSurface(const TriMesh& mesh, const Eigen::Vector3d& point) {
-  if (mesh.n_faces() == 0) throw InvalidInput("geodesic: cannot snap a point to a mesh without faces");
-  if (!point.allFinite()) throw InvalidInput("geodesic: cannot snap a non-finite point to the surface");
+  if (mesh.n_faces() == 0)
+    throw InvalidInput("geodesic: cannot snap a point to a mesh without faces");
+  if (!point.allFinite())
+    throw InvalidInput("geodesic: cannot snap a non-finite point to the surface");
   SurfacePoint best;
   double bestDistance = detail::kInfinity;
   for (auto fh : mesh.faces()) {

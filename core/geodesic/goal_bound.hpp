@@ -73,12 +73,14 @@ struct DirectedTargets {
       const auto& fv = t.faceVerts[s.targetFace[i]];
       const Eigen::Vector3d q = t.pointIn(s.targetFace[i], s.targetWeights[i]);
       goal.targets.push_back(q);
-      legs.push_back({(q - t.positions[fv[0]]).norm(), (q - t.positions[fv[1]]).norm(), (q - t.positions[fv[2]]).norm()});
+      legs.push_back({(q - t.positions[fv[0]]).norm(), (q - t.positions[fv[1]]).norm(),
+                      (q - t.positions[fv[2]]).norm()});
     }
   }
 
   // The largest of the targets' current distances, counting the vertex paths d(v) + |v q| that
-  // the propagation adds at the end: once the smallest queued key reaches it, every target is final.
+  // the propagation adds at the end: once the smallest queued key reaches it, every target is
+  // final.
   double farthestBound(const MeshTables& t, const Propagation& s) const {
     double farthest = 0.0;
     for (size_t i = 0; i < legs.size(); ++i) {

@@ -48,12 +48,14 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
     }
     const double x = (L * L + la * la - lb * lb) / (2.0 * L);
     const double y2 = la * la - x * x;
-    // Heron-stable height from the cross product in 3D (the law of cosines loses digits on slivers).
+    // Heron-stable height from the cross product in 3D (the law of cosines loses digits on
+    // slivers).
     const Eigen::Vector3d a = t.positions[fromVertex[h]];
     const double twiceArea = (t.positions[toVertex[h]] - a).cross(t.positions[c] - a).norm();
     const double y = twiceArea / L;
     if (!(y > 0.0) || y2 < -1e-6 * la * la) {
-      throw InvalidInput("geodesic: face " + std::to_string(face[h]) + " is degenerate (zero area)");
+      throw InvalidInput("geodesic: face " + std::to_string(face[h]) +
+                         " is degenerate (zero area)");
     }
     oppositeX[h] = x;
     oppositeY[h] = y;
@@ -62,7 +64,7 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
   }
   t.he.resize(nh);
   for (int h = 0; h < nh; ++h) {
-    t.he[h] = {length[h], oppositeX[h], oppositeY[h], fromVertex[h], toVertex[h],
+    t.he[h] = {length[h], oppositeX[h], oppositeY[h], fromVertex[h],    toVertex[h],
                face[h],   next[h],      prev[h],      oppositeVertex[h]};
   }
   t.faceVerts.resize(t.faceCount);
@@ -105,7 +107,8 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
   std::nth_element(edges.begin(), edges.begin() + edges.size() / 10, edges.end());
   const double shortEdge = edges[edges.size() / 10];
   std::vector<double> shortestEdge(t.vertexCount, shortEdge);
-  for (int h = 0; h < nh; ++h) shortestEdge[fromVertex[h]] = std::min(shortestEdge[fromVertex[h]], length[h]);
+  for (int h = 0; h < nh; ++h)
+    shortestEdge[fromVertex[h]] = std::min(shortestEdge[fromVertex[h]], length[h]);
   t.boundaryVertex.assign(t.vertexCount, 0);
   t.pseudoSource.assign(t.vertexCount, 0);
   t.shadowCone.assign(t.vertexCount, 0.0);
@@ -125,7 +128,8 @@ MeshTables buildTables(const TriMesh& mesh, const DistanceSolverOptions& options
     } else {
       const double excess = t.angleSum[v] - 2.0 * std::numbers::pi;
       const double cone = excess + options.saddleAngleTolerance;
-      const bool skipped = excess <= options.saddleAngleTolerance && excess * reach <= 0.25 * shortestEdge[v];
+      const bool skipped =
+          excess <= options.saddleAngleTolerance && excess * reach <= 0.25 * shortestEdge[v];
       t.pseudoSource[v] = excess > 0.0 && !skipped ? 1 : 0;
       if (excess > 0.0 && skipped) {
         t.shadowCone[v] = cone;

@@ -51,7 +51,8 @@ void Propagator::reset(const std::vector<SurfacePoint>& targets) {
   s_.queue.reset(bucketWidth, /*unordered=*/s_.splitQueues);
   s_.vertexEvents.clear();
   s_.vertexEventsPeak = 0;
-  if (static_cast<int>(s_.faceFirstTarget.size()) != t_.faceCount) s_.faceFirstTarget.assign(t_.faceCount, -1);
+  if (static_cast<int>(s_.faceFirstTarget.size()) != t_.faceCount)
+    s_.faceFirstTarget.assign(t_.faceCount, -1);
   const int nt = static_cast<int>(targets.size());
   s_.nextTarget.assign(nt, -1);
   s_.targetWeights.resize(nt);
@@ -62,8 +63,9 @@ void Propagator::reset(const std::vector<SurfacePoint>& targets) {
     const int f = targets[i].face;
     if (f < 0 || f >= t_.faceCount) {
       for (int j = 0; j < i; ++j) s_.faceFirstTarget[s_.targetFace[j]] = -1;
-      throw InvalidInput("geodesic: target " + std::to_string(i) + " refers to face " + std::to_string(f) +
-                         ", but the mesh has " + std::to_string(t_.faceCount) + " faces");
+      throw InvalidInput("geodesic: target " + std::to_string(i) + " refers to face " +
+                         std::to_string(f) + ", but the mesh has " + std::to_string(t_.faceCount) +
+                         " faces");
     }
     s_.targetWeights[i] = normalisedWeights(targets[i], "target " + std::to_string(i));
     s_.targetFace[i] = f;
@@ -89,8 +91,8 @@ void Propagator::seed(const SurfacePoint& source) {
   s_.sourceVertex = -1;
   s_.sourceFaces.clear();
   if (source.face < 0 || source.face >= t_.faceCount) {
-    throw InvalidInput("geodesic: the source refers to face " + std::to_string(source.face) + ", but the mesh has " +
-                       std::to_string(t_.faceCount) + " faces");
+    throw InvalidInput("geodesic: the source refers to face " + std::to_string(source.face) +
+                       ", but the mesh has " + std::to_string(t_.faceCount) + " faces");
   }
   const Eigen::Vector3d w = normalisedWeights(source, "the source");
   const auto& fv = t_.faceVerts[source.face];
@@ -213,7 +215,8 @@ void Propagator::fire(int v) {
     const int nextOut = t_.twin(t_.he[h].prev);
     if (t_.he[nextOut].face < 0 || nextOut == start) break;
     h = nextOut;
-    if (static_cast<int>(fan_.size()) > t_.outgoingStart[v + 1] - t_.outgoingStart[v]) break;  // non-manifold guard
+    if (static_cast<int>(fan_.size()) > t_.outgoingStart[v + 1] - t_.outgoingStart[v])
+      break;  // non-manifold guard
   }
   const bool boundary = t_.boundaryVertex[v] != 0;
   double backAngle = -1.0;
@@ -226,7 +229,8 @@ void Propagator::fire(int v) {
     const double a0 = cumulative, a1 = cumulative + corner;
     cumulative = a1;
     double lo = a0, hi = a1;
-    if (backAngle >= 0.0 && !allowedFanInterval(a0, a1, backAngle, total, boundary, tol, lo, hi)) continue;
+    if (backAngle >= 0.0 && !allowedFanInterval(a0, a1, backAngle, total, boundary, tol, lo, hi))
+      continue;
     const int ho = t_.he[h].next;  // edge opposite v in this face; v is its opposite vertex
     const int tw = t_.twin(ho);
     if (t_.he[tw].face < 0) continue;
@@ -269,7 +273,8 @@ double Propagator::incomingAngle(int v) const {
       bendPoint(w, pred.side, s_.vertexDistance[w.endVertex[static_cast<int>(pred.side)]], bx, by);
       xc = std::clamp(rayCrossing(bx, by, cx, cy), 0.0, L);
     }
-    back = t_.positions[t_.he[h].fromVertex] + (xc / L) * (t_.positions[t_.he[h].toVertex] - t_.positions[t_.he[h].fromVertex]);
+    back = t_.positions[t_.he[h].fromVertex] +
+           (xc / L) * (t_.positions[t_.he[h].toVertex] - t_.positions[t_.he[h].fromVertex]);
   } else if (pred.kind == Predecessor::Vertex) {
     back = t_.positions[pred.index];
   } else if (pred.kind == Predecessor::Source) {
@@ -301,26 +306,30 @@ void Propagator::finishTargets() {
 }
 
 double peakBytes(const MeshTables& t, const Propagation& s) {
-  const double v = t.vertexCount, h = t.halfedgeCount, windows = static_cast<double>(s.windows.size());
+  const double v = t.vertexCount, h = t.halfedgeCount,
+               windows = static_cast<double>(s.windows.size());
   // Per vertex: distance, predecessor, fired; per halfedge: the one-split pair and a list head.
-  double bytes = v * (sizeof(double) + sizeof(Predecessor) + 1) + h * (2 * sizeof(double) + sizeof(int));
+  double bytes =
+      v * (sizeof(double) + sizeof(Predecessor) + 1) + h * (2 * sizeof(double) + sizeof(int));
   if (s.storeWindows) {
-    bytes += windows * sizeof(Window) + static_cast<double>(s.blocks.size()) * sizeof(Propagation::SpanBlock);
+    bytes += windows * sizeof(Window) +
+             static_cast<double>(s.blocks.size()) * sizeof(Propagation::SpanBlock);
   } else if (s.wavefront) {
-    // Slots (window and list link, a free-list entry), per halfedge a list's head, tail and key, and
-    // the pseudo-sources' window copies.
+    // Slots (window and list link, a free-list entry), per halfedge a list's head, tail and key,
+    // and the pseudo-sources' window copies.
     bytes += static_cast<double>(s.slots.size()) * (sizeof(Propagation::Slot) + sizeof(int)) +
-             h * sizeof(Propagation::EdgeList) +
-             v * sizeof(Window);
+             h * sizeof(Propagation::EdgeList) + v * sizeof(Window);
   } else {
     // Slots (window, span, a free-list entry), blocks (with live count, back link and a
     // free-list entry) and the pseudo-sources' window copies.
-    bytes += windows * (sizeof(Window) + 2 * sizeof(int)) + v * sizeof(Window) +
-             static_cast<double>(s.blocks.size()) * (sizeof(Propagation::SpanBlock) + 3 * sizeof(int));
+    bytes +=
+        windows * (sizeof(Window) + 2 * sizeof(int)) + v * sizeof(Window) +
+        static_cast<double>(s.blocks.size()) * (sizeof(Propagation::SpanBlock) + 3 * sizeof(int));
   }
   const double nt = static_cast<double>(s.targetFace.size());
   bytes += nt * (2 * sizeof(int) + sizeof(Eigen::Vector3d) + sizeof(double) + sizeof(Predecessor));
-  return bytes + static_cast<double>(s.queue.peakSize() + s.vertexEventsPeak) * sizeof(BucketQueue::Entry);
+  return bytes +
+         static_cast<double>(s.queue.peakSize() + s.vertexEventsPeak) * sizeof(BucketQueue::Entry);
 }
 
 }  // namespace egg::geodesic::detail

@@ -14,7 +14,8 @@ namespace egg::geodesic::detail {
 
 class Propagator {
  public:
-  Propagator(const MeshTables& t, const DistanceSolverOptions& o, Propagation& s) : t_(t), o_(o), s_(s) {}
+  Propagator(const MeshTables& t, const DistanceSolverOptions& o, Propagation& s)
+      : t_(t), o_(o), s_(s) {}
 
   void run(const SurfacePoint& source, const std::vector<SurfacePoint>& targets, bool directed);
 
@@ -32,7 +33,8 @@ class Propagator {
   double windowKey(const Window& w) const;
   // The same from |s - b0| and |s - b1| already known (bit-identical: sqrt is correctly rounded).
   double windowKey(const Window& w, const double* endLengths) const;
-  double keyOfNearest(const Window& w, double nearest) const;  // + the goal bound of a directed query
+  double keyOfNearest(const Window& w,
+                      double nearest) const;  // + the goal bound of a directed query
 
   // propagation_setup.cpp
   void reset(const std::vector<SurfacePoint>& targets);
@@ -44,8 +46,10 @@ class Propagator {
   void finishTargets();
 
   void push(double key, int item) {
-    if (item < 0 && s_.splitQueues) pushVertexEvent(key, item);
-    else s_.queue.push(key, item);
+    if (item < 0 && s_.splitQueues)
+      pushVertexEvent(key, item);
+    else
+      s_.queue.push(key, item);
   }
   void pushVertexEvent(double key, int item);
   BucketQueue::Entry popVertexEvent();
@@ -62,14 +66,17 @@ class Propagator {
     }
   }
 
-  // Position of barycentric weights (in face circulator order) in the frame of halfedge h of face f.
+  // Position of barycentric weights (in face circulator order) in the frame of halfedge h of face
+  // f.
   void frameCoordinates(int f, int h, const Eigen::Vector3d& w, double& x, double& y) const {
     const auto& fv = t_.faceVerts[f];
     const int a = t_.he[h].fromVertex, b = t_.he[h].toVertex;
     double wb = 0, wc = 0;  // the from-vertex sits at the frame's origin
     for (int i = 0; i < 3; ++i) {
-      if (fv[i] == b) wb = w[i];
-      else if (fv[i] != a) wc = w[i];
+      if (fv[i] == b)
+        wb = w[i];
+      else if (fv[i] != a)
+        wc = w[i];
     }
     x = wb * t_.he[h].length + wc * t_.he[h].oppositeX;
     y = wc * t_.he[h].oppositeY;
@@ -87,9 +94,10 @@ class Propagator {
   // What every window crossing the face of halfedge h shares: the wavefront engine builds it once
   // per batch (propagateHalfedge), the other engines once per window.
   struct FaceCrossing {
-    int h, f, c;  // the halfedge, its face, the face's vertex opposite it
+    int h, f, c;            // the halfedge, its face, the face's vertex opposite it
     double length, cx, cy;  // the edge's length, the opposite vertex in its frame
-    int leftChild, rightChild;  // halfedges A->C and C->B seen from the next faces; -1 at a boundary
+    int leftChild,
+        rightChild;  // halfedges A->C and C->B seen from the next faces; -1 at a boundary
     double leftLength, rightLength;
     FrameChange leftFrame, rightFrame;  // from h's frame into each child's
   };

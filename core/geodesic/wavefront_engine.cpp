@@ -30,8 +30,10 @@ namespace egg::geodesic::detail {
 void Propagator::unlinkWavefrontSlot(int h, int slot, int previous) {
   const int next = s_.slots[slot].next;
   auto& list = s_.lists[h];
-  if (previous >= 0) s_.slots[previous].next = next;
-  else list.head = next;
+  if (previous >= 0)
+    s_.slots[previous].next = next;
+  else
+    list.head = next;
   if (list.tail == slot) list.tail = previous;
   s_.freeSlots.push_back(slot);
 }
@@ -60,8 +62,8 @@ void Propagator::unlinkWavefrontSlot(int h, int slot, int previous) {
   // path, so the distances do not change (exact mode: equal to the full walk's), only the work.
   // Measured (thread CPU per field, interleaved with the full walk, 3 vertex sources): 4.6k cap
   // 0.66 of the full walk's time at 2 (192k windows against 180k), 18k cap 0.55 at 2 (1.25M against
-  // 1.18M), 0.75 at 4; 4.4k bump 0.82 at 2 (148k against 141k); plane unchanged (merging still finds
-  // its partner). 1 was no faster than 2 and kept more windows.
+  // 1.18M), 0.75 at 4; 4.4k bump 0.82 at 2 (148k against 141k); plane unchanged (merging still
+  // finds its partner). 1 was no faster than 2 and kept more windows.
   constexpr int kCompared = 2;
   int compared = 0;
 restart:
@@ -112,8 +114,10 @@ restart:
   }
   s_.slots[slot].next = -1;
   auto& list = s_.lists[h];
-  if (list.tail >= 0) s_.slots[list.tail].next = slot;
-  else list.head = slot;
+  if (list.tail >= 0)
+    s_.slots[list.tail].next = slot;
+  else
+    list.head = slot;
   list.tail = slot;
   ++s_.windowsCreated;
   // Untrimmed since pruning (the usual case), the key reuses prune's end lengths: two square roots
@@ -166,7 +170,8 @@ void Propagator::propagateHalfedge(int h, double key) {
   list = {kInfinity, -1, -1};
   ++s_.halfedgePops;
   if (s_.splitQueues) prefetchNextBatches();
-  const FaceCrossing face = faceCrossing(h);  // once per batch: the child frames divide once, not per window
+  const FaceCrossing face =
+      faceCrossing(h);  // once per batch: the child frames divide once, not per window
   // The children go to other halfedges (the face's other two edges, seen from their far side), so
   // the detached list is not touched while it is walked; each slot is freed once its window has
   // crossed the face.
@@ -207,8 +212,9 @@ void Propagator::runSplitQueues() {
   for (;;) {
     s_.queue.prefetchRecords(s_.slots.data(), sizeof(Propagation::Slot), &s_.lists.data()->head,
                              sizeof(Propagation::EdgeList));
-    const long long eventBucket =
-        s_.vertexEvents.empty() ? BucketQueue::kNoBucket : s_.queue.bucketOf(s_.vertexEvents.front().key);
+    const long long eventBucket = s_.vertexEvents.empty()
+                                      ? BucketQueue::kNoBucket
+                                      : s_.queue.bucketOf(s_.vertexEvents.front().key);
     if (s_.queue.earliestBucket(eventBucket) != BucketQueue::kNoBucket) {
       const auto entry = s_.queue.pop();
       propagateHalfedge(entry.item, entry.key);

@@ -92,8 +92,8 @@ inline void copyJustWritten(Window& to, const Window& from) {
 // boundary vertices the directions at least pi away on the surface side. The allowed set within
 // the face is returned as one interval [lo, hi] (the hull of its pieces, a superset, so nothing
 // exact is lost); false if it is empty. `tol` widens it against rounding of the angles.
-inline bool allowedFanInterval(double a0, double a1, double backAngle, double total, bool boundary, double tol,
-                               double& lo, double& hi) {
+inline bool allowedFanInterval(double a0, double a1, double backAngle, double total, bool boundary,
+                               double tol, double& lo, double& hi) {
   constexpr double pi = std::numbers::pi;
   lo = std::numeric_limits<double>::infinity();
   hi = -std::numeric_limits<double>::infinity();
@@ -144,8 +144,8 @@ inline double fanAngleOf(const MeshTables& t, const std::vector<int>& fan, const
 // that edge (B at the origin, C at (length, 0)) and `corner` is the face's angle at v. A needle
 // face (v almost on the edge) would squeeze the whole cone into a sliver about as wide as its
 // height, which the window width floor could drop: there the whole edge is returned.
-inline std::pair<double, double> coneCrossings(double ox, double oy, double length, double corner, double psi0,
-                                               double psi1) {
+inline std::pair<double, double> coneCrossings(double ox, double oy, double length, double corner,
+                                               double psi0, double psi1) {
   if (oy < 1e-8 * length) return {0.0, length};
   auto crossing = [&](double psi) {
     if (psi <= 0.0) return 0.0;
@@ -165,16 +165,21 @@ inline std::pair<double, double> coneCrossings(double ox, double oy, double leng
 // found along this very ray, moves an end by a few ulps.
 inline void markEndVertices(Window& w, double b0In, double b1In, const MeshTables::Halfedge& e) {
   const double near = 1e-9 * e.length;
-  if (w.b0 <= near) w.endVertex[0] = e.fromVertex;
-  else if (w.b0 != b0In) w.endVertex[0] = -1;
-  if (w.b1 >= e.length - near) w.endVertex[1] = e.toVertex;
-  else if (w.b1 != b1In) w.endVertex[1] = -1;
+  if (w.b0 <= near)
+    w.endVertex[0] = e.fromVertex;
+  else if (w.b0 != b0In)
+    w.endVertex[0] = -1;
+  if (w.b1 >= e.length - near)
+    w.endVertex[1] = e.toVertex;
+  else if (w.b1 != b1In)
+    w.endVertex[1] = -1;
 }
 
 // Two windows of one source image and sigma (to `same`, a length) carry one distance function,
 // sigma + |s - x|: where they touch, they are one window (addFrontWindow: why merging is exact).
 inline bool sameSourceImage(const Window& a, const Window& b, double same) {
-  return std::abs(a.sx - b.sx) <= same && std::abs(a.sy - b.sy) <= same && std::abs(a.sigma - b.sigma) <= same;
+  return std::abs(a.sx - b.sx) <= same && std::abs(a.sy - b.sy) <= same &&
+         std::abs(a.sigma - b.sigma) <= same;
 }
 
 // An upper bound on |f_a(x) - f_b(x)| over [x0, x1], f = sigma + |s - x| (DistanceSolverOptions::
@@ -187,7 +192,8 @@ inline double distanceGapBound(const Window& a, const Window& b, double x0, doub
   double ra0, ra1, rb0, rb1;
   planarLengths(x0 - a.sx, a.sy, x1 - a.sx, a.sy, ra0, ra1);
   planarLengths(x0 - b.sx, b.sy, x1 - b.sx, b.sy, rb0, rb1);
-  const double atEnds = std::max(std::abs(a.sigma + ra0 - b.sigma - rb0), std::abs(a.sigma + ra1 - b.sigma - rb1));
+  const double atEnds =
+      std::max(std::abs(a.sigma + ra0 - b.sigma - rb0), std::abs(a.sigma + ra1 - b.sigma - rb1));
   auto curvatureRange = [x0, x1](const Window& w, double r0, double r1, double& lo, double& hi) {
     const double nearest = (w.sx >= x0 && w.sx <= x1) ? std::abs(w.sy) : std::min(r0, r1);
     const double farthest = std::max(r0, r1);
@@ -231,12 +237,12 @@ inline double rayTurnBoundSquared(const Window& a, const Window& b) {
 // sqrt(2 tolerance) apart (rayTurnBoundSquared): the union takes the wider window's image. Beyond
 // the edge, a point on the narrower window's ray at distance t is then offered a value off by
 // at most the gap plus t (1 - cos turn) <= 2 t x tolerance more (1 - cos = sin^2 / (1 + cos)):
-// the relative error stays of the order of the tolerance however far the front runs. Without the turn test a narrow window close
-// to its image (a pseudo-source's, a wide fan) would hand its whole fan to a far image's thin
-// sliver: measured 0.5 relative and unreached vertices on a grid with boundary-corner sources.
-// Returns false, and changes nothing, if either may be larger.
-inline bool absorbNearImage(Window& w, const Window& other, double tolerance, double length, double& b0In,
-                            double& b1In) {
+// the relative error stays of the order of the tolerance however far the front runs. Without the
+// turn test a narrow window close to its image (a pseudo-source's, a wide fan) would hand its whole
+// fan to a far image's thin sliver: measured 0.5 relative and unreached vertices on a grid with
+// boundary-corner sources. Returns false, and changes nothing, if either may be larger.
+inline bool absorbNearImage(Window& w, const Window& other, double tolerance, double length,
+                            double& b0In, double& b1In) {
   if (!(rayTurnBoundSquared(w, other) <= 2.0 * tolerance)) return false;
   const bool keepOther = other.b1 - other.b0 > w.b1 - w.b0;
   const Window& narrower = keepOther ? w : other;
@@ -296,8 +302,8 @@ inline double distanceToEnd(const Window& w, int side) {
 // The segment must also cross w's own edge within it (edgeLength): a point next to a vertex of the
 // face could otherwise be reached past that vertex, which no surface path does (measured before
 // this check: a traced path 5.7e-5 longer than the distance on a 5.8k-vertex steep bump).
-inline double pathBentAt(const Window& w, int side, double px, double py, double edgeLength, const BendVertex* x,
-                         bool& atVertex) {
+inline double pathBentAt(const Window& w, int side, double px, double py, double edgeLength,
+                         const BendVertex* x, bool& atVertex) {
   const double end = side ? w.b1 : w.b0;
   atVertex = false;
   if (x && x->shadowCone > 0.0) {
@@ -307,8 +313,8 @@ inline double pathBentAt(const Window& w, int side, double px, double py, double
     const double vx = px - bx, vy = py - by;
     const double along = ex * vx + ey * vy, across = ex * vy - ey * vx;
     const double crossing = by < 0.0 ? rayCrossing(bx, by, px, py) : bx;
-    if (along > 0.0 && across * across <= x->shadowCone * x->shadowCone * along * along && crossing >= 0.0 &&
-        crossing <= edgeLength) {
+    if (along > 0.0 && across * across <= x->shadowCone * x->shadowCone * along * along &&
+        crossing >= 0.0 && crossing <= edgeLength) {
       atVertex = true;
       return x->distance + planarLength(vx, vy);
     }
@@ -384,7 +390,8 @@ inline bool comparePieces(const Window& w, const Window& o, OverlapPieces& p) {
     }
   }
   p.cuts[p.count++] = hi;
-  for (int i = 0; i + 1 < p.count; ++i) p.sign[i] = g(0.5 * (p.cuts[i] + p.cuts[i + 1]));  // two square roots each
+  for (int i = 0; i + 1 < p.count; ++i)
+    p.sign[i] = g(0.5 * (p.cuts[i] + p.cuts[i + 1]));  // two square roots each
   return true;
 }
 

@@ -1,4 +1,5 @@
-// Single-source geodesic distances on a triangle mesh by window propagation (exact, or within 1e-5).
+// Single-source geodesic distances on a triangle mesh by window propagation (exact, or within
+// 1e-5).
 //
 // Algorithm (Chen-Han / ICH family: Mitchell-Mount-Papadimitriou 1987, Chen & Han 1990, Xin & Wang
 // 2009 "Improving Chen and Han's algorithm on the discrete geodesic problem"):
@@ -24,10 +25,11 @@
 //    (addFrontWindow), and queued windows of one source image that touch are merged into one (on
 //    a plane: windows ~n instead of ~n^1.5; bench plane, 17k vertices: 65k windows against 956k,
 //    0.06 of the stored engine's time; on the bump and the caps one image's pieces differ by more
-//    than rounding, so nothing merges there and the time is unchanged). The same dominated parts go, found in a different order: the distances
-//    agree to rounding (1.5e-11 on the bench bump), the memory is the front's, not the windows'
-//    (53 MB against 3.6 GB at 418k triangles). Time: within +-10 % up to 18k vertices, 0.55-1.02
-//    of the stored engine's at 418k triangles (DistanceSolverOptions::engine).
+//    than rounding, so nothing merges there and the time is unchanged). The same dominated parts
+//    go, found in a different order: the distances agree to rounding (1.5e-11 on the bench bump),
+//    the memory is the front's, not the windows' (53 MB against 3.6 GB at 418k triangles). Time:
+//    within +-10 % up to 18k vertices, 0.55-1.02 of the stored engine's at 418k triangles
+//    (DistanceSolverOptions::engine).
 //  * Wavefront (wavefront_engine.cpp, after VTP's triangle-oriented propagation): the front
 //    engine's windows, queued per halfedge in first-in-first-out lists with one queue entry per
 //    halfedge, propagated a halfedge's batch at a time, and trimmed against the first two windows
@@ -55,7 +57,8 @@
 
 namespace egg::geodesic::detail {
 
-void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>& targets, bool directed) {
+void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>& targets,
+                     bool directed) {
   s_.splitQueues = s_.wavefront && !directed;
   reset(targets);  // cleans up after itself if a target is invalid
   // The scratch is reused by the thread's next query (thread_local): whatever happens below
@@ -104,7 +107,9 @@ void Propagator::run(const SurfacePoint& source, const std::vector<SurfacePoint>
   finishTargets();
 }
 
-double Propagator::windowKey(const Window& w) const { return keyOfNearest(w, windowMinDistance(w)); }
+double Propagator::windowKey(const Window& w) const {
+  return keyOfNearest(w, windowMinDistance(w));
+}
 
 double Propagator::windowKey(const Window& w, const double* endLengths) const {
   return keyOfNearest(w, windowMinDistance(w, endLengths[0], endLengths[1]));
@@ -113,23 +118,28 @@ double Propagator::windowKey(const Window& w, const double* endLengths) const {
 double Propagator::keyOfNearest(const Window& w, double nearest) const {
   if (!goal_.active()) return nearest;
   const auto& e = t_.he[w.halfedge];
-  return nearest + goal_.toSegment(t_.positions[e.fromVertex], t_.positions[e.toVertex], w.b0 / e.length,
-                                   w.b1 / e.length);
+  return nearest + goal_.toSegment(t_.positions[e.fromVertex], t_.positions[e.toVertex],
+                                   w.b0 / e.length, w.b1 / e.length);
 }
 
 // A path to (px, py) (frame of w's edge, in the face w enters) whose ray from the source image
 // misses the window past end `side`, bent round that end or at the vertex on its boundary ray
 // (window_geometry.hpp: why that makes skipping near-flat saddles accurate).
-double Propagator::bentDistance(const Window& w, int side, double px, double py, bool& atVertex) const {
+double Propagator::bentDistance(const Window& w, int side, double px, double py,
+                                bool& atVertex) const {
   const int x = w.endVertex[side];
   const BendVertex vertex{x >= 0 ? s_.vertexDistance[x] : 0.0, x >= 0 ? t_.shadowCone[x] : 0.0};
-  return pathBentAt(w, side, px, py, t_.he[w.halfedge].length, x >= 0 ? &vertex : nullptr, atVertex);
+  return pathBentAt(w, side, px, py, t_.he[w.halfedge].length, x >= 0 ? &vertex : nullptr,
+                    atVertex);
 }
 
 void Propagator::addWindow(Window& w) {
-  if (s_.storeWindows) addStoredWindow(w);
-  else if (s_.wavefront) addWavefrontWindow(w);
-  else addFrontWindow(w);
+  if (s_.storeWindows)
+    addStoredWindow(w);
+  else if (s_.wavefront)
+    addWavefrontWindow(w);
+  else
+    addFrontWindow(w);
 }
 
 void Propagator::addStoredWindow(Window& w) {
@@ -144,8 +154,10 @@ void Propagator::addStoredWindow(Window& w) {
     if (!(std::min(w.b1, block.hi) > std::max(w.b0, block.lo))) continue;
     for (int k = 0; k < block.count; ++k) {
       const auto& span = block.spans[k];
-      if (!(std::min(w.b1, span.b1) > std::max(w.b0, span.b0))) continue;  // disjoint: nothing to trim
-      if (!trimAgainst(w, s_.windows[span.window]) || w.b1 - w.b0 <= o_.minWindowWidthRelative * L) return;
+      if (!(std::min(w.b1, span.b1) > std::max(w.b0, span.b0)))
+        continue;  // disjoint: nothing to trim
+      if (!trimAgainst(w, s_.windows[span.window]) || w.b1 - w.b0 <= o_.minWindowWidthRelative * L)
+        return;
     }
   }
   markEndVertices(w, b0In, b1In, t_.he[w.halfedge]);
@@ -203,10 +215,11 @@ restart:
         auto& span = block.spans[k];
         if (span.window < 0) continue;  // a cleared span
         Window& other = s_.windows[span.window];
-        if (std::min(w.b1, span.b1) + same >= std::max(w.b0, span.b0) && sameSourceImage(other, w, same)) {
+        if (std::min(w.b1, span.b1) + same >= std::max(w.b0, span.b0) &&
+            sameSourceImage(other, w, same)) {
           absorbSameImage(w, other, b0In, b1In);
           clearSpan(span.window);  // may recycle this block
-          goto restart;  // w has grown: spans it missed may overlap it now
+          goto restart;            // w has grown: spans it missed may overlap it now
         }
         if (!(std::min(w.b1, span.b1) > std::max(w.b0, span.b0))) continue;  // disjoint
         const double o0 = other.b0, o1 = other.b1;
@@ -232,7 +245,8 @@ restart:
     // stack of free slots scatters the reads; the two were within the bench's noise, +-10 %).
     slot = s_.freeSlots[s_.freeHead++];
     if (s_.freeHead > 4096 && 2 * s_.freeHead > s_.freeSlots.size()) {
-      s_.freeSlots.erase(s_.freeSlots.begin(), s_.freeSlots.begin() + static_cast<std::ptrdiff_t>(s_.freeHead));
+      s_.freeSlots.erase(s_.freeSlots.begin(),
+                         s_.freeSlots.begin() + static_cast<std::ptrdiff_t>(s_.freeHead));
       s_.freeHead = 0;
     }
     s_.windows[slot] = w;
@@ -285,8 +299,10 @@ void Propagator::clearSpan(int slot) {
   block.spans[ref & 7] = {kInfinity, -kInfinity, -1};
   if (--s_.blockLive[b] > 0) return;
   const int prev = s_.blockPrev[b], next = block.next;
-  if (prev >= 0) s_.blocks[prev].next = next;
-  else s_.firstBlock[s_.windows[slot].halfedge] = next;
+  if (prev >= 0)
+    s_.blocks[prev].next = next;
+  else
+    s_.firstBlock[s_.windows[slot].halfedge] = next;
   if (next >= 0) s_.blockPrev[next] = prev;
   s_.freeBlocks.push_back(b);
 }
@@ -307,7 +323,8 @@ bool Propagator::takeFrontWindow(int slot) {
 
 Propagator::FaceCrossing Propagator::faceCrossing(int h) const {
   const auto& e = t_.he[h];
-  FaceCrossing face{h, e.face, e.oppositeVertex, e.length, e.oppositeX, e.oppositeY, -1, -1, 0.0, 0.0, {}, {}};
+  FaceCrossing face{
+      h, e.face, e.oppositeVertex, e.length, e.oppositeX, e.oppositeY, -1, -1, 0.0, 0.0, {}, {}};
   const int left = t_.twin(e.prev), right = t_.twin(e.next);
   if (t_.he[left].face >= 0) {
     face.leftChild = left;
@@ -317,19 +334,21 @@ Propagator::FaceCrossing Propagator::faceCrossing(int h) const {
   if (t_.he[right].face >= 0) {
     face.rightChild = right;
     face.rightLength = t_.he[right].length;
-    face.rightFrame = {face.cx, face.cy, (face.length - face.cx) / face.rightLength, -face.cy / face.rightLength};
+    face.rightFrame = {face.cx, face.cy, (face.length - face.cx) / face.rightLength,
+                       -face.cy / face.rightLength};
   }
   return face;
 }
 
-// The stored and front engines, one window at a time (the wavefront engine batches: propagateHalfedge).
+// The stored and front engines, one window at a time (the wavefront engine batches:
+// propagateHalfedge).
 void Propagator::propagateWindow(const Window& w, int index, const FaceCrossing& face) {
   crossFace(w, index, face, [this](Window& child) { addWindow(child); });
 }
 
-void propagate(const MeshTables& tables, const DistanceSolverOptions& options, const SurfacePoint& source,
-               const std::vector<SurfacePoint>& targets, Propagation& state, bool directedAtTargets,
-               bool storeWindows, bool wavefront) {
+void propagate(const MeshTables& tables, const DistanceSolverOptions& options,
+               const SurfacePoint& source, const std::vector<SurfacePoint>& targets,
+               Propagation& state, bool directedAtTargets, bool storeWindows, bool wavefront) {
   state.storeWindows = storeWindows;
   state.wavefront = wavefront && !storeWindows;
   Propagator(tables, options, state).run(source, targets, directedAtTargets && !targets.empty());

@@ -1,8 +1,8 @@
 #pragma once
 // Internal: the flat mesh tables and the exact window propagation behind DistanceSolver.
 // Not part of the public API (include distance_solver.hpp instead).
-#include "core/geodesic/distance_solver.hpp"
 #include "core/geodesic/bucket_queue.hpp"
+#include "core/geodesic/distance_solver.hpp"
 
 #include <array>
 #include <limits>
@@ -77,8 +77,8 @@ struct Window {
   double sx = 0.0, sy = 0.0;
   double sigma = 0.0;
   // Per end (0: b0, 1: b1): the vertex its boundary ray passes through, -1 if the end was cut
-  // anywhere else (trimming, pruning, a pseudo-source cone). A point just outside the window on that side is reached by
-  // bending at the vertex, not at the end (see Propagator::bentDistance).
+  // anywhere else (trimming, pruning, a pseudo-source cone). A point just outside the window on
+  // that side is reached by bending at the vertex, not at the end (see Propagator::bentDistance).
   int endVertex[2] = {-1, -1};
 
   static constexpr int kFromSource = -1;
@@ -130,7 +130,7 @@ struct Propagation {
     int count;
     int next;  // the halfedge's previous (older) block, -1 at the end
   };
-  std::vector<int> firstBlock;      // per halfedge, its newest block; -1 if none
+  std::vector<int> firstBlock;  // per halfedge, its newest block; -1 if none
   std::vector<SpanBlock> blocks;
   // Stored mode: every window, in creation order. Front mode: slots, reused once a window has
   // crossed its face (freeSlots); only the queued windows are held. Wavefront mode: empty (slots).
@@ -165,16 +165,18 @@ struct Propagation {
     int next;
   };
   std::vector<Slot> slots;
-  long halfedgePops = 0;  // diagnostics: batches propagated (live queue entries popped)
+  long halfedgePops = 0;      // diagnostics: batches propagated (live queue entries popped)
   long nearImagesMerged = 0;  // diagnostics: windows merged into a near image (imageMergeTolerance)
   // Per pseudo-source vertex, a copy of the window its best path so far came through: the cone it
   // fires into is aimed from that path (incomingAngle), and the window's slot may be reused.
   std::vector<Window> predecessorWindow;
-  long windowsCreated = 0;  // windows queued by the last propagation (the slots are fewer in front mode)
-  // Items >= 0: window index (the wavefront engine: halfedge); < 0: vertex event for vertex -item-1.
+  long windowsCreated =
+      0;  // windows queued by the last propagation (the slots are fewer in front mode)
+  // Items >= 0: window index (the wavefront engine: halfedge); < 0: vertex event for vertex
+  // -item-1.
   BucketQueue queue;
-  // A full field of the wavefront engine (wavefront_engine.cpp, runSplitQueues): the queue holds halfedges
-  // only, popped in any order within a bucket, and the vertex events wait in this heap by
+  // A full field of the wavefront engine (wavefront_engine.cpp, runSplitQueues): the queue holds
+  // halfedges only, popped in any order within a bucket, and the vertex events wait in this heap by
   // (key, item).
   bool splitQueues = false;
   std::vector<BucketQueue::Entry> vertexEvents;
@@ -197,14 +199,16 @@ struct Propagation {
 double peakBytes(const MeshTables& tables, const Propagation& state);
 
 // Runs the exact propagation from `source` with `targets`. `wavefront` (without storeWindows)
-// selects Engine::Wavefront, otherwise storeWindows false is Engine::FrontOnly. With storeWindows (path() needs it, or
-// Engine::StoredWindows) it leaves the windows in `state` for backtracing; otherwise only the
-// distances and targets' values are meaningful. directedAtTargets (with targets): queued by distance plus the chord to the nearest
-// target and stopped once every target is final (goal_bound.hpp); the target distances and paths
-// are the full field's (exact mode; see goal_bound.hpp), the vertex distances only upper bounds.
-void propagate(const MeshTables& tables, const DistanceSolverOptions& options, const SurfacePoint& source,
-               const std::vector<SurfacePoint>& targets, Propagation& state, bool directedAtTargets = false,
-               bool storeWindows = true, bool wavefront = false);
+// selects Engine::Wavefront, otherwise storeWindows false is Engine::FrontOnly. With storeWindows
+// (path() needs it, or Engine::StoredWindows) it leaves the windows in `state` for backtracing;
+// otherwise only the distances and targets' values are meaningful. directedAtTargets (with
+// targets): queued by distance plus the chord to the nearest target and stopped once every target
+// is final (goal_bound.hpp); the target distances and paths are the full field's (exact mode; see
+// goal_bound.hpp), the vertex distances only upper bounds.
+void propagate(const MeshTables& tables, const DistanceSolverOptions& options,
+               const SurfacePoint& source, const std::vector<SurfacePoint>& targets,
+               Propagation& state, bool directedAtTargets = false, bool storeWindows = true,
+               bool wavefront = false);
 
 // Traces the shortest path from the source of `state` to its target `targetIndex`, returned from
 // source to target.

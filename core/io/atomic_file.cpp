@@ -34,7 +34,8 @@ pid_t leftoverPid(const std::string& name, const std::string& prefix) {
   size_t i = prefix.size();
   long long pid = 0;
   const size_t start = i;
-  while (i < name.size() && name[i] >= '0' && name[i] <= '9' && i - start < 10) pid = pid * 10 + (name[i++] - '0');
+  while (i < name.size() && name[i] >= '0' && name[i] <= '9' && i - start < 10)
+    pid = pid * 10 + (name[i++] - '0');
   if (i == start || i >= name.size() || name[i] != '-' || pid <= 0 || pid > 0x7fffffff) return -1;
   return static_cast<pid_t>(pid);
 }
@@ -137,13 +138,16 @@ void writeFileAtomically(const fs::path& path, const std::string& text) {
   // Same folder as the target: rename is atomic only within one file system. The name carries
   // our PID (so that a later run knows a leftover is dead) and not the target's name (so that
   // it fits NAME_MAX whatever the target's length).
-  const fs::path temp = dir / (temporaryFilePrefix() + std::to_string(::getpid()) + "-" + temporarySuffix());
+  const fs::path temp =
+      dir / (temporaryFilePrefix() + std::to_string(::getpid()) + "-" + temporarySuffix());
   int error = 0;
   if (!writeNewFile(temp, text, error)) {
     std::error_code ignored;
     fs::remove(temp, ignored);
     throw WriteError(path.string() + ": write failed: " + std::strerror(error) +
-                     (error == ENOSPC || error == EFBIG || error == EDQUOT ? " (disk full or file too large)" : ""));
+                     (error == ENOSPC || error == EFBIG || error == EDQUOT
+                          ? " (disk full or file too large)"
+                          : ""));
   }
   std::error_code ec;
   fs::rename(temp, target, ec);
@@ -158,9 +162,11 @@ namespace {
 
 // Opens `path` for reading without blocking (a FIFO without a writer would block open()) and
 // checks it is a regular file of at most maxBytes. Returns the descriptor.
-int openRegularInput(const fs::path& path, std::size_t maxBytes, const std::string& what, off_t& size) {
+int openRegularInput(const fs::path& path, std::size_t maxBytes, const std::string& what,
+                     off_t& size) {
   const std::string name = abbreviate(path.string());
-  if (path.native().find('\0') != std::string::npos) throw IoError(name + ": the " + what + " path contains a NUL character");
+  if (path.native().find('\0') != std::string::npos)
+    throw IoError(name + ": the " + what + " path contains a NUL character");
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
   if (fd < 0) {
     const int error = errno;
@@ -175,7 +181,7 @@ int openRegularInput(const fs::path& path, std::size_t maxBytes, const std::stri
   }
   if (!S_ISREG(st.st_mode)) {
     ::close(fd);
-    const char* kind = S_ISDIR(st.st_mode)   ? "a folder"
+    const char* kind = S_ISDIR(st.st_mode)    ? "a folder"
                        : S_ISFIFO(st.st_mode) ? "a FIFO"
                        : S_ISCHR(st.st_mode)  ? "a character device"
                        : S_ISBLK(st.st_mode)  ? "a block device"
@@ -185,8 +191,8 @@ int openRegularInput(const fs::path& path, std::size_t maxBytes, const std::stri
   }
   if (static_cast<unsigned long long>(st.st_size) > maxBytes) {
     ::close(fd);
-    throw IoError(name + ": the " + what + " is too large (" + std::to_string(st.st_size) + " bytes; at most " +
-                  std::to_string(maxBytes) + ")");
+    throw IoError(name + ": the " + what + " is too large (" + std::to_string(st.st_size) +
+                  " bytes; at most " + std::to_string(maxBytes) + ")");
   }
   // Regular files never block: back to ordinary reads.
   ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
@@ -208,14 +214,15 @@ std::string readRegularFile(const fs::path& path, std::size_t maxBytes, const st
     if (n < 0) {
       const int error = errno;
       ::close(fd);
-      throw IoError(abbreviate(path.string()) + ": cannot read " + what + ": " + std::strerror(error));
+      throw IoError(abbreviate(path.string()) + ": cannot read " + what + ": " +
+                    std::strerror(error));
     }
     if (n == 0) break;
     text.append(buffer, static_cast<size_t>(n));
     if (text.size() > maxBytes) {  // grew while we read
       ::close(fd);
-      throw IoError(abbreviate(path.string()) + ": the " + what + " is too large (at most " + std::to_string(maxBytes) +
-                    " bytes)");
+      throw IoError(abbreviate(path.string()) + ": the " + what + " is too large (at most " +
+                    std::to_string(maxBytes) + " bytes)");
     }
   }
   ::close(fd);
@@ -231,13 +238,15 @@ std::string portableNameProblem(const std::string& name, std::size_t maxBytes) {
   if (name.empty()) return "is empty";
   if (name == "." || name == "..") return "is \"" + name + "\"";
   if (name.size() > maxBytes)
-    return "is too long (" + std::to_string(name.size()) + " bytes; at most " + std::to_string(maxBytes) + ")";
+    return "is too long (" + std::to_string(name.size()) + " bytes; at most " +
+           std::to_string(maxBytes) + ")";
   for (size_t i = 0; i < name.size(); ++i) {
     const unsigned char c = static_cast<unsigned char>(name[i]);
     if (c < 0x20 || c == 0x7f) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "0x%02x", c);
-      return std::string("contains a control character (byte ") + hex + " at position " + std::to_string(i) + ")";
+      return std::string("contains a control character (byte ") + hex + " at position " +
+             std::to_string(i) + ")";
     }
     if (c == '/' || c == '\\') return std::string("contains '") + static_cast<char>(c) + "'";
   }

@@ -34,15 +34,18 @@ pid_t leftoverPid(const std::string& name, const std::string& prefix);
 bool processAlive(pid_t pid);
 // Removes the leftovers `PREFIX<pid>-*` of dead processes directly in `folder` (regular files, or
 // folders when `folders` is true). Never throws; returns how many were removed.
-int removeDeadLeftovers(const std::filesystem::path& folder, const std::string& prefix, bool folders);
+int removeDeadLeftovers(const std::filesystem::path& folder, const std::string& prefix,
+                        bool folders);
 
 // Reads a whole input file. Throws IoError naming the file (and `what` it is: "scene file") when it
 // does not exist, is not a regular file (a folder, a FIFO, a device: opened without blocking and
 // checked before any read), is larger than `maxBytes`, or cannot be read.
-std::string readRegularFile(const std::filesystem::path& path, std::size_t maxBytes, const std::string& what);
+std::string readRegularFile(const std::filesystem::path& path, std::size_t maxBytes,
+                            const std::string& what);
 
 // The same checks without reading (for inputs another library opens by name, as assimp does).
-void checkRegularInputFile(const std::filesystem::path& path, std::size_t maxBytes, const std::string& what);
+void checkRegularInputFile(const std::filesystem::path& path, std::size_t maxBytes,
+                           const std::string& what);
 
 // Checks that `name` can be a file name on any common system: non-empty, at most `maxBytes` bytes,
 // no NUL or other control character, no '/' or '\\', not "." or "..". Returns an empty string when

@@ -56,7 +56,8 @@ class ShapeScanner : public json::json_sax_t {
     if (static_cast<int>(frames_.size()) >= maxDepth_) {
       result.ok = false;
       result.path = path();
-      result.problem = "nested deeper than " + std::to_string(maxDepth_) + " levels of objects and arrays";
+      result.problem =
+          "nested deeper than " + std::to_string(maxDepth_) + " levels of objects and arrays";
       return false;
     }
     frames_.push_back({array, "", 0});
@@ -69,8 +70,10 @@ class ShapeScanner : public json::json_sax_t {
   std::string path() const {
     std::string out;
     for (const auto& f : frames_) {
-      if (f.array) out += "[" + std::to_string(f.index) + "]";
-      else out += (out.empty() ? "" : ".") + abbreviate(f.key, 80);
+      if (f.array)
+        out += "[" + std::to_string(f.index) + "]";
+      else
+        out += (out.empty() ? "" : ".") + abbreviate(f.key, 80);
       if (out.size() > 160) return out.substr(0, 160) + "...";
     }
     return out;

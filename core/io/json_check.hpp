@@ -11,7 +11,8 @@ namespace egg {
 struct JsonCheck {
   bool ok = true;
   std::string path;     // where the problem is: "a.b[2].c" (empty: at the top)
-  std::string problem;  // "nested deeper than 64 levels", "number out of range (1e400)", "not valid JSON: ..."
+  std::string problem;  // "nested deeper than 64 levels", "number out of range (1e400)", "not valid
+                        // JSON: ..."
 };
 
 JsonCheck checkJsonText(const std::string& text, int maxDepth);

@@ -6,31 +6,31 @@
 #include "core/io/json_check.hpp"
 #include "core/io/mesh_precheck.hpp"
 
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 #include <assimp/Exporter.hpp>
 #include <assimp/IOStream.hpp>
 #include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 #include <algorithm>
 #include <array>
-#include <cstdint>
 #include <atomic>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <map>
-#include <set>
-#include <unordered_map>
 #include <memory>
+#include <set>
 #include <sstream>
+#include <unordered_map>
 
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 #include <system_error>
 #include <utility>
-#include <unistd.h>
 
 namespace egg {
 namespace fs = std::filesystem;
@@ -38,7 +38,6 @@ namespace {
 
 using mesh_precheck::lowerExtension;
 using mesh_precheck::quoted;
-
 
 Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {
   Eigen::Matrix4d e;
@@ -50,8 +49,10 @@ Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {
 // Appends the triangles of every mesh under `root`, with the accumulated node transform applied.
 // A mesh referenced by several nodes (instancing) is appended once per reference. An explicit
 // stack, not recursion: a file may nest its nodes as deep as it likes.
-void collectNodes(const aiScene& scene, const aiNode& root, double scale, TriangleSoup& soup, long& ignoredPrimitives) {
-  std::vector<std::pair<const aiNode*, Eigen::Matrix4d>> stack{{&root, Eigen::Matrix4d::Identity()}};
+void collectNodes(const aiScene& scene, const aiNode& root, double scale, TriangleSoup& soup,
+                  long& ignoredPrimitives) {
+  std::vector<std::pair<const aiNode*, Eigen::Matrix4d>> stack{
+      {&root, Eigen::Matrix4d::Identity()}};
   while (!stack.empty()) {
     const aiNode& node = *stack.back().first;
     const Eigen::Matrix4d transform = stack.back().second * toEigen(node.mTransformation);
@@ -70,7 +71,8 @@ void collectNodes(const aiScene& scene, const aiNode& root, double scale, Triang
           ++ignoredPrimitives;
           continue;
         }
-        soup.triangles.push_back({offset + static_cast<int>(face.mIndices[0]), offset + static_cast<int>(face.mIndices[1]),
+        soup.triangles.push_back({offset + static_cast<int>(face.mIndices[0]),
+                                  offset + static_cast<int>(face.mIndices[1]),
                                   offset + static_cast<int>(face.mIndices[2])});
       }
     }
@@ -83,12 +85,14 @@ void collectNodes(const aiScene& scene, const aiNode& root, double scale, Triang
 // its own: every clean OBJ then "merged N duplicate vertices", and messages named vertices by
 // assimp's numbers (an edge (752, 758) in a 626-vertex file). This rebuilds the soup in the
 // file's numbering (0-based: vertex k is the file's (k+1)-th "v" line) by matching assimp's
-// positions with the file's (parsed as floats, as assimp stores them). False (and `soup` untouched) when a
-// position does not match or a node carries a transform: the caller keeps assimp's soup.
-bool objSoupInFileOrder(const aiScene& scene, const std::vector<aiVector3D>& filePositions, double scale, TriangleSoup& soup) {
+// positions with the file's (parsed as floats, as assimp stores them). False (and `soup` untouched)
+// when a position does not match or a node carries a transform: the caller keeps assimp's soup.
+bool objSoupInFileOrder(const aiScene& scene, const std::vector<aiVector3D>& filePositions,
+                        double scale, TriangleSoup& soup) {
   struct KeyHash {
     size_t operator()(const std::array<uint32_t, 3>& k) const {
-      return (static_cast<size_t>(k[0]) * 0x9E3779B97F4A7C15ull) ^ (static_cast<size_t>(k[1]) * 0xC2B2AE3D27D4EB4Full) ^ k[2];
+      return (static_cast<size_t>(k[0]) * 0x9E3779B97F4A7C15ull) ^
+             (static_cast<size_t>(k[1]) * 0xC2B2AE3D27D4EB4Full) ^ k[2];
     }
   };
   auto key = [](const aiVector3D& p) {
@@ -99,7 +103,8 @@ bool objSoupInFileOrder(const aiScene& scene, const std::vector<aiVector3D>& fil
   };
   std::unordered_map<std::array<uint32_t, 3>, int, KeyHash> index;
   index.reserve(filePositions.size());
-  for (size_t i = 0; i < filePositions.size(); ++i) index.emplace(key(filePositions[i]), static_cast<int>(i));
+  for (size_t i = 0; i < filePositions.size(); ++i)
+    index.emplace(key(filePositions[i]), static_cast<int>(i));
   TriangleSoup out;
   std::vector<const aiNode*> stack{scene.mRootNode};
   while (!stack.empty()) {
@@ -117,13 +122,15 @@ bool objSoupInFileOrder(const aiScene& scene, const std::vector<aiVector3D>& fil
       for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
         const aiFace& face = mesh.mFaces[f];
         if (face.mNumIndices == 3)
-          out.triangles.push_back({fileIndex[face.mIndices[0]], fileIndex[face.mIndices[1]], fileIndex[face.mIndices[2]]});
+          out.triangles.push_back({fileIndex[face.mIndices[0]], fileIndex[face.mIndices[1]],
+                                   fileIndex[face.mIndices[2]]});
       }
     }
     for (unsigned c = node->mNumChildren; c-- > 0;) stack.push_back(node->mChildren[c]);
   }
   out.vertices.reserve(filePositions.size());
-  for (const auto& p : filePositions) out.vertices.push_back(scale * Eigen::Vector3d(p.x, p.y, p.z));
+  for (const auto& p : filePositions)
+    out.vertices.push_back(scale * Eigen::Vector3d(p.x, p.y, p.z));
   soup = std::move(out);
   return true;
 }
@@ -144,7 +151,9 @@ class MemoryStream : public Assimp::IOStream {
     return count;
   }
   aiReturn Seek(size_t offset, aiOrigin origin) override {
-    const size_t base = origin == aiOrigin_SET ? 0 : origin == aiOrigin_CUR ? position_ : buffer_.size();
+    const size_t base = origin == aiOrigin_SET   ? 0
+                        : origin == aiOrigin_CUR ? position_
+                                                 : buffer_.size();
     // Past the end is allowed, as with a file (the GLB writer seeks over its header first).
     position_ = base + offset;
     if (position_ > buffer_.size()) buffer_.resize(position_);
@@ -164,7 +173,8 @@ class MemoryIOSystem : public Assimp::IOSystem {
   bool Exists(const char* file) const override { return files_.count(file) > 0; }
   char getOsSeparator() const override { return '/'; }
   Assimp::IOStream* Open(const char* file, const char* mode) override {
-    if (mode == nullptr || (std::strchr(mode, 'w') == nullptr && std::strchr(mode, 'a') == nullptr)) return nullptr;
+    if (mode == nullptr || (std::strchr(mode, 'w') == nullptr && std::strchr(mode, 'a') == nullptr))
+      return nullptr;
     auto& entry = files_[file];
     if (entry.second == 0) entry.second = ++order_;
     entry.first.clear();
@@ -174,8 +184,10 @@ class MemoryIOSystem : public Assimp::IOSystem {
   // Files in the order they were first opened.
   std::vector<std::pair<std::string, const std::string*>> files() const {
     std::vector<std::pair<int, std::pair<std::string, const std::string*>>> ordered;
-    for (const auto& [name, entry] : files_) ordered.push_back({entry.second, {name, &entry.first}});
-    std::sort(ordered.begin(), ordered.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [name, entry] : files_)
+      ordered.push_back({entry.second, {name, &entry.first}});
+    std::sort(ordered.begin(), ordered.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<std::pair<std::string, const std::string*>> out;
     for (auto& o : ordered) out.push_back(o.second);
     return out;
@@ -194,7 +206,7 @@ struct ExportFormat {
 
 // Assimp exporter ids by extension. OBJ without a material library: a design surface has none.
 constexpr ExportFormat kExportFormats[] = {
-    {".obj", "objnomtl", "objnomtl"}, {".ply", "plyb", "ply"},   {".stl", "stlb", "stl"},
+    {".obj", "objnomtl", "objnomtl"}, {".ply", "plyb", "ply"},  {".stl", "stlb", "stl"},
     {".gltf", "gltf2", "gltf2"},      {".glb", "glb2", "glb2"},
 };
 
@@ -205,10 +217,10 @@ std::unique_ptr<aiScene> sceneFromSoup(const TriangleSoup& soup, double scale) {
   scene->mRootNode->mNumMeshes = 1;
   scene->mRootNode->mMeshes = new unsigned[1]{0};
   scene->mNumMaterials = 1;
-  scene->mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene->mMaterials = new aiMaterial* [1] { new aiMaterial() };
   auto* mesh = new aiMesh();
   scene->mNumMeshes = 1;
-  scene->mMeshes = new aiMesh*[1]{mesh};
+  scene->mMeshes = new aiMesh* [1] { mesh };
   mesh->mName = "surface";
   mesh->mMaterialIndex = 0;
   mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
@@ -219,16 +231,19 @@ std::unique_ptr<aiScene> sceneFromSoup(const TriangleSoup& soup, double scale) {
   std::vector<Eigen::Vector3d> normals(n, Eigen::Vector3d::Zero());
   for (const auto& tri : soup.triangles) {
     // Area-weighted vertex normals (viewers shade with them; glTF requires unit normals).
-    const Eigen::Vector3d areaNormal =
-        (soup.vertices[tri[1]] - soup.vertices[tri[0]]).cross(soup.vertices[tri[2]] - soup.vertices[tri[0]]);
+    const Eigen::Vector3d areaNormal = (soup.vertices[tri[1]] - soup.vertices[tri[0]])
+                                           .cross(soup.vertices[tri[2]] - soup.vertices[tri[0]]);
     for (int v : tri) normals[v] += areaNormal;
   }
   for (unsigned v = 0; v < n; ++v) {
     const Eigen::Vector3d p = scale * soup.vertices[v];
-    mesh->mVertices[v] = aiVector3D(static_cast<ai_real>(p.x()), static_cast<ai_real>(p.y()), static_cast<ai_real>(p.z()));
+    mesh->mVertices[v] = aiVector3D(static_cast<ai_real>(p.x()), static_cast<ai_real>(p.y()),
+                                    static_cast<ai_real>(p.z()));
     const double length = normals[v].norm();
-    const Eigen::Vector3d unit = length > 0.0 ? Eigen::Vector3d(normals[v] / length) : Eigen::Vector3d::UnitZ();
-    mesh->mNormals[v] = aiVector3D(static_cast<ai_real>(unit.x()), static_cast<ai_real>(unit.y()), static_cast<ai_real>(unit.z()));
+    const Eigen::Vector3d unit =
+        length > 0.0 ? Eigen::Vector3d(normals[v] / length) : Eigen::Vector3d::UnitZ();
+    mesh->mNormals[v] = aiVector3D(static_cast<ai_real>(unit.x()), static_cast<ai_real>(unit.y()),
+                                   static_cast<ai_real>(unit.z()));
   }
   const unsigned m = static_cast<unsigned>(soup.triangles.size());
   mesh->mNumFaces = m;
@@ -236,7 +251,8 @@ std::unique_ptr<aiScene> sceneFromSoup(const TriangleSoup& soup, double scale) {
   for (unsigned f = 0; f < m; ++f) {
     mesh->mFaces[f].mNumIndices = 3;
     mesh->mFaces[f].mIndices = new unsigned[3];
-    for (int k = 0; k < 3; ++k) mesh->mFaces[f].mIndices[k] = static_cast<unsigned>(soup.triangles[f][k]);
+    for (int k = 0; k < 3; ++k)
+      mesh->mFaces[f].mIndices[k] = static_cast<unsigned>(soup.triangles[f][k]);
   }
   return scene;
 }
@@ -262,9 +278,12 @@ void MeshExportOptions::validate() const {
 TriangleSoup readMeshFile(const fs::path& path, const MeshImportOptions& options) {
   options.validate();
   std::error_code ec;
-  if (!fs::exists(path, ec)) throw IoError("cannot read mesh " + quoted(path) + ": the file does not exist");
-  if (fs::is_directory(path, ec)) throw IoError("cannot read mesh " + quoted(path) + ": it is a directory");
-  // Not a regular file (a FIFO would block assimp forever), too large, or what assimp takes wrongly.
+  if (!fs::exists(path, ec))
+    throw IoError("cannot read mesh " + quoted(path) + ": the file does not exist");
+  if (fs::is_directory(path, ec))
+    throw IoError("cannot read mesh " + quoted(path) + ": it is a directory");
+  // Not a regular file (a FIFO would block assimp forever), too large, or what assimp takes
+  // wrongly.
   const std::vector<aiVector3D> objPositions = precheckMeshFile(path);
   Assimp::Importer importer;
   // Validation makes assimp refuse inconsistent data instead of crashing later. Triangulation is
@@ -282,7 +301,8 @@ TriangleSoup readMeshFile(const fs::path& path, const MeshImportOptions& options
     for (unsigned f = 0; mesh != nullptr && f < mesh->mNumFaces; ++f) {
       if (mesh->mFaces[f].mNumIndices == 0 || mesh->mFaces[f].mIndices == nullptr)
         throw IoError("cannot read mesh " + quoted(path) + ": face " + std::to_string(f) +
-                      (scene->mNumMeshes > 1 ? " of mesh " + std::to_string(m) : std::string()) + " has no vertices");
+                      (scene->mNumMeshes > 1 ? " of mesh " + std::to_string(m) : std::string()) +
+                      " has no vertices");
     }
   }
   scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
@@ -301,8 +321,8 @@ TriangleSoup readMeshFile(const fs::path& path, const MeshImportOptions& options
   return soup;
 }
 
-TriMesh loadMeshFile(const fs::path& path, const MeshImportOptions& importOptions, const MeshCheckOptions& checkOptions,
-                     MeshRepairDiagnostics& diagnostics) {
+TriMesh loadMeshFile(const fs::path& path, const MeshImportOptions& importOptions,
+                     const MeshCheckOptions& checkOptions, MeshRepairDiagnostics& diagnostics) {
   checkOptions.validate();
   TriangleSoup soup = readMeshFile(path, importOptions);
   try {
@@ -312,7 +332,8 @@ TriMesh loadMeshFile(const fs::path& path, const MeshImportOptions& importOption
   }
 }
 
-void writeMeshFile(const fs::path& path, const TriangleSoup& soup, const MeshExportOptions& options) {
+void writeMeshFile(const fs::path& path, const TriangleSoup& soup,
+                   const MeshExportOptions& options) {
   options.validate();
   const std::string ext = lowerExtension(path);
   const ExportFormat* format = nullptr;
@@ -320,14 +341,19 @@ void writeMeshFile(const fs::path& path, const TriangleSoup& soup, const MeshExp
     if (ext == f.extension) format = &f;
   if (format == nullptr) {
     std::string known;
-    for (const auto& f : kExportFormats) known += std::string(known.empty() ? "" : ", ") + f.extension;
-    throw IoError("cannot write mesh " + quoted(path) + ": unknown extension '" + ext + "' (use " + known + ")");
+    for (const auto& f : kExportFormats)
+      known += std::string(known.empty() ? "" : ", ") + f.extension;
+    throw IoError("cannot write mesh " + quoted(path) + ": unknown extension '" + ext + "' (use " +
+                  known + ")");
   }
-  if (soup.triangles.empty()) throw InvalidInput("cannot write mesh " + quoted(path) + ": the mesh has no triangles");
+  if (soup.triangles.empty())
+    throw InvalidInput("cannot write mesh " + quoted(path) + ": the mesh has no triangles");
   const int n = static_cast<int>(soup.vertices.size());
   for (const auto& tri : soup.triangles)
     for (int v : tri)
-      if (v < 0 || v >= n) throw InvalidInput("cannot write mesh " + quoted(path) + ": a triangle index is out of range");
+      if (v < 0 || v >= n)
+        throw InvalidInput("cannot write mesh " + quoted(path) +
+                           ": a triangle index is out of range");
 
   const fs::path target = fs::absolute(path);
   const fs::path directory = target.parent_path();
@@ -347,15 +373,18 @@ void writeMeshFile(const fs::path& path, const TriangleSoup& soup, const MeshExp
   const char* id = options.binary ? format->assimpId : format->assimpIdText;
   if (exporter.Export(scene.get(), id, target.string()) != aiReturn_SUCCESS) {
     std::string reason = exporter.GetErrorString();
-    throw WriteError("cannot write mesh " + quoted(path) + ": " + (reason.empty() ? "the exporter failed" : reason));
+    throw WriteError("cannot write mesh " + quoted(path) + ": " +
+                     (reason.empty() ? "the exporter failed" : reason));
   }
   auto produced = memory->files();
   // The main file last, so it never refers to a companion file (glTF's .bin) that is not there yet.
-  std::stable_partition(produced.begin(), produced.end(), [&](const auto& f) { return fs::path(f.first) != target; });
+  std::stable_partition(produced.begin(), produced.end(),
+                        [&](const auto& f) { return fs::path(f.first) != target; });
   for (const auto& [name, bytes] : produced) {
     const fs::path file(name);
     if (file.parent_path() != directory)
-      throw WriteError("cannot write mesh " + quoted(path) + ": the exporter asked for a file elsewhere (" + quoted(file) + ")");
+      throw WriteError("cannot write mesh " + quoted(path) +
+                       ": the exporter asked for a file elsewhere (" + quoted(file) + ")");
     try {
       writeFileAtomically(file, *bytes);
     } catch (const WriteError& e) {
@@ -377,7 +406,8 @@ std::vector<std::string> importableExtensions() {
   std::string item;
   while (std::getline(stream, item, ';')) {
     if (item.rfind("*", 0) == 0) item = item.substr(1);
-    std::transform(item.begin(), item.end(), item.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(item.begin(), item.end(), item.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     if (!item.empty()) extensions.push_back(item);
   }
   return extensions;

@@ -46,8 +46,10 @@ struct MeshExportOptions {
 // Writes OBJ, PLY, STL, glTF (.gltf + .bin) or GLB, chosen by the extension (case-insensitive).
 // Files are written to a temporary directory next to the target and renamed into place, so a
 // failure never leaves a half-written file. Throws IoError naming the file and the reason.
-void writeMeshFile(const std::filesystem::path& path, const TriangleSoup& soup, const MeshExportOptions& options = {});
-void writeMeshFile(const std::filesystem::path& path, const TriMesh& mesh, const MeshExportOptions& options = {});
+void writeMeshFile(const std::filesystem::path& path, const TriangleSoup& soup,
+                   const MeshExportOptions& options = {});
+void writeMeshFile(const std::filesystem::path& path, const TriMesh& mesh,
+                   const MeshExportOptions& options = {});
 
 // Lower-case extensions with the dot (".obj", ...).
 std::vector<std::string> importableExtensions();

@@ -66,20 +66,28 @@ void checkOffFile(const fs::path& path, const std::string& text) {
     header >> second;
   }
   auto count = [&](const std::string& text) -> long long {
-    if (text.empty() || text.size() > 10 || text.find_first_not_of("0123456789") != std::string::npos)
-      throw IoError("cannot read mesh " + quoted(path) + ": the OFF header's vertex and face counts must be numbers below 2^31, got " +
+    if (text.empty() || text.size() > 10 ||
+        text.find_first_not_of("0123456789") != std::string::npos)
+      throw IoError("cannot read mesh " + quoted(path) +
+                    ": the OFF header's vertex and face counts must be numbers below 2^31, got " +
                     abbreviate(first, 40) + " " + abbreviate(second, 40));
     const long long value = std::stoll(text);
     if (value > 0x7fffffffLL)
-      throw IoError("cannot read mesh " + quoted(path) + ": the OFF header's count " + text + " is too large");
+      throw IoError("cannot read mesh " + quoted(path) + ": the OFF header's count " + text +
+                    " is too large");
     return value;
   };
   const long long vertices = count(first), faces = count(second);
-  if (vertices < 0 || faces < 0) throw IoError("cannot read mesh " + quoted(path) + ": negative vertex or face count in the OFF header");
+  if (vertices < 0 || faces < 0)
+    throw IoError("cannot read mesh " + quoted(path) +
+                  ": negative vertex or face count in the OFF header");
   // Assimp reserves by these counts; every vertex and face takes at least two bytes of the file.
-  if (static_cast<unsigned long long>(vertices) + static_cast<unsigned long long>(faces) > text.size() / 2 + 1)
-    throw IoError("cannot read mesh " + quoted(path) + ": the header declares " + std::to_string(vertices) + " vertices and " +
-                  std::to_string(faces) + " faces, more than the file's " + std::to_string(text.size()) + " bytes can hold");
+  if (static_cast<unsigned long long>(vertices) + static_cast<unsigned long long>(faces) >
+      text.size() / 2 + 1)
+    throw IoError("cannot read mesh " + quoted(path) + ": the header declares " +
+                  std::to_string(vertices) + " vertices and " + std::to_string(faces) +
+                  " faces, more than the file's " + std::to_string(text.size()) +
+                  " bytes can hold");
   for (long long v = 0; v < vertices; ++v)
     if (!nextContentLine(line)) return;  // truncated: assimp reports it
   for (long long f = 0; f < faces; ++f) {
@@ -90,13 +98,14 @@ void checkOffFile(const fs::path& path, const std::string& text) {
     for (long long k = 0; k < count; ++k) {
       long long index = 0;
       if (!(face >> index)) {
-        throw IoError("cannot read mesh " + quoted(path) + ": line " + std::to_string(lineNumber) + ": face " + std::to_string(f) +
-                      " lists " + std::to_string(count) + " vertices but gives fewer indices");
+        throw IoError("cannot read mesh " + quoted(path) + ": line " + std::to_string(lineNumber) +
+                      ": face " + std::to_string(f) + " lists " + std::to_string(count) +
+                      " vertices but gives fewer indices");
       }
       if (index < 0 || index >= vertices) {
-        throw IoError("cannot read mesh " + quoted(path) + ": line " + std::to_string(lineNumber) + ": face " + std::to_string(f) +
-                      " refers to vertex " + std::to_string(index) + ", but the file has vertices 0 .. " +
-                      std::to_string(vertices - 1));
+        throw IoError("cannot read mesh " + quoted(path) + ": line " + std::to_string(lineNumber) +
+                      ": face " + std::to_string(f) + " refers to vertex " + std::to_string(index) +
+                      ", but the file has vertices 0 .. " + std::to_string(vertices - 1));
       }
     }
   }
@@ -110,10 +119,12 @@ void checkPlyFile(const fs::path& path, const std::string& text) {
   // The header must follow the PLY grammar exactly: assimp's parser looped forever on fuzzed
   // headers (no end_header line, or misspelt keywords), so anything else is refused here.
   auto fail = [&](long line, const std::string& why) {
-    throw IoError("cannot read mesh " + quoted(path) + ": PLY header line " + std::to_string(line) + ": " + why);
+    throw IoError("cannot read mesh " + quoted(path) + ": PLY header line " + std::to_string(line) +
+                  ": " + why);
   };
-  static const std::set<std::string> types{"char",  "uchar", "short", "ushort",  "int",     "uint",    "float",  "double",
-                                           "int8",  "uint8", "int16", "uint16",  "int32",   "uint32",  "float32", "float64"};
+  static const std::set<std::string> types{
+      "char", "uchar", "short", "ushort", "int",   "uint",   "float",   "double",
+      "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
   auto typeSize = [](const std::string& t) -> unsigned long long {
     if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
     if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
@@ -139,7 +150,8 @@ void checkPlyFile(const fs::path& path, const std::string& text) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     // Assimp splits header words at spaces and tabs only ("end_header\v0 0 0" hung it).
     for (const char c : line)
-      if (static_cast<unsigned char>(c) < 0x20 && c != '\t') fail(lineNumber, "a control character in the header");
+      if (static_cast<unsigned char>(c) < 0x20 && c != '\t')
+        fail(lineNumber, "a control character in the header");
     std::istringstream words(line);
     std::string word;
     words >> word;
@@ -159,7 +171,8 @@ void checkPlyFile(const fs::path& path, const std::string& text) {
       Element e;
       std::string count;
       words >> e.name >> count;
-      if (e.name.empty() || count.empty() || count.size() > 19 || count.find_first_not_of("0123456789") != std::string::npos)
+      if (e.name.empty() || count.empty() || count.size() > 19 ||
+          count.find_first_not_of("0123456789") != std::string::npos)
         fail(lineNumber, "an element needs a name and a count");
       e.count = std::stoull(count);
       elements.push_back(e);
@@ -171,7 +184,8 @@ void checkPlyFile(const fs::path& path, const std::string& text) {
       if (type == "list") {
         std::string countType, itemType;
         words >> countType >> itemType >> name;
-        if (!types.count(countType) || !types.count(itemType)) fail(lineNumber, "unknown list type");
+        if (!types.count(countType) || !types.count(itemType))
+          fail(lineNumber, "unknown list type");
         if (format != "ascii") bytes = typeSize(countType);
       } else {
         words >> name;
@@ -181,19 +195,23 @@ void checkPlyFile(const fs::path& path, const std::string& text) {
       if (name.empty()) fail(lineNumber, "a property needs a name");
       elements.back().minBytes += bytes;
     } else {
-      fail(lineNumber, "unknown keyword " + abbreviate(word, 40) + " (expected element, property, comment or end_header)");
+      fail(lineNumber, "unknown keyword " + abbreviate(word, 40) +
+                           " (expected element, property, comment or end_header)");
     }
   }
-  if (!ended) throw IoError("cannot read mesh " + quoted(path) + ": the PLY header has no end_header line");
-  if (format.empty()) throw IoError("cannot read mesh " + quoted(path) + ": the PLY header has no format line");
+  if (!ended)
+    throw IoError("cannot read mesh " + quoted(path) + ": the PLY header has no end_header line");
+  if (format.empty())
+    throw IoError("cannot read mesh " + quoted(path) + ": the PLY header has no format line");
   // Every element takes at least a few bytes in the body (ASCII: a digit and a separator per
   // property; binary: the sizes of its properties), so the counts are bounded by the file's size.
   const unsigned long long body = text.size() - std::min(pos, text.size());
   for (const Element& e : elements) {
     const unsigned long long perElement = std::max<unsigned long long>(e.minBytes, 1);
     if (e.count > body / perElement + 1) {
-      throw IoError("cannot read mesh " + quoted(path) + ": the header declares " + std::to_string(e.count) + " " +
-                    abbreviate(e.name, 40) + " elements, more than the file's " + std::to_string(body) +
+      throw IoError("cannot read mesh " + quoted(path) + ": the header declares " +
+                    std::to_string(e.count) + " " + abbreviate(e.name, 40) +
+                    " elements, more than the file's " + std::to_string(body) +
                     " bytes after the header can hold");
     }
   }
@@ -211,7 +229,8 @@ std::vector<aiVector3D> checkObjFile(const fs::path& path, const std::string& te
     if (end == std::string::npos) end = text.size();
     ++lineNumber;
     const size_t start = text.find_first_not_of(" \t", pos);
-    if (start < end && text[start] == 'v' && start + 1 < end && (text[start + 1] == ' ' || text[start + 1] == '\t')) {
+    if (start < end && text[start] == 'v' && start + 1 < end &&
+        (text[start + 1] == ' ' || text[start + 1] == '\t')) {
       ++vertex;
       const std::string rest = text.substr(start + 2, end - start - 2);
       std::istringstream coords(rest);
@@ -222,8 +241,10 @@ std::vector<aiVector3D> checkObjFile(const fs::path& path, const std::string& te
         char* stop = nullptr;
         const double x = std::strtod(item.c_str(), &stop);
         if (stop != item.c_str() && !std::isfinite(x)) {
-          throw InvalidInput("mesh " + quoted(path) + ": line " + std::to_string(lineNumber) + ": vertex " + std::to_string(vertex) +
-                             " has a coordinate that is not a finite number (" + abbreviate(item, 40) + ")");
+          throw InvalidInput("mesh " + quoted(path) + ": line " + std::to_string(lineNumber) +
+                             ": vertex " + std::to_string(vertex) +
+                             " has a coordinate that is not a finite number (" +
+                             abbreviate(item, 40) + ")");
         }
         // Correctly rounded to float, as assimp's parser rounds the usual short decimals; where
         // it rounds otherwise, the positions do not match and assimp's own soup is kept.
@@ -243,7 +264,8 @@ void checkGltfJson(const fs::path& path, const std::string& jsonText) {
   const JsonCheck check = checkJsonText(jsonText, kMaxGltfJsonDepth);
   if (!check.ok) {
     if (check.problem.rfind("nested deeper", 0) == 0)
-      throw IoError("cannot read mesh " + quoted(path) + ": its JSON is " + check.problem + " (at " + check.path + ")");
+      throw IoError("cannot read mesh " + quoted(path) + ": its JSON is " + check.problem +
+                    " (at " + check.path + ")");
     return;  // not valid JSON: assimp reports it
   }
   nlohmann::json document;
@@ -259,13 +281,21 @@ void checkGltfJson(const fs::path& path, const std::string& jsonText) {
     size_t k = 0;
     for (const auto& accessor : document["accessors"]) {
       const std::string name = "accessor " + std::to_string(k++);
-      if (!accessor.is_object()) throw IoError("cannot read mesh " + quoted(path) + ": " + name + " is not an object");
-      const auto& type = accessor.contains("componentType") ? accessor["componentType"] : nlohmann::json();
-      const bool knownType = type.is_number_integer() && std::set<long long>{5120, 5121, 5122, 5123, 5125, 5126}.count(type.get<long long>());
-      if (!knownType) throw IoError("cannot read mesh " + quoted(path) + ": " + name + " has no valid componentType");
+      if (!accessor.is_object())
+        throw IoError("cannot read mesh " + quoted(path) + ": " + name + " is not an object");
+      const auto& type =
+          accessor.contains("componentType") ? accessor["componentType"] : nlohmann::json();
+      const bool knownType =
+          type.is_number_integer() &&
+          std::set<long long>{5120, 5121, 5122, 5123, 5125, 5126}.count(type.get<long long>());
+      if (!knownType)
+        throw IoError("cannot read mesh " + quoted(path) + ": " + name +
+                      " has no valid componentType");
       const auto& count = accessor.contains("count") ? accessor["count"] : nlohmann::json();
-      if (!count.is_number_integer() || count.get<long long>() < 0 || count.get<long long>() > 100000000LL)
-        throw IoError("cannot read mesh " + quoted(path) + ": " + name + " needs a count between 0 and 100000000");
+      if (!count.is_number_integer() || count.get<long long>() < 0 ||
+          count.get<long long>() > 100000000LL)
+        throw IoError("cannot read mesh " + quoted(path) + ": " + name +
+                      " needs a count between 0 and 100000000");
     }
   }
   if (!document.contains("nodes") || !document["nodes"].is_array()) return;
@@ -278,10 +308,12 @@ void checkGltfJson(const fs::path& path, const std::string& jsonText) {
     const auto& node = nodes[static_cast<size_t>(i)];
     if (!node.is_object() || !node.contains("children") || !node["children"].is_array()) return out;
     for (const auto& c : node["children"])
-      if (c.is_number_integer() && c.get<long long>() >= 0 && c.get<long long>() < n) out.push_back(c.get<long long>());
+      if (c.is_number_integer() && c.get<long long>() >= 0 && c.get<long long>() < n)
+        out.push_back(c.get<long long>());
     return out;
   };
-  // Depth of every node from each node no one refers to; a node reached twice on one path is a cycle.
+  // Depth of every node from each node no one refers to; a node reached twice on one path is a
+  // cycle.
   std::vector<char> isChild(static_cast<size_t>(n), 0);
   for (long long i = 0; i < n; ++i)
     for (long long c : children(i)) isChild[static_cast<size_t>(c)] = 1;
@@ -294,12 +326,14 @@ void checkGltfJson(const fs::path& path, const std::string& jsonText) {
       const long long i = stack.back();
       stack.pop_back();
       if (++visits > 4 * n + 16)
-        throw IoError("cannot read mesh " + quoted(path) + ": its node hierarchy has a cycle or shared subtrees");
+        throw IoError("cannot read mesh " + quoted(path) +
+                      ": its node hierarchy has a cycle or shared subtrees");
       for (long long c : children(i)) {
         const int d = depth[static_cast<size_t>(i)] + 1;
         if (d > kMaxGltfNodeDepth)
-          throw IoError("cannot read mesh " + quoted(path) + ": its nodes nest deeper than " + std::to_string(kMaxGltfNodeDepth) +
-                        " levels (node " + std::to_string(c) + ")");
+          throw IoError("cannot read mesh " + quoted(path) + ": its nodes nest deeper than " +
+                        std::to_string(kMaxGltfNodeDepth) + " levels (node " + std::to_string(c) +
+                        ")");
         depth[static_cast<size_t>(c)] = d;
         stack.push_back(c);
       }
@@ -307,7 +341,8 @@ void checkGltfJson(const fs::path& path, const std::string& jsonText) {
   }
   for (long long i = 0; i < n; ++i)
     if (isChild[static_cast<size_t>(i)] && depth[static_cast<size_t>(i)] == 0)
-      throw IoError("cannot read mesh " + quoted(path) + ": its node hierarchy has a cycle (node " + std::to_string(i) + ")");
+      throw IoError("cannot read mesh " + quoted(path) + ": its node hierarchy has a cycle (node " +
+                    std::to_string(i) + ")");
 }
 
 void checkGlb(const fs::path& path, const std::string& data) {
@@ -319,7 +354,8 @@ void checkGlb(const fs::path& path, const std::string& data) {
   std::memcpy(&totalLength, data.data() + 8, 4);
   std::memcpy(&chunkLength, data.data() + 12, 4);
   if (totalLength > data.size() || chunkLength > data.size() - 20)
-    throw IoError("cannot read mesh " + quoted(path) + ": its GLB header declares more bytes than the file's " +
+    throw IoError("cannot read mesh " + quoted(path) +
+                  ": its GLB header declares more bytes than the file's " +
                   std::to_string(data.size()));
   if (data.compare(16, 4, "JSON") != 0) return;
   checkGltfJson(path, data.substr(20, chunkLength));

@@ -15,7 +15,8 @@ namespace egg {
 namespace mesh_precheck {
 inline std::string lowerExtension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 inline std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }

@@ -25,7 +25,8 @@ Eigen::SparseMatrix<double> assemble(const TriMesh& mesh, bool cotangent) {
         const Eigen::Vector3d a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
         const double sine = a.cross(b).norm();
         const double cosine = a.dot(b);
-        weight = 0.5 * std::clamp(sine > 0.0 ? cosine / sine : (cosine >= 0.0 ? 1e8 : -1e8), -1e8, 1e8);
+        weight =
+            0.5 * std::clamp(sine > 0.0 ? cosine / sine : (cosine >= 0.0 ? 1e8 : -1e8), -1e8, 1e8);
       }
       entries.emplace_back(i, j, -weight);
       entries.emplace_back(j, i, -weight);

@@ -21,7 +21,8 @@ std::array<int, 3> faceVertices(const TriMesh& mesh, int face) {
 Eigen::Vector3d position(const TriMesh& mesh, const SurfacePoint& point) {
   const auto ids = faceVertices(mesh, point.face);
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int i = 0; i < 3; ++i) p += point.barycentric[i] * toEigen(mesh.point(TriMesh::VertexHandle(ids[i])));
+  for (int i = 0; i < 3; ++i)
+    p += point.barycentric[i] * toEigen(mesh.point(TriMesh::VertexHandle(ids[i])));
   return p;
 }
 
@@ -35,22 +36,25 @@ TriMesh meshFromSoup(const TriangleSoup& soup) {
     const auto& tri = soup.triangles[t];
     for (int i : tri) {
       if (i < 0 || i >= n) {
-        throw InvalidInput("triangle " + std::to_string(t) + " refers to vertex " + std::to_string(i) +
-                           ", but there are only " + std::to_string(n) + " vertices");
+        throw InvalidInput("triangle " + std::to_string(t) + " refers to vertex " +
+                           std::to_string(i) + ", but there are only " + std::to_string(n) +
+                           " vertices");
       }
     }
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
-      throw InvalidInput("triangle " + std::to_string(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " +
-                         std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
+      throw InvalidInput("triangle " + std::to_string(t) + " repeats a vertex (" +
+                         std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " +
+                         std::to_string(tri[2]) + ")");
     }
     // OpenMesh's own complex-edge/complex-vertex messages go to its log; silence them here and
     // report the triangle ourselves.
     auto fh = mesh.add_face(handles[tri[0]], handles[tri[1]], handles[tri[2]]);
     if (!fh.is_valid()) {
-      throw InvalidInput("triangle " + std::to_string(t) + " (" + std::to_string(tri[0]) + ", " +
-                         std::to_string(tri[1]) + ", " + std::to_string(tri[2]) +
-                         ") makes the mesh non-manifold (an edge shared by more than two triangles, "
-                         "or inconsistent orientation)");
+      throw InvalidInput(
+          "triangle " + std::to_string(t) + " (" + std::to_string(tri[0]) + ", " +
+          std::to_string(tri[1]) + ", " + std::to_string(tri[2]) +
+          ") makes the mesh non-manifold (an edge shared by more than two triangles, "
+          "or inconsistent orientation)");
     }
   }
   return mesh;
@@ -65,8 +69,8 @@ TriangleSoup soupFromMesh(const TriMesh& mesh) {
   return soup;
 }
 
-Eigen::Vector3d closestPointBarycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                        const Eigen::Vector3d& c) {
+Eigen::Vector3d closestPointBarycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                        const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
@@ -142,17 +146,20 @@ double vertexAngleSum(const TriMesh& mesh, TriMesh::VertexHandle v) {
 }
 
 namespace {
-double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
+double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
 }  // namespace
 
-double geodesicTurningAtBoundary(const TriMesh& mesh, TriMesh::VertexHandle v, const Eigen::Vector3d& before,
-                                 const Eigen::Vector3d& after) {
+double geodesicTurningAtBoundary(const TriMesh& mesh, TriMesh::VertexHandle v,
+                                 const Eigen::Vector3d& before, const Eigen::Vector3d& after) {
   // The fan of faces round a boundary vertex is open: walk it from its first boundary edge,
   // measuring each direction by the angle swept through the faces so far.
   const Eigen::Vector3d p = toEigen(mesh.point(v));
   TriMesh::HalfedgeHandle start;
   for (auto heh : mesh.voh_range(v))
-    if (mesh.is_boundary(mesh.opposite_halfedge_handle(heh))) start = heh;  // its face is the fan's first
+    if (mesh.is_boundary(mesh.opposite_halfedge_handle(heh)))
+      start = heh;  // its face is the fan's first
   if (!start.is_valid()) return 0.0;
   const auto sweep = [&](const Eigen::Vector3d& point) {
     const Eigen::Vector3d d = point - p;
@@ -166,7 +173,8 @@ double geodesicTurningAtBoundary(const TriMesh& mesh, TriMesh::VertexHandle v, c
       const double slack = std::abs(toD + angleBetween(d, b) - corner);
       if (slack < bestSlack) bestSlack = slack, at = swept + toD;
       swept += corner;
-      heh = mesh.opposite_halfedge_handle(mesh.prev_halfedge_handle(heh));  // round v to the next face
+      heh = mesh.opposite_halfedge_handle(
+          mesh.prev_halfedge_handle(heh));  // round v to the next face
       if (heh == start) break;
     }
     return at;
@@ -174,7 +182,8 @@ double geodesicTurningAtBoundary(const TriMesh& mesh, TriMesh::VertexHandle v, c
   return std::abs(sweep(after) - sweep(before)) - M_PI;
 }
 
-double boundaryWrapTurning(const TriMesh& mesh, const std::vector<Eigen::Vector3d>& polyline, const std::vector<int>& vertices) {
+double boundaryWrapTurning(const TriMesh& mesh, const std::vector<Eigen::Vector3d>& polyline,
+                           const std::vector<int>& vertices) {
   double total = 0.0;
   for (int id : vertices) {
     const auto vh = TriMesh::VertexHandle(id);

@@ -52,8 +52,8 @@ TriangleSoup soupFromMesh(const TriMesh& mesh);
 
 // The point of triangle (a, b, c) closest to p, as barycentric weights of a, b, c (Ericson,
 // Real-Time Collision Detection, 5.1.5). Snapping points to the surface rests on it.
-Eigen::Vector3d closestPointBarycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                        const Eigen::Vector3d& c);
+Eigen::Vector3d closestPointBarycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                        const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
 struct BoundingBox {
   Eigen::Vector3d min = Eigen::Vector3d::Constant(0.0);
@@ -73,10 +73,11 @@ double meanEdgeLength(const TriMesh& mesh);
 // Positive where it bends round a reflex boundary vertex (wrapping the boundary or a hole); about
 // zero along a boundary that is itself a geodesic, as the Lilium's vertical base wall, whatever
 // the curve does in space; negative on the inner side of a convex boundary vertex.
-double geodesicTurningAtBoundary(const TriMesh& mesh, TriMesh::VertexHandle v, const Eigen::Vector3d& before,
-                                 const Eigen::Vector3d& after);
+double geodesicTurningAtBoundary(const TriMesh& mesh, TriMesh::VertexHandle v,
+                                 const Eigen::Vector3d& before, const Eigen::Vector3d& after);
 // The positive turning of a polyline summed over the listed vertices it passes that lie on the
 // boundary (its two ends excluded): how far it wraps round the boundary, in radians.
-double boundaryWrapTurning(const TriMesh& mesh, const std::vector<Eigen::Vector3d>& polyline, const std::vector<int>& vertices);
+double boundaryWrapTurning(const TriMesh& mesh, const std::vector<Eigen::Vector3d>& polyline,
+                           const std::vector<int>& vertices);
 
 }  // namespace egg

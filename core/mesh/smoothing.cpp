@@ -31,8 +31,8 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
   if (n == 0 || mesh.n_faces() == 0) throw InvalidInput("smoothMeshStep: the mesh is empty");
   for (int v : options.fixedVertices)
     if (v < 0 || v >= n)
-      throw InvalidInput("SmoothingOptions.fixed_vertices holds " + std::to_string(v) + ", but the mesh has " +
-                         std::to_string(n) + " vertices");
+      throw InvalidInput("SmoothingOptions.fixed_vertices holds " + std::to_string(v) +
+                         ", but the mesh has " + std::to_string(n) + " vertices");
   const auto start = std::chrono::steady_clock::now();
 
   std::vector<char> fixed(n, 0);
@@ -48,13 +48,16 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
   std::vector<int> freeIndex(n, -1);
   int freeCount = 0;
   for (int v = 0; v < n; ++v) {
-    if (fixed[v]) ++result.fixedVertices;
-    else freeIndex[v] = freeCount++;
+    if (fixed[v])
+      ++result.fixedVertices;
+    else
+      freeIndex[v] = freeCount++;
   }
   if (freeCount == 0) return result;
 
-  const Eigen::SparseMatrix<double> L =
-      options.weights == LaplacianWeights::Cotangent ? cotanLaplacian(mesh) : uniformLaplacian(mesh);
+  const Eigen::SparseMatrix<double> L = options.weights == LaplacianWeights::Cotangent
+                                            ? cotanLaplacian(mesh)
+                                            : uniformLaplacian(mesh);
   // Mixed Voronoi areas: with them M^-1 L X is the mean curvature normal 2Hn to second order on
   // any triangulation (Meyer et al. 2003); barycentric areas are off by a few per cent at irregular
   // vertices, which shows as uneven shrinking.
@@ -73,24 +76,30 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
     for (Eigen::SparseMatrix<double>::InnerIterator it(L, k); it; ++it) {
       const int i = static_cast<int>(it.row()), j = static_cast<int>(it.col());
       if (fixed[i]) continue;
-      if (fixed[j]) rhs.row(freeIndex[i]) -= t * it.value() * X.row(j);
-      else entries.emplace_back(freeIndex[i], freeIndex[j], t * it.value());
+      if (fixed[j])
+        rhs.row(freeIndex[i]) -= t * it.value() * X.row(j);
+      else
+        entries.emplace_back(freeIndex[i], freeIndex[j], t * it.value());
     }
   for (int v = 0; v < n; ++v)
     if (!fixed[v]) entries.emplace_back(freeIndex[v], freeIndex[v], mass(v));
   Eigen::SparseMatrix<double> A(freeCount, freeCount);
   A.setFromTriplets(entries.begin(), entries.end());
 
-  constexpr int kCholeskyLimit = 100000;  // beyond this, fill-in makes the simplicial factorisation slow
+  constexpr int kCholeskyLimit =
+      100000;  // beyond this, fill-in makes the simplicial factorisation slow
   result.usedCholesky = options.solver == FairingSolver::Cholesky ||
-                         (options.solver == FairingSolver::Auto && freeCount <= kCholeskyLimit);
+                        (options.solver == FairingSolver::Auto && freeCount <= kCholeskyLimit);
   Eigen::MatrixXd solved(freeCount, 3);
   if (result.usedCholesky) {
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
     if (solver.info() != Eigen::Success)
-      throw SolverFailure("smoothMeshStep: the implicit fairing system could not be factorised (degenerate faces?)");
+      throw SolverFailure(
+          "smoothMeshStep: the implicit fairing system could not be factorised (degenerate "
+          "faces?)");
     solved = solver.solve(rhs);
-    if (solver.info() != Eigen::Success) throw SolverFailure("smoothMeshStep: the implicit fairing solve failed");
+    if (solver.info() != Eigen::Success)
+      throw SolverFailure("smoothMeshStep: the implicit fairing solve failed");
   } else {
     Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver(A);
     solver.setTolerance(options.cgTolerance);
@@ -101,13 +110,16 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
         if (!fixed[v]) guess(freeIndex[v]) = X(v, axis);
       solved.col(axis) = solver.solveWithGuess(rhs.col(axis), guess);
       if (solver.info() != Eigen::Success)
-        throw SolverFailure("smoothMeshStep: conjugate gradients did not converge (" + std::to_string(solver.iterations()) +
-                            " iterations, relative residual " + std::to_string(solver.error()) + ")");
+        throw SolverFailure("smoothMeshStep: conjugate gradients did not converge (" +
+                            std::to_string(solver.iterations()) +
+                            " iterations, relative residual " + std::to_string(solver.error()) +
+                            ")");
       result.iterations = std::max(result.iterations, static_cast<int>(solver.iterations()));
       result.residual = std::max(result.residual, solver.error());
     }
   }
-  if (!solved.allFinite()) throw SolverFailure("smoothMeshStep: the implicit fairing solve produced non-finite positions");
+  if (!solved.allFinite())
+    throw SolverFailure("smoothMeshStep: the implicit fairing solve produced non-finite positions");
 
   double sum = 0.0;
   for (int v = 0; v < n; ++v) {
@@ -123,10 +135,12 @@ SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& opti
   return result;
 }
 
-SmoothingLoopResult smoothUntil(const TriMesh& mesh, const std::function<bool(const TriMesh&)>& done, int maxSteps,
+SmoothingLoopResult smoothUntil(const TriMesh& mesh,
+                                const std::function<bool(const TriMesh&)>& done, int maxSteps,
                                 const SmoothingOptions& options) {
   options.validate();
-  if (maxSteps < 0) throw InvalidInput("smoothUntil: maxSteps must be >= 0, got " + std::to_string(maxSteps));
+  if (maxSteps < 0)
+    throw InvalidInput("smoothUntil: maxSteps must be >= 0, got " + std::to_string(maxSteps));
   const auto start = std::chrono::steady_clock::now();
   SmoothingLoopResult loop;
   loop.mesh = mesh;
@@ -141,7 +155,8 @@ SmoothingLoopResult smoothUntil(const TriMesh& mesh, const std::function<bool(co
   }
   for (auto vh : mesh.vertices())
     loop.totalMaxDisplacementM =
-        std::max(loop.totalMaxDisplacementM, (toEigen(loop.mesh.point(vh)) - toEigen(mesh.point(vh))).norm());
+        std::max(loop.totalMaxDisplacementM,
+                 (toEigen(loop.mesh.point(vh)) - toEigen(mesh.point(vh))).norm());
   loop.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return loop;
 }

@@ -44,14 +44,14 @@ struct SmoothingOptions {
 };
 
 struct SmoothingResult {
-  TriMesh mesh;                      // the smoothed mesh (same connectivity)
+  TriMesh mesh;                    // the smoothed mesh (same connectivity)
   double maxDisplacementM = 0.0;   // largest vertex move of this step
   double meanDisplacementM = 0.0;  // mean over all vertices (fixed ones count as 0)
-  int fixedVertices = 0;            // vertices held in place
+  int fixedVertices = 0;           // vertices held in place
   double timeStepM2 = 0.0;         // t in metres squared
-  bool usedCholesky = true;         // which solver ran
-  int iterations = 0;                // conjugate-gradient iterations (largest of x, y, z; 0 for Cholesky)
-  double residual = 0.0;             // relative residual of the solve (CG estimate; 0 for Cholesky)
+  bool usedCholesky = true;        // which solver ran
+  int iterations = 0;     // conjugate-gradient iterations (largest of x, y, z; 0 for Cholesky)
+  double residual = 0.0;  // relative residual of the solve (CG estimate; 0 for Cholesky)
   double seconds = 0.0;
 };
 
@@ -60,11 +60,11 @@ struct SmoothingResult {
 SmoothingResult smoothMeshStep(const TriMesh& mesh, const SmoothingOptions& options = {});
 
 struct SmoothingLoopResult {
-  TriMesh mesh;                              // the mesh after the last step (the input if none ran)
-  int steps = 0;                             // steps taken
-  bool satisfied = false;                    // `done` returned true (possibly before any step)
-  std::vector<double> maxDisplacementM;    // per step
-  std::vector<double> meanDisplacementM;   // per step
+  TriMesh mesh;                           // the mesh after the last step (the input if none ran)
+  int steps = 0;                          // steps taken
+  bool satisfied = false;                 // `done` returned true (possibly before any step)
+  std::vector<double> maxDisplacementM;   // per step
+  std::vector<double> meanDisplacementM;  // per step
   double totalMaxDisplacementM = 0.0;     // largest distance of any vertex from its start
   double seconds = 0.0;
 };
@@ -72,7 +72,8 @@ struct SmoothingLoopResult {
 // Section 2.3.3's loop: checks `done` on the input, then alternates one smoothMeshStep and a check,
 // at most `maxSteps` times (e.g. done = "eta <= eta_max" with eta recomputed on the new mesh).
 // Not satisfied after maxSteps is reported, not thrown: the caller decides (split the patch).
-SmoothingLoopResult smoothUntil(const TriMesh& mesh, const std::function<bool(const TriMesh&)>& done, int maxSteps,
+SmoothingLoopResult smoothUntil(const TriMesh& mesh,
+                                const std::function<bool(const TriMesh&)>& done, int maxSteps,
                                 const SmoothingOptions& options = {});
 
 }  // namespace egg

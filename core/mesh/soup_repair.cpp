@@ -24,7 +24,8 @@ struct CellHash {
 
 std::uint64_t edgeKey(int a, int b) {
   if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
 }
 
 int findRoot(std::vector<int>& parent, int i) {
@@ -85,11 +86,13 @@ int mergeDuplicateVertices(TriangleSoup& soup, double toleranceM, std::vector<in
       const CellKey key{static_cast<std::int64_t>(cell.x()), static_cast<std::int64_t>(cell.y()),
                         static_cast<std::int64_t>(cell.z())};
       const Eigen::Vector3d fraction = scaled - cell;
-      const int step[3] = {fraction.x() < 0.5 ? -1 : 1, fraction.y() < 0.5 ? -1 : 1, fraction.z() < 0.5 ? -1 : 1};
+      const int step[3] = {fraction.x() < 0.5 ? -1 : 1, fraction.y() < 0.5 ? -1 : 1,
+                           fraction.z() < 0.5 ? -1 : 1};
       int match = -1;
       for (int corner = 0; corner < 8 && match < 0; ++corner) {
-        auto it = grid.find({key.x + ((corner & 1) ? step[0] : 0), key.y + ((corner & 2) ? step[1] : 0),
-                             key.z + ((corner & 4) ? step[2] : 0)});
+        auto it =
+            grid.find({key.x + ((corner & 1) ? step[0] : 0), key.y + ((corner & 2) ? step[1] : 0),
+                       key.z + ((corner & 4) ? step[2] : 0)});
         if (it == grid.end()) continue;
         for (int k : it->second)
           if ((kept[k] - p).squaredNorm() <= tol2) {
@@ -114,7 +117,8 @@ int mergeDuplicateVertices(TriangleSoup& soup, double toleranceM, std::vector<in
   return removed;
 }
 
-std::pair<int, int> dropCollapsedAndDuplicateTriangles(TriangleSoup& soup, std::vector<int>* keptTriangles) {
+std::pair<int, int> dropCollapsedAndDuplicateTriangles(TriangleSoup& soup,
+                                                       std::vector<int>* keptTriangles) {
   int collapsed = 0, duplicates = 0;
   std::set<std::array<int, 3>> seen;
   std::vector<std::array<int, 3>> kept;
@@ -169,8 +173,10 @@ std::vector<int> triangleComponents(const TriangleSoup& soup, int& count) {
     for (int v : tri) {
       if (v < 0 || v >= n) continue;
       const int r = findRoot(parent, v);
-      if (root < 0) root = r;
-      else if (r != root) parent[r] = root;
+      if (root < 0)
+        root = r;
+      else if (r != root)
+        parent[r] = root;
     }
   }
   std::unordered_map<int, int> idOfRoot;
@@ -191,13 +197,15 @@ std::vector<int> triangleComponents(const TriangleSoup& soup, int& count) {
   return component;
 }
 
-int keepLargestComponent(TriangleSoup& soup, std::vector<int>* keptTriangles, std::vector<int>* oldToNew) {
+int keepLargestComponent(TriangleSoup& soup, std::vector<int>* keptTriangles,
+                         std::vector<int>* oldToNew) {
   int count = 0;
   const std::vector<int> component = triangleComponents(soup, count);
   if (keptTriangles) keptTriangles->clear();
   if (count <= 1) {
     if (keptTriangles)
-      for (size_t t = 0; t < soup.triangles.size(); ++t) keptTriangles->push_back(static_cast<int>(t));
+      for (size_t t = 0; t < soup.triangles.size(); ++t)
+        keptTriangles->push_back(static_cast<int>(t));
     if (oldToNew) {
       oldToNew->resize(soup.vertices.size());
       std::iota(oldToNew->begin(), oldToNew->end(), 0);
@@ -208,7 +216,8 @@ int keepLargestComponent(TriangleSoup& soup, std::vector<int>* keptTriangles, st
   const int n = static_cast<int>(soup.vertices.size());
   for (size_t t = 0; t < soup.triangles.size(); ++t) {
     const auto& tri = soup.triangles[t];
-    if (component[t] >= count || std::any_of(tri.begin(), tri.end(), [&](int v) { return v < 0 || v >= n; }))
+    if (component[t] >= count ||
+        std::any_of(tri.begin(), tri.end(), [&](int v) { return v < 0 || v >= n; }))
       continue;
     const double a = 0.5 * (soup.vertices[tri[1]] - soup.vertices[tri[0]])
                                .cross(soup.vertices[tri[2]] - soup.vertices[tri[0]])
@@ -267,7 +276,8 @@ int orientConsistently(TriangleSoup& soup) {
       }
     }
     // Keep the orientation most triangles of the component already have.
-    const auto flips = std::count_if(members.begin(), members.end(), [&](int t) { return flip[t] == 1; });
+    const auto flips =
+        std::count_if(members.begin(), members.end(), [&](int t) { return flip[t] == 1; });
     if (2 * flips > static_cast<long>(members.size()))
       for (int t : members) flip[t] ^= 1;
   }

@@ -15,13 +15,15 @@ namespace egg {
 // merged. Triangle indices are remapped; triangles may become collapsed (a repeated index), see
 // dropCollapsedAndDuplicateTriangles. Returns the number of vertices removed.
 // `oldToNew`, if given, receives the new index of every old vertex.
-int mergeDuplicateVertices(TriangleSoup& soup, double toleranceM, std::vector<int>* oldToNew = nullptr);
+int mergeDuplicateVertices(TriangleSoup& soup, double toleranceM,
+                           std::vector<int>* oldToNew = nullptr);
 
 // Removes triangles that repeat a vertex index (they have zero area and, after merging, are the
 // remains of edges shorter than the merge tolerance) and triangles with the same three vertices as
 // an earlier one (in any order or orientation). Returns {collapsed removed, duplicates removed}.
 // `keptTriangles`, if given, receives the old index of every kept triangle.
-std::pair<int, int> dropCollapsedAndDuplicateTriangles(TriangleSoup& soup, std::vector<int>* keptTriangles = nullptr);
+std::pair<int, int> dropCollapsedAndDuplicateTriangles(TriangleSoup& soup,
+                                                       std::vector<int>* keptTriangles = nullptr);
 
 // Removes vertices no triangle refers to and renumbers the rest, keeping their order.
 // Returns the number of vertices removed.
@@ -39,9 +41,9 @@ int keepLargestComponent(TriangleSoup& soup, std::vector<int>* keptTriangles = n
                          std::vector<int>* oldToNew = nullptr);
 
 // Flips triangles so that every manifold edge (two triangles) is traversed in opposite directions,
-// keeping the orientation the majority of each component's triangles already has. Edges with more than two
-// triangles are ignored. Returns the number of flipped triangles, or -1 when the surface is not
-// orientable (a Moebius strip); the soup is left unchanged in that case.
+// keeping the orientation the majority of each component's triangles already has. Edges with more
+// than two triangles are ignored. Returns the number of flipped triangles, or -1 when the surface
+// is not orientable (a Moebius strip); the soup is left unchanged in that case.
 int orientConsistently(TriangleSoup& soup);
 
 }  // namespace egg

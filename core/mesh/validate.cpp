@@ -57,7 +57,8 @@ std::string formatCoordinate(double x) {
 }
 
 std::string formatPoint(const Eigen::Vector3d& p) {
-  return "(" + formatCoordinate(p.x()) + ", " + formatCoordinate(p.y()) + ", " + formatCoordinate(p.z()) + ")";
+  return "(" + formatCoordinate(p.x()) + ", " + formatCoordinate(p.y()) + ", " +
+         formatCoordinate(p.z()) + ")";
 }
 
 class Checker {
@@ -70,22 +71,27 @@ class Checker {
 
  private:
   std::string vertexName(int v) const {
-    return "vertex " + std::to_string(w_.vertexOrigin[v]) + " at " + formatPoint(w_.soup.vertices[v]);
+    return "vertex " + std::to_string(w_.vertexOrigin[v]) + " at " +
+           formatPoint(w_.soup.vertices[v]);
   }
   std::string triangleName(int t) const {
     const auto& tri = w_.soup.triangles[t];
-    return "triangle " + std::to_string(w_.triangleOrigin[t]) + " (vertices " + std::to_string(w_.vertexOrigin[tri[0]]) +
-           ", " + std::to_string(w_.vertexOrigin[tri[1]]) + ", " + std::to_string(w_.vertexOrigin[tri[2]]) + ")";
+    return "triangle " + std::to_string(w_.triangleOrigin[t]) + " (vertices " +
+           std::to_string(w_.vertexOrigin[tri[0]]) + ", " +
+           std::to_string(w_.vertexOrigin[tri[1]]) + ", " +
+           std::to_string(w_.vertexOrigin[tri[2]]) + ")";
   }
   std::string edgeName(int a, int b) const {
     if (w_.vertexOrigin[a] > w_.vertexOrigin[b]) std::swap(a, b);
-    return "edge (" + std::to_string(w_.vertexOrigin[a]) + ", " + std::to_string(w_.vertexOrigin[b]) + ")";
+    return "edge (" + std::to_string(w_.vertexOrigin[a]) + ", " +
+           std::to_string(w_.vertexOrigin[b]) + ")";
   }
   // "a, b, c and 12 more"
   std::string list(const std::vector<std::string>& names, int total) const {
     std::string s;
     for (size_t i = 0; i < names.size(); ++i) s += (i ? "; " : "") + names[i];
-    if (total > static_cast<int>(names.size())) s += "; and " + std::to_string(total - names.size()) + " more";
+    if (total > static_cast<int>(names.size()))
+      s += "; and " + std::to_string(total - names.size()) + " more";
     return s;
   }
   void add(MeshIssueKind kind, int count, Severity severity, const std::string& message) {
@@ -123,13 +129,13 @@ bool Checker::checkIndices() {
     const auto& tri = w_.soup.triangles[t];
     if (std::all_of(tri.begin(), tri.end(), [&](int v) { return v >= 0 && v < n; })) continue;
     if (++bad <= o_.maxNamedElements)
-      named.push_back("triangle " + std::to_string(t) + " (" + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) +
-                      ", " + std::to_string(tri[2]) + ")");
+      named.push_back("triangle " + std::to_string(t) + " (" + std::to_string(tri[0]) + ", " +
+                      std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
   }
   if (bad == 0) return true;
   add(MeshIssueKind::IndexOutOfRange, bad, Severity::Error,
-      std::to_string(bad) + " triangle(s) refer to vertices that do not exist (there are " + std::to_string(n) +
-          " vertices): " + list(named, bad));
+      std::to_string(bad) + " triangle(s) refer to vertices that do not exist (there are " +
+          std::to_string(n) + " vertices): " + list(named, bad));
   return false;
 }
 
@@ -140,7 +146,8 @@ void Checker::mergeDuplicates(double tolerance) {
   for (size_t t = 0; t < w_.soup.triangles.size(); ++t) {
     const auto& tri = w_.soup.triangles[t];
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
-      if (++repeatedCount <= o_.maxNamedElements) repeated.push_back(triangleName(static_cast<int>(t)));
+      if (++repeatedCount <= o_.maxNamedElements)
+        repeated.push_back(triangleName(static_cast<int>(t)));
   }
   if (o_.mergeDuplicateVertices) {
     std::vector<int> oldToNew, kept;
@@ -155,11 +162,13 @@ void Checker::mergeDuplicates(double tolerance) {
     tol << tolerance;
     if (merged > 0)
       add(MeshIssueKind::DuplicateVertices, merged, Severity::Repaired,
-          "merged " + std::to_string(merged) + " duplicate vertices (tolerance " + tol.str() + " m)");
+          "merged " + std::to_string(merged) + " duplicate vertices (tolerance " + tol.str() +
+              " m)");
     if (collapsed > 0)
       add(MeshIssueKind::RepeatedVertex, collapsed, Severity::Repaired,
           "dropped " + std::to_string(collapsed) + " collapsed triangle(s) that repeat a vertex" +
-              (repeatedCount ? " (in the input: " + list(repeated, repeatedCount) + ")" : std::string()));
+              (repeatedCount ? " (in the input: " + list(repeated, repeatedCount) + ")"
+                             : std::string()));
     if (duplicates > 0)
       add(MeshIssueKind::DuplicateTriangles, duplicates, Severity::Repaired,
           "dropped " + std::to_string(duplicates) + " duplicate triangle(s)");
@@ -168,7 +177,8 @@ void Checker::mergeDuplicates(double tolerance) {
   // No merging allowed: report what merging would have fixed as errors.
   if (repeatedCount > 0)
     add(MeshIssueKind::RepeatedVertex, repeatedCount, Severity::Error,
-        std::to_string(repeatedCount) + " triangle(s) repeat a vertex: " + list(repeated, repeatedCount));
+        std::to_string(repeatedCount) +
+            " triangle(s) repeat a vertex: " + list(repeated, repeatedCount));
   TriangleSoup copy = w_.soup;
   std::vector<int> oldToNew;
   const int merged = mergeDuplicateVertices(copy, tolerance, &oldToNew);
@@ -178,12 +188,15 @@ void Checker::mergeDuplicates(double tolerance) {
     int shown = 0;
     for (size_t i = 0; i < oldToNew.size(); ++i) {
       int& first = firstOf[oldToNew[i]];
-      if (first < 0) first = static_cast<int>(i);
+      if (first < 0)
+        first = static_cast<int>(i);
       else if (shown++ < o_.maxNamedElements)
-        pairs.push_back(vertexName(static_cast<int>(i)) + " duplicates vertex " + std::to_string(w_.vertexOrigin[first]));
+        pairs.push_back(vertexName(static_cast<int>(i)) + " duplicates vertex " +
+                        std::to_string(w_.vertexOrigin[first]));
     }
     add(MeshIssueKind::DuplicateVertices, merged, Severity::Error,
-        std::to_string(merged) + " duplicate vertices (they leave cracks; enable merging): " + list(pairs, merged));
+        std::to_string(merged) +
+            " duplicate vertices (they leave cracks; enable merging): " + list(pairs, merged));
   }
   std::vector<int> kept;
   TriangleSoup copy2 = w_.soup;
@@ -207,9 +220,10 @@ void Checker::handleComponents() {
     d_.droppedComponentTriangles = dropped;
     d_.removedComponents = count - 1;
     add(MeshIssueKind::SeveralComponents, count - 1, Severity::Repaired,
-        "the mesh has " + std::to_string(count) + " connected components; kept the largest by area (" +
-            std::to_string(w_.soup.triangles.size()) + " triangles) and dropped " + std::to_string(dropped) +
-            " triangles of the other " + std::to_string(count - 1));
+        "the mesh has " + std::to_string(count) +
+            " connected components; kept the largest by area (" +
+            std::to_string(w_.soup.triangles.size()) + " triangles) and dropped " +
+            std::to_string(dropped) + " triangles of the other " + std::to_string(count - 1));
     r_.components = 1;
     return;
   }
@@ -221,10 +235,12 @@ void Checker::handleComponents() {
   }
   std::vector<std::string> named;
   for (int c = 0; c < count && c < o_.maxNamedElements; ++c)
-    named.push_back("component " + std::to_string(c) + ": " + std::to_string(size[c]) + " triangles from " +
-                    triangleName(first[c]));
+    named.push_back("component " + std::to_string(c) + ": " + std::to_string(size[c]) +
+                    " triangles from " + triangleName(first[c]));
   add(MeshIssueKind::SeveralComponents, count, Severity::Error,
-      "the mesh has " + std::to_string(count) + " connected components (to keep only the largest, set the scene's surface.keep_largest_component to true): " +
+      "the mesh has " + std::to_string(count) +
+          " connected components (to keep only the largest, set the scene's "
+          "surface.keep_largest_component to true): " +
           list(named, count));
 }
 
@@ -253,7 +269,8 @@ void Checker::checkFinite() {
   std::vector<std::string> named;
   int bad = 0;
   for (size_t v = 0; v < w_.soup.vertices.size(); ++v)
-    if (!w_.soup.vertices[v].allFinite() && ++bad <= o_.maxNamedElements) named.push_back(vertexName(static_cast<int>(v)));
+    if (!w_.soup.vertices[v].allFinite() && ++bad <= o_.maxNamedElements)
+      named.push_back(vertexName(static_cast<int>(v)));
   if (bad > 0)
     add(MeshIssueKind::NonFiniteVertex, bad, Severity::Error,
         std::to_string(bad) + " vertices have a NaN or infinite coordinate: " + list(named, bad));
@@ -303,25 +320,30 @@ void Checker::checkFaceShapes() {
       }
     } else if (minAngle < o_.sliverMinAngleRad) {
       ++sliverCount;
-      if (minAngle < worstSliverAngle) worstSliverAngle = minAngle, worstSliver = static_cast<int>(t);
+      if (minAngle < worstSliverAngle)
+        worstSliverAngle = minAngle, worstSliver = static_cast<int>(t);
     }
   }
   if (degenerateCount > 0)
     add(MeshIssueKind::DegenerateFaces, degenerateCount, Severity::Error,
-        std::to_string(degenerateCount) + " zero-area triangle(s) (area below " + formatNumber(o_.degenerateAreaRelative) +
+        std::to_string(degenerateCount) + " zero-area triangle(s) (area below " +
+            formatNumber(o_.degenerateAreaRelative) +
             " x mean edge length squared): " + list(degenerate, degenerateCount));
   if (sliverCount > 0) {
     std::ostringstream s;
-    s << sliverCount << " sliver triangle(s) with an angle below " << o_.sliverMinAngleRad * 180.0 / std::numbers::pi
-      << " degrees; the worst is " << triangleName(worstSliver) << " with "
-      << worstSliverAngle * 180.0 / std::numbers::pi << " degrees";
-    add(MeshIssueKind::SliverFaces, sliverCount, o_.rejectSlivers ? Severity::Error : Severity::Warning, s.str());
+    s << sliverCount << " sliver triangle(s) with an angle below "
+      << o_.sliverMinAngleRad * 180.0 / std::numbers::pi << " degrees; the worst is "
+      << triangleName(worstSliver) << " with " << worstSliverAngle * 180.0 / std::numbers::pi
+      << " degrees";
+    add(MeshIssueKind::SliverFaces, sliverCount,
+        o_.rejectSlivers ? Severity::Error : Severity::Warning, s.str());
   }
 }
 
 std::uint64_t undirectedKey(int a, int b) {
   if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
 }
 
 void Checker::checkEdgesAndOrientation() {
@@ -353,8 +375,10 @@ void Checker::checkEdgesAndOrientation() {
     begin = end;
     if (uses.size() == 1) ++r_.boundaryEdges;
     if (uses.size() > 2 && ++nonManifoldCount <= o_.maxNamedElements) {
-      std::string s = edgeName(uses[0].from, uses[0].to) + " is shared by " + std::to_string(uses.size()) + " triangles (";
-      for (size_t i = 0; i < uses.size(); ++i) s += (i ? ", " : "") + std::to_string(w_.triangleOrigin[uses[i].triangle]);
+      std::string s = edgeName(uses[0].from, uses[0].to) + " is shared by " +
+                      std::to_string(uses.size()) + " triangles (";
+      for (size_t i = 0; i < uses.size(); ++i)
+        s += (i ? ", " : "") + std::to_string(w_.triangleOrigin[uses[i].triangle]);
       nonManifold.push_back(s + ")");
     }
     if (uses.size() == 2 && uses[0].from == uses[1].from && ++conflictCount <= o_.maxNamedElements)
@@ -364,18 +388,22 @@ void Checker::checkEdgesAndOrientation() {
   }
   if (nonManifoldCount > 0)
     add(MeshIssueKind::NonManifoldEdges, nonManifoldCount, Severity::Error,
-        std::to_string(nonManifoldCount) + " non-manifold edge(s): " + list(nonManifold, nonManifoldCount));
+        std::to_string(nonManifoldCount) +
+            " non-manifold edge(s): " + list(nonManifold, nonManifoldCount));
   if (conflictCount == 0) return;
   if (!o_.fixOrientation) {
     add(MeshIssueKind::InconsistentOrientation, conflictCount, Severity::Error,
-        "inconsistent orientation at " + std::to_string(conflictCount) + " edge(s) (turn the faces so that neighbours agree, e.g. unify the normals in the modelling tool): " +
+        "inconsistent orientation at " + std::to_string(conflictCount) +
+            " edge(s) (turn the faces so that neighbours agree, e.g. unify the normals in the "
+            "modelling tool): " +
             list(conflicts, conflictCount));
     return;
   }
   const int flipped = orientConsistently(w_.soup);
   if (flipped < 0) {
     add(MeshIssueKind::NotOrientable, conflictCount, Severity::Error,
-        "the surface is not orientable (a Moebius band): no choice of triangle orientations agrees at " +
+        "the surface is not orientable (a Moebius band): no choice of triangle orientations agrees "
+        "at " +
             list(conflicts, conflictCount));
     return;
   }
@@ -410,15 +438,19 @@ void Checker::checkVertexFans() {
     for (size_t i = 0; i < tris.size(); ++i)
       for (int u : w_.soup.triangles[tris[i]]) {
         if (u == v) continue;
-        auto it = std::find_if(firstWithVertex.begin(), firstWithVertex.end(), [u](const auto& e) { return e.first == u; });
-        if (it == firstWithVertex.end()) firstWithVertex.push_back({u, static_cast<int>(i)});
-        else parent[root(static_cast<int>(i))] = root(it->second);
+        auto it = std::find_if(firstWithVertex.begin(), firstWithVertex.end(),
+                               [u](const auto& e) { return e.first == u; });
+        if (it == firstWithVertex.end())
+          firstWithVertex.push_back({u, static_cast<int>(i)});
+        else
+          parent[root(static_cast<int>(i))] = root(it->second);
       }
     int fans = 0;
     for (size_t i = 0; i < tris.size(); ++i)
       if (root(static_cast<int>(i)) == static_cast<int>(i)) ++fans;
     if (fans > 1 && ++bad <= o_.maxNamedElements)
-      named.push_back(vertexName(v) + " joins " + std::to_string(fans) + " separate fans of triangles");
+      named.push_back(vertexName(v) + " joins " + std::to_string(fans) +
+                      " separate fans of triangles");
   }
   if (bad > 0)
     add(MeshIssueKind::NonManifoldVertices, bad, Severity::Error,
@@ -430,7 +462,8 @@ void Checker::run() {
   r_.triangles = static_cast<int>(w_.soup.triangles.size());
   if (w_.soup.triangles.empty() || w_.soup.vertices.empty()) {
     add(MeshIssueKind::Empty, 0, Severity::Error,
-        "the mesh is empty (" + std::to_string(r_.vertices) + " vertices, " + std::to_string(r_.triangles) + " triangles)");
+        "the mesh is empty (" + std::to_string(r_.vertices) + " vertices, " +
+            std::to_string(r_.triangles) + " triangles)");
     return;
   }
   if (!checkIndices()) return;
@@ -442,7 +475,8 @@ void Checker::run() {
   const double diagonal = box.min.allFinite() ? box.size().norm() : 0.0;
   mergeDuplicates(o_.mergeToleranceRelative * diagonal);
   if (w_.soup.triangles.empty()) {
-    add(MeshIssueKind::Empty, 0, Severity::Error, "no triangle is left after merging duplicate vertices");
+    add(MeshIssueKind::Empty, 0, Severity::Error,
+        "no triangle is left after merging duplicate vertices");
     return;
   }
   handleComponents();
@@ -503,7 +537,8 @@ void MeshCheckOptions::validate() const {
     throw InvalidInput("MeshCheckOptions.sliver_min_angle_rad must be in [0, pi/3), got " +
                        formatNumber(sliverMinAngleRad));
   if (maxNamedElements < 1)
-    throw InvalidInput("MeshCheckOptions.max_named_elements must be at least 1, got " + std::to_string(maxNamedElements));
+    throw InvalidInput("MeshCheckOptions.max_named_elements must be at least 1, got " +
+                       std::to_string(maxNamedElements));
 }
 
 bool MeshCheckResult::has(MeshIssueKind kind) const { return find(kind) != nullptr; }
@@ -529,12 +564,14 @@ MeshCheckResult checkMesh(const TriangleSoup& soup, const MeshCheckOptions& opti
   MeshCheckResult result;
   MeshRepairDiagnostics diagnostics;
   Checker(work, options, result, diagnostics).run();
-  for (const auto& issue : result.issues) result.hasErrors = result.hasErrors || isError(issue, options);
+  for (const auto& issue : result.issues)
+    result.hasErrors = result.hasErrors || isError(issue, options);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
-TriMesh prepareMesh(TriangleSoup soup, const MeshCheckOptions& options, MeshRepairDiagnostics& diagnostics) {
+TriMesh prepareMesh(TriangleSoup soup, const MeshCheckOptions& options,
+                    MeshRepairDiagnostics& diagnostics) {
   options.validate();
   const auto start = std::chrono::steady_clock::now();
   diagnostics = MeshRepairDiagnostics{};
@@ -549,7 +586,8 @@ TriMesh prepareMesh(TriangleSoup soup, const MeshCheckOptions& options, MeshRepa
     }
   if (result.hasErrors) throw InvalidInput("invalid mesh: " + errors);
   TriMesh mesh = meshFromSoup(work.soup);
-  diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  diagnostics.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.seconds = diagnostics.seconds;
   return mesh;
 }

@@ -68,13 +68,13 @@ struct MeshIssue {
   MeshIssueKind kind = MeshIssueKind::Empty;
   int count = 0;            // how many elements are affected
   bool repairable = false;  // prepareMesh fixes it with the given options (reported as a warning)
-  std::string message;  // names the elements (vertex / triangle / edge indices of the soup)
+  std::string message;      // names the elements (vertex / triangle / edge indices of the soup)
 };
 
 struct MeshCheckResult {
   std::vector<MeshIssue> issues;  // in the order of the checks
-  int vertices = 0;   // in the input soup
-  int triangles = 0;  // in the input soup
+  int vertices = 0;               // in the input soup
+  int triangles = 0;              // in the input soup
   int verticesAfterRepair = 0;
   int trianglesAfterRepair = 0;
   int components = 0;
@@ -82,8 +82,8 @@ struct MeshCheckResult {
   double meanEdgeLengthM = 0.0;
   double minFaceAreaM2 = 0.0;
   double minAngleRad = 0.0;  // smallest triangle angle found
-  int worstFace = -1;         // triangle with that smallest angle (input numbering)
-  bool hasErrors = false;     // an issue prepareMesh would refuse
+  int worstFace = -1;        // triangle with that smallest angle (input numbering)
+  bool hasErrors = false;    // an issue prepareMesh would refuse
   double seconds = 0.0;
 
   bool has(MeshIssueKind kind) const;
@@ -113,7 +113,9 @@ struct MeshRepairDiagnostics {
 
 // Repairs what the options allow (merge duplicates, drop collapsed/duplicate triangles and
 // unreferenced vertices, keep the largest component, fix orientation), checks the result and
-// builds the TriMesh. Throws InvalidInput listing every remaining issue (naming elements) otherwise.
-TriMesh prepareMesh(TriangleSoup soup, const MeshCheckOptions& options, MeshRepairDiagnostics& diagnostics);
+// builds the TriMesh. Throws InvalidInput listing every remaining issue (naming elements)
+// otherwise.
+TriMesh prepareMesh(TriangleSoup soup, const MeshCheckOptions& options,
+                    MeshRepairDiagnostics& diagnostics);
 
 }  // namespace egg

@@ -52,11 +52,13 @@ V3<D6> bilinearCross(const V3<D3>& a, const V3<D3>& b) {
 // differentiated with 3 variables, and the angle enters in closed form: m1 = cos(theta) u +
 // sin(theta) v, m2 = cos(theta) v - sin(theta) u, so d m1/d theta = m2, d m2/d theta = -m1 and
 // the second derivatives in theta are -m1, -m2 (the same expressions as materialFrame).
-EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta, const EdgeReference& reference) {
+EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta,
+                                          const EdgeReference& reference) {
   const V3<D3> e{D3::variable(edge.x(), 0), D3::variable(edge.y(), 1), D3::variable(edge.z(), 2)};
   const D3 length = norm(e);
   const V3<D3> t = (1.0 / length) * e;
-  const V3<D3> u = parallelTransport(constant<D3>(reference.tangent), t, constant<D3>(reference.director));
+  const V3<D3> u =
+      parallelTransport(constant<D3>(reference.tangent), t, constant<D3>(reference.director));
   const V3<D3> v = cross(t, u);
   const double c = std::cos(theta), s = std::sin(theta);
   // An edge-vector-only quantity as a function of (e, theta).
@@ -86,13 +88,15 @@ EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double th
   out.tangent = t;
   out.director = u;
   out.binormal = v;
-  out.frame.normal = {turned(u.x, v.x, c, s, -s, c), turned(u.y, v.y, c, s, -s, c), turned(u.z, v.z, c, s, -s, c)};
+  out.frame.normal = {turned(u.x, v.x, c, s, -s, c), turned(u.y, v.y, c, s, -s, c),
+                      turned(u.z, v.z, c, s, -s, c)};
   out.frame.side = {turned(v.x, u.x, c, -s, -s, -c), turned(v.y, u.y, c, -s, -s, -c),
                     turned(v.z, u.z, c, -s, -s, -c)};
   return out;
 }
 
-BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0, const EdgeFrameDerivatives& f1,
+BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0,
+                                          const EdgeFrameDerivatives& f1,
                                           const RodStiffness& stiffness, double voronoiLength) {
   // Curvature binormal and reference twist over (e0, e1), from bilinear products.
   const V3<D3>&t0 = f0.tangent, &u0 = f0.director, &w0 = f0.binormal;
@@ -192,7 +196,8 @@ BendTwistVertexDerivatives onVertices(const BendTwistDerivatives& d) {
   double sign[11][2];
   for (int k = 0; k < 3; ++k) {
     count[k] = 1, variable[k][0] = k, sign[k][0] = -1.0;
-    count[3 + k] = 2, variable[3 + k][0] = k, sign[3 + k][0] = 1.0, variable[3 + k][1] = 3 + k, sign[3 + k][1] = -1.0;
+    count[3 + k] = 2, variable[3 + k][0] = k, sign[3 + k][0] = 1.0, variable[3 + k][1] = 3 + k,
+              sign[3 + k][1] = -1.0;
     count[6 + k] = 1, variable[6 + k][0] = 3 + k, sign[6 + k][0] = 1.0;
   }
   count[9] = 1, variable[9][0] = 6, sign[9][0] = 1.0;
@@ -206,7 +211,8 @@ BendTwistVertexDerivatives onVertices(const BendTwistDerivatives& d) {
     for (int b = 0; b <= a; ++b) {
       double h = 0.0;
       for (int p = 0; p < count[a]; ++p) {
-        for (int q = 0; q < count[b]; ++q) h += sign[a][p] * sign[b][q] * d.hessian(variable[a][p], variable[b][q]);
+        for (int q = 0; q < count[b]; ++q)
+          h += sign[a][p] * sign[b][q] * d.hessian(variable[a][p], variable[b][q]);
       }
       out.hessian(a, b) = h;
       out.hessian(b, a) = h;

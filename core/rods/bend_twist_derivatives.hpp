@@ -37,7 +37,8 @@ struct EdgeFrameDerivatives {
   V3<HyperDual<3>> tangent, director, binormal;
 };
 
-EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta, const EdgeReference& reference);
+EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta,
+                                          const EdgeReference& reference);
 
 struct BendTwistDerivatives {
   double energy = 0.0;
@@ -47,7 +48,8 @@ struct BendTwistDerivatives {
 
 // f0, f1: the frames of the edges before and after the vertex (e0 = x1 - x0, e1 = x2 - x1),
 // from edgeFrameDerivatives.
-BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0, const EdgeFrameDerivatives& f1,
+BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0,
+                                          const EdgeFrameDerivatives& f1,
                                           const RodStiffness& stiffness, double voronoiLength);
 
 // The same over the stencil's unknowns (x0, x1, x2, theta0, theta1) with e0 = x1 - x0 and

@@ -46,9 +46,11 @@ void addEdgeHessian(Mat16& H, const HyperDual<4>& a, const Side& side, double we
 }  // namespace
 
 ConnectionDerivatives connectionDerivatives(const Eigen::Vector3d& g0, const Eigen::Vector3d& g1,
-                                            const EdgeFrameDerivatives& fg, double betaG, const Eigen::Vector3d& h0,
-                                            const Eigen::Vector3d& h1, const EdgeFrameDerivatives& fh, double betaH,
-                                            double offset, double positionWeight, double angleWeight) {
+                                            const EdgeFrameDerivatives& fg, double betaG,
+                                            const Eigen::Vector3d& h0, const Eigen::Vector3d& h1,
+                                            const EdgeFrameDerivatives& fh, double betaH,
+                                            double offset, double positionWeight,
+                                            double angleWeight) {
   const HyperDual<4>* mg[3] = {&fg.frame.normal.x, &fg.frame.normal.y, &fg.frame.normal.z};
   const HyperDual<4>* mh[3] = {&fh.frame.normal.x, &fh.frame.normal.y, &fh.frame.normal.z};
   const Eigen::Vector3d qg = (1.0 - betaG) * g0 + betaG * g1;
@@ -76,7 +78,8 @@ ConnectionDerivatives connectionDerivatives(const Eigen::Vector3d& g0, const Eig
     energy += w * (r1 * r1 + r2 * r2) + a * r3 * r3;
     const Vec16 j1 = jd + offset * jmg, j2 = -jd - offset * jmh, j3 = jmg - jmh;
     g += (2.0 * w * r1) * j1 + (2.0 * w * r2) * j2 + (2.0 * a * r3) * j3;
-    H.noalias() += (2.0 * w) * (j1 * j1.transpose() + j2 * j2.transpose()) + (2.0 * a) * (j3 * j3.transpose());
+    H.noalias() +=
+        (2.0 * w) * (j1 * j1.transpose() + j2 * j2.transpose()) + (2.0 * a) * (j3 * j3.transpose());
     // Second derivatives of the residuals: the bolt points' beta-x terms, and the normals.
     const double onD = 2.0 * w * (r1 - r2);  // weight of Hess d_i
     const double pairs[4][3] = {{double(kLower.beta), double(kLower.start + i), -onD},

@@ -22,8 +22,10 @@ struct ConnectionDerivatives {
 // g0, g1 (h0, h1): the vertices of the lower (upper) rod's edge holding the bolt, fg (fh) that
 // edge's frame derivatives (edge vector g1 - g0), betaG (betaH) the bolt's barycentric coordinate.
 ConnectionDerivatives connectionDerivatives(const Eigen::Vector3d& g0, const Eigen::Vector3d& g1,
-                                            const EdgeFrameDerivatives& fg, double betaG, const Eigen::Vector3d& h0,
-                                            const Eigen::Vector3d& h1, const EdgeFrameDerivatives& fh, double betaH,
-                                            double offset, double positionWeight, double angleWeight);
+                                            const EdgeFrameDerivatives& fg, double betaG,
+                                            const Eigen::Vector3d& h0, const Eigen::Vector3d& h1,
+                                            const EdgeFrameDerivatives& fh, double betaH,
+                                            double offset, double positionWeight,
+                                            double angleWeight);
 
 }  // namespace egg::rods

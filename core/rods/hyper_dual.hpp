@@ -81,7 +81,8 @@ inline HyperDual<N> operator*(const HyperDual<N>& a, const HyperDual<N>& b) {
   for (int i = 0; i < N; ++i) r.g[i] = a.v * b.g[i] + b.v * a.g[i];
   for (int j = 0; j < N; ++j) {
     const double aj = a.g[j], bj = b.g[j];
-    for (int i = j; i < N; ++i) r.h(i, j) = a.v * b.h(i, j) + b.v * a.h(i, j) + a.g[i] * bj + b.g[i] * aj;
+    for (int i = j; i < N; ++i)
+      r.h(i, j) = a.v * b.h(i, j) + b.v * a.h(i, j) + a.g[i] * bj + b.g[i] * aj;
   }
   return r;
 }
@@ -94,7 +95,9 @@ inline HyperDual<N> operator*(double s, const HyperDual<N>& a) {
   return r;
 }
 template <int N>
-inline HyperDual<N> operator*(const HyperDual<N>& a, double s) { return s * a; }
+inline HyperDual<N> operator*(const HyperDual<N>& a, double s) {
+  return s * a;
+}
 template <int N>
 inline HyperDual<N> operator+(const HyperDual<N>& a, double s) {
   HyperDual<N> r = a;
@@ -102,22 +105,34 @@ inline HyperDual<N> operator+(const HyperDual<N>& a, double s) {
   return r;
 }
 template <int N>
-inline HyperDual<N> operator+(double s, const HyperDual<N>& a) { return a + s; }
+inline HyperDual<N> operator+(double s, const HyperDual<N>& a) {
+  return a + s;
+}
 template <int N>
-inline HyperDual<N> operator-(const HyperDual<N>& a, double s) { return a + (-s); }
+inline HyperDual<N> operator-(const HyperDual<N>& a, double s) {
+  return a + (-s);
+}
 template <int N>
-inline HyperDual<N> operator-(double s, const HyperDual<N>& a) { return (-a) + s; }
+inline HyperDual<N> operator-(double s, const HyperDual<N>& a) {
+  return (-a) + s;
+}
 template <int N>
 inline HyperDual<N> inverse(const HyperDual<N>& a) {
   const double i = 1.0 / a.v;
   return chain(a, i, -i * i, 2.0 * i * i * i);
 }
 template <int N>
-inline HyperDual<N> operator/(const HyperDual<N>& a, const HyperDual<N>& b) { return a * inverse(b); }
+inline HyperDual<N> operator/(const HyperDual<N>& a, const HyperDual<N>& b) {
+  return a * inverse(b);
+}
 template <int N>
-inline HyperDual<N> operator/(const HyperDual<N>& a, double s) { return (1.0 / s) * a; }
+inline HyperDual<N> operator/(const HyperDual<N>& a, double s) {
+  return (1.0 / s) * a;
+}
 template <int N>
-inline HyperDual<N> operator/(double s, const HyperDual<N>& a) { return s * inverse(a); }
+inline HyperDual<N> operator/(double s, const HyperDual<N>& a) {
+  return s * inverse(a);
+}
 
 template <int N>
 inline HyperDual<N> sqrt(const HyperDual<N>& a) {
@@ -144,7 +159,8 @@ inline HyperDual<N> atan2(const HyperDual<N>& y, const HyperDual<N>& x) {
   const double r2 = x.v * x.v + y.v * y.v;
   const double fy = x.v / r2, fx = -y.v / r2;
   const double r4 = r2 * r2;
-  const double fyy = -2.0 * x.v * y.v / r4, fxx = 2.0 * x.v * y.v / r4, fxy = (y.v * y.v - x.v * x.v) / r4;
+  const double fyy = -2.0 * x.v * y.v / r4, fxx = 2.0 * x.v * y.v / r4,
+               fxy = (y.v * y.v - x.v * x.v) / r4;
   HyperDual<N> r;
   r.v = std::atan2(y.v, x.v);
   for (int i = 0; i < N; ++i) r.g[i] = fy * y.g[i] + fx * x.g[i];
@@ -195,7 +211,9 @@ inline HyperDual<N> liftEdgeQuantity(const HyperDual<4>& a, int start, int end, 
 
 inline double value(double a) { return a; }
 template <int N>
-inline double value(const HyperDual<N>& a) { return a.v; }
+inline double value(const HyperDual<N>& a) {
+  return a.v;
+}
 
 // A 3-vector over any scalar (Eigen's fixed vectors need NumTraits for custom scalars; this is
 // all the energies need).
@@ -204,15 +222,25 @@ struct V3 {
   S x, y, z;
 };
 template <class S>
-inline V3<S> constant(const Eigen::Vector3d& v) { return {S(v.x()), S(v.y()), S(v.z())}; }
+inline V3<S> constant(const Eigen::Vector3d& v) {
+  return {S(v.x()), S(v.y()), S(v.z())};
+}
 template <class S>
-inline V3<S> operator+(const V3<S>& a, const V3<S>& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3<S> operator+(const V3<S>& a, const V3<S>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
 template <class S>
-inline V3<S> operator-(const V3<S>& a, const V3<S>& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3<S> operator-(const V3<S>& a, const V3<S>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
 template <class S, class T>
-inline V3<S> operator*(const T& s, const V3<S>& a) { return {s * a.x, s * a.y, s * a.z}; }
+inline V3<S> operator*(const T& s, const V3<S>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
 template <class S>
-inline S dot(const V3<S>& a, const V3<S>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline S dot(const V3<S>& a, const V3<S>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 template <class S>
 inline V3<S> cross(const V3<S>& a, const V3<S>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
@@ -226,8 +254,8 @@ inline HyperDual<N> dot(const V3<HyperDual<N>>& a, const V3<HyperDual<N>>& b) {
   HyperDual<N> r;
   r.v = a.x.v * b.x.v + a.y.v * b.y.v + a.z.v * b.z.v;
   for (int i = 0; i < N; ++i) {
-    r.g[i] = a.x.v * b.x.g[i] + b.x.v * a.x.g[i] + a.y.v * b.y.g[i] + b.y.v * a.y.g[i] + a.z.v * b.z.g[i] +
-             b.z.v * a.z.g[i];
+    r.g[i] = a.x.v * b.x.g[i] + b.x.v * a.x.g[i] + a.y.v * b.y.g[i] + b.y.v * a.y.g[i] +
+             a.z.v * b.z.g[i] + b.z.v * a.z.g[i];
   }
   for (int j = 0; j < N; ++j) {
     for (int i = j; i < N; ++i) {
@@ -244,8 +272,8 @@ inline HyperDual<N> dot(const V3<HyperDual<N>>& a, const V3<HyperDual<N>>& b) {
 }
 // a * b - c * d in one pass.
 template <int N>
-inline HyperDual<N> productDifference(const HyperDual<N>& a, const HyperDual<N>& b, const HyperDual<N>& c,
-                                      const HyperDual<N>& d) {
+inline HyperDual<N> productDifference(const HyperDual<N>& a, const HyperDual<N>& b,
+                                      const HyperDual<N>& c, const HyperDual<N>& d) {
   HyperDual<N> r;
   r.v = a.v * b.v - c.v * d.v;
   for (int i = 0; i < N; ++i) r.g[i] = a.v * b.g[i] + b.v * a.g[i] - c.v * d.g[i] - d.v * c.g[i];
@@ -264,7 +292,9 @@ inline V3<HyperDual<N>> cross(const V3<HyperDual<N>>& a, const V3<HyperDual<N>>&
           productDifference(a.x, b.y, a.y, b.x)};
 }
 template <class S>
-inline S squaredNorm(const V3<S>& a) { return dot(a, a); }
+inline S squaredNorm(const V3<S>& a) {
+  return dot(a, a);
+}
 template <class S>
 inline S norm(const V3<S>& a) {
   using std::sqrt;

@@ -8,7 +8,8 @@
 
 namespace egg::rods {
 
-JoinedNetwork joinPatches(const std::vector<RodNetwork>& patches, const std::vector<PatchJoin>& joins) {
+JoinedNetwork joinPatches(const std::vector<RodNetwork>& patches,
+                          const std::vector<PatchJoin>& joins) {
   if (patches.empty()) throw InvalidInput("joinPatches: no patches");
   JoinedNetwork joined;
   for (size_t p = 0; p < patches.size(); ++p) {
@@ -34,12 +35,14 @@ JoinedNetwork joinPatches(const std::vector<RodNetwork>& patches, const std::vec
   for (size_t j = 0; j < joins.size(); ++j) {
     const PatchJoin& join = joins[j];
     const std::string name = "join " + std::to_string(j);
-    for (auto [patch, rod] : {std::pair{join.patchA, join.rodA}, std::pair{join.patchB, join.rodB}}) {
+    for (auto [patch, rod] :
+         {std::pair{join.patchA, join.rodA}, std::pair{join.patchB, join.rodB}}) {
       if (patch < 0 || patch >= static_cast<int>(patches.size())) {
         throw InvalidInput(name + ": patch " + std::to_string(patch) + " does not exist");
       }
       if (rod < 0 || rod >= static_cast<int>(patches[patch].rods.size())) {
-        throw InvalidInput(name + ": patch " + std::to_string(patch) + " has no rod " + std::to_string(rod));
+        throw InvalidInput(name + ": patch " + std::to_string(patch) + " has no rod " +
+                           std::to_string(rod));
       }
     }
     if (join.patchA == join.patchB) throw InvalidInput(name + ": joins a patch to itself");
@@ -49,7 +52,8 @@ JoinedNetwork joinPatches(const std::vector<RodNetwork>& patches, const std::vec
     c.rodB = joined.firstRod[join.patchB] + join.rodB;
     c.sBM = join.sBM;
     if (joined.network.rods[c.rodA].layer == joined.network.rods[c.rodB].layer) {
-      throw InvalidInput(name + ": the two boundary lamellas are in the same layer; one must lie on the other");
+      throw InvalidInput(
+          name + ": the two boundary lamellas are in the same layer; one must lie on the other");
     }
     joined.network.connections.push_back(c);
   }
@@ -61,8 +65,9 @@ JoinedNetwork joinPatches(const std::vector<RodNetwork>& patches, const std::vec
   return joined;
 }
 
-JoinedSimulation simulateJoinedPatches(const std::vector<RodNetwork>& patches, const std::vector<PatchJoin>& joins,
-                                       const TriMesh& surface, const SimulationOptions& options) {
+JoinedSimulation simulateJoinedPatches(const std::vector<RodNetwork>& patches,
+                                       const std::vector<PatchJoin>& joins, const TriMesh& surface,
+                                       const SimulationOptions& options) {
   const JoinedNetwork joined = joinPatches(patches, joins);
   const SurfaceDistance distance(surface);
   JoinedSimulation result;

@@ -29,7 +29,8 @@ struct JoinedNetwork {
 
 // Throws InvalidInput naming the join (bad patch/rod index, position outside the rod, lamellas in
 // the same layer) or the patch whose network is invalid.
-JoinedNetwork joinPatches(const std::vector<RodNetwork>& patches, const std::vector<PatchJoin>& joins);
+JoinedNetwork joinPatches(const std::vector<RodNetwork>& patches,
+                          const std::vector<PatchJoin>& joins);
 
 // Both ways of simulating a multi-patch grid: every patch alone (as the paper did) and the joined
 // structure. The pooled RMSE of the patch-by-patch runs is over all their points.
@@ -37,10 +38,11 @@ struct JoinedSimulation {
   std::vector<SimulationRun> perPatch;
   DeviationStats patchByPatch;  // pooled over all patches (nrmse with options.scaleFactor)
   SimulationRun joined;
-  bool converged = false;       // every run converged
+  bool converged = false;  // every run converged
 };
 
-JoinedSimulation simulateJoinedPatches(const std::vector<RodNetwork>& patches, const std::vector<PatchJoin>& joins,
-                                       const TriMesh& surface, const SimulationOptions& options);
+JoinedSimulation simulateJoinedPatches(const std::vector<RodNetwork>& patches,
+                                       const std::vector<PatchJoin>& joins, const TriMesh& surface,
+                                       const SimulationOptions& options);
 
 }  // namespace egg::rods

@@ -28,10 +28,10 @@ struct EdgeReference {
 };
 
 struct RodStiffness {
-  double stretching = 0.0;      // EA, N
-  double bendingWeak = 0.0;     // E w t^3 / 12, N m^2
-  double bendingStrong = 0.0;   // E t w^3 / 12, N m^2
-  double twisting = 0.0;        // G J, J = w t^3 / 3, N m^2
+  double stretching = 0.0;     // EA, N
+  double bendingWeak = 0.0;    // E w t^3 / 12, N m^2
+  double bendingStrong = 0.0;  // E t w^3 / 12, N m^2
+  double twisting = 0.0;       // G J, J = w t^3 / 3, N m^2
 };
 
 template <class S>
@@ -58,7 +58,8 @@ inline Frame<S> materialFrame(const V3<S>& edge, const S& theta, const EdgeRefer
   using std::sin;
   const S length = norm(edge);
   const V3<S> t = (1.0 / length) * edge;
-  const V3<S> u = parallelTransport(constant<S>(reference.tangent), t, constant<S>(reference.director));
+  const V3<S> u =
+      parallelTransport(constant<S>(reference.tangent), t, constant<S>(reference.director));
   if (director != nullptr) *director = u;
   const V3<S> v = cross(t, u);
   const S c = cos(theta), s = sin(theta);
@@ -78,33 +79,36 @@ inline S stretchingEnergy(const V3<S>& x0, const V3<S>& x1, double stiffness, do
 // vertices only through them; the Hessian pass differentiates with respect to 8 instead of 11
 // variables).
 template <class S>
-inline S bendTwistEnergyOfEdges(const V3<S>& e0, const V3<S>& e1, const Frame<S>& f0, const Frame<S>& f1,
-                                const RodStiffness& stiffness, double voronoiLength) {
+inline S bendTwistEnergyOfEdges(const V3<S>& e0, const V3<S>& e1, const Frame<S>& f0,
+                                const Frame<S>& f1, const RodStiffness& stiffness,
+                                double voronoiLength) {
   using std::atan2;
   const S denominator = norm(e0) * norm(e1) + dot(e0, e1);
   const V3<S> curvatureBinormal = (2.0 / denominator) * cross(e0, e1);
   const S weak0 = dot(curvatureBinormal, f0.side), weak1 = dot(curvatureBinormal, f1.side);
   const S strong0 = dot(curvatureBinormal, f0.normal), strong1 = dot(curvatureBinormal, f1.normal);
   // Average of the two edges' material curvatures (Bergou et al. 2008, eq. 4).
-  const S bending = (0.25 / voronoiLength) * (stiffness.bendingWeak * (weak0 * weak0 + weak1 * weak1) +
-                                              stiffness.bendingStrong * (strong0 * strong0 + strong1 * strong1));
+  const S bending =
+      (0.25 / voronoiLength) * (stiffness.bendingWeak * (weak0 * weak0 + weak1 * weak1) +
+                                stiffness.bendingStrong * (strong0 * strong0 + strong1 * strong1));
   const V3<S> carried = parallelTransport(f0.tangent, f1.tangent, f0.normal);
   const S twist = atan2(dot(cross(carried, f1.normal), f1.tangent), dot(carried, f1.normal));
   return bending + (0.5 * stiffness.twisting / voronoiLength) * (twist * twist);
 }
 
 template <class S>
-inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, const Frame<S>& f0, const Frame<S>& f1,
-                         const RodStiffness& stiffness, double voronoiLength) {
+inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, const Frame<S>& f0,
+                         const Frame<S>& f1, const RodStiffness& stiffness, double voronoiLength) {
   return bendTwistEnergyOfEdges(x1 - x0, x2 - x1, f0, f1, stiffness, voronoiLength);
 }
 
 template <class S>
-inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, const S& theta0, const S& theta1,
-                         const EdgeReference& reference0, const EdgeReference& reference1,
-                         const RodStiffness& stiffness, double voronoiLength) {
-  return bendTwistEnergy(x0, x1, x2, materialFrame(x1 - x0, theta0, reference0), materialFrame(x2 - x1, theta1, reference1),
-                         stiffness, voronoiLength);
+inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, const S& theta0,
+                         const S& theta1, const EdgeReference& reference0,
+                         const EdgeReference& reference1, const RodStiffness& stiffness,
+                         double voronoiLength) {
+  return bendTwistEnergy(x0, x1, x2, materialFrame(x1 - x0, theta0, reference0),
+                         materialFrame(x2 - x1, theta1, reference1), stiffness, voronoiLength);
 }
 
 // E_q (Section 2.5) for one bolt: the lower rod g at q_g = (1-b_g) x0 + b_g x1 on its edge, the
@@ -112,23 +116,25 @@ inline S bendTwistEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& x2, cons
 // material normal, and the normals agree (rotation about the common normal stays free). The
 // angle term uses |m_g - m_h|^2 = 4 sin^2(angle/2), smooth where the angle itself is not.
 template <class S>
-inline S connectionEnergy(const V3<S>& g0, const V3<S>& g1, const V3<S>& mg, const S& betaG, const V3<S>& h0,
-                          const V3<S>& h1, const V3<S>& mh, const S& betaH, double offset, double positionWeight,
-                          double angleWeight) {
+inline S connectionEnergy(const V3<S>& g0, const V3<S>& g1, const V3<S>& mg, const S& betaG,
+                          const V3<S>& h0, const V3<S>& h1, const V3<S>& mh, const S& betaH,
+                          double offset, double positionWeight, double angleWeight) {
   const V3<S> qg = (1.0 - betaG) * g0 + betaG * g1;
   const V3<S> qh = (1.0 - betaH) * h0 + betaH * h1;
   const V3<S> fromG = qg - qh + offset * mg;
   const V3<S> fromH = qh - qg - offset * mh;
-  return positionWeight * (squaredNorm(fromG) + squaredNorm(fromH)) + angleWeight * squaredNorm(mg - mh);
+  return positionWeight * (squaredNorm(fromG) + squaredNorm(fromH)) +
+         angleWeight * squaredNorm(mg - mh);
 }
 
 template <class S>
 inline S connectionEnergy(const V3<S>& g0, const V3<S>& g1, const S& thetaG, const S& betaG,
-                          const EdgeReference& referenceG, const V3<S>& h0, const V3<S>& h1, const S& thetaH,
-                          const S& betaH, const EdgeReference& referenceH, double offset, double positionWeight,
-                          double angleWeight) {
+                          const EdgeReference& referenceG, const V3<S>& h0, const V3<S>& h1,
+                          const S& thetaH, const S& betaH, const EdgeReference& referenceH,
+                          double offset, double positionWeight, double angleWeight) {
   return connectionEnergy(g0, g1, materialFrame(g1 - g0, thetaG, referenceG).normal, betaG, h0, h1,
-                          materialFrame(h1 - h0, thetaH, referenceH).normal, betaH, offset, positionWeight, angleWeight);
+                          materialFrame(h1 - h0, thetaH, referenceH).normal, betaH, offset,
+                          positionWeight, angleWeight);
 }
 
 // A fastened bolt (thesis 5.1, "fastening the connections of members after deployment ultimately
@@ -137,8 +143,8 @@ inline S connectionEnergy(const V3<S>& g0, const V3<S>& g1, const S& thetaG, con
 // weight * ((cos - cos0)^2 + (sin - sin0)^2) ~ weight * (alpha - alpha0)^2 for small changes, the
 // same stiffness at any crossing angle.
 template <class S>
-inline S fastenedJointEnergy(const V3<S>& g0, const V3<S>& g1, const V3<S>& h0, const V3<S>& h1, double cos0,
-                             double sin0, double weight) {
+inline S fastenedJointEnergy(const V3<S>& g0, const V3<S>& g1, const V3<S>& h0, const V3<S>& h1,
+                             double cos0, double sin0, double weight) {
   using std::sqrt;
   const V3<S> eg = g1 - g0, eh = h1 - h0;
   const S scale = 1.0 / sqrt(squaredNorm(eg) * squaredNorm(eh));
@@ -149,18 +155,21 @@ inline S fastenedJointEnergy(const V3<S>& g0, const V3<S>& g1, const V3<S>& h0, 
 
 // E_a (Section 2.5): a rod point held at `target` with its material normal along `targetNormal`.
 template <class S>
-inline S anchorEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& m, double beta, const Eigen::Vector3d& target,
-                      const Eigen::Vector3d& targetNormal, double positionWeight, double angleWeight) {
+inline S anchorEnergy(const V3<S>& x0, const V3<S>& x1, const V3<S>& m, double beta,
+                      const Eigen::Vector3d& target, const Eigen::Vector3d& targetNormal,
+                      double positionWeight, double angleWeight) {
   const V3<S> q = (1.0 - beta) * x0 + beta * x1;
-  return positionWeight * squaredNorm(q - constant<S>(target)) + angleWeight * squaredNorm(m - constant<S>(targetNormal));
+  return positionWeight * squaredNorm(q - constant<S>(target)) +
+         angleWeight * squaredNorm(m - constant<S>(targetNormal));
 }
 
 template <class S>
-inline S anchorEnergy(const V3<S>& x0, const V3<S>& x1, const S& theta, double beta, const EdgeReference& reference,
-                      const Eigen::Vector3d& target, const Eigen::Vector3d& targetNormal, double positionWeight,
+inline S anchorEnergy(const V3<S>& x0, const V3<S>& x1, const S& theta, double beta,
+                      const EdgeReference& reference, const Eigen::Vector3d& target,
+                      const Eigen::Vector3d& targetNormal, double positionWeight,
                       double angleWeight) {
-  return anchorEnergy(x0, x1, materialFrame(x1 - x0, theta, reference).normal, beta, target, targetNormal,
-                      positionWeight, angleWeight);
+  return anchorEnergy(x0, x1, materialFrame(x1 - x0, theta, reference).normal, beta, target,
+                      targetNormal, positionWeight, angleWeight);
 }
 
 // One side of a sliding bolt, at barycentric beta on the edge starting at rest arc length
@@ -168,7 +177,8 @@ inline S anchorEnergy(const V3<S>& x0, const V3<S>& x1, const S& theta, double b
 // iteration) and E_n (notch limits, a barrier (log(d)/10)^2 in the rest distance d, in edge
 // lengths, to a notch end closer than one edge). The thesis activates E_n only on the edge that
 // holds the notch end; "closer than one edge length" is the same barrier made independent of
-// where the vertices fall. Both are multiplied by `unit` (J; see RodModel::sliderParameters). Returns +inf outside the feasible range (the line search backs off).
+// where the vertices fall. Both are multiplied by `unit` (J; see RodModel::sliderParameters).
+// Returns +inf outside the feasible range (the line search backs off).
 struct SliderParameters {
   double edgeStart = 0.0;   // rest arc length of the current edge's first vertex, m
   double edgeLength = 0.0;  // rest edge length h, m
@@ -184,7 +194,8 @@ inline S sliderEnergy(const S& beta, const SliderParameters& p) {
   using std::log;
   const double b = value(beta);
   const double s = p.edgeStart + b * p.edgeLength;
-  if (!(p.epsilon + b > 0.0) || !(p.epsilon + 1.0 - b > 0.0) || !(s > p.notchMin) || !(s < p.notchMax)) {
+  if (!(p.epsilon + b > 0.0) || !(p.epsilon + 1.0 - b > 0.0) || !(s > p.notchMin) ||
+      !(s < p.notchMax)) {
     return S(std::numeric_limits<double>::infinity());
   }
   const S lowFriction = p.mu * log(beta + p.epsilon);
@@ -207,8 +218,9 @@ inline S sliderEnergy(const S& beta, const SliderParameters& p) {
 // phi the edge's rotation about the axis, unwrapped from the previous iterate's angle and
 // direction (so full turns count). Test load for the rolled-up circle.
 template <class S>
-inline S endMomentPotential(const V3<S>& x0, const V3<S>& x1, const Eigen::Vector3d& axis, double moment,
-                            const Eigen::Vector3d& previousDirection, double previousAngle) {
+inline S endMomentPotential(const V3<S>& x0, const V3<S>& x1, const Eigen::Vector3d& axis,
+                            double moment, const Eigen::Vector3d& previousDirection,
+                            double previousAngle) {
   using std::atan2;
   const V3<S> d = x1 - x0;
   const V3<S> p = constant<S>(previousDirection), a = constant<S>(axis);

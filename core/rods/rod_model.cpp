@@ -10,7 +10,6 @@
 #include <limits>
 #include <string>
 
-
 namespace egg::rods {
 
 namespace {
@@ -23,17 +22,22 @@ Eigen::Vector3d anyPerpendicular(const Eigen::Vector3d& t) {
 }  // namespace
 
 void ModelOptions::validate() const {
-  if (!(targetEdgeLengthM >= 0.0)) throw InvalidInput("ModelOptions.targetEdgeLength_m must be >= 0");
+  if (!(targetEdgeLengthM >= 0.0))
+    throw InvalidInput("ModelOptions.targetEdgeLength_m must be >= 0");
   if (minEdgesPerRod < 2) throw InvalidInput("ModelOptions.minEdgesPerRod must be >= 2");
-  if (maxEdgesPerRod < minEdgesPerRod) throw InvalidInput("ModelOptions.maxEdgesPerRod must be >= minEdgesPerRod");
+  if (maxEdgesPerRod < minEdgesPerRod)
+    throw InvalidInput("ModelOptions.maxEdgesPerRod must be >= minEdgesPerRod");
   if (!(gravityMPerS2 >= 0.0)) throw InvalidInput("ModelOptions.gravity_m_s2 must be >= 0");
   if (!(frictionMu >= 0.0)) throw InvalidInput("ModelOptions.frictionMu must be >= 0");
-  if (!(frictionEpsilon > 0.0 && frictionEpsilon < 0.5)) throw InvalidInput("ModelOptions.frictionEpsilon must be in (0, 0.5)");
+  if (!(frictionEpsilon > 0.0 && frictionEpsilon < 0.5))
+    throw InvalidInput("ModelOptions.frictionEpsilon must be in (0, 0.5)");
   if (!(connectionWeight > 0.0)) throw InvalidInput("ModelOptions.connectionWeight must be > 0");
-  if (!(connectionAngleWeight > 0.0)) throw InvalidInput("ModelOptions.connectionAngleWeight must be > 0");
+  if (!(connectionAngleWeight > 0.0))
+    throw InvalidInput("ModelOptions.connectionAngleWeight must be > 0");
   if (!(anchorWeight > 0.0)) throw InvalidInput("ModelOptions.anchorWeight must be > 0");
   if (!(anchorAngleWeight > 0.0)) throw InvalidInput("ModelOptions.anchorAngleWeight must be > 0");
-  if (!(fastenedJointWeight > 0.0)) throw InvalidInput("ModelOptions.fastenedJointWeight must be > 0");
+  if (!(fastenedJointWeight > 0.0))
+    throw InvalidInput("ModelOptions.fastenedJointWeight must be > 0");
 }
 
 RodStiffness stiffnessOf(const Rod& rod) {
@@ -82,8 +86,8 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
   int dof = 0;
   for (const Rod& rod : network.rods) {
     RodData data;
-    data.edges = std::clamp(static_cast<int>(std::ceil(rod.lengthM / targetEdge - 1e-9)), options.minEdgesPerRod,
-                            options.maxEdgesPerRod);
+    data.edges = std::clamp(static_cast<int>(std::ceil(rod.lengthM / targetEdge - 1e-9)),
+                            options.minEdgesPerRod, options.maxEdgesPerRod);
     data.length = rod.lengthM;
     data.h = rod.lengthM / data.edges;
     data.thickness = rod.section.thicknessM;
@@ -131,8 +135,10 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
     const RodData& ra = rods_[c.rodA];
     const RodData& rb = rods_[c.rodB];
     bolt.offset = 0.5 * (ra.thickness + rb.thickness);
-    bolt.positionWeight = options.connectionWeight * std::min(ra.stiffness.stretching / ra.h, rb.stiffness.stretching / rb.h);
-    bolt.angleWeight = options.connectionAngleWeight * std::min(ra.stiffness.twisting / ra.h, rb.stiffness.twisting / rb.h);
+    bolt.positionWeight = options.connectionWeight *
+                          std::min(ra.stiffness.stretching / ra.h, rb.stiffness.stretching / rb.h);
+    bolt.angleWeight = options.connectionAngleWeight *
+                       std::min(ra.stiffness.twisting / ra.h, rb.stiffness.twisting / rb.h);
     bolts_.push_back(bolt);
   }
   dofCount_ = dof;
@@ -154,9 +160,11 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
       const double target = cumulative.back() * i / data.edges;
       while (segment + 2 < rod.guess.size() && cumulative[segment + 1] < target) ++segment;
       const double span = cumulative[segment + 1] - cumulative[segment];
-      const double f = span > 0.0 ? std::clamp((target - cumulative[segment]) / span, 0.0, 1.0) : 0.0;
+      const double f =
+          span > 0.0 ? std::clamp((target - cumulative[segment]) / span, 0.0, 1.0) : 0.0;
       const Eigen::Vector3d p = (1.0 - f) * rod.guess[segment] + f * rod.guess[segment + 1];
-      normals[i] = ((1.0 - f) * rod.guessNormals[segment].normalized() + f * rod.guessNormals[segment + 1].normalized())
+      normals[i] = ((1.0 - f) * rod.guessNormals[segment].normalized() +
+                    f * rod.guessNormals[segment + 1].normalized())
                        .normalized();
       state_.segment<3>(vertexDof(r, i)) = p + side * data.thickness * normals[i];
     }
@@ -247,7 +255,8 @@ std::vector<Eigen::Vector3d> RodModel::centreline(int rod) const {
 
 Eigen::Vector3d RodModel::edgeNormal(int rod, int edge) const {
   const V3<double> e = constant<double>(vertex(rod, edge + 1) - vertex(rod, edge));
-  const Frame<double> f = materialFrame(e, state_[thetaDof(rod, edge)], references_[edgeReferenceBase_[rod] + edge]);
+  const Frame<double> f =
+      materialFrame(e, state_[thetaDof(rod, edge)], references_[edgeReferenceBase_[rod] + edge]);
   return {f.normal.x, f.normal.y, f.normal.z};
 }
 
@@ -289,13 +298,18 @@ void RodModel::fastenBolts() {
   for (Bolt& b : bolts_) {
     for (const BoltSide* s : {&b.lower, &b.upper})
       if (s->betaDof >= 0) fixed_[s->betaDof] = true;
-    const Eigen::Vector3d eg = (vertex(b.lower.point.rod, b.lower.point.edge + 1) - vertex(b.lower.point.rod, b.lower.point.edge)).normalized();
-    const Eigen::Vector3d eh = (vertex(b.upper.point.rod, b.upper.point.edge + 1) - vertex(b.upper.point.rod, b.upper.point.edge)).normalized();
+    const Eigen::Vector3d eg = (vertex(b.lower.point.rod, b.lower.point.edge + 1) -
+                                vertex(b.lower.point.rod, b.lower.point.edge))
+                                   .normalized();
+    const Eigen::Vector3d eh = (vertex(b.upper.point.rod, b.upper.point.edge + 1) -
+                                vertex(b.upper.point.rod, b.upper.point.edge))
+                                   .normalized();
     b.fastenedCos = eg.dot(eh);
     b.fastenedSin = eg.cross(eh).norm();
     const RodData& lower = rods_[b.lower.point.rod];
     const RodData& upper = rods_[b.upper.point.rod];
-    const double softer = std::min(lower.stiffness.bendingStrong / lower.h, upper.stiffness.bendingStrong / upper.h);
+    const double softer =
+        std::min(lower.stiffness.bendingStrong / lower.h, upper.stiffness.bendingStrong / upper.h);
     // E ~ weight (alpha - alpha0)^2 is a spring of stiffness 2 weight.
     b.fastenedWeight = 0.5 * options_.fastenedJointWeight * softer;
   }
@@ -339,7 +353,8 @@ int RodModel::accept(const Eigen::VectorXd& z) {
     for (int j = 0; j < rods_[r].edges; ++j) {
       EdgeReference& ref = references_[edgeReferenceBase_[r] + j];
       const Eigen::Vector3d t = (vertex(r, j + 1) - vertex(r, j)).normalized();
-      const V3<double> u = parallelTransport(constant<double>(ref.tangent), constant<double>(t), constant<double>(ref.director));
+      const V3<double> u = parallelTransport(constant<double>(ref.tangent), constant<double>(t),
+                                             constant<double>(ref.director));
       Eigen::Vector3d director(u.x, u.y, u.z);
       director -= director.dot(t) * t;  // remove round-off drift
       ref.tangent = t;
@@ -348,7 +363,8 @@ int RodModel::accept(const Eigen::VectorXd& z) {
   }
   for (EndMoment& m : endMoments_) {
     const int n = rods_[m.rod].edges;
-    const V3<double> x0 = constant<double>(vertex(m.rod, n - 1)), x1 = constant<double>(vertex(m.rod, n));
+    const V3<double> x0 = constant<double>(vertex(m.rod, n - 1)),
+                     x1 = constant<double>(vertex(m.rod, n));
     const double potential = endMomentPotential(x0, x1, m.axis, 1.0, m.direction, m.angle);
     m.angle = -potential;
     Eigen::Vector3d d = vertex(m.rod, n) - vertex(m.rod, n - 1);

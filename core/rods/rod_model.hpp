@@ -15,22 +15,24 @@
 namespace egg::rods {
 
 struct ModelOptions {
-  double targetEdgeLengthM = 0.0;  // rest edge length; 0 = automatic (a third of the typical bolt spacing)
-  int minEdgesPerRod = 6;           // lower bound on edges per rod
-  int maxEdgesPerRod = 400;         // upper bound on edges per rod
-  bool notches = true;              // false: every bolt is a plain hole (the RMS1 run of Section 2.6.2)
-  bool gravity = false;             // self-weight from density (Section 3.5.2), along -z
-  double gravityMPerS2 = 9.81;       // gravitational acceleration
-  double frictionMu = 0.1;          // mu of E_p (Section 2.5)
-  double frictionEpsilon = 1e-4;    // epsilon of E_p: how far past an edge end a bolt may move per iteration
-  double connectionWeight = 1.0;    // lambda_q1 in units of EA/h of the softer rod
+  double targetEdgeLengthM =
+      0.0;                 // rest edge length; 0 = automatic (a third of the typical bolt spacing)
+  int minEdgesPerRod = 6;  // lower bound on edges per rod
+  int maxEdgesPerRod = 400;     // upper bound on edges per rod
+  bool notches = true;          // false: every bolt is a plain hole (the RMS1 run of Section 2.6.2)
+  bool gravity = false;         // self-weight from density (Section 3.5.2), along -z
+  double gravityMPerS2 = 9.81;  // gravitational acceleration
+  double frictionMu = 0.1;      // mu of E_p (Section 2.5)
+  double frictionEpsilon =
+      1e-4;  // epsilon of E_p: how far past an edge end a bolt may move per iteration
+  double connectionWeight = 1.0;       // lambda_q1 in units of EA/h of the softer rod
   double connectionAngleWeight = 1.0;  // lambda_q2 in units of GJ/h of the softer rod
-  double anchorWeight = 10.0;       // lambda_a1 in units of EA/h
-  double anchorAngleWeight = 10.0;  // lambda_a2 in units of GJ/h
+  double anchorWeight = 10.0;          // lambda_a1 in units of EA/h
+  double anchorAngleWeight = 10.0;     // lambda_a2 in units of GJ/h
   // Rotational stiffness of a fastened bolt (fastenBolts), in units of E I_strong / h of the
   // softer rod: the joint is as stiff in its plane as one edge of the lamella.
   double fastenedJointWeight = 1.0;
-  void validate() const;            // throws InvalidInput naming the field
+  void validate() const;  // throws InvalidInput naming the field
 };
 
 // Stiffness of a rod from its section and material (thin rectangular strip).
@@ -180,8 +182,9 @@ class RodModel {
   std::vector<EdgeReference> references_;  // per edge, indexed like theta dofs minus thetaBase_
   std::vector<int> edgeReferenceBase_;     // per rod
   Eigen::VectorXd state_;
-  Eigen::VectorXd baseConstantGradient_;   // gravity and point loads (linear potentials) at load factor 1
-  Eigen::VectorXd constantGradient_;       // the same times loadFactor_
+  Eigen::VectorXd
+      baseConstantGradient_;  // gravity and point loads (linear potentials) at load factor 1
+  Eigen::VectorXd constantGradient_;  // the same times loadFactor_
   double loadFactor_ = 1.0;
   double stiffFactor_ = 1.0;
   bool fastened_ = false;

@@ -6,8 +6,8 @@
 #include "core/rods/connection_derivatives.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <thread>
@@ -32,12 +32,14 @@ auto v3(const A& v, int i) {
 struct EnergySum {
   double total = 0.0;
   template <size_t N, class F>
-  void operator()(const std::array<int, N>& /*dofs*/, const std::array<double, N>& values, const F& f) {
+  void operator()(const std::array<int, N>& /*dofs*/, const std::array<double, N>& values,
+                  const F& f) {
     total += f(values);
   }
   // A stencil with closed-form derivatives `d` (not needed for the energy alone).
   template <size_t N, class F, class D>
-  void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& values, const F& f, const D& /*d*/) {
+  void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& values, const F& f,
+                  const D& /*d*/) {
     (*this)(dofs, values, f);
   }
 };
@@ -59,10 +61,11 @@ struct DerivativeSum {
   }
   // The same with the derivatives computed in closed form by d() (energy, gradient, full Hessian).
   template <size_t N, class F, class D>
-  void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& /*values*/, const F& /*f*/,
-                  const D& d) {
+  void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& /*values*/,
+                  const F& /*f*/, const D& d) {
     const auto result = d();
-    scatter(dofs, result.energy, result.gradient, [&](int i, int j) { return result.hessian(i, j); });
+    scatter(dofs, result.energy, result.gradient,
+            [&](int i, int j) { return result.hessian(i, j); });
   }
   template <size_t N, class G, class H>
   void scatter(const std::array<int, N>& dofs, double energy, const G& g, const H& hessian) {
@@ -128,7 +131,8 @@ void runParts(int threads, const Work& work) {
 
 }  // namespace
 
-std::vector<EdgeFrameDerivatives> RodModel::frameDerivatives(const Eigen::VectorXd& z, int threads) const {
+std::vector<EdgeFrameDerivatives> RodModel::frameDerivatives(const Eigen::VectorXd& z,
+                                                             int threads) const {
   std::vector<EdgeFrameDerivatives> frames(references_.size());
   runParts(threads, [&](int part) {
     for (int r = 0; r < rodCount(); ++r) {
@@ -159,7 +163,8 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
       constexpr int N = static_cast<int>(std::tuple_size_v<std::decay_t<decltype(v)>>);
       const Frame<HyperDual<4>>& f = (*frames)[index].frame;
       auto lift = [&](const V3<HyperDual<4>>& a) {
-        return V3<S>{liftEdgeQuantity<N>(a.x, start, end, theta), liftEdgeQuantity<N>(a.y, start, end, theta),
+        return V3<S>{liftEdgeQuantity<N>(a.x, start, end, theta),
+                     liftEdgeQuantity<N>(a.y, start, end, theta),
                      liftEdgeQuantity<N>(a.z, start, end, theta)};
       };
       return Frame<S>{lift(f.tangent), lift(f.normal), lift(f.side)};
@@ -174,12 +179,13 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
       for (int k = 0; k < 6; ++k) dofs[k] = vertexDof(r, j) + k;
       for (int k = 0; k < 6; ++k) values[k] = z[dofs[k]];
       const double stiffness = stiffFactor_ * data.stiffness.stretching, h = data.h;
-      visit(dofs, values, [&](const auto& v) { return stretchingEnergy(v3(v, 0), v3(v, 3), stiffness, h); });
+      visit(dofs, values,
+            [&](const auto& v) { return stretchingEnergy(v3(v, 0), v3(v, 3), stiffness, h); });
     }
     for (int i = 1; i < data.edges; ++i) {
       if (!mine()) continue;
-      // Unknowns x_{i-1}, x_i, x_{i+1} (consecutive dofs), theta_{i-1}, theta_i; the energy depends on
-      // the vertices through e0 = x_i - x_{i-1}, e1 = x_{i+1} - x_i. Derivatives in closed form
+      // Unknowns x_{i-1}, x_i, x_{i+1} (consecutive dofs), theta_{i-1}, theta_i; the energy depends
+      // on the vertices through e0 = x_i - x_{i-1}, e1 = x_{i+1} - x_i. Derivatives in closed form
       // (bend_twist_derivatives.hpp) from the precomputed edge frames.
       std::array<int, 11> dofs;
       std::array<double, 11> values;
@@ -193,10 +199,12 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
           [&](const auto& v) {
             const auto e0 = v3(v, 3) - v3(v, 0), e1 = v3(v, 6) - v3(v, 3);
             return bendTwistEnergyOfEdges(e0, e1, materialFrame(e0, v[9], references_[index - 1]),
-                                          materialFrame(e1, v[10], references_[index]), data.stiffness, data.h);
+                                          materialFrame(e1, v[10], references_[index]),
+                                          data.stiffness, data.h);
           },
           [&]() {
-            return onVertices(bendTwistDerivatives((*frames)[index - 1], (*frames)[index], data.stiffness, data.h));
+            return onVertices(bendTwistDerivatives((*frames)[index - 1], (*frames)[index],
+                                                   data.stiffness, data.h));
           });
     }
   }
@@ -219,15 +227,17 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
         [&](const auto& v) {
           const auto mg = frameOf(v, b.lower.point.rod, b.lower.point.edge, 0, 3, 6).normal;
           const auto mh = frameOf(v, b.upper.point.rod, b.upper.point.edge, 8, 11, 14).normal;
-          return connectionEnergy(v3(v, 0), v3(v, 3), mg, v[7], v3(v, 8), v3(v, 11), mh, v[15], b.offset,
-                                  stiffFactor_ * b.positionWeight, b.angleWeight);
+          return connectionEnergy(v3(v, 0), v3(v, 3), mg, v[7], v3(v, 8), v3(v, 11), mh, v[15],
+                                  b.offset, stiffFactor_ * b.positionWeight, b.angleWeight);
         },
         [&]() {
           auto at = [&](int i) { return Eigen::Vector3d(values[i], values[i + 1], values[i + 2]); };
-          const EdgeFrameDerivatives& fg = (*frames)[edgeReferenceBase_[b.lower.point.rod] + b.lower.point.edge];
-          const EdgeFrameDerivatives& fh = (*frames)[edgeReferenceBase_[b.upper.point.rod] + b.upper.point.edge];
-          return connectionDerivatives(at(0), at(3), fg, values[7], at(8), at(11), fh, values[15], b.offset,
-                                       stiffFactor_ * b.positionWeight, b.angleWeight);
+          const EdgeFrameDerivatives& fg =
+              (*frames)[edgeReferenceBase_[b.lower.point.rod] + b.lower.point.edge];
+          const EdgeFrameDerivatives& fh =
+              (*frames)[edgeReferenceBase_[b.upper.point.rod] + b.upper.point.edge];
+          return connectionDerivatives(at(0), at(3), fg, values[7], at(8), at(11), fh, values[15],
+                                       b.offset, stiffFactor_ * b.positionWeight, b.angleWeight);
         });
   }
   for (const Bolt& b : bolts_) {
@@ -240,7 +250,8 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
     for (int c = 0; c < 6; ++c) dofs[6 + c] = vertexDof(b.upper.point.rod, b.upper.point.edge) + c;
     for (int c = 0; c < 12; ++c) values[c] = z[dofs[c]];
     visit(dofs, values, [&](const auto& v) {
-      return fastenedJointEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v3(v, 9), b.fastenedCos, b.fastenedSin, b.fastenedWeight);
+      return fastenedJointEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v3(v, 9), b.fastenedCos,
+                                 b.fastenedSin, b.fastenedWeight);
     });
   }
   for (const Bolt& b : bolts_) {
@@ -272,7 +283,8 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
     for (int c = 0; c < 6; ++c) dofs[c] = vertexDof(m.rod, n - 1) + c;
     for (int c = 0; c < 6; ++c) values[c] = z[dofs[c]];
     visit(dofs, values, [&](const auto& v) {
-      return endMomentPotential(v3(v, 0), v3(v, 3), m.axis, loadFactor_ * m.moment, m.direction, m.angle);
+      return endMomentPotential(v3(v, 0), v3(v, 3), m.axis, loadFactor_ * m.moment, m.direction,
+                                m.angle);
     });
   }
 }
@@ -290,7 +302,8 @@ bool RodModel::edgesValid(const Eigen::VectorXd& z) const {
       // The time-parallel transport is singular for a reversed edge; a step that turns an edge
       // by more than 120 degrees is rejected and the line search backs off.
       if (t.dot(references_[edgeReferenceBase_[r] + j].tangent) < -0.5) return false;
-      if (j > 0 && t.dot(previous) < -0.99) return false;  // folded back: curvature binormal blows up
+      if (j > 0 && t.dot(previous) < -0.99)
+        return false;  // folded back: curvature binormal blows up
       previous = t;
     }
   }

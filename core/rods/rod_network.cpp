@@ -19,8 +19,8 @@ void checkPosition(const RodNetwork& network, int rod, double s, const std::stri
   }
   const double length = network.rods[rod].lengthM;
   if (!(s >= -1e-9 * length && s <= length * (1.0 + 1e-9))) {
-    throw InvalidInput(what + " lies at s = " + std::to_string(s) + " m, outside rod " + std::to_string(rod) +
-                       " of length " + std::to_string(length) + " m");
+    throw InvalidInput(what + " lies at s = " + std::to_string(s) + " m, outside rod " +
+                       std::to_string(rod) + " of length " + std::to_string(length) + " m");
   }
 }
 
@@ -31,14 +31,16 @@ void validateNetwork(const RodNetwork& network) {
   for (size_t r = 0; r < network.rods.size(); ++r) {
     const Rod& rod = network.rods[r];
     const std::string name = "rod " + std::to_string(r);
-    if (!(rod.lengthM > 0.0) || !std::isfinite(rod.lengthM)) throw InvalidInput(name + ": length_m must be > 0");
+    if (!(rod.lengthM > 0.0) || !std::isfinite(rod.lengthM))
+      throw InvalidInput(name + ": length_m must be > 0");
     if (!(rod.section.widthM > 0.0) || !(rod.section.thicknessM > 0.0)) {
       throw InvalidInput(name + ": section width_m and thickness_m must be > 0");
     }
     if (!(rod.material.youngsModulusPa > 0.0) || !(rod.material.shearModulusPa > 0.0)) {
       throw InvalidInput(name + ": material youngs_modulus_pa and shear_modulus_pa must be > 0");
     }
-    if (!(rod.material.densityKgM3 >= 0.0)) throw InvalidInput(name + ": material density_kg_m3 must be >= 0");
+    if (!(rod.material.densityKgM3 >= 0.0))
+      throw InvalidInput(name + ": material density_kg_m3 must be >= 0");
     if (rod.layer != 0 && rod.layer != 1) throw InvalidInput(name + ": layer must be 0 or 1");
     if (rod.guess.size() < 2) throw InvalidInput(name + ": guess needs at least 2 points");
     if (rod.guessNormals.size() != rod.guess.size()) {
@@ -46,8 +48,10 @@ void validateNetwork(const RodNetwork& network) {
     }
     double guessLength = 0.0;
     for (size_t i = 0; i < rod.guess.size(); ++i) {
-      if (!finite(rod.guess[i]) || !finite(rod.guessNormals[i]) || rod.guessNormals[i].norm() < 1e-12) {
-        throw InvalidInput(name + ": guess point or normal " + std::to_string(i) + " is not finite or zero");
+      if (!finite(rod.guess[i]) || !finite(rod.guessNormals[i]) ||
+          rod.guessNormals[i].norm() < 1e-12) {
+        throw InvalidInput(name + ": guess point or normal " + std::to_string(i) +
+                           " is not finite or zero");
       }
       if (i > 0) guessLength += (rod.guess[i] - rod.guess[i - 1]).norm();
     }
@@ -58,12 +62,14 @@ void validateNetwork(const RodNetwork& network) {
     const std::string name = "connection " + std::to_string(c);
     checkPosition(network, con.rodA, con.sAM, name + " (rod a)");
     checkPosition(network, con.rodB, con.sBM, name + " (rod b)");
-    if (con.rodA == con.rodB) throw InvalidInput(name + ": joins rod " + std::to_string(con.rodA) + " to itself");
+    if (con.rodA == con.rodB)
+      throw InvalidInput(name + ": joins rod " + std::to_string(con.rodA) + " to itself");
     if (network.rods[con.rodA].layer == network.rods[con.rodB].layer) {
-      throw InvalidInput(name + ": rods " + std::to_string(con.rodA) + " and " + std::to_string(con.rodB) +
-                         " are in the same layer");
+      throw InvalidInput(name + ": rods " + std::to_string(con.rodA) + " and " +
+                         std::to_string(con.rodB) + " are in the same layer");
     }
-    for (const auto& [notch, rod, s] : {std::tuple{con.notchA, con.rodA, con.sAM}, std::tuple{con.notchB, con.rodB, con.sBM}}) {
+    for (const auto& [notch, rod, s] :
+         {std::tuple{con.notchA, con.rodA, con.sAM}, std::tuple{con.notchB, con.rodB, con.sBM}}) {
       if (!(notch.beforeM >= 0.0) || !(notch.afterM >= 0.0)) {
         throw InvalidInput(name + ": notch lengths must be >= 0");
       }

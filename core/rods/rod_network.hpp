@@ -60,8 +60,8 @@ struct Connection {
   double sAM = 0.0;  // bolt position along rod a in the planar grid
   int rodB = -1;
   double sBM = 0.0;  // bolt position along rod b in the planar grid
-  Notch notchA;       // notch in rod a (zero: plain hole)
-  Notch notchB;       // notch in rod b
+  Notch notchA;      // notch in rod a (zero: plain hole)
+  Notch notchB;      // notch in rod b
 };
 
 // A point of a rod held at a point of the design surface with the lamella normal along the given
@@ -69,9 +69,9 @@ struct Connection {
 // and its tangent plane, given by the plane's normal) are the same constraint.
 struct Anchor {
   int rod = -1;
-  double sM = 0.0;             // where along the rod
-  Eigen::Vector3d position;     // on the design surface
-  Eigen::Vector3d normal;       // unit surface normal there (towards layer 1)
+  double sM = 0.0;           // where along the rod
+  Eigen::Vector3d position;  // on the design surface
+  Eigen::Vector3d normal;    // unit surface normal there (towards layer 1)
 };
 
 struct RodNetwork {

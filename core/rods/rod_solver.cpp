@@ -9,8 +9,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <string>
 #include <future>
+#include <string>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -29,7 +29,8 @@ std::string format(const char* pattern, Args... args) {
 void SolverOptions::validate() const {
   if (maxIterations < 1) throw InvalidInput("SolverOptions.maxIterations must be >= 1");
   if (!(timeLimitS > 0.0)) throw InvalidInput("SolverOptions.timeLimit_s must be > 0");
-  if (!(tolerance > 0.0 && tolerance < 1.0)) throw InvalidInput("SolverOptions.tolerance must be in (0, 1)");
+  if (!(tolerance > 0.0 && tolerance < 1.0))
+    throw InvalidInput("SolverOptions.tolerance must be in (0, 1)");
   if (threads < 1) throw InvalidInput("SolverOptions.threads must be >= 1");
   if (!(continuationStart > 0.0 && continuationStart <= 1.0)) {
     throw InvalidInput("SolverOptions.continuationStart must be in (0, 1]");
@@ -85,14 +86,16 @@ class FreeHessian {
   }
   // The assembled Hessian plus shift * scale on the diagonal, in copy `which` (0 or 1: two shifts
   // can be factorised at the same time).
-  const Eigen::SparseMatrix<double>& shifted(double shift, const Eigen::VectorXd& scale, int which = 0) {
+  const Eigen::SparseMatrix<double>& shifted(double shift, const Eigen::VectorXd& scale,
+                                             int which = 0) {
     // The two copies share one pattern, made in rebuild(): here each thread only writes the values
     // of its own copy.
     Eigen::SparseMatrix<double>& matrix = which == 0 ? matrix_ : second_;
     double* values = matrix.valuePtr();
     std::copy(base_.begin(), base_.end(), values);
     if (shift > 0.0) {
-      for (size_t i = 0; i < diagonalSlot_.size(); ++i) values[diagonalSlot_[i]] += shift * scale[i];
+      for (size_t i = 0; i < diagonalSlot_.size(); ++i)
+        values[diagonalSlot_[i]] += shift * scale[i];
     }
     return matrix;
   }
@@ -106,7 +109,8 @@ class FreeHessian {
       const int r = freeIndex_[t.row()], c = freeIndex_[t.col()];
       if (r >= 0 && c >= 0) pattern.emplace_back(std::max(r, c), std::min(r, c), 0.0);
     }
-    for (int i = 0; i < n; ++i) pattern.emplace_back(i, i, 0.0);  // every diagonal entry exists (shifts)
+    for (int i = 0; i < n; ++i)
+      pattern.emplace_back(i, i, 0.0);  // every diagonal entry exists (shifts)
     matrix_.setFromTriplets(pattern.begin(), pattern.end());
     matrix_.makeCompressed();
     second_ = matrix_;
@@ -135,10 +139,12 @@ class FreeHessian {
 };
 
 // The calls of SolverOptions::observer of one minimiseEnergy, with their count and cost (which the
-// progress' seconds leave out, so that an error-against-time record does not count its own measuring).
+// progress' seconds leave out, so that an error-against-time record does not count its own
+// measuring).
 class Observation {
  public:
-  Observation(const SolverObserver& observer, Clock::time_point start) : observer_(observer), start_(start) {}
+  Observation(const SolverObserver& observer, Clock::time_point start)
+      : observer_(observer), start_(start) {}
   // `reached`: when the model got to this state (seconds since start, observer calls included).
   void operator()(const RodModel& model, int iteration, double energy, bool last, double reached) {
     if (!observer_) return;
@@ -153,7 +159,8 @@ class Observation {
     seconds_ += std::chrono::duration<double>(Clock::now() - before).count();
   }
   void last(const RodModel& model, const SolverResult& result) {
-    (*this)(model, result.iterations, result.energy, true, std::chrono::duration<double>(Clock::now() - start_).count());
+    (*this)(model, result.iterations, result.energy, true,
+            std::chrono::duration<double>(Clock::now() - start_).count());
   }
   void record(SolverResult& result) const {
     result.observations = calls_;
@@ -174,7 +181,8 @@ using Factorisation = SupernodalCholesky;
 
 // The checks before a Newton step at energy `energy` and free gradient g: true (result's status
 // and reason set) when the iteration stops here.
-bool stopsBeforeStep(double energy, const Eigen::VectorXd& g, const SolverOptions& options, SolverResult& result) {
+bool stopsBeforeStep(double energy, const Eigen::VectorXd& g, const SolverOptions& options,
+                     SolverResult& result) {
   if (!std::isfinite(energy) || !g.allFinite()) {
     result.status = SolverStatus::NonFinite;
     result.reason = "energy or gradient not finite at the current state";
@@ -191,13 +199,16 @@ bool stopsBeforeStep(double energy, const Eigen::VectorXd& g, const SolverOption
   }
   if (result.iterations >= options.maxIterations) {
     result.status = SolverStatus::IterationLimit;
-    result.reason = format("no convergence in %d iterations (decrement %.3g J)", result.iterations, result.decrement);
+    result.reason = format("no convergence in %d iterations (decrement %.3g J)", result.iterations,
+                           result.decrement);
     return true;
   }
   if (result.seconds > options.timeLimitS) {
     result.status = SolverStatus::TimeLimit;
-    result.reason = format("wall-clock hang guard of %.3g s reached after %d iterations (the run is stopped, not "
-                           "converged: raise the guard or find the hang)", options.timeLimitS, result.iterations);
+    result.reason = format(
+        "wall-clock hang guard of %.3g s reached after %d iterations (the run is stopped, not "
+        "converged: raise the guard or find the hang)",
+        options.timeLimitS, result.iterations);
     return true;
   }
   return false;
@@ -214,8 +225,9 @@ bool stopsBeforeStep(double energy, const Eigen::VectorXd& g, const SolverOption
 // iteration one after the other, 1.2 pairs). An unshifted first trial is tried alone: it
 // fails rarely (3 of 19 times there), and a second factorisation would be wasted work.
 // `shift`: the last shift in, the one taken out; false when no trial gave a direction.
-bool newtonDirection(FreeHessian& hessian, Factorisation (&solvers)[2], const Eigen::VectorXd& g, const Eigen::VectorXd& scale, int threads,
-                     double& shift, SolverResult& result, Eigen::VectorXd& direction) {
+bool newtonDirection(FreeHessian& hessian, Factorisation (&solvers)[2], const Eigen::VectorXd& g,
+                     const Eigen::VectorXd& scale, int threads, double& shift, SolverResult& result,
+                     Eigen::VectorXd& direction) {
   bool factored = false;
   std::vector<double> trials;
   for (double trial = shift * 0.1 < 1e-10 ? 0.0 : shift * 0.1; trials.size() < 30;
@@ -235,7 +247,8 @@ bool newtonDirection(FreeHessian& hessian, Factorisation (&solvers)[2], const Ei
       // std::async, not a bare thread: an exception on either side propagates (get() rethrows
       // the worker's; if the first attempt throws, the future's destructor waits for the worker).
       result.factorisations += 2;
-      auto other = std::async(std::launch::async, [&]() { return attempt(1, trials[k + 1], second); });
+      auto other =
+          std::async(std::launch::async, [&]() { return attempt(1, trials[k + 1], second); });
       const bool firstOk = attempt(0, trials[k], direction);
       const bool secondOk = other.get();
       if (firstOk) {
@@ -262,8 +275,9 @@ bool newtonDirection(FreeHessian& hessian, Factorisation (&solvers)[2], const Ei
 // Backtracking line search (Armijo), first limited so sliding bolts stay inside their
 // barriers (fraction to the boundary). `direction` is over the free dofs (freeIndex); true with
 // the accepted state in `candidate`, false when no step decreased the energy enough.
-bool lineSearch(RodModel& model, const Eigen::VectorXd& z, const Eigen::VectorXd& direction, const std::vector<int>& freeIndex, double energy,
-                SolverResult& result, Eigen::VectorXd& candidate) {
+bool lineSearch(RodModel& model, const Eigen::VectorXd& z, const Eigen::VectorXd& direction,
+                const std::vector<int>& freeIndex, double energy, SolverResult& result,
+                Eigen::VectorXd& candidate) {
   const int n = static_cast<int>(freeIndex.size());
   Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
   for (int i = 0; i < n; ++i) {
@@ -285,8 +299,8 @@ bool lineSearch(RodModel& model, const Eigen::VectorXd& z, const Eigen::VectorXd
 }
 
 // Newton with line search on the model as it is (one stage of the continuation).
-SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_point start, int iterationsBefore,
-                    Observation& observe) {
+SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_point start,
+                    int iterationsBefore, Observation& observe) {
   auto elapsed = [&]() { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
   const int n = model.dofCount();
@@ -301,7 +315,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
   std::vector<Eigen::Triplet<double>> triplets;
   FreeHessian hessian(freeIndex, freeCount);
   Factorisation solvers[2];  // two: see newtonDirection
-  double shift = 0.0;  // relative diagonal shift that last made the Hessian positive definite
+  double shift = 0.0;        // relative diagonal shift that last made the Hessian positive definite
 
   for (int iteration = 0;; ++iteration) {
     const double reached = elapsed();
@@ -328,7 +342,8 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     }
 
     Eigen::VectorXd direction;
-    const bool factored = newtonDirection(hessian, solvers, g, scale, options.threads, shift, result, direction);
+    const bool factored =
+        newtonDirection(hessian, solvers, g, scale, options.threads, shift, result, direction);
     if (!factored) {
       result.status = SolverStatus::Stalled;
       result.reason = "Hessian could not be made positive definite";
@@ -342,8 +357,8 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     if (result.decrement <= options.tolerance * energyScale) {
       result.status = SolverStatus::Converged;
       result.converged = true;
-      result.reason = format("Newton decrement %.3g J below %.3g x energy scale %.3g J", result.decrement,
-                                  options.tolerance, energyScale);
+      result.reason = format("Newton decrement %.3g J below %.3g x energy scale %.3g J",
+                             result.decrement, options.tolerance, energyScale);
       return result;
     }
 
@@ -354,13 +369,15 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       const bool roundOff = result.decrement <= 1e-6 * energyScale;
       result.status = roundOff ? SolverStatus::Converged : SolverStatus::Stalled;
       result.converged = roundOff;
-      result.reason = format("line search found no decrease (decrement %.3g J, energy scale %.3g J)",
-                                  result.decrement, energyScale);
+      result.reason =
+          format("line search found no decrease (decrement %.3g J, energy scale %.3g J)",
+                 result.decrement, energyScale);
       return result;
     }
     // The state z is left by this step: the observer sees it now, before the model moves on (the
     // state a call returns with is seen by minimiseEnergy), so every state is reported once.
-    if (result.iterations % options.observeEvery == 0) observe(model, result.iterations, energy, false, reached);
+    if (result.iterations % options.observeEvery == 0)
+      observe(model, result.iterations, energy, false, reached);
     result.boltEdgeSwitches += model.accept(candidate);
   }
 }

@@ -15,20 +15,24 @@ namespace egg::rods {
 // Where a Newton run is, for an observer (SolverOptions::observer).
 struct SolverProgress {
   int iteration = 0;     // Newton iterations taken so far (all continuation stages of this call)
-  double seconds = 0.0;  // wall time from minimiseEnergy's start to reaching this state, the observer's own calls left out
-  double energy = 0.0;   // J, as Newton evaluated it at this state (stiff terms softened during the continuation)
+  double seconds = 0.0;  // wall time from minimiseEnergy's start to reaching this state, the
+                         // observer's own calls left out
+  double energy = 0.0;   // J, as Newton evaluated it at this state (stiff terms softened during the
+                         // continuation)
   bool last = false;     // the state minimiseEnergy returns with
 };
-// Called with the model at the state `progress` describes (read only: the solver continues from it).
+// Called with the model at the state `progress` describes (read only: the solver continues from
+// it).
 using SolverObserver = std::function<void(const SolverProgress& progress, const RodModel& model)>;
 
 struct SolverOptions {
-  int maxIterations = 500;    // Newton iterations before giving up: the limit that decides results
+  int maxIterations = 500;  // Newton iterations before giving up: the limit that decides results
   // Wall-clock hang guard only: results must not depend on the machine, so the iteration limit
   // stops a slow solve; this stops a hung one and fails it (status TimeLimit) with a message.
   double timeLimitS = 900.0;
-  double tolerance = 1e-10;   // stop when the Newton decrement g^T H^-1 g is below tolerance x energy scale
-  int threads = 2;            // threads assembling the Hessian
+  double tolerance =
+      1e-10;        // stop when the Newton decrement g^T H^-1 g is below tolerance x energy scale
+  int threads = 2;  // threads assembling the Hessian
   // Newton in Cartesian coordinates crawls along the inextensibility valley of thin rods (each step
   // is cut short by stretching, ~100 iterations for a cantilever). Solving first with the stiff
   // terms (stretching, position penalties) softened by 1e-4, 1e-3, ... and then at full stiffness
@@ -42,7 +46,7 @@ struct SolverOptions {
   // of what is measured.
   SolverObserver observer;
   int observeEvery = 1;
-  void validate() const;      // throws InvalidInput naming the field
+  void validate() const;  // throws InvalidInput naming the field
 };
 
 // Collapsed: set by the simulation stage (simulation.hpp) when a self-weight load step carries the
@@ -54,16 +58,16 @@ const char* toString(SolverStatus status);
 struct SolverResult {
   SolverStatus status = SolverStatus::IterationLimit;
   bool converged = false;
-  std::string reason;          // why it stopped, in words
+  std::string reason;  // why it stopped, in words
   int iterations = 0;
-  double energy = 0.0;         // J
-  double gradientNorm = 0.0;   // Euclidean norm over free unknowns (mixed N, N m)
-  double decrement = 0.0;      // last Newton decrement, J
+  double energy = 0.0;        // J
+  double gradientNorm = 0.0;  // Euclidean norm over free unknowns (mixed N, N m)
+  double decrement = 0.0;     // last Newton decrement, J
   double seconds = 0.0;
-  int boltEdgeSwitches = 0;    // reprojections of sliding bolts onto neighbouring edges
-  int factorisations = 0;      // Cholesky factorisations (shift trials included)
-  int energyEvaluations = 0;   // line-search trials
-  int observations = 0;        // calls of options.observer
+  int boltEdgeSwitches = 0;      // reprojections of sliding bolts onto neighbouring edges
+  int factorisations = 0;        // Cholesky factorisations (shift trials included)
+  int energyEvaluations = 0;     // line-search trials
+  int observations = 0;          // calls of options.observer
   double observerSeconds = 0.0;  // wall time spent in them
 };
 

@@ -24,7 +24,7 @@ void CylinderGridParameters::validate() const {
 namespace {
 
 struct Segment {
-  int family = 0;     // 0: v = u + c, 1: v = -u + c
+  int family = 0;  // 0: v = u + c, 1: v = -u + c
   double c = 0.0;
   double u0 = 0.0, u1 = 0.0;  // parameter range in u
 };
@@ -37,7 +37,9 @@ SampleGrid cylinderGrid(const CylinderGridParameters& p) {
   auto surfacePoint = [&](double u, double v) {
     return Eigen::Vector3d(radius * std::sin(u / radius), v, radius * std::cos(u / radius));
   };
-  auto surfaceNormal = [&](double u) { return Eigen::Vector3d(std::sin(u / radius), 0.0, std::cos(u / radius)); };
+  auto surfaceNormal = [&](double u) {
+    return Eigen::Vector3d(std::sin(u / radius), 0.0, std::cos(u / radius));
+  };
 
   // Lines v = +-u + c with c stepped so the perpendicular spacing is spacing_m.
   const double step = p.spacingM * std::sqrt(2.0);
@@ -64,7 +66,8 @@ SampleGrid cylinderGrid(const CylinderGridParameters& p) {
     rod.material = p.material;
     rod.layer = s.family;
     const double sign = s.family == 0 ? 1.0 : -1.0;
-    const int samples = std::max(2, static_cast<int>(std::ceil(rod.lengthM / (0.05 * p.spacingM))) + 1);
+    const int samples =
+        std::max(2, static_cast<int>(std::ceil(rod.lengthM / (0.05 * p.spacingM))) + 1);
     for (int i = 0; i < samples; ++i) {
       const double u = s.u0 + (s.u1 - s.u0) * i / (samples - 1);
       rod.guess.push_back(surfacePoint(u, sign * u + s.c));
@@ -89,15 +92,18 @@ SampleGrid cylinderGrid(const CylinderGridParameters& p) {
       const Segment &a = segments[i], &b = segments[j];
       const double u = 0.5 * (b.c - a.c);  // u + ca = -u + cb
       const double tolerance = 1e-9 * p.spacingM;
-      if (u < a.u0 - tolerance || u > a.u1 + tolerance || u < b.u0 - tolerance || u > b.u1 + tolerance) continue;
+      if (u < a.u0 - tolerance || u > a.u1 + tolerance || u < b.u0 - tolerance ||
+          u > b.u1 + tolerance)
+        continue;
       Connection c;
       c.rodA = static_cast<int>(i);
       c.sAM = std::clamp(std::sqrt(2.0) * (u - a.u0), 0.0, grid.network.rods[i].lengthM);
       c.rodB = static_cast<int>(j);
       c.sBM = std::clamp(std::sqrt(2.0) * (u - b.u0), 0.0, grid.network.rods[j].lengthM);
       // Notches only for inner bolts, and only where the slot stays inside the lamella.
-      for (auto [notchPtr, s, length] : {std::tuple{&c.notchA, c.sAM, grid.network.rods[i].lengthM},
-                                         std::tuple{&c.notchB, c.sBM, grid.network.rods[j].lengthM}}) {
+      for (auto [notchPtr, s, length] :
+           {std::tuple{&c.notchA, c.sAM, grid.network.rods[i].lengthM},
+            std::tuple{&c.notchB, c.sBM, grid.network.rods[j].lengthM}}) {
         if (notch > 0.0 && s - notch > 0.0 && s + notch < length) *notchPtr = Notch{notch, notch};
       }
       grid.network.connections.push_back(c);
@@ -109,7 +115,8 @@ SampleGrid cylinderGrid(const CylinderGridParameters& p) {
   const int nu = std::max(2, static_cast<int>(std::ceil(2.0 * uMax / p.meshEdgeM)));
   const int nv = std::max(2, static_cast<int>(std::ceil(vMax / p.meshEdgeM)));
   for (int j = 0; j <= nv; ++j) {
-    for (int i = 0; i <= nu; ++i) soup.vertices.push_back(surfacePoint(-uMax + 2.0 * uMax * i / nu, vMax * j / nv));
+    for (int i = 0; i <= nu; ++i)
+      soup.vertices.push_back(surfacePoint(-uMax + 2.0 * uMax * i / nu, vMax * j / nv));
   }
   for (int j = 0; j < nv; ++j) {
     for (int i = 0; i < nu; ++i) {

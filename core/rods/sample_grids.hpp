@@ -14,11 +14,11 @@ struct CylinderGridParameters {
   double halfAngleRad = 0.8;   // the vault spans -halfAngle..halfAngle around the axis
   double lengthM = 8.0;        // extent along the axis
   double spacingM = 1.0;       // perpendicular distance between members of a family
-  double notchFraction = 0.2;   // notch length on each side of inner bolts, in spacings (0: none)
+  double notchFraction = 0.2;  // notch length on each side of inner bolts, in spacings (0: none)
   CrossSection section{0.05, 0.005};
   Material material{10.0e9, 0.6e9, 500.0};
-  double meshEdgeM = 0.25;     // edge length of the surface triangulation
-  void validate() const;        // throws InvalidInput naming the field
+  double meshEdgeM = 0.25;  // edge length of the surface triangulation
+  void validate() const;    // throws InvalidInput naming the field
 };
 
 struct SampleGrid {

@@ -24,26 +24,30 @@ void SimulationOptions::validate() const {
   model.validate();
   solver.validate();
   if (gravitySteps < 0) throw InvalidInput("SimulationOptions.gravitySteps must be >= 0");
-  if (!(collapseFraction >= 0.0)) throw InvalidInput("SimulationOptions.collapseFraction must be >= 0");
+  if (!(collapseFraction >= 0.0))
+    throw InvalidInput("SimulationOptions.collapseFraction must be >= 0");
   if (!(scaleFactor > 0.0)) throw InvalidInput("SimulationOptions.scaleFactor must be > 0");
   if (historyEvery < 0) throw InvalidInput("SimulationOptions.historyEvery must be >= 0");
 }
 
 void startFrom(RodNetwork& network, const SimulationRun& run) {
-  if (run.contactPoints.size() != network.rods.size() || run.normals.size() != network.rods.size()) {
-    throw InvalidInput("startFrom: the run has " + std::to_string(run.contactPoints.size()) + " rods, the network " +
-                       std::to_string(network.rods.size()));
+  if (run.contactPoints.size() != network.rods.size() ||
+      run.normals.size() != network.rods.size()) {
+    throw InvalidInput("startFrom: the run has " + std::to_string(run.contactPoints.size()) +
+                       " rods, the network " + std::to_string(network.rods.size()));
   }
   for (size_t r = 0; r < network.rods.size(); ++r) {
     if (run.contactPoints[r].size() < 2 || run.contactPoints[r].size() != run.normals[r].size()) {
-      throw InvalidInput("startFrom: rod " + std::to_string(r) + " of the run has mismatched or too few vertices");
+      throw InvalidInput("startFrom: rod " + std::to_string(r) +
+                         " of the run has mismatched or too few vertices");
     }
     network.rods[r].guess = run.contactPoints[r];
     network.rods[r].guessNormals = run.normals[r];
   }
 }
 
-SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* surface, const SimulationOptions& options) {
+SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* surface,
+                           const SimulationOptions& options) {
   options.validate();
   const auto start = std::chrono::steady_clock::now();
   RodModel model(network, options.model);
@@ -59,8 +63,10 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   // Error against run time: the solver's observer, shifted to the run's iterations and clock (a
   // load step's minimiseEnergy counts from zero), measures the contact points when asked.
   double observing = 0.0;  // seconds spent in the observer so far, left out of the samples' clock
-  double callStart = 0.0;  // the current load step's minimiseEnergy started then (run clock, measuring left out)
-  int lastObserved = -1;   // a load step starts at the state the previous one ended with: seen already
+  double callStart =
+      0.0;  // the current load step's minimiseEnergy started then (run clock, measuring left out)
+  int lastObserved =
+      -1;  // a load step starts at the state the previous one ended with: seen already
   const bool recordHistory = options.historyEvery > 0 && surface;
   if (recordHistory || options.solver.observer) {
     if (recordHistory) solverOptions.observeEvery = options.historyEvery;
@@ -74,12 +80,14 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
       if (recordHistory) {
         std::vector<Eigen::Vector3d> contact;
         for (int r = 0; r < observed.rodCount(); ++r)
-          for (int i = 0; i < observed.vertexCount(r); ++i) contact.push_back(observed.contactPoint(r, i));
+          for (int i = 0; i < observed.vertexCount(r); ++i)
+            contact.push_back(observed.contactPoint(r, i));
         const DeviationStats d = measureDeviation(contact, *surface, options.scaleFactor);
         run.history.push_back({shifted.iteration, step, shifted.seconds, d.rmseM, d.maxM});
       }
       if (options.solver.observer) options.solver.observer(shifted, observed);
-      const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - before).count();
+      const double spent =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - before).count();
       observing += spent;
       if (recordHistory) run.historySeconds += spent;
     };
@@ -104,13 +112,15 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     double largest = 0.0;
     size_t k = 0;
     for (int r = 0; r < model.rodCount(); ++r) {
-      for (int i = 0; i < model.vertexCount(r); ++i) largest = std::max(largest, (model.vertex(r, i) - weightless[k++]).norm());
+      for (int i = 0; i < model.vertexCount(r); ++i)
+        largest = std::max(largest, (model.vertex(r, i) - weightless[k++]).norm());
     }
     return largest;
   };
   for (step = 0; step <= steps; ++step) {
     model.setLoadFactor(steps == 0 ? 1.0 : static_cast<double>(step) / steps);
-    const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double spent =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     solverOptions.timeLimitS = std::max(1e-3, options.solver.timeLimitS - spent);
     solverOptions.maxIterations = std::max(1, options.solver.maxIterations - iterations);
     callStart = spent - observing;
@@ -122,22 +132,24 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     factorisations = run.solver.factorisations += factorisations;
     evaluations = run.solver.energyEvaluations += evaluations;
     if (run.solver.status == SolverStatus::IterationLimit) {
-      run.solver.reason = format("no convergence in %d iterations (decrement %.3g J)", iterations, run.solver.decrement);
+      run.solver.reason = format("no convergence in %d iterations (decrement %.3g J)", iterations,
+                                 run.solver.decrement);
     }
     // A load step that ran out of iterations or time far from the weightless equilibrium, still
     // going down: the grid is falling through, not converging slowly.
-    const bool outOfBudget =
-        run.solver.status == SolverStatus::IterationLimit || run.solver.status == SolverStatus::TimeLimit;
+    const bool outOfBudget = run.solver.status == SolverStatus::IterationLimit ||
+                             run.solver.status == SolverStatus::TimeLimit;
     if ((step > 0 || fromStart) && outOfBudget && options.collapseFraction > 0.0) {
       const double moved = largestDisplacement();
       if (moved > options.collapseFraction * extent) {
         run.solver.status = SolverStatus::Collapsed;
         run.solver.reason = format(
-            "collapses under its own weight: after %d iterations a vertex has moved %.3g m (%.1f %% of the grid's "
+            "collapses under its own weight: after %d iterations a vertex has moved %.3g m (%.1f "
+            "%% of the grid's "
             "extent %.3g m) from the %s and the energy is still decreasing (decrement %.3g J): "
             "no equilibrium near the design shape (Section 3.5.2, Fig. 3.11)",
-            iterations, moved, 100.0 * moved / extent, extent, fromStart ? "start state" : "weightless equilibrium",
-            run.solver.decrement);
+            iterations, moved, 100.0 * moved / extent, extent,
+            fromStart ? "start state" : "weightless equilibrium", run.solver.decrement);
       }
     }
     if (step == 0 && steps > 0) {
@@ -146,14 +158,15 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     }
     if (!run.solver.converged) {
       if (step < steps) {
-        run.solver.reason = "at load step " + std::to_string(step) + " of " + std::to_string(steps) + ": " +
-                            run.solver.reason;
+        run.solver.reason = "at load step " + std::to_string(step) + " of " +
+                            std::to_string(steps) + ": " + run.solver.reason;
       }
       break;
     }
   }
   if (!weightless.empty()) run.maxSagM = largestDisplacement();
-  run.solver.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.solver.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.unknowns = model.dofCount();
 
   std::vector<Eigen::Vector3d> contact;
@@ -176,7 +189,8 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   return run;
 }
 
-SimulationResult simulateGrid(const RodNetwork& network, const TriMesh& surface, const SimulationOptions& options) {
+SimulationResult simulateGrid(const RodNetwork& network, const TriMesh& surface,
+                              const SimulationOptions& options) {
   options.validate();
   const auto start = std::chrono::steady_clock::now();
   const SurfaceDistance distance(surface);
@@ -187,10 +201,12 @@ SimulationResult simulateGrid(const RodNetwork& network, const TriMesh& surface,
   if (options.compareWithoutNotches && options.model.notches) {
     SimulationOptions plain = options;
     plain.model.notches = false;
-    plain.historyEvery = 0;  // the error against run time is the deployed run's (a comparison needs only its end)
+    plain.historyEvery =
+        0;  // the error against run time is the deployed run's (a comparison needs only its end)
     result.withoutNotches = simulateRods(network, &distance, plain);
     if (!result.withoutNotches->solver.converged) {
-      if (result.converged) result.reason = "run without notches: " + result.withoutNotches->solver.reason;
+      if (result.converged)
+        result.reason = "run without notches: " + result.withoutNotches->solver.reason;
       result.converged = false;
     }
   }

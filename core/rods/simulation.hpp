@@ -15,8 +15,8 @@
 namespace egg::rods {
 
 struct SimulationOptions {
-  ModelOptions model;                  // discretisation, notches, gravity, friction, penalty weights
-  SolverOptions solver;                // Newton limits and tolerance
+  ModelOptions model;    // discretisation, notches, gravity, friction, penalty weights
+  SolverOptions solver;  // Newton limits and tolerance
   // Load steps for self-weight after a first weightless solve; 0: the full weight at once, for a
   // start that is an equilibrium under self-weight already (the joined run started from the
   // patch-by-patch equilibria). Sag and collapse are then measured from the start state.
@@ -38,14 +38,16 @@ struct SimulationOptions {
   // through solver.observer (it is called on the same schedule; its progress then counts the run's
   // iterations and seconds). 0: no history, no measuring.
   int historyEvery = 0;
-  void validate() const;               // throws InvalidInput naming the field
+  void validate() const;  // throws InvalidInput naming the field
 };
 
 // One point of the error-against-time record of a run.
 struct DeviationSample {
-  int iteration = 0;    // Newton iterations of the run so far (all load steps)
-  int loadStep = 0;     // 0: the weightless solve (or the single full-weight one), then 1..gravitySteps
-  double seconds = 0.0; // wall time since the run started (model set-up included), measuring excluded
+  int iteration = 0;  // Newton iterations of the run so far (all load steps)
+  int loadStep =
+      0;  // 0: the weightless solve (or the single full-weight one), then 1..gravitySteps
+  double seconds =
+      0.0;  // wall time since the run started (model set-up included), measuring excluded
   double rmseM = 0.0;  // contact points vs the design surface, as SimulationRun::deviation
   double maxM = 0.0;
 };
@@ -58,10 +60,12 @@ struct SimulationRun {
   int unknowns = 0;                                       // Newton unknowns
   std::vector<std::vector<Eigen::Vector3d>> centrelines;  // per rod, vertices (m)
   std::vector<std::vector<Eigen::Vector3d>> normals;      // per rod vertex, lamella normal
-  std::vector<std::vector<Eigen::Vector3d>> contactPoints;  // per rod vertex, on the contact surface between the layers
-  std::vector<std::array<double, 2>> boltPositionsM;     // per connection: s along rod a, rod b
-  std::optional<DeviationStats> deviation;                // contact points vs surface (when given)
-  double maxSagM = 0.0;  // self-weight runs: largest vertex displacement from the weightless equilibrium
+  std::vector<std::vector<Eigen::Vector3d>>
+      contactPoints;  // per rod vertex, on the contact surface between the layers
+  std::vector<std::array<double, 2>> boltPositionsM;  // per connection: s along rod a, rod b
+  std::optional<DeviationStats> deviation;            // contact points vs surface (when given)
+  double maxSagM =
+      0.0;  // self-weight runs: largest vertex displacement from the weightless equilibrium
   // options.historyEvery > 0 and a surface: the deviation from the start to the final state (the
   // last sample is `deviation`), and the wall time the measuring took (inside solver.seconds).
   std::vector<DeviationSample> history;
@@ -69,10 +73,11 @@ struct SimulationRun {
 };
 
 struct SimulationResult {
-  SimulationRun deployed;                      // with notches as options.model.notches says
-  std::optional<SimulationRun> withoutNotches; // plain holes (when compareWithoutNotches), without history
-  bool converged = false;                      // every run converged
-  std::string reason;                          // first non-convergence reason, if any
+  SimulationRun deployed;  // with notches as options.model.notches says
+  std::optional<SimulationRun>
+      withoutNotches;      // plain holes (when compareWithoutNotches), without history
+  bool converged = false;  // every run converged
+  std::string reason;      // first non-convergence reason, if any
   double seconds = 0.0;
 };
 
@@ -83,9 +88,11 @@ struct SimulationResult {
 void startFrom(RodNetwork& network, const SimulationRun& run);
 
 // One run; `surface` may be null (no error measure).
-SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* surface, const SimulationOptions& options);
+SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* surface,
+                           const SimulationOptions& options);
 
 // The stage: the deployed grid with notches and, if asked, without; errors against `surface`.
-SimulationResult simulateGrid(const RodNetwork& network, const TriMesh& surface, const SimulationOptions& options);
+SimulationResult simulateGrid(const RodNetwork& network, const TriMesh& surface,
+                              const SimulationOptions& options);
 
 }  // namespace egg::rods

@@ -18,7 +18,10 @@ std::vector<StressCase> stressCases() {
   vary("width:thickness 5", [](StressCase& c) { c.widthToThickness = 5.0; });
   vary("width:thickness 100", [](StressCase& c) { c.widthToThickness = 100.0; });
   vary("E 0.5 GPa", [](StressCase& c) { c.youngsModulusPa = 0.5e9; });
-  vary("E 210 GPa (steel)", [](StressCase& c) { c.youngsModulusPa = 210.0e9; c.densityKgM3 = 7850.0; });
+  vary("E 210 GPa (steel)", [](StressCase& c) {
+    c.youngsModulusPa = 210.0e9;
+    c.densityKgM3 = 7850.0;
+  });
   vary("scale 0.1 m", [](StressCase& c) { c.scale = 0.1 / 3.0; });
   vary("scale 22 m", [](StressCase& c) { c.scale = 22.0 / 3.0; });
   vary("scale 220 m", [](StressCase& c) { c.scale = 220.0 / 3.0; });

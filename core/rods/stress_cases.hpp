@@ -24,21 +24,24 @@ std::vector<StressCase> stressCases();
 struct StressOutcome {
   StressCase stressCase;
   bool converged = false;
-  bool finite = true;     // every centreline coordinate finite
-  SolverStatus status = SolverStatus::IterationLimit;  // e.g. collapsed: no equilibrium near the design
-  std::string reason;     // the solver's reason (why it stopped)
+  bool finite = true;  // every centreline coordinate finite
+  SolverStatus status =
+      SolverStatus::IterationLimit;  // e.g. collapsed: no equilibrium near the design
+  std::string reason;                // the solver's reason (why it stopped)
   int vertices = 0;
   int iterations = 0;
   double seconds = 0.0;
   double rmseM = 0.0;
-  double nrmse = 0.0;     // rmse / scale
+  double nrmse = 0.0;  // rmse / scale
   double maxErrorM = 0.0;
-  double sagM = 0.0;     // largest displacement from the weightless equilibrium
-  double extentM = 0.0;  // the design surface's bounding-box diagonal (a sag of several % of it: collapsed)
+  double sagM = 0.0;  // largest displacement from the weightless equilibrium
+  double extentM =
+      0.0;  // the design surface's bounding-box diagonal (a sag of several % of it: collapsed)
 };
 
 // 1000 iterations: thin or heavy vaults that fall through need several hundred Newton
 // iterations to reach their collapsed equilibrium (w:t 100: 615-636, depending on round-off).
-StressOutcome runStressCase(const StressCase& stressCase, double timeLimitS = 20.0, int maxIterations = 1000);
+StressOutcome runStressCase(const StressCase& stressCase, double timeLimitS = 20.0,
+                            int maxIterations = 1000);
 
 }  // namespace egg::rods

@@ -10,7 +10,6 @@
 
 namespace egg::rods {
 
-
 void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower) {
   if (lower.rows() != lower.cols() || !lower.isCompressed()) {
     throw InvalidInput("SupernodalCholesky: square compressed matrix expected");
@@ -20,7 +19,8 @@ void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower
   const Eigen::SparseMatrix<double> full = lower.selfadjointView<Eigen::Lower>();
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
   Eigen::AMDOrdering<int>()(full, inverse);
-  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> permutation = inverse.inverse();
+  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> permutation =
+      inverse.inverse();
   newIndex_.assign(permutation.indices().data(), permutation.indices().data() + n_);
 
   // The permuted lower triangle, column by column.
@@ -60,7 +60,8 @@ void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower
   first_.clear();
   supernodeOf_.assign(n_, -1);
   for (int j = 0; j < n_; ++j) {
-    const bool extends = j > 0 && parent[j - 1] == j && pattern[j].size() + 1 == pattern[j - 1].size();
+    const bool extends =
+        j > 0 && parent[j - 1] == j && pattern[j].size() + 1 == pattern[j - 1].size();
     if (!extends) first_.push_back(j);
     supernodeOf_[j] = static_cast<int>(first_.size()) - 1;
   }
@@ -81,7 +82,8 @@ void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower
   slot_.assign(lower.nonZeros(), -1);
   for (int j = 0; j < n_; ++j) {
     for (int k = outer[j]; k < outer[j + 1]; ++k) {
-      const int a = std::max(newIndex_[inner[k]], newIndex_[j]), b = std::min(newIndex_[inner[k]], newIndex_[j]);
+      const int a = std::max(newIndex_[inner[k]], newIndex_[j]),
+                b = std::min(newIndex_[inner[k]], newIndex_[j]);
       const int s = supernodeOf_[b];
       const int* begin = rows_.data() + rowStart_[s];
       const int* end = rows_.data() + rowStart_[s + 1];
@@ -102,7 +104,8 @@ void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower
 
 bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
   factored_ = false;
-  if (static_cast<long>(slot_.size()) != lower.nonZeros() || lower.rows() != n_ || !lower.isCompressed() ||
+  if (static_cast<long>(slot_.size()) != lower.nonZeros() || lower.rows() != n_ ||
+      !lower.isCompressed() ||
       !std::equal(patternOuter_.begin(), patternOuter_.end(), lower.outerIndexPtr()) ||
       !std::equal(patternInner_.begin(), patternInner_.end(), lower.innerIndexPtr())) {
     throw InvalidInput("SupernodalCholesky: factorize needs the pattern given to analyzePattern");
@@ -141,7 +144,8 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
           const double* s0 = LK.data() + p;
           const double *s1 = s0 + mK, *s2 = s1 + mK, *s3 = s2 + mK;
           const double f0 = s0[jj], f1 = s1[jj], f2 = s2[jj], f3 = s3[jj];
-          for (int ii = jj; ii < r; ++ii) sum[ii] = f0 * s0[ii] + f1 * s1[ii] + f2 * s2[ii] + f3 * s3[ii];
+          for (int ii = jj; ii < r; ++ii)
+            sum[ii] = f0 * s0[ii] + f1 * s1[ii] + f2 * s2[ii] + f3 * s3[ii];
           t = 4;
         } else {
           for (int ii = jj; ii < r; ++ii) sum[ii] = 0.0;
@@ -150,7 +154,8 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
           const double* s0 = LK.data() + static_cast<long>(t) * mK + p;
           const double *s1 = s0 + mK, *s2 = s1 + mK, *s3 = s2 + mK;
           const double f0 = s0[jj], f1 = s1[jj], f2 = s2[jj], f3 = s3[jj];
-          for (int ii = jj; ii < r; ++ii) sum[ii] += f0 * s0[ii] + f1 * s1[ii] + f2 * s2[ii] + f3 * s3[ii];
+          for (int ii = jj; ii < r; ++ii)
+            sum[ii] += f0 * s0[ii] + f1 * s1[ii] + f2 * s2[ii] + f3 * s3[ii];
         }
         for (; t < wK; ++t) {
           const double* source = LK.data() + static_cast<long>(t) * mK + p;
@@ -202,7 +207,8 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
 }
 
 Eigen::VectorXd SupernodalCholesky::solve(const Eigen::VectorXd& b) const {
-  if (!factored_) throw SolverFailure("SupernodalCholesky: solve needs a successful factorize first");
+  if (!factored_)
+    throw SolverFailure("SupernodalCholesky: solve needs a successful factorize first");
   if (b.size() != n_) throw InvalidInput("SupernodalCholesky: right-hand side of the wrong size");
   Eigen::VectorXd x(n_);
   for (int i = 0; i < n_; ++i) x[newIndex_[i]] = b[i];

@@ -27,7 +27,8 @@ class SupernodalCholesky {
   // Solves A x = b with the factor of the last factorize call, which must have succeeded (a failed
   // one leaves the factor half overwritten): throws SolverFailure otherwise.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
-  long factorNonZeros() const;  // stored entries of L (dense blocks, lower part of the diagonal blocks counted fully)
+  long factorNonZeros()
+      const;  // stored entries of L (dense blocks, lower part of the diagonal blocks counted fully)
   int supernodeCount() const { return static_cast<int>(first_.size()) - 1; }
 
  private:
@@ -38,10 +39,10 @@ class SupernodalCholesky {
   std::vector<int> rows_;         // sorted row indices of each supernode (its own columns first)
   std::vector<long> valueStart_;  // its dense column-major block in values_
   std::vector<double> values_;
-  std::vector<int> supernodeOf_;  // column -> supernode
-  std::vector<long> slot_;        // input nonzero k -> position in values_
+  std::vector<int> supernodeOf_;                  // column -> supernode
+  std::vector<long> slot_;                        // input nonzero k -> position in values_
   std::vector<int> patternOuter_, patternInner_;  // the analysed pattern (compressed columns)
-  bool factored_ = false;         // the last factorize succeeded
+  bool factored_ = false;                         // the last factorize succeeded
   // Work space of factorize.
   std::vector<int> head_, next_, pointer_, relative_, localRow_;
   std::vector<double> accumulator_;

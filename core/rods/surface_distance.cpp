@@ -41,7 +41,8 @@ SurfaceDistance::SurfaceDistance(const TriMesh& surface) : tree_(std::make_uniqu
       tree_->triangles.emplace_back(corners[0], corners[1], corners[2]);
     }
   }
-  if (tree_->triangles.empty()) throw InvalidInput("SurfaceDistance: the surface has no (non-degenerate) triangles");
+  if (tree_->triangles.empty())
+    throw InvalidInput("SurfaceDistance: the surface has no (non-degenerate) triangles");
   tree_->tree.insert(tree_->triangles.begin(), tree_->triangles.end());
   tree_->tree.accelerate_distance_queries();
 }
@@ -55,10 +56,12 @@ Eigen::Vector3d SurfaceDistance::closestPoint(const Eigen::Vector3d& p) const {
   return {c.x(), c.y(), c.z()};
 }
 
-double SurfaceDistance::distance(const Eigen::Vector3d& p) const { return (closestPoint(p) - p).norm(); }
+double SurfaceDistance::distance(const Eigen::Vector3d& p) const {
+  return (closestPoint(p) - p).norm();
+}
 
-DeviationStats measureDeviation(const std::vector<Eigen::Vector3d>& points, const SurfaceDistance& surface,
-                                double scaleFactor) {
+DeviationStats measureDeviation(const std::vector<Eigen::Vector3d>& points,
+                                const SurfaceDistance& surface, double scaleFactor) {
   if (!(scaleFactor > 0.0)) throw InvalidInput("measureDeviation: scaleFactor must be > 0");
   DeviationStats stats;
   double sum = 0.0;

@@ -35,7 +35,7 @@ struct DeviationStats {
   double nrmse = 0.0;
 };
 
-DeviationStats measureDeviation(const std::vector<Eigen::Vector3d>& points, const SurfaceDistance& surface,
-                                double scaleFactor = 1.0);
+DeviationStats measureDeviation(const std::vector<Eigen::Vector3d>& points,
+                                const SurfaceDistance& surface, double scaleFactor = 1.0);
 
 }  // namespace egg::rods

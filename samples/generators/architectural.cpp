@@ -25,16 +25,18 @@ double greatCourtHeight(double x, double y) {
   const double eta = psi / ((1 - ax) * (1 + ax) * (1 - ayc) * (1 + ayd));
   const double alpha = (r / a - 1) * psi;
   const double bx1 = b - x, bx2 = b + x, cy = c - y, dy = d + y;
-  const double beta = (1 - a / r) / (std::hypot(bx1, cy) / (bx1 * cy) + std::hypot(bx1, dy) / (bx1 * dy) +
-                                     std::hypot(bx2, cy) / (bx2 * cy) + std::hypot(bx2, dy) / (bx2 * dy));
+  const double beta =
+      (1 - a / r) / (std::hypot(bx1, cy) / (bx1 * cy) + std::hypot(bx1, dy) / (bx1 * dy) +
+                     std::hypot(bx2, cy) / (bx2 * cy) + std::hypot(bx2, dy) / (bx2 * dy));
   const double z1 = (hc - he) * eta + he;
-  const double z2 =
-      alpha * ((1 - lambda) * ((35 + 10 * psi) * 0.5 * (1 + cos2Theta) + 12 * sPlus + (7.5 + 12 * psi) * sMinus - 1.6) -
-               5 * (1 + cos2Theta) + 10 * std::pow(0.5 * sPlus, 2) * (1 - 3 * alpha) +
-               2.5 * std::pow(0.5 * sMinus, 2) * std::pow(r / a - 1, 2));
+  const double z2 = alpha * ((1 - lambda) * ((35 + 10 * psi) * 0.5 * (1 + cos2Theta) + 12 * sPlus +
+                                             (7.5 + 12 * psi) * sMinus - 1.6) -
+                             5 * (1 + cos2Theta) + 10 * std::pow(0.5 * sPlus, 2) * (1 - 3 * alpha) +
+                             2.5 * std::pow(0.5 * sMinus, 2) * std::pow(r / a - 1, 2));
   const double z3 =
       beta * (lambda * (1.75 * (1 + cos2Theta) + 1.5 * (1 - cos2Theta) + 0.3 * sinTheta) +
-              1.05 * (std::exp(-mu * fx1) + std::exp(-mu * fx2)) * (std::exp(-mu * fy1) + std::exp(-mu * fy2)));
+              1.05 * (std::exp(-mu * fx1) + std::exp(-mu * fx2)) *
+                  (std::exp(-mu * fy1) + std::exp(-mu * fy2)));
   return z1 + z2 + z3;
 }
 
@@ -51,7 +53,8 @@ double yasHeight(double x, double y) {
   auto tower = [&](double xi, double yi) {
     return std::exp(-0.5 * (std::pow((x - xi) / 30, 2) + std::pow((y - yi) / 25, 2)));
   };
-  const double ridge = 0.6 * std::exp(-std::pow(y - 0.2727 * x, 2) / 144) * std::exp(-std::pow(x / 70, 2));
+  const double ridge =
+      0.6 * std::exp(-std::pow(y - 0.2727 * x, 2) / 144) * std::exp(-std::pow(x / 70, 2));
   const double undulation =
       1 + 0.08 * std::sin(2 * std::numbers::pi * x / 55) * std::cos(2 * std::numbers::pi * y / 70);
   return N * w * (tower(-towerX, -towerY) + tower(towerX, towerY) + ridge) * undulation;
@@ -100,7 +103,8 @@ SurfaceSpec yasCanopy(const Params& params) {
   // Polar form of the quartic rim, smooth in the angle (the signed-power form is not).
   spec.boundary.push_back({DomainCurve{[](double s) {
     const double phi = 2 * std::numbers::pi * s;
-    const double rho = std::pow(std::pow(std::cos(phi) / semiX, 4) + std::pow(std::sin(phi) / semiY, 4), -0.25);
+    const double rho =
+        std::pow(std::pow(std::cos(phi) / semiX, 4) + std::pow(std::sin(phi) / semiY, 4), -0.25);
     return Vec2(rho * std::cos(phi), rho * std::sin(phi));
   }}});
   const bool withHoles = holes == 1;
@@ -112,7 +116,8 @@ SurfaceSpec yasCanopy(const Params& params) {
     if (std::pow(p.x() / semiX, 4) + std::pow(p.y() / semiY, 4) > 1) return false;
     if (!withHoles) return true;
     for (const double sign : {-1.0, 1.0}) {
-      const double ex = (p.x() - sign * towerX) / holeSemiX, ey = (p.y() - sign * towerY) / holeSemiY;
+      const double ex = (p.x() - sign * towerX) / holeSemiX,
+                   ey = (p.y() - sign * towerY) / holeSemiY;
       if (ex * ex + ey * ey < 1) return false;
     }
     return true;
@@ -125,13 +130,15 @@ SurfaceSpec yasCanopy(const Params& params) {
 std::vector<SampleEntry> architecturalSamples() {
   return {
       {{"great_court",
-        "British Museum Great Court roof (C. J. K. Williams' closed form), 73.25 x 97.15 m with the "
+        "British Museum Great Court roof (C. J. K. Williams' closed form), 73.25 x 97.15 m with "
+        "the "
         "Reading Room hole of radius 22.245 m; heights 19.71-27.60 m",
         {},
         {}},
        greatCourt},
       {{"lilium",
-        "Tip of the Lilium Tower: P(theta, t) = (r rho cos(theta + Phi t), r rho sin(theta + Phi t), 37 t), "
+        "Tip of the Lilium Tower: P(theta, t) = (r rho cos(theta + Phi t), r rho sin(theta + Phi "
+        "t), 37 t), "
         "48 x 48 x 37 m, tip at t = 1",
         {},
         {}},
@@ -140,7 +147,9 @@ std::vector<SampleEntry> architecturalSamples() {
         "Yas Hotel canopy over the quartic footprint (x/109)^4 + (y/70)^4 <= 1, 218 x 140 x 47 m; "
         "holes = 1 cuts 20 x 12 m ellipses at the towers (-55, -15) and (55, 15)",
         {{"holes", 0.0}},
-        {{"holes", "1 cuts the two 20 x 12 m tower ellipses, 0 keeps them closed as the paper did (switch)"}}},
+        {{"holes",
+          "1 cuts the two 20 x 12 m tower ellipses, 0 keeps them closed as the paper did "
+          "(switch)"}}},
        yasCanopy},
   };
 }

@@ -32,8 +32,8 @@ Eigen::Vector3d liliumPoint(double theta, double t);
 namespace yas {
 inline constexpr double semiX = 109.0;
 inline constexpr double semiY = 70.0;
-inline constexpr double N = 34.8896;  // scales the maximum height to 47 m
-inline constexpr double towerX = 55.0, towerY = 15.0;  // towers at (-55, -15) and (55, 15)
+inline constexpr double N = 34.8896;                        // scales the maximum height to 47 m
+inline constexpr double towerX = 55.0, towerY = 15.0;       // towers at (-55, -15) and (55, 15)
 inline constexpr double holeSemiX = 10.0, holeSemiY = 6.0;  // 20 x 12 m ellipses (option holes)
 }  // namespace yas
 double yasHeight(double x, double y);

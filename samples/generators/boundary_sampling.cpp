@@ -10,7 +10,8 @@ namespace egg::samples::detail {
 namespace {
 
 // Cumulative 3D arc length of a curve at `segments` + 1 equally spaced parameters.
-std::vector<double> cumulativeLength(const SurfaceSpec& spec, const DomainCurve& curve, int segments) {
+std::vector<double> cumulativeLength(const SurfaceSpec& spec, const DomainCurve& curve,
+                                     int segments) {
   std::vector<double> length(segments + 1, 0.0);
   Vec3 previous = spec.position(curve.at(0.0));
   for (int i = 1; i <= segments; ++i) {
@@ -70,8 +71,8 @@ std::vector<SampledLoop> sampleBoundary(const SurfaceSpec& spec, double spacing)
   return loops;
 }
 
-Vec2 snapToBoundary(const SurfaceSpec& spec, const std::vector<SampledLoop>& loops, const Vec2& point,
-                    double tolerance, bool& found) {
+Vec2 snapToBoundary(const SurfaceSpec& spec, const std::vector<SampledLoop>& loops,
+                    const Vec2& point, double tolerance, bool& found) {
   found = false;
   double best = std::numeric_limits<double>::infinity();
   Vec2 snapped = point;

@@ -147,8 +147,9 @@ void markDomain(Cdt& cdt) {
 
 DomainTriangulation triangulateDomain(const std::vector<std::vector<Vec2>>& polygons,
                                       const std::vector<Vec2>& requiredPoints,
-                                      const std::function<Vec3(const Vec2&)>& lift, double maxEdge3d,
-                                      double aspectBound, std::size_t maxVertices) {
+                                      const std::function<Vec3(const Vec2&)>& lift,
+                                      double maxEdge3d, double aspectBound,
+                                      std::size_t maxVertices) {
   Cdt cdt;
   int index = 0;
   for (const auto& polygon : polygons) {
@@ -174,7 +175,8 @@ DomainTriangulation triangulateDomain(const std::vector<std::vector<Vec2>>& poly
   for (std::size_t step = 0; !mesher.is_refinement_done(); ++step) {
     mesher.try_one_step_refine_mesh();
     if (step % 1024 == 0 && cdt.number_of_vertices() > maxVertices) {
-      throw InvalidInput("Delaunay refinement of the parameter domain exceeded " + std::to_string(maxVertices) +
+      throw InvalidInput("Delaunay refinement of the parameter domain exceeded " +
+                         std::to_string(maxVertices) +
                          " vertices (the domain is far thinner than the edge length)");
     }
   }

@@ -26,7 +26,8 @@ struct DomainTriangulation {
 // needs more than `maxVertices` vertices (a domain far thinner than the edge length).
 DomainTriangulation triangulateDomain(const std::vector<std::vector<Vec2>>& polygons,
                                       const std::vector<Vec2>& requiredPoints,
-                                      const std::function<Vec3(const Vec2&)>& lift, double maxEdge3d,
-                                      double aspectBound = 0.125, std::size_t maxVertices = 20'000'000);
+                                      const std::function<Vec3(const Vec2&)>& lift,
+                                      double maxEdge3d, double aspectBound = 0.125,
+                                      std::size_t maxVertices = 20'000'000);
 
 }  // namespace egg::samples::detail

@@ -32,7 +32,8 @@ void require(bool ok, const std::string& sample, const std::string& key, double 
              const std::string& requirement) {
   if (ok) return;
   std::ostringstream message;
-  message << "sample '" << sample << "': parameter '" << key << "' " << requirement << " (got " << value << ")";
+  message << "sample '" << sample << "': parameter '" << key << "' " << requirement << " (got "
+          << value << ")";
   throw InvalidInput(message.str());
 }
 
@@ -52,7 +53,8 @@ const SampleEntry& findSample(const std::string& name) {
     if (entry.info.name == name) return entry;
   }
   std::string known;
-  for (const SampleEntry& entry : catalogue()) known += (known.empty() ? "" : ", ") + entry.info.name;
+  for (const SampleEntry& entry : catalogue())
+    known += (known.empty() ? "" : ", ") + entry.info.name;
   throw InvalidInput("unknown sample '" + name + "' (known samples: " + known + ")");
 }
 
@@ -62,7 +64,8 @@ Params completeParams(const SampleInfo& info, const Params& given) {
   for (const auto& [key, value] : given) {
     if (!info.defaults.count(key)) {
       std::string accepted;
-      for (const auto& [name, unused] : info.defaults) accepted += (accepted.empty() ? "" : ", ") + name;
+      for (const auto& [name, unused] : info.defaults)
+        accepted += (accepted.empty() ? "" : ", ") + name;
       throw InvalidInput("sample '" + info.name + "': unknown parameter '" + key + "' (accepted: " +
                          (accepted.empty() ? std::string("none") : accepted) + ")");
     }
@@ -96,7 +99,8 @@ TriMesh generateSample(const std::string& name, const Params& params, double edg
   const detail::SampleEntry& entry = detail::findSample(name);
   if (!(edgeLengthM > 0) || !std::isfinite(edgeLengthM)) {
     std::ostringstream message;
-    message << "sample '" << name << "': edge_length_m must be positive and finite (got " << edgeLengthM << ")";
+    message << "sample '" << name << "': edge_length_m must be positive and finite (got "
+            << edgeLengthM << ")";
     throw InvalidInput(message.str());
   }
   const detail::SurfaceSpec spec = entry.build(detail::completeParams(entry.info, params));
@@ -105,7 +109,8 @@ TriMesh generateSample(const std::string& name, const Params& params, double edg
   if (boundaryEdges > detail::kMaxTriangles) {
     std::ostringstream message;
     message << "sample '" << name << "': edge_length_m " << edgeLengthM << " would put about "
-            << std::llround(boundaryEdges) << " edges on the boundary (limit 5 million); use a longer edge";
+            << std::llround(boundaryEdges)
+            << " edges on the boundary (limit 5 million); use a longer edge";
     throw InvalidInput(message.str());
   }
   const double area = detail::estimateArea(spec);
@@ -113,8 +118,9 @@ TriMesh generateSample(const std::string& name, const Params& params, double edg
   // edge wide cannot hold near-equilateral triangles of that edge (refinement would never end).
   if (area < 0.05 * edgeLengthM * detail::boundaryLength(spec)) {
     std::ostringstream message;
-    message << "sample '" << name << "': the surface is far thinner than edge_length_m " << edgeLengthM
-            << " (area " << area << " m^2 for a boundary of " << detail::boundaryLength(spec) << " m)";
+    message << "sample '" << name << "': the surface is far thinner than edge_length_m "
+            << edgeLengthM << " (area " << area << " m^2 for a boundary of "
+            << detail::boundaryLength(spec) << " m)";
     throw InvalidInput(message.str());
   }
   const double triangles = area / (std::sqrt(3.0) / 4.0 * edgeLengthM * edgeLengthM);

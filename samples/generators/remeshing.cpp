@@ -172,7 +172,8 @@ class DomainRemesher {
         const VH a = mesh_.from_vertex_handle(h0), b = mesh_.to_vertex_handle(h0);
         const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h0));
         const VH d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h1));
-        const double opposite = angleAt(point(c), point(a), point(b)) + angleAt(point(d), point(a), point(b));
+        const double opposite =
+            angleAt(point(c), point(a), point(b)) + angleAt(point(d), point(a), point(b));
         if (opposite <= std::numbers::pi + 1e-9) continue;
         if (!mesh_.is_flip_ok(e)) continue;
         if (mesh_.valence(a) <= 3 || mesh_.valence(b) <= 3) continue;
@@ -231,7 +232,8 @@ class DomainRemesher {
 
 }  // namespace
 
-TriangleSoup remeshInDomain(const SurfaceSpec& spec, const DomainMesh& input, const RemeshOptions& options) {
+TriangleSoup remeshInDomain(const SurfaceSpec& spec, const DomainMesh& input,
+                            const RemeshOptions& options) {
   DomainRemesher remesher(spec, input, options.targetEdge);
   remesher.run(options);
   return remesher.soup();

@@ -25,6 +25,7 @@ struct DomainMesh {
 // Remeshes `input` (a valid, counter-clockwise domain triangulation). Boundary vertices never move;
 // unlocked boundary vertices may be collapsed into a boundary neighbour. Returns the 3D soup,
 // oriented by spec.reverseOrientation.
-TriangleSoup remeshInDomain(const SurfaceSpec& spec, const DomainMesh& input, const RemeshOptions& options);
+TriangleSoup remeshInDomain(const SurfaceSpec& spec, const DomainMesh& input,
+                            const RemeshOptions& options);
 
 }  // namespace egg::samples::detail

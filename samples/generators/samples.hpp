@@ -31,9 +31,9 @@ bool isSample(const std::string& name);
 // 20 degrees once the edge is below a tenth of the surface's size), every vertex lies on the
 // analytic surface to rounding, footprint corners and spot heights (Great Court) or the tip
 // (Lilium) are vertices, and normals point up / outward. The mesh is one connected, manifold,
-// consistently oriented component with about area / (0.433 h^2) triangles. Throws InvalidInput naming
-// the sample or parameter when the name is unknown, a parameter is unknown or out of range, or the
-// edge length is not positive / would give an absurd number of triangles.
+// consistently oriented component with about area / (0.433 h^2) triangles. Throws InvalidInput
+// naming the sample or parameter when the name is unknown, a parameter is unknown or out of range,
+// or the edge length is not positive / would give an absurd number of triangles.
 TriMesh generateSample(const std::string& name, const Params& params, double edgeLengthM);
 
 }  // namespace egg::samples

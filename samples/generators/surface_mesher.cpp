@@ -83,17 +83,22 @@ double estimateArea(const SurfaceSpec& spec) {
       for (size_t a = 0, b = polygon.size() - 1; a < polygon.size(); b = a++) {
         const Vec2& p = polygon[a];
         const Vec2& q = polygon[b];
-        if ((p.y() > y) != (q.y() > y)) crossings.push_back(p.x() + (y - p.y()) * (q.x() - p.x()) / (q.y() - p.y()));
+        if ((p.y() > y) != (q.y() > y))
+          crossings.push_back(p.x() + (y - p.y()) * (q.x() - p.x()) / (q.y() - p.y()));
       }
     }
     std::sort(crossings.begin(), crossings.end());
     for (size_t k = 0; k + 1 < crossings.size(); k += 2) {
-      const int first = std::max(0, int(std::ceil((crossings[k] - box.min().x()) / cell.x() - 0.5)));
-      const int last = std::min(kCells - 1, int(std::floor((crossings[k + 1] - box.min().x()) / cell.x() - 0.5)));
+      const int first =
+          std::max(0, int(std::ceil((crossings[k] - box.min().x()) / cell.x() - 0.5)));
+      const int last = std::min(
+          kCells - 1, int(std::floor((crossings[k + 1] - box.min().x()) / cell.x() - 0.5)));
       for (int i = first; i <= last; ++i) {
         const Vec2 u(box.min().x() + (i + 0.5) * cell.x(), y);
-        const Vec3 du = (spec.position(u + Vec2(step, 0)) - spec.position(u - Vec2(step, 0))) / (2 * step);
-        const Vec3 dv = (spec.position(u + Vec2(0, step)) - spec.position(u - Vec2(0, step))) / (2 * step);
+        const Vec3 du =
+            (spec.position(u + Vec2(step, 0)) - spec.position(u - Vec2(step, 0))) / (2 * step);
+        const Vec3 dv =
+            (spec.position(u + Vec2(0, step)) - spec.position(u - Vec2(0, step))) / (2 * step);
         area += du.cross(dv).norm() * cell.x() * cell.y();
       }
     }
@@ -110,8 +115,8 @@ TriangleSoup meshSurface(const SurfaceSpec& spec, double edgeLength, double expe
   const auto maxVertices = std::size_t(10.0 * expectedTriangles) + 10 * boundaryPoints + 10'000;
   // Refinement bound a little above the target: the remesher splits what is longer than 4/3 of
   // it anyway, and a looser bound leaves fewer tiny edges to collapse.
-  const DomainTriangulation domain =
-      triangulateDomain(polygonsOf(loops), spec.requiredPoints, spec.position, 1.2 * edgeLength, 0.125, maxVertices);
+  const DomainTriangulation domain = triangulateDomain(
+      polygonsOf(loops), spec.requiredPoints, spec.position, 1.2 * edgeLength, 0.125, maxVertices);
 
   DomainMesh input;
   input.domain = domain.points;

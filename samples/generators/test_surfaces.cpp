@@ -18,11 +18,14 @@ void requireExtent(const std::string& sample, const Params& p) {
   require(p.at("width") > 0, sample, "width", p.at("width"), "must be positive");
 }
 
-SurfaceSpec heightField(const std::string& name, const Params& p, std::function<double(double, double)> height) {
+SurfaceSpec heightField(const std::string& name, const Params& p,
+                        std::function<double(double, double)> height) {
   requireExtent(name, p);
   SurfaceSpec spec;
   spec.name = name;
-  spec.position = [height = std::move(height)](const Vec2& u) { return Vec3(u.x(), u.y(), height(u.x(), u.y())); };
+  spec.position = [height = std::move(height)](const Vec2& u) {
+    return Vec3(u.x(), u.y(), height(u.x(), u.y()));
+  };
   const double hx = p.at("length") / 2, hy = p.at("width") / 2;
   spec.boundary = {rectangleLoop(-hx, hx, -hy, hy)};
   return spec;
@@ -96,7 +99,8 @@ SurfaceSpec cylinder(const Params& p) {
 // between the base and the circle of `top_radius` (0 keeps the apex), over the arc `angle`
 // centred on +x. Domain: the unrolled annular sector, an isometry.
 SurfaceSpec cone(const Params& p) {
-  const double radius = p.at("radius"), height = p.at("height"), top = p.at("top_radius"), angle = p.at("angle");
+  const double radius = p.at("radius"), height = p.at("height"), top = p.at("top_radius"),
+               angle = p.at("angle");
   require(radius > 0, "cone", "radius", radius, "must be positive");
   require(height > 0, "cone", "height", height, "must be positive");
   require(top >= 0 && top < radius, "cone", "top_radius", top, "must be in [0, radius)");
@@ -125,7 +129,8 @@ SurfaceSpec cone(const Params& p) {
     }};
   };
   if (top > 0) {
-    spec.boundary = {{ray(inner, outer, -1), arc(outer, true), ray(outer, inner, 1), arc(inner, false)}};
+    spec.boundary = {
+        {ray(inner, outer, -1), arc(outer, true), ray(outer, inner, 1), arc(inner, false)}};
   } else {
     spec.boundary = {{ray(0, outer, -1), arc(outer, true), ray(outer, 0, 1)}};
   }
@@ -157,33 +162,41 @@ SurfaceSpec hyperboloid(const Params& p) {
 std::vector<SampleEntry> testSurfaceSamples() {
   const Params extent{{"length", 10.0}, {"width", 10.0}};
   const std::map<std::string, std::string> extentHelp{{"length", "footprint extent along x (m)"},
-                                                     {"width", "footprint extent along y (m)"}};
+                                                      {"width", "footprint extent along y (m)"}};
   auto with = [](Params a, const Params& b) {
     a.insert(b.begin(), b.end());
     return a;
   };
-  auto withHelp = [](std::map<std::string, std::string> a, const std::map<std::string, std::string>& b) {
+  auto withHelp = [](std::map<std::string, std::string> a,
+                     const std::map<std::string, std::string>& b) {
     a.insert(b.begin(), b.end());
     return a;
   };
   const std::string arc = "opening angle of the arc (rad, below 2 pi)";
   return {
-      {{"plane", "Flat rectangle z = 0, length (x) by width (y) metres, centred at the origin", extent, extentHelp},
+      {{"plane", "Flat rectangle z = 0, length (x) by width (y) metres, centred at the origin",
+        extent, extentHelp},
        plane},
       {{"sphere",
-        "Sphere cap around the north pole of the sphere |p| = radius centred at the origin, over the "
+        "Sphere cap around the north pole of the sphere |p| = radius centred at the origin, over "
+        "the "
         "footprint disc of radius extent (extent = radius: hemisphere)",
         {{"radius", 10.0}, {"extent", 8.0}},
-        {{"radius", "sphere radius R (m)"}, {"extent", "footprint radius of the cap (m), in (0, R]"}}},
+        {{"radius", "sphere radius R (m)"},
+         {"extent", "footprint radius of the cap (m), in (0, R]"}}},
        sphere},
       {{"cylinder",
-        "Cylinder vault y^2 + z^2 = radius^2, axis x, x in [-length/2, length/2], arc angle (rad) centred "
+        "Cylinder vault y^2 + z^2 = radius^2, axis x, x in [-length/2, length/2], arc angle (rad) "
+        "centred "
         "on the top",
         {{"radius", 5.0}, {"length", 10.0}, {"angle", kPi}},
-        {{"radius", "cylinder radius (m)"}, {"length", "extent along the axis x (m)"}, {"angle", arc}}},
+        {{"radius", "cylinder radius (m)"},
+         {"length", "extent along the axis x (m)"},
+         {"angle", arc}}},
        cylinder},
       {{"cone",
-        "Cone x^2 + y^2 = (radius (1 - z/height))^2, apex (0, 0, height), from the base z = 0 up to the "
+        "Cone x^2 + y^2 = (radius (1 - z/height))^2, apex (0, 0, height), from the base z = 0 up "
+        "to the "
         "circle of top_radius (0 keeps the apex), arc angle (rad) centred on +x",
         {{"radius", 5.0}, {"height", 5.0}, {"top_radius", 1.0}, {"angle", kPi}},
         {{"radius", "base radius at z = 0 (m)"},
@@ -195,7 +208,8 @@ std::vector<SampleEntry> testSurfaceSamples() {
         with({{"c", 0.1}}, extent), withHelp({{"c", "twist c of z = c x y (1/m)"}}, extentHelp)},
        hypar},
       {{"hyperboloid",
-        "One-sheeted hyperboloid (x^2 + y^2)/radius^2 - z^2/c^2 = 1, |z| <= height/2, arc angle (rad) "
+        "One-sheeted hyperboloid (x^2 + y^2)/radius^2 - z^2/c^2 = 1, |z| <= height/2, arc angle "
+        "(rad) "
         "centred on +x",
         {{"radius", 3.0}, {"c", 4.0}, {"height", 6.0}, {"angle", kPi}},
         {{"radius", "waist radius a at z = 0 (m)"},
@@ -203,15 +217,21 @@ std::vector<SampleEntry> testSurfaceSamples() {
          {"height", "extent along the axis z (m), centred on the waist"},
          {"angle", arc}}},
        hyperboloid},
-      {{"bump", "Gaussian bump z = height exp(-(x^2 + y^2) / (2 sigma^2)) over length (x) by width (y), centred",
+      {{"bump",
+        "Gaussian bump z = height exp(-(x^2 + y^2) / (2 sigma^2)) over length (x) by width (y), "
+        "centred",
         with({{"height", 2.0}, {"sigma", 2.0}}, extent),
-        withHelp({{"height", "peak height (m)"}, {"sigma", "standard deviation of the Gaussian (m)"}}, extentHelp)},
+        withHelp(
+            {{"height", "peak height (m)"}, {"sigma", "standard deviation of the Gaussian (m)"}},
+            extentHelp)},
        bump},
       {{"waves",
-        "Egg-crate waves z = amplitude sin(2 pi x / wavelength) sin(2 pi y / wavelength) over length (x) by "
+        "Egg-crate waves z = amplitude sin(2 pi x / wavelength) sin(2 pi y / wavelength) over "
+        "length (x) by "
         "width (y), centred",
         with({{"amplitude", 0.5}, {"wavelength", 5.0}}, extent),
-        withHelp({{"amplitude", "wave amplitude (m)"}, {"wavelength", "wavelength in x and y (m)"}}, extentHelp)},
+        withHelp({{"amplitude", "wave amplitude (m)"}, {"wavelength", "wavelength in x and y (m)"}},
+                 extentHelp)},
        waves},
   };
 }

@@ -22,7 +22,8 @@ TEST(BoundaryMembers, EachSideRunsAlongItsBoundaryMemberWithItsConnections) {
   EXPECT_EQ(sideConnections(grid, PatchSide(2)), (std::vector<int>{6, 7, 8}));
   EXPECT_EQ(sideConnections(grid, PatchSide(3)), (std::vector<int>{0, 3, 6}));
   for (int k = 0; k < 4; ++k)
-    for (int c : sideConnections(grid, PatchSide(k))) EXPECT_TRUE(grid.connections[c].onBoundary) << k << " " << c;
+    for (int c : sideConnections(grid, PatchSide(k)))
+      EXPECT_TRUE(grid.connections[c].onBoundary) << k << " " << c;
 }
 
 TEST(BoundaryMembers, FreeSidesFromThePatchGraph) {
@@ -31,9 +32,11 @@ TEST(BoundaryMembers, FreeSidesFromThePatchGraph) {
   // graph (one patch, no graph): all four sides free.
   patching::PatchGraph graph;
   graph.boundaries.push_back({0, BoundaryKind::Free, {{0, 2, 0.0, 1.0, false}}, 10.0});
-  graph.boundaries.push_back({1, BoundaryKind::Shared, {{0, 1, 0.0, 1.0, false}, {1, 3, 0.0, 1.0, true}}, 8.0});
+  graph.boundaries.push_back(
+      {1, BoundaryKind::Shared, {{0, 1, 0.0, 1.0, false}, {1, 3, 0.0, 1.0, true}}, 8.0});
   graph.boundaries.push_back({2, BoundaryKind::Free, {{0, 0, 0.0, 0.5, false}}, 4.0});
-  graph.boundaries.push_back({3, BoundaryKind::TJunction, {{0, 0, 0.5, 1.0, false}, {2, 2, 0.0, 1.0, true}}, 4.0});
+  graph.boundaries.push_back(
+      {3, BoundaryKind::TJunction, {{0, 0, 0.5, 1.0, false}, {2, 2, 0.0, 1.0, true}}, 4.0});
   EXPECT_EQ(freeSides(graph, 0), (std::array<bool, 4>{true, false, true, false}));
   EXPECT_EQ(freeSides(graph, 1), (std::array<bool, 4>{false, false, false, false}));
   EXPECT_EQ(freeSides(graph, 7), (std::array<bool, 4>{true, true, true, true}));
@@ -47,9 +50,11 @@ TEST(BoundaryMembers, SharedLamellaeNameBothBoundaryMembersAndTheirDirection) {
   // Patch 0's side 1 (last v member, with its corners) against patch 1's side 3 (v member 0,
   // against its corners): the segment runs with side 1 and against side 3 (reversed use), so both
   // lamellas run the same way along it.
-  graph.boundaries.push_back({0, BoundaryKind::Shared, {{0, 1, 0.0, 1.0, false}, {1, 3, 0.0, 1.0, true}}, 2.0});
+  graph.boundaries.push_back(
+      {0, BoundaryKind::Shared, {{0, 1, 0.0, 1.0, false}, {1, 3, 0.0, 1.0, true}}, 2.0});
   // Patch 0's side 2 (last u member, against its corners) on the segment as it runs: against.
-  graph.boundaries.push_back({1, BoundaryKind::Shared, {{0, 2, 0.0, 1.0, false}, {2, 0, 0.0, 1.0, false}}, 2.0});
+  graph.boundaries.push_back(
+      {1, BoundaryKind::Shared, {{0, 2, 0.0, 1.0, false}, {2, 0, 0.0, 1.0, false}}, 2.0});
   graph.boundaries.push_back({2, BoundaryKind::Free, {{0, 0, 0.0, 1.0, false}}, 2.0});
   const auto shared = sharedLamellae(graph, {&a, &b, nullptr});
   ASSERT_EQ(shared.size(), 1u);  // patch 2 has no grid
@@ -73,9 +78,10 @@ TEST(BoundaryMembers, SharedLamellaeNameBothBoundaryMembersAndTheirDirection) {
 TEST(BoundaryMembers, DesignBoundarySupportsHoldEveryConnectionOfAFreeSideOnce) {
   EggGrid grid = testing::threeByThree();  // anchors at connections 0 and 8
   patching::PatchGraph graph;
-  graph.boundaries.push_back({0, BoundaryKind::Free, {{0, 0, 0.0, 1.0, false}}, 2.0});    // 0, 1, 2
-  graph.boundaries.push_back({1, BoundaryKind::Free, {{0, 1, 0.0, 1.0, false}}, 2.0});    // 2, 5, 8
-  graph.boundaries.push_back({2, BoundaryKind::Shared, {{0, 2, 0.0, 1.0, false}, {1, 0, 0.0, 1.0, true}}, 2.0});
+  graph.boundaries.push_back({0, BoundaryKind::Free, {{0, 0, 0.0, 1.0, false}}, 2.0});  // 0, 1, 2
+  graph.boundaries.push_back({1, BoundaryKind::Free, {{0, 1, 0.0, 1.0, false}}, 2.0});  // 2, 5, 8
+  graph.boundaries.push_back(
+      {2, BoundaryKind::Shared, {{0, 2, 0.0, 1.0, false}, {1, 0, 0.0, 1.0, true}}, 2.0});
   EXPECT_EQ(supportDesignBoundary(graph, {&grid, nullptr}), 3);  // 1, 2, 5
   ASSERT_EQ(grid.anchors.size(), 5u);
   std::vector<int> held;

@@ -81,7 +81,8 @@ TEST(GridToRods, NotchSignGivesTheSlidingDirection) {
   EXPECT_DOUBLE_EQ(inner.notchB.afterM, 0.0);
   for (int k = 0; k < 3; ++k) {  // boundary connections: plain holes
     const auto& c = network.connections[k];
-    EXPECT_DOUBLE_EQ(c.notchA.afterM + c.notchA.beforeM + c.notchB.afterM + c.notchB.beforeM, 0.0) << k;
+    EXPECT_DOUBLE_EQ(c.notchA.afterM + c.notchA.beforeM + c.notchB.afterM + c.notchB.beforeM, 0.0)
+        << k;
   }
 }
 

@@ -32,9 +32,10 @@ TEST(Drawing, SlotCornersRunCounterClockwise) {
 
 TEST(Drawing, SvgIsInMillimetresWithLaserColoursAndReadsBack) {
   const std::string svg = toSvg(sample());
-  EXPECT_NE(svg.find("width=\"120.0000mm\" height=\"80.0000mm\" viewBox=\"0 0 120.0000 80.0000\""), std::string::npos);
-  EXPECT_NE(svg.find("stroke=\"#ff0000\""), std::string::npos);  // cut: red
-  EXPECT_NE(svg.find("stroke=\"#0000ff\""), std::string::npos);  // engrave: blue
+  EXPECT_NE(svg.find("width=\"120.0000mm\" height=\"80.0000mm\" viewBox=\"0 0 120.0000 80.0000\""),
+            std::string::npos);
+  EXPECT_NE(svg.find("stroke=\"#ff0000\""), std::string::npos);     // cut: red
+  EXPECT_NE(svg.find("stroke=\"#0000ff\""), std::string::npos);     // engrave: blue
   EXPECT_NE(svg.find("stroke-width=\"0.01\""), std::string::npos);  // hairline
   EXPECT_NE(svg.find("sample &amp; &lt;test&gt;"), std::string::npos);
   const auto back = testing::readSvg(svg);
@@ -54,11 +55,13 @@ TEST(Drawing, SvgIsInMillimetresWithLaserColoursAndReadsBack) {
 }
 
 TEST(Drawing, SvgRendersWithRsvgConvert) {
-  ASSERT_TRUE(testing::haveTool("rsvg-convert")) << "rsvg-convert missing: run scripts/install-deps.sh (librsvg2-bin)";
+  ASSERT_TRUE(testing::haveTool("rsvg-convert"))
+      << "rsvg-convert missing: run scripts/install-deps.sh (librsvg2-bin)";
   const auto dir = testing::scratchDir("drawing_svg");
   std::ofstream(dir / "sample.svg") << toSvg(sample());
-  const auto run = testing::runTool("rsvg-convert --format=png --output " + (dir / "sample.png").string() + " " +
-                                    (dir / "sample.svg").string());
+  const auto run =
+      testing::runTool("rsvg-convert --format=png --output " + (dir / "sample.png").string() + " " +
+                       (dir / "sample.svg").string());
   EXPECT_EQ(run.status, 0) << run.output;
   EXPECT_GT(std::filesystem::file_size(dir / "sample.png"), 100u);
 }

@@ -28,7 +28,8 @@ TEST(DxfWriter, R2000InMillimetresWithThreeLayersPassesEzdxfAudit) {
   EXPECT_EQ(dxf["insunits"], 4);  // millimetres
   EXPECT_EQ(dxf["version"], "AC1015");
   for (const char* layer : {"CUT", "ENGRAVE", "LABEL"}) {
-    EXPECT_NE(std::find(dxf["layers"].begin(), dxf["layers"].end(), layer), dxf["layers"].end()) << layer;
+    EXPECT_NE(std::find(dxf["layers"].begin(), dxf["layers"].end(), layer), dxf["layers"].end())
+        << layer;
   }
   int circles = 0, polylines = 0, texts = 0;
   for (const auto& e : dxf["entities"]) {

@@ -2,8 +2,8 @@
 
 #include "core/egg/solve_patch.hpp"
 #include "core/errors.hpp"
-#include "tests/support/fabrication_hand_grid.hpp"
 #include "samples/generators/samples.hpp"
+#include "tests/support/fabrication_hand_grid.hpp"
 
 #include <gtest/gtest.h>
 
@@ -24,10 +24,10 @@ struct Point {
 // Hand-computed positions on sheet 1 (mm, y up). The nesting puts P0-U1 at (215.5, 5) and P0-V1 at
 // (5, 26) (test_nesting); the strips' centrelines are 5 mm above.
 const Point kHolesU1[] = {{220.5, 10.0}, {420.5, 10.0}};
-const Point kSlotU1[] = {{320.5, 8.5}, {325.5, 11.5}};       // corners a - r n and b + r n
-const Point kSlotV1[] = {{110.0, 32.5}, {107.0, 29.5}};      // sliding -3 mm: a = 110, b = 107
+const Point kSlotU1[] = {{320.5, 8.5}, {325.5, 11.5}};         // corners a - r n and b + r n
+const Point kSlotV1[] = {{110.0, 32.5}, {107.0, 29.5}};        // sliding -3 mm: a = 110, b = 107
 const Point kLabelU1 = {215.5 + (16.07 + 103.5) / 2.0, 10.0};  // lamella label, centred
-const Point kLabelC10 = {222.75, 10.0};                       // connection label, left-aligned
+const Point kLabelC10 = {222.75, 10.0};                        // connection label, left-aligned
 
 bool near(double a, double b) { return std::abs(a - b) <= 0.01; }  // the acceptance tolerance
 
@@ -62,8 +62,8 @@ TEST(Fabricate, HandGridCountsMatchTheGrid) {
   EXPECT_NE(bom.find("\nlamella,P0-U1,1,210.00,10.00,1.00,"), std::string::npos) << bom;
 
   const auto report = fabricationReport(r, {"bom.csv"});
-  for (const char* key : {"lamellae", "notches", "plain_holes", "stickers", "supports", "sheets", "yield",
-                          "max_stress_ratio", "mass_kg", "files"}) {
+  for (const char* key : {"lamellae", "notches", "plain_holes", "stickers", "supports", "sheets",
+                          "yield", "max_stress_ratio", "mass_kg", "files"}) {
     EXPECT_TRUE(report.contains(key)) << key;
   }
   EXPECT_EQ(report["lamellae"], 6);
@@ -131,7 +131,10 @@ TEST(Fabricate, SheetSmallerThanTheWidestPartIsAClearError) {
     fabricate({{0, &grid, std::nullopt}}, options);
     FAIL() << "expected InvalidInput";
   } catch (const InvalidInput& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("fabrication.sticker_sheet_mm: part sticker P0-C1-1/P0-U1", 0), 0u) << e.what();
+    EXPECT_EQ(
+        std::string(e.what()).rfind("fabrication.sticker_sheet_mm: part sticker P0-C1-1/P0-U1", 0),
+        0u)
+        << e.what();
   }
 }
 
@@ -196,10 +199,11 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
   const auto r = fabricate({{0, &grid, std::nullopt}}, handOptions());
   const auto dir = testing::scratchDir("fabricate");
   const auto files = writeFabricationFiles(r, dir);
-  const std::vector<std::string> expected{"cut/sheet_01.svg", "cut/sheet_01.dxf", "cut/sheets.pdf", "cut/stickers_01.svg",
-                                          "cut/stickers_01.dxf", "cut/stickers.pdf", "supports/supports.csv",
-                                          "supports/support_001.stl", "supports/support_002.stl", "supports/support_003.stl",
-                                          "supports/support_004.stl", "bom.csv"};
+  const std::vector<std::string> expected{
+      "cut/sheet_01.svg",         "cut/sheet_01.dxf",         "cut/sheets.pdf",
+      "cut/stickers_01.svg",      "cut/stickers_01.dxf",      "cut/stickers.pdf",
+      "supports/supports.csv",    "supports/support_001.stl", "supports/support_002.stl",
+      "supports/support_003.stl", "supports/support_004.stl", "bom.csv"};
   EXPECT_EQ(files, expected);
 
   // SVG: holes, slots and labels at the hand positions.
@@ -216,7 +220,8 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
   EXPECT_EQ(svg["slots"].size(), 2u);
   auto hasSlot = [&](const Point* k) {
     for (const auto& s : svg["slots"]) {
-      if (near(s[0], k[0].x) && near(s[1], k[0].y) && near(s[4], k[1].x) && near(s[5], k[1].y)) return true;
+      if (near(s[0], k[0].x) && near(s[1], k[0].y) && near(s[4], k[1].x) && near(s[5], k[1].y))
+        return true;
     }
     return false;
   };
@@ -243,14 +248,16 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
       ++circles;
     } else if (e["type"] == "LWPOLYLINE" && e["points"].size() == 4 && e["points"][1][2] == 1.0) {
       for (const Point* k : {kSlotU1, kSlotV1}) {
-        if (near(e["points"][0][0], k[0].x) && near(e["points"][0][1], k[0].y) && near(e["points"][2][0], k[1].x) &&
-            near(e["points"][2][1], k[1].y)) {
+        if (near(e["points"][0][0], k[0].x) && near(e["points"][0][1], k[0].y) &&
+            near(e["points"][2][0], k[1].x) && near(e["points"][2][1], k[1].y)) {
           ++slotsFound;
         }
       }
     } else if (e["type"] == "TEXT") {
-      labelU1 |= e["text"] == "P0-U1" && near(e["align"][0], kLabelU1.x) && near(e["align"][1], kLabelU1.y);
-      labelC10 |= e["text"] == "P0-C1-0" && near(e["align"][0], kLabelC10.x) && near(e["align"][1], kLabelC10.y);
+      labelU1 |= e["text"] == "P0-U1" && near(e["align"][0], kLabelU1.x) &&
+                 near(e["align"][1], kLabelU1.y);
+      labelC10 |= e["text"] == "P0-C1-0" && near(e["align"][0], kLabelC10.x) &&
+                  near(e["align"][1], kLabelC10.y);
     }
   }
   EXPECT_EQ(circles, 16);
@@ -268,18 +275,23 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
         EXPECT_EQ(dxf["audit_fixes"], 0) << f;
       }
     } else if (path.extension() == ".svg") {
-      const auto run = testing::runTool("rsvg-convert --format=png --output " + path.string() + ".png " + path.string());
+      const auto run = testing::runTool("rsvg-convert --format=png --output " + path.string() +
+                                        ".png " + path.string());
       EXPECT_EQ(run.status, 0) << f << ": " << run.output;
     } else if (path.extension() == ".pdf") {
       const auto run = testing::runTool("pdfinfo " + path.string());
-      EXPECT_NE(run.output.find("Pages:           1"), std::string::npos) << f << ": " << run.output;
+      EXPECT_NE(run.output.find("Pages:           1"), std::string::npos)
+          << f << ": " << run.output;
     } else if (path.extension() == ".stl") {
       const auto run = testing::runTool("admesh " + path.string());
       EXPECT_EQ(run.status, 0) << run.output;
       std::smatch m;
-      ASSERT_TRUE(std::regex_search(run.output, m, std::regex(R"(Facets with 1 disconnected edge\s*:\s*([0-9]+))"))) << run.output;
+      ASSERT_TRUE(std::regex_search(
+          run.output, m, std::regex(R"(Facets with 1 disconnected edge\s*:\s*([0-9]+))")))
+          << run.output;
       EXPECT_EQ(m[1], "0") << f;
-      ASSERT_TRUE(std::regex_search(run.output, m, std::regex(R"(Backwards edges\s*:\s*([0-9]+))"))) << run.output;
+      ASSERT_TRUE(std::regex_search(run.output, m, std::regex(R"(Backwards edges\s*:\s*([0-9]+))")))
+          << run.output;
       EXPECT_EQ(m[1], "0") << f;
     }
   }
@@ -295,7 +307,9 @@ TEST(Fabricate, LamellasLongerThanTheStockAreSplitClearOfTheirHoles) {
     ASSERT_EQ(plan.segments.size(), 2u) << plan.id;
     for (const auto& seg : plan.segments) EXPECT_LE(seg.lengthMm(), 150.0);
     for (const auto& f : plan.features) {
-      EXPECT_TRUE(f.maxXMm(3.0) + 10.0 <= plan.splicesMm[0] || f.minXMm(3.0) - 10.0 >= plan.splicesMm[0]) << plan.id;
+      EXPECT_TRUE(f.maxXMm(3.0) + 10.0 <= plan.splicesMm[0] ||
+                  f.minXMm(3.0) - 10.0 >= plan.splicesMm[0])
+          << plan.id;
     }
   }
   const std::string bom = bomCsv(r);
@@ -323,16 +337,17 @@ TEST(Fabricate, MultiPageSheetsPdf) {
 namespace egg::fabrication {
 namespace {
 
-// A solved patch end to end: the 6 m bump of samples/scenes/bump_patch.json (poplar plywood lamellas
-// 100 x 10 mm). Its counts must match its grid; the numbers are printed for the record.
+// A solved patch end to end: the 6 m bump of samples/scenes/bump_patch.json (poplar plywood
+// lamellas 100 x 10 mm). Its counts must match its grid; the numbers are printed for the record.
 TEST(Fabricate, SolvedBumpPatchEndToEnd) {
-  const TriMesh mesh =
-      samples::generateSample("bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+  const TriMesh mesh = samples::generateSample(
+      "bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
   EggOptions egg;
   egg.maps.resolution = 41;
   egg.members.lamellaWidthM = 0.1;
   egg.members.spacingFactor = 6.0;
-  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
+  const std::array<Eigen::Vector3d, 4> corners{
+      Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
   const EggResult solved = solveEgg(mesh, corners, egg);
   const EggGrid& grid = solved.grid;
   FabricationOptions options;
@@ -344,7 +359,8 @@ TEST(Fabricate, SolvedBumpPatchEndToEnd) {
   EXPECT_EQ(r.connections, static_cast<int>(grid.connections.size()));
   EXPECT_EQ(r.counts.holes + r.counts.slots, 2 * static_cast<int>(grid.connections.size()));
   // Slots: exactly the inner members' notches of at least min_notch_mm (countNotches of the grid).
-  EXPECT_EQ(r.counts.slots + r.counts.droppedBoundary, countNotches(grid, options.minNotchMm / 1000.0));
+  EXPECT_EQ(r.counts.slots + r.counts.droppedBoundary,
+            countNotches(grid, options.minNotchMm / 1000.0));
   EXPECT_GT(r.counts.slots, 0);
   EXPECT_EQ(r.supports.size(), grid.anchors.size());
   EXPECT_GT(r.maxStressRatio, 0.0);
@@ -378,11 +394,12 @@ TEST(Fabricate, LamellasThatCannotBeSplicedAreListedAndTheRestIsCut) {
   const auto r = fabricate({{0, &grid, std::nullopt}}, options);
   ASSERT_EQ(r.unspliceable.size(), r.lamellae.size());
   for (size_t i = 0; i < r.lamellae.size(); ++i) {
-    EXPECT_NE(r.unspliceable[i].find("lamella " + r.lamellae[i].id + " "), std::string::npos) << r.unspliceable[i];
+    EXPECT_NE(r.unspliceable[i].find("lamella " + r.lamellae[i].id + " "), std::string::npos)
+        << r.unspliceable[i];
     EXPECT_TRUE(r.lamellae[i].segments.empty());
   }
-  EXPECT_EQ(r.lamellaNesting.sheets, 0);       // nothing to cut
-  EXPECT_FALSE(r.stickers.empty());            // the stickers and supports do not depend on it
+  EXPECT_EQ(r.lamellaNesting.sheets, 0);  // nothing to cut
+  EXPECT_FALSE(r.stickers.empty());       // the stickers and supports do not depend on it
   EXPECT_EQ(fabricationReport(r)["unspliceable_lamellae"].size(), r.lamellae.size());
   EXPECT_NE(bomCsv(r).find("NOT CUT: no splice position"), std::string::npos);
   // With the hand options every lamella is one piece and none is listed.
@@ -419,9 +436,11 @@ TEST(Fabricate, DefaultSupportBlocksNarrowAboveSteepGround) {
   EXPECT_DOUBLE_EQ(low.supports[0].blockMm, 10.0);
   EXPECT_NEAR(low.supports[0].belowGroundMm, 5.0 + 5.0 * std::tan(M_PI / 3.0) - 10.0, 1e-9);
   bool warned = false;
-  for (const auto& w : low.warnings) warned |= w.find("the deepest: S001 (4 mm)") != std::string::npos;
+  for (const auto& w : low.warnings)
+    warned |= w.find("the deepest: S001 (4 mm)") != std::string::npos;
   EXPECT_TRUE(warned);
-  EXPECT_NE(supportsCsv(low.supports).find(",block,10,3.7\n"), std::string::npos) << supportsCsv(low.supports);
+  EXPECT_NE(supportsCsv(low.supports).find(",block,10,3.7\n"), std::string::npos)
+      << supportsCsv(low.supports);
 }
 
 }  // namespace

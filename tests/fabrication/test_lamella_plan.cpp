@@ -78,7 +78,8 @@ TEST(LamellaPlan, LongLamellaIsSplicedClearOfItsHoles) {
   }
   // 6000 lies clear between the holes at 5500 and 6500 (each keeps 104 mm free).
   EXPECT_DOUBLE_EQ(plan.splicesMm[0], 6000.0);
-  // From 6000 the stock reaches 12000, inside the slot's zone 11500-4-100 .. 11960+4+100: cut at 11396.
+  // From 6000 the stock reaches 12000, inside the slot's zone 11500-4-100 .. 11960+4+100: cut at
+  // 11396.
   EXPECT_DOUBLE_EQ(plan.splicesMm[1], 11396.0);
 }
 
@@ -103,7 +104,8 @@ TEST(LamellaPlan, NoClearSplicePositionIsAClearError) {
 
 // Slots nearly as long as their spacing (the Yas canopy: 3 m slides every 3.3 m): 2800 mm cut-outs
 // from 3000 k + 100 to 3000 k + 2900 leave 200 mm gaps. No position is 400 mm clear; the splices go
-// to the middles of the gaps, 100 mm from the slots each side, the furthest gap in each stock length.
+// to the middles of the gaps, 100 mm from the slots each side, the furthest gap in each stock
+// length.
 LamellaPlan slottedPlan() {
   LamellaPlan plan;
   plan.id = "P5-U5";
@@ -111,7 +113,8 @@ LamellaPlan slottedPlan() {
   for (int k = 0; k < 6; ++k) {
     LamellaFeature f;
     f.kind = FeatureKind::Slot;
-    f.xMm = 3000.0 * k + 2892.0;  // the bolt slides 2784 mm back: extent 3000 k + 100 .. + 2900 with d = 16
+    f.xMm = 3000.0 * k +
+            2892.0;  // the bolt slides 2784 mm back: extent 3000 k + 100 .. + 2900 with d = 16
     f.slideMm = -2784.0;
     plan.features.push_back(f);
   }
@@ -140,10 +143,15 @@ TEST(LamellaPlan, SplicesTooTightForTheMinimumNameTheStretchAndItsWidestGap) {
     FAIL() << "expected InvalidInput";
   } catch (const InvalidInput& e) {
     const std::string what = e.what();
-    EXPECT_EQ(what.rfind("fabrication.stock_length_mm: lamella P5-U5 (18000 mm) cannot be spliced between 0 and 6000 mm", 0), 0u)
+    EXPECT_EQ(what.rfind("fabrication.stock_length_mm: lamella P5-U5 (18000 mm) cannot be spliced "
+                         "between 0 and 6000 mm",
+                         0),
+              0u)
         << what;
     EXPECT_NE(what.find("gaps of at most 200 mm"), std::string::npos) << what;
-    EXPECT_NE(what.find("needs a gap of 2 x 120 mm (fabrication.min_splice_clearance_mm"), std::string::npos) << what;
+    EXPECT_NE(what.find("needs a gap of 2 x 120 mm (fabrication.min_splice_clearance_mm"),
+              std::string::npos)
+        << what;
     // Cut-outs grown by 120 mm overlap (gaps of 200 mm) from the strip's start to 17900 + 120 mm.
     EXPECT_NE(what.find("it would take pieces of up to 18000 mm"), std::string::npos) << what;
   }
@@ -156,7 +164,8 @@ TEST(LamellaPlan, SharedBoundaryLamellaCarriesTheHolesOfBothPatches) {
   const SharedBoundary side{0, Family::V, 2, 1, Family::V, 0, false};
   const auto plans = planLamellae(patches, handOptions(), {side});
   ASSERT_EQ(plans.size(), 11u);  // 12 members, one lamella for the shared side
-  const auto shared = std::find_if(plans.begin(), plans.end(), [](const LamellaPlan& p) { return p.id == "P0-V2"; });
+  const auto shared = std::find_if(plans.begin(), plans.end(),
+                                   [](const LamellaPlan& p) { return p.id == "P0-V2"; });
   ASSERT_NE(shared, plans.end());
   ASSERT_EQ(shared->features.size(), 3u);  // both patches' members meet it at the same three points
   for (int k = 0; k < 3; ++k) {
@@ -167,7 +176,9 @@ TEST(LamellaPlan, SharedBoundaryLamellaCarriesTheHolesOfBothPatches) {
     EXPECT_TRUE(f.holds(1, 3 * k));
     EXPECT_EQ(f.label(), "P0-C" + std::to_string(k) + "-2=P1");
   }
-  EXPECT_EQ(std::count_if(plans.begin(), plans.end(), [](const LamellaPlan& p) { return p.id == "P1-V0"; }), 0);
+  EXPECT_EQ(std::count_if(plans.begin(), plans.end(),
+                          [](const LamellaPlan& p) { return p.id == "P1-V0"; }),
+            0);
 }
 
 TEST(LamellaPlan, ReversedSharedSideMirrorsTheOtherPatchsHoles) {
@@ -197,7 +208,8 @@ TEST(LamellaPlan, ReversedSharedSideMirrorsTheOtherPatchsHoles) {
   std::vector<LamellaPlan> inner{strip("A", {5.0}), strip("B", {5.0})};
   inner[1].patchId = 1;
   inner[0].boundary = false;
-  EXPECT_THROW(mergeSharedBoundaries(inner, {{0, Family::U, 0, 1, Family::U, 0, false}}, 0.5), InvalidInput);
+  EXPECT_THROW(mergeSharedBoundaries(inner, {{0, Family::U, 0, 1, Family::U, 0, false}}, 0.5),
+               InvalidInput);
   std::vector<LamellaPlan> unequal{strip("A", {5.0}), strip("B", {5.0})};
   unequal[1].patchId = 1;
   unequal[1].lengthMm = 212.0;
@@ -223,7 +235,6 @@ TEST(LamellaPlan, OverhangTooShortForAnEndSlotIsAnError) {
   EXPECT_THROW(planLamellae({{0, &grid, std::nullopt}}, handOptions()), InvalidInput);
 }
 
-
 // A slot whose cut-out (bolt diameter 16 mm included) runs from lo to hi.
 LamellaFeature slotBetween(double lo, double hi) {
   LamellaFeature f;
@@ -247,12 +258,14 @@ LamellaPlan densePlan() {
 
 TEST(LamellaPlan, ScarfsJoinStripsWhoseSlotsLeaveNoRoomForAPlate) {
   LamellaPlan plates = densePlan();
-  EXPECT_THROW(placeSplices(plates, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 120.0), InvalidInput);
+  EXPECT_THROW(placeSplices(plates, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 120.0),
+               InvalidInput);
   // 1:12 over 50 mm: scarfs of 600 to 1200 mm whose feather ends lie in gaps (8 mm clear of the
   // slots). The furthest end within 6000 mm is 5892 (gap 5808..5892), the slope beginning in the
   // gap 5008..5092 (800 mm); from there, 8092 with the slope from 7342 (750 mm); 4658 mm remain.
   LamellaPlan plan = densePlan();
-  placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 120.0, SpliceJoint::PlateOrScarf, 600.0);
+  placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 120.0,
+               SpliceJoint::PlateOrScarf, 600.0);
   ASSERT_EQ(plan.splicesMm.size(), 2u);
   ASSERT_EQ(plan.segments.size(), 3u);
   EXPECT_TRUE(plan.spliceIsScarf[0] && plan.spliceIsScarf[1]);
@@ -268,7 +281,8 @@ TEST(LamellaPlan, ScarfsJoinStripsWhoseSlotsLeaveNoRoomForAPlate) {
   // No feather end inside a cut-out.
   for (const auto& seg : plan.segments) {
     for (const auto& f : plan.features) {
-      for (double end : {seg.startMm, seg.endMm}) EXPECT_FALSE(end > f.minXMm(16.0) && end < f.maxXMm(16.0)) << end;
+      for (double end : {seg.startMm, seg.endMm})
+        EXPECT_FALSE(end > f.minXMm(16.0) && end < f.maxXMm(16.0)) << end;
     }
   }
 }
@@ -283,11 +297,13 @@ TEST(LamellaPlan, ScarfModeScarfsEverySpliceAndPlateOrScarfKeepsPlatesWhereTheyF
     plan.features.push_back(hole);
   }
   LamellaPlan mixed = plan;
-  placeSplices(mixed, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 56.0, SpliceJoint::PlateOrScarf, 600.0);
+  placeSplices(mixed, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 56.0,
+               SpliceJoint::PlateOrScarf, 600.0);
   ASSERT_EQ(mixed.splicesMm.size(), 1u);
   EXPECT_FALSE(mixed.spliceIsScarf[0]);
   EXPECT_DOUBLE_EQ(mixed.splicesMm[0], 6000.0);
-  placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 56.0, SpliceJoint::Scarf, 600.0);
+  placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 56.0, SpliceJoint::Scarf,
+               600.0);
   ASSERT_EQ(plan.splicesMm.size(), 1u);
   EXPECT_TRUE(plan.spliceIsScarf[0]);
   EXPECT_DOUBLE_EQ(plan.segments[0].endMm, 6000.0);
@@ -299,7 +315,8 @@ TEST(LamellaPlan, ScarfsThroughASlitEndAtTheStockLength) {
   // one, so each scarf ends at the stock length (6000, then 11400) and begins 600 mm before it,
   // through the slots, its clearance zero.
   LamellaPlan plan = slottedPlan();
-  placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 120.0, SpliceJoint::PlateOrScarf, 600.0);
+  placeSplices(plan, 6000.0, 400.0, 16.0, "fabrication.stock_length_mm", 120.0,
+               SpliceJoint::PlateOrScarf, 600.0);
   ASSERT_EQ(plan.segments.size(), 4u);
   EXPECT_DOUBLE_EQ(plan.segments[0].endMm, 6000.0);
   EXPECT_DOUBLE_EQ(plan.segments[1].startMm, 5400.0);
@@ -307,7 +324,8 @@ TEST(LamellaPlan, ScarfsThroughASlitEndAtTheStockLength) {
   EXPECT_DOUBLE_EQ(plan.segments[2].startMm, 10800.0);
   EXPECT_DOUBLE_EQ(plan.segments[2].endMm, 16800.0);
   EXPECT_DOUBLE_EQ(plan.segments[3].startMm, 16200.0);
-  EXPECT_DOUBLE_EQ(plan.spliceClearancesMm[0], 0.0);  // 6000 sits in a gap (5900..6100) but 5400 in a slot
+  EXPECT_DOUBLE_EQ(plan.spliceClearancesMm[0],
+                   0.0);  // 6000 sits in a gap (5900..6100) but 5400 in a slot
 }
 
 }  // namespace

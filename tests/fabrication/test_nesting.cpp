@@ -14,7 +14,8 @@ TEST(Nesting, ShelvesOfStripsAtKnownPositions) {
   for (int k = 0; k < 6; ++k) parts[k].name = "strip " + std::to_string(k);
   const Nesting n = nestParts(parts, {500.0, 300.0}, 0.5, 5.0, "fabrication.sheet_mm");
   EXPECT_EQ(n.sheets, 1);
-  const double expected[6][2] = {{5, 5}, {215.5, 5}, {5, 15.5}, {215.5, 15.5}, {5, 26}, {215.5, 26}};
+  const double expected[6][2] = {{5, 5},        {215.5, 5}, {5, 15.5},
+                                 {215.5, 15.5}, {5, 26},    {215.5, 26}};
   for (int k = 0; k < 6; ++k) {
     EXPECT_EQ(n.placements[k].sheet, 0);
     EXPECT_DOUBLE_EQ(n.placements[k].xMm, expected[k][0]) << k;
@@ -33,8 +34,10 @@ TEST(Nesting, FullSheetsOpenNewOnes) {
   for (size_t a = 0; a < parts.size(); ++a) {
     for (size_t b = a + 1; b < parts.size(); ++b) {
       if (n.placements[a].sheet != n.placements[b].sheet) continue;
-      const bool apart = n.placements[a].xMm + 100.0 <= n.placements[b].xMm || n.placements[b].xMm + 100.0 <= n.placements[a].xMm ||
-                         n.placements[a].yMm + 40.0 <= n.placements[b].yMm || n.placements[b].yMm + 40.0 <= n.placements[a].yMm;
+      const bool apart = n.placements[a].xMm + 100.0 <= n.placements[b].xMm ||
+                         n.placements[b].xMm + 100.0 <= n.placements[a].xMm ||
+                         n.placements[a].yMm + 40.0 <= n.placements[b].yMm ||
+                         n.placements[b].yMm + 40.0 <= n.placements[a].yMm;
       EXPECT_TRUE(apart) << a << " " << b;
     }
   }
@@ -52,7 +55,9 @@ TEST(Nesting, PartLargerThanTheSheetIsAClearErrorNamingIt) {
     EXPECT_NE(what.find("600"), std::string::npos) << what;
   }
   // Too wide as well.
-  EXPECT_THROW(nestParts({{"wide", 100.0, 295.0}}, {500.0, 300.0}, 0.5, 5.0, "fabrication.sheet_mm"), InvalidInput);
+  EXPECT_THROW(
+      nestParts({{"wide", 100.0, 295.0}}, {500.0, 300.0}, 0.5, 5.0, "fabrication.sheet_mm"),
+      InvalidInput);
 }
 
 }  // namespace

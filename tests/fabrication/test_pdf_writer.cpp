@@ -10,10 +10,11 @@ namespace egg::fabrication {
 namespace {
 
 TEST(PdfWriter, OnePagePerDrawingAtTrueSize) {
-  ASSERT_TRUE(testing::haveTool("pdfinfo")) << "pdfinfo missing: run scripts/install-deps.sh (poppler-utils)";
+  ASSERT_TRUE(testing::haveTool("pdfinfo"))
+      << "pdfinfo missing: run scripts/install-deps.sh (poppler-utils)";
   std::vector<Drawing> pages(3);
   for (auto& p : pages) {
-    p.widthMm = 254.0;  // 720 pt
+    p.widthMm = 254.0;   // 720 pt
     p.heightMm = 127.0;  // 360 pt
     p.circles.push_back({Layer::Cut, {10.0, 10.0}, 2.0});
     p.slots.push_back({Layer::Cut, {30.0, 20.0}, {40.0, 25.0}, 2.0});

@@ -60,7 +60,8 @@ TEST(SheetLayout, SplicedSegmentsCarryTheirLabelAndSpliceMark) {
   const auto plans = planLamellae({{0, &grid, std::nullopt}}, options);
   const LamellaPlan& u1 = plans[1];
   ASSERT_EQ(u1.splicesMm.size(), 1u);
-  EXPECT_DOUBLE_EQ(u1.splicesMm[0], 150.0);  // clear of the slot (93.5..121.5) and the end hole (193.5..216.5)
+  EXPECT_DOUBLE_EQ(u1.splicesMm[0],
+                   150.0);  // clear of the slot (93.5..121.5) and the end hole (193.5..216.5)
   EXPECT_EQ(segmentLabel(u1, 1), "P0-U1 2/2");
   Drawing d;
   drawLamellaSegment(u1, 1, {0.0, 0.0}, options, d);
@@ -97,7 +98,9 @@ TEST(SheetLayout, StadiumClippedToAPieceIsTheConvexPartInsideIt) {
   const auto poly = clippedStadium(0.0, 100.0, 8.0, 50.0, 200.0);
   ASSERT_GE(poly.size(), 4u);
   double minX = 1e9, maxX = -1e9, minY = 1e9, maxY = -1e9;
-  for (const auto& p : poly) minX = std::min(minX, p.x()), maxX = std::max(maxX, p.x()), minY = std::min(minY, p.y()), maxY = std::max(maxY, p.y());
+  for (const auto& p : poly)
+    minX = std::min(minX, p.x()), maxX = std::max(maxX, p.x()), minY = std::min(minY, p.y()),
+    maxY = std::max(maxY, p.y());
   EXPECT_DOUBLE_EQ(minX, 50.0);
   EXPECT_NEAR(maxX, 108.0, 1e-9);
   EXPECT_NEAR(minY, -8.0, 1e-9);

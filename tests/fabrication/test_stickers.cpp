@@ -10,8 +10,9 @@ namespace egg::fabrication {
 namespace {
 
 TEST(Stickers, ContactHalfLengthOfTwoCrossingStrips) {
-  EXPECT_NEAR(contactHalfLengthMm(10.0, M_PI / 2.0), 5.0, 1e-12);             // a square
-  EXPECT_NEAR(contactHalfLengthMm(10.0, M_PI / 3.0), 5.0 * std::sqrt(3.0), 1e-12);  // w (1 + 1/2) / (2 sin 60)
+  EXPECT_NEAR(contactHalfLengthMm(10.0, M_PI / 2.0), 5.0, 1e-12);  // a square
+  EXPECT_NEAR(contactHalfLengthMm(10.0, M_PI / 3.0), 5.0 * std::sqrt(3.0),
+              1e-12);  // w (1 + 1/2) / (2 sin 60)
   EXPECT_NEAR(contactHalfLengthMm(10.0, 2.0 * M_PI / 3.0), 5.0 * std::sqrt(3.0), 1e-12);
   EXPECT_NEAR(crossingAngle({1, 0, 0}, {1, 1, 0}), M_PI / 4.0, 1e-15);
 }
@@ -46,7 +47,8 @@ TEST(Stickers, NearlyParallelLamellasStopHalfwayToTheNeighbours) {
   // sticker on u1 stops halfway to the holes 100 mm away (x = 55 .. 155 on the strip).
   EggGrid grid = testing::handGrid();
   for (int s = 0; s <= 4; ++s) {
-    grid.v[1].spatial[s] = Eigen::Vector3d(0.1 + 0.05 * (s - 2) * std::cos(0.1), 0.1 + 0.05 * (s - 2) * std::sin(0.1), 0.5);
+    grid.v[1].spatial[s] = Eigen::Vector3d(0.1 + 0.05 * (s - 2) * std::cos(0.1),
+                                           0.1 + 0.05 * (s - 2) * std::sin(0.1), 0.5);
   }
   const auto options = testing::handOptions();
   const FabricationPatch patch{0, &grid, std::nullopt};
@@ -62,7 +64,8 @@ TEST(Stickers, ShearedDeploymentWidensTheSticker) {
   // Shear the spatial v member through (1,1) to 60 deg against u: the footprint grows to 5 sqrt(3).
   auto& v1 = grid.v[1];
   for (int s = 0; s <= 4; ++s) {
-    v1.spatial[s] = Eigen::Vector3d(0.1 + 0.05 * (s - 2) * 0.5, 0.1 + 0.05 * (s - 2) * std::sqrt(3.0) / 2.0, 0.5);
+    v1.spatial[s] = Eigen::Vector3d(0.1 + 0.05 * (s - 2) * 0.5,
+                                    0.1 + 0.05 * (s - 2) * std::sqrt(3.0) / 2.0, 0.5);
   }
   const auto options = testing::handOptions();
   const FabricationPatch patch{0, &grid, std::nullopt};

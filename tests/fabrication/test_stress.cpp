@@ -9,7 +9,8 @@ namespace {
 
 // A lamella wrapped round a cylinder of radius R (axis y): points on the circle at uneven angles,
 // the surface normal radial.
-void arc(double radius, std::vector<Eigen::Vector3d>& points, std::vector<Eigen::Vector3d>& normals) {
+void arc(double radius, std::vector<Eigen::Vector3d>& points,
+         std::vector<Eigen::Vector3d>& normals) {
   double phi = -0.6;
   for (int k = 0; k < 14; ++k) {
     const Eigen::Vector3d n(std::sin(phi), 0.0, std::cos(phi));
@@ -42,7 +43,8 @@ TEST(Stress, CurvatureAboutTheStrongAxisIsNotWeakAxisBending) {
   std::vector<Eigen::Vector3d> points, normals;
   arc(2.0, points, normals);
   for (auto& n : normals) n = Eigen::Vector3d::UnitY();
-  EXPECT_NEAR(lamellaStress(points, &normals, 0.001, materialByName("limewood")).maxCurvaturePerM, 0.0, 1e-12);
+  EXPECT_NEAR(lamellaStress(points, &normals, 0.001, materialByName("limewood")).maxCurvaturePerM,
+              0.0, 1e-12);
 }
 
 TEST(Stress, TwistedStripGivesTauEqualsGThetaPrimeT) {
@@ -89,7 +91,8 @@ TEST(Stress, WindowedCurvatureIsExactOnACircleAndIgnoresMeshKinks) {
   }
   EXPECT_NEAR(lamellaStress(clean, &normals, 0.001, lime, 0.2).maxCurvaturePerM, 0.5, 1e-12);
   EXPECT_NEAR(lamellaStress(clean, &normals, 0.001, lime, 0.2).maxBendingStressPa, 2.275e6, 1e-5);
-  EXPECT_GT(lamellaStress(kinked, &normals, 0.001, lime).maxCurvaturePerM, 4.0);  // vertex by vertex: 8 x too much
+  EXPECT_GT(lamellaStress(kinked, &normals, 0.001, lime).maxCurvaturePerM,
+            4.0);  // vertex by vertex: 8 x too much
   EXPECT_NEAR(lamellaStress(kinked, &normals, 0.001, lime, 0.2).maxCurvaturePerM, 0.5, 0.015);
   EXPECT_NEAR(lamellaStress(kinked, nullptr, 0.001, lime, 0.2).maxCurvaturePerM, 0.5, 0.015);
   // The window: twice the width, or three median segments (10 mm here).
@@ -132,8 +135,10 @@ TEST(Stress, HelixGivesItsAnalyticCurvatureAndTorsion) {
   EXPECT_NEAR(s.maxCurvaturePerM, kappa, 1e-3 * kappa);
   // The turn of the chord-projected normal carries an error of the order (kappa window)^2 = 2 %.
   EXPECT_NEAR(s.maxTwistRateRadPerM, torsion, 0.02 * torsion);
-  EXPECT_NEAR(s.maxBendingStressPa, poplar.youngsModulusPa * kappa * t / 2.0, 1e-3 * s.maxBendingStressPa);
-  EXPECT_NEAR(s.maxTorsionStressPa, poplar.shearModulusPa * s.maxTwistRateRadPerM * t, 1e-9 * s.maxTorsionStressPa);
+  EXPECT_NEAR(s.maxBendingStressPa, poplar.youngsModulusPa * kappa * t / 2.0,
+              1e-3 * s.maxBendingStressPa);
+  EXPECT_NEAR(s.maxTorsionStressPa, poplar.shearModulusPa * s.maxTwistRateRadPerM * t,
+              1e-9 * s.maxTorsionStressPa);
 }
 
 // The Lilium's base side P8-U0 (a patch side on the mesh): 9 vertices over 4.25 m, three pairs of

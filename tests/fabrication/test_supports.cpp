@@ -62,7 +62,7 @@ TEST(Supports, AtTheAnchorsWithTheTangentPlane) {
   const EggGrid grid = testing::handGrid();
   double ground = 0.0;
   const auto supports = planSupports({{0, &grid, std::nullopt}}, testing::handOptions(), &ground);
-  ASSERT_EQ(supports.size(), 4u);  // the four corner anchors
+  ASSERT_EQ(supports.size(), 4u);   // the four corner anchors
   EXPECT_NEAR(ground, 0.4, 1e-12);  // 0.1 m below the lowest support
   EXPECT_EQ(supports[0].id, "S001");
   EXPECT_EQ(supports[3].connectionId, "P0-C2-2");
@@ -88,7 +88,8 @@ TEST(Supports, InclinedBlockIsAClosedSolidWithItsContactFaceThroughThePoint) {
   const TriangleMesh mesh = supportSolid(s, 40.0, 6.0, 18.0);
   expectClosedManifold(mesh);
   const double hole = M_PI * 9.0 * 18.0;
-  EXPECT_LT(signedVolume(mesh), 40.0 * 40.0 * 250.0 - 0.8 * hole);  // the plane through the centre at 250 mm
+  EXPECT_LT(signedVolume(mesh),
+            40.0 * 40.0 * 250.0 - 0.8 * hole);  // the plane through the centre at 250 mm
   EXPECT_GT(signedVolume(mesh), 40.0 * 40.0 * 250.0 - 1.05 * hole);
   // Every top vertex on the contact plane through (0, 0, 250).
   for (const auto& v : mesh.vertices) {
@@ -103,7 +104,7 @@ TEST(Supports, InclinedBlockIsAClosedSolidWithItsContactFaceThroughThePoint) {
 TEST(Supports, FlatLowSupportDropsItsBottomAndStaysClosed) {
   Support s;
   s.normal = Eigen::Vector3d(0.0, 0.8, 0.6);  // 53 deg
-  s.heightM = 0.004;                           // the plane would cut the ground inside the footprint
+  s.heightM = 0.004;                          // the plane would cut the ground inside the footprint
   double drop = 0.0;
   const TriangleMesh mesh = supportSolid(s, 30.0, 4.0, 12.0, &drop);
   EXPECT_GT(drop, 0.0);
@@ -135,8 +136,13 @@ TEST(Supports, CsvHasOneRowPerSupport) {
   const EggGrid grid = testing::handGrid();
   const auto csv = supportsCsv(planSupports({{0, &grid, std::nullopt}}, testing::handOptions()));
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
-  EXPECT_EQ(csv.rfind("id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,height_m,kind,block_mm,below_ground_mm\n", 0), 0u);
-  EXPECT_NE(csv.find("S001,P0-C0-0,anchor: corner,0.000000,0.000000,0.500000,0.000000,0.000000,1.000000,0.000,0.000,0.100000,block"),
+  EXPECT_EQ(csv.rfind("id,connection,reason,x_m,y_m,z_m,nx,ny,nz,inclination_deg,direction_deg,"
+                      "height_m,kind,block_mm,below_ground_mm\n",
+                      0),
+            0u);
+  EXPECT_NE(csv.find("S001,P0-C0-0,anchor: "
+                     "corner,0.000000,0.000000,0.500000,0.000000,0.000000,1.000000,0.000,0.000,0."
+                     "100000,block"),
             std::string::npos)
       << csv;
 }

@@ -3,10 +3,10 @@
 // and the corpus replay test (test_fuzz_corpus.cpp, every build) share (issue 17): bytes in, and
 // either the input is accepted or a typed egg::Error says why. Anything else (another exception, a
 // crash, a sanitizer report, a hang) is a bug.
-#include "pipeline/scene.hpp"
 #include "core/errors.hpp"
 #include "core/io/mesh_io.hpp"
 #include "core/mesh/validate.hpp"
+#include "pipeline/scene.hpp"
 
 #include <unistd.h>
 
@@ -33,7 +33,8 @@ inline bool scene(const uint8_t* data, size_t size) {
 // path of `egg run`: readMeshFile and prepareMesh. True when the mesh is accepted.
 inline bool mesh(const std::string& ext, const uint8_t* data, size_t size) {
   static const std::filesystem::path dir = [] {
-    const auto d = std::filesystem::temp_directory_path() / ("egg_fuzz_" + std::to_string(::getpid()));
+    const auto d =
+        std::filesystem::temp_directory_path() / ("egg_fuzz_" + std::to_string(::getpid()));
     std::filesystem::create_directories(d);
     return d;
   }();

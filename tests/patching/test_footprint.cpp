@@ -32,10 +32,12 @@ TEST(Footprint, ARoofKeepsItsAxesAndTheHoleIsFound) {
   ASSERT_EQ(foot.holes.size(), 1u);
   EXPECT_GT(signedArea(foot.outer), 0.0);  // counter-clockwise
   EXPECT_EQ(foot.outer.size(), foot.outer3d.size());
-  // The Reading Room (radius 22.245 m) is off the footprint; a point between it and the rectangle is on it.
+  // The Reading Room (radius 22.245 m) is off the footprint; a point between it and the rectangle
+  // is on it.
   EXPECT_FALSE(foot.contains(plan(Eigen::Vector3d(0, 0, 0))));
   EXPECT_TRUE(foot.contains(plan(Eigen::Vector3d(30, 30, 0))));
-  EXPECT_FALSE(foot.containsSegment(plan(Eigen::Vector3d(-30, 0, 0)), plan(Eigen::Vector3d(30, 0, 0))));
+  EXPECT_FALSE(
+      foot.containsSegment(plan(Eigen::Vector3d(-30, 0, 0)), plan(Eigen::Vector3d(30, 0, 0))));
 }
 
 TEST(Footprint, ArcsRunByArcLength) {
@@ -53,15 +55,17 @@ TEST(Footprint, ArcsRunByArcLength) {
 TEST(Footprint, TheLifterFindsTheSurfaceOverAPlanPoint) {
   // Two unit squares over each other (z = 0 and z = 1), and a tilted one beside them.
   TriangleSoup soup;
-  soup.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1},
-                   {2, 0, 0}, {3, 0, 0.5}, {3, 1, 0.7}, {2, 1, 0.2}};
+  soup.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},   {0, 0, 1},   {1, 0, 1},
+                   {1, 1, 1}, {0, 1, 1}, {2, 0, 0}, {3, 0, 0.5}, {3, 1, 0.7}, {2, 1, 0.2}};
   soup.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}, {8, 9, 10}, {8, 10, 11}};
   const TriMesh mesh = meshFromSoup(soup);
   const PlanLifter lifter(mesh, Plan{});
   int sheets = 0;
-  EXPECT_TRUE(lifter.lift({0.3, 0.4}, std::nullopt, &sheets).isApprox(Eigen::Vector3d(0.3, 0.4, 1.0)));  // the upper one
+  EXPECT_TRUE(lifter.lift({0.3, 0.4}, std::nullopt, &sheets)
+                  .isApprox(Eigen::Vector3d(0.3, 0.4, 1.0)));  // the upper one
   EXPECT_EQ(sheets, 2);
-  EXPECT_TRUE(lifter.lift({0.3, 0.4}, Eigen::Vector3d(0.3, 0.4, 0.1)).isApprox(Eigen::Vector3d(0.3, 0.4, 0.0)));  // the one near
+  EXPECT_TRUE(lifter.lift({0.3, 0.4}, Eigen::Vector3d(0.3, 0.4, 0.1))
+                  .isApprox(Eigen::Vector3d(0.3, 0.4, 0.0)));  // the one near
   // On the tilted square z = 0.5 (x - 2) + 0.2 y, exactly (it is linear).
   const Eigen::Vector3d tilted = lifter.lift({2.6, 0.3}, std::nullopt, &sheets);
   EXPECT_NEAR(tilted.z(), 0.36, 1e-12);

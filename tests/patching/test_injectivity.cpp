@@ -18,19 +18,22 @@ constexpr double kPi = std::numbers::pi;
 // A tall narrow bump: K at the top = (height / sigma^2)^2 = 4 / m^2, so r = pi / 2 m, a circle that
 // fits on the 8 x 8 m footprint.
 TriMesh tallBump(double length = 8.0) {
-  return samples::generateSample("bump", {{"length", length}, {"width", 8}, {"height", 2}, {"sigma", 1}}, 0.15);
+  return samples::generateSample(
+      "bump", {{"length", length}, {"width", 8}, {"height", 2}, {"sigma", 1}}, 0.15);
 }
 
 // z = sum of two Gaussian bumps (sigma 1 m) at x = +-separation / 2 over a regular grid.
 TriMesh twoBumps(double separation, double height = 2.0) {
   TriangleSoup soup;
   const double hx = 0.5 * separation + 4.0, hy = 4.0, h = 0.15;
-  const int nx = static_cast<int>(std::ceil(2 * hx / h)), ny = static_cast<int>(std::ceil(2 * hy / h));
+  const int nx = static_cast<int>(std::ceil(2 * hx / h)),
+            ny = static_cast<int>(std::ceil(2 * hy / h));
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i <= nx; ++i) {
       const double x = -hx + 2 * hx * i / nx, y = -hy + 2 * hy * j / ny;
       double z = 0.0;
-      for (double c : {-0.5 * separation, 0.5 * separation}) z += height * std::exp(-((x - c) * (x - c) + y * y) / 2.0);
+      for (double c : {-0.5 * separation, 0.5 * separation})
+        z += height * std::exp(-((x - c) * (x - c) + y * y) / 2.0);
       soup.vertices.emplace_back(x, y, z);
     }
   const auto id = [nx](int i, int j) { return j * (nx + 1) + i; };
@@ -102,19 +105,22 @@ TEST(Injectivity, FlatCircleHasLengthTwoPiR) {
   SurfacePeak peak;
   double best = 1e9;
   for (auto v : plane.vertices())
-    if (toEigen(plane.point(v)).norm() < best) best = toEigen(plane.point(v)).norm(), peak.vertex = v.idx();
+    if (toEigen(plane.point(v)).norm() < best)
+      best = toEigen(plane.point(v)).norm(), peak.vertex = v.idx();
   peak.radiusM = 2.0;
   const InjectivityCircle circle = injectivityCircle(plane, solver, peak);
   ASSERT_EQ(circle.polylines.size(), 1u);
   EXPECT_TRUE(circle.complete);
-  for (const auto& p : circle.polylines[0].positions) EXPECT_NEAR((p - circle.centre).norm(), 2.0, 1e-9);
+  for (const auto& p : circle.polylines[0].positions)
+    EXPECT_NEAR((p - circle.centre).norm(), 2.0, 1e-9);
   // The inscribed polygon (edges ~0.2 m) is short of 2 pi r by about (h / r)^2 / 24.
   EXPECT_LT(circle.lengthM, 2 * kPi * 2.0);
   EXPECT_GT(circle.lengthM, 2 * kPi * 2.0 * (1 - 2e-3));
 }
 
 TEST(Injectivity, CircleLeavingTheSurfaceIsOpenAndOneCoveringItIsAbsent) {
-  // The same bump on a footprint only 2 m long: the circle (horizontal radius ~1.3 m) leaves it at x = +-1.
+  // The same bump on a footprint only 2 m long: the circle (horizontal radius ~1.3 m) leaves it at
+  // x = +-1.
   const TriMesh narrow = tallBump(2.0);
   const geodesic::DistanceSolver solver(narrow);
   const auto peaks = findSurfacePeaks(narrow);
@@ -157,7 +163,8 @@ TEST(Injectivity, TwoBumpsFarApartGiveTwoPeaksCloseTogetherOne) {
   const CurvatureField field = computeCurvature(close);
   const auto raw = findGaussianPeaks(close, field.gaussian, field.mixedArea);
   int strong = 0;
-  for (const auto& p : raw) strong += p.gaussianMaxNearby > 0.2 && std::abs(std::abs(p.position.x()) - 1.5) < 0.2;
+  for (const auto& p : raw)
+    strong += p.gaussianMaxNearby > 0.2 && std::abs(std::abs(p.position.x()) - 1.5) < 0.2;
   EXPECT_EQ(strong, 2);
   const auto kept = findSurfacePeaks(close);
   ASSERT_EQ(kept.size(), 1u);

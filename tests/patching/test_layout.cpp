@@ -21,9 +21,13 @@ std::vector<Eigen::Vector3d> gridCorners(const TriMesh& surface) {
     }
   return corners;
 }
-const std::vector<std::array<int, 4>> kTwoByTwo{{0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
+const std::vector<std::array<int, 4>> kTwoByTwo{
+    {0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
 
-TriMesh bump() { return samples::generateSample("bump", {{"length", 8}, {"width", 8}, {"height", 1}, {"sigma", 1.5}}, 0.3); }
+TriMesh bump() {
+  return samples::generateSample("bump",
+                                 {{"length", 8}, {"width", 8}, {"height", 1}, {"sigma", 1.5}}, 0.3);
+}
 
 TEST(Layout, TwoByTwoOnABumpSharesEverySideBitForBit) {
   const TriMesh surface = bump();
@@ -37,7 +41,8 @@ TEST(Layout, TwoByTwoOnABumpSharesEverySideBitForBit) {
   // Patch 0's side 1 (corner 1 -> 4) is patch 1's side 3 (corner 4 -> 1), the same polyline.
   const auto sidePoints = [&](int p, int k) {
     std::vector<Eigen::Vector3d> out;
-    for (int v : cut[p].patch.sides[k]) out.push_back(toEigen(cut[p].patch.mesh.point(TriMesh::VertexHandle(v))));
+    for (int v : cut[p].patch.sides[k])
+      out.push_back(toEigen(cut[p].patch.mesh.point(TriMesh::VertexHandle(v))));
     return out;
   };
   auto a = sidePoints(0, 1), b = sidePoints(1, 3);
@@ -56,7 +61,8 @@ TEST(Layout, TwoByTwoOnABumpSharesEverySideBitForBit) {
   // Every patch vertex maps back to a layout vertex at the same position.
   for (const auto& c : cut)
     for (auto vh : c.patch.mesh.vertices())
-      EXPECT_EQ(c.patch.mesh.point(vh), layout.mesh.mesh.point(TriMesh::VertexHandle(c.layoutVertex[vh.idx()])));
+      EXPECT_EQ(c.patch.mesh.point(vh),
+                layout.mesh.mesh.point(TriMesh::VertexHandle(c.layoutVertex[vh.idx()])));
 }
 
 TEST(Layout, TJunctionCornerLiesOnTheLongSide) {
@@ -95,7 +101,8 @@ TEST(Layout, CrossingSidesMakeThePatchInfeasibleNotTheOthers) {
   const TriMesh surface = bump();
   const geodesic::DistanceSolver solver(surface);
   // Patch 1 is a bow tie (its sides cross); patch 0 is fine.
-  const PatchLayout layout = makeLayout(surface, solver, gridCorners(surface), {{0, 1, 4, 3}, {1, 5, 2, 4}});
+  const PatchLayout layout =
+      makeLayout(surface, solver, gridCorners(surface), {{0, 1, 4, 3}, {1, 5, 2, 4}});
   EXPECT_NO_THROW(cutLayoutPatch(layout, 0));
   EXPECT_THROW(cutLayoutPatch(layout, 1), InfeasiblePatch);
 }

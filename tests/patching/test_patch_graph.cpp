@@ -12,19 +12,23 @@ std::vector<Eigen::Vector3d> gridCorners(const TriMesh& surface, double half) {
   std::vector<Eigen::Vector3d> corners;
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i)
-      corners.push_back(position(surface, geodesic::snapToSurface(surface, {-half + half * i, -half + half * j, 0.0})));
+      corners.push_back(position(
+          surface, geodesic::snapToSurface(surface, {-half + half * i, -half + half * j, 0.0})));
   return corners;
 }
-const std::vector<std::array<int, 4>> kTwoByTwo{{0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
+const std::vector<std::array<int, 4>> kTwoByTwo{
+    {0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
 
 std::vector<std::vector<int>> cutAll(const PatchLayout& layout) {
   std::vector<std::vector<int>> faces;
-  for (size_t p = 0; p < layout.patches.size(); ++p) faces.push_back(cutLayoutPatch(layout, static_cast<int>(p)).layoutFace);
+  for (size_t p = 0; p < layout.patches.size(); ++p)
+    faces.push_back(cutLayoutPatch(layout, static_cast<int>(p)).layoutFace);
   return faces;
 }
 
 TEST(PatchGraph, TwoByTwoHasFourSharedSidesAndFourChains) {
-  const TriMesh surface = samples::generateSample("bump", {{"length", 8}, {"width", 8}, {"height", 1}, {"sigma", 1.5}}, 0.3);
+  const TriMesh surface = samples::generateSample(
+      "bump", {{"length", 8}, {"width", 8}, {"height", 1}, {"sigma", 1.5}}, 0.3);
   const geodesic::DistanceSolver solver(surface);
   const PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 3.0), kTwoByTwo);
   const PatchGraph graph = buildPatchGraph(layout);
@@ -81,7 +85,8 @@ TEST(PatchGraph, PlaneCutIntoFourIsFullyCovered) {
 TEST(PatchGraph, TJunctionIsReported) {
   const TriMesh surface = samples::generateSample("plane", {{"length", 6}, {"width", 6}}, 0.4);
   const geodesic::DistanceSolver solver(surface);
-  const PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 3.0), {{0, 1, 7, 6}, {1, 2, 5, 4}, {4, 5, 8, 7}});
+  const PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 3.0),
+                                        {{0, 1, 7, 6}, {1, 2, 5, 4}, {4, 5, 8, 7}});
   const PatchGraph graph = buildPatchGraph(layout);
   ASSERT_EQ(graph.tJunctions.size(), 1u);
   EXPECT_EQ(graph.tJunctions[0].corner, 4);

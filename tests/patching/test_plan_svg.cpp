@@ -6,12 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <chrono>
 #include <cstdlib>
-#include <iostream>
 #include <fstream>
+#include <iostream>
 #include <sstream>
-#include <unistd.h>
 
 namespace egg::patching {
 namespace {
@@ -22,10 +22,12 @@ std::vector<Eigen::Vector3d> gridCorners(const TriMesh& surface, double half) {
   std::vector<Eigen::Vector3d> corners;
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i)
-      corners.push_back(position(surface, geodesic::snapToSurface(surface, {-half + half * i, -half + half * j, 0.0})));
+      corners.push_back(position(
+          surface, geodesic::snapToSurface(surface, {-half + half * i, -half + half * j, 0.0})));
   return corners;
 }
-const std::vector<std::array<int, 4>> kTwoByTwo{{0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
+const std::vector<std::array<int, 4>> kTwoByTwo{
+    {0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
 
 std::string readText(const fs::path& path) {
   std::ifstream in(path);
@@ -71,7 +73,8 @@ std::string textOf(const std::string& svg, const std::string& id) {
 // A 2 x 2 layout on a bump (K = 4 / m^2 at the top, r = 1.57 m) over the middle 5 x 5 m of an
 // 8 x 8 m surface: the cut-off is the ring outside the layout.
 struct Scene {
-  TriMesh surface = samples::generateSample("bump", {{"length", 8}, {"width", 8}, {"height", 2}, {"sigma", 1}}, 0.2);
+  TriMesh surface = samples::generateSample(
+      "bump", {{"length", 8}, {"width", 8}, {"height", 2}, {"sigma", 1}}, 0.2);
   geodesic::DistanceSolver solver{surface};
   PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 2.5), kTwoByTwo);
   std::vector<SurfacePeak> peaks = findSurfacePeaks(surface);
@@ -90,7 +93,8 @@ TEST(PlanSvg, TwoByTwoOnABumpRendersWithOutlinesCircleCutOffAndScaleBar) {
   PlanDrawing drawing;
   drawing.surface = &scene.surface;
   drawing.layout = &scene.layout;
-  drawing.patchProblems = {"", "", "", "eta_u = 1.004 > eta_max = 1.0015"};  // as if its design had failed
+  drawing.patchProblems = {"", "", "",
+                           "eta_u = 1.004 > eta_max = 1.0015"};  // as if its design had failed
   drawing.peaks = scene.peaks;
   drawing.circles = {injectivityCircle(scene.surface, scene.solver, scene.peaks[0])};
   ASSERT_TRUE(drawing.circles[0].complete);
@@ -103,9 +107,12 @@ TEST(PlanSvg, TwoByTwoOnABumpRendersWithOutlinesCircleCutOffAndScaleBar) {
   writePlanSvg(svgPath, drawing);
   const std::string svg = readText(svgPath);
 
-  // It renders (a missing rsvg-convert fails the test: scripts/install-deps.sh installs librsvg2-bin).
-  ASSERT_EQ(std::system("command -v rsvg-convert > /dev/null"), 0) << "rsvg-convert missing: apt-get install librsvg2-bin";
-  const std::string command = "rsvg-convert -o '" + pngPath.string() + "' '" + svgPath.string() + "'";
+  // It renders (a missing rsvg-convert fails the test: scripts/install-deps.sh installs
+  // librsvg2-bin).
+  ASSERT_EQ(std::system("command -v rsvg-convert > /dev/null"), 0)
+      << "rsvg-convert missing: apt-get install librsvg2-bin";
+  const std::string command =
+      "rsvg-convert -o '" + pngPath.string() + "' '" + svgPath.string() + "'";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   ASSERT_TRUE(fs::exists(pngPath));
   EXPECT_GT(fs::file_size(pngPath), 10000u);
@@ -115,7 +122,8 @@ TEST(PlanSvg, TwoByTwoOnABumpRendersWithOutlinesCircleCutOffAndScaleBar) {
   for (int p = 0; p < 4; ++p) {
     EXPECT_EQ(element(svg, "patch-" + std::to_string(p)).rfind("<polygon", 0), 0u) << p;
     EXPECT_EQ(element(svg, "patch-label-" + std::to_string(p)).rfind("<text", 0), 0u) << p;
-    EXPECT_EQ(textOf(svg, "patch-label-" + std::to_string(p)), p == 3 ? "3 [1]" : std::to_string(p));
+    EXPECT_EQ(textOf(svg, "patch-label-" + std::to_string(p)),
+              p == 3 ? "3 [1]" : std::to_string(p));
   }
   EXPECT_NE(attribute(svg, "patch-3", "class").find("infeasible"), std::string::npos);
   EXPECT_NE(svg.find("[1] eta_u = 1.004 &gt; eta_max = 1.0015"), std::string::npos);
@@ -148,10 +156,13 @@ TEST(PlanSvg, TwoByTwoOnABumpRendersWithOutlinesCircleCutOffAndScaleBar) {
   EXPECT_NEAR(barPx, barM * scale, 0.2 * barM / box.size().x() + 1e-3);
   // A round length: 1, 2 or 5 times a power of ten, between a tenth and a fifth of the width.
   const double mantissa = barM / std::pow(10.0, std::floor(std::log10(barM)));
-  EXPECT_TRUE(std::abs(mantissa - 1) < 1e-9 || std::abs(mantissa - 2) < 1e-9 || std::abs(mantissa - 5) < 1e-9) << barM;
+  EXPECT_TRUE(std::abs(mantissa - 1) < 1e-9 || std::abs(mantissa - 2) < 1e-9 ||
+              std::abs(mantissa - 5) < 1e-9)
+      << barM;
   EXPECT_LE(barM, 0.2 * box.size().x() + 1e-9);
   EXPECT_GE(barM, 0.08 * box.size().x());
-  if (std::getenv("EGG_KEEP_PLAN") == nullptr) fs::remove_all(dir);  // EGG_KEEP_PLAN=1 keeps it to look at
+  if (std::getenv("EGG_KEEP_PLAN") == nullptr)
+    fs::remove_all(dir);  // EGG_KEEP_PLAN=1 keeps it to look at
 }
 
 TEST(PlanSvg, SurfaceAloneAndBadInput) {
@@ -159,7 +170,7 @@ TEST(PlanSvg, SurfaceAloneAndBadInput) {
   PlanDrawing drawing;
   EXPECT_THROW(planSvg(drawing), InvalidInput);  // no surface
   drawing.surface = &surface;
-  const std::string svg = planSvg(drawing);     // K = 0 everywhere: still a plan
+  const std::string svg = planSvg(drawing);  // K = 0 everywhere: still a plan
   EXPECT_NE(svg.find("id=\"outline\""), std::string::npos);
   EXPECT_EQ(svg.find("id=\"patch-"), std::string::npos);
   drawing.gaussian = Eigen::VectorXd::Zero(3);
@@ -187,19 +198,22 @@ TEST(PlanSvg, SlowGreatCourtPeaksCirclesAndPlan) {
   const auto circles = injectivityCircles(surface, solver, peaks);
   const auto t3 = std::chrono::steady_clock::now();
   const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
-  std::cout << "great_court 1.0 m: " << surface.n_vertices() << " vertices, " << peaks.size() << " peaks in " << seconds(t0, t1)
-            << " s, solver " << seconds(t1, t2) << " s, circles " << seconds(t2, t3) << " s\n";
+  std::cout << "great_court 1.0 m: " << surface.n_vertices() << " vertices, " << peaks.size()
+            << " peaks in " << seconds(t0, t1) << " s, solver " << seconds(t1, t2) << " s, circles "
+            << seconds(t2, t3) << " s\n";
   ASSERT_FALSE(peaks.empty());
   {
     const auto a = std::chrono::steady_clock::now();
     const auto f = solver.distancesFromVertex(peaks[0].vertex);
-    std::cout << "  one field " << seconds(a, std::chrono::steady_clock::now()) << " s, " << f.windowsCreated << " windows\n";
+    std::cout << "  one field " << seconds(a, std::chrono::steady_clock::now()) << " s, "
+              << f.windowsCreated << " windows\n";
   }
   for (size_t i = 0; i < circles.size(); ++i) {
-    std::cout << "  peak " << i << " at (" << peaks[i].position.transpose() << ") K_max " << peaks[i].gaussianMax << " r "
-              << circles[i].radiusM << " m, " << circles[i].polylines.size() << " polylines, complete " << circles[i].complete
-              << ", covers " << circles[i].coversSurface << ", " << circles[i].propagations << " fields, " << circles[i].seconds
-              << " s\n";
+    std::cout << "  peak " << i << " at (" << peaks[i].position.transpose() << ") K_max "
+              << peaks[i].gaussianMax << " r " << circles[i].radiusM << " m, "
+              << circles[i].polylines.size() << " polylines, complete " << circles[i].complete
+              << ", covers " << circles[i].coversSurface << ", " << circles[i].propagations
+              << " fields, " << circles[i].seconds << " s\n";
     EXPECT_LT(circles[i].maxDistanceErrorM, 1e-9 * circles[i].radiusM) << i;
     EXPECT_LT(peaks[i].radiusM, boundingBox(surface).size().norm()) << i;
   }
@@ -211,7 +225,8 @@ TEST(PlanSvg, SlowGreatCourtPeaksCirclesAndPlan) {
   const std::string svg = planSvg(drawing);
   EXPECT_EQ(count(svg, " id=\"hole-"), 1);  // the Reading Room
   EXPECT_EQ(count(svg, " id=\"circle-"), static_cast<int>(circles.size()));
-  if (std::getenv("EGG_KEEP_PLAN") != nullptr) writePlanSvg(fs::temp_directory_path() / "great_court_plan.svg", drawing);
+  if (std::getenv("EGG_KEEP_PLAN") != nullptr)
+    writePlanSvg(fs::temp_directory_path() / "great_court_plan.svg", drawing);
 }
 
 }  // namespace

@@ -11,7 +11,8 @@ namespace {
 
 // A 1.8 m tall Gaussian bump (sigma 1.5 m) on 8 x 8 m: too tall for one patch over its peak.
 TriMesh tallBump() {
-  return samples::generateSample("bump", {{"height", 1.8}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+  return samples::generateSample(
+      "bump", {{"height", 1.8}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
 }
 
 LayoutDesignOptions workflow1() {
@@ -22,10 +23,12 @@ LayoutDesignOptions workflow1() {
   return options;
 }
 
-PatchLayout layoutOf(const TriMesh& surface, const geodesic::DistanceSolver& solver, const std::vector<Eigen::Vector3d>& corners,
+PatchLayout layoutOf(const TriMesh& surface, const geodesic::DistanceSolver& solver,
+                     const std::vector<Eigen::Vector3d>& corners,
                      const std::vector<std::array<int, 4>>& quads) {
   std::vector<Eigen::Vector3d> snapped;
-  for (const auto& c : corners) snapped.push_back(position(surface, geodesic::snapToSurface(surface, c)));
+  for (const auto& c : corners)
+    snapped.push_back(position(surface, geodesic::snapToSurface(surface, c)));
   return makeLayout(surface, solver, snapped, quads);
 }
 
@@ -34,8 +37,10 @@ TEST(Workflow1, SlowOneFamilyFailingGetsASideOverThePeakAndANeighbourATJunction)
   const geodesic::DistanceSolver solver(surface);
   // Patch 0: 6 x 2 m across the peak (its u members, along x, fail eta; Section 3.4.1). Patch 1:
   // its neighbour below y = -1, which shares patch 0's side 0.
-  const PatchLayout initial = layoutOf(surface, solver, {{-3, -1, 0}, {3, -1, 0}, {3, 1, 0}, {-3, 1, 0}, {-3, -1.9, 0}, {3, -1.9, 0}},
-                                       {{0, 1, 2, 3}, {4, 5, 1, 0}});
+  const PatchLayout initial =
+      layoutOf(surface, solver,
+               {{-3, -1, 0}, {3, -1, 0}, {3, 1, 0}, {-3, 1, 0}, {-3, -1.9, 0}, {3, -1.9, 0}},
+               {{0, 1, 2, 3}, {4, 5, 1, 0}});
   const LayoutDesign result = designLayout(initial, solver, workflow1());
   ASSERT_EQ(result.splits.size(), 1u);
   EXPECT_EQ(result.splits[0].kind, "side over p_max across the u members (eta)");
@@ -55,21 +60,24 @@ TEST(Workflow1, SlowOneFamilyFailingGetsASideOverThePeakAndANeighbourATJunction)
   double closest = 1e9;
   for (const auto& p : newCurve.positions) closest = std::min(closest, p.head<2>().norm());
   EXPECT_LT(closest, 0.3);
-  EXPECT_NEAR(computeCoverage(result.layout, {result.patches[0].cut->layoutFace, result.patches[1].cut->layoutFace,
-                                               result.patches[2].cut->layoutFace})
-                  .coveredAreaM2,
-              [&] {
-                double a = 0;
-                for (const auto& p : result.patches) a += p.cut->patch.area;
-                return a;
-              }(),
-              1e-9);
+  EXPECT_NEAR(
+      computeCoverage(result.layout,
+                      {result.patches[0].cut->layoutFace, result.patches[1].cut->layoutFace,
+                       result.patches[2].cut->layoutFace})
+          .coveredAreaM2,
+      [&] {
+        double a = 0;
+        for (const auto& p : result.patches) a += p.cut->patch.area;
+        return a;
+      }(),
+      1e-9);
 }
 
 TEST(Workflow1, SlowBothFamiliesFailingGetACornerAtThePeak) {
   const TriMesh surface = tallBump();
   const geodesic::DistanceSolver solver(surface);
-  const PatchLayout initial = layoutOf(surface, solver, {{-3, -3, 0}, {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, {{0, 1, 2, 3}});
+  const PatchLayout initial =
+      layoutOf(surface, solver, {{-3, -3, 0}, {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, {{0, 1, 2, 3}});
   const LayoutDesign result = designLayout(initial, solver, workflow1());
   ASSERT_GE(result.splits.size(), 1u);
   EXPECT_EQ(result.splits[0].kind, "corner at p_max (eta, u and v)");
@@ -90,26 +98,31 @@ TEST(Workflow1, SlowBothFamiliesFailingGetACornerAtThePeak) {
 TEST(Workflow1, SlowAnImpossibleLayoutEndsWithAClearReason) {
   const TriMesh surface = tallBump();
   const geodesic::DistanceSolver solver(surface);
-  const PatchLayout initial = layoutOf(surface, solver, {{-3, -3, 0}, {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, {{0, 1, 2, 3}});
+  const PatchLayout initial =
+      layoutOf(surface, solver, {{-3, -3, 0}, {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, {{0, 1, 2, 3}});
   LayoutDesignOptions options = workflow1();
   options.maxSplits = 0;
   const LayoutDesign result = designLayout(initial, solver, options);
   ASSERT_EQ(result.patches.size(), 1u);
   EXPECT_FALSE(result.patches[0].feasible());
-  EXPECT_NE(result.patches[0].failure.find("split budget"), std::string::npos) << result.patches[0].failure;
+  EXPECT_NE(result.patches[0].failure.find("split budget"), std::string::npos)
+      << result.patches[0].failure;
   // A minimum size larger than the patch: not split either.
   options.maxSplits = 10;
   options.minSideM = 4.0;
   const LayoutDesign small = designLayout(initial, solver, options);
   ASSERT_EQ(small.patches.size(), 1u);
-  EXPECT_NE(small.patches[0].failure.find("minimum patch size"), std::string::npos) << small.patches[0].failure;
+  EXPECT_NE(small.patches[0].failure.find("minimum patch size"), std::string::npos)
+      << small.patches[0].failure;
 }
 
 TEST(Workflow1, AGivenLayoutIsDesignedAsItIs) {
-  const TriMesh surface = samples::generateSample("bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+  const TriMesh surface = samples::generateSample(
+      "bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
   const geodesic::DistanceSolver solver(surface);
-  const PatchLayout initial = layoutOf(surface, solver, {{-3, -3, 0}, {0, -3, 0}, {0, 3, 0}, {-3, 3, 0}, {3, -3, 0}, {3, 3, 0}},
-                                       {{0, 1, 2, 3}, {1, 4, 5, 2}});
+  const PatchLayout initial = layoutOf(
+      surface, solver, {{-3, -3, 0}, {0, -3, 0}, {0, 3, 0}, {-3, 3, 0}, {3, -3, 0}, {3, 3, 0}},
+      {{0, 1, 2, 3}, {1, 4, 5, 2}});
   LayoutDesignOptions options = workflow1();
   options.split = false;
   const LayoutDesign result = designLayout(initial, solver, options);

@@ -41,7 +41,8 @@ TEST(Workflow2, APlaneGetsOnePatchPerMaxSizeCell) {
 
 TEST(Workflow2, AHoleIsNeverInsideAPatch) {
   // The Great Court: a rectangle with the Reading Room cut out. Every patch is cut without error
-  // (a hole inside a patch, or a side wrapping round it, would throw) and none holds the hole's centre.
+  // (a hole inside a patch, or a side wrapping round it, would throw) and none holds the hole's
+  // centre.
   const TriMesh surface = samples::generateSample("great_court", {}, 2.0);
   Workflow2Options options;
   options.maxPatchSizeM = 80.0;
@@ -55,7 +56,8 @@ TEST(Workflow2, AHoleIsNeverInsideAPatch) {
     const LayoutPatch cut = cutLayoutPatch(layout, static_cast<int>(p));
     for (auto vh : cut.patch.mesh.vertices()) {
       const Eigen::Vector3d x = toEigen(cut.patch.mesh.point(vh));
-      EXPECT_GT(std::hypot(x.x(), x.y()), 22.245 - 1e-6) << "patch " << p;  // outside the Reading Room
+      EXPECT_GT(std::hypot(x.x(), x.y()), 22.245 - 1e-6)
+          << "patch " << p;  // outside the Reading Room
     }
   }
 }
@@ -63,14 +65,17 @@ TEST(Workflow2, AHoleIsNeverInsideAPatch) {
 TEST(Workflow2, ACornerMovesOntoAPeak) {
   // A bump off the centre of a 3 x 3 grid of 2 m cells: the interior grid node nearest to it moves
   // onto p_max (Algorithm 2: a corner at p_max).
-  const TriMesh bump = samples::generateSample("bump", {{"length", 6}, {"width", 6}, {"height", 0.8}, {"sigma", 0.8}}, 0.2);
+  const TriMesh bump = samples::generateSample(
+      "bump", {{"length", 6}, {"width", 6}, {"height", 0.8}, {"sigma", 0.8}}, 0.2);
   Workflow2Options options;
-  options.maxPatchSizeM = 3.4;  // 3 x 3 cells of 2 x 2 m (the centre one 3.3 m across over the bump)
+  options.maxPatchSizeM =
+      3.4;  // 3 x 3 cells of 2 x 2 m (the centre one 3.3 m across over the bump)
   const Workflow2Layout layout = proposeLayout(bump, options);
   EXPECT_EQ(layout.quads.size(), 9u);
   // The bump is centred: no interior node of a 3 x 3 grid is near it, none moves.
   EXPECT_EQ(layout.peaksSnapped, 0);
-  options.maxPatchSizeM = 5.0;  // 2 x 2 cells (4.6 m across over the bump): the centre node is a grid node at the peak
+  options.maxPatchSizeM =
+      5.0;  // 2 x 2 cells (4.6 m across over the bump): the centre node is a grid node at the peak
   const Workflow2Layout two = proposeLayout(bump, options);
   EXPECT_EQ(two.quads.size(), 4u);
   EXPECT_EQ(two.peaksSnapped, 1);
@@ -87,7 +92,9 @@ TriMesh twoPeaks() {
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i <= nx; ++i) {
       const double x = -7.0 + 14.0 * i / nx, y = -4.0 + 8.0 * j / ny;
-      soup.vertices.emplace_back(x, y, 2.0 * (std::exp(-((x + 3) * (x + 3) + y * y) / 2) + std::exp(-((x - 3) * (x - 3) + y * y) / 2)));
+      soup.vertices.emplace_back(x, y,
+                                 2.0 * (std::exp(-((x + 3) * (x + 3) + y * y) / 2) +
+                                        std::exp(-((x - 3) * (x - 3) + y * y) / 2)));
     }
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
@@ -118,7 +125,8 @@ TEST(Workflow2, ACapLargerThanItsCircleIsSplitHoweverLargePatchesMayBe) {
   // A tall bump (K = 4 / m^2 at its top: a circle of pi / 2 m) on an 8 x 8 m footprint: one patch
   // would hold the cap in a cell far larger than its circle, which Workflow 1 would split into four
   // anyway; the layout starts with four round a corner on the peak.
-  const TriMesh cap = samples::generateSample("bump", {{"length", 8}, {"width", 8}, {"height", 2}, {"sigma", 1}}, 0.2);
+  const TriMesh cap = samples::generateSample(
+      "bump", {{"length", 8}, {"width", 8}, {"height", 2}, {"sigma", 1}}, 0.2);
   Workflow2Options options;
   options.maxPatchSizeM = 1000.0;
   const Workflow2Layout layout = proposeLayout(cap, options);
@@ -141,7 +149,8 @@ TEST(Workflow2, EachOfTwoHolesGetsARingOfFourPatches) {
     for (const auto& q : layout.quads) {
       std::vector<Eigen::Vector2d> outline;
       for (int k : q) outline.push_back(layout.corners[k].head<2>());
-      double winding = 0.0;  // the angle the outline sweeps round the centre: 2 pi inside, 0 outside
+      double winding =
+          0.0;  // the angle the outline sweeps round the centre: 2 pi inside, 0 outside
       for (size_t k = 0; k < 4; ++k) {
         const Eigen::Vector2d a = outline[k] - centre, b = outline[(k + 1) % 4] - centre;
         winding += std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
@@ -182,14 +191,16 @@ TEST(Workflow2, AGivenBlockGridIsLaidOutAsGiven) {
   ASSERT_EQ(layout.quads.size(), 8u);
   EXPECT_EQ(layout.corners.size(), 15u);
   EXPECT_EQ(layout.candidatesScreened, 1);
-  for (const auto& q : layout.quads) EXPECT_NEAR((layout.corners[q[2]] - layout.corners[q[0]]).norm(), std::sqrt(18.0), 1e-6);
+  for (const auto& q : layout.quads)
+    EXPECT_NEAR((layout.corners[q[2]] - layout.corners[q[0]]).norm(), std::sqrt(18.0), 1e-6);
   // Along the other direction: 2 x 4 cells are 6 x 1.5 m, 6.2 m across: larger than 5 m.
   options.blockGrid = {1, 4};
   try {
     proposeLayout(plane, options);
     ADD_FAILURE() << "a 12 m cell passed a 5 m limit";
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("patching.block_grid [1, 4]"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("patching.block_grid [1, 4]"), std::string::npos)
+        << e.what();
   }
   options.blockGrid = {0, 3};
   EXPECT_THROW(proposeLayout(plane, options), InvalidInput);

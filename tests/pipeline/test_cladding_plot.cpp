@@ -39,7 +39,8 @@ std::string attribute(const std::string& svg, const std::string& id, const std::
 TEST(CladdingPlot, FramesMapMetresAndLogSlopesToKnownPixels) {
   const CladdingPlot plot = knownPlot();
   const PlotFrame u = claddingFrame(plot.u, 0), v = claddingFrame(plot.v, 1);
-  // The F panel of u: 250 px square at (58, 40); x over the 10 m start side, y over the 20 m end side, y up.
+  // The F panel of u: 250 px square at (58, 40); x over the 10 m start side, y over the 20 m end
+  // side, y up.
   EXPECT_DOUBLE_EQ(u.px(0.0), 58.0);
   EXPECT_DOUBLE_EQ(u.px(10.0), 308.0);
   EXPECT_DOUBLE_EQ(u.py(0.0), 290.0);
@@ -49,10 +50,13 @@ TEST(CladdingPlot, FramesMapMetresAndLogSlopesToKnownPixels) {
   // in the middle of the symmetric range [0.025, 40] (log10: -1.602 .. 1.602).
   const PlotFrame s = slopeFrame(plot.u, 0, 0.1, 10.0);
   EXPECT_DOUBLE_EQ(s.py(1.0), 340.0 + 55.0);
-  EXPECT_NEAR(s.py(10.0), 340.0 + 110.0 * (1.0 - (1.0 - std::log10(0.025)) / (std::log10(40.0) - std::log10(0.025))), 1e-9);
+  EXPECT_NEAR(
+      s.py(10.0),
+      340.0 + 110.0 * (1.0 - (1.0 - std::log10(0.025)) / (std::log10(40.0) - std::log10(0.025))),
+      1e-9);
   EXPECT_DOUBLE_EQ(s.py(40.0), 340.0);
-  EXPECT_DOUBLE_EQ(s.py(1e9), 340.0);   // clamped to the top
-  EXPECT_DOUBLE_EQ(s.py(0.0), 450.0);   // a flat segment: at the bottom
+  EXPECT_DOUBLE_EQ(s.py(1e9), 340.0);  // clamped to the top
+  EXPECT_DOUBLE_EQ(s.py(0.0), 450.0);  // a flat segment: at the bottom
 }
 
 TEST(CladdingPlot, KnownPiecewiseLinearFunctionPlotsToKnownCoordinates) {
@@ -60,7 +64,8 @@ TEST(CladdingPlot, KnownPiecewiseLinearFunctionPlotsToKnownCoordinates) {
   const std::string svg = claddingSvg(plot);
   EXPECT_EQ(svg.rfind("<svg id=\"cladding-patch-7\" class=\"chart\"", 0), 0u);
   // (0,0) (5 m, 5 m) (5 m, 10 m) (10 m, 20 m): x = 58 + 25 x, y = 290 - 12.5 y.
-  EXPECT_EQ(attribute(svg, "patch-7-u-curve", "points"), "58.00,290.00 183.00,227.50 183.00,165.00 308.00,40.00");
+  EXPECT_EQ(attribute(svg, "patch-7-u-curve", "points"),
+            "58.00,290.00 183.00,227.50 183.00,165.00 308.00,40.00");
   EXPECT_EQ(attribute(svg, "patch-7-v-curve", "points"), "378.00,290.00 628.00,40.00");
   // Slopes 0.5 on [0, 5 m] and 1 on [5 m, 10 m] inside the band; the vertical segment (c dx2 =
   // 2500) outside it, in the violations path at the strip's top.
@@ -74,9 +79,12 @@ TEST(CladdingPlot, KnownPiecewiseLinearFunctionPlotsToKnownCoordinates) {
   EXPECT_EQ(attribute(svg, "patch-7-u-band", "y"), fmt::format("{:.1f}", s.py(10.0)));
   // Three members of u and two of v as dots.
   size_t dots = 0;
-  for (size_t at = svg.find("class=\"member\""); at != std::string::npos; at = svg.find("class=\"member\"", at + 1)) ++dots;
+  for (size_t at = svg.find("class=\"member\""); at != std::string::npos;
+       at = svg.find("class=\"member\"", at + 1))
+    ++dots;
   EXPECT_EQ(dots, 5u);
-  EXPECT_NE(svg.find("cx=\"183.00\" cy=\"227.50\""), std::string::npos);  // member (0.5, 0.25) = (5 m, 5 m)
+  EXPECT_NE(svg.find("cx=\"183.00\" cy=\"227.50\""),
+            std::string::npos);  // member (0.5, 0.25) = (5 m, 5 m)
 }
 
 TEST(CladdingPlot, SlopesFollowTheThesisRule) {
@@ -98,7 +106,8 @@ TEST(CladdingPlot, ReportEntryRoundTrips) {
   u.points = {{0.0, 0.0}, {0.5, 0.25}, {1.0, 1.0}};
   v.points = {{0.0, 0.0}, {1.0, 1.0}};
   u.connectsCorners = true;
-  v.connectsCorners = false;  // as an intersection that misses a corner: not bijective (criterion iii)
+  v.connectsCorners =
+      false;  // as an intersection that misses a corner: not bijective (criterion iii)
   FamilyMembers mu, mv;
   mu.x1 = {0.0, 0.5, 1.0}, mu.x2 = {0.0, 0.25, 1.0};
   mv.x1 = {0.0, 1.0}, mv.x2 = {0.0, 1.0};

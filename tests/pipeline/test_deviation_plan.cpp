@@ -9,12 +9,13 @@ namespace egg::pipeline {
 namespace {
 
 TEST(DeviationPlan, KnownDistancesGetKnownColours) {
-  EXPECT_EQ(deviationColour(0.0, 0.2), "#2c7bb6");   // on the surface: blue
-  EXPECT_EQ(deviationColour(0.1, 0.2), "#ffffbf");   // half the bar: pale yellow
-  EXPECT_EQ(deviationColour(0.2, 0.2), "#d7191c");   // the bar's top: red
-  EXPECT_EQ(deviationColour(5.0, 0.2), "#d7191c");   // beyond it stays red
-  EXPECT_EQ(deviationColour(0.05, 0.2), "#96bdbb");  // a quarter: halfway blue -> yellow, (44+255)/2 = 149.5 -> 150
-  EXPECT_EQ(deviationColour(NAN, 0.2), "#d7191c");   // unknown reads as the worst
+  EXPECT_EQ(deviationColour(0.0, 0.2), "#2c7bb6");  // on the surface: blue
+  EXPECT_EQ(deviationColour(0.1, 0.2), "#ffffbf");  // half the bar: pale yellow
+  EXPECT_EQ(deviationColour(0.2, 0.2), "#d7191c");  // the bar's top: red
+  EXPECT_EQ(deviationColour(5.0, 0.2), "#d7191c");  // beyond it stays red
+  EXPECT_EQ(deviationColour(0.05, 0.2),
+            "#96bdbb");  // a quarter: halfway blue -> yellow, (44+255)/2 = 149.5 -> 150
+  EXPECT_EQ(deviationColour(NAN, 0.2), "#d7191c");  // unknown reads as the worst
 }
 
 TEST(DeviationPlan, ScaleRoundsUpToOneTwoFive) {
@@ -33,7 +34,9 @@ TEST(DeviationPlan, StretchesOfOneColourAreOnePolyline) {
   const std::string svg = deployedPlanSvg({rod}, "a <test> & caption");
   EXPECT_EQ(svg.rfind("<svg id=\"deployed\" xmlns=\"http://www.w3.org/2000/svg\"", 0), 0u);
   size_t polylines = 0;
-  for (size_t at = svg.find("<polyline"); at != std::string::npos; at = svg.find("<polyline", at + 1)) ++polylines;
+  for (size_t at = svg.find("<polyline"); at != std::string::npos;
+       at = svg.find("<polyline", at + 1))
+    ++polylines;
   EXPECT_EQ(polylines, 3u);  // 0-0-0 (blue), the 0 -> 1 segment (middle bin), 1-1 (red)
   // The bar runs to 1 m (the largest distance); the 1 m stretch is in the top bin of 16.
   EXPECT_NE(svg.find("stroke=\"" + deviationColour(15.5 / 16.0, 1.0) + "\""), std::string::npos);

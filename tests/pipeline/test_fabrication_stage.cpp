@@ -11,7 +11,8 @@ namespace {
 // The scene holds fabrication::FabricationOptions itself; what it derives (the lamella's section
 // and material, in mm) agrees with the library's defaults.
 TEST(FabricationStage, SceneDefaultsAreTheLibraryDefaults) {
-  const Scene scene = parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"}})"), "/scenes/test.json");
+  const Scene scene =
+      parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"}})"), "/scenes/test.json");
   const auto o = scene.fabricationOptions();
   const fabrication::FabricationOptions library;
   EXPECT_DOUBLE_EQ(o.lamellaWidthMm, library.lamellaWidthMm);  // 0.25 m
@@ -52,11 +53,14 @@ TEST(FabricationStage, SceneKeysReachTheOptions) {
 }
 
 TEST(FabricationStage, NotWantedWithoutItsOutputsOrWhenDisabled) {
-  const Scene reportOnly = parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"}, "outputs": ["report"]})"),
-                                      "/scenes/test.json");
+  const Scene reportOnly =
+      parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"}, "outputs": ["report"]})"),
+                 "/scenes/test.json");
   EXPECT_FALSE(fabricationWanted(reportOnly));
-  const Scene disabled = parseScene(nlohmann::json::parse(R"({"surface": {"sample": "bump"}, "fabrication": {"enabled": false}})"),
-                                    "/scenes/test.json");
+  const Scene disabled =
+      parseScene(nlohmann::json::parse(
+                     R"({"surface": {"sample": "bump"}, "fabrication": {"enabled": false}})"),
+                 "/scenes/test.json");
   EXPECT_FALSE(fabricationWanted(disabled));
 }
 
@@ -73,9 +77,10 @@ TEST(FabricationStage, OneCallWritesWhatTheSceneAsksForAndReportsIt) {
   const auto dir = fabrication::testing::scratchDir("stage");
   const auto stage = fabricateScene(scene, {{0, &grid, std::nullopt}}, dir);
   // No "stickers" output: no sticker sheets written (the stickers are still counted).
-  const std::vector<std::string> expected{"cut/sheet_01.svg", "cut/sheet_01.dxf", "cut/sheets.pdf", "supports/supports.csv",
-                                          "supports/support_001.stl", "supports/support_002.stl",
-                                          "supports/support_003.stl", "supports/support_004.stl", "bom.csv"};
+  const std::vector<std::string> expected{
+      "cut/sheet_01.svg",         "cut/sheet_01.dxf",         "cut/sheets.pdf",
+      "supports/supports.csv",    "supports/support_001.stl", "supports/support_002.stl",
+      "supports/support_003.stl", "supports/support_004.stl", "bom.csv"};
   EXPECT_EQ(stage.files, expected);
   for (const auto& f : expected) EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
   EXPECT_EQ(stage.report["lamellae"], 6);
@@ -94,7 +99,8 @@ TEST(FabricationStage, SheetTooSmallIsBadInputNamingTheSceneField) {
                                  "/scenes/test.json");
   const EggGrid grid = fabrication::testing::handGrid();
   try {
-    fabricateScene(scene, {{0, &grid, std::nullopt}}, fabrication::testing::scratchDir("stage_small"));
+    fabricateScene(scene, {{0, &grid, std::nullopt}},
+                   fabrication::testing::scratchDir("stage_small"));
     FAIL() << "expected InvalidInput";
   } catch (const InvalidInput& e) {
     EXPECT_EQ(std::string(e.what()).rfind("fabrication.sheet_mm:", 0), 0u) << e.what();

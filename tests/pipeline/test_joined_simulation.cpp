@@ -24,7 +24,7 @@ Scene twoPatchScene(bool join) {
     "lamella": {"width_m": 0.05, "thickness_m": 0.005},
     "simulation": {"gravity": false},
     "outputs": ["report"]})"),
-                             "/virtual/bump_1x2.json");
+                           "/virtual/bump_1x2.json");
   scene.simulation.joinPatches = join;
   return scene;
 }
@@ -81,7 +81,8 @@ TEST(JoinedStage, SlowFastenedBoltsSagLessThanLooseOnesOnTwoPatches) {
     const auto& sim = report["simulation"];
     EXPECT_EQ(sim["bolts_fastened_under_load"].get<bool>(), fastened);
     ASSERT_EQ(sim["patches"].size(), 2u);
-    for (const auto& patch : sim["patches"]) sag[fastened] = std::max(sag[fastened], patch["max_sag_m"].get<double>());
+    for (const auto& patch : sim["patches"])
+      sag[fastened] = std::max(sag[fastened], patch["max_sag_m"].get<double>());
     ASSERT_TRUE(sim["joined"]["ran"].get<bool>()) << sim["joined"].dump(1);
     joinedRmse[fastened] = sim["joined"]["rmse_m"].get<double>();
   }
@@ -99,7 +100,8 @@ TEST(JoinedStage, APatchThatCollapsesHeldAllRoundSkipsTheJoinedRun) {
     patches[i].simulation->deployed.solver.status = rods::SolverStatus::Converged;
   }
   EXPECT_EQ(collapsedWhileHeld(patches), "");
-  patches[2].simulation->deployed.solver.status = rods::SolverStatus::IterationLimit;  // slow is not collapsed
+  patches[2].simulation->deployed.solver.status =
+      rods::SolverStatus::IterationLimit;  // slow is not collapsed
   EXPECT_EQ(collapsedWhileHeld(patches), "");
   patches[1].simulation->deployed.solver.status = rods::SolverStatus::Collapsed;
   const std::string reason = collapsedWhileHeld(patches);
@@ -111,7 +113,9 @@ TEST(JoinedStage, APatchThatCollapsesHeldAllRoundSkipsTheJoinedRun) {
 TEST(JoinedStage, SlowTheSceneCanKeepPatchesApart) {
   const auto report = run(twoPatchScene(false), "egg_unjoined");
   EXPECT_FALSE(report["simulation"]["joined"]["ran"].get<bool>());
-  EXPECT_NE(report["simulation"]["joined"]["skipped_reason"].get<std::string>().find("join_patches"), std::string::npos);
+  EXPECT_NE(
+      report["simulation"]["joined"]["skipped_reason"].get<std::string>().find("join_patches"),
+      std::string::npos);
 }
 
 }  // namespace

@@ -28,7 +28,8 @@ Scene bumpPatchScene() {
 }
 
 TEST(Pipeline, SlowBumpPatchRunsEndToEnd) {
-  const fs::path out = fs::temp_directory_path() / ("egg_pipeline_test_" + std::to_string(::getpid()));
+  const fs::path out =
+      fs::temp_directory_path() / ("egg_pipeline_test_" + std::to_string(::getpid()));
   fs::remove_all(out);
   PipelineOptions options;
   options.outDir = out;
@@ -53,7 +54,8 @@ TEST(Pipeline, SlowBumpPatchRunsEndToEnd) {
   EXPECT_LT(patch["slope_max"].get<double>(), 10.0);
 
   // Coverage is the patch area over the surface area.
-  EXPECT_NEAR(report["coverage"]["covered_area_m2"].get<double>(), patch["area_m2"].get<double>(), 1e-12);
+  EXPECT_NEAR(report["coverage"]["covered_area_m2"].get<double>(), patch["area_m2"].get<double>(),
+              1e-12);
   EXPECT_NEAR(report["coverage"]["fraction"].get<double>(),
               patch["area_m2"].get<double>() / report["surface"]["area_m2"].get<double>(), 1e-12);
   EXPECT_GT(patch["area_m2"].get<double>(), 36.0);  // the 6 x 6 m footprint, lifted by the bump
@@ -77,7 +79,8 @@ TEST(Pipeline, SlowBumpPatchRunsEndToEnd) {
     EXPECT_EQ(f["points_x1"].front(), 0.0) << family;
     EXPECT_EQ(f["points_x2"].back(), 1.0) << family;
     EXPECT_TRUE(f["bijective"].get<bool>()) << family;
-    EXPECT_GT(f["start_side_m"].get<double>(), 6.0) << family;  // a side of the 6 x 6 m footprint, lifted by the bump
+    EXPECT_GT(f["start_side_m"].get<double>(), 6.0)
+        << family;  // a side of the 6 x 6 m footprint, lifted by the bump
   }
   // Error against run time: from the start (the guess on the surface) to the final state.
   const auto& history = sim["patches"][0]["history"];
@@ -87,8 +90,9 @@ TEST(Pipeline, SlowBumpPatchRunsEndToEnd) {
   EXPECT_EQ(history.back()["rmse_m"], sim["rmse_m"]);
   EXPECT_EQ(history.back()["max_error_m"], sim["max_error_m"]);
 
-  for (const char* file : {"report.json", "report.html", "patch_000/grid.json", "patch_000/grid.obj", "patch_000/planar.svg",
-                           "patch_000/deployed.obj", "preview/cladding_patch_0.png", "preview/error_time_patches.png"}) {
+  for (const char* file : {"report.json", "report.html", "patch_000/grid.json",
+                           "patch_000/grid.obj", "patch_000/planar.svg", "patch_000/deployed.obj",
+                           "preview/cladding_patch_0.png", "preview/error_time_patches.png"}) {
     EXPECT_TRUE(fs::exists(out / file)) << file;
   }
   fs::remove_all(out);
@@ -99,7 +103,8 @@ TEST(Pipeline, InfeasiblePatchIsReportedNotFatal) {
   // Slope bounds so tight that no alpha_bar satisfies Problem 2.3 on a bump.
   scene.design().alphaBar.slopeMin = 0.999;
   scene.design().alphaBar.slopeMax = 1.001;
-  const fs::path out = fs::temp_directory_path() / ("egg_pipeline_infeasible_" + std::to_string(::getpid()));
+  const fs::path out =
+      fs::temp_directory_path() / ("egg_pipeline_infeasible_" + std::to_string(::getpid()));
   PipelineOptions options;
   options.outDir = out;
   const PipelineResult result = runPipeline(scene, options);
@@ -115,7 +120,8 @@ TEST(Pipeline, InfeasiblePatchIsReportedNotFatal) {
 TEST(Pipeline, SlowSelfWeightReportsTheSag) {
   Scene scene = bumpPatchScene();
   scene.simulation.rods.model.gravity = true;
-  const fs::path out = fs::temp_directory_path() / ("egg_pipeline_gravity_" + std::to_string(::getpid()));
+  const fs::path out =
+      fs::temp_directory_path() / ("egg_pipeline_gravity_" + std::to_string(::getpid()));
   PipelineOptions options;
   options.outDir = out;
   const PipelineResult result = runPipeline(scene, options);
@@ -155,23 +161,34 @@ Scene twoByTwoScene(const std::string& outputs) {
                     "/virtual/bump_2x2.json");
 }
 
-fs::path scratch(const std::string& name) { return fs::temp_directory_path() / (name + "_" + std::to_string(::getpid())); }
+fs::path scratch(const std::string& name) {
+  return fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+}
 
 TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   const fs::path out = scratch("egg_pipeline_2x2");
   PipelineOptions options;
   options.outDir = out;
   std::vector<std::pair<std::string, double>> progress;  // the progress bar's feed
-  options.progress = [&](const std::string& stage, double fraction) { progress.emplace_back(stage, fraction); };
-  const PipelineResult result = runPipeline(twoByTwoScene(R"(["report", "plan", "cut_files"])"), options);
+  options.progress = [&](const std::string& stage, double fraction) {
+    progress.emplace_back(stage, fraction);
+  };
+  const PipelineResult result =
+      runPipeline(twoByTwoScene(R"(["report", "plan", "cut_files"])"), options);
   const auto& report = result.report;
   EXPECT_TRUE(result.failures.empty()) << nlohmann::json(result.failures).dump(1);
   // Stages in order, never going back, one step per simulated patch, ending at 1.
   ASSERT_FALSE(progress.empty());
-  for (size_t i = 1; i < progress.size(); ++i) EXPECT_GE(progress[i].second, progress[i - 1].second) << progress[i].first;
+  for (size_t i = 1; i < progress.size(); ++i)
+    EXPECT_GE(progress[i].second, progress[i - 1].second) << progress[i].first;
   EXPECT_EQ(progress.back(), std::make_pair(std::string("done"), 1.0));
-  EXPECT_EQ(std::count_if(progress.begin(), progress.end(), [](const auto& p) { return p.first.rfind("simulation: patch ", 0) == 0; }), 4);
-  EXPECT_NE(std::find_if(progress.begin(), progress.end(), [](const auto& p) { return p.first == "simulation: patch 4 of 4"; }), progress.end());
+  EXPECT_EQ(
+      std::count_if(progress.begin(), progress.end(),
+                    [](const auto& p) { return p.first.rfind("simulation: patch ", 0) == 0; }),
+      4);
+  EXPECT_NE(std::find_if(progress.begin(), progress.end(),
+                         [](const auto& p) { return p.first == "simulation: patch 4 of 4"; }),
+            progress.end());
   EXPECT_EQ(report["patching"]["workflow"], "given");
   EXPECT_EQ(report["patching"]["corners"], 9);  // shared corners given twice are one
   EXPECT_EQ(report["patching"]["sides"], 12);
@@ -186,7 +203,8 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   EXPECT_EQ(propagation["chains"], 4);
   EXPECT_EQ(propagation["originals"], 0);
   EXPECT_LE(propagation["c0_max_gap_m"].get<double>(), 1e-6);
-  EXPECT_LE(propagation["evenness_after"].get<double>(), propagation["evenness_before"].get<double>());
+  EXPECT_LE(propagation["evenness_after"].get<double>(),
+            propagation["evenness_before"].get<double>());
   ASSERT_EQ(propagation["sides"].size(), 4u);
   for (const auto& side : propagation["sides"]) EXPECT_EQ(side["kind"], "closed") << side.dump();
   ASSERT_EQ(report["patches"].size(), 4u);
@@ -235,7 +253,8 @@ TEST(PipelineMultiPatch, SlowResultsDoNotDependOnTheThreadCount) {
   const auto one = runWith(1), two = runWith(2);
   ASSERT_EQ(one["patches"].size(), two["patches"].size());
   for (size_t i = 0; i < one["patches"].size(); ++i)
-    for (const char* key : {"area_m2", "eta_u", "eta_v", "alpha_bar_rad", "max_notch_m", "members_u", "members_v"})
+    for (const char* key :
+         {"area_m2", "eta_u", "eta_v", "alpha_bar_rad", "max_notch_m", "members_u", "members_v"})
       EXPECT_EQ(one["patches"][i][key], two["patches"][i][key]) << i << " " << key;
   const auto &simOne = one["simulation"], &simTwo = two["simulation"];
   ASSERT_TRUE(simOne["ran"].get<bool>());
@@ -254,7 +273,8 @@ TEST(PipelineMultiPatch, OutputsDecideWhatRuns) {
   options.outDir = out;
   const PipelineResult none = runPipeline(twoByTwoScene("[]"), options);
   EXPECT_TRUE(none.nothingRequested);
-  for (const auto& [stage, entry] : none.report["stages"].items()) EXPECT_FALSE(entry["ran"].get<bool>()) << stage;
+  for (const auto& [stage, entry] : none.report["stages"].items())
+    EXPECT_FALSE(entry["ran"].get<bool>()) << stage;
   EXPECT_FALSE(fs::exists(out));
   // The plan alone: patching and design run, the grid and the simulation do not.
   const PipelineResult plan = runPipeline(twoByTwoScene(R"(["plan"])"), options);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -11,7 +12,6 @@
 #include <regex>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace egg::pipeline {
@@ -19,7 +19,8 @@ namespace {
 
 size_t count(const std::string& text, const std::string& what) {
   size_t n = 0;
-  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size()))
+    ++n;
   return n;
 }
 
@@ -64,13 +65,16 @@ nlohmann::json sampleReport() {
 }
 
 const std::string kPlan =
-    "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"400\" height=\"300\" "
-    "viewBox=\"0 0 400 300\"><rect id=\"patch-0\" x=\"10\" y=\"10\" width=\"380\" height=\"280\" fill=\"#abd2e4\"/>"
+    "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
+    "width=\"400\" height=\"300\" "
+    "viewBox=\"0 0 400 300\"><rect id=\"patch-0\" x=\"10\" y=\"10\" width=\"380\" height=\"280\" "
+    "fill=\"#abd2e4\"/>"
     "<text x=\"200\" y=\"150\">P0</text></svg>\n";
 
 const std::string kBom =
     "item,id,count,length_mm,width_mm,thickness_mm,area_m2,volume_m3,mass_kg,note\n"
-    "lamella,P0-U1,1,9000.00,250.00,40.00,,0.09,38.7,poplar_plywood; 2 holes; 7 slots; 1 segments; stress ratio 0.050\n"
+    "lamella,P0-U1,1,9000.00,250.00,40.00,,0.09,38.7,poplar_plywood; 2 holes; 7 slots; 1 segments; "
+    "stress ratio 0.050\n"
     "splice,,2,,,,,,,butt joints clear of holes by 250.0 mm\n"
     "bolt,,63,,,,,,,diameter 16.0 mm; one per connection, merged on shared lamellas\n";
 
@@ -78,7 +82,8 @@ TEST(ReportHtml, SelfContainedPageWithEverySection) {
   const std::string html = reportHtml(sampleReport(), kPlan, kBom);
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   // Nothing fetched from anywhere: no script, link, image, import or external url.
-  for (const char* external : {"<script", "<link", "<img", "<iframe", "@import", "url(", "src=", "href="}) {
+  for (const char* external :
+       {"<script", "<link", "<img", "<iframe", "@import", "url(", "src=", "href="}) {
     EXPECT_EQ(html.find(external), std::string::npos) << external;
   }
   // The only "http" is the SVG namespace name of the inlined plan.
@@ -86,7 +91,8 @@ TEST(ReportHtml, SelfContainedPageWithEverySection) {
   EXPECT_EQ(count(html, "http://www.w3.org/2000/svg"), 1u);
   // The plan inline, without its XML declaration, scaled to the page.
   EXPECT_EQ(html.find("<?xml"), std::string::npos);
-  EXPECT_NE(html.find("<svg class=\"plan\" style=\"max-width:100%;height:auto\" xmlns="), std::string::npos);
+  EXPECT_NE(html.find("<svg class=\"plan\" style=\"max-width:100%;height:auto\" xmlns="),
+            std::string::npos);
   EXPECT_NE(html.find("id=\"patch-0\""), std::string::npos);
   // The cladding functions of the traced patch only, and both error-against-time charts.
   EXPECT_NE(html.find("<svg id=\"cladding-patch-0\""), std::string::npos);
@@ -96,30 +102,40 @@ TEST(ReportHtml, SelfContainedPageWithEverySection) {
   EXPECT_NE(html.find("<svg id=\"error-time-patches\""), std::string::npos);
   EXPECT_NE(html.find("<svg id=\"error-time-joined\""), std::string::npos);
   // Report text is escaped.
-  EXPECT_NE(html.find("<title>court &lt;test&gt; &ndash; eggshell report</title>"), std::string::npos);
+  EXPECT_NE(html.find("<title>court &lt;test&gt; &ndash; eggshell report</title>"),
+            std::string::npos);
   EXPECT_NE(html.find("a &lt;b&gt;bold&lt;/b&gt; claim &amp; more"), std::string::npos);
   EXPECT_EQ(html.find("<b>bold"), std::string::npos);
-  // Every stage, with the reason of the one that did not run; the failure; the unspliceable lamella.
-  for (const char* stage : {"surface", "patching", "design", "propagation", "grid", "simulation", "fabrication"}) {
+  // Every stage, with the reason of the one that did not run; the failure; the unspliceable
+  // lamella.
+  for (const char* stage :
+       {"surface", "patching", "design", "propagation", "grid", "simulation", "fabrication"}) {
     EXPECT_NE(html.find(std::string("<tr><td>") + stage + "</td>"), std::string::npos) << stage;
   }
   EXPECT_NE(html.find("one patch: no boundary to continue members across"), std::string::npos);
   EXPECT_NE(html.find("fabrication: 1 lamellas cannot be spliced"), std::string::npos);
   EXPECT_NE(html.find("lamella P0-U2 (45000 mm) cannot be spliced"), std::string::npos);
   // Stage-time bars scaled to the largest (simulation, 4 s = 520 px).
-  EXPECT_NE(html.find("width=\"520.00\" height=\"13.0\" fill=\"#4a7fb5\" data-value=\"4\""), std::string::npos);
-  EXPECT_NE(html.find("width=\"260.00\" height=\"13.0\" fill=\"#4a7fb5\" data-value=\"2\""), std::string::npos);
+  EXPECT_NE(html.find("width=\"520.00\" height=\"13.0\" fill=\"#4a7fb5\" data-value=\"4\""),
+            std::string::npos);
+  EXPECT_NE(html.find("width=\"260.00\" height=\"13.0\" fill=\"#4a7fb5\" data-value=\"2\""),
+            std::string::npos);
   // Stress histogram in bins of 0.1 up to 1.25: 13 bins; 0.05 and 0.07 in the first, 0.31 in the
   // fourth, 1.25 in the last.
   const size_t histogram = html.find("id=\"stress-histogram\"");
   ASSERT_NE(histogram, std::string::npos);
   const std::string bins = html.substr(histogram, html.find("</svg>", histogram) - histogram);
   EXPECT_EQ(count(bins, "<rect"), 13u);
-  EXPECT_NE(bins.find(">0.0 - 0.1</text><rect x=\"170.0\" y=\"3.0\" width=\"520.00\" height=\"13.0\" fill=\"#4a7fb5\" data-value=\"2\""),
+  EXPECT_NE(bins.find(">0.0 - 0.1</text><rect x=\"170.0\" y=\"3.0\" width=\"520.00\" "
+                      "height=\"13.0\" fill=\"#4a7fb5\" data-value=\"2\""),
             std::string::npos)
       << bins;
-  EXPECT_NE(bins.find(">0.3 - 0.4</text><rect x=\"170.0\" y=\"57.0\" width=\"260.00\""), std::string::npos) << bins;
-  EXPECT_NE(bins.find(">1.2 - 1.3</text><rect x=\"170.0\" y=\"219.0\" width=\"260.00\""), std::string::npos) << bins;
+  EXPECT_NE(bins.find(">0.3 - 0.4</text><rect x=\"170.0\" y=\"57.0\" width=\"260.00\""),
+            std::string::npos)
+      << bins;
+  EXPECT_NE(bins.find(">1.2 - 1.3</text><rect x=\"170.0\" y=\"219.0\" width=\"260.00\""),
+            std::string::npos)
+      << bins;
   EXPECT_EQ(count(bins, "data-value=\"0\""), 10u);
   // The highest lamellas with the strength marked at a ratio of 1.
   const size_t top = html.find("id=\"stress-top\"");
@@ -127,7 +143,8 @@ TEST(ReportHtml, SelfContainedPageWithEverySection) {
   EXPECT_LT(html.find(">P0-V3</text>", top), html.find(">P0-V1</text>", top));
   EXPECT_NE(html.find("stroke=\"#c62828\" stroke-dasharray=\"4 3\"", top), std::string::npos);
   // The BOM: summary rows up front, the note with its comma in one cell, lamella rows in the fold.
-  EXPECT_NE(html.find("<td>diameter 16.0 mm; one per connection, merged on shared lamellas</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td>diameter 16.0 mm; one per connection, merged on shared lamellas</td>"),
+            std::string::npos);
   EXPECT_LT(html.find("<td>splice</td>"), html.find("<details><summary>Every lamella"));
   EXPECT_GT(html.find("<td>P0-U1</td>"), html.find("<details><summary>Every lamella"));
   EXPECT_NE(html.find("(3 rows in all)"), std::string::npos);
@@ -135,18 +152,22 @@ TEST(ReportHtml, SelfContainedPageWithEverySection) {
 
 TEST(ReportHtml, MissingPartsSayWhy) {
   nlohmann::json report = sampleReport();
-  report["simulation"] = {{"ran", false}, {"skipped_reason", "the scene disables it (simulation.enabled = false)"}};
+  report["simulation"] = {{"ran", false},
+                          {"skipped_reason", "the scene disables it (simulation.enabled = false)"}};
   report["fabrication"] = {{"ran", false}, {"skipped_reason", "no requested output needs it"}};
   const std::string html = reportHtml(report, "", "");
   EXPECT_NE(html.find("No plan: the scene's outputs do not contain \"plan\""), std::string::npos);
-  EXPECT_NE(html.find("Not run: the scene disables it (simulation.enabled = false)"), std::string::npos);
+  EXPECT_NE(html.find("Not run: the scene disables it (simulation.enabled = false)"),
+            std::string::npos);
   EXPECT_NE(html.find("Not run: no requested output needs it"), std::string::npos);
   EXPECT_NE(html.find("No bom.csv"), std::string::npos);
-  EXPECT_NE(html.find("No planar grids: the scene's outputs do not contain \"previews\""), std::string::npos);
+  EXPECT_NE(html.find("No planar grids: the scene's outputs do not contain \"previews\""),
+            std::string::npos);
   EXPECT_EQ(html.find("id=\"stress-histogram\""), std::string::npos);
   EXPECT_NE(html.find("No error history: the simulation did not run."), std::string::npos);
   report["patches"] = nlohmann::json::array();
-  EXPECT_NE(reportHtml(report, "", "").find("No cladding functions: no patch grid was traced."), std::string::npos);
+  EXPECT_NE(reportHtml(report, "", "").find("No cladding functions: no patch grid was traced."),
+            std::string::npos);
 }
 
 // Output of a command (stdout) and its exit status.
@@ -164,7 +185,8 @@ std::pair<std::string, int> run(const std::string& command) {
 std::pair<int, int> pngSize(const std::string& png) {
   if (png.size() < 24 || png.compare(1, 3, "PNG") != 0) return {0, 0};
   auto be = [&](size_t at) {
-    return (static_cast<unsigned char>(png[at]) << 24) | (static_cast<unsigned char>(png[at + 1]) << 16) |
+    return (static_cast<unsigned char>(png[at]) << 24) |
+           (static_cast<unsigned char>(png[at + 1]) << 16) |
            (static_cast<unsigned char>(png[at + 2]) << 8) | static_cast<unsigned char>(png[at + 3]);
   };
   return {static_cast<int>(be(16)), static_cast<int>(be(20))};
@@ -173,25 +195,35 @@ std::pair<int, int> pngSize(const std::string& png) {
 // writeReportHtml writes a PNG preview of every figure of the page (the plan and each chart), at
 // the widths it promises, and names them relative to the run folder for report.json.
 TEST(ReportHtml, WritesAPngPreviewOfEveryFigure) {
-  const auto dir = std::filesystem::temp_directory_path() / ("egg_report_previews_" + std::to_string(getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("egg_report_previews_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "plan.svg") << kPlan;
   std::ofstream(dir / "bom.csv") << kBom;
   // Patch 0's flat grid as writePlanarSvg writes it.
   std::filesystem::create_directories(dir / "patch_000");
   std::ofstream(dir / "patch_000" / "planar.svg")
-      << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200\" height=\"200\" viewBox=\"0 0 200 200\">\n"
-         "<line x1=\"10\" y1=\"10\" x2=\"190\" y2=\"190\" stroke=\"#1f77b4\" stroke-width=\"3\"/>\n</svg>\n";
-  // The deployed grid as the pipeline writes it (deviation_plan.hpp): one rod rising off the surface.
+      << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200\" height=\"200\" viewBox=\"0 0 200 "
+         "200\">\n"
+         "<line x1=\"10\" y1=\"10\" x2=\"190\" y2=\"190\" stroke=\"#1f77b4\" "
+         "stroke-width=\"3\"/>\n</svg>\n";
+  // The deployed grid as the pipeline writes it (deviation_plan.hpp): one rod rising off the
+  // surface.
   DeployedRod rod;
-  for (int i = 0; i < 5; ++i) rod.points.emplace_back(i, 0.3 * i, 0.0), rod.distanceM.push_back(0.05 * i);
+  for (int i = 0; i < 5; ++i)
+    rod.points.emplace_back(i, 0.3 * i, 0.0), rod.distanceM.push_back(0.05 * i);
   std::ofstream(dir / "deployed.svg") << deployedPlanSvg({rod}, "test rod");
   const std::vector<std::string> previews = writeReportHtml(dir, sampleReport());
-  const std::vector<std::string> expected = {"preview/plan.png",           "preview/stage_time_chart.png",
-                                             "preview/patch_grid_0.png",   "preview/cladding_patch_0.png",
-                                             "preview/simulation_error_chart.png", "preview/error_time_patches.png",
-                                             "preview/error_time_joined.png",      "preview/deployed.png",
-                                             "preview/stress_histogram.png",       "preview/stress_top.png"};
+  const std::vector<std::string> expected = {"preview/plan.png",
+                                             "preview/stage_time_chart.png",
+                                             "preview/patch_grid_0.png",
+                                             "preview/cladding_patch_0.png",
+                                             "preview/simulation_error_chart.png",
+                                             "preview/error_time_patches.png",
+                                             "preview/error_time_joined.png",
+                                             "preview/deployed.png",
+                                             "preview/stress_histogram.png",
+                                             "preview/stress_top.png"};
   std::ifstream page(dir / "report.html");
   std::ostringstream pageText;
   pageText << page.rdbuf();
@@ -200,7 +232,9 @@ TEST(ReportHtml, WritesAPngPreviewOfEveryFigure) {
   EXPECT_NE(pageText.str().find("<h2 id=\"cladding\">"), std::string::npos);
   EXPECT_NE(pageText.str().find("<h2 id=\"error-time\">"), std::string::npos);
   EXPECT_NE(pageText.str().find("<svg id=\"deployed\""), std::string::npos);
-  EXPECT_NE(pageText.str().find("<svg id=\"patch-grid-0\" style=\"width:280px;height:auto\" xmlns="), std::string::npos);
+  EXPECT_NE(
+      pageText.str().find("<svg id=\"patch-grid-0\" style=\"width:280px;height:auto\" xmlns="),
+      std::string::npos);
   EXPECT_EQ(previews, expected);
   for (const auto& file : previews) {
     std::ifstream in(dir / file, std::ios::binary);
@@ -225,7 +259,8 @@ TEST(ReportHtml, FiguresStandAloneWithTheSvgNamespace) {
   // error against time patch by patch and joined, stress histogram, highest stresses.
   ASSERT_EQ(figures.size(), 8u);
   EXPECT_EQ(figures[0].first, "plan");
-  EXPECT_EQ(figures[0].second.rfind("<svg xmlns=", 0), 0u) << "plan.svg without its XML declaration";
+  EXPECT_EQ(figures[0].second.rfind("<svg xmlns=", 0), 0u)
+      << "plan.svg without its XML declaration";
   for (const auto& [id, svg] : figures) {
     EXPECT_NE(svg.find("xmlns=\"http://www.w3.org/2000/svg\""), std::string::npos) << id;
     EXPECT_EQ(svg.substr(svg.size() - 6), "</svg>") << id;
@@ -238,31 +273,39 @@ TEST(ReportHtml, FiguresStandAloneWithTheSvgNamespace) {
 // the same size rendered in the same run.
 TEST(ReportHtml, HeadlessChromiumRendersThePage) {
   if (run("command -v chromium >/dev/null 2>&1").second != 0) {
-    GTEST_SKIP() << "chromium is not installed (Debian package chromium, scripts/install-deps.sh): the page is not checked in a browser";
+    GTEST_SKIP() << "chromium is not installed (Debian package chromium, scripts/install-deps.sh): "
+                    "the page is not checked in a browser";
   }
-  const auto dir = std::filesystem::temp_directory_path() / ("egg_report_html_" + std::to_string(getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("egg_report_html_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "plan.svg") << kPlan;
   std::ofstream(dir / "bom.csv") << kBom;
   writeReportHtml(dir, sampleReport());
-  std::ofstream(dir / "empty.html") << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"></head><body></body></html>\n";
+  std::ofstream(dir / "empty.html")
+      << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"></head><body></body></html>\n";
   // --no-sandbox: tests may run as root in a container; no network is needed or allowed to matter.
-  const std::string chromium = "chromium --headless --no-sandbox --disable-gpu --no-first-run --disable-extensions "
-                               "--user-data-dir=" + (dir / "profile").string() + " ";
-  const auto [dom, domStatus] = run(chromium + "--dump-dom file://" + (dir / "report.html").string() + " 2>/dev/null");
+  const std::string chromium =
+      "chromium --headless --no-sandbox --disable-gpu --no-first-run --disable-extensions "
+      "--user-data-dir=" +
+      (dir / "profile").string() + " ";
+  const auto [dom, domStatus] =
+      run(chromium + "--dump-dom file://" + (dir / "report.html").string() + " 2>/dev/null");
   ASSERT_EQ(domStatus, 0) << dom;
-  for (const char* section :
-       {"stage-times", "plan", "patches", "patch-grids", "cladding", "simulation", "error-time", "deployed-grid", "fabrication", "bom"}) {
+  for (const char* section : {"stage-times", "plan", "patches", "patch-grids", "cladding",
+                              "simulation", "error-time", "deployed-grid", "fabrication", "bom"}) {
     EXPECT_NE(dom.find(std::string("<h2 id=\"") + section + "\">"), std::string::npos) << section;
   }
-  EXPECT_GE(count(dom, "<svg"), 8u) << "plan, stage times, cladding, simulation error, error against time (2), stress histogram, highest stresses";
+  EXPECT_GE(count(dom, "<svg"), 8u) << "plan, stage times, cladding, simulation error, error "
+                                       "against time (2), stress histogram, highest stresses";
   EXPECT_NE(dom.find("id=\"patch-0-u-curve\""), std::string::npos);
   EXPECT_NE(dom.find("id=\"error-time-joined-rmse-0\""), std::string::npos);
   EXPECT_NE(dom.find("id=\"patch-0\""), std::string::npos);
   for (const char* page : {"report", "empty"}) {
     const auto png = dir / (std::string(page) + ".png");
-    const auto [out, status] = run(chromium + "--window-size=1280,2400 --hide-scrollbars --screenshot=" + png.string() +
-                                   " file://" + (dir / (std::string(page) + ".html")).string() + " 2>&1");
+    const auto [out, status] =
+        run(chromium + "--window-size=1280,2400 --hide-scrollbars --screenshot=" + png.string() +
+            " file://" + (dir / (std::string(page) + ".html")).string() + " 2>&1");
     ASSERT_EQ(status, 0) << out;
     ASSERT_TRUE(std::filesystem::exists(png)) << out;
   }

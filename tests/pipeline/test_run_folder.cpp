@@ -41,8 +41,8 @@ TEST(RunReport, HasEveryRequiredKeyAndExplainsStagesThatDidNotRun) {
   report.section("surface") = {{"vertices", 4}};
   report.stageSkipped("simulation", "the scene disables it");
   const auto doc = report.finish(1.25);
-  for (const char* key : {"scene", "units", "surface", "stages", "patches", "coverage", "propagation", "simulation",
-                          "fabrication", "timings"}) {
+  for (const char* key : {"scene", "units", "surface", "stages", "patches", "coverage",
+                          "propagation", "simulation", "fabrication", "timings"}) {
     EXPECT_TRUE(doc.contains(key)) << key;
   }
   EXPECT_TRUE(doc["stages"]["surface"]["ran"].get<bool>());
@@ -117,7 +117,8 @@ void makeRun(const fs::path& out, const std::string& content) {
 }
 
 size_t entries(const fs::path& folder) {
-  return static_cast<size_t>(std::distance(fs::directory_iterator(folder), fs::directory_iterator()));
+  return static_cast<size_t>(
+      std::distance(fs::directory_iterator(folder), fs::directory_iterator()));
 }
 
 // Issue 17: --out onto an earlier run folder deleted everything in it, the user's files and the
@@ -155,7 +156,8 @@ TEST_F(TempDir, AFileAddedDuringTheRunStopsTheCommit) {
 TEST_F(TempDir, AMarkerWithoutTheFileListIsNotEnough) {
   const fs::path out = root / "old";
   fs::create_directories(out);
-  writeFileAtomically(out / kRunMarker, "eggshell run folder: replaced whole by the next egg run\n");
+  writeFileAtomically(out / kRunMarker,
+                      "eggshell run folder: replaced whole by the next egg run\n");
   writeFileAtomically(out / "report.json", "{}");
   EXPECT_THROW(StagedDirectory staged(out), InvalidInput);
   EXPECT_TRUE(fs::exists(out / "report.json"));
@@ -168,7 +170,8 @@ TEST_F(TempDir, TargetNamesMustBePortableAndNeverNameTheParent) {
   EXPECT_THROW(StagedDirectory staged(root / "."), InvalidInput);  // root itself: not a run folder
   EXPECT_THROW(StagedDirectory staged(root / "a\nb"), InvalidInput);
   EXPECT_THROW(StagedDirectory staged(fs::path("/")), InvalidInput);
-  // 238-255 characters failed late (the staging name did not fit NAME_MAX): now a clear error first.
+  // 238-255 characters failed late (the staging name did not fit NAME_MAX): now a clear error
+  // first.
   try {
     StagedDirectory staged(root / std::string(240, 'n'));
     FAIL() << "expected InvalidInput";
@@ -206,7 +209,8 @@ TEST_F(TempDir, InterruptedRunsAreRecoveredAndTheirLeftoversCleaned) {
   writeFileAtomically(lookalike / "mine.txt", "not eggshell's");
   {
     StagedDirectory staged(out);
-    EXPECT_EQ(readAll(out / "report.json"), "earlier") << "the earlier run is back before the new one starts";
+    EXPECT_EQ(readAll(out / "report.json"), "earlier")
+        << "the earlier run is back before the new one starts";
     EXPECT_FALSE(staged.recoveryNotes().empty());
   }
   EXPECT_FALSE(fs::exists(aside));

@@ -5,28 +5,31 @@
 #include <cairo.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <memory>
 #include <string>
-#include <unistd.h>
 
 namespace egg::pipeline {
 namespace {
 
 std::filesystem::path tempPng(const std::string& name) {
-  return std::filesystem::temp_directory_path() / ("egg_svg_png_" + std::to_string(getpid()) + "_" + name + ".png");
+  return std::filesystem::temp_directory_path() /
+         ("egg_svg_png_" + std::to_string(getpid()) + "_" + name + ".png");
 }
 
 // The pixel (x, y) of a PNG as 0xRRGGBB (read back with cairo, independent of librsvg).
 struct Png {
-  std::unique_ptr<cairo_surface_t, void (*)(cairo_surface_t*)> surface{nullptr, cairo_surface_destroy};
+  std::unique_ptr<cairo_surface_t, void (*)(cairo_surface_t*)> surface{nullptr,
+                                                                       cairo_surface_destroy};
   int width() const { return cairo_image_surface_get_width(surface.get()); }
   int height() const { return cairo_image_surface_get_height(surface.get()); }
   uint32_t rgb(int x, int y) const {
-    const unsigned char* row = cairo_image_surface_get_data(surface.get()) + y * cairo_image_surface_get_stride(surface.get());
+    const unsigned char* row = cairo_image_surface_get_data(surface.get()) +
+                               y * cairo_image_surface_get_stride(surface.get());
     uint32_t pixel;
     std::memcpy(&pixel, row + 4 * x, 4);
     return pixel & 0xFFFFFFu;
@@ -69,7 +72,8 @@ TEST(SvgPng, RasterisesAtTheAskedWidthWithTheSvgsAspect) {
 
 // A pixel size wins over the viewBox for the aspect; what the SVG leaves empty is white.
 TEST(SvgPng, UsesThePixelSizeAndAWhitePage) {
-  const std::string svg = R"(<svg xmlns="http://www.w3.org/2000/svg" width="300" height="100" viewBox="0 0 300 100">
+  const std::string svg =
+      R"(<svg xmlns="http://www.w3.org/2000/svg" width="300" height="100" viewBox="0 0 300 100">
     <circle cx="50" cy="50" r="40" fill="#000000"/></svg>)";
   const auto path = tempPng("circle");
   writePngFromSvg(svg, path, 600);
@@ -84,19 +88,24 @@ TEST(SvgPng, UsesThePixelSizeAndAWhitePage) {
 TEST(SvgPng, RejectsTextThatIsNotSvgAndBadWidths) {
   const auto path = tempPng("bad");
   EXPECT_THROW(writePngFromSvg("not an svg", path, 100), InvalidInput);
-  EXPECT_THROW(writePngFromSvg(R"(<svg xmlns="http://www.w3.org/2000/svg"/>)", path, 100), InvalidInput);
-  EXPECT_THROW(writePngFromSvg(R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 1 1"/>)", path, 0), InvalidInput);
+  EXPECT_THROW(writePngFromSvg(R"(<svg xmlns="http://www.w3.org/2000/svg"/>)", path, 100),
+               InvalidInput);
+  EXPECT_THROW(
+      writePngFromSvg(R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 1 1"/>)", path, 0),
+      InvalidInput);
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
 TEST(SvgPng, NamesTheFileItCannotWrite) {
-  const std::string svg = R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"><rect width="5" height="5"/></svg>)";
+  const std::string svg =
+      R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"><rect width="5" height="5"/></svg>)";
   const auto path = std::filesystem::path("/nonexistent_egg_dir") / "x.png";
   try {
     writePngFromSvg(svg, path, 10);
     FAIL() << "expected WriteError";
   } catch (const WriteError& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent_egg_dir/x.png"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/nonexistent_egg_dir/x.png"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -31,8 +31,8 @@ TEST(ChainProblem, IdentityMapsGiveEquidistantMembers) {
 
 // F_1 = F_3 kinked at (0.5, 0.4), F_2 its inverse; one free member t. Past the kink the positions
 // are affine, p_i = a_i t + b_i with a = (1, 1.2, 1, 1.2), b = (0, -0.2, 0, -0.2), and
-// J(t) = sum (2 p_i^2 - 2 p_i + 1) is least at t = -sum (4 b_i - 2) a_i / (4 sum a_i^2) = 10.72 / 19.52;
-// below the kink J's own minimum (t = 3.6 / 6.56) lies past 0.5, so that is the optimum.
+// J(t) = sum (2 p_i^2 - 2 p_i + 1) is least at t = -sum (4 b_i - 2) a_i / (4 sum a_i^2) = 10.72
+// / 19.52; below the kink J's own minimum (t = 3.6 / 6.56) lies past 0.5, so that is the optimum.
 TEST(ChainProblem, ThreePatchesWithKnownPiecewiseLinearF) {
   const PiecewiseLinearMap f({{0, 0}, {0.5, 0.4}, {1, 1}});
   const auto g = f.inverted();
@@ -92,7 +92,8 @@ TEST(ChainProblem, MinimumSpacingHoldsOnEveryBoundary) {
   const auto s = solveChain(problem);
   for (size_t i = 0; i < s.positions.size(); ++i)
     for (size_t j = 1; j < s.positions[i].size(); ++j)
-      EXPECT_GE(s.positions[i][j] - s.positions[i][j - 1], problem.boundaries[i].minGap - 1e-9) << i << " " << j;
+      EXPECT_GE(s.positions[i][j] - s.positions[i][j - 1], problem.boundaries[i].minGap - 1e-9)
+          << i << " " << j;
 }
 
 TEST(ChainProblem, AClosedRangeGetsNoFreeMember) {

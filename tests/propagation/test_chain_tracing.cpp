@@ -24,18 +24,21 @@ struct Designed {
 // The bump of tests/apps/test_pipeline.cpp, corners (i, j) = 3 j + i on a 3 m grid around the peak.
 std::unique_ptr<Designed> designBump(const std::vector<std::array<int, 4>>& quads) {
   auto d = std::make_unique<Designed>();
-  d->surface = samples::generateSample("bump", {{"length", 8}, {"width", 8}, {"height", 1}, {"sigma", 1.5}}, 0.4);
+  d->surface = samples::generateSample(
+      "bump", {{"length", 8}, {"width", 8}, {"height", 1}, {"sigma", 1.5}}, 0.4);
   d->solver = std::make_unique<geodesic::DistanceSolver>(d->surface);
   std::vector<Eigen::Vector3d> corners;
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i)
-      corners.push_back(position(d->surface, geodesic::snapToSurface(d->surface, {-3.0 + 3.0 * i, -3.0 + 3.0 * j, 0.0})));
+      corners.push_back(position(
+          d->surface, geodesic::snapToSurface(d->surface, {-3.0 + 3.0 * i, -3.0 + 3.0 * j, 0.0})));
   patching::LayoutDesignOptions options;
   options.design.maps.resolution = 30;
   options.design.members.count = 4;
   options.design.members.lamellaWidthM = 0.05;
   options.design.uniqueness.smooth = true;
-  d->layout = patching::designLayout(patching::makeLayout(d->surface, *d->solver, corners, quads), *d->solver, options);
+  d->layout = patching::designLayout(patching::makeLayout(d->surface, *d->solver, corners, quads),
+                                     *d->solver, options);
   std::vector<bool> usable;
   for (const auto& p : d->layout.patches) usable.push_back(p.cut.has_value());
   d->graph = patching::buildPatchGraph(d->layout.layout, usable);
@@ -74,10 +77,13 @@ TEST(ChainTracing, SlowTwoByTwoBumpMembersMeetOnEverySharedSide) {
   EXPECT_LE(traced.c0MaxGapM, 1e-6);
   // Patch 1's u members start where patch 0's traced u members end (x2 after refinement).
   ASSERT_TRUE(traced.patches[0].grid && traced.patches[1].grid);
-  for (int j = 1; j < 3; ++j) EXPECT_EQ(traced.patches[1].grid->u[j].x1, traced.patches[0].grid->u[j].x2) << j;
+  for (int j = 1; j < 3; ++j)
+    EXPECT_EQ(traced.patches[1].grid->u[j].x1, traced.patches[0].grid->u[j].x2) << j;
   // Propagation alone (without the tracing order) would leave the refinement's gap.
   double refinement = 0.0;
-  for (int j = 1; j < 3; ++j) refinement = std::max(refinement, std::abs(traced.patches[0].grid->u[j].x2 - members.x1[1][0][j]));
+  for (int j = 1; j < 3; ++j)
+    refinement =
+        std::max(refinement, std::abs(traced.patches[0].grid->u[j].x2 - members.x1[1][0][j]));
   EXPECT_LT(refinement, 1e-3);
 }
 
@@ -99,7 +105,8 @@ TEST(ChainTracing, SlowHeadOnMembersAreClosedByMovingAFreeStart) {
   // Patch 1's starts moved off the propagated values (by the refinement's size, well under 1 %).
   ASSERT_TRUE(traced.patches[1].grid);
   double moved = 0.0;
-  for (int j = 1; j < 3; ++j) moved = std::max(moved, std::abs(traced.patches[1].grid->u[j].x1 - members.x1[1][0][j]));
+  for (int j = 1; j < 3; ++j)
+    moved = std::max(moved, std::abs(traced.patches[1].grid->u[j].x1 - members.x1[1][0][j]));
   EXPECT_GT(moved, 1e-9);
   EXPECT_LT(moved, 1e-2);
 }

@@ -62,7 +62,8 @@ PropagationOptions withMembers(int m) {
 std::vector<std::array<int, 4>> twoByTwo() {
   std::vector<std::array<int, 4>> quads;
   for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 2; ++i) quads.push_back({3 * j + i, 3 * j + i + 1, 3 * (j + 1) + i + 1, 3 * (j + 1) + i});
+    for (int i = 0; i < 2; ++i)
+      quads.push_back({3 * j + i, 3 * j + i + 1, 3 * (j + 1) + i + 1, 3 * (j + 1) + i});
   return quads;
 }
 
@@ -77,7 +78,8 @@ TEST(LayoutPropagation, TwoByTwoPlaneWithIdentityGivesEquidistantMembers) {
       ASSERT_EQ(result.x1[p][f].size(), 5u) << p;
       for (int j = 0; j < 5; ++j) EXPECT_NEAR(result.x1[p][f][j], j / 4.0, 1e-12);
     }
-  EXPECT_NEAR(result.evennessAfter, 4 * 3 * 4 * (1.0 / 16), 1e-12);  // 4 chains x 3 boundaries x 4 gaps
+  EXPECT_NEAR(result.evennessAfter, 4 * 3 * 4 * (1.0 / 16),
+              1e-12);  // 4 chains x 3 boundaries x 4 gaps
 }
 
 TEST(LayoutPropagation, MembersMeetOnSharedSidesWithAKnownF) {
@@ -104,7 +106,8 @@ TEST(LayoutPropagation, APatchEnteredAtItsEndSideIsReadBackwards) {
   EXPECT_NE(chain.nodes[0].mirrored, chain.nodes[1].mirrored);
   // Member j of patch 0 ends at F_0(x1) along the side; patch 1's member m-1-j ends there too,
   // at parameter 1 - F_0(x1) of its own end side.
-  for (int j = 0; j < 6; ++j) EXPECT_NEAR(f1.value(result.x1[1][0][5 - j]), 1.0 - f0.value(result.x1[0][0][j]), 1e-12) << j;
+  for (int j = 0; j < 6; ++j)
+    EXPECT_NEAR(f1.value(result.x1[1][0][5 - j]), 1.0 - f0.value(result.x1[0][0][j]), 1e-12) << j;
 }
 
 TEST(LayoutPropagation, ARingOfFourPatchesNeedNotClose) {
@@ -123,7 +126,9 @@ TEST(LayoutPropagation, ARingOfFourPatchesNeedNotClose) {
   EXPECT_EQ(chain.boundaries.front(), chain.boundaries.back());  // the cut side, twice
   // After four compressions by F the members do not come back to where they started.
   double mismatch = 0.0;
-  for (int j = 0; j < 5; ++j) mismatch = std::max(mismatch, std::abs(chain.solution.positions[4][j] - chain.solution.positions[0][j]));
+  for (int j = 0; j < 5; ++j)
+    mismatch = std::max(mismatch,
+                        std::abs(chain.solution.positions[4][j] - chain.solution.positions[0][j]));
   EXPECT_GT(mismatch, 1e-3);
   EXPECT_LE(result.evennessAfter, result.evennessBefore);
   // The cut is a piece of its own, with no joints (its members are not paired); the three other
@@ -142,7 +147,8 @@ TEST(LayoutPropagation, ARingOfFourPatchesNeedNotClose) {
   EXPECT_EQ(cuts, 1);
 }
 
-// A T-junction: patch 0 below two patches 1, 2 whose corner 7 lies half-way along patch 0's top side.
+// A T-junction: patch 0 below two patches 1, 2 whose corner 7 lies half-way along patch 0's top
+// side.
 //   corners 0 1 2 (bottom), 3 7 4 (top of patch 0, 7 a T), 5 8 6 (top of 1 and 2)
 // Patch 0's v members end on its side 2 and continue into patches 1 and 2 (their side 0).
 PatchLayout tJunctionLayout(const std::vector<std::array<int, 4>>& extra = {}) {
@@ -163,7 +169,8 @@ TEST(LayoutPropagation, ATJunctionMemberIsKept) {
   std::vector<PatchSideData> patches{sideData({}, f0), sideData(), sideData()};
   const auto result = propagateLayout(graph, patches, withMembers(4));
   for (const auto& f : result.fallbacks)
-    for (const auto& n : f.nodes) EXPECT_EQ(n.family, Family::U) << f.reason;  // only patch 0's lone u family
+    for (const auto& n : f.nodes)
+      EXPECT_EQ(n.family, Family::U) << f.reason;  // only patch 0's lone u family
   EXPECT_TRUE(result.notes.empty()) << result.notes.front();
   const auto& x0 = result.x1[0][1];
   // Patch 0 first (the sub-chains are single patches: the first is the lowest): the T is an
@@ -190,10 +197,12 @@ TEST(LayoutPropagation, ATJunctionMemberIsKept) {
     ++pieces;
     EXPECT_EQ(piece.membersA, 3);
     EXPECT_EQ(piece.membersB, 3);
-    EXPECT_EQ(piece.joints.size(), 2u);  // the inner member, and the T member against a boundary member
+    EXPECT_EQ(piece.joints.size(),
+              2u);  // the inner member, and the T member against a boundary member
     for (int j : piece.joints) {
       const auto& joint = result.joints[j];
-      const double xa = joint.a.atEnd ? f0.value(result.x1[joint.a.patch][1][joint.a.member]) : result.x1[joint.a.patch][1][joint.a.member];
+      const double xa = joint.a.atEnd ? f0.value(result.x1[joint.a.patch][1][joint.a.member])
+                                      : result.x1[joint.a.patch][1][joint.a.member];
       const double xb = result.x1[joint.b.patch][1][joint.b.member];
       EXPECT_NEAR(joint.offset + joint.scale * xa, xb, 1e-12);
       EXPECT_TRUE(joint.a.atEnd);
@@ -216,11 +225,15 @@ TEST(LayoutPropagation, SubChainsAreSolvedBreadthFirstOverTheTJunctions) {
   for (const auto& f : result.fallbacks)
     for (const auto& n : f.nodes) EXPECT_EQ(n.family, Family::U) << f.reason;
   EXPECT_TRUE(result.notes.empty()) << result.notes.front();
-  const std::vector<std::vector<double>> expected{{0, 1 / 6.0, 1 / 3.0, 0.5, 0.75, 1}, {0, 1 / 3.0, 2 / 3.0, 1}, {0, 0.5, 1},
-                                                  {0, 1 / 3.0, 2 / 3.0, 1}, {0, 0.5, 1}};
+  const std::vector<std::vector<double>> expected{{0, 1 / 6.0, 1 / 3.0, 0.5, 0.75, 1},
+                                                  {0, 1 / 3.0, 2 / 3.0, 1},
+                                                  {0, 0.5, 1},
+                                                  {0, 1 / 3.0, 2 / 3.0, 1},
+                                                  {0, 0.5, 1}};
   for (int p = 0; p < 5; ++p) {
     ASSERT_EQ(result.x1[p][1].size(), expected[p].size()) << p;
-    for (size_t j = 0; j < expected[p].size(); ++j) EXPECT_NEAR(result.x1[p][1][j], expected[p][j], 1e-9) << p << " " << j;
+    for (size_t j = 0; j < expected[p].size(); ++j)
+      EXPECT_NEAR(result.x1[p][1][j], expected[p][j], 1e-9) << p << " " << j;
   }
   int tPieces = 0;
   for (const auto& piece : result.pieces) {
@@ -233,7 +246,8 @@ TEST(LayoutPropagation, SubChainsAreSolvedBreadthFirstOverTheTJunctions) {
 
 TEST(LayoutPropagation, InfeasiblePatchesCutChains) {
   // An infeasible patch in the middle of a chain of three cuts it: the others fall back too.
-  const auto strip = patching::buildPatchGraph(layoutOf({{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}}));
+  const auto strip =
+      patching::buildPatchGraph(layoutOf({{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}}));
   std::vector<PatchSideData> three(3, sideData());
   three[1].usable = false;
   const auto cut = propagateLayout(strip, three, withMembers(4));

@@ -32,7 +32,8 @@ TEST(PatchSides, FootprintIsTheLamellaWidthOverTheSineOfTheSmallestAngle) {
   design.feasible = true;
   design.patch.sideLengths = {2, 1, 2, 1};
   design.alphaBar.quad = planarQuad({2, 1, 2, 1}, M_PI / 2, 0.1).value();
-  for (auto* f : {&design.alphaBar.claddingU, &design.alphaBar.claddingV}) f->points = {{0, 0}, {1, 1}};
+  for (auto* f : {&design.alphaBar.claddingU, &design.alphaBar.claddingV})
+    f->points = {{0, 0}, {1, 1}};
   const auto data = patchSideData(design, 0.05);
   EXPECT_TRUE(data.usable);
   for (int family = 0; family < 2; ++family)

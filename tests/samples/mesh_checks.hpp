@@ -13,8 +13,8 @@
 namespace egg::samples::testing {
 
 struct MeshReport {
-  int components = 0;             // face-connected components
-  int complexVertices = 0;        // vertices with more than one boundary fan
+  int components = 0;       // face-connected components
+  int complexVertices = 0;  // vertices with more than one boundary fan
   int boundaryLoops = 0;
   double minAngleDeg = 180.0;
   double meanEdge = 0.0;

@@ -48,8 +48,9 @@ TEST(GreatCourt, ClosedFormMatchesDesignCheckValues) {
   EXPECT_NEAR(greatCourtHeight(-29.435, 0), 22.664, 1e-3);
   for (int i = 0; i < 36; ++i) {
     const double angle = 2 * kPi * i / 36;
-    EXPECT_NEAR(greatCourtHeight(great_court::a * std::cos(angle), great_court::a * std::sin(angle)),
-                great_court::hc, 1e-9);
+    EXPECT_NEAR(
+        greatCourtHeight(great_court::a * std::cos(angle), great_court::a * std::sin(angle)),
+        great_court::hc, 1e-9);
   }
   // z = h_e on the rectangle, and the closed form tends to it continuously.
   EXPECT_EQ(greatCourtHeight(great_court::b, 10.0), great_court::he);
@@ -69,7 +70,8 @@ TriMesh* GreatCourtMesh::mesh_ = nullptr;
 TEST_F(GreatCourtMesh, SpotHeightsAreMeshVertices) {
   const struct {
     double x, y, z;
-  } spots[] = {{0, 34.135, 26.157}, {0, -36.685, 27.573}, {29.435, 0, 22.664}, {-29.435, 0, 22.664}};
+  } spots[] = {
+      {0, 34.135, 26.157}, {0, -36.685, 27.573}, {29.435, 0, 22.664}, {-29.435, 0, 22.664}};
   for (const auto& spot : spots) {
     const auto v = vertexAt(*mesh_, spot.x, spot.y);
     ASSERT_TRUE(v.is_valid()) << spot.x << ", " << spot.y;
@@ -88,7 +90,8 @@ TEST_F(GreatCourtMesh, VerticesLieOnTheClosedFormAndBoxMatchesDesign) {
   EXPECT_NEAR(box.size().y(), 97.15, 1e-9);
   EXPECT_NEAR(box.size().z(), 7.9, 0.079);
   EXPECT_NEAR(box.min.z(), 19.71, 1e-9);  // the rectangle
-  EXPECT_NEAR(box.max.z(), 27.60, 0.02);  // 27.595 near (0, -35.8); a vertex may sit a little off it
+  EXPECT_NEAR(box.max.z(), 27.60,
+              0.02);  // 27.595 near (0, -35.8); a vertex may sit a little off it
   for (auto f : mesh_->faces()) EXPECT_GT(testing::faceNormal(*mesh_, f).z(), 0.0);
 }
 

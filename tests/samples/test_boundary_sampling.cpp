@@ -18,7 +18,9 @@ SurfaceSpec flat(std::vector<BoundaryLoop> boundary) {
 }
 
 BoundaryLoop circle(double radius) {
-  return {{[radius](double s) { return Vec2(radius * std::cos(2 * kPi * s), radius * std::sin(2 * kPi * s)); }}};
+  return {{[radius](double s) {
+    return Vec2(radius * std::cos(2 * kPi * s), radius * std::sin(2 * kPi * s));
+  }}};
 }
 
 TEST(BoundarySampling, CircleGetsEvenChordsOnTheCurve) {
@@ -30,7 +32,8 @@ TEST(BoundarySampling, CircleGetsEvenChordsOnTheCurve) {
   const double chord = 2 * 5.0 * std::sin(kPi / 63);
   for (size_t i = 0; i < points.size(); ++i) {
     EXPECT_NEAR(points[i].domain.norm(), 5.0, 1e-12);
-    EXPECT_NEAR((points[(i + 1) % points.size()].domain - points[i].domain).norm(), chord, 1e-3 * chord);
+    EXPECT_NEAR((points[(i + 1) % points.size()].domain - points[i].domain).norm(), chord,
+                1e-3 * chord);
   }
 }
 

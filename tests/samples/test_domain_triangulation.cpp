@@ -40,7 +40,9 @@ TEST(DomainTriangulation, CoversTheDomainWithoutTheHole) {
     const int input = result.inputIndex[i];
     if (input < 0) continue;
     ++inputs;
-    const Vec2 expected = input == 8 ? Vec2(3.0, 3.3) : input < 4 ? kSquareWithHole[0][input] : kSquareWithHole[1][input - 4];
+    const Vec2 expected = input == 8  ? Vec2(3.0, 3.3)
+                          : input < 4 ? kSquareWithHole[0][input]
+                                      : kSquareWithHole[1][input - 4];
     EXPECT_EQ(result.points[i], expected);
   }
   EXPECT_EQ(inputs, 9);
@@ -52,7 +54,8 @@ TEST(DomainTriangulation, SizeIsMeasuredOnTheLiftedSurface) {
   const DomainTriangulation result = triangulateDomain({kSquareWithHole[0]}, {}, lift, 0.8);
   for (const auto& t : result.triangles) {
     for (int k = 0; k < 3; ++k) {
-      const double length = (lift(result.points[t[k]]) - lift(result.points[t[(k + 1) % 3]])).norm();
+      const double length =
+          (lift(result.points[t[k]]) - lift(result.points[t[(k + 1) % 3]])).norm();
       // Input edges along x are 4 * sqrt(10) long in 3D: refinement must have split them.
       EXPECT_LE(length, 0.8 * (1 + 1e-9));
     }

@@ -21,13 +21,15 @@ void expectInvalid(F&& call, std::initializer_list<std::string> fragments) {
     FAIL() << "expected InvalidInput";
   } catch (const InvalidInput& error) {
     const std::string message = error.what();
-    for (const auto& fragment : fragments) EXPECT_NE(message.find(fragment), std::string::npos) << message;
+    for (const auto& fragment : fragments)
+      EXPECT_NE(message.find(fragment), std::string::npos) << message;
   }
 }
 
 TEST(SamplesRegistry, ListsEverySampleWithItsParameters) {
-  const std::vector<std::string> expected{"great_court", "lilium", "yas",  "plane", "sphere", "cylinder",
-                                          "cone",        "hypar",  "hyperboloid", "bump", "waves"};
+  const std::vector<std::string> expected{"great_court", "lilium",   "yas",  "plane",
+                                          "sphere",      "cylinder", "cone", "hypar",
+                                          "hyperboloid", "bump",     "waves"};
   const auto samples = listSamples();
   ASSERT_EQ(samples.size(), expected.size());
   for (size_t i = 0; i < expected.size(); ++i) {
@@ -36,7 +38,8 @@ TEST(SamplesRegistry, ListsEverySampleWithItsParameters) {
     EXPECT_TRUE(isSample(expected[i]));
     // Every parameter is documented, and only parameters are.
     ASSERT_EQ(samples[i].parameterHelp.size(), samples[i].defaults.size());
-    for (const auto& [key, value] : samples[i].defaults) EXPECT_EQ(samples[i].parameterHelp.count(key), 1u) << key;
+    for (const auto& [key, value] : samples[i].defaults)
+      EXPECT_EQ(samples[i].parameterHelp.count(key), 1u) << key;
   }
   EXPECT_FALSE(isSample("roof.obj"));
   EXPECT_FALSE(isSample(""));
@@ -52,8 +55,16 @@ TEST(SamplesRegistry, RejectsUnknownSampleNamingIt) {
 }
 
 TEST(SamplesRegistry, RejectsUnknownParameterNamingSampleAndParameter) {
-  expectInvalid([] { generateSample("sphere", {{"radus", 3.0}}, 1.0); }, {"sphere", "radus", "radius"});
-  expectInvalid([] { generateSample("great_court", {{"holes", 1.0}}, 1.0); }, {"great_court", "holes"});
+  expectInvalid(
+      [] {
+        generateSample("sphere", {{"radus", 3.0}}, 1.0);
+      },
+      {"sphere", "radus", "radius"});
+  expectInvalid(
+      [] {
+        generateSample("great_court", {{"holes", 1.0}}, 1.0);
+      },
+      {"great_court", "holes"});
 }
 
 TEST(SamplesRegistry, RejectsOutOfRangeParameters) {
@@ -70,14 +81,21 @@ TEST(SamplesRegistry, RejectsNonPositiveOrAbsurdEdgeLength) {
     expectInvalid([bad] { generateSample("plane", {}, bad); }, {"plane", "edge_length_m"});
   }
   // 5 550 m^2 at 1 cm edges would be over 10^8 triangles.
-  expectInvalid([] { generateSample("great_court", {}, 0.01); }, {"great_court", "edge_length_m", "triangles"});
+  expectInvalid([] { generateSample("great_court", {}, 0.01); },
+                {"great_court", "edge_length_m", "triangles"});
   // 2 000 km of boundary at 0.1 m: few triangles' worth of area, but 4 * 10^7 boundary edges.
-  expectInvalid([] { generateSample("plane", {{"length", 2e6}, {"width", 1e-6}}, 0.1); },
-                {"plane", "edge_length_m", "boundary"});
+  expectInvalid(
+      [] {
+        generateSample("plane", {{"length", 2e6}, {"width", 1e-6}}, 0.1);
+      },
+      {"plane", "edge_length_m", "boundary"});
   // 1 km by 1 micrometre at 1 m edges: a fine area and boundary, but near-equilateral triangles
   // would need ~10^9 of them; the refinement gives up early instead of exhausting memory.
-  expectInvalid([] { generateSample("plane", {{"length", 1000.0}, {"width", 1e-6}}, 1.0); },
-                {"plane", "edge_length_m", "thinner"});
+  expectInvalid(
+      [] {
+        generateSample("plane", {{"length", 1000.0}, {"width", 1e-6}}, 1.0);
+      },
+      {"plane", "edge_length_m", "thinner"});
 }
 
 // Sizes per sample: fast, yet a few hundred to a few thousand vertices each.
@@ -107,7 +125,8 @@ TEST(SamplesRegistry, EverySampleIsAValidNearEquilateralMesh) {
     const double equilateralFaces = surfaceArea(mesh) / (std::sqrt(3.0) / 4.0 * h * h);
     EXPECT_NEAR(mesh.n_faces() / equilateralFaces, 1.0, 0.15);
     // Genus 0 with its boundary loops: V - E + F = 2 - loops (a disc, or an annulus for the hole).
-    EXPECT_EQ(int(mesh.n_vertices()) - int(mesh.n_edges()) + int(mesh.n_faces()), 2 - report.boundaryLoops);
+    EXPECT_EQ(int(mesh.n_vertices()) - int(mesh.n_edges()) + int(mesh.n_faces()),
+              2 - report.boundaryLoops);
   }
 }
 

@@ -61,7 +61,9 @@ TEST(Remeshing, EdgesAreMeasuredOnTheSurfaceNotInTheDomain) {
 
 TEST(Remeshing, LockedVerticesStayAndCurvedMapsAreExact) {
   SurfaceSpec spec;
-  spec.position = [](const Vec2& u) { return Vec3(u.x(), u.y(), std::sin(u.x()) * std::cos(u.y())); };
+  spec.position = [](const Vec2& u) {
+    return Vec3(u.x(), u.y(), std::sin(u.x()) * std::cos(u.y()));
+  };
   DomainMesh input = grid(12, 12, 3.0, 3.0);
   input.locked[6 * 13 + 6] = true;  // the centre (1.5, 1.5)
   RemeshOptions options;

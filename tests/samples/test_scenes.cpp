@@ -23,7 +23,8 @@ json readScene(const std::filesystem::path& path) {
   return json::parse(in);
 }
 
-void expectOnlyKeys(const json& object, const std::set<std::string>& allowed, const std::string& where) {
+void expectOnlyKeys(const json& object, const std::set<std::string>& allowed,
+                    const std::string& where) {
   ASSERT_TRUE(object.is_object()) << where;
   for (auto it = object.begin(); it != object.end(); ++it) {
     EXPECT_TRUE(allowed.count(it.key())) << where << "." << it.key() << " is not a scene key";
@@ -33,10 +34,14 @@ void expectOnlyKeys(const json& object, const std::set<std::string>& allowed, co
 // docs/architecture.md "Scene file" (the full check, values included, is the scene parser's:
 // tests/apps parses every shipped scene with it). Sections other than `surface` are optional.
 void expectDesignKeys(const json& scene) {
-  expectOnlyKeys(scene, {"name", "surface", "patching", "grid", "lamella", "simulation", "fabrication", "outputs"}, "");
+  expectOnlyKeys(
+      scene,
+      {"name", "surface", "patching", "grid", "lamella", "simulation", "fabrication", "outputs"},
+      "");
   const std::map<std::string, std::set<std::string>> sections{
       {"surface", {"sample", "params", "edge_length_m"}},
-      {"patching", {"workflow", "eta_max", "slope_bounds", "max_patch_size_m", "block_grid", "patches"}},
+      {"patching",
+       {"workflow", "eta_max", "slope_bounds", "max_patch_size_m", "block_grid", "patches"}},
       {"grid", {"members_per_family", "map_resolution", "alpha_bar", "min_planar_angle_rad"}},
       {"lamella", {"width_m", "thickness_m", "material"}},
       // block_grid, join_patches, stock_length_mm, splice_joint: beyond docs/architecture.md,
@@ -44,17 +49,20 @@ void expectDesignKeys(const json& scene) {
       // Section 3.5; the Yas canopy's slots merge into slits that only a glued scarf can join, and
       // its joined run is too large).
       {"simulation", {"enabled", "gravity", "friction_mu", "notches", "join_patches"}},
-      {"fabrication", {"enabled", "sheet_mm", "bolt_diameter_mm", "stock_length_mm", "splice_joint"}}};
+      {"fabrication",
+       {"enabled", "sheet_mm", "bolt_diameter_mm", "stock_length_mm", "splice_joint"}}};
   ASSERT_TRUE(scene.contains("surface"));
   for (const auto& [section, keys] : sections) {
     if (scene.contains(section)) expectOnlyKeys(scene[section], keys, section);
   }
   for (const auto& output : scene.value("outputs", json::array())) {
-    EXPECT_TRUE(std::set<std::string>({"report", "plan", "cut_files", "stickers", "supports", "previews"})
-                    .count(output.get<std::string>()));
+    EXPECT_TRUE(
+        std::set<std::string>({"report", "plan", "cut_files", "stickers", "supports", "previews"})
+            .count(output.get<std::string>()));
   }
   // Section 3.5.2: a lamella thinner than a fifth of its width behaves like a geodesic strip.
-  EXPECT_LE(scene["lamella"]["thickness_m"].get<double>(), scene["lamella"]["width_m"].get<double>() / 5 + 1e-12);
+  EXPECT_LE(scene["lamella"]["thickness_m"].get<double>(),
+            scene["lamella"]["width_m"].get<double>() / 5 + 1e-12);
 }
 
 TriMesh generateScene(const json& scene) {
@@ -87,7 +95,8 @@ TEST(SceneFiles, ArchitecturalScenesUseThePapersSections) {
     EXPECT_LT(mesh.n_vertices(), 20000u);
   }
   // The default scene of `egg run`.
-  EXPECT_EQ(readScene(kSamples / "great_court.json")["surface"]["edge_length_m"].get<double>(), 1.0);
+  EXPECT_EQ(readScene(kSamples / "great_court.json")["surface"]["edge_length_m"].get<double>(),
+            1.0);
 }
 
 TEST(SceneFiles, TestScenesAreSmall) {

@@ -9,11 +9,11 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
-#include <cstdio>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -105,7 +105,8 @@ inline ToolRun runTool(const std::string& command) {
   if (!pipe) return run;
   std::array<char, 4096> buffer{};
   size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.output.append(buffer.data(), n);
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    run.output.append(buffer.data(), n);
   const int status = pclose(pipe);
   run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return run;
@@ -115,16 +116,17 @@ inline bool haveTool(const std::string& name) { return runTool("command -v " + n
 
 // A fresh, empty folder for one test (the process id keeps parallel runs of other checkouts apart).
 inline std::filesystem::path scratchDir(const std::string& name) {
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("egg_fabrication_test_" + name + "_" + std::to_string(getpid()));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("egg_fabrication_test_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
 }
 
-// Reads a DXF with ezdxf: {"audit_errors": n, "audit_fixes": n (what the audit had to repair), "insunits": u, "version": "AC1015", "layers": [...],
-// "entities": [{"type", "layer", ...}]} (circles: centre, radius; lwpolylines: points [x, y, bulge],
-// closed; text: text, insert, align, halign, valign, height).
+// Reads a DXF with ezdxf: {"audit_errors": n, "audit_fixes": n (what the audit had to repair),
+// "insunits": u, "version": "AC1015", "layers": [...], "entities": [{"type", "layer", ...}]}
+// (circles: centre, radius; lwpolylines: points [x, y, bulge], closed; text: text, insert, align,
+// halign, valign, height).
 inline nlohmann::json readDxf(const std::filesystem::path& path) {
   const std::string script = R"PY(
 import json, sys, ezdxf
@@ -158,40 +160,51 @@ print(json.dumps(out))
 }
 
 // Reads back what our SVG writer writes, in sheet millimetres with y up again (y = height - y_svg):
-// {"height": h, "circles": [[x, y, r]], "slots": [[x0, y0, ...corner points]], "texts": [[x, y, size, text]],
-// "polylines": [[x0, y0, x1, y1, ...]]}.
+// {"height": h, "circles": [[x, y, r]], "slots": [[x0, y0, ...corner points]], "texts": [[x, y,
+// size, text]], "polylines": [[x0, y0, x1, y1, ...]]}.
 inline nlohmann::json readSvg(const std::string& svg) {
-  nlohmann::json out{{"circles", nlohmann::json::array()}, {"slots", nlohmann::json::array()},
-                     {"texts", nlohmann::json::array()}, {"polylines", nlohmann::json::array()}};
+  nlohmann::json out{{"circles", nlohmann::json::array()},
+                     {"slots", nlohmann::json::array()},
+                     {"texts", nlohmann::json::array()},
+                     {"polylines", nlohmann::json::array()}};
   std::smatch m;
   const std::regex viewBox(R"re(viewBox="0 0 ([-0-9.]+) ([-0-9.]+)")re");
   if (!std::regex_search(svg, m, viewBox)) return out;
   const double h = std::stod(m[2]);
   out["height"] = h;
   const std::regex circle(R"re(<circle cx="([-0-9.]+)" cy="([-0-9.]+)" r="([-0-9.]+)")re");
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circle); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circle); it != std::sregex_iterator();
+       ++it) {
     out["circles"].push_back({std::stod((*it)[1]), h - std::stod((*it)[2]), std::stod((*it)[3])});
   }
-  const std::regex text(R"re(<text x="([-0-9.]+)" y="([-0-9.]+)" font-family="[^"]*" font-size="([-0-9.]+)"[^>]*>([^<]*)</text>)re");
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), text); it != std::sregex_iterator(); ++it) {
-    out["texts"].push_back({std::stod((*it)[1]), h - std::stod((*it)[2]), std::stod((*it)[3]), (*it)[4].str()});
+  const std::regex text(
+      R"re(<text x="([-0-9.]+)" y="([-0-9.]+)" font-family="[^"]*" font-size="([-0-9.]+)"[^>]*>([^<]*)</text>)re");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), text); it != std::sregex_iterator();
+       ++it) {
+    out["texts"].push_back(
+        {std::stod((*it)[1]), h - std::stod((*it)[2]), std::stod((*it)[3]), (*it)[4].str()});
   }
   const std::regex path(R"re(<path d="([^"]*)")re");
   const std::regex number(R"re(-?[0-9]+\.[0-9]+)re");
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), path); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), path); it != std::sregex_iterator();
+       ++it) {
     // M x y L x y A r r 0 0 0 x y L x y A r r 0 0 0 x y Z: keep the four corners.
     std::vector<double> v;
     const std::string d = (*it)[1];
-    for (auto n = std::sregex_iterator(d.begin(), d.end(), number); n != std::sregex_iterator(); ++n) v.push_back(std::stod((*n)[0]));
+    for (auto n = std::sregex_iterator(d.begin(), d.end(), number); n != std::sregex_iterator();
+         ++n)
+      v.push_back(std::stod((*n)[0]));
     if (v.size() < 12) continue;
     out["slots"].push_back({v[0], h - v[1], v[2], h - v[3], v[6], h - v[7], v[8], h - v[9]});
   }
   const std::regex poly(R"re(<(polygon|polyline) points="([^"]*)")re");
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), poly); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), poly); it != std::sregex_iterator();
+       ++it) {
     std::vector<double> v;
     const std::string d = (*it)[2];
     int k = 0;
-    for (auto n = std::sregex_iterator(d.begin(), d.end(), number); n != std::sregex_iterator(); ++n, ++k) {
+    for (auto n = std::sregex_iterator(d.begin(), d.end(), number); n != std::sregex_iterator();
+         ++n, ++k) {
       const double x = std::stod((*n)[0]);
       v.push_back(k % 2 ? h - x : x);
     }

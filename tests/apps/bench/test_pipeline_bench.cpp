@@ -6,12 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 namespace egg::app {
 namespace {
@@ -21,13 +21,15 @@ namespace fs = std::filesystem;
 TEST(PipelineBench, ParetoFrontKeepsWhatNothingBeatsInBoth) {
   // (time, error): (3, 0.1) is beaten by (2, 0.05), (5, 0.01) by the faster (4, 0.01); (1, 0.2)
   // is the fastest; NaN never counts.
-  const std::vector<std::pair<double, double>> points{{3, 0.1}, {1, 0.2}, {2, 0.05}, {4, 0.01}, {0.5, NAN}, {5, 0.01}};
+  const std::vector<std::pair<double, double>> points{{3, 0.1},  {1, 0.2},   {2, 0.05},
+                                                      {4, 0.01}, {0.5, NAN}, {5, 0.01}};
   EXPECT_EQ(paretoFront(points), (std::vector<size_t>{1, 2, 3}));  // by time
   EXPECT_TRUE(paretoFront({}).empty());
 }
 
 TEST(PipelineBench, SweepsASmallSceneIntoACsvAndAPlot) {
-  const fs::path out = fs::temp_directory_path() / ("egg_pipeline_bench_" + std::to_string(::getpid()));
+  const fs::path out =
+      fs::temp_directory_path() / ("egg_pipeline_bench_" + std::to_string(::getpid()));
   fs::remove_all(out);
   PipelineBenchOptions options;
   options.scenes = {(fs::path(EGG_SOURCE_DIR) / "samples" / "scenes" / "bump_small.json").string()};
@@ -43,7 +45,8 @@ TEST(PipelineBench, SweepsASmallSceneIntoACsvAndAPlot) {
   std::ifstream csv(out / "pipeline.csv");
   std::string header, line;
   std::getline(csv, header);
-  EXPECT_EQ(header.rfind("scene,edge_factor,edge_length_m,map_proxy_vertices,wall_s,", 0), 0u) << header;
+  EXPECT_EQ(header.rfind("scene,edge_factor,edge_length_m,map_proxy_vertices,wall_s,", 0), 0u)
+      << header;
   std::vector<std::string> rows;
   while (std::getline(csv, line)) rows.push_back(line);
   ASSERT_EQ(rows.size(), 2u);
@@ -67,7 +70,10 @@ TEST(PipelineBench, SweepsASmallSceneIntoACsvAndAPlot) {
   ASSERT_TRUE(fs::exists(out / "pipeline.svg"));
   if (std::system("command -v rsvg-convert > /dev/null 2>&1") == 0) {
     const std::string png = (out / "pipeline.png").string();
-    EXPECT_EQ(std::system(("rsvg-convert '" + (out / "pipeline.svg").string() + "' -o '" + png + "'").c_str()), 0);
+    EXPECT_EQ(
+        std::system(
+            ("rsvg-convert '" + (out / "pipeline.svg").string() + "' -o '" + png + "'").c_str()),
+        0);
     EXPECT_GT(fs::file_size(png), 1000u);
   }
   fs::remove_all(out);
@@ -76,7 +82,8 @@ TEST(PipelineBench, SweepsASmallSceneIntoACsvAndAPlot) {
 TEST(PipelineBench, AVariantOutsideItsScenesBoundsIsAFailedRowAndTheOthersRun) {
   // bump_small with a 1 x 1 block grid under a 5 m patch limit: no variant can lay it out. Each is
   // a row with its failure, none stops the bench.
-  const fs::path out = fs::temp_directory_path() / ("egg_pipeline_bench_bad_" + std::to_string(::getpid()));
+  const fs::path out =
+      fs::temp_directory_path() / ("egg_pipeline_bench_bad_" + std::to_string(::getpid()));
   fs::remove_all(out);
   fs::create_directories(out);
   nlohmann::json scene;
@@ -114,13 +121,15 @@ TEST(PipelineBench, AVariantOutsideItsScenesBoundsIsAFailedRowAndTheOthersRun) {
 }
 
 TEST(PipelineBench, VariesOneKnobAtATimeFromTheFirstValues) {
-  PipelineBenchOptions options;  // defaults: edge {1, 1.5, 2}, proxy {600, 0}, Newton {1e-10, 1e-6}, spacing {8, 12}
+  PipelineBenchOptions
+      options;  // defaults: edge {1, 1.5, 2}, proxy {600, 0}, Newton {1e-10, 1e-6}, spacing {8, 12}
   options.mapTolerances = {1e-4, 1e-2};
   const auto variants = pipelineVariants(options, "great_court");
   std::vector<std::string> varied;
   for (const auto& v : variants) varied.push_back(v.varied);
-  EXPECT_EQ(varied, (std::vector<std::string>{"base", "edge_x1.5", "edge_x2", "proxy_0", "map_tol_0.01", "newton_tol_1e-06",
-                                              "spacing_x12", "paper_section_25x4cm"}));
+  EXPECT_EQ(varied,
+            (std::vector<std::string>{"base", "edge_x1.5", "edge_x2", "proxy_0", "map_tol_0.01",
+                                      "newton_tol_1e-06", "spacing_x12", "paper_section_25x4cm"}));
   // Each variant changes its own knob only; the row tolerance needs the maps on the patch.
   EXPECT_DOUBLE_EQ(variants[0].edgeFactor, 1.0);
   EXPECT_EQ(variants[0].mapProxyVertices, 600);

@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include <csignal>
 #include <signal.h>
 #include <unistd.h>
+#include <csignal>
 
 #include <cstdio>
 #include <filesystem>
@@ -18,7 +18,8 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("egg-test-stress-" + std::to_string(::getpid())) / name;
+  const fs::path d =
+      fs::temp_directory_path() / ("egg-test-stress-" + std::to_string(::getpid())) / name;
   fs::create_directories(d);
   return d;
 }
@@ -30,8 +31,9 @@ TEST(StressSuite, SuiteHoldsEveryClassOfTheIssue) {
     kinds.insert(c.kind);
     EXPECT_TRUE(names.insert(c.name).second) << "duplicate case " << c.name;
   }
-  for (const char* k : {"width_thickness", "youngs_modulus", "scale", "nearly_flat", "sharp_k_peak", "near_collapsed_quads",
-                        "sliver_triangles", "holes", "disconnected", "non_manifold", "million_faces"})
+  for (const char* k : {"width_thickness", "youngs_modulus", "scale", "nearly_flat", "sharp_k_peak",
+                        "near_collapsed_quads", "sliver_triangles", "holes", "disconnected",
+                        "non_manifold", "million_faces"})
     EXPECT_TRUE(kinds.count(k)) << k;
   // Fixed: the same cases, in the same order, every call.
   const auto a = pipelineStressCases(), b = pipelineStressCases();
@@ -40,10 +42,12 @@ TEST(StressSuite, SuiteHoldsEveryClassOfTheIssue) {
 }
 
 TEST(StressSuite, HangingChildIsKilledAndReportedAsTimeout) {
-  const ChildOutcome o = runChild([] {
-    for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
-    return 0;
-  }, 0.3, scratch("hang") / "log.txt");
+  const ChildOutcome o = runChild(
+      [] {
+        for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+        return 0;
+      },
+      0.3, scratch("hang") / "log.txt");
   EXPECT_TRUE(o.timedOut);
   EXPECT_LT(o.seconds, 5.0);
   PipelineStressCase c;
@@ -55,13 +59,15 @@ TEST(StressSuite, HangingChildIsKilledAndReportedAsTimeout) {
 }
 
 TEST(StressSuite, CrashingChildIsReportedAsCrash) {
-  const ChildOutcome o = runChild([] {
-    // The default action, so that AddressSanitizer's handler (.ci/run's second build) does not turn
-    // the signal into an exit code or an abort.
-    std::signal(SIGSEGV, SIG_DFL);
-    ::raise(SIGSEGV);
-    return 0;
-  }, 10.0, scratch("crash") / "log.txt");
+  const ChildOutcome o = runChild(
+      [] {
+        // The default action, so that AddressSanitizer's handler (.ci/run's second build) does not
+        // turn the signal into an exit code or an abort.
+        std::signal(SIGSEGV, SIG_DFL);
+        ::raise(SIGSEGV);
+        return 0;
+      },
+      10.0, scratch("crash") / "log.txt");
   EXPECT_FALSE(o.timedOut);
   EXPECT_EQ(o.signal, SIGSEGV);
   PipelineStressCase c;
@@ -72,10 +78,12 @@ TEST(StressSuite, CrashingChildIsReportedAsCrash) {
 }
 
 TEST(StressSuite, NonFiniteOutputOrReportIsAFailure) {
-  const ChildOutcome o = runChild([] {
-    std::printf("rmse %f\n", std::nan(""));
-    return 0;
-  }, 10.0, scratch("nan") / "log.txt");
+  const ChildOutcome o = runChild(
+      [] {
+        std::printf("rmse %f\n", std::nan(""));
+        return 0;
+      },
+      10.0, scratch("nan") / "log.txt");
   EXPECT_EQ(o.exitCode, 0);
   PipelineStressCase c;
   c.name = "nan";
@@ -92,14 +100,17 @@ TEST(StressSuite, NonFiniteOutputOrReportIsAFailure) {
   silent.exitCode = 2;
   EXPECT_FALSE(classify(c, silent, nlohmann::json()).ok);
   // Memory is the child's own: a child that touches 200 MB reports at least that.
-  const ChildOutcome big = runChild([] {
-    std::vector<char> v(200u << 20, 1);
-    return v[12345] == 1 ? 0 : 1;
-  }, 10.0, scratch("mem") / "log.txt");
+  const ChildOutcome big = runChild(
+      [] {
+        std::vector<char> v(200u << 20, 1);
+        return v[12345] == 1 ? 0 : 1;
+      },
+      10.0, scratch("mem") / "log.txt");
   EXPECT_GT(big.peakRssMb, 190.0);
 }
 
-// The real pipeline on the suite's non-manifold mesh: a typed error naming the problem, not a crash.
+// The real pipeline on the suite's non-manifold mesh: a typed error naming the problem, not a
+// crash.
 TEST(StressSuite, NonManifoldMeshGivesAReasonNotACrash) {
   for (const auto& c : pipelineStressCases()) {
     if (c.kind != "non_manifold" && c.kind != "disconnected") continue;

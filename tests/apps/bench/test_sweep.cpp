@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 namespace egg::app {
 namespace {
@@ -24,7 +24,8 @@ std::string slurp(const fs::path& p) {
 }
 
 fs::path freshDir(const std::string& tag) {
-  const fs::path d = fs::temp_directory_path() / ("egg_sweep_" + tag + "_" + std::to_string(::getpid()));
+  const fs::path d =
+      fs::temp_directory_path() / ("egg_sweep_" + tag + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d / "in" / "meshes");
   return d;
@@ -33,7 +34,8 @@ fs::path freshDir(const std::string& tag) {
 // A base scene with a relative surface file, to check the rewrite of relative paths.
 void writeBase(const fs::path& dir) {
   std::ofstream(dir / "in" / "meshes" / "m.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-  std::ofstream(dir / "in" / "base.json") << R"({"name": "b", "surface": {"file": "meshes/m.obj", "edge_length_m": 0.5},
+  std::ofstream(dir / "in" / "base.json")
+      << R"({"name": "b", "surface": {"file": "meshes/m.obj", "edge_length_m": 0.5},
     "grid": {"members_per_family": 5, "map_resolution": 30}, "lamella": {"width_m": 0.1, "thickness_m": 0.01}, "outputs": ["report"]})";
 }
 
@@ -46,28 +48,33 @@ TEST(Sweep, ExpandsGridAndZipGroup) {
   const fs::path out = d / "out";
   const SweepExpansion e = expandSweep({d / "in" / "sweep.json", out, "/opt/my egg/egg", false});
   ASSERT_EQ(e.variants, (std::vector<std::string>{"v001", "v002", "v003", "v004"}));
-  EXPECT_EQ(e.keys, (std::vector<std::string>{"/grid/members_per_family", "/lamella/thickness_m", "/lamella/width_m"}));
+  EXPECT_EQ(e.keys, (std::vector<std::string>{"/grid/members_per_family", "/lamella/thickness_m",
+                                              "/lamella/width_m"}));
   // Odometer order: the zip group (last axis) varies fastest; its keys move together.
-  const double members[] = {5, 5, 7, 7}, width[] = {0.1, 0.2, 0.1, 0.2}, thick[] = {0.01, 0.02, 0.01, 0.02};
+  const double members[] = {5, 5, 7, 7}, width[] = {0.1, 0.2, 0.1, 0.2},
+               thick[] = {0.01, 0.02, 0.01, 0.02};
   for (int v = 0; v < 4; ++v) {
     const auto scene = nlohmann::json::parse(slurp(out / "scenes" / (e.variants[v] + ".json")));
     EXPECT_EQ(scene["grid"]["members_per_family"].get<double>(), members[v]);
     EXPECT_DOUBLE_EQ(scene["lamella"]["width_m"].get<double>(), width[v]);
     EXPECT_DOUBLE_EQ(scene["lamella"]["thickness_m"].get<double>(), thick[v]);
     EXPECT_EQ(scene["name"], "b-" + e.variants[v]);
-    EXPECT_EQ(fs::path(scene["surface"]["file"].get<std::string>()), fs::absolute(d / "in" / "meshes" / "m.obj").lexically_normal());
+    EXPECT_EQ(fs::path(scene["surface"]["file"].get<std::string>()),
+              fs::absolute(d / "in" / "meshes" / "m.obj").lexically_normal());
   }
   const fs::path absOut = fs::absolute(out).lexically_normal();
   std::istringstream jobs(slurp(out / "jobs.txt"));
   std::string line;
   for (int v = 0; v < 4; ++v) {
     ASSERT_TRUE(std::getline(jobs, line));
-    EXPECT_EQ(line, "'/opt/my egg/egg' run '" + (absOut / "scenes" / (e.variants[v] + ".json")).string() + "' -o '" +
+    EXPECT_EQ(line, "'/opt/my egg/egg' run '" +
+                        (absOut / "scenes" / (e.variants[v] + ".json")).string() + "' -o '" +
                         (absOut / "runs" / e.variants[v]).string() + "' -q");
   }
   EXPECT_FALSE(std::getline(jobs, line));
   EXPECT_EQ(slurp(out / "variants.csv"),
-            "variant,/grid/members_per_family,/lamella/thickness_m,/lamella/width_m\nv001,5,0.01,0.1\nv002,5,0.02,0.2\nv003,7,0.01,0.1\nv004,7,0.02,0.2\n");
+            "variant,/grid/members_per_family,/lamella/thickness_m,/lamella/"
+            "width_m\nv001,5,0.01,0.1\nv002,5,0.02,0.2\nv003,7,0.01,0.1\nv004,7,0.02,0.2\n");
   const std::string slurm = slurp(out / "slurm.sh");
   EXPECT_NE(slurm.find("#SBATCH --array=1-4\n"), std::string::npos);
   EXPECT_NE(slurm.find("sed -n \"${SLURM_ARRAY_TASK_ID}p\" jobs.txt | bash"), std::string::npos);
@@ -83,7 +90,8 @@ TEST(Sweep, ExpandsGridAndZipGroup) {
 TEST(Sweep, KeyNotInBaseSceneIsNamedAndNothingWritten) {
   const fs::path d = freshDir("badkey");
   writeBase(d);
-  std::ofstream(d / "in" / "sweep.json") << R"({"base": "base.json", "parameters": {"lamella.width_m": [0.1], "lamella.widht_m": [0.2]}})";
+  std::ofstream(d / "in" / "sweep.json")
+      << R"({"base": "base.json", "parameters": {"lamella.width_m": [0.1], "lamella.widht_m": [0.2]}})";
   try {
     expandSweep({d / "in" / "sweep.json", d / "out", "/bin/egg", false});
     FAIL() << "a misspelt key was accepted";
@@ -93,10 +101,12 @@ TEST(Sweep, KeyNotInBaseSceneIsNamedAndNothingWritten) {
   }
   EXPECT_FALSE(fs::exists(d / "out"));
   // A value the scene rejects is an error too, before anything is written.
-  std::ofstream(d / "in" / "sweep.json") << R"({"base": "base.json", "parameters": {"lamella.width_m": [0.1, -1]}})";
+  std::ofstream(d / "in" / "sweep.json")
+      << R"({"base": "base.json", "parameters": {"lamella.width_m": [0.1, -1]}})";
   EXPECT_THROW(expandSweep({d / "in" / "sweep.json", d / "out", "/bin/egg", false}), InvalidInput);
   EXPECT_FALSE(fs::exists(d / "out"));
-  for (const auto& entry : fs::directory_iterator(d)) EXPECT_EQ(entry.path().filename().string().rfind(".egg-tmp", 0), std::string::npos);
+  for (const auto& entry : fs::directory_iterator(d))
+    EXPECT_EQ(entry.path().filename().string().rfind(".egg-tmp", 0), std::string::npos);
   fs::remove_all(d);
 }
 

@@ -62,14 +62,16 @@ TEST_F(Cli, UnknownSubcommandOrOptionIsBadInput) {
 }
 
 TEST_F(Cli, MissingSceneIsBadInputAndWritesNothing) {
-  const auto o = runEgg({"run", (root / "nope.json").string(), "--out", (root / "out").string(), "--quiet"});
+  const auto o =
+      runEgg({"run", (root / "nope.json").string(), "--out", (root / "out").string(), "--quiet"});
   EXPECT_EQ(o.code, kExitBadInput);
   EXPECT_NE(o.err.find("nope.json"), std::string::npos) << o.err;
   EXPECT_FALSE(fs::exists(root / "out"));
 }
 
 TEST_F(Cli, BrokenSceneIsBadInputNamingTheFieldAndWritesNothing) {
-  const auto scene = write("typo.json", R"({"surface": {"sample": "plane"}, "grid": {"alpha": "min"}})");
+  const auto scene =
+      write("typo.json", R"({"surface": {"sample": "plane"}, "grid": {"alpha": "min"}})");
   const auto o = runEgg({"run", scene.string(), "--out", (root / "out").string(), "--quiet"});
   EXPECT_EQ(o.code, kExitBadInput);
   EXPECT_NE(o.err.find("grid.alpha"), std::string::npos) << o.err;
@@ -96,7 +98,8 @@ TEST_F(Cli, SurfaceStatsOfAPlaneAreExact) {
   ASSERT_EQ(o.code, kExitOk) << o.err;
   const auto stats = nlohmann::json::parse(o.out);
   const auto& defaults = stats["bbox_m"];
-  EXPECT_NEAR(stats["area_m2"].get<double>(), defaults[0].get<double>() * defaults[1].get<double>(), 1e-9);
+  EXPECT_NEAR(stats["area_m2"].get<double>(), defaults[0].get<double>() * defaults[1].get<double>(),
+              1e-9);
   EXPECT_NEAR(defaults[2].get<double>(), 0.0, 1e-12);
   EXPECT_TRUE(stats["validation"]["ok"].get<bool>());
   EXPECT_EQ(stats["components"], 1);
@@ -104,8 +107,10 @@ TEST_F(Cli, SurfaceStatsOfAPlaneAreExact) {
 
 TEST_F(Cli, SurfaceExportRoundTripsThroughAFile) {
   const auto path = root / "plane.obj";
-  ASSERT_EQ(runEgg({"surface", "plane", "--edge-length", "2.0", "--export", path.string()}).code, kExitOk);
-  const auto a = nlohmann::json::parse(runEgg({"surface", "plane", "--edge-length", "2.0", "--stats", "--json"}).out);
+  ASSERT_EQ(runEgg({"surface", "plane", "--edge-length", "2.0", "--export", path.string()}).code,
+            kExitOk);
+  const auto a = nlohmann::json::parse(
+      runEgg({"surface", "plane", "--edge-length", "2.0", "--stats", "--json"}).out);
   const auto b = nlohmann::json::parse(runEgg({"surface", path.string(), "--stats", "--json"}).out);
   EXPECT_EQ(a["faces"], b["faces"]);
   EXPECT_EQ(a["vertices"], b["vertices"]);
@@ -113,7 +118,9 @@ TEST_F(Cli, SurfaceExportRoundTripsThroughAFile) {
 }
 
 TEST_F(Cli, RunWritesACompleteReport) {
-  const auto scene = write("small.json", R"({"name": "small", "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1, "sigma": 1.5}, "edge_length_m": 0.5},
+  const auto scene = write(
+      "small.json",
+      R"({"name": "small", "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1, "sigma": 1.5}, "edge_length_m": 0.5},
                                              "patching": {"patches": [[[-3, -3, 0], [3, -3, 0], [3, 3, 0], [-3, 3, 0]]]},
                                              "grid": {"map_resolution": 20, "members_per_family": 4},
                                              "simulation": {"enabled": false}, "outputs": ["report"]})");
@@ -123,8 +130,8 @@ TEST_F(Cli, RunWritesACompleteReport) {
   std::ifstream in(out / "report.json");
   ASSERT_TRUE(in.good());
   const auto report = nlohmann::json::parse(in);
-  for (const char* key : {"scene", "units", "surface", "stages", "patches", "coverage", "propagation", "simulation",
-                          "fabrication", "timings"}) {
+  for (const char* key : {"scene", "units", "surface", "stages", "patches", "coverage",
+                          "propagation", "simulation", "fabrication", "timings"}) {
     EXPECT_TRUE(report.contains(key)) << key;
   }
   EXPECT_EQ(report["scene"]["name"], "small");
@@ -174,7 +181,8 @@ TEST_F(Cli, GeodesicCommandRejectsABadSourceWithoutWriting) {
 // saddles to skip); a tolerance out of range is bad input naming the field, with nothing written.
 TEST_F(Cli, GeodesicCommandTakesTheExactModeAndTheMergeTolerance) {
   auto run = [&](const std::string& name, std::vector<std::string> extra) {
-    std::vector<std::string> args{"geodesic", "sphere", "--source", "1,2,9.7", "--out", (root / name).string(), "--json"};
+    std::vector<std::string> args{
+        "geodesic", "sphere", "--source", "1,2,9.7", "--out", (root / name).string(), "--json"};
     args.insert(args.end(), extra.begin(), extra.end());
     const auto o = runEgg(args);
     EXPECT_EQ(o.code, kExitOk) << o.err;
@@ -186,10 +194,12 @@ TEST_F(Cli, GeodesicCommandTakesTheExactModeAndTheMergeTolerance) {
   EXPECT_LT(merged["windows"].get<long>(), unmerged["windows"].get<long>());
   EXPECT_EQ(unmerged["windows"], exact["windows"]);
   std::ifstream a(root / "unmerged.csv"), b(root / "exact.csv");
-  const std::string textA((std::istreambuf_iterator<char>(a)), {}), textB((std::istreambuf_iterator<char>(b)), {});
+  const std::string textA((std::istreambuf_iterator<char>(a)), {}),
+      textB((std::istreambuf_iterator<char>(b)), {});
   EXPECT_EQ(textA, textB);
   const auto csv = root / "bad.csv";
-  const auto bad = runEgg({"geodesic", "sphere", "--source", "1,2,9.7", "--out", csv.string(), "--merge-tolerance", "-1"});
+  const auto bad = runEgg({"geodesic", "sphere", "--source", "1,2,9.7", "--out", csv.string(),
+                           "--merge-tolerance", "-1"});
   EXPECT_EQ(bad.code, kExitBadInput);
   EXPECT_NE(bad.err.find("imageMergeTolerance"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(csv));
@@ -216,11 +226,14 @@ TEST_F(Cli, UnwritableOutputIsAFailureNamingTheFile) {
 }
 
 TEST_F(Cli, GeodesicBenchTabulatesErrorAgainstTimeOverTheSaddleTolerance) {
-  // The exact mode is the reference of its own run (error 0); the default stays inside the 1e-4 bar.
-  const Outcome o = runEgg({"bench", "geodesic", "--sizes", "400", "--cgal-sources", "0", "--sources", "8",
-                            "--timed-sources", "3", "--saddle-tolerance", "0,7e-4", "--engine-rows", "none", "--json"});
+  // The exact mode is the reference of its own run (error 0); the default stays inside the 1e-4
+  // bar.
+  const Outcome o = runEgg({"bench", "geodesic", "--sizes", "400", "--cgal-sources", "0",
+                            "--sources", "8", "--timed-sources", "3", "--saddle-tolerance",
+                            "0,7e-4", "--engine-rows", "none", "--json"});
   ASSERT_EQ(o.code, 0) << o.err;
-  // With --json, stdout is the JSON document alone (issue 17: the table went first); the table is on stderr.
+  // With --json, stdout is the JSON document alone (issue 17: the table went first); the table is
+  // on stderr.
   ASSERT_TRUE(nlohmann::json::accept(o.out)) << o.out;
   EXPECT_NE(o.err.find("vertices"), std::string::npos) << o.err;
   const auto table = nlohmann::json::parse(o.out)["saddle_tolerance"];
@@ -238,10 +251,11 @@ TEST_F(Cli, GeodesicBenchTabulatesErrorAgainstTimeOverTheSaddleTolerance) {
 TEST_F(Cli, GridBenchTabulatesErrorAgainstTimeOfMapsOnAProxy) {
   // Rows: the exact maps on the patch (the reference, error 0), --map-proxy 0 (the adaptive maps on
   // the patch), and a 300-vertex proxy: fewer fields, a map error above zero and below the bound.
-  const Outcome o = runEgg({"bench", "grid", "--sizes", "1100", "--repeats", "1", "--resolution", "31", "--map-proxy", "0,300",
-                            "--json"});
+  const Outcome o = runEgg({"bench", "grid", "--sizes", "1100", "--repeats", "1", "--resolution",
+                            "31", "--map-proxy", "0,300", "--json"});
   ASSERT_EQ(o.code, 0) << o.err;
-  // With --json, stdout is the JSON document alone (issue 17: the table went first); the table is on stderr.
+  // With --json, stdout is the JSON document alone (issue 17: the table went first); the table is
+  // on stderr.
   ASSERT_TRUE(nlohmann::json::accept(o.out)) << o.out;
   EXPECT_NE(o.err.find("vertices"), std::string::npos) << o.err;
   const auto table = nlohmann::json::parse(o.out)["map_tolerance"];
@@ -266,7 +280,8 @@ TEST_F(Cli, GridBenchTabulatesErrorAgainstTimeOfMapsOnAProxy) {
 TEST_F(Cli, PatchingBenchDecomposesTheGreatCourtUnattended) {
   // Workflow 2 on the default scene: four patches round the Reading Room (the paper's hand layout
   // had four), every one feasible, the hole's tangent box as the only cut-off.
-  const auto scene = (std::filesystem::path(EGG_SOURCE_DIR) / "samples" / "great_court.json").string();
+  const auto scene =
+      (std::filesystem::path(EGG_SOURCE_DIR) / "samples" / "great_court.json").string();
   const auto o = runEgg({"bench", "patching", "--samples", scene, "--json"});
   ASSERT_EQ(o.code, kExitOk) << o.err;
   const auto rows = nlohmann::json::parse(o.out);
@@ -305,7 +320,8 @@ TEST_F(Cli, AbsurdOrNanFlagsAreBadInputBeforeAnyWork) {
   for (const auto& args : cases) {
     const auto start = std::chrono::steady_clock::now();
     const Outcome o = runEgg(args);
-    EXPECT_EQ(o.code, kExitBadInput) << args[args.size() - 2] << " " << args.back() << ": " << o.err;
+    EXPECT_EQ(o.code, kExitBadInput)
+        << args[args.size() - 2] << " " << args.back() << ": " << o.err;
     EXPECT_NE(o.err.find(args[args.size() - 2]), std::string::npos) << o.err;
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
   }
@@ -325,7 +341,8 @@ TEST_F(Cli, AFolderAsSceneAndAnOverflowingNumberAreBadInputNamingTheField) {
   const Outcome dir = runEgg({"run", (root / "dir.json").string(), "--quiet"});
   EXPECT_EQ(dir.code, kExitBadInput) << dir.err;
   EXPECT_EQ(dir.err.find("internal error"), std::string::npos) << dir.err;
-  const auto scene = write("big.json", R"({"surface": {"sample": "bump"}, "lamella": {"width_m": 1e400}})");
+  const auto scene =
+      write("big.json", R"({"surface": {"sample": "bump"}, "lamella": {"width_m": 1e400}})");
   const Outcome big = runEgg({"run", scene.string(), "--out", (root / "out").string(), "--quiet"});
   EXPECT_EQ(big.code, kExitBadInput) << big.err;
   EXPECT_NE(big.err.find("lamella.width_m"), std::string::npos) << big.err;
@@ -334,17 +351,20 @@ TEST_F(Cli, AFolderAsSceneAndAnOverflowingNumberAreBadInputNamingTheField) {
 
 // Issue 17: `egg run run/scene.json --out run` onto an earlier run deleted the run's own scene.
 TEST_F(Cli, ARunNeverReplacesAFolderHoldingTheUsersFiles) {
-  const std::string text = R"({"name": "small", "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1, "sigma": 1.5}, "edge_length_m": 0.5},
+  const std::string text =
+      R"({"name": "small", "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1, "sigma": 1.5}, "edge_length_m": 0.5},
                                "patching": {"patches": [[[-3, -3, 0], [3, -3, 0], [3, 3, 0], [-3, 3, 0]]]},
                                "grid": {"map_resolution": 20, "members_per_family": 4},
                                "simulation": {"enabled": false}, "outputs": ["report"]})";
   const auto first = write("small.json", text);
   const auto out = root / "run";
   ASSERT_EQ(runEgg({"run", first.string(), "--out", out.string(), "--quiet"}).code, kExitOk);
-  ASSERT_EQ(runEgg({"run", first.string(), "--out", out.string(), "--quiet"}).code, kExitOk) << "a pure run is replaced";
+  ASSERT_EQ(runEgg({"run", first.string(), "--out", out.string(), "--quiet"}).code, kExitOk)
+      << "a pure run is replaced";
   std::ofstream(out / "scene.json") << text;
   std::ofstream(out / "notes.txt") << "mine";
-  const Outcome o = runEgg({"run", (out / "scene.json").string(), "--out", out.string(), "--quiet"});
+  const Outcome o =
+      runEgg({"run", (out / "scene.json").string(), "--out", out.string(), "--quiet"});
   EXPECT_EQ(o.code, kExitBadInput) << o.err;
   EXPECT_NE(o.err.find("did not write"), std::string::npos) << o.err;
   EXPECT_TRUE(fs::exists(out / "scene.json"));

@@ -22,7 +22,8 @@ TEST(Progress, BarFillsInProportionAndClamps) {
 }
 
 TEST(Progress, QuietWhenNotATerminal) {
-  // ctest runs with stderr redirected: an enabled bar stays hidden there, and a disabled one always.
+  // ctest runs with stderr redirected: an enabled bar stays hidden there, and a disabled one
+  // always.
   ProgressLine off(false);
   EXPECT_FALSE(off.shown());
   ProgressLine on(true);
@@ -45,7 +46,8 @@ TEST(Progress, ClearWipesTheLineOnATerminal) {
   }
   std::string out;
   char buffer[256];
-  for (ssize_t n; (n = ::read(master, buffer, sizeof buffer)) > 0;) out.append(buffer, static_cast<size_t>(n));
+  for (ssize_t n; (n = ::read(master, buffer, sizeof buffer)) > 0;)
+    out.append(buffer, static_cast<size_t>(n));
   int status = 0;
   ::waitpid(child, &status, 0);
   ::close(master);
@@ -53,8 +55,10 @@ TEST(Progress, ClearWipesTheLineOnATerminal) {
   ASSERT_EQ(WEXITSTATUS(status), 0) << "the child's stderr was not a terminal";
   const std::string line = progressText(0.5, "case 1 of 2: x", 0.0);
   ASSERT_EQ(out.size(), 1 + line.size() + 1 + line.size() + 1) << out;
-  EXPECT_EQ(out.substr(0, 1 + line.size() - 7), "\r" + line.substr(0, line.size() - 7));  // the time may differ
-  EXPECT_EQ(out.substr(1 + line.size()), "\r" + std::string(line.size(), ' ') + "\r");  // nothing left, no newline
+  EXPECT_EQ(out.substr(0, 1 + line.size() - 7),
+            "\r" + line.substr(0, line.size() - 7));  // the time may differ
+  EXPECT_EQ(out.substr(1 + line.size()),
+            "\r" + std::string(line.size(), ' ') + "\r");  // nothing left, no newline
 }
 
 }  // namespace

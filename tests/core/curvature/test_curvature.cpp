@@ -78,9 +78,11 @@ TEST(Curvature, MixedAreasTileTheSurfaceAndDefectsObeyGaussBonnet) {
   EXPECT_NEAR(mixedVoronoiAreas(sphere).sum(), surfaceArea(sphere), 1e-10);
   EXPECT_NEAR(angleDefects(sphere).sum(), 4.0 * kPi, 1e-10);  // chi = 2
   int origin = 0;
-  const TriMesh disc = heightField(4, 0.25, [](double x, double y) { return 0.2 * x * x - 0.1 * y * y; }, &origin);
+  const TriMesh disc = heightField(
+      4, 0.25, [](double x, double y) { return 0.2 * x * x - 0.1 * y * y; }, &origin);
   EXPECT_NEAR(mixedVoronoiAreas(disc).sum(), surfaceArea(disc), 1e-10);
-  EXPECT_NEAR(angleDefects(disc).sum(), 2.0 * kPi, 1e-10);  // a disc: chi = 1 (boundary turning included)
+  EXPECT_NEAR(angleDefects(disc).sum(), 2.0 * kPi,
+              1e-10);  // a disc: chi = 1 (boundary turning included)
 }
 
 TEST(Curvature, SphereGaussianWithinOnePercent) {
@@ -91,13 +93,16 @@ TEST(Curvature, SphereGaussianWithinOnePercent) {
     double worstK = 0.0, worstKappa = 0.0, worstH = 0.0;
     for (int v = 0; v < static_cast<int>(mesh.n_vertices()); ++v) {
       worstK = std::max(worstK, std::abs(field.gaussianAngleDefect(v) * radius * radius - 1.0));
-      worstKappa = std::max({worstKappa, std::abs(field.kappaMax(v) * radius - 1.0), std::abs(field.kappaMin(v) * radius - 1.0)});
+      worstKappa = std::max({worstKappa, std::abs(field.kappaMax(v) * radius - 1.0),
+                             std::abs(field.kappaMin(v) * radius - 1.0)});
       worstH = std::max(worstH, std::abs(field.mean(v) * radius - 1.0));
       // Outward normals: the normal is the radial direction.
-      EXPECT_GT(field.normals[v].dot(toEigen(mesh.point(TriMesh::VertexHandle(v))).normalized()), 0.9999);
+      EXPECT_GT(field.normals[v].dot(toEigen(mesh.point(TriMesh::VertexHandle(v))).normalized()),
+                0.9999);
     }
     std::cout << "icosphere level " << level << " (mean edge " << meanEdgeLength(mesh) / radius
-              << " R): max rel. error K " << worstK << ", kappa " << worstKappa << ", H " << worstH << "\n";
+              << " R): max rel. error K " << worstK << ", kappa " << worstKappa << ", H " << worstH
+              << "\n";
     EXPECT_LT(worstK, 0.01) << "level " << level;
     EXPECT_LT(worstKappa, 0.01) << "level " << level;
     EXPECT_NEAR(injectivityRadiusBound(field.gaussianMax), kPi * radius, 0.01 * kPi * radius);
@@ -114,7 +119,8 @@ TEST(Curvature, CylinderIsFlatInKWithPrincipalDirectionsAroundAndAlong) {
     ++interior;
     const Eigen::Vector3d p = toEigen(mesh.point(TriMesh::VertexHandle(v)));
     const Eigen::Vector3d around = Eigen::Vector3d(-p.y(), p.x(), 0.0).normalized();
-    EXPECT_NEAR(field.gaussianAngleDefect(v), 0.0, 1e-10);  // angle defect of a developable mesh is exactly 0
+    EXPECT_NEAR(field.gaussianAngleDefect(v), 0.0,
+                1e-10);  // angle defect of a developable mesh is exactly 0
     EXPECT_NEAR(field.kappaMax(v), 1.0 / radius, 0.01 / radius);
     EXPECT_NEAR(field.kappaMin(v), 0.0, 0.01 / radius);
     EXPECT_GT(std::abs(field.directionMax[v].dot(around)), 0.999);
@@ -133,10 +139,11 @@ TEST(Curvature, CylinderIsFlatInKWithPrincipalDirectionsAroundAndAlong) {
 TEST(Curvature, HyparAtTheOriginHasKMinusCSquared) {
   const double c = 0.5;
   int origin = 0;
-  const TriMesh mesh = heightField(6, 0.1, [c](double x, double y) { return c * x * y; }, &origin);
+  const TriMesh mesh = heightField(
+      6, 0.1, [c](double x, double y) { return c * x * y; }, &origin);
   const CurvatureField field = computeCurvature(mesh);
-  std::cout << "hypar origin (valence 6): angle defect K " << field.gaussianAngleDefect(origin) << ", fit K "
-            << field.gaussian(origin) << " (exact " << -c * c << ")\n";
+  std::cout << "hypar origin (valence 6): angle defect K " << field.gaussianAngleDefect(origin)
+            << ", fit K " << field.gaussian(origin) << " (exact " << -c * c << ")\n";
   EXPECT_NEAR(field.gaussianAngleDefect(origin), -c * c, 0.01 * c * c);
   EXPECT_NEAR(field.gaussian(origin), -c * c, 1e-3 * c * c);
   EXPECT_NEAR(field.mean(origin), 0.0, 1e-3 * c);
@@ -150,11 +157,12 @@ TEST(Curvature, HyparAtTheOriginHasKMinusCSquared) {
 
 TEST(Curvature, AngleDefectFailsAtValenceEightButTheFitDoesNot) {
   // Known limitation (Xu 2006): the angle defect is not a pointwise-consistent estimate of K at
-  // vertices of valence != 6; on a "union jack" grid the valence-8 origin reports about 2 K. The fit
-  // is unaffected, which is why it is offered next to the angle defect.
+  // vertices of valence != 6; on a "union jack" grid the valence-8 origin reports about 2 K. The
+  // fit is unaffected, which is why it is offered next to the angle defect.
   const double c = 0.5;
   int origin = 0;
-  const TriMesh mesh = heightField(6, 0.1, [c](double x, double y) { return c * x * y; }, &origin, true);
+  const TriMesh mesh = heightField(
+      6, 0.1, [c](double x, double y) { return c * x * y; }, &origin, true);
   const CurvatureField field = computeCurvature(mesh);
   EXPECT_EQ(mesh.valence(TriMesh::VertexHandle(origin)), 8u);
   EXPECT_NEAR(field.gaussianAngleDefect(origin), -2.0 * c * c, 0.02 * c * c);
@@ -165,7 +173,8 @@ TEST(Curvature, ParaboloidSignsFollowTheNormal) {
   // z = (x^2 + y^2) / 2: at the origin kappa = 1 with the normal +z bending... towards the
   // normal, so with our convention (positive = bending away) kappa = -1 and K = +1.
   int origin = 0;
-  const TriMesh mesh = heightField(5, 0.05, [](double x, double y) { return 0.5 * (x * x + y * y); }, &origin);
+  const TriMesh mesh = heightField(
+      5, 0.05, [](double x, double y) { return 0.5 * (x * x + y * y); }, &origin);
   const CurvatureField field = computeCurvature(mesh);
   EXPECT_GT(field.normals[origin].z(), 0.9999);
   EXPECT_NEAR(field.kappaMax(origin), -1.0, 1e-3);
@@ -197,9 +206,9 @@ TEST(Curvature, SampleSphereCapAtSeveralEdgeLengths) {
       maxFit = std::max(maxFit, f), sumFit += f;
       ++interior;
     }
-    std::cout << "sample sphere R=10 edge " << edge << " m (" << mesh.n_vertices() << " vertices): K angle defect max "
-              << maxDefect << " mean " << sumDefect / interior << "; K fit max " << maxFit << " mean " << sumFit / interior
-              << "\n";
+    std::cout << "sample sphere R=10 edge " << edge << " m (" << mesh.n_vertices()
+              << " vertices): K angle defect max " << maxDefect << " mean " << sumDefect / interior
+              << "; K fit max " << maxFit << " mean " << sumFit / interior << "\n";
     // The angle defect is exact on average but not at every vertex of an irregular mesh (a few
     // per cent at valence-5/7 vertices); the fit is within 1 % everywhere inside.
     EXPECT_LT(sumDefect / interior, 0.01) << edge;
@@ -223,8 +232,9 @@ TEST(Curvature, SampleCylinderAndHyparMatchAnalyticCurvature) {
     worstFitK = std::max(worstFitK, std::abs(c.gaussian(v)) * radius * radius);
     worstDirection = std::max(worstDirection, std::abs(around.x()));
   }
-  std::cout << "sample cylinder R=5 edge 0.5: max |kappa R - 1| " << worstKappa << ", max |K_fit| R^2 " << worstFitK
-            << ", max |cos(around, axis)| " << worstDirection << "\n";
+  std::cout << "sample cylinder R=5 edge 0.5: max |kappa R - 1| " << worstKappa
+            << ", max |K_fit| R^2 " << worstFitK << ", max |cos(around, axis)| " << worstDirection
+            << "\n";
   EXPECT_LT(worstKappa, 0.01);
   EXPECT_LT(worstFitK, 0.01);
   EXPECT_LT(worstDirection, 0.05);
@@ -237,15 +247,17 @@ TEST(Curvature, SampleCylinderAndHyparMatchAnalyticCurvature) {
   for (int v = 0; v < static_cast<int>(hypar.n_vertices()); ++v) {
     if (h.onBoundary[v]) continue;
     const Eigen::Vector3d p = toEigen(hypar.point(TriMesh::VertexHandle(v)));
-    const double exact = -twist * twist / std::pow(1.0 + twist * twist * (p.x() * p.x() + p.y() * p.y()), 2);
+    const double exact =
+        -twist * twist / std::pow(1.0 + twist * twist * (p.x() * p.x() + p.y() * p.y()), 2);
     worstFit = std::max(worstFit, std::abs(h.gaussian(v) / exact - 1.0));
     meanDefect += std::abs(h.gaussianAngleDefect(v) / exact - 1.0);
     integralDefect += h.gaussianAngleDefect(v) * h.mixedArea(v);
     integralExact += exact * h.mixedArea(v);
     ++interior;
   }
-  std::cout << "sample hypar c=0.1 edge 0.5: K fit max rel. error " << worstFit << ", angle defect mean rel. error "
-            << meanDefect / interior << ", integrated " << integralDefect / integralExact - 1.0 << "\n";
+  std::cout << "sample hypar c=0.1 edge 0.5: K fit max rel. error " << worstFit
+            << ", angle defect mean rel. error " << meanDefect / interior << ", integrated "
+            << integralDefect / integralExact - 1.0 << "\n";
   EXPECT_LT(worstFit, 0.01);
   // The angle defect is right in the integral (Gauss-Bonnet) though not vertex by vertex.
   EXPECT_NEAR(integralDefect / integralExact, 1.0, 0.01);

@@ -37,7 +37,8 @@ double gaussianBump(double x, double y, double cx, double cy, double height, dou
 TEST(CurvaturePeaks, OneBumpOnePeakAtItsApex) {
   // Apex of z = H exp(-r^2 / 2 s^2): f_xx = f_yy = -H / s^2, no slope, so K = H^2 / s^4.
   const double height = 1.0, sigma = 1.0;
-  const TriMesh mesh = heightField(4.0, 80, [&](double x, double y) { return gaussianBump(x, y, 0, 0, height, sigma); });
+  const TriMesh mesh = heightField(
+      4.0, 80, [&](double x, double y) { return gaussianBump(x, y, 0, 0, height, sigma); });
   const CurvatureField field = computeCurvature(mesh);
   const auto peaks = findGaussianPeaks(mesh, field.gaussian, field.mixedArea);
   ASSERT_EQ(peaks.size(), 1u);
@@ -48,7 +49,8 @@ TEST(CurvaturePeaks, OneBumpOnePeakAtItsApex) {
   EXPECT_NEAR(peaks[0].gaussianAveraged, 1.0 - rho * rho, 0.01);
   EXPECT_NEAR(peaks[0].gaussianVertex, 1.0, 0.01);
   EXPECT_NEAR(peaks[0].gaussianMaxNearby, 1.0, 0.01);
-  EXPECT_NEAR(peaks[0].injectivityBoundM, std::numbers::pi / std::sqrt(peaks[0].gaussianMaxNearby), 1e-12);
+  EXPECT_NEAR(peaks[0].injectivityBoundM, std::numbers::pi / std::sqrt(peaks[0].gaussianMaxNearby),
+              1e-12);
   EXPECT_FALSE(peaks[0].onBoundary);
 }
 
@@ -82,7 +84,8 @@ TEST(CurvaturePeaks, SaddlesAndPlanesHaveNoPeaks) {
 }
 
 TEST(CurvaturePeaks, AveragingPreservesAConstantAndTheIntegral) {
-  const TriMesh mesh = heightField(1.0, 12, [](double x, double y) { return 0.2 * std::sin(x) * y; });
+  const TriMesh mesh =
+      heightField(1.0, 12, [](double x, double y) { return 0.2 * std::sin(x) * y; });
   const Eigen::VectorXd area = mixedVoronoiAreas(mesh);
   const Eigen::VectorXd constant = Eigen::VectorXd::Constant(mesh.n_vertices(), 3.5);
   EXPECT_LT((averageOverBall(mesh, constant, area, 0.3) - constant).cwiseAbs().maxCoeff(), 1e-12);
@@ -112,8 +115,9 @@ TEST(CurvaturePeaks, SampleBumpOnAnIrregularMeshHasOnePeak) {
   EXPECT_LT(inner[0].position.head<2>().norm(), sigma / 4.0);
   const double apexK = std::pow(height / (sigma * sigma), 2);
   EXPECT_NEAR(inner[0].gaussianMaxNearby, apexK, 0.1 * apexK);
-  std::cout << "sample bump apex K " << apexK << ": averaged " << inner[0].gaussianAveraged << ", vertex "
-            << inner[0].gaussianVertex << ", max nearby " << inner[0].gaussianMaxNearby << "\n";
+  std::cout << "sample bump apex K " << apexK << ": averaged " << inner[0].gaussianAveraged
+            << ", vertex " << inner[0].gaussianVertex << ", max nearby "
+            << inner[0].gaussianMaxNearby << "\n";
   EXPECT_FALSE(peaks.empty());
 }
 

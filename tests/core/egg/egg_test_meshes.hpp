@@ -10,10 +10,10 @@ namespace egg::testing {
 
 struct RuledCylinder {
   double radius = 3.0;
-  double angle = 2.0;     // angular span (radians)
-  double length = 6.0;    // along the axis x
-  int segments = 40;      // around
-  int rows = 30;          // along the axis
+  double angle = 2.0;   // angular span (radians)
+  double length = 6.0;  // along the axis x
+  int segments = 40;    // around
+  int rows = 30;        // along the axis
   double chord() const { return 2 * radius * std::sin(0.5 * angle / segments); }
   double unrolledWidth() const { return segments * chord(); }
 
@@ -24,7 +24,8 @@ struct RuledCylinder {
   TriMesh mesh() const {
     TriangleSoup soup;
     for (int j = 0; j <= rows; ++j)
-      for (int k = 0; k <= segments; ++k) soup.vertices.push_back(ring(k, -0.5 * length + length * j / rows));
+      for (int k = 0; k <= segments; ++k)
+        soup.vertices.push_back(ring(k, -0.5 * length + length * j / rows));
     const auto id = [&](int k, int j) { return j * (segments + 1) + k; };
     for (int j = 0; j < rows; ++j)
       for (int k = 0; k < segments; ++k) {
@@ -53,19 +54,21 @@ struct RuledCylinder {
 // A cone frustum triangulated along its rulings: every cell lies in the plane of two rulings
 // through the apex, so the polyhedral surface unrolls exactly onto a planar annular sector.
 struct RuledCone {
-  double halfAngle = 0.5;  // angle between axis (z) and rulings
-  double angle = 2.5;      // angular span around the axis (radians)
+  double halfAngle = 0.5;             // angle between axis (z) and rulings
+  double angle = 2.5;                 // angular span around the axis (radians)
   double rInner = 3.0, rOuter = 9.0;  // distances from the apex along the rulings
   int segments = 40, rows = 30;
   Eigen::Vector3d ruling(int k) const {
     const double phi = -0.5 * angle + angle * k / segments;
-    return {std::sin(halfAngle) * std::cos(phi), std::sin(halfAngle) * std::sin(phi), -std::cos(halfAngle)};
+    return {std::sin(halfAngle) * std::cos(phi), std::sin(halfAngle) * std::sin(phi),
+            -std::cos(halfAngle)};
   }
   double cellAngle() const { return std::acos(std::clamp(ruling(0).dot(ruling(1)), -1.0, 1.0)); }
   TriMesh mesh() const {
     TriangleSoup soup;
     for (int j = 0; j <= rows; ++j)
-      for (int k = 0; k <= segments; ++k) soup.vertices.push_back((rInner + (rOuter - rInner) * j / rows) * ruling(k));
+      for (int k = 0; k <= segments; ++k)
+        soup.vertices.push_back((rInner + (rOuter - rInner) * j / rows) * ruling(k));
     const auto id = [&](int k, int j) { return j * (segments + 1) + k; };
     for (int j = 0; j < rows; ++j)
       for (int k = 0; k < segments; ++k) {
@@ -78,14 +81,18 @@ struct RuledCone {
   Eigen::Vector3d fromUnrolled(double rho, double psi) const {
     const int k = std::clamp(static_cast<int>(psi / cellAngle()), 0, segments - 1);
     const double t = psi - k * cellAngle();
-    const Eigen::Vector3d d = ruling(k), n = (ruling(k + 1) - ruling(k).dot(ruling(k + 1)) * ruling(k)).normalized();
+    const Eigen::Vector3d d = ruling(k),
+                          n = (ruling(k + 1) - ruling(k).dot(ruling(k + 1)) * ruling(k))
+                                  .normalized();
     return rho * (std::cos(t) * d + std::sin(t) * n);
   }
   Eigen::Vector2d toUnrolled(const Eigen::Vector3d& q) const {
     const double rho = q.norm();
     const double phi = std::atan2(q.y(), q.x()) + 0.5 * angle;
     const int k = std::clamp(static_cast<int>(phi / (angle / segments)), 0, segments - 1);
-    const Eigen::Vector3d d = ruling(k), n = (ruling(k + 1) - ruling(k).dot(ruling(k + 1)) * ruling(k)).normalized();
+    const Eigen::Vector3d d = ruling(k),
+                          n = (ruling(k + 1) - ruling(k).dot(ruling(k + 1)) * ruling(k))
+                                  .normalized();
     const double psi = k * cellAngle() + std::atan2(q.dot(n), q.dot(d));
     return rho * Eigen::Vector2d(std::cos(psi), std::sin(psi));
   }

@@ -29,7 +29,8 @@ inline PatchDistanceMaps planarPatchMaps(const std::array<Eigen::Vector2d, 4>& c
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) {
         const double x1 = double(i) / (n - 1), x2 = double(j) / (n - 1);
-        m.at(i, j) = ((c[k[2]] + x2 * (c[k[3]] - c[k[2]])) - (c[k[0]] + x1 * (c[k[1]] - c[k[0]]))).norm();
+        m.at(i, j) =
+            ((c[k[2]] + x2 * (c[k[3]] - c[k[2]])) - (c[k[0]] + x1 * (c[k[1]] - c[k[0]]))).norm();
       }
     (family == Family::U ? maps.u : maps.v) = m;
   }
@@ -73,8 +74,8 @@ inline PatchDistanceMaps spherePatchMaps(std::array<Eigen::Vector3d, 4> c, doubl
 inline std::array<Eigen::Vector3d, 4> capCorners(double theta, std::array<double, 4> azimuths) {
   std::array<Eigen::Vector3d, 4> c;
   for (int k = 0; k < 4; ++k)
-    c[k] = Eigen::Vector3d(std::sin(theta) * std::cos(azimuths[k]), std::sin(theta) * std::sin(azimuths[k]),
-                           std::cos(theta));
+    c[k] = Eigen::Vector3d(std::sin(theta) * std::cos(azimuths[k]),
+                           std::sin(theta) * std::sin(azimuths[k]), std::cos(theta));
   return c;
 }
 

@@ -14,7 +14,8 @@ namespace {
 using testing::planarPatchMaps;
 using testing::spherePatchMaps;
 
-const std::array<Eigen::Vector2d, 4> kTrapezoid{Eigen::Vector2d(0, 0), {2, 0}, {1.8, 1.2}, {0.3, 1.0}};
+const std::array<Eigen::Vector2d, 4> kTrapezoid{
+    Eigen::Vector2d(0, 0), {2, 0}, {1.8, 1.2}, {0.3, 1.0}};
 
 void expectSlopesInside(const AlphaBarResult& r, const AlphaBarOptions& o) {
   EXPECT_GE(r.slopeMin, o.slopeMin - 1e-5);
@@ -58,7 +59,8 @@ TEST(AlphaBar, DevelopablePatchBoundsBracketTheUnrolledAngle) {
   EXPECT_TRUE(evaluateAlphaBar(maps, r.alphaMax - 1e-6, options).feasible);
   EXPECT_FALSE(evaluateAlphaBar(maps, r.alphaMax + 1e-5, options).feasible);
   // At alpha_bar_min a slope bound (or the convex range) is active.
-  const bool active = std::abs(r.slopeMin - options.slopeMin) < 1e-3 || std::abs(r.slopeMax - options.slopeMax) < 1e-2 ||
+  const bool active = std::abs(r.slopeMin - options.slopeMin) < 1e-3 ||
+                      std::abs(r.slopeMax - options.slopeMax) < 1e-2 ||
                       std::abs(r.alphaMin - r.convexRange.lo) < 1e-6;
   EXPECT_TRUE(active) << r.slopeMin << " " << r.slopeMax;
 }
@@ -122,8 +124,10 @@ TEST(AlphaBar, NarrowFeasibleIntervalBetweenScanSamplesIsFound) {
   const double scale = 0.25 * (maps.sides[0] + maps.sides[1] + maps.sides[2] + maps.sides[3]);
   double kStar = 1e300;
   for (Family family : {Family::U, Family::V}) {
-    const auto f = claddingFunction(maps.map(family), *planarQuad(maps.sides, aStar, options.minPlanarAngle), family, scale);
-    for (double slope : segmentSlopes(f, options.cladding.infiniteSlopeFactor)) kStar = std::min(kStar, slope);
+    const auto f = claddingFunction(
+        maps.map(family), *planarQuad(maps.sides, aStar, options.minPlanarAngle), family, scale);
+    for (double slope : segmentSlopes(f, options.cladding.infiniteSlopeFactor))
+      kStar = std::min(kStar, slope);
   }
   ASSERT_GT(kStar, 0.85);
   ASSERT_LT(kStar, 0.93);
@@ -137,7 +141,8 @@ TEST(AlphaBar, NarrowFeasibleIntervalBetweenScanSamplesIsFound) {
   const auto r = solveAlphaBar(maps, options);
   ASSERT_TRUE(r.rangeFound) << r.status;
   ASSERT_EQ(r.feasibleIntervals.size(), 1u) << r.status;
-  // Known ends: a_star (slope bound, located to the solver's tolerance) and a_star + w (closed form).
+  // Known ends: a_star (slope bound, located to the solver's tolerance) and a_star + w (closed
+  // form).
   EXPECT_NEAR(r.alphaMin, aStar, 1e-6);
   EXPECT_NEAR(r.alphaMax, aStar + width, 1e-7);
   EXPECT_DOUBLE_EQ(r.alphaBar, r.alphaMin);
@@ -161,7 +166,8 @@ TEST(AlphaBar, NarrowDipOfOneConstraintBetweenScanSamplesIsFoundByRefinement) {
   double peak = -1.0, peakAngle = 0.0;
   for (int k = 0; k <= 2000; ++k) {
     const double a = 1.30 + 0.25 * k / 2000;
-    const auto f = claddingFunction(maps.u, *planarQuad(maps.sides, a, options.minPlanarAngle), Family::U, scale);
+    const auto f = claddingFunction(maps.u, *planarQuad(maps.sides, a, options.minPlanarAngle),
+                                    Family::U, scale);
     const auto slopes = segmentSlopes(f, options.cladding.infiniteSlopeFactor);
     const double smallest = *std::min_element(slopes.begin(), slopes.end());
     if (smallest > peak) peak = smallest, peakAngle = a;

@@ -12,7 +12,9 @@ namespace {
 using testing::planarPatchMaps;
 using testing::spherePatchMaps;
 
-double meanSide(const PatchDistanceMaps& m) { return 0.25 * (m.sides[0] + m.sides[1] + m.sides[2] + m.sides[3]); }
+double meanSide(const PatchDistanceMaps& m) {
+  return 0.25 * (m.sides[0] + m.sides[1] + m.sides[2] + m.sides[3]);
+}
 
 CladdingFunction cladding(const PatchDistanceMaps& maps, Family family, double alphaBar) {
   const auto quad = *planarQuad(maps.sides, alphaBar);
@@ -21,8 +23,8 @@ CladdingFunction cladding(const PatchDistanceMaps& maps, Family family, double a
 }
 
 TEST(Cladding, ParallelogramPairsEqualParameters) {
-  // Opposite sides equal: |c1-c0 + t(c3-c0)| = |c1_bar-c0_bar + t(c3_bar-c0_bar)| only at t = u2-u1 = 0
-  // for alpha_bar != alpha, so F is exactly the identity (parallel members, Figure 2.2 top).
+  // Opposite sides equal: |c1-c0 + t(c3-c0)| = |c1_bar-c0_bar + t(c3_bar-c0_bar)| only at t = u2-u1
+  // = 0 for alpha_bar != alpha, so F is exactly the identity (parallel members, Figure 2.2 top).
   const auto maps = planarPatchMaps({Eigen::Vector2d(0, 0), {2, 0}, {2.6, 1.1}, {0.6, 1.1}}, 41);
   // The piecewise-linear intersection is exact to O(h^2) in position and O(h) in slope.
   const double h = 1.0 / 40;
@@ -70,8 +72,9 @@ TEST(Cladding, PointsHaveEqualLengthsOnSurfaceAndPlane) {
     const auto k = familyCorners(family);
     for (size_t i = 0; i < f.points.size(); ++i) {
       const double x1 = f.points[i].x(), x2 = f.points[i].y();
-      const double surface = testing::greatCircle(testing::slerp(unit[k[0]], unit[k[1]], x1),
-                                                  testing::slerp(unit[k[2]], unit[k[3]], x2), radius);
+      const double surface =
+          testing::greatCircle(testing::slerp(unit[k[0]], unit[k[1]], x1),
+                               testing::slerp(unit[k[2]], unit[k[3]], x2), radius);
       const double plane = planarDistance(quad, family, x1, x2);
       EXPECT_NEAR(surface, plane, 2e-4 * radius) << i;
       EXPECT_NEAR(f.lengths[i], surface, 2e-4 * radius) << i;
@@ -87,7 +90,8 @@ TEST(Cladding, ConvergesUnderRefinement) {
     const auto maps = spherePatchMaps(corners, 1.0, n);
     return cladding(maps, Family::U, maps.alphaSpatial - 0.6).evaluate(0.3);
   };
-  const double reference = at(641), coarse = std::abs(at(21) - reference), fine = std::abs(at(41) - reference);
+  const double reference = at(641), coarse = std::abs(at(21) - reference),
+               fine = std::abs(at(41) - reference);
   EXPECT_LT(fine, coarse);
   EXPECT_LT(fine, 1e-3);
 }
@@ -98,16 +102,19 @@ TEST(Cladding, MissingIntersectionIsCompletedAlongTheBoundary) {
   const auto maps = planarPatchMaps({Eigen::Vector2d(0, 0), {2, 0}, {1.8, 1.2}, {0.3, 1.0}}, 31);
   DistanceMap shifted = maps.u;
   for (int i = 0; i < shifted.n1; ++i)
-    for (int j = 0; j < shifted.n2; ++j) shifted.at(i, j) += 0.5 * std::sin(M_PI * i / 30.0) * std::sin(M_PI * j / 30.0);
+    for (int j = 0; j < shifted.n2; ++j)
+      shifted.at(i, j) += 0.5 * std::sin(M_PI * i / 30.0) * std::sin(M_PI * j / 30.0);
   const auto quad = *planarQuad(maps.sides, maps.alphaSpatial);
-  const auto f = claddingFunction(shifted, planarDistanceMap(quad, Family::U, 31, 31), Family::U, 1.0);
+  const auto f =
+      claddingFunction(shifted, planarDistanceMap(quad, Family::U, 31, 31), Family::U, 1.0);
   EXPECT_FALSE(f.connectsCorners);
   EXPECT_FALSE(f.bijective());
   EXPECT_EQ(f.points.front(), Eigen::Vector2d(0, 0));
   EXPECT_EQ(f.points.back(), Eigen::Vector2d(1, 1));
   EXPECT_GT(slopeViolation(f, 0.1, 10.0), 0.0);
   const auto slopes = segmentSlopes(f, 1e4);
-  const bool outOfBounds = std::any_of(slopes.begin(), slopes.end(), [](double s) { return s <= 0.1 || s >= 10.0; });
+  const bool outOfBounds =
+      std::any_of(slopes.begin(), slopes.end(), [](double s) { return s <= 0.1 || s >= 10.0; });
   EXPECT_TRUE(outOfBounds);
 }
 
@@ -122,7 +129,8 @@ TEST(Cladding, ClosedFormPlanarMapGivesTheSameCurveAsTheSampledOne) {
     if (!quad) continue;
     for (Family family : {Family::U, Family::V}) {
       const DistanceMap& m = maps.map(family);
-      const auto sampled = claddingFunction(m, planarDistanceMap(*quad, family, m.n1, m.n2), family, 1.0);
+      const auto sampled =
+          claddingFunction(m, planarDistanceMap(*quad, family, m.n1, m.n2), family, 1.0);
       const auto closed = claddingFunction(m, *quad, family, 1.0);
       (sampled.connectsCorners ? withArc : withoutArc)++;
       EXPECT_EQ(closed.connectsCorners, sampled.connectsCorners);

@@ -13,8 +13,8 @@ TEST(Grid, SegmentIntersection) {
   ASSERT_TRUE(intersectSegments({0, 0}, {2, 0}, {0.5, -1}, {0.5, 1}, t, s));
   EXPECT_NEAR(t, 0.25, 1e-15);
   EXPECT_NEAR(s, 0.5, 1e-15);
-  EXPECT_FALSE(intersectSegments({0, 0}, {1, 0}, {0, 1}, {1, 1}, t, s));     // parallel
-  EXPECT_FALSE(intersectSegments({0, 0}, {1, 0}, {2, -1}, {2, 1}, t, s));    // misses
+  EXPECT_FALSE(intersectSegments({0, 0}, {1, 0}, {0, 1}, {1, 1}, t, s));   // parallel
+  EXPECT_FALSE(intersectSegments({0, 0}, {1, 0}, {2, -1}, {2, 1}, t, s));  // misses
 }
 
 TEST(Grid, PlanePatchGridIsExactAndNotchFree) {
@@ -25,7 +25,8 @@ TEST(Grid, PlanePatchGridIsExactAndNotchFree) {
   options.maps.resolution = 21;
   options.members.count = 4;
   parseAlphaBarChoice("unrolled", options.alphaBar);
-  const auto r = solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3.4, 3, 0}, {-3, 3, 0}}, options);
+  const auto r =
+      solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3.4, 3, 0}, {-3, 3, 0}}, options);
   ASSERT_EQ(r.grid.u.size(), 4u);
   ASSERT_EQ(r.grid.v.size(), 4u);
   ASSERT_EQ(r.grid.connections.size(), 16u);
@@ -39,7 +40,8 @@ TEST(Grid, PlanePatchGridIsExactAndNotchFree) {
   for (const auto* family : {&r.grid.u, &r.grid.v})
     for (const auto& m : *family) {
       ASSERT_EQ(m.normals.size(), m.spatial.size());
-      EXPECT_NEAR((m.spatial.back() - m.spatial.front()).norm(), m.spatialLength, 1e-9);  // straight
+      EXPECT_NEAR((m.spatial.back() - m.spatial.front()).norm(), m.spatialLength,
+                  1e-9);  // straight
     }
   EXPECT_EQ(r.grid.anchors.size(), 4u);  // straight sides: only the corners
   EXPECT_EQ(countNotches(r.grid), 0);

@@ -23,12 +23,15 @@ std::string slurp(const std::filesystem::path& p) {
 }
 
 TEST(GridIo, WritesJsonObjAndSvgThatReadBack) {
-  const TriMesh mesh = samples::generateSample("bump", {{"height", 0.8}, {"sigma", 2.0}, {"length", 8.0}, {"width", 8.0}}, 0.5);
+  const TriMesh mesh = samples::generateSample(
+      "bump", {{"height", 0.8}, {"sigma", 2.0}, {"length", 8.0}, {"width", 8.0}}, 0.5);
   EggOptions options;
   options.maps.resolution = 21;
   options.members.count = 5;
-  const auto r = solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, options);
-  const auto dir = std::filesystem::temp_directory_path() / ("egg_grid_io_" + std::to_string(::getpid()));
+  const auto r =
+      solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, options);
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("egg_grid_io_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   writeGridJson(r, (dir / "grid.json").string(), 7);
   writeGridObj(r.grid, (dir / "grid.obj").string());
@@ -40,7 +43,8 @@ TEST(GridIo, WritesJsonObjAndSvgThatReadBack) {
   EXPECT_EQ(doc["connections"].size(), 25u);
   EXPECT_DOUBLE_EQ(doc["max_notch_m"].get<double>(), r.grid.maxNotch);
   EXPECT_DOUBLE_EQ(doc["alpha_bar"]["value_rad"].get<double>(), r.alphaBar.alphaBar);
-  EXPECT_DOUBLE_EQ(doc["connections"][12]["notch_u_m"].get<double>(), r.grid.connections[12].notchU);
+  EXPECT_DOUBLE_EQ(doc["connections"][12]["notch_u_m"].get<double>(),
+                   r.grid.connections[12].notchU);
 
   const std::string obj = slurp(dir / "grid.obj");
   size_t lines = 0, pos = 0;

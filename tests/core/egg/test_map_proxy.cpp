@@ -13,8 +13,8 @@ namespace egg {
 namespace {
 
 Patch bumpPatch(double edge) {
-  const TriMesh mesh =
-      samples::generateSample("bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, edge);
+  const TriMesh mesh = samples::generateSample(
+      "bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, edge);
   return makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
 }
 
@@ -28,7 +28,8 @@ TEST(MapProxy, KeepsTheCornersAndItsBoundaryIsASubPolylineOfTheFineSides) {
   ASSERT_EQ(proxy.fineVertex.size(), p.mesh.n_vertices());
   // Every proxy vertex is the fine vertex it came from, at the same position.
   for (auto vh : p.mesh.vertices())
-    EXPECT_EQ(toEigen(p.mesh.point(vh)), toEigen(fine.mesh.point(TriMesh::VertexHandle(proxy.fineVertex[vh.idx()]))));
+    EXPECT_EQ(toEigen(p.mesh.point(vh)),
+              toEigen(fine.mesh.point(TriMesh::VertexHandle(proxy.fineVertex[vh.idx()]))));
   size_t chainVertices = 0;
   for (int k = 0; k < 4; ++k) {
     EXPECT_EQ(proxy.fineVertex[p.cornerVertices[k]], fine.cornerVertices[k]);
@@ -43,7 +44,9 @@ TEST(MapProxy, KeepsTheCornersAndItsBoundaryIsASubPolylineOfTheFineSides) {
     for (size_t i = 0; i < p.sides[k].size(); ++i) {
       // On the fine boundary polyline, at its fine arc length: distance 0 to rounding.
       const Eigen::Vector3d onFine = position(fine.mesh, sidePoint(fine, k, p.sideArcLength[k][i]));
-      EXPECT_LT((toEigen(p.mesh.point(TriMesh::VertexHandle(p.sides[k][i]))) - onFine).norm(), 1e-12) << k << " " << i;
+      EXPECT_LT((toEigen(p.mesh.point(TriMesh::VertexHandle(p.sides[k][i]))) - onFine).norm(),
+                1e-12)
+          << k << " " << i;
       if (i > 0) {
         EXPECT_GT(p.sideArcLength[k][i], p.sideArcLength[k][i - 1]);
       }
@@ -51,7 +54,9 @@ TEST(MapProxy, KeepsTheCornersAndItsBoundaryIsASubPolylineOfTheFineSides) {
     // A boundary sample maps to the point at the same fine arc length on the proxy's chord:
     // at a proxy side vertex exactly, at the corners too.
     const double s = p.sideArcLength[k][p.sides[k].size() / 2];
-    EXPECT_LT((position(p.mesh, sidePoint(p, k, s)) - position(fine.mesh, sidePoint(fine, k, s))).norm(), 1e-12);
+    EXPECT_LT(
+        (position(p.mesh, sidePoint(p, k, s)) - position(fine.mesh, sidePoint(fine, k, s))).norm(),
+        1e-12);
   }
   // The side chains are the whole proxy boundary.
   size_t boundary = 0;

@@ -14,7 +14,8 @@ namespace {
 // A synthetic map d(i, j) on an n1 x n2 grid (x1 = i / (n1 - 1)), with a row oracle that records
 // which rows were asked for and in how many batches.
 struct Oracle {
-  Oracle(int samples1, int samples2, std::function<double(double, double)> map) : n1(samples1), n2(samples2), d(std::move(map)) {}
+  Oracle(int samples1, int samples2, std::function<double(double, double)> map)
+      : n1(samples1), n2(samples2), d(std::move(map)) {}
   int n1, n2;
   std::function<double(double, double)> d;
   std::set<int> asked;
@@ -25,7 +26,8 @@ struct Oracle {
     for (int i : indices) {
       EXPECT_TRUE(asked.insert(i).second) << "row " << i << " computed twice";
       std::vector<double> row;
-      for (int j = 0; j < n2; ++j) row.push_back(d(static_cast<double>(i) / (n1 - 1), static_cast<double>(j) / (n2 - 1)));
+      for (int j = 0; j < n2; ++j)
+        row.push_back(d(static_cast<double>(i) / (n1 - 1), static_cast<double>(j) / (n2 - 1)));
       rows.push_back(row);
     }
     return rows;
@@ -34,20 +36,25 @@ struct Oracle {
     double e = 0.0;
     for (int i = 0; i < n1; ++i)
       for (int j = 0; j < n2; ++j)
-        e = std::max(e, std::abs(rows[i][j] - d(static_cast<double>(i) / (n1 - 1), static_cast<double>(j) / (n2 - 1))));
+        e = std::max(e, std::abs(rows[i][j] - d(static_cast<double>(i) / (n1 - 1),
+                                                static_cast<double>(j) / (n2 - 1))));
     return e;
   }
 };
 
-MapRefinementStats refine(Oracle& oracle, double tolerance, int initialNodes, std::vector<std::vector<double>>& rows) {
-  return refineMapRows(oracle.n1, oracle.n2, tolerance, initialNodes,
-                       [&](const std::vector<int>& indices) { return oracle(indices); }, rows);
+MapRefinementStats refine(Oracle& oracle, double tolerance, int initialNodes,
+                          std::vector<std::vector<double>>& rows) {
+  return refineMapRows(
+      oracle.n1, oracle.n2, tolerance, initialNodes,
+      [&](const std::vector<int>& indices) { return oracle(indices); }, rows);
 }
 
 TEST(MapRefinement, CubicRowsAreReproducedFromTheInitialNodesAndOneCheckRound) {
   // A cubic in x1 is its own local cubic interpolant: every check passes at once, so 9 initial
   // nodes + 8 checks are all the exact rows needed for 100 samples.
-  Oracle oracle{100, 30, [](double x1, double x2) { return (1.0 + x2) * (0.3 + 1.2 * x1 - 0.7 * x1 * x1 + 0.25 * x1 * x1 * x1); }};
+  Oracle oracle{100, 30, [](double x1, double x2) {
+                  return (1.0 + x2) * (0.3 + 1.2 * x1 - 0.7 * x1 * x1 + 0.25 * x1 * x1 * x1);
+                }};
   std::vector<std::vector<double>> rows;
   const auto stats = refine(oracle, 1e-9, 9, rows);
   EXPECT_EQ(stats.exactRows, 17);
@@ -97,7 +104,8 @@ TEST(MapRefinement, AKinkAtAFixedX1IsFoundWhereverItLies) {
   double worstRatio = 0.0;
   for (int t = 0; t <= 1000; ++t) {
     const double k = t == 1000 ? 0.91036 : 0.05 + 0.9 * t / 999.0;
-    Oracle oracle{100, 3, [k](double x1, double x2) { return 3.0 + x2 + 0.5 * x1 + 0.1 * std::abs(x1 - k); }};
+    Oracle oracle{
+        100, 3, [k](double x1, double x2) { return 3.0 + x2 + 0.5 * x1 + 0.1 * std::abs(x1 - k); }};
     std::vector<std::vector<double>> rows;
     const auto stats = refine(oracle, tolerance, 9, rows);
     worstRatio = std::max(worstRatio, oracle.largestError(rows) / tolerance);
@@ -112,7 +120,9 @@ TEST(MapRefinement, MostFarMissesInTheFirstRoundComputeTheRestInOneBatch) {
   // Kinks every ~8 samples (|sin| in x1): the first checks miss by far more than 32x the
   // tolerance, so after the first round the remaining rows come in one batch (3 calls in all)
   // instead of halving down to adjacent samples round after round.
-  Oracle oracle{100, 10, [](double x1, double x2) { return 2.0 + x2 + 0.05 * std::abs(std::sin(40.0 * x1 + x2)); }};
+  Oracle oracle{100, 10, [](double x1, double x2) {
+                  return 2.0 + x2 + 0.05 * std::abs(std::sin(40.0 * x1 + x2));
+                }};
   std::vector<std::vector<double>> rows;
   const auto stats = refine(oracle, 1e-5, 9, rows);
   EXPECT_EQ(oracle.calls, 3);
@@ -124,7 +134,9 @@ TEST(MapRefinement, MostFarMissesInTheFirstRoundComputeTheRestInOneBatch) {
 TEST(MapRefinement, AKinkIsRefinedDownToAdjacentSamples) {
   // A geodesic bending around a non-convex boundary point puts a kink into D(., x2): here at
   // x1 = 0.37 + 0.1 x2, with a slope jump of 1. Away from it the rows are linear in x1.
-  Oracle oracle{100, 20, [](double x1, double x2) { return 2.0 + 0.5 * x1 + std::abs(x1 - 0.37 - 0.1 * x2) + x2; }};
+  Oracle oracle{100, 20, [](double x1, double x2) {
+                  return 2.0 + 0.5 * x1 + std::abs(x1 - 0.37 - 0.1 * x2) + x2;
+                }};
   std::vector<std::vector<double>> rows;
   const double tolerance = 1e-6;
   const auto stats = refine(oracle, tolerance, 9, rows);
@@ -141,12 +153,18 @@ TEST(MapRefinement, AKinkIsRefinedDownToAdjacentSamples) {
 
 TEST(MapRefinement, BadArgumentsAreRejected) {
   std::vector<std::vector<double>> rows;
-  const auto good = [](const std::vector<int>& indices) { return std::vector<std::vector<double>>(indices.size(), std::vector<double>(4, 1.0)); };
+  const auto good = [](const std::vector<int>& indices) {
+    return std::vector<std::vector<double>>(indices.size(), std::vector<double>(4, 1.0));
+  };
   EXPECT_THROW(refineMapRows(1, 4, 1e-6, 9, good, rows), InvalidInput);
   EXPECT_THROW(refineMapRows(10, 4, 1e-6, 1, good, rows), InvalidInput);
-  const auto shortRows = [](const std::vector<int>& indices) { return std::vector<std::vector<double>>(indices.size(), std::vector<double>(3, 1.0)); };
+  const auto shortRows = [](const std::vector<int>& indices) {
+    return std::vector<std::vector<double>>(indices.size(), std::vector<double>(3, 1.0));
+  };
   EXPECT_THROW(refineMapRows(10, 4, 1e-6, 3, shortRows, rows), InvalidInput);
-  const auto missingRows = [](const std::vector<int>&) { return std::vector<std::vector<double>>{}; };
+  const auto missingRows = [](const std::vector<int>&) {
+    return std::vector<std::vector<double>>{};
+  };
   EXPECT_THROW(refineMapRows(10, 4, 1e-6, 3, missingRows, rows), InvalidInput);
 }
 

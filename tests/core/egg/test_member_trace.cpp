@@ -26,7 +26,10 @@ double bisect(const G& g, double a, double b) {
   double ga = g(a);
   for (int k = 0; k < 200 && b - a > 1e-16; ++k) {
     const double m = 0.5 * (a + b), gm = g(m);
-    if ((gm > 0) == (ga > 0)) a = m, ga = gm; else b = m;
+    if ((gm > 0) == (ga > 0))
+      a = m, ga = gm;
+    else
+      b = m;
   }
   return 0.5 * (a + b);
 }
@@ -36,7 +39,8 @@ double bisect(const G& g, double a, double b) {
 // |start(x1) - end(x2)| = planar distance(x1, x2), whose root bisection finds in closed form.
 struct PlaneTrapezoid {
   TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.8);
-  std::array<Eigen::Vector3d, 4> c{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {2, 3, 0}, {-2.5, 2.5, 0}};
+  std::array<Eigen::Vector3d, 4> c{
+      Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {2, 3, 0}, {-2.5, 2.5, 0}};
   Patch patch = makePatch(mesh, c);
   geodesic::DistanceSolver solver{patch.mesh};
   PlanarQuad quad = *planarQuad(patch.sideLengths, patch.innerAngles[0] - 0.15);
@@ -69,10 +73,12 @@ TEST(MemberTrace, PlaneTrapezoidMatchesTheAnalyticRoot) {
   const double length = polylineLength(m.spatial);
   EXPECT_NEAR(length, planarDistance(t.quad, Family::U, t.x1, m.x2), 1e-10 * length);
   // Straight, from start(x1) to end(x2), every normal +z.
-  const Eigen::Vector3d a = t.c[0] + t.x1 * (t.c[3] - t.c[0]), b = t.c[1] + m.x2 * (t.c[2] - t.c[1]);
+  const Eigen::Vector3d a = t.c[0] + t.x1 * (t.c[3] - t.c[0]),
+                        b = t.c[1] + m.x2 * (t.c[2] - t.c[1]);
   EXPECT_NEAR((m.spatial.front() - a).norm(), 0.0, 1e-12);
   EXPECT_NEAR((m.spatial.back() - b).norm(), 0.0, 1e-9);
-  for (const auto& p : m.spatial) EXPECT_NEAR((p - a).cross(b - a).norm() / (b - a).norm(), 0.0, 1e-9);
+  for (const auto& p : m.spatial)
+    EXPECT_NEAR((p - a).cross(b - a).norm() / (b - a).norm(), 0.0, 1e-9);
   ASSERT_EQ(m.normals.size(), m.spatial.size());
   for (const auto& n : m.normals) EXPECT_NEAR(std::abs(n.z()), 1.0, 1e-12);
 }
@@ -100,21 +106,25 @@ TEST(MemberTrace, SphereMemberIsTheShortestGeodesicOfThePlanarLength) {
   const TriMesh mesh = samples::generateSample("sphere", {{"radius", 10.0}, {"extent", 7.0}}, 0.6);
   std::array<Eigen::Vector3d, 4> corners;
   const double xy[4][2] = {{-4, -4}, {4.2, -3.8}, {4, 4}, {-3.8, 4.2}};
-  for (int k = 0; k < 4; ++k) corners[k] = {xy[k][0], xy[k][1], std::sqrt(100.0 - xy[k][0] * xy[k][0] - xy[k][1] * xy[k][1])};
+  for (int k = 0; k < 4; ++k)
+    corners[k] = {xy[k][0], xy[k][1], std::sqrt(100.0 - xy[k][0] * xy[k][0] - xy[k][1] * xy[k][1])};
   const Patch patch = makePatch(mesh, corners);
   const geodesic::DistanceSolver solver(patch.mesh);
-  const auto quad = *planarQuad(patch.sideLengths, patch.innerAngles[0] - 0.6);  // inside the lower feasible interval
+  const auto quad = *planarQuad(patch.sideLengths,
+                                patch.innerAngles[0] - 0.6);  // inside the lower feasible interval
   for (Family family : {Family::U, Family::V}) {
     const double x1 = 0.41;
     const SurfacePoint start = familyBoundaryPoint(patch, family, false, x1);
     // Guess: the sign change of the mismatch on 41 samples of the end side (one field).
     std::vector<SurfacePoint> ends;
-    for (int k = 0; k <= 40; ++k) ends.push_back(familyBoundaryPoint(patch, family, true, k / 40.0));
+    for (int k = 0; k <= 40; ++k)
+      ends.push_back(familyBoundaryPoint(patch, family, true, k / 40.0));
     const auto field = solver.distances(start, ends);
     double guess = -1.0;
     for (int k = 0; k < 40 && guess < 0; ++k) {
       const double g0 = field.targetDistances[k] - planarDistance(quad, family, x1, k / 40.0);
-      const double g1 = field.targetDistances[k + 1] - planarDistance(quad, family, x1, (k + 1) / 40.0);
+      const double g1 =
+          field.targetDistances[k + 1] - planarDistance(quad, family, x1, (k + 1) / 40.0);
       if ((g0 > 0) != (g1 > 0)) guess = (k + 0.5) / 40.0;
     }
     ASSERT_GE(guess, 0.0);
@@ -123,8 +133,12 @@ TEST(MemberTrace, SphereMemberIsTheShortestGeodesicOfThePlanarLength) {
     traceInnerMember(patch, solver, quad, m, GridOptions{}, propagations);
     const double length = polylineLength(m.spatial);
     EXPECT_NEAR(length, planarDistance(quad, family, x1, m.x2), 1e-10 * length);
-    EXPECT_NEAR(length, solver.distance(start, familyBoundaryPoint(patch, family, true, m.x2)), 1e-9 * length);
-    EXPECT_NEAR((m.spatial.back() - position(patch.mesh, familyBoundaryPoint(patch, family, true, m.x2))).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(length, solver.distance(start, familyBoundaryPoint(patch, family, true, m.x2)),
+                1e-9 * length);
+    EXPECT_NEAR(
+        (m.spatial.back() - position(patch.mesh, familyBoundaryPoint(patch, family, true, m.x2)))
+            .norm(),
+        0.0, 1e-9);
     EXPECT_LE(propagations.load(), 4);
   }
 }
@@ -136,12 +150,13 @@ TEST(MemberTrace, BenchBumpMembersAreMatchedInTheirStrips) {
   // vertices a v member retraced to the same strip end again and again: the trace goes round a
   // vertex ~2e-5 m longer than its strip polyline). Both are matched in their strips now.
   const double density = (2000 - 141) / 0.861, edge = std::sqrt(50.0 / (0.866 * density));
-  const TriMesh mesh =
-      samples::generateSample("bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, edge);
+  const TriMesh mesh = samples::generateSample(
+      "bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, edge);
   EggOptions options;
   options.members.lamellaWidthM = 0.1;
   options.members.spacingFactor = 6.0;
-  const auto r = solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, options);
+  const auto r =
+      solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, options);
   int inner = 0, bracketed = 0;
   for (const auto* family : {&r.grid.u, &r.grid.v})
     for (const auto& m : *family) {
@@ -152,7 +167,8 @@ TEST(MemberTrace, BenchBumpMembersAreMatchedInTheirStrips) {
     }
   EXPECT_EQ(inner, 10);
   EXPECT_EQ(bracketed, 0);
-  EXPECT_LE(r.grid.propagations, 2 * inner);  // directed traces only: the guess and one retrace each
+  EXPECT_LE(r.grid.propagations,
+            2 * inner);  // directed traces only: the guess and one retrace each
 }
 
 }  // namespace

@@ -44,7 +44,8 @@ TEST(Members, ConstantLengthsAreSpacedEvenlyAtTheTargetSpacing) {
   MemberOptions options;
   options.lamellaWidthM = 0.05;
   options.spacingFactor = 5.0;  // target 0.25 m on sides of 1 m -> members at 0, .25, .5, .75, 1
-  const auto members = placeMembers(identityCladding([](double) { return 1.0; }), kSquare, 1.0, 1.0, options);
+  const auto members =
+      placeMembers(identityCladding([](double) { return 1.0; }), kSquare, 1.0, 1.0, options);
   ASSERT_EQ(members.x1.size(), 5u);
   for (size_t k = 0; k < 5; ++k) {
     EXPECT_NEAR(members.x1[k], 0.25 * k, 1e-12);
@@ -59,9 +60,10 @@ TEST(Members, LongestGeodesicGetsAMember) {
   MemberOptions options;
   options.lamellaWidthM = 0.02;
   options.spacingFactor = 10.0;
-  const auto members = placeMembers(
-      identityCladding([](double x) { return 1.0 + 0.1 * std::exp(-std::pow((x - 0.3) / 0.08, 2)); }), kSquare, 1.0,
-      1.0, options);
+  const auto members = placeMembers(identityCladding([](double x) {
+                                      return 1.0 + 0.1 * std::exp(-std::pow((x - 0.3) / 0.08, 2));
+                                    }),
+                                    kSquare, 1.0, 1.0, options);
   int found = 0;
   for (size_t k = 0; k < members.x1.size(); ++k)
     if (members.origin[k] == MemberOrigin::LengthExtremum) {
@@ -86,7 +88,8 @@ MemberOptions featureOptions() {
   return options;
 }
 double bumpAndDip(double x, double x0) {
-  return 1.0 + 0.1 * std::exp(-std::pow((x - x0) / 0.08, 2)) - 0.06 * std::exp(-std::pow((x - 0.72) / 0.1, 2));
+  return 1.0 + 0.1 * std::exp(-std::pow((x - x0) / 0.08, 2)) -
+         0.06 * std::exp(-std::pow((x - 0.72) / 0.1, 2));
 }
 // Deterministic noise in [-1, 1] per cladding point.
 double noise(int k) {
@@ -96,7 +99,8 @@ double noise(int k) {
 template <class Length>
 CladdingFunction noisyCladding(Length length, double relative, int n = 201) {
   CladdingFunction f = identityCladding(length, n);
-  for (size_t k = 0; k < f.lengths.size(); ++k) f.lengths[k] *= 1.0 + relative * noise(static_cast<int>(k));
+  for (size_t k = 0; k < f.lengths.size(); ++k)
+    f.lengths[k] *= 1.0 + relative * noise(static_cast<int>(k));
   return f;
 }
 double largestShift(const FamilyMembers& a, const FamilyMembers& b) {
@@ -111,8 +115,8 @@ TEST(Members, LengthExtremaAreFoundBetweenSamples) {
   // feature are below 1e-11 there, and smoothing a symmetric feature does not move its centre);
   // x0 lies between the samples of any grid with a round count of samples on [0, 1].
   const double x0 = 0.3 + 0.37 / 255;
-  const auto members =
-      placeMembers(identityCladding([&](double x) { return bumpAndDip(x, x0); }), kSquare, 1.0, 1.0, featureOptions());
+  const auto members = placeMembers(identityCladding([&](double x) { return bumpAndDip(x, x0); }),
+                                    kSquare, 1.0, 1.0, featureOptions());
   std::vector<double> extrema;
   for (size_t k = 0; k < members.x1.size(); ++k)
     if (members.origin[k] == MemberOrigin::LengthExtremum) extrema.push_back(members.x1[k]);
@@ -130,7 +134,8 @@ TEST(Members, TinyNoiseOnCMovesNoMember) {
     const double x0 = 0.3 + j / (80.0 * 255.0);
     const auto length = [&](double x) { return bumpAndDip(x, x0); };
     const auto exact = placeMembers(identityCladding(length), kSquare, 1.0, 1.0, featureOptions());
-    const auto noisy = placeMembers(noisyCladding(length, 1e-6), kSquare, 1.0, 1.0, featureOptions());
+    const auto noisy =
+        placeMembers(noisyCladding(length, 1e-6), kSquare, 1.0, 1.0, featureOptions());
     ASSERT_EQ(exact.x1.size(), noisy.x1.size()) << "x0 = " << x0;
     EXPECT_LT(largestShift(exact, noisy), 1e-4) << "x0 = " << x0;
   }
@@ -139,7 +144,8 @@ TEST(Members, TinyNoiseOnCMovesNoMember) {
 TEST(Members, MirrorSymmetricLengthsGiveMirrorSymmetricMembers) {
   // C(x) = C(1 - x) on the square: the members are symmetric about x = 1/2.
   const auto length = [](double x) {
-    return 1.0 + 0.1 * std::exp(-std::pow((x - 0.5) / 0.1, 2)) + 0.04 * std::exp(-std::pow((x - 0.17) / 0.06, 2)) +
+    return 1.0 + 0.1 * std::exp(-std::pow((x - 0.5) / 0.1, 2)) +
+           0.04 * std::exp(-std::pow((x - 0.17) / 0.06, 2)) +
            0.04 * std::exp(-std::pow((x - 0.83) / 0.06, 2));
   };
   const auto members = placeMembers(identityCladding(length), kSquare, 1.0, 1.0, featureOptions());
@@ -149,7 +155,8 @@ TEST(Members, MirrorSymmetricLengthsGiveMirrorSymmetricMembers) {
   for (size_t k = 0; k < n; ++k) {
     EXPECT_NEAR(members.x1[k] + members.x1[n - 1 - k], 1.0, 1e-9) << k;
     EXPECT_EQ(members.origin[k], members.origin[n - 1 - k]) << k;
-    features += members.origin[k] == MemberOrigin::LengthExtremum || members.origin[k] == MemberOrigin::CurvatureExtremum;
+    features += members.origin[k] == MemberOrigin::LengthExtremum ||
+                members.origin[k] == MemberOrigin::CurvatureExtremum;
   }
   EXPECT_GE(features, 3);  // the centre bump's maximum and the side bumps
 }
@@ -159,13 +166,18 @@ TEST(Members, NeitherTheScanNorTheSamplingOfCMovesMembers) {
   // doubling the scan that brackets them, or sampling C twice as finely, moves no member by more
   // than 1e-4 of the side.
   const auto length = [](double x) { return bumpAndDip(x, 0.3 + 0.37 / 255); };
-  const auto reference = placeMembers(identityCladding(length), kSquare, 1.0, 1.0, featureOptions());
+  const auto reference =
+      placeMembers(identityCladding(length), kSquare, 1.0, 1.0, featureOptions());
   ASSERT_GE(reference.x1.size(), 7u);
   MemberOptions finerScan = featureOptions();
   finerScan.scanSamplesPerSigma *= 2;
-  EXPECT_LT(largestShift(placeMembers(identityCladding(length), kSquare, 1.0, 1.0, finerScan), reference), 1e-4);
-  EXPECT_LT(largestShift(placeMembers(identityCladding(length, 401), kSquare, 1.0, 1.0, featureOptions()), reference),
-            1e-4);
+  EXPECT_LT(
+      largestShift(placeMembers(identityCladding(length), kSquare, 1.0, 1.0, finerScan), reference),
+      1e-4);
+  EXPECT_LT(
+      largestShift(placeMembers(identityCladding(length, 401), kSquare, 1.0, 1.0, featureOptions()),
+                   reference),
+      1e-4);
 }
 
 // Counts of the members that have each origin.
@@ -182,8 +194,8 @@ TEST(Members, SamplingCoarserThanTheSmoothingAddsNoFeatures) {
   // 4 with 200 samples. The smoothing now spans at least 1.5 sample steps.
   const PlanarQuad square = *planarQuad({40, 40, 40, 40}, M_PI / 2);
   const auto place = [&](int n, const MemberOptions& options) {
-    return placeMembers(identityCladding([](double x) { return 40.0 * bumpAndDip(x, 0.3); }, n), square, 40.0, 40.0,
-                        options);
+    return placeMembers(identityCladding([](double x) { return 40.0 * bumpAndDip(x, 0.3); }, n),
+                        square, 40.0, 40.0, options);
   };
   const auto coarse = place(100, {}), finer = place(200, {}), fine = place(2001, {});
   EXPECT_EQ(originCounts(fine)[static_cast<size_t>(MemberOrigin::CurvatureExtremum)], 4);
@@ -195,7 +207,8 @@ TEST(Members, SamplingCoarserThanTheSmoothingAddsNoFeatures) {
     // The smoothing differs (0.61 m and 0.30 m), which moves curvature extrema (measured 2.1e-3
     // of the side) but not the extrema of the symmetric bump and dip (1e-4 = 4 mm).
     const bool length = coarse.origin[k] == MemberOrigin::LengthExtremum;
-    EXPECT_NEAR(coarse.x1[k], finer.x1[k], length ? 1e-4 : 2.5e-3) << k;  // 2.5e-3: a quarter of the spacing
+    EXPECT_NEAR(coarse.x1[k], finer.x1[k], length ? 1e-4 : 2.5e-3)
+        << k;  // 2.5e-3: a quarter of the spacing
   }
   // The coarse samples change nothing but the smoothing width: 100 samples give the members of a
   // finely sampled C smoothed over 1.5 steps of 40/99 m (measured 1.9e-4; before, 2 members more).
@@ -206,14 +219,16 @@ TEST(Members, SamplingCoarserThanTheSmoothingAddsNoFeatures) {
   // and dip, not one per sample.
   MemberOptions thin;
   thin.lamellaWidthM = 1e-3;
-  EXPECT_EQ(originCounts(place(100, thin))[static_cast<size_t>(MemberOrigin::CurvatureExtremum)], 4);
+  EXPECT_EQ(originCounts(place(100, thin))[static_cast<size_t>(MemberOrigin::CurvatureExtremum)],
+            4);
 }
 
 TEST(Members, NonFiniteLengthsAreRejected) {
   // One NaN in C at x = 0.5 used to drop out of every sign test: the bump's member at 0.3 vanished
   // and filled members took its place. Now it is an error naming the cladding point.
   for (double bad : {NAN, INFINITY}) {
-    CladdingFunction f = identityCladding([](double x) { return 1.0 + 0.1 * std::exp(-std::pow((x - 0.3) / 0.08, 2)); });
+    CladdingFunction f = identityCladding(
+        [](double x) { return 1.0 + 0.1 * std::exp(-std::pow((x - 0.3) / 0.08, 2)); });
     f.lengths[100] = bad;  // x = 0.5
     for (int count : {0, 5}) {
       MemberOptions options = featureOptions();
@@ -234,8 +249,9 @@ TEST(Members, NonFiniteLengthsAreRejected) {
 TEST(Members, RippleFinerThanTheSpacingIsNoFeature) {
   // A 1 mm ripple of period 2 cm (a fifth of the target spacing) cannot carry members of its own:
   // the smoothing over 5 cm removes it and the members are spaced as for a constant C.
-  const auto members = placeMembers(identityCladding([](double x) { return 1.0 + 1e-3 * std::sin(2 * M_PI * x / 0.02); }),
-                                    kSquare, 1.0, 1.0, featureOptions());
+  const auto members = placeMembers(
+      identityCladding([](double x) { return 1.0 + 1e-3 * std::sin(2 * M_PI * x / 0.02); }),
+      kSquare, 1.0, 1.0, featureOptions());
   ASSERT_EQ(members.x1.size(), 11u);
   for (size_t k = 0; k < 11; ++k) EXPECT_NEAR(members.x1[k], 0.1 * k, 1e-9);
 }
@@ -254,10 +270,12 @@ TEST(Members, NearTiesMoveTheMemberContinuously) {
     return best;
   };
   const auto place = [&](double e, const MemberOptions& o) {
-    return placeMembers(identityCladding([&](double x) {
-                          return 1.0 + 0.1 * std::exp(-std::pow((x - 0.45) / 0.015, 2)) +
-                                 0.1 * (1 + e) * std::exp(-std::pow((x - 0.53) / 0.015, 2));
-                        }, 801),
+    return placeMembers(identityCladding(
+                            [&](double x) {
+                              return 1.0 + 0.1 * std::exp(-std::pow((x - 0.45) / 0.015, 2)) +
+                                     0.1 * (1 + e) * std::exp(-std::pow((x - 0.53) / 0.015, 2));
+                            },
+                            801),
                         kSquare, 1.0, 1.0, o);
   };
   EXPECT_NEAR(nearest(place(0.0, options), 0.49), 0.49, 1e-6);
@@ -271,19 +289,23 @@ TEST(Members, NearTiesMoveTheMemberContinuously) {
   EXPECT_NEAR(previous, 0.53, 2e-3);
   EXPECT_LT(largestStep, 0.01);
   options.tieBand = 0.0;  // strict ranking: the jump
-  EXPECT_NEAR(nearest(place(-1e-6, options), 0.49) - nearest(place(1e-6, options), 0.49), -0.08, 2e-3);
+  EXPECT_NEAR(nearest(place(-1e-6, options), 0.49) - nearest(place(1e-6, options), 0.49), -0.08,
+              2e-3);
 }
 
 TEST(Members, FixedCountIsEvenAndChecksDensity) {
   MemberOptions options;
   options.count = 5;
-  const auto members = placeMembers(identityCladding([](double x) { return 1.0 + x * x; }), kSquare, 1.0, 1.0, options);
+  const auto members = placeMembers(identityCladding([](double x) { return 1.0 + x * x; }), kSquare,
+                                    1.0, 1.0, options);
   ASSERT_EQ(members.x1.size(), 5u);
   EXPECT_NEAR(members.x1[1], 0.25, 1e-12);
   EXPECT_NEAR(members.lengths[2], 1.25, 1e-4);
   options.count = 100;
   options.lamellaWidthM = 0.05;  // 100 lamellas of 5 cm do not fit on a 1 m side
-  EXPECT_THROW(placeMembers(identityCladding([](double) { return 1.0; }), kSquare, 1.0, 1.0, options), InvalidInput);
+  EXPECT_THROW(
+      placeMembers(identityCladding([](double) { return 1.0; }), kSquare, 1.0, 1.0, options),
+      InvalidInput);
 }
 
 TEST(Members, NonBijectiveCladdingIsInfeasible) {

@@ -14,7 +14,8 @@ namespace egg {
 namespace {
 
 const TriMesh& planeMesh() {
-  static const TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.7);
+  static const TriMesh mesh =
+      samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.7);
   return mesh;
 }
 
@@ -33,7 +34,8 @@ void expectBoundaryIsTheQuad(const Patch& patch) {
 }
 
 TEST(Patch, PlaneSquareHasExactSidesAnglesAndArea) {
-  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {3.2, -3, 0}, {3, 3.1, 0}, {-3, 3, 0}};
+  const std::array<Eigen::Vector3d, 4> corners{
+      Eigen::Vector3d(-3, -3, 0), {3.2, -3, 0}, {3, 3.1, 0}, {-3, 3, 0}};
   const Patch patch = makePatch(planeMesh(), corners);
   expectBoundaryIsTheQuad(patch);
   for (int k = 0; k < 4; ++k) {
@@ -42,11 +44,14 @@ TEST(Patch, PlaneSquareHasExactSidesAnglesAndArea) {
   }
   // Shoelace area and planar angles of the quad.
   double area = 0.0;
-  for (int k = 0; k < 4; ++k) area += 0.5 * (corners[k].x() * corners[(k + 1) % 4].y() - corners[(k + 1) % 4].x() * corners[k].y());
+  for (int k = 0; k < 4; ++k)
+    area += 0.5 *
+            (corners[k].x() * corners[(k + 1) % 4].y() - corners[(k + 1) % 4].x() * corners[k].y());
   EXPECT_NEAR(patch.area, area, 1e-9);
   double angleSum = 0.0;
   for (int k = 0; k < 4; ++k) {
-    const Eigen::Vector3d a = corners[(k + 1) % 4] - corners[k], b = corners[(k + 3) % 4] - corners[k];
+    const Eigen::Vector3d a = corners[(k + 1) % 4] - corners[k],
+                          b = corners[(k + 3) % 4] - corners[k];
     EXPECT_NEAR(patch.innerAngles[k], std::acos(a.normalized().dot(b.normalized())), 1e-9) << k;
     angleSum += patch.innerAngles[k];
   }
@@ -59,14 +64,16 @@ TEST(Patch, CornersInNeighbouringFacesAreInsertedOneAtATime) {
   // in the same face (three of them here), so it takes the second path: the known answer must hold.
   // (Inserted together into that face, or snapped on the unsplit surface, they break it.)
   const TriMesh coarse = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 2.0);
-  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(0.1, 0.2, 0), {0.4, 0.2, 0}, {0.4, 0.5, 0}, {0.1, 0.5, 0}};
+  const std::array<Eigen::Vector3d, 4> corners{
+      Eigen::Vector3d(0.1, 0.2, 0), {0.4, 0.2, 0}, {0.4, 0.5, 0}, {0.1, 0.5, 0}};
   std::set<int> faces;
   for (const auto& c : corners) faces.insert(geodesic::snapToSurface(coarse, c).face);
   std::set<int> neighbourhoods;
   bool disjoint = true;
   for (int f : faces) {
     disjoint = neighbourhoods.insert(f).second && disjoint;
-    for (auto fh : coarse.ff_range(TriMesh::FaceHandle(f))) disjoint = neighbourhoods.insert(fh.idx()).second && disjoint;
+    for (auto fh : coarse.ff_range(TriMesh::FaceHandle(f)))
+      disjoint = neighbourhoods.insert(fh.idx()).second && disjoint;
   }
   ASSERT_LT(faces.size(), 4u);  // corners share a face: they cannot go in together
   ASSERT_FALSE(disjoint);
@@ -81,14 +88,16 @@ TEST(Patch, CornersInNeighbouringFacesAreInsertedOneAtATime) {
 }
 
 TEST(Patch, ClockwiseCornersGiveTheSameRegion) {
-  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {-3, 3, 0}, {3, 3, 0}, {3, -3, 0}};
+  const std::array<Eigen::Vector3d, 4> corners{
+      Eigen::Vector3d(-3, -3, 0), {-3, 3, 0}, {3, 3, 0}, {3, -3, 0}};
   const Patch patch = makePatch(planeMesh(), corners);
   expectBoundaryIsTheQuad(patch);
   EXPECT_NEAR(patch.area, 36.0, 1e-9);
 }
 
 TEST(Patch, SidePointsRunAtConstantSpeed) {
-  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
+  const std::array<Eigen::Vector3d, 4> corners{
+      Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
   const Patch patch = makePatch(planeMesh(), corners);
   for (double s : {0.0, 1.3, 4.7, 6.0}) {
     const Eigen::Vector3d p = position(patch.mesh, sidePoint(patch, 1, s));
@@ -111,23 +120,28 @@ void expectRejected(const std::array<Eigen::Vector3d, 4>& corners, const std::st
 
 TEST(Patch, BadCornersAreRejectedWithAReason) {
   // Off the surface: how far, and which corner.
-  expectRejected<InvalidInput>({Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {40, 40, 0}}, "corner 3 (40, 40, 0) lies 49.49");
+  expectRejected<InvalidInput>({Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {40, 40, 0}},
+                               "corner 3 (40, 40, 0) lies 49.49");
   // Collinear: corner 1 lies on the segment c0 c2, its inner angle is pi.
   expectRejected<InfeasiblePatch>({Eigen::Vector3d(-3, -3, 0), {0, 0, 0}, {3, 3, 0}, {-3, 3, 0}},
                                   "inner angle at corner 1 is 3.14159");
   // Concave (a dart): the inner angle at corner 1 exceeds pi.
   expectRejected<InfeasiblePatch>({Eigen::Vector3d(-3, -3, 0), {0, -1, 0}, {3, -3, 0}, {0, 3, 0}},
                                   "corner 1 is 4.3");
-  expectRejected<InfeasiblePatch>({Eigen::Vector3d(-3, -3, 0), {0, -1, 0}, {3, -3, 0}, {0, 3, 0}}, "criterion iv");
+  expectRejected<InfeasiblePatch>({Eigen::Vector3d(-3, -3, 0), {0, -1, 0}, {3, -3, 0}, {0, 3, 0}},
+                                  "criterion iv");
   // Bow tie: boundaries 0 and 2 cross.
-  expectRejected<InfeasiblePatch>({Eigen::Vector3d(-3, -3, 0), {3, 3, 0}, {3, -3, 0}, {-3, 3, 0}}, "boundaries cross");
+  expectRejected<InfeasiblePatch>({Eigen::Vector3d(-3, -3, 0), {3, 3, 0}, {3, -3, 0}, {-3, 3, 0}},
+                                  "boundaries cross");
   // Repeated corner.
-  expectRejected<InvalidInput>({Eigen::Vector3d(-3, -3, 0), {-3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, "corners 0 and 1 coincide");
+  expectRejected<InvalidInput>({Eigen::Vector3d(-3, -3, 0), {-3, -3, 0}, {3, 3, 0}, {-3, 3, 0}},
+                               "corners 0 and 1 coincide");
 }
 
 TEST(Patch, WholeSurfaceWithStraightBoundaryIsAccepted) {
   // Corners at the rectangle's corners: the sides run along the straight surface boundary.
-  const std::array<Eigen::Vector3d, 4> corners{Eigen::Vector3d(-5, -5, 0), {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}};
+  const std::array<Eigen::Vector3d, 4> corners{
+      Eigen::Vector3d(-5, -5, 0), {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}};
   const Patch patch = makePatch(planeMesh(), corners);
   EXPECT_NEAR(patch.area, 100.0, 1e-9);
   expectBoundaryIsTheQuad(patch);

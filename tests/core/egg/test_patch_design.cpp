@@ -12,10 +12,12 @@ namespace egg {
 namespace {
 
 // The bump patches of test_solve_patch.cpp: a 6 m quad over a Gaussian bump (sigma 1.5 m).
-const std::array<Eigen::Vector3d, 4> kBumpCorners{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
+const std::array<Eigen::Vector3d, 4> kBumpCorners{
+    Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
 
 TriMesh bumpMesh(double height) {
-  return samples::generateSample("bump", {{"height", height}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+  return samples::generateSample(
+      "bump", {{"height", height}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
 }
 
 EggOptions fastOptions() {
@@ -64,7 +66,8 @@ TEST(PatchDesign, DesignThenGridEqualsSolveEggBitForBit) {
   }
   EXPECT_EQ(grid.maxNotch, whole.grid.maxNotch);
   EXPECT_EQ(grid.maxLengthMismatch, whole.grid.maxLengthMismatch);
-  EXPECT_EQ(design.propagations + design.patch.propagations + grid.propagations, whole.propagations);
+  EXPECT_EQ(design.propagations + design.patch.propagations + grid.propagations,
+            whole.propagations);
 }
 
 TEST(PatchDesign, MembersAtGivenCoordinatesFollowFAndMeetCriterionOne) {
@@ -108,7 +111,8 @@ TEST(PatchDesign, CladdingSlopeIsTheDerivativeOfTheCladdingValue) {
   const PatchDesign design = designBump(1.0, options);
   ASSERT_TRUE(design.feasible) << design.failure.message;
   for (Family family : {Family::U, Family::V}) {
-    const auto& points = (family == Family::U ? design.alphaBar.claddingU : design.alphaBar.claddingV).points;
+    const auto& points =
+        (family == Family::U ? design.alphaBar.claddingU : design.alphaBar.claddingV).points;
     ASSERT_GT(points.size(), 10u);
     const double h = 1e-7;
     int checked = 0;
@@ -117,7 +121,8 @@ TEST(PatchDesign, CladdingSlopeIsTheDerivativeOfTheCladdingValue) {
       bool nearKink = false;
       for (const auto& p : points) nearKink = nearKink || std::abs(p.x() - x) < 2 * h;
       if (nearKink) continue;
-      const double fd = (claddingValue(design, family, x + h) - claddingValue(design, family, x - h)) / (2 * h);
+      const double fd =
+          (claddingValue(design, family, x + h) - claddingValue(design, family, x - h)) / (2 * h);
       EXPECT_NEAR(claddingSlope(design, family, x), fd, 1e-6 * std::max(1.0, std::abs(fd))) << x;
       EXPECT_NEAR(claddingInverse(design, family, claddingValue(design, family, x)), x, 1e-12) << x;
       ++checked;
@@ -142,7 +147,8 @@ TEST(PatchDesign, CladdingAtTheChosenAngleIsTheDesignsAndMovesWithTheAngle) {
   const CladdingFunction u = claddingAt(design, Family::U, design.alphaBar.alphaBar);
   EXPECT_EQ(u.points, design.alphaBar.claddingU.points);
   EXPECT_EQ(u.lengths, design.alphaBar.claddingU.lengths);
-  EXPECT_EQ(claddingAt(design, Family::V, design.alphaBar.alphaBar).points, design.alphaBar.claddingV.points);
+  EXPECT_EQ(claddingAt(design, Family::V, design.alphaBar.alphaBar).points,
+            design.alphaBar.claddingV.points);
   // Inside the feasible set, F stays bijective and moves with alpha_bar.
   const AngleInterval first = design.alphaBar.feasibleIntervals.front();
   const double inside = first.lo + 0.5 * (first.hi - first.lo);
@@ -163,7 +169,8 @@ TEST(PatchDesign, TallBumpWithoutSmoothingReportsAnEtaFailureAtThePeak) {
   // Symmetric bump in a symmetric quad: both families fail.
   EXPECT_TRUE(design.failure.familyU);
   EXPECT_TRUE(design.failure.familyV);
-  EXPECT_LT((design.failure.peak - Eigen::Vector3d(0, 0, 2)).norm(), 0.3) << design.failure.peak.transpose();
+  EXPECT_LT((design.failure.peak - Eigen::Vector3d(0, 0, 2)).norm(), 0.3)
+      << design.failure.peak.transpose();
   EXPECT_EQ(design.uniqueness.smoothingRounds, 0);
   EXPECT_THROW(requireFeasible(design), InfeasiblePatch);
   EXPECT_THROW(claddingValue(design, Family::U, 0.5), InvalidInput);
@@ -200,7 +207,8 @@ TEST(PatchDesign, SlopeBoundsNoAlphaBarMeetsReportASlopeFailure) {
   ASSERT_FALSE(design.feasible);
   EXPECT_EQ(design.failure.kind, DesignFailureKind::Slopes);
   EXPECT_TRUE(design.failure.familyU || design.failure.familyV);
-  EXPECT_LT((design.failure.peak - Eigen::Vector3d(0, 0, 1)).norm(), 0.3) << design.failure.peak.transpose();
+  EXPECT_LT((design.failure.peak - Eigen::Vector3d(0, 0, 1)).norm(), 0.3)
+      << design.failure.peak.transpose();
   try {
     solveEgg(bumpMesh(1.0), kBumpCorners, options);
     ADD_FAILURE() << "no feasible alpha_bar, yet solveEgg returned";
@@ -217,8 +225,8 @@ TEST(PatchDesign, NarrowPatchWithTightSlopeBoundsFailsTheSlopesOfOneFamily) {
   EggOptions options = fastOptions();
   options.alphaBar.slopeMin = 0.8;
   options.alphaBar.slopeMax = 1.25;
-  const PatchDesign design =
-      designBump(1.0, options, {Eigen::Vector3d(-3, -1.2, 0), {3, -1.2, 0}, {3, 1.2, 0}, {-3, 1.2, 0}});
+  const PatchDesign design = designBump(
+      1.0, options, {Eigen::Vector3d(-3, -1.2, 0), {3, -1.2, 0}, {3, 1.2, 0}, {-3, 1.2, 0}});
   ASSERT_FALSE(design.feasible);
   EXPECT_EQ(design.failure.kind, DesignFailureKind::Slopes);
   EXPECT_FALSE(design.failure.familyU);
@@ -229,7 +237,8 @@ TEST(PatchDesign, NarrowPatchWithTightSlopeBoundsFailsTheSlopesOfOneFamily) {
   ASSERT_TRUE(range);
   double leastU = 1e300, leastV = 1e300;
   for (int k = 0; k <= 60; ++k) {
-    const auto e = evaluateAlphaBar(design.maps, range->lo + (range->hi - range->lo) * k / 60, options.alphaBar);
+    const auto e = evaluateAlphaBar(design.maps, range->lo + (range->hi - range->lo) * k / 60,
+                                    options.alphaBar);
     if (!e.closable) continue;
     leastU = std::min(leastU, e.violationU);
     leastV = std::min(leastV, e.violationV);

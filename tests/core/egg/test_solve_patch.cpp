@@ -15,7 +15,8 @@ namespace {
 void expectGridCriteria(const EggResult& r) {
   // (i) length correspondence of every member.
   for (const auto* family : {&r.grid.u, &r.grid.v})
-    for (const auto& m : *family) EXPECT_NEAR(m.spatialLength, m.planarLength, 1e-9 * m.planarLength) << m.index;
+    for (const auto& m : *family)
+      EXPECT_NEAR(m.spatialLength, m.planarLength, 1e-9 * m.planarLength) << m.index;
   // (ii) boundary correspondence: along boundary members, connections sit at the same arc length.
   for (const auto& c : r.grid.connections) {
     if (r.grid.u[c.memberU].boundary) {
@@ -46,7 +47,8 @@ EggOptions fastOptions() {
 
 // The developable tests' patch: a general quad drawn in the cylinder's unrolled plane.
 std::array<Eigen::Vector3d, 4> cylinderCorners(const testing::RuledCylinder& cylinder) {
-  const std::array<Eigen::Vector2d, 4> flat{Eigen::Vector2d(0.6, -2.2), {5.0, -2.5}, {5.3, 2.4}, {0.9, 2.0}};
+  const std::array<Eigen::Vector2d, 4> flat{
+      Eigen::Vector2d(0.6, -2.2), {5.0, -2.5}, {5.3, 2.4}, {0.9, 2.0}};
   std::array<Eigen::Vector3d, 4> corners;
   for (int k = 0; k < 4; ++k) corners[k] = cylinder.fromUnrolled(flat[k]);
   return corners;
@@ -124,7 +126,8 @@ TEST(SolvePatch, SpherePatchHasFeasibleRangeSlopesInBoundsAndNotches) {
   expectGridCriteria(r);
   EXPECT_GT(r.grid.maxNotch, 1e-4);
   // Angle excess of a geodesic quad on a sphere: sum of angles - 2 pi = area / R^2.
-  const double sum = r.patch.innerAngles[0] + r.patch.innerAngles[1] + r.patch.innerAngles[2] + r.patch.innerAngles[3];
+  const double sum = r.patch.innerAngles[0] + r.patch.innerAngles[1] + r.patch.innerAngles[2] +
+                     r.patch.innerAngles[3];
   EXPECT_NEAR(sum - 2 * M_PI, r.patch.area / 100.0, 0.02 * r.patch.area / 100.0);
 }
 
@@ -134,10 +137,12 @@ TEST(SolvePatch, SpherePatchHasFeasibleRangeSlopesInBoundsAndNotches) {
 namespace egg {
 namespace {
 
-const std::array<Eigen::Vector3d, 4> kBumpCorners{Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
+const std::array<Eigen::Vector3d, 4> kBumpCorners{
+    Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
 
 TriMesh bumpMesh(double height) {
-  return samples::generateSample("bump", {{"height", height}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+  return samples::generateSample(
+      "bump", {{"height", height}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
 }
 
 TEST(SolvePatch, DevelopableCylinderWithMapsOnAProxyStillGivesTheUnrolledGrid) {
@@ -162,8 +167,8 @@ TEST(SolvePatch, BumpPatchNeedsNoSmoothingAndHasNotches) {
   EXPECT_LE(r.alphaBar.slopeMax, options.alphaBar.slopeMax + 1e-4);
   expectGridCriteria(r);
   EXPECT_GT(r.grid.maxNotch, 1e-3);
-  // Symmetric bump, symmetric quad: the corner angles agree, and more than the four corners are anchored
-  // only if the boundary curves; every anchor is a boundary connection.
+  // Symmetric bump, symmetric quad: the corner angles agree, and more than the four corners are
+  // anchored only if the boundary curves; every anchor is a boundary connection.
   for (int k = 1; k < 4; ++k) EXPECT_NEAR(r.patch.innerAngles[k], r.patch.innerAngles[0], 0.02);
   EXPECT_GE(r.grid.anchors.size(), 4u);
   for (const auto& a : r.grid.anchors) EXPECT_TRUE(r.grid.connections[a.connection].onBoundary);
@@ -178,7 +183,8 @@ TEST(SolvePatch, BadCornersStopTheSolveWithTheirReason) {
   } catch (const InfeasiblePatch& e) {
     EXPECT_NE(std::string(e.what()).find("criterion iv"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {30, 30, 0}}, fastOptions()),
+  EXPECT_THROW(solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {30, 30, 0}},
+                        fastOptions()),
                InvalidInput);
 }
 
@@ -254,15 +260,19 @@ TEST(SolvePatch, DevelopableConeAtAlphaMinIsNotchFreeAndNotTheUnrolledGrid) {
   // Not the unrolled grid: the planar angle at c0 differs from the surface angle.
   const Eigen::Vector2d d1 = r.alphaBar.quad.corners[1] - r.alphaBar.quad.corners[0];
   const Eigen::Vector2d d3 = r.alphaBar.quad.corners[3] - r.alphaBar.quad.corners[0];
-  EXPECT_NEAR(std::atan2(d1.x() * d3.y() - d1.y() * d3.x(), d1.dot(d3)), r.alphaBar.alphaMin, 1e-12);
+  EXPECT_NEAR(std::atan2(d1.x() * d3.y() - d1.y() * d3.x(), d1.dot(d3)), r.alphaBar.alphaMin,
+              1e-12);
 }
 
 TEST(SolvePatch, MeshedCylinderAtUnrolledAngleIsNearlyNotchFree) {
   // The sample cylinder is triangulated freely, so its polyhedral metric is flat only up to the
   // discretisation (maps differ by ~1e-4 of the side): the identity pairing is used, and notches
   // and length mismatches stay at that level.
-  const TriMesh mesh = samples::generateSample("cylinder", {{"radius", 5.0}, {"length", 10.0}, {"angle", 2.0}}, 0.4);
-  const auto at = [](double x, double phi) { return Eigen::Vector3d(x, 5 * std::sin(phi), 5 * std::cos(phi)); };
+  const TriMesh mesh =
+      samples::generateSample("cylinder", {{"radius", 5.0}, {"length", 10.0}, {"angle", 2.0}}, 0.4);
+  const auto at = [](double x, double phi) {
+    return Eigen::Vector3d(x, 5 * std::sin(phi), 5 * std::cos(phi));
+  };
   EggOptions options = fastOptions();
   parseAlphaBarChoice("unrolled", options.alphaBar);
   const EggResult r = solveEgg(mesh, {at(-3, -0.6), at(3, -0.6), at(3, 0.6), at(-3, 0.6)}, options);

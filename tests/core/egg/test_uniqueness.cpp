@@ -15,7 +15,8 @@ namespace {
 
 TEST(Uniqueness, FlatPatchHasNoBoundAndPasses) {
   const TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.8);
-  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
+  const Patch patch =
+      makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
   const geodesic::DistanceSolver solver(patch.mesh);
   const auto report = checkUniqueness(patch, solver);
   EXPECT_TRUE(report.passed);
@@ -43,9 +44,10 @@ TEST(Uniqueness, SphereCapBoundIsPiR) {
 TEST(Uniqueness, TallBumpHasLargeEta) {
   // A Gaussian bump of height 3 and width 1.2 inside a 6 m patch: the shortest geodesics avoid the
   // peak, eta far above the thesis' 1.0015, in both families (the bump is symmetric).
-  const TriMesh mesh =
-      samples::generateSample("bump", {{"height", 3.0}, {"sigma", 1.2}, {"length", 8.0}, {"width", 8.0}}, 0.35);
-  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
+  const TriMesh mesh = samples::generateSample(
+      "bump", {{"height", 3.0}, {"sigma", 1.2}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+  const Patch patch =
+      makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
   const geodesic::DistanceSolver solver(patch.mesh);
   const auto report = checkUniqueness(patch, solver);
   EXPECT_FALSE(report.boundHolds);
@@ -60,9 +62,10 @@ TEST(Uniqueness, CheckOnTheMapsEqualsTheStandaloneCheck) {
   // solveEgg takes the diagonals from the maps and computes the peak and p1 fields alongside
   // them; on the same boundary samples it must give the standalone check's (the one after
   // smoothing) eta, p1 and q1 exactly: the same fields from the same points.
-  const TriMesh mesh =
-      samples::generateSample("bump", {{"height", 3.0}, {"sigma", 1.2}, {"length", 8.0}, {"width", 8.0}}, 0.35);
-  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
+  const TriMesh mesh = samples::generateSample(
+      "bump", {{"height", 3.0}, {"sigma", 1.2}, {"length", 8.0}, {"width", 8.0}}, 0.35);
+  const Patch patch =
+      makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
   const geodesic::DistanceSolver solver(patch.mesh);
   UniquenessOptions options;
   options.sideSamples = 33;
@@ -89,7 +92,9 @@ TEST(Uniqueness, CheckOnTheMapsEqualsTheStandaloneCheck) {
   // The standalone check spends 2 + peaks fields, then one per peak and family.
   EXPECT_EQ(standalone.propagations, 2 + 3 * static_cast<int>(peaks.peaks.size()));
   // Fields for another resolution than the maps' are refused.
-  EXPECT_THROW(checkUniqueness(patch, peaks, uniquenessFields(patch, peaks, solver, 17), maps, options), InvalidInput);
+  EXPECT_THROW(
+      checkUniqueness(patch, peaks, uniquenessFields(patch, peaks, solver, 17), maps, options),
+      InvalidInput);
 }
 
 TEST(Uniqueness, EtaDoesNotDependOnTheMapTolerance) {
@@ -99,8 +104,12 @@ TEST(Uniqueness, EtaDoesNotDependOnTheMapTolerance) {
   // 1.000014 (exact maps) to 1.000082 when it was read off the adaptive maps.
   const double s = 1.0 / 7.0;
   const TriMesh mesh = samples::generateSample(
-      "bump", {{"height", 1.0 * s}, {"sigma", 1.5 * s}, {"length", 8.0 * s}, {"width", 8.0 * s}}, 0.25 * s);
-  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3 * s, -3 * s, 0), {3 * s, -3 * s, 0}, {3 * s, 3 * s, 0}, {-3 * s, 3 * s, 0}});
+      "bump", {{"height", 1.0 * s}, {"sigma", 1.5 * s}, {"length", 8.0 * s}, {"width", 8.0 * s}},
+      0.25 * s);
+  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3 * s, -3 * s, 0),
+                                       {3 * s, -3 * s, 0},
+                                       {3 * s, 3 * s, 0},
+                                       {-3 * s, 3 * s, 0}});
   const geodesic::DistanceSolver solver(patch.mesh);
   UniquenessOptions options;
   options.sideSamples = 100;
@@ -147,8 +156,10 @@ TEST(Uniqueness, EtaViaTheProxyIsThePatchsOwn) {
   };
   for (const Case c : {Case{3.0, 1.2, 0.2}, Case{1.0, 1.5, 0.15}}) {
     const TriMesh mesh = samples::generateSample(
-        "bump", {{"height", c.height}, {"sigma", c.sigma}, {"length", 8.0}, {"width", 8.0}}, c.edge);
-    const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
+        "bump", {{"height", c.height}, {"sigma", c.sigma}, {"length", 8.0}, {"width", 8.0}},
+        c.edge);
+    const Patch patch =
+        makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
     const geodesic::DistanceSolver solver(patch.mesh);
     const int n = 100;
     const auto peaks = findPatchPeaks(patch, {});
@@ -159,7 +170,8 @@ TEST(Uniqueness, EtaViaTheProxyIsThePatchsOwn) {
     DistanceMapOptions mapOptions;
     mapOptions.resolution = n;
     const auto maps = computeDistanceMaps(patch, solver, mapOptions);
-    const auto onPatch = checkUniqueness(patch, peaks, uniquenessFields(patch, peaks, solver, n), maps);
+    const auto onPatch =
+        checkUniqueness(patch, peaks, uniquenessFields(patch, peaks, solver, n), maps);
     const auto viaProxy = uniquenessFieldsViaProxy(patch, solver, proxy, proxySolver, peaks, n);
     EXPECT_EQ(viaProxy.directed, 6 * static_cast<int>(peaks.peaks.size()));
     const auto report = checkUniqueness(patch, peaks, viaProxy, maps);
@@ -174,8 +186,10 @@ TEST(Uniqueness, EtaViaTheProxyIsThePatchsOwn) {
     UniquenessOptions onProxyOptions;
     onProxyOptions.sideSamples = n;
     const auto onProxy = checkUniqueness(proxy.patch, proxySolver, onProxyOptions);
-    const double proxyError = std::max(std::abs(onProxy.etaU - onPatch.etaU), std::abs(onProxy.etaV - onPatch.etaV));
-    RecordProperty(c.height > 2.0 ? "eta_error_proxy_alone_tall" : "eta_error_proxy_alone_bench", std::to_string(proxyError));
+    const double proxyError =
+        std::max(std::abs(onProxy.etaU - onPatch.etaU), std::abs(onProxy.etaV - onPatch.etaV));
+    RecordProperty(c.height > 2.0 ? "eta_error_proxy_alone_tall" : "eta_error_proxy_alone_bench",
+                   std::to_string(proxyError));
     // Near the injectivity bound the proxy's diagonals (~1e-3 m off) are replaced by the patch's:
     // with K_max set so that the bound equals the proxy's longer diagonal, both are measured and
     // equal the patch's corner-to-corner distances; with the bound far away nothing is measured.
@@ -184,10 +198,13 @@ TEST(Uniqueness, EtaViaTheProxyIsThePatchsOwn) {
       onProxy.resolution = n;
       onProxy.proxyVertices = 500;
       auto proxyMaps = computeDistanceMaps(patch, solver, onProxy);
-      const auto corner = [&](int k) { return geodesic::vertexPoint(patch.mesh, patch.cornerVertices[k]); };
+      const auto corner = [&](int k) {
+        return geodesic::vertexPoint(patch.mesh, patch.cornerVertices[k]);
+      };
       const double e = solver.distances(corner(0), {corner(2)}).targetDistances[0];
       const double f = solver.distances(corner(3), {corner(1)}).targetDistances[0];
-      ASSERT_GT(std::abs(proxyMaps.diagonalE - e) + std::abs(proxyMaps.diagonalF - f), 1e-6);  // the proxy's differ
+      ASSERT_GT(std::abs(proxyMaps.diagonalE - e) + std::abs(proxyMaps.diagonalF - f),
+                1e-6);  // the proxy's differ
       PatchPeaks far = peaks, near = peaks;
       far.gaussianMax = 1e-3;  // bound 99 m
       const double longer = std::max(proxyMaps.diagonalE, proxyMaps.diagonalF);
@@ -198,20 +215,22 @@ TEST(Uniqueness, EtaViaTheProxyIsThePatchsOwn) {
       EXPECT_NEAR(proxyMaps.diagonalE, e, 1e-12);
       EXPECT_NEAR(proxyMaps.diagonalF, f, 1e-12);
     }
-    std::printf("bump %.1f m: eta via proxy - on patch %.2e, proxy alone %.2e (eta_u %.6f)\n", c.height, worst, proxyError,
-                onPatch.etaU);
+    std::printf("bump %.1f m: eta via proxy - on patch %.2e, proxy alone %.2e (eta_u %.6f)\n",
+                c.height, worst, proxyError, onPatch.etaU);
   }
 }
 
 TEST(Uniqueness, BoundCertainlyHoldsWithoutCurvatureAndNotAgainstATightBound) {
   const TriMesh mesh = samples::generateSample("plane", {{"length", 10.0}, {"width", 10.0}}, 0.8);
-  const Patch patch = makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
+  const Patch patch =
+      makePatch(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}});
   PatchPeaks peaks;
   EXPECT_TRUE(boundCertainlyHolds(patch, peaks));  // K_max = 0: no conjugate points at all
   // Upper bound of the longest geodesic here: the diagonals bounded by two sides, 12 m.
   peaks.gaussianMax = std::pow(M_PI / 12.5, 2);  // bound 12.5 m
   EXPECT_TRUE(boundCertainlyHolds(patch, peaks));
-  peaks.gaussianMax = std::pow(M_PI / 11.5, 2);  // bound 11.5 m < 12 m although the diagonal is 8.5 m
+  peaks.gaussianMax =
+      std::pow(M_PI / 11.5, 2);  // bound 11.5 m < 12 m although the diagonal is 8.5 m
   EXPECT_FALSE(boundCertainlyHolds(patch, peaks));
 }
 

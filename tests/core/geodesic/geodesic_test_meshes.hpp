@@ -14,8 +14,9 @@ namespace egg::geodesic::testing {
 // Grid of nx x ny cells over [0, sizeX] x [0, sizeY], z = height(x, y). Interior vertices are moved
 // in the plane by up to `jitter` times the cell size (seeded, so reproducible). Diagonals alternate
 // so the mesh has no preferred direction.
-inline TriMesh gridMesh(int nx, int ny, double sizeX, double sizeY, const std::function<double(double, double)>& height,
-                        double jitter = 0.0, unsigned seed = 7) {
+inline TriMesh gridMesh(int nx, int ny, double sizeX, double sizeY,
+                        const std::function<double(double, double)>& height, double jitter = 0.0,
+                        unsigned seed = 7) {
   TriangleSoup soup;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
@@ -50,8 +51,8 @@ inline TriMesh gridMesh(int nx, int ny, double sizeX, double sizeY, const std::f
 // The square [0,2]x[0,2], n cells per unit, z = height(x, y); with `notch` the L-shaped domain
 // [0,2]^2 minus (1,2]x(1,2], whose reflex boundary corner (1,1) shortest paths between the two arms
 // bend around. Each cell is split along the diagonal (i,j)-(i+1,j+1), or the other one.
-inline TriMesh squareDomainMesh(int n, const std::function<double(double, double)>& height, bool notch,
-                                bool otherDiagonal = false) {
+inline TriMesh squareDomainMesh(int n, const std::function<double(double, double)>& height,
+                                bool notch, bool otherDiagonal = false) {
   TriangleSoup soup;
   std::vector<int> index((2 * n + 1) * (2 * n + 1), -1);
   for (int j = 0; j <= 2 * n; ++j) {
@@ -86,7 +87,8 @@ inline TriMesh lShapeMesh(int n, const std::function<double(double, double)>& he
 inline double flat(double, double) { return 0.0; }
 
 // Gaussian bump of height `amplitude` and width `width` centred at (cx, cy).
-inline std::function<double(double, double)> bump(double cx, double cy, double amplitude, double width) {
+inline std::function<double(double, double)> bump(double cx, double cy, double amplitude,
+                                                  double width) {
   return [=](double x, double y) {
     const double r2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
     return amplitude * std::exp(-r2 / (width * width));
@@ -106,13 +108,16 @@ inline TriMesh sphereMesh(double radius, int rings, int segments) {
     const double theta = std::numbers::pi * r / rings;
     for (int s = 0; s < segments; ++s) {
       const double phi = 2.0 * std::numbers::pi * (s + 0.5 * (r % 2)) / segments;
-      soup.vertices.emplace_back(radius * std::sin(theta) * std::cos(phi), radius * std::sin(theta) * std::sin(phi),
+      soup.vertices.emplace_back(radius * std::sin(theta) * std::cos(phi),
+                                 radius * std::sin(theta) * std::sin(phi),
                                  radius * std::cos(theta));
     }
   }
   soup.vertices.emplace_back(0, 0, -radius);
   const int south = static_cast<int>(soup.vertices.size()) - 1;
-  auto ring = [&](int r, int s) { return 1 + (r - 1) * segments + ((s % segments) + segments) % segments; };
+  auto ring = [&](int r, int s) {
+    return 1 + (r - 1) * segments + ((s % segments) + segments) % segments;
+  };
   for (int s = 0; s < segments; ++s) soup.triangles.push_back({0, ring(1, s), ring(1, s + 1)});
   for (int r = 1; r + 1 < rings; ++r) {
     for (int s = 0; s < segments; ++s) {
@@ -129,7 +134,8 @@ inline TriMesh sphereMesh(double radius, int rings, int segments) {
       }
     }
   }
-  for (int s = 0; s < segments; ++s) soup.triangles.push_back({south, ring(rings - 1, s + 1), ring(rings - 1, s)});
+  for (int s = 0; s < segments; ++s)
+    soup.triangles.push_back({south, ring(rings - 1, s + 1), ring(rings - 1, s)});
   return meshFromSoup(soup);
 }
 
@@ -140,7 +146,8 @@ inline TriMesh prismMesh(int sides, double radius, double height, int layers) {
   for (int l = 0; l <= layers; ++l) {
     for (int s = 0; s < sides; ++s) {
       const double phi = 2.0 * std::numbers::pi * s / sides;
-      soup.vertices.emplace_back(radius * std::cos(phi), radius * std::sin(phi), height * l / layers);
+      soup.vertices.emplace_back(radius * std::cos(phi), radius * std::sin(phi),
+                                 height * l / layers);
     }
   }
   auto id = [&](int l, int s) { return l * sides + (s % sides); };

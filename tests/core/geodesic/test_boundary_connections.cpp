@@ -14,7 +14,9 @@ namespace egg::geodesic {
 namespace {
 
 // [0,2]^2, minus (1,2]x(1,2] when `notch`.
-TriMesh squareDomain(int n, bool notch) { return testing::squareDomainMesh(n, testing::flat, notch); }
+TriMesh squareDomain(int n, bool notch) {
+  return testing::squareDomainMesh(n, testing::flat, notch);
+}
 
 struct LoopData {
   std::vector<int> vertices;
@@ -117,7 +119,8 @@ TEST(BoundaryConnections, RejectsBadInput) {
   BoundaryConnectionOptions options;
   options.tolerance = std::numeric_limits<double>::infinity();
   EXPECT_THROW(findBoundaryConnections(d, {0.0, 1.0, 2.0}, 3.0, options), InvalidInput);
-  EXPECT_THROW(findBoundaryConnections(d, {0.0, 1.0, 2.0}, 3.0, std::vector<char>(2, 0)), InvalidInput);
+  EXPECT_THROW(findBoundaryConnections(d, {0.0, 1.0, 2.0}, 3.0, std::vector<char>(2, 0)),
+               InvalidInput);
 }
 
 }  // namespace

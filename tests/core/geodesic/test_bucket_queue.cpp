@@ -126,8 +126,10 @@ void popsInOrderWithAPrefetchMap(bool mapInRecords) {
   for (int i = 0; i < 64; ++i) recordOfItem[i] = lists[i].head = i % 3 == 0 ? -1 : i % 4;
   BucketQueue queue;
   queue.reset(0.5);
-  if (mapInRecords) queue.prefetchRecords(records.data(), sizeof(double), &lists.data()->head, sizeof(ListRecord));
-  else queue.prefetchRecords(records.data(), sizeof(double), recordOfItem.data());
+  if (mapInRecords)
+    queue.prefetchRecords(records.data(), sizeof(double), &lists.data()->head, sizeof(ListRecord));
+  else
+    queue.prefetchRecords(records.data(), sizeof(double), recordOfItem.data());
   Reference reference;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> key(0.0, 40.0);
@@ -194,7 +196,7 @@ TEST(BucketQueue, EarliestBucketStopsAtItsLimitSoLaterPushesKeepTheirBucket) {
   EXPECT_EQ(queue.earliestBucket(7), BucketQueue::kNoBucket);
   queue.push(6.5, 3);
   EXPECT_EQ(queue.earliestBucket(6), BucketQueue::kNoBucket);  // the calendar is at 7 already
-  EXPECT_EQ(queue.earliestBucket(7), 7);                      // 6.5 waits in the current bucket
+  EXPECT_EQ(queue.earliestBucket(7), 7);                       // 6.5 waits in the current bucket
   EXPECT_EQ(queue.pop().item, 3);
   EXPECT_EQ(queue.earliestBucket(8), BucketQueue::kNoBucket);
   EXPECT_EQ(queue.earliestBucket(BucketQueue::kNoBucket), 9);

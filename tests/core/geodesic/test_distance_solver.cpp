@@ -4,8 +4,8 @@
 #include "core/geodesic/distance_solver.hpp"
 
 #include "core/errors.hpp"
-#include "tests/core/geodesic/geodesic_test_meshes.hpp"
 #include "samples/generators/samples.hpp"
+#include "tests/core/geodesic/geodesic_test_meshes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,27 +26,31 @@ double relativeError(double value, double expected) {
   return std::abs(value - expected) / std::max(expected, 1e-300);
 }
 
-Eigen::Vector3d vertexPosition(const TriMesh& mesh, int v) { return toEigen(mesh.point(TriMesh::VertexHandle(v))); }
+Eigen::Vector3d vertexPosition(const TriMesh& mesh, int v) {
+  return toEigen(mesh.point(TriMesh::VertexHandle(v)));
+}
 
 // The remeshed sample bump, 8 x 8 m, sigma 1.5 m: nearly every vertex of its negatively curved
 // ring is a near-flat saddle, the case DistanceSolverOptions::saddleAngleTolerance is about.
 TriMesh steepBump(double height, double edge) {
-  return samples::generateSample("bump", {{"height", height}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, edge);
+  return samples::generateSample(
+      "bump", {{"height", height}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, edge);
 }
 
 TEST(DistanceSolver, PlaneFromVertexEdgeAndFaceIsEuclidean) {
   // A jittered flat rectangle is convex, so geodesic distance = Euclidean distance.
   const TriMesh mesh = gridMesh(14, 11, 1.4, 1.1, flat, 0.2);
   const DistanceSolver solver(mesh);
-  const std::vector<SurfacePoint> sources = {vertexPoint(mesh, 0), vertexPoint(mesh, 80),
-                                             facePoint(37, 0.5, 0.5, 0.0), facePoint(120, 0.2, 0.3, 0.5),
-                                             facePoint(3, 0.7, 0.3, 0.0)};
+  const std::vector<SurfacePoint> sources = {
+      vertexPoint(mesh, 0), vertexPoint(mesh, 80), facePoint(37, 0.5, 0.5, 0.0),
+      facePoint(120, 0.2, 0.3, 0.5), facePoint(3, 0.7, 0.3, 0.0)};
   for (const auto& source : sources) {
     const Eigen::Vector3d p = position(mesh, source);
     const auto field = solver.distances(source);
     for (auto vh : mesh.vertices()) {
       const double expected = (vertexPosition(mesh, vh.idx()) - p).norm();
-      EXPECT_NEAR(field.vertexDistances[vh.idx()], expected, 1e-12 * (1.0 + expected)) << "vertex " << vh.idx();
+      EXPECT_NEAR(field.vertexDistances[vh.idx()], expected, 1e-12 * (1.0 + expected))
+          << "vertex " << vh.idx();
     }
   }
 }
@@ -95,7 +99,8 @@ TEST(DistanceSolver, ShortestPathBendsAroundAReflexBoundaryCorner) {
     }
     return t1 - t0 > 1e-9;
   };
-  for (const Eigen::Vector3d& requested : {Eigen::Vector3d(1.8, 0.0, 0.0), Eigen::Vector3d(0.0, 1.8, 0.0)}) {
+  for (const Eigen::Vector3d& requested :
+       {Eigen::Vector3d(1.8, 0.0, 0.0), Eigen::Vector3d(0.0, 1.8, 0.0)}) {
     const SurfacePoint source = snapToSurface(mesh, requested);  // on the boundary
     const Eigen::Vector3d s = position(mesh, source);
     const auto field = solver.distances(source);
@@ -105,8 +110,8 @@ TEST(DistanceSolver, ShortestPathBendsAroundAReflexBoundaryCorner) {
       const bool hidden = blocked(s, q);
       bent += hidden;
       const double expected = hidden ? (corner - s).norm() + (q - corner).norm() : (q - s).norm();
-      EXPECT_NEAR(field.vertexDistances[vh.idx()], expected, 1e-12) << "source " << s.transpose() << ", vertex at "
-                                                                     << q.transpose();
+      EXPECT_NEAR(field.vertexDistances[vh.idx()], expected, 1e-12)
+          << "source " << s.transpose() << ", vertex at " << q.transpose();
     }
     EXPECT_GT(bent, 20) << "source " << s.transpose();  // the test sees paths around the corner
   }
@@ -122,7 +127,8 @@ double prismDistance(int sides, double radius, const Eigen::Vector3d& p, const E
     const double sector = 2.0 * std::numbers::pi / sides;
     const int k = std::min(sides - 1, static_cast<int>(std::floor(phi / sector + 1e-12)));
     const Eigen::Vector3d a(radius * std::cos(k * sector), radius * std::sin(k * sector), 0.0);
-    const Eigen::Vector3d b(radius * std::cos((k + 1) * sector), radius * std::sin((k + 1) * sector), 0.0);
+    const Eigen::Vector3d b(radius * std::cos((k + 1) * sector),
+                            radius * std::sin((k + 1) * sector), 0.0);
     const Eigen::Vector3d planar(x.x(), x.y(), 0.0);
     const double along = (planar - a).norm();
     (void)b;
@@ -141,11 +147,12 @@ TEST(DistanceSolver, PrismUnrollsExactly) {
   const double radius = 1.0;
   const TriMesh mesh = testing::prismMesh(sides, radius, 1.3, 9);
   const DistanceSolver solver(mesh);
-  const std::vector<SurfacePoint> sources = {vertexPoint(mesh, 0),                // bottom boundary vertex
-                                             vertexPoint(mesh, 3 * sides + 2),    // interior vertex
-                                             facePoint(20, 0.3, 0.3, 0.4),        // inside a face
-                                             facePoint(31, 0.5, 0.5, 0.0),        // on an edge
-                                             snapToSurface(mesh, {0.9, 0.2, 0.0})};  // on the boundary
+  const std::vector<SurfacePoint> sources = {
+      vertexPoint(mesh, 0),                   // bottom boundary vertex
+      vertexPoint(mesh, 3 * sides + 2),       // interior vertex
+      facePoint(20, 0.3, 0.3, 0.4),           // inside a face
+      facePoint(31, 0.5, 0.5, 0.0),           // on an edge
+      snapToSurface(mesh, {0.9, 0.2, 0.0})};  // on the boundary
   for (const auto& source : sources) {
     const Eigen::Vector3d p = position(mesh, source);
     const auto field = solver.distances(source);
@@ -183,11 +190,12 @@ TEST(DistanceSolver, SphereApproachesGreatCircles) {
 TEST(DistanceSolver, DistancesAreSymmetric) {
   const TriMesh mesh = gridMesh(16, 16, 1.0, 1.0, testing::bump(0.5, 0.5, 0.3, 0.25), 0.3);
   const DistanceSolver solver(mesh);
-  const std::vector<SurfacePoint> points = {facePoint(5, 0.2, 0.3, 0.5), facePoint(200, 0.6, 0.4, 0.0),
-                                            vertexPoint(mesh, 150), facePoint(480, 0.1, 0.1, 0.8),
-                                            snapToSurface(mesh, {1.0, 0.37, 0.0})};
+  const std::vector<SurfacePoint> points = {
+      facePoint(5, 0.2, 0.3, 0.5), facePoint(200, 0.6, 0.4, 0.0), vertexPoint(mesh, 150),
+      facePoint(480, 0.1, 0.1, 0.8), snapToSurface(mesh, {1.0, 0.37, 0.0})};
   std::vector<std::vector<double>> d(points.size());
-  for (size_t i = 0; i < points.size(); ++i) d[i] = solver.distances(points[i], points).targetDistances;
+  for (size_t i = 0; i < points.size(); ++i)
+    d[i] = solver.distances(points[i], points).targetDistances;
   for (size_t i = 0; i < points.size(); ++i) {
     EXPECT_NEAR(d[i][i], 0.0, 1e-14);
     for (size_t j = i + 1; j < points.size(); ++j) {
@@ -206,14 +214,17 @@ TEST(DistanceSolver, DistancesAreSymmetricAmongNearFlatSaddles) {
   DistanceSolverOptions exactOptions = DistanceSolverOptions::exact();
   const DistanceSolver exact(mesh, exactOptions), solver(mesh);
   std::vector<SurfacePoint> points;
-  for (int k = 0; k < 12; ++k) points.push_back(snapToSurface(mesh, {-3.8 + 0.69 * k, 3.8 * std::sin(1.7 * k), 0.0}));
+  for (int k = 0; k < 12; ++k)
+    points.push_back(snapToSurface(mesh, {-3.8 + 0.69 * k, 3.8 * std::sin(1.7 * k), 0.0}));
   for (const bool exactMode : {true, false}) {
     const DistanceSolver& s = exactMode ? exact : solver;
     std::vector<std::vector<double>> d(points.size());
-    for (size_t i = 0; i < points.size(); ++i) d[i] = s.distances(points[i], points).targetDistances;
+    for (size_t i = 0; i < points.size(); ++i)
+      d[i] = s.distances(points[i], points).targetDistances;
     double worst = 0.0;
     for (size_t i = 0; i < points.size(); ++i) {
-      for (size_t j = i + 1; j < points.size(); ++j) worst = std::max(worst, relativeError(d[i][j], d[j][i]));
+      for (size_t j = i + 1; j < points.size(); ++j)
+        worst = std::max(worst, relativeError(d[i][j], d[j][i]));
     }
     EXPECT_LT(worst, 1e-9) << (exactMode ? "exact" : "default");
     char text[32];
@@ -249,7 +260,8 @@ TEST(DistanceSolver, DirectedQueriesEqualTheFullField) {
   // distance() and path() direct their propagation at the target and stop once it is final
   // (goal_bound.hpp). Their values must be the full field's: exact mode to rounding, the default
   // within its own error of the default's full field. Pairs all over a steep bump (near-flat
-  // saddles everywhere), a hypar, a sphere and a domain with a reflex corner, vertex and face points.
+  // saddles everywhere), a hypar, a sphere and a domain with a reflex corner, vertex and face
+  // points.
   struct Case {
     const char* name;
     TriMesh mesh;
@@ -264,12 +276,15 @@ TEST(DistanceSolver, DirectedQueriesEqualTheFullField) {
     // Directed queries merge no near images (imageMergeTolerance): against full fields without.
     DistanceSolverOptions unmergedOptions;
     unmergedOptions.imageMergeTolerance = 0.0;
-    const DistanceSolver exact(c.mesh, exactOptions), solver(c.mesh), unmerged(c.mesh, unmergedOptions);
+    const DistanceSolver exact(c.mesh, exactOptions), solver(c.mesh),
+        unmerged(c.mesh, unmergedOptions);
     const int faces = solver.faceCount(), n = solver.vertexCount();
     double exactWorst = 0.0, defaultWorst = 0.0, pathWorst = 0.0;
     for (int k = 0; k < 12; ++k) {
-      const SurfacePoint from = k % 3 ? facePoint((k * 7919 + 5) % faces, 0.2, 0.3, 0.5) : vertexPoint(c.mesh, (k * 104729) % n);
-      const SurfacePoint to = k % 2 ? facePoint((k * 3571 + 11) % faces, 0.6, 0.1, 0.3) : vertexPoint(c.mesh, (k * 613 + 7) % n);
+      const SurfacePoint from = k % 3 ? facePoint((k * 7919 + 5) % faces, 0.2, 0.3, 0.5)
+                                      : vertexPoint(c.mesh, (k * 104729) % n);
+      const SurfacePoint to = k % 2 ? facePoint((k * 3571 + 11) % faces, 0.6, 0.1, 0.3)
+                                    : vertexPoint(c.mesh, (k * 613 + 7) % n);
       const double fullExact = exact.distances(from, {to}).targetDistances[0];
       const double fullDefault = unmerged.distances(from, {to}).targetDistances[0];
       if (!(fullExact > 1e-9)) continue;
@@ -277,8 +292,10 @@ TEST(DistanceSolver, DirectedQueriesEqualTheFullField) {
       defaultWorst = std::max(defaultWorst, relativeError(solver.distance(from, to), fullDefault));
       pathWorst = std::max(pathWorst, relativeError(exact.path(from, to).length, fullExact));
       // Several targets at once (directedDistances): each as in the full field.
-      const std::vector<SurfacePoint> several{to, facePoint((k * 17 + 3) % faces, 0.3, 0.3, 0.4), vertexPoint(c.mesh, (k * 31) % n)};
-      const auto full = exact.distances(from, several).targetDistances, directed = exact.directedDistances(from, several).targetDistances;
+      const std::vector<SurfacePoint> several{to, facePoint((k * 17 + 3) % faces, 0.3, 0.3, 0.4),
+                                              vertexPoint(c.mesh, (k * 31) % n)};
+      const auto full = exact.distances(from, several).targetDistances,
+                 directed = exact.directedDistances(from, several).targetDistances;
       for (size_t i = 0; i < several.size(); ++i)
         if (full[i] > 1e-9) exactWorst = std::max(exactWorst, relativeError(directed[i], full[i]));
       // The default with several targets: a bend at a skipped saddle may lie below its window's
@@ -294,7 +311,8 @@ TEST(DistanceSolver, DirectedQueriesEqualTheFullField) {
     EXPECT_LT(exactWorst, 1e-12) << c.name;
     EXPECT_LT(pathWorst, 1e-9) << c.name;
     EXPECT_LT(defaultWorst, 1e-5) << c.name;  // measured: 0 on these pairs
-    std::printf("%s: directed vs full, exact %.2e, default %.2e, exact path %.2e\n", c.name, exactWorst, defaultWorst, pathWorst);
+    std::printf("%s: directed vs full, exact %.2e, default %.2e, exact path %.2e\n", c.name,
+                exactWorst, defaultWorst, pathWorst);
   }
 }
 
@@ -303,7 +321,8 @@ TEST(DistanceSolver, DisconnectedPartsAreInfinitelyFar) {
   const TriangleSoup other = soupFromMesh(gridMesh(3, 3, 1.0, 1.0, flat));
   const int offset = static_cast<int>(soup.vertices.size());
   for (const auto& v : other.vertices) soup.vertices.push_back(v + Eigen::Vector3d(5.0, 0.0, 0.0));
-  for (const auto& t : other.triangles) soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  for (const auto& t : other.triangles)
+    soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   const TriMesh mesh = meshFromSoup(soup);
   const DistanceSolver solver(mesh);
   const int farFace = static_cast<int>(mesh.n_faces()) - 1;
@@ -316,17 +335,22 @@ TEST(DistanceSolver, DisconnectedPartsAreInfinitelyFar) {
   // Directed at an unreachable and a reachable target: the propagation runs out (it cannot stop
   // early), the reachable one gets the full field's distance, the other stays infinite.
   const SurfacePoint near = facePoint(3, 0.2, 0.2, 0.6);
-  const auto directed = solver.directedDistances(vertexPoint(mesh, 0), {facePoint(farFace, 0.3, 0.3, 0.4), near});
+  const auto directed =
+      solver.directedDistances(vertexPoint(mesh, 0), {facePoint(farFace, 0.3, 0.3, 0.4), near});
   EXPECT_EQ(directed.targetDistances[0], std::numeric_limits<double>::infinity());
-  EXPECT_EQ(directed.targetDistances[1], solver.distances(vertexPoint(mesh, 0), {near}).targetDistances[0]);
-  EXPECT_EQ(solver.distance(vertexPoint(mesh, 0), facePoint(farFace, 0.3, 0.3, 0.4)), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(directed.targetDistances[1],
+            solver.distances(vertexPoint(mesh, 0), {near}).targetDistances[0]);
+  EXPECT_EQ(solver.distance(vertexPoint(mesh, 0), facePoint(farFace, 0.3, 0.3, 0.4)),
+            std::numeric_limits<double>::infinity());
 }
 
 TEST(DistanceSolver, BatchIsBitIdenticalForAnyThreadCount) {
   const TriMesh mesh = gridMesh(14, 14, 1.0, 1.0, testing::hypar(0.5, 0.5, 0.8), 0.3);
   std::vector<SurfacePoint> sources;
-  for (int f = 0; f < static_cast<int>(mesh.n_faces()); f += 23) sources.push_back(facePoint(f, 0.2, 0.3, 0.5));
-  const std::vector<SurfacePoint> targets = {facePoint(11, 0.3, 0.3, 0.4), facePoint(301, 0.0, 0.5, 0.5)};
+  for (int f = 0; f < static_cast<int>(mesh.n_faces()); f += 23)
+    sources.push_back(facePoint(f, 0.2, 0.3, 0.5));
+  const std::vector<SurfacePoint> targets = {facePoint(11, 0.3, 0.3, 0.4),
+                                             facePoint(301, 0.0, 0.5, 0.5)};
   DistanceSolverOptions one;
   one.threads = 1;
   DistanceSolverOptions two;
@@ -368,7 +392,8 @@ TEST(DistanceSolver, EdgeTargetIsTheSameFromBothFaces) {
   }
   // As a source, too.
   const auto fa = solver.distances(a), fb = solver.distances(b);
-  for (size_t v = 0; v < fa.vertexDistances.size(); ++v) EXPECT_NEAR(fa.vertexDistances[v], fb.vertexDistances[v], 1e-12);
+  for (size_t v = 0; v < fa.vertexDistances.size(); ++v)
+    EXPECT_NEAR(fa.vertexDistances[v], fb.vertexDistances[v], 1e-12);
 }
 
 TEST(DistanceSolver, RejectsBadInput) {
@@ -385,11 +410,12 @@ TEST(DistanceSolver, RejectsBadInput) {
   const SurfacePoint target = facePoint(5, 0.2, 0.3, 0.5);
   EXPECT_THROW(solver.distances(facePoint(999, 1, 0, 0), {target}), InvalidInput);
   const auto field = solver.distances(facePoint(0, 1, 0, 0), {facePoint(9, 0.3, 0.3, 0.4)});
-  EXPECT_NEAR(field.targetDistances[0],
-              (position(mesh, facePoint(9, 0.3, 0.3, 0.4)) - position(mesh, facePoint(0, 1, 0, 0))).norm(), 1e-12);
+  EXPECT_NEAR(
+      field.targetDistances[0],
+      (position(mesh, facePoint(9, 0.3, 0.3, 0.4)) - position(mesh, facePoint(0, 1, 0, 0))).norm(),
+      1e-12);
   EXPECT_THROW(DistanceSolver(TriMesh{}), InvalidInput);
 }
-
 
 // Side-to-side distances across a steep bump, as the distance maps of Section 2.4.2 use them: the
 // paths cross the negatively curved ring where almost every vertex is a near-flat saddle below the
@@ -407,13 +433,15 @@ TEST(DistanceSolver, SkippedSaddlesKeepSideToSideDistancesAcrossASteepBump) {
   }
   EXPECT_GT(skipped, solver.vertexCount() / 10);  // the case the tolerance is for
   std::vector<SurfacePoint> targets;
-  for (int k = 0; k < 200; ++k) targets.push_back(snapToSurface(mesh, {4.0, -4.0 + 8.0 * (k + 0.5) / 200, 0.0}));
+  for (int k = 0; k < 200; ++k)
+    targets.push_back(snapToSurface(mesh, {4.0, -4.0 + 8.0 * (k + 0.5) / 200, 0.0}));
   double worst = 0.0;
   for (int i = 0; i < 5; ++i) {
     const SurfacePoint source = snapToSurface(mesh, {-4.0, -3.6 + 1.8 * i, 0.0});
     const auto ours = solver.distances(source, targets).targetDistances;
     const auto reference = exact.distances(source, targets).targetDistances;
-    for (size_t k = 0; k < targets.size(); ++k) worst = std::max(worst, relativeError(ours[k], reference[k]));
+    for (size_t k = 0; k < targets.size(); ++k)
+      worst = std::max(worst, relativeError(ours[k], reference[k]));
   }
   // Measured (1.4k vertices, 411 saddles skipped): 2.9e-7; bending at the windows' ends: 3.3e-5.
   EXPECT_LT(worst, 3e-6);

@@ -55,16 +55,19 @@ ErrorStats compareWithCgal(const TriMesh& mesh, const SurfacePoint& source) {
 // A source on a boundary edge of the grid (the lower edge y = 0) and a boundary vertex.
 std::vector<SurfacePoint> gridSources(const TriMesh& mesh) {
   const int faces = static_cast<int>(mesh.n_faces());
-  std::vector<SurfacePoint> sources = {vertexPoint(mesh, static_cast<int>(mesh.n_vertices()) / 2 + 3),  // vertex
-                                       facePoint(faces / 3, 0.5, 0.5, 0.0),                          // edge
-                                       facePoint(2 * faces / 3 + 1, 0.2, 0.3, 0.5),                  // face
-                                       vertexPoint(mesh, 2)};                                        // boundary vertex
+  std::vector<SurfacePoint> sources = {
+      vertexPoint(mesh, static_cast<int>(mesh.n_vertices()) / 2 + 3),  // vertex
+      facePoint(faces / 3, 0.5, 0.5, 0.0),                             // edge
+      facePoint(2 * faces / 3 + 1, 0.2, 0.3, 0.5),                     // face
+      vertexPoint(mesh, 2)};                                           // boundary vertex
   const auto box = boundingBox(mesh);
-  sources.push_back(snapToSurface(mesh, Eigen::Vector3d(box.min.x() + 0.37 * box.size().x(), box.min.y(), 0.0)));
+  sources.push_back(
+      snapToSurface(mesh, Eigen::Vector3d(box.min.x() + 0.37 * box.size().x(), box.min.y(), 0.0)));
   return sources;
 }
 
-void expectMatchesCgal(const TriMesh& mesh, const std::vector<SurfacePoint>& sources, const char* name) {
+void expectMatchesCgal(const TriMesh& mesh, const std::vector<SurfacePoint>& sources,
+                       const char* name) {
   for (size_t i = 0; i < sources.size(); ++i) {
     const ErrorStats stats = compareWithCgal(mesh, sources[i]);
     EXPECT_GT(stats.compared, 50) << name << " source " << i;
@@ -84,7 +87,8 @@ TEST(ExactReference, MatchesCgalOnABump) {
 }
 
 TEST(ExactReference, MatchesCgalOnAJitteredBump) {
-  const TriMesh mesh = testing::gridMesh(24, 24, 1.0, 1.0, testing::bump(0.4, 0.6, 0.3, 0.2), 0.3, 11);
+  const TriMesh mesh =
+      testing::gridMesh(24, 24, 1.0, 1.0, testing::bump(0.4, 0.6, 0.3, 0.2), 0.3, 11);
   expectMatchesCgal(mesh, gridSources(mesh), "jittered bump");
 }
 
@@ -97,34 +101,38 @@ TEST(ExactReference, MatchesCgalOnASphere) {
   const TriMesh mesh = testing::sphereMesh(1.5, 14, 28);
   const int faces = static_cast<int>(mesh.n_faces());
   expectMatchesCgal(mesh,
-                    {vertexPoint(mesh, 0), vertexPoint(mesh, 100), facePoint(faces / 2, 0.6, 0.4, 0.0),
-                     facePoint(faces / 3, 0.1, 0.2, 0.7)},
+                    {vertexPoint(mesh, 0), vertexPoint(mesh, 100),
+                     facePoint(faces / 2, 0.6, 0.4, 0.0), facePoint(faces / 3, 0.1, 0.2, 0.7)},
                     "sphere");
 }
 
 TEST(ExactReference, MatchesCgalOnRemeshedSamples) {
   // The sample generators' isotropic remeshing leaves most vertices as near-flat saddles, the
   // case DistanceSolverOptions::saddleAngleTolerance approximates: the bar must still hold.
-  for (const auto& [name, edge] : std::vector<std::pair<std::string, double>>{{"bump", 0.35}, {"hypar", 0.4},
-                                                                              {"waves", 0.35}}) {
+  for (const auto& [name, edge] : std::vector<std::pair<std::string, double>>{
+           {"bump", 0.35}, {"hypar", 0.4}, {"waves", 0.35}}) {
     const TriMesh mesh = samples::generateSample(name, {}, edge);
     ASSERT_LE(mesh.n_vertices(), 2000u) << name;
     const int n = static_cast<int>(mesh.n_vertices());
     const int faces = static_cast<int>(mesh.n_faces());
-    expectMatchesCgal(mesh, {vertexPoint(mesh, n / 3), facePoint(faces / 2, 0.2, 0.3, 0.5), vertexPoint(mesh, 7 * n / 9)},
+    expectMatchesCgal(mesh,
+                      {vertexPoint(mesh, n / 3), facePoint(faces / 2, 0.2, 0.3, 0.5),
+                       vertexPoint(mesh, 7 * n / 9)},
                       name.c_str());
   }
 }
 
 TEST(ExactReference, ExactModeAgreesWithCgalToRounding) {
   // With saddleAngleTolerance = 0 every saddle is a pseudo-source: the exact polyhedral distance.
-  const TriMesh mesh = testing::gridMesh(20, 20, 1.0, 1.0, testing::bump(0.4, 0.6, 0.3, 0.2), 0.25, 3);
+  const TriMesh mesh =
+      testing::gridMesh(20, 20, 1.0, 1.0, testing::bump(0.4, 0.6, 0.3, 0.2), 0.25, 3);
   DistanceSolverOptions exact = DistanceSolverOptions::exact();
   const DistanceSolver solver(mesh, exact);
   for (const SurfacePoint& source : {vertexPoint(mesh, 200), facePoint(300, 0.2, 0.3, 0.5)}) {
     const auto ours = solver.distances(source).vertexDistances;
     const auto cgal = referenceDistances(mesh, source);
-    for (size_t v = 0; v < ours.size(); ++v) EXPECT_NEAR(ours[v], cgal[v], 1e-12 * (1.0 + cgal[v])) << v;
+    for (size_t v = 0; v < ours.size(); ++v)
+      EXPECT_NEAR(ours[v], cgal[v], 1e-12 * (1.0 + cgal[v])) << v;
   }
 }
 
@@ -133,15 +141,19 @@ TEST(ExactReference, ExactModeAgreesWithCgalOnRemeshedSamples) {
   // the narrow cone where shortest paths may leave them (Propagator::fire): exact mode must still
   // find every shortest path.
   DistanceSolverOptions exact = DistanceSolverOptions::exact();
-  for (const auto& [name, edge] : std::vector<std::pair<std::string, double>>{{"bump", 0.35}, {"hypar", 0.4}}) {
+  for (const auto& [name, edge] :
+       std::vector<std::pair<std::string, double>>{{"bump", 0.35}, {"hypar", 0.4}}) {
     const TriMesh mesh = samples::generateSample(name, {}, edge);
     const DistanceSolver solver(mesh, exact);
     const int n = static_cast<int>(mesh.n_vertices());
-    for (const SurfacePoint& source : {vertexPoint(mesh, n / 3), facePoint(static_cast<int>(mesh.n_faces()) / 2, 0.2, 0.3, 0.5)}) {
+    for (const SurfacePoint& source :
+         {vertexPoint(mesh, n / 3),
+          facePoint(static_cast<int>(mesh.n_faces()) / 2, 0.2, 0.3, 0.5)}) {
       const auto ours = solver.distances(source).vertexDistances;
       const auto cgal = referenceDistances(mesh, source);
       double worst = 0.0;
-      for (size_t v = 0; v < ours.size(); ++v) worst = std::max(worst, std::abs(ours[v] - cgal[v]) / (1.0 + cgal[v]));
+      for (size_t v = 0; v < ours.size(); ++v)
+        worst = std::max(worst, std::abs(ours[v] - cgal[v]) / (1.0 + cgal[v]));
       EXPECT_LT(worst, 1e-12) << name;
     }
   }
@@ -154,15 +166,16 @@ TEST(ExactReference, ExactModeAgreesWithCgalAroundAReflexCorner) {
   DistanceSolverOptions exact = DistanceSolverOptions::exact();
   const DistanceSolver solver(mesh, exact);
   for (const Eigen::Vector3d& requested :
-       {Eigen::Vector3d(1.7, 0.0, 0.0), Eigen::Vector3d(0.0, 1.7, 0.0), Eigen::Vector3d(1.6, 0.4, 0.0),
-        Eigen::Vector3d(0.3, 1.8, 0.0)}) {
+       {Eigen::Vector3d(1.7, 0.0, 0.0), Eigen::Vector3d(0.0, 1.7, 0.0),
+        Eigen::Vector3d(1.6, 0.4, 0.0), Eigen::Vector3d(0.3, 1.8, 0.0)}) {
     const SurfacePoint source = snapToSurface(mesh, requested);
     const auto ours = solver.distances(source).vertexDistances;
     const bool isVertex = (source.barycentric.array() > 0.0).count() == 1;
     const auto cgal = referenceDistances(mesh, isVertex ? source : intoFace(source));
     for (size_t v = 0; v < ours.size(); ++v) {
       // The CGAL source sits 1e-10 (barycentric) inside the face when ours is on an edge.
-      EXPECT_NEAR(ours[v], cgal[v], 1e-9 * (1.0 + cgal[v])) << "source near " << requested.transpose() << ", vertex " << v;
+      EXPECT_NEAR(ours[v], cgal[v], 1e-9 * (1.0 + cgal[v]))
+          << "source near " << requested.transpose() << ", vertex " << v;
     }
   }
 }
@@ -190,7 +203,8 @@ TEST(ExactReference, UnreachableVerticesAreInfinite) {
   const int offset = static_cast<int>(soup.vertices.size());
   const TriangleSoup other = soupFromMesh(testing::gridMesh(2, 2, 1.0, 1.0, testing::flat));
   for (const auto& v : other.vertices) soup.vertices.push_back(v + Eigen::Vector3d(3, 0, 0));
-  for (const auto& t : other.triangles) soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  for (const auto& t : other.triangles)
+    soup.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   const auto d = referenceDistances(meshFromSoup(soup), facePoint(0, 0.3, 0.3, 0.4));
   EXPECT_TRUE(std::isfinite(d[0]));
   EXPECT_TRUE(std::isinf(d[offset]));

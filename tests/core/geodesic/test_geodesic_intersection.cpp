@@ -15,15 +15,17 @@ struct Member {
   SurfacePoint a, b;
 };
 
-GeodesicIntersection fieldIntersection(const TriMesh& mesh, const DistanceSolver& solver, const Member& m1,
-                                       const Member& m2) {
+GeodesicIntersection fieldIntersection(const TriMesh& mesh, const DistanceSolver& solver,
+                                       const Member& m1, const Member& m2) {
   const auto fields = solver.distances({m1.a, m1.b, m2.a, m2.b}, {m1.b, m2.b});
-  return intersectGeodesics(mesh, fields[0].vertexDistances, fields[1].vertexDistances, fields[2].vertexDistances,
-                            fields[3].vertexDistances, fields[0].targetDistances[0], fields[2].targetDistances[1]);
+  return intersectGeodesics(mesh, fields[0].vertexDistances, fields[1].vertexDistances,
+                            fields[2].vertexDistances, fields[3].vertexDistances,
+                            fields[0].targetDistances[0], fields[2].targetDistances[1]);
 }
 
 TEST(GeodesicIntersection, MatchesTheCrossingOfTracedPathsOnABump) {
-  const TriMesh mesh = testing::gridMesh(30, 30, 1.0, 1.0, testing::bump(0.5, 0.5, 0.3, 0.25), 0.15);
+  const TriMesh mesh =
+      testing::gridMesh(30, 30, 1.0, 1.0, testing::bump(0.5, 0.5, 0.3, 0.25), 0.15);
   const DistanceSolver solver(mesh);
   const double h = solver.meanEdgeLength();
   const std::vector<std::pair<Member, Member>> cases = {

@@ -45,22 +45,25 @@ TEST(GoalBound, SegmentBoundIsTheClosestPointOfTheSubSegment) {
 
 // Windows of a full field and of one directed at a far point, and their distances there.
 TEST(GoalBound, DirectedPropagationSweepsLessForTheSameDistance) {
-  const TriMesh mesh =
-      samples::generateSample("bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.15);
+  const TriMesh mesh = samples::generateSample(
+      "bump", {{"height", 1.0}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.15);
   for (const double tolerance : {0.0, 7e-4}) {
     DistanceSolverOptions options;
     options.saddleAngleTolerance = tolerance;
     const MeshTables tables = buildTables(mesh, options);
-    const SurfacePoint from = snapToSurface(mesh, {-3.0, -2.5, 0.0}), to = snapToSurface(mesh, {3.0, 2.0, 0.0});
+    const SurfacePoint from = snapToSurface(mesh, {-3.0, -2.5, 0.0}),
+                       to = snapToSurface(mesh, {3.0, 2.0, 0.0});
     Propagation full, directed;
     propagate(tables, options, from, {to}, full, false);
     propagate(tables, options, from, {to}, directed, true);
-    EXPECT_NEAR(directed.targetDistance[0], full.targetDistance[0], 1e-12 * full.targetDistance[0]) << tolerance;
+    EXPECT_NEAR(directed.targetDistance[0], full.targetDistance[0], 1e-12 * full.targetDistance[0])
+        << tolerance;
     // Nearly corner to corner across an 8 m bump: the ellipse of the chord bound is a sliver of it.
     // Measured 0.061 (exact) / 0.070 (default) of the full field's windows.
     EXPECT_LT(directed.windows.size(), 0.2 * full.windows.size()) << tolerance;
-    RecordProperty(tolerance == 0.0 ? "window_ratio_exact" : "window_ratio_default",
-                   std::to_string(static_cast<double>(directed.windows.size()) / full.windows.size()));
+    RecordProperty(
+        tolerance == 0.0 ? "window_ratio_exact" : "window_ratio_default",
+        std::to_string(static_cast<double>(directed.windows.size()) / full.windows.size()));
   }
 }
 

@@ -48,7 +48,8 @@ TEST(MeshTables, ShadowConesOnlyAtSkippedSaddlesAndTheirFlagsAgree) {
     const MeshTables t = buildTables(mesh, options);
     int cones = 0, saddles = 0;
     for (int v = 0; v < t.vertexCount; ++v) {
-      EXPECT_EQ(t.hasShadowCone[v] != 0, t.shadowCone[v] > 0.0) << v;  // the byte the hot loop reads
+      EXPECT_EQ(t.hasShadowCone[v] != 0, t.shadowCone[v] > 0.0)
+          << v;  // the byte the hot loop reads
       if (t.shadowCone[v] > 0.0) {
         ++cones;
         const double excess = t.angleSum[v] - 2.0 * std::numbers::pi;
@@ -61,8 +62,10 @@ TEST(MeshTables, ShadowConesOnlyAtSkippedSaddlesAndTheirFlagsAgree) {
       if (!t.boundaryVertex[v] && t.angleSum[v] > 2.0 * std::numbers::pi) ++saddles;
     }
     EXPECT_GT(saddles, 0);
-    if (tolerance == 0.0) EXPECT_EQ(cones, 0);
-    else EXPECT_GT(cones, 0);
+    if (tolerance == 0.0)
+      EXPECT_EQ(cones, 0);
+    else
+      EXPECT_GT(cones, 0);
   }
 }
 

@@ -26,7 +26,8 @@ TEST(PropagationSetup, PeakBytesCountTheWindowsHeldAndTheMeshArrays) {
   const DistanceSolver front(mesh, withEngine(Engine::FrontOnly));
   const SurfacePoint s = vertexPoint(mesh, 15 * 31 + 4);
   const auto a = stored.distances(s), b = front.distances(s);
-  const double nv = static_cast<double>(mesh.n_vertices()), nh = 2.0 * static_cast<double>(mesh.n_edges());
+  const double nv = static_cast<double>(mesh.n_vertices()),
+               nh = 2.0 * static_cast<double>(mesh.n_edges());
   // At least the windows (56 bytes each) and the per-vertex distances and per-halfedge one-split
   // pairs; the stored engine's windows are all it created.
   const double floor = nv * sizeof(double) + nh * 2 * sizeof(double);
@@ -44,7 +45,8 @@ TEST(PropagationSetup, ScratchReusedAcrossEnginesAndMeshesGivesTheFreshFields) {
   const TriMesh two = testing::sphereMesh(1.0, 12, 20);
   const SurfacePoint s1 = facePoint(40, 0.2, 0.3, 0.5), s2 = facePoint(100, 0.6, 0.2, 0.2);
   const std::vector<SurfacePoint> targets = {facePoint(7, 0.3, 0.3, 0.4)};
-  const DistanceSolver frontOne(one, withEngine(Engine::FrontOnly)), storedTwo(two, withEngine(Engine::StoredWindows));
+  const DistanceSolver frontOne(one, withEngine(Engine::FrontOnly)),
+      storedTwo(two, withEngine(Engine::StoredWindows));
   const DistanceSolver frontTwo(two, withEngine(Engine::FrontOnly));
   const auto first = frontOne.distances(s1, targets);
   const auto second = storedTwo.distances(s2, targets);

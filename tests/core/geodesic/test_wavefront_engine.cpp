@@ -25,7 +25,8 @@ TEST(WavefrontEngine, EverySlotIsFreedOnceAndHalfedgesPopInBatches) {
   const DistanceSolverOptions options;
   const detail::MeshTables t = detail::buildTables(mesh, options);
   detail::Propagation state;
-  detail::propagate(t, options, vertexPoint(mesh, 20 * 41 + 7), {}, state, false, /*storeWindows=*/false,
+  detail::propagate(t, options, vertexPoint(mesh, 20 * 41 + 7), {}, state, false,
+                    /*storeWindows=*/false,
                     /*wavefront=*/true);
   // The queue ran empty, so every list was emptied: each slot is on the free stack exactly once.
   std::vector<int> freed = state.freeSlots;
@@ -39,8 +40,8 @@ TEST(WavefrontEngine, EverySlotIsFreedOnceAndHalfedgesPopInBatches) {
   }
   // One batch per popped halfedge, several windows each; the slots are the front's, not all.
   EXPECT_GT(state.halfedgePops, 0);
-  EXPECT_LT(state.halfedgePops * 3, state.windowsCreated * 2) << state.halfedgePops << " pops, "
-                                                              << state.windowsCreated << " windows";
+  EXPECT_LT(state.halfedgePops * 3, state.windowsCreated * 2)
+      << state.halfedgePops << " pops, " << state.windowsCreated << " windows";
   EXPECT_LT(static_cast<long>(state.slots.size()) * 5, state.windowsCreated);
 }
 
@@ -64,10 +65,12 @@ TEST(WavefrontEngine, SameDistancesAsStoredWindowsOnTheBenchSamples) {
         for (int u = 0; u < nv; ++u) {
           ASSERT_TRUE(std::isfinite(a.vertexDistances[u])) << sample << " vertex " << u;
           if (a.vertexDistances[u] > 0.0) {
-            worst = std::max(worst, std::abs(b.vertexDistances[u] - a.vertexDistances[u]) / a.vertexDistances[u]);
+            worst = std::max(worst, std::abs(b.vertexDistances[u] - a.vertexDistances[u]) /
+                                        a.vertexDistances[u]);
           }
         }
-        EXPECT_LT(worst, tolerance == 0.0 ? 1e-9 : 1e-7) << sample << " source " << v << " tolerance " << tolerance;
+        EXPECT_LT(worst, tolerance == 0.0 ? 1e-9 : 1e-7)
+            << sample << " source " << v << " tolerance " << tolerance;
         EXPECT_LT(b.peakWindows, b.windowsCreated) << sample;
       }
     }
@@ -92,7 +95,8 @@ TEST(WavefrontEngine, VertexEventsWaitForTheHalfedgesOfTheirBucketOnASaddleSurfa
     double worst = 0.0;
     for (int u = 0; u < nv; ++u) {
       if (a.vertexDistances[u] > 0.0) {
-        worst = std::max(worst, std::abs(b.vertexDistances[u] - a.vertexDistances[u]) / a.vertexDistances[u]);
+        worst = std::max(
+            worst, std::abs(b.vertexDistances[u] - a.vertexDistances[u]) / a.vertexDistances[u]);
       }
     }
     EXPECT_LT(worst, 1e-10) << "source " << v;
@@ -120,12 +124,15 @@ TEST(WavefrontEngine, NearImagesMergeOnASphereCapWithinTheirTolerance) {
       for (int u = 0; u < nv; ++u) {
         ASSERT_TRUE(std::isfinite(b.vertexDistances[u])) << u;
         if (a.vertexDistances[u] > 0.0) {
-          worst = std::max(worst, std::abs(b.vertexDistances[u] - a.vertexDistances[u]) / a.vertexDistances[u]);
+          worst = std::max(
+              worst, std::abs(b.vertexDistances[u] - a.vertexDistances[u]) / a.vertexDistances[u]);
         }
       }
     }
-    if (tolerance == 0.0) EXPECT_LT(worst, 1e-9);  // the cap has no saddles to skip
-    else EXPECT_LT(worst, 0.2 * tolerance) << tolerance;
+    if (tolerance == 0.0)
+      EXPECT_LT(worst, 1e-9);  // the cap has no saddles to skip
+    else
+      EXPECT_LT(worst, 0.2 * tolerance) << tolerance;
     if (previousWindows > 0) EXPECT_LT(windows, 0.95 * previousWindows) << tolerance;
     previousWindows = windows;
   }
@@ -149,7 +156,8 @@ TEST(WavefrontEngine, NearImagesKeepThePseudoSourceFansAtBoundaryCorners) {
   const DistanceSolver merged(mesh), unmerged(mesh, unmergedOptions);
   const int nv = static_cast<int>(mesh.n_vertices());
   for (const int v : {0, 2, 40, nv - 1}) {
-    const auto a = unmerged.distancesFromVertex(v).vertexDistances, b = merged.distancesFromVertex(v).vertexDistances;
+    const auto a = unmerged.distancesFromVertex(v).vertexDistances,
+               b = merged.distancesFromVertex(v).vertexDistances;
     double worst = 0.0;
     for (int u = 0; u < nv; ++u) {
       ASSERT_TRUE(std::isfinite(b[u])) << "source " << v << " vertex " << u;

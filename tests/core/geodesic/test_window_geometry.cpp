@@ -63,7 +63,8 @@ TEST(WindowGeometry, ConeRaysCrossTheOppositeEdgeWhereTheyShould) {
 }
 
 // A window over [b0, b1] seen from (sx, sy) at sigma, with vertex `endVertex1` on the ray of b1.
-Window windowWithEndVertex(double b0, double b1, double sx, double sy, double sigma, int endVertex1) {
+Window windowWithEndVertex(double b0, double b1, double sx, double sy, double sigma,
+                           int endVertex1) {
   Window w;
   w.b0 = b0;
   w.b1 = b1;
@@ -110,7 +111,8 @@ TEST(WindowGeometry, ShadowOfASkippedSaddleIsReachedThroughTheSaddle) {
   EXPECT_NEAR(pathBentAt(c.w, 1, wide.x(), wide.y(), 1.0, &skipped, atVertex), roundTheEnd, 1e-14);
   EXPECT_FALSE(atVertex);
   EXPECT_GT(roundTheEnd, 1.8);
-  // No vertex on the ray, or a pseudo-source there (its own windows cover its shadow): round the end.
+  // No vertex on the ray, or a pseudo-source there (its own windows cover its shadow): round the
+  // end.
   const Eigen::Vector2d p = c.beyond(0.5 * excess, 0.8);
   const double pRoundTheEnd = 0.5 + (end - c.s).norm() + (p - end).norm();
   EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, nullptr, atVertex), pRoundTheEnd, 1e-14);
@@ -136,7 +138,8 @@ TEST(WindowGeometry, BendingAtAVertexReachedElsewhereBendsShortOfItOnTheRay) {
   const Eigen::Vector2d p = c.beyond(2e-4, 0.8);
   const Eigen::Vector2d bend = c.s + 0.4 * c.u;
   bool atVertex = false;
-  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, &reachedElsewhere, atVertex), 0.9 + (p - bend).norm(), 1e-14);
+  EXPECT_NEAR(pathBentAt(c.w, 1, p.x(), p.y(), 1.0, &reachedElsewhere, atVertex),
+              0.9 + (p - bend).norm(), 1e-14);
   EXPECT_TRUE(atVertex);
   double bx = 0, by = 0;
   bendPoint(c.w, 1, 0.9, bx, by);
@@ -150,7 +153,8 @@ TEST(WindowGeometry, AnEndAtAnEdgeEndpointBendsThereInAnyDirection) {
   const double toB = std::hypot(0.7, 2.0);
   const BendVertex b{0.25 + toB, 0.0};  // a convex vertex, even
   bool atVertex = true;
-  EXPECT_NEAR(pathBentAt(w, 1, 1.4, 0.9, 1.0, &b, atVertex), 0.25 + toB + std::hypot(0.4, 0.9), 1e-14);
+  EXPECT_NEAR(pathBentAt(w, 1, 1.4, 0.9, 1.0, &b, atVertex), 0.25 + toB + std::hypot(0.4, 0.9),
+              1e-14);
   EXPECT_FALSE(atVertex);  // round the end, which is B
 }
 
@@ -249,7 +253,8 @@ TEST(WindowGeometry, ABendRoundAnEndIsNeverBelowTheBoundThatDefersIt) {
     const int side = i % 2;
     const double end = side ? w.b1 : w.b0;
     // One in four straight above the end, where |end - p| = py and the bound is tight.
-    const double px = i % 4 == 1 ? end + scale * 1e-9 * unit(random) : scale * (4.0 * unit(random) - 2.0);
+    const double px =
+        i % 4 == 1 ? end + scale * 1e-9 * unit(random) : scale * (4.0 * unit(random) - 2.0);
     const double py = scale * (i % 7 == 0 ? 1e-10 * unit(random) : unit(random));
     bool atVertex = true;
     const double bent = pathBentAt(w, side, px, py, 4.0 * scale, nullptr, atVertex);
@@ -278,12 +283,11 @@ TEST(WindowGeometry, CopyJustWrittenCopiesEveryField) {
   EXPECT_EQ(std::memcmp(&to, &from, sizeof(Window)), 0);
 }
 
-
-// distanceGapBound and rayTurnBoundSquared (DistanceSolverOptions::imageMergeTolerance) are bounds: never
-// below the gap and the ray angle sampled densely over the interval, for random image pairs, wide
-// intervals (where the curvature term matters) and narrow ones. Known answers: one image with its
-// sigma raised by c has the gap c (up to the curvature term, W^2 / 8 of it) and no turn; an image
-// on the edge's line with its foot inside has a kink and no bound.
+// distanceGapBound and rayTurnBoundSquared (DistanceSolverOptions::imageMergeTolerance) are bounds:
+// never below the gap and the ray angle sampled densely over the interval, for random image pairs,
+// wide intervals (where the curvature term matters) and narrow ones. Known answers: one image with
+// its sigma raised by c has the gap c (up to the curvature term, W^2 / 8 of it) and no turn; an
+// image on the edge's line with its foot inside has a kink and no bound.
 Window imageAt(double sx, double sy, double sigma) {
   Window w;
   w.sx = sx;
@@ -294,7 +298,8 @@ Window imageAt(double sx, double sy, double sigma) {
 
 TEST(WindowGeometry, GapAndTurnBoundsAreNeverBelowTheSampledValues) {
   std::mt19937 rng(19);
-  std::uniform_real_distribution<double> x(-1.0, 2.0), y(-2.0, -0.01), sigma(0.0, 0.5), unit(0.0, 1.0);
+  std::uniform_real_distribution<double> x(-1.0, 2.0), y(-2.0, -0.01), sigma(0.0, 0.5),
+      unit(0.0, 1.0);
   int tight = 0;
   for (int k = 0; k < 4000; ++k) {
     const Window a = imageAt(x(rng), y(rng), sigma(rng));
@@ -312,7 +317,8 @@ TEST(WindowGeometry, GapAndTurnBoundsAreNeverBelowTheSampledValues) {
       gap = std::max(gap, std::abs(a.sigma + ra - b.sigma - rb));
       sine = std::max(sine, std::abs((t - a.sx) * b.sy - a.sy * (t - b.sx)) / (ra * rb));
     }
-    const double gapBound = distanceGapBound(a, b, x0, x1), turnBound = std::sqrt(rayTurnBoundSquared(a, b));
+    const double gapBound = distanceGapBound(a, b, x0, x1),
+                 turnBound = std::sqrt(rayTurnBoundSquared(a, b));
     ASSERT_GE(gapBound, gap * (1.0 - 1e-12) - 1e-15) << k;
     ASSERT_GE(turnBound, sine * (1.0 - 1e-12) - 1e-15) << k;
     if (gapBound <= 1.5 * gap + 1e-12) ++tight;

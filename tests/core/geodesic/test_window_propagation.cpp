@@ -1,8 +1,9 @@
 // The engines without stored windows (DistanceSolverOptions::Engine::FrontOnly and Wavefront,
-// issue 19; every test below runs for both) against the stored-window one and against CGAL's exact Surface_mesh_shortest_path, on bump, hypar, sphere, prism
-// and L-shaped meshes with vertex, edge and face sources; its memory (only the front is held),
-// directed queries, paths and thread-count determinism; and how many of the windows either engine
-// keeps a vertex-distance filter could still have dropped.
+// issue 19; every test below runs for both) against the stored-window one and against CGAL's exact
+// Surface_mesh_shortest_path, on bump, hypar, sphere, prism and L-shaped meshes with vertex, edge
+// and face sources; its memory (only the front is held), directed queries, paths and thread-count
+// determinism; and how many of the windows either engine keeps a vertex-distance filter could still
+// have dropped.
 #include "core/geodesic/distance_solver.hpp"
 
 #include "core/errors.hpp"
@@ -25,7 +26,8 @@ namespace {
 using testing::facePoint;
 using Engine = DistanceSolverOptions::Engine;
 
-DistanceSolverOptions withEngine(Engine engine, double tolerance = DistanceSolverOptions{}.saddleAngleTolerance) {
+DistanceSolverOptions withEngine(Engine engine,
+                                 double tolerance = DistanceSolverOptions{}.saddleAngleTolerance) {
   DistanceSolverOptions o;
   o.engine = engine;
   o.saddleAngleTolerance = tolerance;
@@ -39,7 +41,8 @@ struct Case {
 };
 
 std::vector<Case> meshes() {
-  return {{"jittered bump", testing::gridMesh(22, 20, 2.2, 2.0, testing::bump(1.1, 1.0, 0.5, 0.5), 0.25)},
+  return {{"jittered bump",
+           testing::gridMesh(22, 20, 2.2, 2.0, testing::bump(1.1, 1.0, 0.5, 0.5), 0.25)},
           {"hypar", testing::gridMesh(18, 18, 1.0, 1.0, testing::hypar(0.5, 0.5, 0.8), 0.3)},
           {"sphere", testing::sphereMesh(1.0, 18, 30)},
           {"prism", testing::prismMesh(7, 0.5, 1.5, 12)},
@@ -48,11 +51,12 @@ std::vector<Case> meshes() {
 
 std::vector<SurfacePoint> sourcesOf(const TriMesh& mesh) {
   const int faces = static_cast<int>(mesh.n_faces());
-  return {vertexPoint(mesh, static_cast<int>(mesh.n_vertices()) / 3), facePoint(faces / 2, 0.5, 0.5, 0.0),
-          facePoint(2 * faces / 3 + 1, 0.2, 0.3, 0.5)};
+  return {vertexPoint(mesh, static_cast<int>(mesh.n_vertices()) / 3),
+          facePoint(faces / 2, 0.5, 0.5, 0.0), facePoint(2 * faces / 3 + 1, 0.2, 0.3, 0.5)};
 }
 
-double maxRelativeDifference(const std::vector<double>& a, const std::vector<double>& b, double near) {
+double maxRelativeDifference(const std::vector<double>& a, const std::vector<double>& b,
+                             double near) {
   double worst = 0.0;
   for (size_t v = 0; v < b.size(); ++v) {
     if (!std::isfinite(b[v])) {
@@ -84,7 +88,8 @@ TEST_P(FrontEngine, SameDistancesAsStoredWindowsInExactAndDefaultModes) {
       for (const auto& s : sourcesOf(c.mesh)) {
         const auto a = stored.distances(s), b = front.distances(s);
         EXPECT_LT(maxRelativeDifference(b.vertexDistances, a.vertexDistances, 1e-9), 1e-9)
-            << c.name << " tolerance " << tolerance << " source face " << s.face << " " << s.barycentric.transpose();
+            << c.name << " tolerance " << tolerance << " source face " << s.face << " "
+            << s.barycentric.transpose();
         EXPECT_GT(b.windowsCreated, 0) << c.name;
       }
     }
@@ -112,7 +117,8 @@ TEST_P(FrontEngine, HoldsOnlyTheFront) {
   // 20k vertices: the stored engine holds every window it created; the front engine a small part
   // (the front of a field grows as its perimeter, the windows as its area), so its working memory
   // is a fraction of the stored engine's.
-  const TriMesh mesh = testing::gridMesh(140, 140, 7.0, 7.0, testing::bump(3.5, 3.5, 1.5, 1.5), 0.2);
+  const TriMesh mesh =
+      testing::gridMesh(140, 140, 7.0, 7.0, testing::bump(3.5, 3.5, 1.5, 1.5), 0.2);
   const DistanceSolver stored(mesh, withEngine(Engine::StoredWindows));
   const DistanceSolver front(mesh, withEngine(GetParam()));
   const SurfacePoint s = vertexPoint(mesh, 70 * 141 + 3);
@@ -130,11 +136,13 @@ TEST_P(FrontEngine, HoldsOnlyTheFront) {
   // engine's (SameDistancesAsStoredWindowsInExactAndDefaultModes); here its default mode's error
   // against the exact mode is held to the stored engine's. Measured: both 1.41e-6, wavefront
   // against stored 3.2e-7.
-  const auto exact = DistanceSolver(mesh, withEngine(Engine::StoredWindows, 0.0)).distances(s).vertexDistances;
+  const auto exact =
+      DistanceSolver(mesh, withEngine(Engine::StoredWindows, 0.0)).distances(s).vertexDistances;
   const double waveError = maxRelativeDifference(b.vertexDistances, exact, 1e-9);
   const double storedError = maxRelativeDifference(a.vertexDistances, exact, 1e-9);
-  std::printf("20k bump, default mode against exact: wavefront %.2e, stored %.2e, between %.2e\n", waveError,
-              storedError, maxRelativeDifference(b.vertexDistances, a.vertexDistances, 1e-9));
+  std::printf("20k bump, default mode against exact: wavefront %.2e, stored %.2e, between %.2e\n",
+              waveError, storedError,
+              maxRelativeDifference(b.vertexDistances, a.vertexDistances, 1e-9));
   EXPECT_LE(waveError, 1.1 * storedError);
   EXPECT_GT(storedError, 0.0);
 }
@@ -163,7 +171,8 @@ TEST_P(FrontEngine, MergesWindowsOfOneImageOnAPlane) {
   windowsOn(40, s40, f40);
   windowsOn(80, s80, f80);
   std::printf("plane windows stored %ld -> %ld, front %ld -> %ld\n", s40, s80, f40, f80);
-  // Measured: stored 30.7k -> 239k (x7.8, the n^1.5 of 4x the vertices), front 6.2k -> 25.6k (x4.1).
+  // Measured: stored 30.7k -> 239k (x7.8, the n^1.5 of 4x the vertices), front 6.2k -> 25.6k
+  // (x4.1).
   EXPECT_LT(f80 * 5, s80);
   EXPECT_LT(double(f80) / f40, 5.0);
   EXPECT_GT(double(s80) / s40, 6.5);
@@ -175,14 +184,18 @@ TEST_P(FrontEngine, TargetsDirectedQueriesAndPaths) {
   const DistanceSolver front(mesh, withEngine(GetParam()));
   const SurfacePoint from = facePoint(17, 0.2, 0.3, 0.5);
   std::vector<SurfacePoint> targets;
-  for (int f = 5; f < static_cast<int>(mesh.n_faces()); f += 97) targets.push_back(facePoint(f, 0.3, 0.3, 0.4));
+  for (int f = 5; f < static_cast<int>(mesh.n_faces()); f += 97)
+    targets.push_back(facePoint(f, 0.3, 0.3, 0.4));
   const auto a = stored.distances(from, targets), b = front.distances(from, targets);
   const auto directed = front.directedDistances(from, targets);
   for (size_t i = 0; i < targets.size(); ++i) {
-    EXPECT_NEAR(b.targetDistances[i], a.targetDistances[i], 1e-12 * a.targetDistances[i]) << "target " << i;
-    EXPECT_NEAR(directed.targetDistances[i], stored.directedDistances(from, targets).targetDistances[i],
+    EXPECT_NEAR(b.targetDistances[i], a.targetDistances[i], 1e-12 * a.targetDistances[i])
+        << "target " << i;
+    EXPECT_NEAR(directed.targetDistances[i],
+                stored.directedDistances(from, targets).targetDistances[i],
                 1e-12 * a.targetDistances[i]);
-    EXPECT_NEAR(front.distance(from, targets[i]), stored.distance(from, targets[i]), 1e-12 * a.targetDistances[i]);
+    EXPECT_NEAR(front.distance(from, targets[i]), stored.distance(from, targets[i]),
+                1e-12 * a.targetDistances[i]);
     // path() traces back through stored windows whatever the engine: the same polyline.
     const auto p = front.path(from, targets[i]), q = stored.path(from, targets[i]);
     EXPECT_EQ(p.length, q.length);
@@ -194,8 +207,10 @@ TEST_P(FrontEngine, TargetsDirectedQueriesAndPaths) {
 TEST_P(FrontEngine, BatchIsBitIdenticalForAnyThreadCount) {
   const TriMesh mesh = testing::gridMesh(16, 16, 1.0, 1.0, testing::hypar(0.5, 0.5, 0.8), 0.3);
   std::vector<SurfacePoint> sources;
-  for (int f = 0; f < static_cast<int>(mesh.n_faces()); f += 29) sources.push_back(facePoint(f, 0.2, 0.3, 0.5));
-  const std::vector<SurfacePoint> targets = {facePoint(11, 0.3, 0.3, 0.4), facePoint(301, 0.0, 0.5, 0.5)};
+  for (int f = 0; f < static_cast<int>(mesh.n_faces()); f += 29)
+    sources.push_back(facePoint(f, 0.2, 0.3, 0.5));
+  const std::vector<SurfacePoint> targets = {facePoint(11, 0.3, 0.3, 0.4),
+                                             facePoint(301, 0.0, 0.5, 0.5)};
   auto options = [engine = GetParam()](int threads) {
     DistanceSolverOptions o = withEngine(engine);
     o.threads = threads;
@@ -269,15 +284,16 @@ TEST(WindowPruning, VertexDistanceFiltersWouldFindAlmostNothingLeftToDrop) {
   const FilterCensus c = vertexFilterCensus(cap, static_cast<int>(cap.n_vertices()) / 2);
   const TriMesh bump = samples::generateSample("bump", {}, 0.1699);
   const FilterCensus b = vertexFilterCensus(bump, static_cast<int>(bump.n_vertices()) / 2);
-  std::printf("vertex-filter census: cap %ld of %ld windows dominated, bump %ld of %ld\n", c.dominated, c.windows,
-              b.dominated, b.windows);
+  std::printf("vertex-filter census: cap %ld of %ld windows dominated, bump %ld of %ld\n",
+              c.dominated, c.windows, b.dominated, b.windows);
   EXPECT_GT(c.windows, 100000);
   EXPECT_GT(b.windows, 100000);
   EXPECT_LE(c.dominated * 10000, c.windows);
   EXPECT_LE(b.dominated * 2000, b.windows);
 }
 
-INSTANTIATE_TEST_SUITE_P(Engines, FrontEngine, ::testing::Values(Engine::FrontOnly, Engine::Wavefront), engineName);
+INSTANTIATE_TEST_SUITE_P(Engines, FrontEngine,
+                         ::testing::Values(Engine::FrontOnly, Engine::Wavefront), engineName);
 
 TEST(Engines, AnUnknownEngineIsRefusedByName) {
   DistanceSolverOptions o;
@@ -286,7 +302,8 @@ TEST(Engines, AnUnknownEngineIsRefusedByName) {
     DistanceSolver(testing::gridMesh(2, 2, 1.0, 1.0, testing::flat), o);
     FAIL() << "no exception";
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("DistanceSolverOptions.engine"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("DistanceSolverOptions.engine"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -7,12 +7,12 @@
 #include <signal.h>
 #include <sys/resource.h>
 
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include <chrono>
 
@@ -29,7 +29,8 @@ std::string readAll(const fs::path& p) {
 }
 
 TEST(AtomicFile, ReplacesWholeAndLeavesNoTemporaries) {
-  const fs::path root = fs::temp_directory_path() / ("egg_atomic_test_" + std::to_string(::getpid()));
+  const fs::path root =
+      fs::temp_directory_path() / ("egg_atomic_test_" + std::to_string(::getpid()));
   fs::remove_all(root);
   fs::create_directories(root);
   writeFileAtomically(root / "a.txt", "first");

@@ -4,26 +4,27 @@
 #include "core/mesh/validate.hpp"
 #include "samples/generators/samples.hpp"
 
-#include <assimp/Exporter.hpp>
-#include <assimp/Importer.hpp>
 #include <assimp/scene.h>
 #include <gtest/gtest.h>
+#include <assimp/Exporter.hpp>
+#include <assimp/Importer.hpp>
 
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <fstream>
 #include <random>
-#include <unistd.h>
 
 namespace egg {
 namespace {
 namespace fs = std::filesystem;
 
-// A curved open surface z = 0.3 sin(x) cos(y) on a jittered grid: no coordinate is a "round" number.
+// A curved open surface z = 0.3 sin(x) cos(y) on a jittered grid: no coordinate is a "round"
+// number.
 TriangleSoup wavySurface(int n = 6) {
   TriangleSoup soup;
   std::mt19937 rng(7);
@@ -46,14 +47,16 @@ TriangleSoup wavySurface(int n = 6) {
 class TempDir {
  public:
   TempDir() {
-    path_ = fs::temp_directory_path() / ("egg_test_io_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++));
+    path_ = fs::temp_directory_path() /
+            ("egg_test_io_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++));
     fs::create_directories(path_);
   }
   ~TempDir() { fs::remove_all(path_); }
   fs::path operator/(const std::string& name) const { return path_ / name; }
   std::vector<std::string> files() const {
     std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(path_)) names.push_back(e.path().filename().string());
+    for (const auto& e : fs::directory_iterator(path_))
+      names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     return names;
   }
@@ -71,13 +74,15 @@ void writeText(const fs::path& path, const std::string& text) {
 Eigen::Vector3d areaVector(const TriangleSoup& soup) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (const auto& t : soup.triangles)
-    sum += 0.5 * (soup.vertices[t[1]] - soup.vertices[t[0]]).cross(soup.vertices[t[2]] - soup.vertices[t[0]]);
+    sum += 0.5 * (soup.vertices[t[1]] - soup.vertices[t[0]])
+                     .cross(soup.vertices[t[2]] - soup.vertices[t[0]]);
   return sum;
 }
 
 // Every original vertex is found again (float precision: files store 32-bit floats), counts equal
 // after merging duplicates, and the orientation (area vector) survives.
-void expectSameSurface(const TriangleSoup& original, const TriangleSoup& readBack, const std::string& label) {
+void expectSameSurface(const TriangleSoup& original, const TriangleSoup& readBack,
+                       const std::string& label) {
   MeshRepairDiagnostics diagnostics;
   const TriangleSoup merged = soupFromMesh(prepareMesh(readBack, {}, diagnostics));
   EXPECT_EQ(merged.vertices.size(), original.vertices.size()) << label;
@@ -105,7 +110,8 @@ TEST(MeshIo, RoundTripThroughEveryExportFormat) {
       expectSameSurface(original, back, ext + (binary ? " binary" : " ascii"));
       // Nothing but the file (and the glTF buffer) is left: no temporary, no material library.
       const std::vector<std::string> expected =
-          ext == ".gltf" ? std::vector<std::string>{"surface.bin", "surface.gltf"} : std::vector<std::string>{"surface" + ext};
+          ext == ".gltf" ? std::vector<std::string>{"surface.bin", "surface.gltf"}
+                         : std::vector<std::string>{"surface" + ext};
       EXPECT_EQ(dir.files(), expected) << ext;
     }
 }
@@ -119,7 +125,8 @@ TEST(MeshIo, StlComesBackWithDuplicatesThatRepairMerges) {
   MeshRepairDiagnostics diagnostics;
   const TriMesh mesh = prepareMesh(raw, {}, diagnostics);
   EXPECT_EQ(mesh.n_vertices(), original.vertices.size());
-  EXPECT_EQ(diagnostics.mergedVertices, static_cast<int>(raw.vertices.size() - original.vertices.size()));
+  EXPECT_EQ(diagnostics.mergedVertices,
+            static_cast<int>(raw.vertices.size() - original.vertices.size()));
 }
 
 TEST(MeshIo, ScaleToMetresAndExportScale) {
@@ -162,7 +169,8 @@ TEST(MeshIo, GltfNodeTransformsAndInstancesAreApplied) {
   })");
   const TriangleSoup soup = readMeshFile(dir / "nodes.gltf");
   ASSERT_EQ(soup.triangles.size(), 2u);
-  std::vector<Eigen::Vector3d> expected = {{0, 0, 3}, {1, 0, 3}, {0, 1, 3}, {5, 0, 3}, {7, 0, 3}, {5, 2, 3}};
+  std::vector<Eigen::Vector3d> expected = {{0, 0, 3}, {1, 0, 3}, {0, 1, 3},
+                                           {5, 0, 3}, {7, 0, 3}, {5, 2, 3}};
   for (const auto& e : expected) {
     double best = 1e9;
     for (const auto& p : soup.vertices) best = std::min(best, (p - e).norm());
@@ -181,7 +189,8 @@ TEST(MeshIo, FbxWrittenByAssimpIsRead) {
     const aiScene* scene = importer.ReadFile((dir / "s.glb").string(), 0);
     ASSERT_NE(scene, nullptr);
     Assimp::Exporter exporter;
-    ASSERT_EQ(exporter.Export(scene, "fbxa", fbx.string()), aiReturn_SUCCESS) << exporter.GetErrorString();
+    ASSERT_EQ(exporter.Export(scene, "fbxa", fbx.string()), aiReturn_SUCCESS)
+        << exporter.GetErrorString();
   }
   const TriangleSoup back = readMeshFile(fbx);
   EXPECT_EQ(back.triangles.size(), original.triangles.size());
@@ -269,7 +278,8 @@ TEST(MeshIo, LoadMeshFileRepairsOrNamesFileAndElement) {
   EXPECT_EQ(mesh.n_vertices(), original.vertices.size());
   EXPECT_GT(diagnostics.mergedVertices, 0);
   // A fin on an edge: three triangles share edge (1, 2) of this OBJ (1-based indices in the file).
-  writeText(dir / "fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 1 1 1\nf 1 2 3\nf 2 4 3\nf 2 3 5\n");
+  writeText(dir / "fin.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 1 1 1\nf 1 2 3\nf 2 4 3\nf 2 3 5\n");
   try {
     loadMeshFile(dir / "fin.obj", {}, {}, diagnostics);
     FAIL() << "expected InvalidInput";
@@ -364,7 +374,8 @@ TEST(MeshIoSafety, OffFacesWithBadIndicesNameTheFaceAndLine) {
     const std::string m = e.what();
     EXPECT_NE(m.find("line 8: face 1 refers to vertex 7"), std::string::npos) << m;
   }
-  writeText(dir / "neg.off", "OFF\n# comment\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 -2 3\n");
+  writeText(dir / "neg.off",
+            "OFF\n# comment\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 -2 3\n");
   EXPECT_THROW(readMeshFile(dir / "neg.off"), IoError);
   writeText(dir / "ok.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n");
   EXPECT_EQ(readMeshFile(dir / "ok.off").triangles.size(), 2u);
@@ -384,7 +395,8 @@ TEST(MeshIoSafety, ObjKeepsTheFileNumberingWarnsNothingAndNamesInf) {
   EXPECT_TRUE(diagnostics.warnings.empty()) << diagnostics.warnings.front();
   // Elements are named by the file's numbers (0-based: vertex k is the (k+1)-th "v" line), not
   // assimp's per-corner ones: this edge was "(1, 2)" before.
-  writeText(dir / "fin.obj", "v 0 0 1\nv 0 -1 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 5 3 4\nf 3 2 4\nf 3 4 1\n");
+  writeText(dir / "fin.obj",
+            "v 0 0 1\nv 0 -1 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 5 3 4\nf 3 2 4\nf 3 4 1\n");
   try {
     loadMeshFile(dir / "fin.obj", {}, {}, diagnostics);
     FAIL() << "expected InvalidInput";
@@ -409,8 +421,13 @@ TEST(MeshIoSafety, DeeplyNestedGltfNodesAreRefusedBeforeAssimp) {
   const int depth = 200000;
   std::string nodes;
   nodes.reserve(depth * 20);
-  for (int i = 0; i < depth; ++i) nodes += (i ? "," : "") + (i + 1 < depth ? "{\"children\":[" + std::to_string(i + 1) + "]}" : std::string("{}"));
-  writeText(dir / "deep.gltf", "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[" + nodes + "]}");
+  for (int i = 0; i < depth; ++i)
+    nodes += (i ? "," : "") +
+             (i + 1 < depth ? "{\"children\":[" + std::to_string(i + 1) + "]}" : std::string("{}"));
+  writeText(
+      dir / "deep.gltf",
+      "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[" +
+          nodes + "]}");
   try {
     readMeshFile(dir / "deep.gltf");
     FAIL() << "expected IoError";
@@ -421,7 +438,8 @@ TEST(MeshIoSafety, DeeplyNestedGltfNodesAreRefusedBeforeAssimp) {
   writeText(dir / "deepjson.gltf", std::string(100000, '[') + std::string(100000, ']'));
   EXPECT_THROW(readMeshFile(dir / "deepjson.gltf"), IoError);
   // A cycle.
-  writeText(dir / "cycle.gltf", "{\"asset\":{\"version\":\"2.0\"},\"nodes\":[{\"children\":[1]},{\"children\":[0]}]}");
+  writeText(dir / "cycle.gltf",
+            "{\"asset\":{\"version\":\"2.0\"},\"nodes\":[{\"children\":[1]},{\"children\":[0]}]}");
   EXPECT_THROW(readMeshFile(dir / "cycle.gltf"), IoError);
 }
 

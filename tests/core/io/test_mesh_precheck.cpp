@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 namespace egg {
 namespace {
@@ -21,7 +21,8 @@ fs::path writeFile(const std::string& name, const std::string& text) {
 }
 
 TEST(MeshPrecheck, ObjPositionsComeBackInFileOrder) {
-  const auto path = writeFile("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0.5\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+  const auto path =
+      writeFile("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0.5\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
   const auto positions = precheckMeshFile(path);
   ASSERT_EQ(positions.size(), 4u);
   EXPECT_EQ(positions[2], aiVector3D(1.0f, 1.0f, 0.5f));
@@ -42,13 +43,17 @@ TEST(MeshPrecheck, OffIndexOutOfRangeNamesTheLineAndFace) {
 }
 
 TEST(MeshPrecheck, PlyCountsBeyondTheFileAreRefused) {
-  const auto path = writeFile("big.ply", "ply\nformat ascii 1.0\nelement vertex 2000000000\nproperty float x\nproperty float y\n"
-                                         "property float z\nend_header\n0 0 0\n");
+  const auto path = writeFile(
+      "big.ply",
+      "ply\nformat ascii 1.0\nelement vertex 2000000000\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n0 0 0\n");
   EXPECT_THROW(precheckMeshFile(path), IoError);
   fs::remove_all(path.parent_path());
 }
 
-TEST(MeshPrecheck, ExtensionsCompareWithoutCase) { EXPECT_EQ(mesh_precheck::lowerExtension("Roof.GLB"), ".glb"); }
+TEST(MeshPrecheck, ExtensionsCompareWithoutCase) {
+  EXPECT_EQ(mesh_precheck::lowerExtension("Roof.GLB"), ".glb");
+}
 
 }  // namespace
 }  // namespace egg

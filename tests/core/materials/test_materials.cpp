@@ -9,10 +9,14 @@ namespace {
 
 TEST(Materials, ThesisTable32SpecificModuli) {
   // lambda = E / rho in 10^6 m^2/s^2: limewood 18.2, birch plywood 6.15, poplar plywood 17.7.
-  EXPECT_NEAR(materialByName("limewood").youngsModulusPa / materialByName("limewood").densityKgM3 / 1e6, 18.2, 0.05);
-  EXPECT_NEAR(materialByName("birch_plywood").youngsModulusPa / materialByName("birch_plywood").densityKgM3 / 1e6,
+  EXPECT_NEAR(
+      materialByName("limewood").youngsModulusPa / materialByName("limewood").densityKgM3 / 1e6,
+      18.2, 0.05);
+  EXPECT_NEAR(materialByName("birch_plywood").youngsModulusPa /
+                  materialByName("birch_plywood").densityKgM3 / 1e6,
               6.15, 0.01);
-  EXPECT_NEAR(materialByName("poplar_plywood").youngsModulusPa / materialByName("poplar_plywood").densityKgM3 / 1e6,
+  EXPECT_NEAR(materialByName("poplar_plywood").youngsModulusPa /
+                  materialByName("poplar_plywood").densityKgM3 / 1e6,
               17.7, 0.05);
 }
 
@@ -23,7 +27,8 @@ TEST(Materials, EveryEntryIsPhysical) {
     EXPECT_LT(m.shearModulusPa, m.youngsModulusPa / 2.0) << m.name;  // Poisson ratio > 0 bound
     EXPECT_GT(m.densityKgM3, 100.0) << m.name;
     EXPECT_GT(m.bendingStrengthPa, 1e6) << m.name;
-    EXPECT_LT(m.bendingStrengthPa, m.youngsModulusPa / 50.0) << m.name;  // strain at failure below 2 %
+    EXPECT_LT(m.bendingStrengthPa, m.youngsModulusPa / 50.0)
+        << m.name;  // strain at failure below 2 %
     EXPECT_GT(m.shearStrengthPa, 1e6) << m.name;
     EXPECT_FALSE(m.source.empty()) << m.name;
   }

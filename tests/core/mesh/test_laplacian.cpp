@@ -16,7 +16,8 @@ TriMesh jitteredPlane(int n, double jitter, unsigned seed = 3) {
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= 2 * n; ++i) {
       const bool inside = i > 0 && i < 2 * n && j > 0 && j < n;
-      soup.vertices.push_back({(i + (inside ? u(rng) : 0.0)) / n, (j + (inside ? u(rng) : 0.0)) / n, 0.0});
+      soup.vertices.push_back(
+          {(i + (inside ? u(rng) : 0.0)) / n, (j + (inside ? u(rng) : 0.0)) / n, 0.0});
     }
   auto id = [n](int i, int j) { return j * (2 * n + 1) + i; };
   for (int j = 0; j < n; ++j)
@@ -31,7 +32,8 @@ TriMesh jitteredPlane(int n, double jitter, unsigned seed = 3) {
 TriMesh equilateralPatch(int n) {
   TriangleSoup soup;
   for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) soup.vertices.push_back({i + 0.5 * j, std::sqrt(3.0) / 2.0 * j, 0.0});
+    for (int i = 0; i <= n; ++i)
+      soup.vertices.push_back({i + 0.5 * j, std::sqrt(3.0) / 2.0 * j, 0.0});
   auto id = [n](int i, int j) { return j * (n + 1) + i; };
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
@@ -55,7 +57,8 @@ TEST(Laplacian, CotanIsSymmetricWithZeroRowSums) {
 }
 
 TEST(Laplacian, LinearFunctionsAreHarmonicAndDirichletEnergyIsArea) {
-  // Linear precision: L x = 0 at interior vertices of any planar mesh; x^T L x = int |grad x|^2 = area.
+  // Linear precision: L x = 0 at interior vertices of any planar mesh; x^T L x = int |grad x|^2 =
+  // area.
   const TriMesh mesh = jitteredPlane(6, 0.3);
   const Eigen::SparseMatrix<double> L = cotanLaplacian(mesh);
   const Eigen::VectorXd x = coordinate(mesh, 0), y = coordinate(mesh, 1);
@@ -77,7 +80,8 @@ TEST(Laplacian, LinearFunctionsAreHarmonicAndDirichletEnergyIsArea) {
 
 TEST(Laplacian, UniformEqualsCotanOnTheEquilateralLattice) {
   const TriMesh mesh = equilateralPatch(5);
-  const Eigen::MatrixXd difference = Eigen::MatrixXd(cotanLaplacian(mesh)) - Eigen::MatrixXd(uniformLaplacian(mesh));
+  const Eigen::MatrixXd difference =
+      Eigen::MatrixXd(cotanLaplacian(mesh)) - Eigen::MatrixXd(uniformLaplacian(mesh));
   EXPECT_LT(difference.cwiseAbs().maxCoeff(), 1e-12);
 }
 

@@ -22,7 +22,8 @@ TriMesh noisyPlane(int n, double jitter, double noise, unsigned seed = 11) {
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= 2 * n; ++i) {
       const bool inside = i > 0 && i < 2 * n && j > 0 && j < n;
-      soup.vertices.push_back({(i + (inside ? jitter * u(rng) : 0.0)) / n, (j + (inside ? jitter * u(rng) : 0.0)) / n,
+      soup.vertices.push_back({(i + (inside ? jitter * u(rng) : 0.0)) / n,
+                               (j + (inside ? jitter * u(rng) : 0.0)) / n,
                                inside ? noise * u(rng) : 0.0});
     }
   auto id = [n](int i, int j) { return j * (2 * n + 1) + i; };
@@ -113,7 +114,8 @@ TEST(Smoothing, ConjugateGradientsAgreeWithCholesky) {
     EXPECT_GT(iterative.iterations, 0);
     double worst = 0.0;
     for (auto vh : mesh.vertices())
-      worst = std::max(worst, (toEigen(direct.mesh.point(vh)) - toEigen(iterative.mesh.point(vh))).norm());
+      worst = std::max(worst,
+                       (toEigen(direct.mesh.point(vh)) - toEigen(iterative.mesh.point(vh))).norm());
     EXPECT_LT(worst, 1e-9) << "strength " << strength;
     EXPECT_NEAR(direct.maxDisplacementM, iterative.maxDisplacementM, 1e-9);
   }
@@ -146,11 +148,13 @@ TEST(Smoothing, LoopStopsWhenTheCriterionHolds) {
   EXPECT_LE(rmsHeight(loop.mesh), target);
   EXPECT_EQ(static_cast<int>(loop.maxDisplacementM.size()), loop.steps);
   // Already satisfied: nothing runs, the mesh is returned unchanged.
-  const SmoothingLoopResult none = smoothUntil(mesh, [](const TriMesh&) { return true; }, 5);
+  const SmoothingLoopResult none = smoothUntil(
+      mesh, [](const TriMesh&) { return true; }, 5);
   EXPECT_EQ(none.steps, 0);
   EXPECT_EQ(none.totalMaxDisplacementM, 0.0);
   // Never satisfied: stops at the step limit and says so.
-  const SmoothingLoopResult capped = smoothUntil(mesh, [](const TriMesh&) { return false; }, 3);
+  const SmoothingLoopResult capped = smoothUntil(
+      mesh, [](const TriMesh&) { return false; }, 3);
   EXPECT_FALSE(capped.satisfied);
   EXPECT_EQ(capped.steps, 3);
   EXPECT_GT(capped.totalMaxDisplacementM, 0.0);

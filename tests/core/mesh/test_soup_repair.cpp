@@ -93,7 +93,8 @@ TEST(SoupRepair, MoebiusBandIsNotOrientable) {
     const double twist = 0.5 * a;
     const Eigen::Vector3d centre(std::cos(a), std::sin(a), 0.0);
     const Eigen::Vector3d across =
-        0.3 * (std::cos(twist) * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0) + std::sin(twist) * Eigen::Vector3d::UnitZ());
+        0.3 * (std::cos(twist) * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0) +
+               std::sin(twist) * Eigen::Vector3d::UnitZ());
     soup.vertices.push_back(centre - across);
     soup.vertices.push_back(centre + across);
   }

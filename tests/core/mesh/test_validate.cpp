@@ -34,7 +34,9 @@ std::string messageOf(const TriangleSoup& soup, const MeshCheckOptions& options 
   return {};
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 TEST(Validate, CleanGridHasNoIssues) {
   const MeshCheckResult result = checkMesh(grid(4));
@@ -88,7 +90,8 @@ TEST(Validate, ZeroAreaTriangleIsNamed) {
   ASSERT_NE(issue, nullptr) << result.summary();
   EXPECT_EQ(issue->count, 1);
   EXPECT_TRUE(contains(issue->message, "triangle 8 (vertices 9, 10, 11)")) << issue->message;
-  EXPECT_TRUE(contains(issue->message, "area below 1e-12 x mean edge length squared")) << issue->message;
+  EXPECT_TRUE(contains(issue->message, "area below 1e-12 x mean edge length squared"))
+      << issue->message;
 }
 
 TEST(Validate, SliversReportCountAndWorst) {
@@ -101,7 +104,8 @@ TEST(Validate, SliversReportCountAndWorst) {
   const MeshIssue* issue = result.find(MeshIssueKind::SliverFaces);
   ASSERT_NE(issue, nullptr) << result.summary();
   EXPECT_EQ(issue->count, 2);
-  EXPECT_TRUE(contains(issue->message, "the worst is triangle 3 (vertices 1, 5, 4)")) << issue->message;
+  EXPECT_TRUE(contains(issue->message, "the worst is triangle 3 (vertices 1, 5, 4)"))
+      << issue->message;
   EXPECT_EQ(result.worstFace, 3);
   EXPECT_NEAR(result.minAngleRad, std::atan2(5e-6, 0.499995), 1e-12);
   EXPECT_FALSE(result.acceptable());
@@ -131,7 +135,8 @@ TEST(Validate, BowTieVertexIsNonManifold) {
   const MeshCheckResult result = checkMesh(soup);
   const MeshIssue* issue = result.find(MeshIssueKind::NonManifoldVertices);
   ASSERT_NE(issue, nullptr) << result.summary();
-  EXPECT_TRUE(contains(issue->message, "vertex 0 at (0, 0, 0) joins 2 separate fans")) << issue->message;
+  EXPECT_TRUE(contains(issue->message, "vertex 0 at (0, 0, 0) joins 2 separate fans"))
+      << issue->message;
   EXPECT_EQ(result.components, 1);  // connected through the vertex
 }
 

@@ -9,10 +9,12 @@
 
 namespace egg::rods::testing {
 
-inline EdgeReference referenceNear(const Eigen::Vector3d& edge, std::mt19937& rng, double spread = 0.2) {
+inline EdgeReference referenceNear(const Eigen::Vector3d& edge, std::mt19937& rng,
+                                   double spread = 0.2) {
   std::normal_distribution<double> noise(0.0, spread);
   EdgeReference r;
-  r.tangent = (edge.normalized() + Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).normalized();
+  r.tangent =
+      (edge.normalized() + Eigen::Vector3d(noise(rng), noise(rng), noise(rng))).normalized();
   Eigen::Vector3d d(noise(rng), noise(rng), 1.0);
   d -= d.dot(r.tangent) * r.tangent;
   r.director = d.normalized();

@@ -37,8 +37,9 @@ Stencil randomStencil(std::mt19937& rng, double bend, double thetaSpread) {
 }
 
 BendTwistDerivatives closedForm(const Stencil& s, double voronoiLength) {
-  return bendTwistDerivatives(edgeFrameDerivatives(s.e0, s.theta0, s.r0), edgeFrameDerivatives(s.e1, s.theta1, s.r1),
-                              kStiffness, voronoiLength);
+  return bendTwistDerivatives(edgeFrameDerivatives(s.e0, s.theta0, s.r0),
+                              edgeFrameDerivatives(s.e1, s.theta1, s.r1), kStiffness,
+                              voronoiLength);
 }
 
 // The reference: HyperDual<8> over (e0, e1, theta0, theta1), frames differentiated in place.
@@ -47,22 +48,26 @@ HyperDual<8> automatic(const Stencil& s, double voronoiLength) {
   const V3<D> e0{D::variable(s.e0.x(), 0), D::variable(s.e0.y(), 1), D::variable(s.e0.z(), 2)};
   const V3<D> e1{D::variable(s.e1.x(), 3), D::variable(s.e1.y(), 4), D::variable(s.e1.z(), 5)};
   const D theta0 = D::variable(s.theta0, 6), theta1 = D::variable(s.theta1, 7);
-  return bendTwistEnergyOfEdges(e0, e1, materialFrame(e0, theta0, s.r0), materialFrame(e1, theta1, s.r1), kStiffness,
-                                voronoiLength);
+  return bendTwistEnergyOfEdges(e0, e1, materialFrame(e0, theta0, s.r0),
+                                materialFrame(e1, theta1, s.r1), kStiffness, voronoiLength);
 }
 
 double energyAt(const Stencil& s, double voronoiLength) {
   const V3<double> e0 = constant<double>(s.e0), e1 = constant<double>(s.e1);
-  return bendTwistEnergyOfEdges(e0, e1, materialFrame(e0, s.theta0, s.r0), materialFrame(e1, s.theta1, s.r1),
-                                kStiffness, voronoiLength);
+  return bendTwistEnergyOfEdges(e0, e1, materialFrame(e0, s.theta0, s.r0),
+                                materialFrame(e1, s.theta1, s.r1), kStiffness, voronoiLength);
 }
 
 Stencil moved(const Stencil& s, int variable, double step) {
   Stencil m = s;
-  if (variable < 3) m.e0[variable] += step;
-  else if (variable < 6) m.e1[variable - 3] += step;
-  else if (variable == 6) m.theta0 += step;
-  else m.theta1 += step;
+  if (variable < 3)
+    m.e0[variable] += step;
+  else if (variable < 6)
+    m.e1[variable - 3] += step;
+  else if (variable == 6)
+    m.theta0 += step;
+  else
+    m.theta1 += step;
   return m;
 }
 
@@ -80,7 +85,8 @@ void expectMatchesAutomatic(const Stencil& s, double voronoiLength) {
   for (int i = 0; i < 8; ++i) {
     EXPECT_NEAR(d.gradient[i], a.g[i], 1e-9 * gradientScale) << "gradient " << i;
     for (int j = 0; j < 8; ++j) {
-      EXPECT_NEAR(d.hessian(i, j), a.hessian(i, j), 1e-9 * hessianScale) << "Hessian " << i << "," << j;
+      EXPECT_NEAR(d.hessian(i, j), a.hessian(i, j), 1e-9 * hessianScale)
+          << "Hessian " << i << "," << j;
     }
   }
 }
@@ -89,7 +95,8 @@ void expectSame(const HyperDual<4>& a, const HyperDual<4>& b, const char* what) 
   EXPECT_NEAR(a.v, b.v, 1e-14) << what;
   for (int i = 0; i < 4; ++i) {
     EXPECT_NEAR(a.g[i], b.g[i], 1e-12) << what << " gradient " << i;
-    for (int j = 0; j < 4; ++j) EXPECT_NEAR(a.hessian(i, j), b.hessian(i, j), 1e-12) << what << " " << i << "," << j;
+    for (int j = 0; j < 4; ++j)
+      EXPECT_NEAR(a.hessian(i, j), b.hessian(i, j), 1e-12) << what << " " << i << "," << j;
   }
 }
 
@@ -130,13 +137,15 @@ TEST(BendTwistDerivatives, EdgeFramesMatchHyperDualOfTheMaterialFrame) {
 
 TEST(BendTwistDerivatives, MatchHyperDualOnRandomStencils) {
   std::mt19937 rng(17);
-  for (int trial = 0; trial < 40; ++trial) expectMatchesAutomatic(randomStencil(rng, 0.5, 1.0), 0.9);
+  for (int trial = 0; trial < 40; ++trial)
+    expectMatchesAutomatic(randomStencil(rng, 0.5, 1.0), 0.9);
 }
 
 TEST(BendTwistDerivatives, MatchHyperDualNearlyStraightAndStronglyTwisted) {
   std::mt19937 rng(23);
   // Nearly straight (the converged grids) and twists up to ~3 rad (value from atan2 wraps there).
-  for (int trial = 0; trial < 20; ++trial) expectMatchesAutomatic(randomStencil(rng, 1e-3, 1.4), 1.3);
+  for (int trial = 0; trial < 20; ++trial)
+    expectMatchesAutomatic(randomStencil(rng, 1e-3, 1.4), 1.3);
 }
 
 TEST(BendTwistDerivatives, OnVerticesMatchHyperDualOverTheVertices) {
@@ -146,21 +155,25 @@ TEST(BendTwistDerivatives, OnVerticesMatchHyperDualOverTheVertices) {
     const Eigen::Vector3d x0(0.3, -0.2, 0.1), x1 = x0 + s.e0, x2 = x1 + s.e1;
     using D = HyperDual<11>;
     std::array<D, 11> v;
-    const double values[11] = {x0.x(), x0.y(), x0.z(), x1.x(), x1.y(), x1.z(), x2.x(), x2.y(), x2.z(), s.theta0, s.theta1};
+    const double values[11] = {x0.x(), x0.y(), x0.z(), x1.x(),   x1.y(),  x1.z(),
+                               x2.x(), x2.y(), x2.z(), s.theta0, s.theta1};
     for (int i = 0; i < 11; ++i) v[i] = D::variable(values[i], i);
-    const D reference = bendTwistEnergy(V3<D>{v[0], v[1], v[2]}, V3<D>{v[3], v[4], v[5]}, V3<D>{v[6], v[7], v[8]}, v[9],
-                                        v[10], s.r0, s.r1, kStiffness, 0.9);
+    const D reference =
+        bendTwistEnergy(V3<D>{v[0], v[1], v[2]}, V3<D>{v[3], v[4], v[5]}, V3<D>{v[6], v[7], v[8]},
+                        v[9], v[10], s.r0, s.r1, kStiffness, 0.9);
     const BendTwistVertexDerivatives d = onVertices(closedForm(s, 0.9));
     EXPECT_NEAR(d.energy, reference.v, 1e-12 * std::abs(reference.v));
     const double gradientScale = reference.g.cwiseAbs().maxCoeff();
     double hessianScale = 0.0;
     for (int i = 0; i < 11; ++i) {
-      for (int j = 0; j <= i; ++j) hessianScale = std::max(hessianScale, std::abs(reference.hessian(i, j)));
+      for (int j = 0; j <= i; ++j)
+        hessianScale = std::max(hessianScale, std::abs(reference.hessian(i, j)));
     }
     for (int i = 0; i < 11; ++i) {
       EXPECT_NEAR(d.gradient[i], reference.g[i], 1e-9 * gradientScale) << "gradient " << i;
       for (int j = 0; j < 11; ++j) {
-        EXPECT_NEAR(d.hessian(i, j), reference.hessian(i, j), 1e-9 * hessianScale) << "Hessian " << i << "," << j;
+        EXPECT_NEAR(d.hessian(i, j), reference.hessian(i, j), 1e-9 * hessianScale)
+            << "Hessian " << i << "," << j;
       }
     }
   }
@@ -195,9 +208,13 @@ TEST(BendTwistDerivatives, MatchFiniteDifferences) {
     for (int i = 0; i < 8; ++i) {
       const double step = 1e-6;
       const Stencil plus = moved(s, i, step), minus = moved(s, i, -step);
-      EXPECT_NEAR(d.gradient[i], (energyAt(plus, l) - energyAt(minus, l)) / (2.0 * step), 1e-6 * gradientScale) << i;
-      const Eigen::Matrix<double, 8, 1> column = (closedForm(plus, l).gradient - closedForm(minus, l).gradient) / (2.0 * step);
-      for (int j = 0; j < 8; ++j) EXPECT_NEAR(d.hessian(j, i), column[j], 1e-6 * hessianScale) << j << "," << i;
+      EXPECT_NEAR(d.gradient[i], (energyAt(plus, l) - energyAt(minus, l)) / (2.0 * step),
+                  1e-6 * gradientScale)
+          << i;
+      const Eigen::Matrix<double, 8, 1> column =
+          (closedForm(plus, l).gradient - closedForm(minus, l).gradient) / (2.0 * step);
+      for (int j = 0; j < 8; ++j)
+        EXPECT_NEAR(d.hessian(j, i), column[j], 1e-6 * hessianScale) << j << "," << i;
     }
   }
 }

@@ -77,7 +77,7 @@ TEST(JoinedNetwork, StackedBoundaryLamellasCarryTheirWeightBetweenTheBeamBounds)
   const double w = rod.material.densityKgM3 * rod.section.widthM * rod.section.thicknessM * 9.81;
   const double ei = model.stiffness(0).bendingWeak;
   const double independent = w * std::pow(length, 4) / (8.0 * ei);  // each lamella on its own
-  const double composite = independent / 4.0;                      // one beam of twice the thickness
+  const double composite = independent / 4.0;  // one beam of twice the thickness
   for (int r = 0; r < 2; ++r) {
     const double sag = -model.contactPoint(r, 40).z();
     EXPECT_GT(sag, composite * 0.98) << "rod " << r;
@@ -104,12 +104,13 @@ TEST(JoinedNetwork, WithoutJoinsTheJoinedRunIsThePatchByPatchRun) {
     for (auto& p : rod.guess) p += shift;
   }
   for (Anchor& a : second.network.anchors) a.position += shift;
-  const JoinedSimulation result =
-      simulateJoinedPatches({first.network, second.network}, {}, whole.surface, SimulationOptions{});
+  const JoinedSimulation result = simulateJoinedPatches({first.network, second.network}, {},
+                                                        whole.surface, SimulationOptions{});
   ASSERT_TRUE(result.converged);
   ASSERT_EQ(result.perPatch.size(), 2u);
   EXPECT_EQ(result.patchByPatch.points, result.perPatch[0].vertices + result.perPatch[1].vertices);
-  EXPECT_NEAR(result.joined.deviation->rmseM, result.patchByPatch.rmseM, 1e-6 * result.patchByPatch.rmseM + 1e-9);
+  EXPECT_NEAR(result.joined.deviation->rmseM, result.patchByPatch.rmseM,
+              1e-6 * result.patchByPatch.rmseM + 1e-9);
   EXPECT_NEAR(result.joined.deviation->maxM, result.patchByPatch.maxM, 1e-6);
 }
 

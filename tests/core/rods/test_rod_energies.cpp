@@ -32,7 +32,8 @@ void expectExactDerivatives(const std::array<double, N>& x, const F& f, double t
   const D exact = derivatives(x);
   ASSERT_NEAR(exact.v, f(x), 1e-12 * (1.0 + std::abs(exact.v)));
   const double gradientScale = exact.g.cwiseAbs().maxCoeff() + 1e-12;
-  const double hessianScale = exact.h.cwiseAbs().maxCoeff() + 1e-12;  // lower triangle holds all values
+  const double hessianScale =
+      exact.h.cwiseAbs().maxCoeff() + 1e-12;  // lower triangle holds all values
   for (size_t i = 0; i < N; ++i) {
     const double step = 1e-6 * std::max(1.0, std::abs(x[i]));
     std::array<double, N> plus = x, minus = x;
@@ -43,7 +44,8 @@ void expectExactDerivatives(const std::array<double, N>& x, const F& f, double t
     const D dp = derivatives(plus), dm = derivatives(minus);
     for (size_t j = 0; j < N; ++j) {
       const double fdh = (dp.g[j] - dm.g[j]) / (2.0 * step);
-      EXPECT_NEAR(exact.hessian(j, i), fdh, tolerance * hessianScale) << "Hessian entry " << j << "," << i;
+      EXPECT_NEAR(exact.hessian(j, i), fdh, tolerance * hessianScale)
+          << "Hessian entry " << j << "," << i;
     }
   }
 }
@@ -67,17 +69,20 @@ TEST(RodEnergies, ParallelTransportMapsFromToAndPreservesAngles) {
 
 TEST(RodEnergies, StretchingGradientAndHessianMatchFiniteDifferences) {
   const std::array<double, 6> x{0.1, -0.2, 0.3, 1.2, 0.4, -0.1};
-  expectExactDerivatives(x, [](const auto& v) { return stretchingEnergy(v3(v, 0), v3(v, 3), 5.0e3, 0.9); });
+  expectExactDerivatives(
+      x, [](const auto& v) { return stretchingEnergy(v3(v, 0), v3(v, 3), 5.0e3, 0.9); });
 }
 
 TEST(RodEnergies, BendTwistGradientAndHessianMatchFiniteDifferences) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-0.3, 0.3);
   for (int trial = 0; trial < 5; ++trial) {
-    std::array<double, 11> x{0.0 + u(rng), u(rng), u(rng), 1.0 + u(rng), u(rng), u(rng), 2.0 + u(rng),
-                             0.5 + u(rng), u(rng), u(rng), u(rng)};
-    const EdgeReference r0 = referenceNear(Eigen::Vector3d(x[3] - x[0], x[4] - x[1], x[5] - x[2]), rng);
-    const EdgeReference r1 = referenceNear(Eigen::Vector3d(x[6] - x[3], x[7] - x[4], x[8] - x[5]), rng);
+    std::array<double, 11> x{0.0 + u(rng), u(rng),       u(rng), 1.0 + u(rng), u(rng), u(rng),
+                             2.0 + u(rng), 0.5 + u(rng), u(rng), u(rng),       u(rng)};
+    const EdgeReference r0 =
+        referenceNear(Eigen::Vector3d(x[3] - x[0], x[4] - x[1], x[5] - x[2]), rng);
+    const EdgeReference r1 =
+        referenceNear(Eigen::Vector3d(x[6] - x[3], x[7] - x[4], x[8] - x[5]), rng);
     expectExactDerivatives(x, [&](const auto& v) {
       return bendTwistEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v[9], v[10], r0, r1, kStiffness, 1.1);
     });
@@ -112,13 +117,19 @@ TEST(RodEnergies, TwistOfAStraightRodIsTheAngleDifference) {
 TEST(RodEnergies, ConnectionGradientAndHessianMatchFiniteDifferences) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-0.2, 0.2);
-  const std::array<double, 16> x{0, 0, 0, 1 + u(rng), u(rng), u(rng), u(rng), 0.4,
-                                 0.5 + u(rng), -0.5, 0.05, 0.4 + u(rng), 0.6, 0.1, u(rng), 0.6};
-  const EdgeReference rg = referenceNear(Eigen::Vector3d(x[3] - x[0], x[4] - x[1], x[5] - x[2]), rng);
-  const EdgeReference rh = referenceNear(Eigen::Vector3d(x[11] - x[8], x[12] - x[9], x[13] - x[10]), rng);
+  const std::array<double, 16> x{0,          0,      0,
+                                 1 + u(rng), u(rng), u(rng),
+                                 u(rng),     0.4,    0.5 + u(rng),
+                                 -0.5,       0.05,   0.4 + u(rng),
+                                 0.6,        0.1,    u(rng),
+                                 0.6};
+  const EdgeReference rg =
+      referenceNear(Eigen::Vector3d(x[3] - x[0], x[4] - x[1], x[5] - x[2]), rng);
+  const EdgeReference rh =
+      referenceNear(Eigen::Vector3d(x[11] - x[8], x[12] - x[9], x[13] - x[10]), rng);
   expectExactDerivatives(x, [&](const auto& v) {
-    return connectionEnergy(v3(v, 0), v3(v, 3), v[6], v[7], rg, v3(v, 8), v3(v, 11), v[14], v[15], rh, 0.04, 1.0e3,
-                            20.0);
+    return connectionEnergy(v3(v, 0), v3(v, 3), v[6], v[7], rg, v3(v, 8), v3(v, 11), v[14], v[15],
+                            rh, 0.04, 1.0e3, 20.0);
   });
 }
 
@@ -128,15 +139,18 @@ TEST(RodEnergies, ConnectionIsZeroForStackedRodsWithParallelNormals) {
   const double t = 0.04;
   // Lower rod along x through the origin, upper rod along y, one thickness above the crossing.
   const V3<double> g0{-1, 0, 0}, g1{1, 0, 0}, h0{0, -1, t}, h1{0, 1, t};
-  EXPECT_NEAR(connectionEnergy(g0, g1, 0.0, 0.5, rg, h0, h1, 0.0, 0.5, rh, t, 1e6, 1e3), 0.0, 1e-20);
+  EXPECT_NEAR(connectionEnergy(g0, g1, 0.0, 0.5, rg, h0, h1, 0.0, 0.5, rh, t, 1e6, 1e3), 0.0,
+              1e-20);
   // Moving the bolt along the upper rod by 0.1 (beta 0.55) costs 2 lambda 0.1^2.
-  EXPECT_NEAR(connectionEnergy(g0, g1, 0.0, 0.5, rg, h0, h1, 0.0, 0.55, rh, t, 1e6, 1e3), 2e6 * 0.01, 1e-6);
+  EXPECT_NEAR(connectionEnergy(g0, g1, 0.0, 0.5, rg, h0, h1, 0.0, 0.55, rh, t, 1e6, 1e3),
+              2e6 * 0.01, 1e-6);
 }
 
 TEST(RodEnergies, FastenedJointGradientAndHessianMatchFiniteDifferences) {
   const std::array<double, 12> x{0.1, 0.0, 0.05, 1.1, 0.2, -0.1, 0.4, -0.6, 0.1, 0.7, 0.5, 0.0};
   expectExactDerivatives(x, [&](const auto& v) {
-    return fastenedJointEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v3(v, 9), std::cos(1.2), std::sin(1.2), 40.0);
+    return fastenedJointEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v3(v, 9), std::cos(1.2), std::sin(1.2),
+                               40.0);
   });
 }
 
@@ -172,10 +186,12 @@ TEST(RodEnergies, SliderGradientAndHessianMatchFiniteDifferencesNearNotchEnds) {
   p.notchMax = 2.3;  // inside the edge: upper barrier active
   p.unit = 3.0;
   for (double beta : {0.05, 0.3, 0.55}) {
-    expectExactDerivatives(std::array<double, 1>{beta}, [&](const auto& v) { return sliderEnergy(v[0], p); }, 1e-5);
+    expectExactDerivatives(
+        std::array<double, 1>{beta}, [&](const auto& v) { return sliderEnergy(v[0], p); }, 1e-5);
   }
-  EXPECT_TRUE(std::isinf(sliderEnergy(0.61, p)));   // past the notch end at beta = 0.6
-  EXPECT_TRUE(std::isinf(sliderEnergy(-0.001, SliderParameters{})));  // more than epsilon before the edge
+  EXPECT_TRUE(std::isinf(sliderEnergy(0.61, p)));  // past the notch end at beta = 0.6
+  EXPECT_TRUE(
+      std::isinf(sliderEnergy(-0.001, SliderParameters{})));  // more than epsilon before the edge
 }
 
 TEST(RodEnergies, SliderFrictionMatchesTheThesisFormula) {
@@ -185,14 +201,16 @@ TEST(RodEnergies, SliderFrictionMatchesTheThesisFormula) {
   p.notchMin = 0.0;
   p.notchMax = 20.0;
   const double beta = 0.3;
-  const double expected = std::pow(0.1 * std::log(1e-4 + beta), 2) + std::pow(0.1 * std::log(1e-4 + 1 - beta), 2);
+  const double expected =
+      std::pow(0.1 * std::log(1e-4 + beta), 2) + std::pow(0.1 * std::log(1e-4 + 1 - beta), 2);
   EXPECT_NEAR(sliderEnergy(beta, p), expected, 1e-15);
 }
 
 TEST(RodEnergies, EndMomentGradientAndHessianMatchFiniteDifferences) {
   const std::array<double, 6> x{0.1, 0.2, 0.0, 0.7, 0.9, 0.1};
   expectExactDerivatives(x, [](const auto& v) {
-    return endMomentPotential(v3(v, 0), v3(v, 3), Eigen::Vector3d::UnitZ(), 2.5, Eigen::Vector3d::UnitX(), 6.0);
+    return endMomentPotential(v3(v, 0), v3(v, 3), Eigen::Vector3d::UnitZ(), 2.5,
+                              Eigen::Vector3d::UnitX(), 6.0);
   });
 }
 

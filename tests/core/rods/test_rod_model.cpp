@@ -69,7 +69,8 @@ TEST(RodModel, SlidingSolveIsBitIdenticalOnOneAndTwoThreads) {
   EXPECT_EQ(a.energy, b.energy);
   EXPECT_EQ(a.boltEdgeSwitches, b.boltEdgeSwitches);
   EXPECT_EQ(one.model.boltPosition(0, 0), two.model.boltPosition(0, 0));
-  for (int i = 0; i < one.model.vertexCount(0); ++i) EXPECT_EQ(one.model.vertex(0, i), two.model.vertex(0, i)) << i;
+  for (int i = 0; i < one.model.vertexCount(0); ++i)
+    EXPECT_EQ(one.model.vertex(0, i), two.model.vertex(0, i)) << i;
 }
 
 TEST(RodModel, NotchLimitHoldsTheBoltInItsSlot) {

@@ -67,8 +67,10 @@ TEST(RodModelEnergy, WholeModelDerivativesMatchFiniteDifferences) {
       model.derivatives(minus, gm, triplets);
       const Eigen::VectorXd column = (gp - gm) / (2.0 * step);
       for (int j = 0; j < n; ++j) {
-        // Round-off in the differenced gradient (entries up to EA/h) limits the attainable accuracy.
-        EXPECT_NEAR(hessian(j, i), column[j], 1e-8 * hessianScale + 1e-5 * std::abs(hessian(j, i))) << j << "," << i;
+        // Round-off in the differenced gradient (entries up to EA/h) limits the attainable
+        // accuracy.
+        EXPECT_NEAR(hessian(j, i), column[j], 1e-8 * hessianScale + 1e-5 * std::abs(hessian(j, i)))
+            << j << "," << i;
       }
     }
   }

@@ -15,8 +15,8 @@ namespace egg::rods {
 namespace {
 
 // Thin lamella (t/L = 1e-3, so stretching is negligible against bending) along a polyline.
-RodNetwork singleRod(const std::vector<Eigen::Vector3d>& polyline, const std::vector<Eigen::Vector3d>& normals,
-                     double length) {
+RodNetwork singleRod(const std::vector<Eigen::Vector3d>& polyline,
+                     const std::vector<Eigen::Vector3d>& normals, double length) {
   RodNetwork network;
   Rod rod;
   rod.lengthM = length;
@@ -54,7 +54,8 @@ struct Cantilever {
   int n = 80;
   double h = freeLength / (n - 0.5);
   RodModel model;
-  explicit Cantilever(double shearModulus = 0.6e9) : model(withShearModulus(straightRod(n * h), shearModulus), edges(n)) {
+  explicit Cantilever(double shearModulus = 0.6e9)
+      : model(withShearModulus(straightRod(n * h), shearModulus), edges(n)) {
     model.fixVertex(0, 0);
     model.fixVertex(0, 1);
     model.fixTwist(0, 0);
@@ -65,11 +66,13 @@ struct Cantilever {
 
 TEST(RodSolver, CantileverTipLoadMatchesElasticaTable) {
   // alpha = P L^2 / EI -> tip deflection v/L (docs/architecture.md "Validation references").
-  const std::vector<std::pair<double, double>> table{{1.0, 0.30172}, {2.0, 0.49346}, {5.0, 0.71379}, {10.0, 0.81061}};
+  const std::vector<std::pair<double, double>> table{
+      {1.0, 0.30172}, {2.0, 0.49346}, {5.0, 0.71379}, {10.0, 0.81061}};
   for (const auto& [alpha, expected] : table) {
     Cantilever c;
     const double ei = c.model.stiffness(0).bendingWeak;
-    c.model.addPointLoad(0, c.n, Eigen::Vector3d(0, 0, -alpha * ei / (c.freeLength * c.freeLength)));
+    c.model.addPointLoad(0, c.n,
+                         Eigen::Vector3d(0, 0, -alpha * ei / (c.freeLength * c.freeLength)));
     const SolverResult result = minimiseEnergy(c.model, tight());
     ASSERT_TRUE(result.converged) << result.reason;
     const Eigen::Vector3d d = c.tip() - c.root();
@@ -218,10 +221,12 @@ TEST(RodSolver, ObserverSeesEveryNthIterationAndTheFinalStateOnce) {
     EXPECT_EQ(result.iterations, reference.iterations);
     EXPECT_EQ(result.energy, reference.energy);
     EXPECT_EQ(watched->tip(), plain->tip());
-    // Steps leave the states of iterations 0 .. K-1; those divisible by `every`, then the final one.
+    // Steps leave the states of iterations 0 .. K-1; those divisible by `every`, then the final
+    // one.
     const int k = result.iterations;
     const int expected = (k - 1) / every + 1 + 1;
-    ASSERT_EQ(static_cast<int>(seen.size()), expected) << "every " << every << ", " << k << " iterations";
+    ASSERT_EQ(static_cast<int>(seen.size()), expected)
+        << "every " << every << ", " << k << " iterations";
     EXPECT_EQ(result.observations, expected);
     EXPECT_GE(result.observerSeconds, 0.0);
     for (size_t i = 0; i + 1 < seen.size(); ++i) {

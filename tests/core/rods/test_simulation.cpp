@@ -107,7 +107,9 @@ TEST(Simulation, NotchedVaultUnderSelfWeightConvergesSymmetricAndLinear) {
     int partners = 0;
     double asymmetry = 0.0;
     const auto& rods = grid.network.rods;
-    auto turn = [&](const Eigen::Vector3d& p) { return Eigen::Vector3d(-p.x(), length - p.y(), p.z()); };
+    auto turn = [&](const Eigen::Vector3d& p) {
+      return Eigen::Vector3d(-p.x(), length - p.y(), p.z());
+    };
     for (size_t a = 0; a < rods.size(); ++a) {
       for (size_t b = 0; b < rods.size(); ++b) {
         if ((rods[b].guess.front() - turn(rods[a].guess.back())).norm() > 1e-9) continue;
@@ -116,7 +118,8 @@ TEST(Simulation, NotchedVaultUnderSelfWeightConvergesSymmetricAndLinear) {
         const auto& cb = run.centrelines[b];
         ASSERT_EQ(ca.size(), cb.size());
         ++partners;
-        for (size_t i = 0; i < ca.size(); ++i) asymmetry = std::max(asymmetry, (ca[i] - turn(cb[cb.size() - 1 - i])).norm());
+        for (size_t i = 0; i < ca.size(); ++i)
+          asymmetry = std::max(asymmetry, (ca[i] - turn(cb[cb.size() - 1 - i])).norm());
       }
     }
     EXPECT_EQ(partners, static_cast<int>(rods.size()));
@@ -250,7 +253,8 @@ TEST(Simulation, HistoryRecordsTheErrorFromTheGuessToTheFinalState) {
     EXPECT_EQ(run.history[i].iteration, 3 * static_cast<int>(i));
     EXPECT_LE(run.history[i].seconds, run.history[i + 1].seconds);
   }
-  // The start is the guess: only the chordal error of the mesh (ContactPointsOfTheGuessLieOnTheSurface).
+  // The start is the guess: only the chordal error of the mesh
+  // (ContactPointsOfTheGuessLieOnTheSurface).
   EXPECT_LT(run.history.front().maxM, 0.05 * 0.05 / (8.0 * 3.0) * 1.01);
   EXPECT_EQ(run.history.back().iteration, k);
   EXPECT_EQ(run.history.back().rmseM, run.deviation->rmseM);
@@ -261,7 +265,8 @@ TEST(Simulation, HistoryRecordsTheErrorFromTheGuessToTheFinalState) {
   EXPECT_LT(run.historySeconds, run.solver.seconds);
 }
 
-// The stage keeps the history of the deployed run only: the run without notches is a comparison of ends.
+// The stage keeps the history of the deployed run only: the run without notches is a comparison of
+// ends.
 TEST(Simulation, HistoryIsTheDeployedRunsOnly) {
   const SampleGrid grid = smallVault();
   SimulationOptions options;
@@ -288,7 +293,8 @@ TEST(Simulation, HistoryAcrossLoadStepsSamplesEachStateOnce) {
   ASSERT_EQ(run.history.size(), 4u);  // start, end of the weightless solve, of load step 1, of 2
   for (int step = 0; step <= 2; ++step) EXPECT_EQ(run.history[step + 1].loadStep, step);
   EXPECT_EQ(run.history[0].iteration, 0);
-  for (size_t i = 0; i + 1 < run.history.size(); ++i) EXPECT_LT(run.history[i].iteration, run.history[i + 1].iteration);
+  for (size_t i = 0; i + 1 < run.history.size(); ++i)
+    EXPECT_LT(run.history[i].iteration, run.history[i + 1].iteration);
   EXPECT_EQ(run.history.back().iteration, run.solver.iterations);
   EXPECT_EQ(run.history.back().rmseM, run.deviation->rmseM);
 }

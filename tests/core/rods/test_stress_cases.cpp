@@ -10,7 +10,8 @@ namespace egg::rods {
 namespace {
 
 TEST(StressCases, CoverTheRangesOfTheIssue) {
-  double minScale = 1e9, maxScale = 0, minRatio = 1e9, maxRatio = 0, minE = 1e99, maxE = 0, minRho = 1e9, maxRho = 0;
+  double minScale = 1e9, maxScale = 0, minRatio = 1e9, maxRatio = 0, minE = 1e99, maxE = 0,
+         minRho = 1e9, maxRho = 0;
   for (const StressCase& c : stressCases()) {
     minScale = std::min(minScale, 3.0 * c.scale);
     maxScale = std::max(maxScale, 3.0 * c.scale);
@@ -33,7 +34,8 @@ TEST(StressCases, CoverTheRangesOfTheIssue) {
 
 TEST(StressCases, ExtremeCornersConvergeOrSayWhyAndStayFinite) {
   for (const StressCase& c : stressCases()) {
-    if (c.name.find(',') == std::string::npos && c.name != "base") continue;  // base and the two corners
+    if (c.name.find(',') == std::string::npos && c.name != "base")
+      continue;  // base and the two corners
     const StressOutcome o = runStressCase(c, /*timeLimit_s=*/8.0, /*maxIterations=*/300);
     EXPECT_TRUE(o.finite) << c.name;
     EXPECT_TRUE(o.converged || !o.reason.empty()) << c.name;
@@ -47,7 +49,8 @@ TEST(StressCases, ExtremeCornersConvergeOrSayWhyAndStayFinite) {
     if (c.name.rfind("soft heavy", 0) == 0) {
       // A 220 m vault of 0.5 GPa strips 11 cm x 1.1 cm at steel density: its weight per length
       // is ~10^4 times what a lone strip arch of that size can carry (~14 EI/R^3), and sliding
-      // lets it fall through; after 300 iterations (the weightless deployment alone takes over 150) it is ~46 m down, moving.
+      // lets it fall through; after 300 iterations (the weightless deployment alone takes over 150)
+      // it is ~46 m down, moving.
       EXPECT_EQ(o.status, SolverStatus::Collapsed) << o.reason;
       EXPECT_GT(o.sagM, 0.05 * o.extentM);
     }

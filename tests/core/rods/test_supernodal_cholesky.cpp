@@ -4,8 +4,8 @@
 
 #include "core/errors.hpp"
 
-#include <Eigen/SparseCholesky>
 #include <gtest/gtest.h>
+#include <Eigen/SparseCholesky>
 
 #include <random>
 #include <vector>
@@ -15,7 +15,8 @@ namespace {
 
 // A grid of crossing "rods": nx x ny nodes with `block` unknowns each, coupled to their
 // neighbours along both directions (dense blocks), diagonally dominant plus `diagonalShift`.
-Eigen::SparseMatrix<double> gridMatrix(int nx, int ny, int block, double diagonalShift, unsigned seed) {
+Eigen::SparseMatrix<double> gridMatrix(int nx, int ny, int block, double diagonalShift,
+                                       unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const int n = nx * ny * block;
@@ -123,7 +124,8 @@ TEST(SupernodalCholesky, RefusesAnotherPatternAndASolveAfterAFailure) {
   // Same size and entry count, one entry moved (as when a bolt slides to another edge).
   std::vector<Eigen::Triplet<double>> triplets;
   for (int j = 0; j < lower.outerSize(); ++j) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(lower, j); it; ++it) triplets.emplace_back(it.row(), it.col(), it.value());
+    for (Eigen::SparseMatrix<double>::InnerIterator it(lower, j); it; ++it)
+      triplets.emplace_back(it.row(), it.col(), it.value());
   }
   for (auto& t : triplets) {
     if (t.row() != t.col()) {

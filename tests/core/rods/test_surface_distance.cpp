@@ -20,9 +20,9 @@ TriMesh unitSquare() {
 
 TEST(SurfaceDistance, PointsAboveInsideAndBesideTheSquare) {
   const SurfaceDistance surface(unitSquare());
-  EXPECT_NEAR(surface.distance({0.3, 0.6, 0.25}), 0.25, 1e-15);          // above the interior
-  EXPECT_NEAR(surface.distance({0.5, 0.5, -0.1}), 0.1, 1e-15);           // below, across the diagonal
-  EXPECT_NEAR(surface.distance({2.0, 0.5, 0.0}), 1.0, 1e-15);            // beside an edge
+  EXPECT_NEAR(surface.distance({0.3, 0.6, 0.25}), 0.25, 1e-15);  // above the interior
+  EXPECT_NEAR(surface.distance({0.5, 0.5, -0.1}), 0.1, 1e-15);   // below, across the diagonal
+  EXPECT_NEAR(surface.distance({2.0, 0.5, 0.0}), 1.0, 1e-15);    // beside an edge
   EXPECT_NEAR(surface.distance({2.0, 2.0, 1.0}), std::sqrt(3.0), 1e-15);  // beyond a corner
   const Eigen::Vector3d c = surface.closestPoint({2.0, 0.5, 0.3});
   EXPECT_NEAR((c - Eigen::Vector3d(1.0, 0.5, 0.0)).norm(), 0.0, 1e-15);
@@ -39,7 +39,9 @@ TEST(SurfaceDistance, DeviationStatsAreRmsMaxAndNormalisedRms) {
   EXPECT_THROW(measureDeviation(points, surface, 0.0), InvalidInput);
 }
 
-TEST(SurfaceDistance, EmptyMeshIsInvalidInput) { EXPECT_THROW(SurfaceDistance(TriMesh{}), InvalidInput); }
+TEST(SurfaceDistance, EmptyMeshIsInvalidInput) {
+  EXPECT_THROW(SurfaceDistance(TriMesh{}), InvalidInput);
+}
 
 }  // namespace
 }  // namespace egg::rods

@@ -346,11 +346,9 @@ std::vector<SceneSection> makeSections() {
            s.surface.scaleToM = j.positive("scale_to_m", s.surface.scaleToM, 1e6);
          },
          [](const Scene& s) { return isSample(s) ? std::nullopt : some(s.surface.scaleToM); }},
-        boolean(
-            "keep_largest_component",
-            [](Scene & s) -> auto& { return s.surface.keepLargestComponent; },
-            "keep the largest connected component of a mesh file (with a warning) instead of "
-            "failing")},
+        boolean("keep_largest_component", EGG_AT(surface.keepLargestComponent),
+                "keep the largest connected component of a mesh file (with a warning) instead of "
+                "failing")},
        checkSurface});
 
   sections.push_back(
@@ -364,10 +362,9 @@ std::vector<SceneSection> makeSections() {
            return s.patching.workflowGiven || s.patching.quads.empty() ? some(s.patching.workflow)
                                                                        : std::nullopt;
          }},
-        number(
-            "eta_max", [](Scene & s) -> auto& { return s.design().uniqueness.etaMax; }, 1.0, 2.0,
-            "largest ratio of geodesic lengths a patch may have (uniqueness, Sections 2.3.3, "
-            "3.4.1)"),
+        number("eta_max", EGG_AT(design().uniqueness.etaMax), 1.0, 2.0,
+               "largest ratio of geodesic lengths a patch may have (uniqueness, Sections 2.3.3, "
+               "3.4.1)"),
         {"slope_bounds", "two numbers in [1e-06, 1e+06]",
          "[k_min, k_max] of the cladding functions' slopes (Problem 2.3)",
          [](JsonSection& j, Scene& s) {
@@ -379,19 +376,16 @@ std::vector<SceneSection> makeSections() {
            return some(
                std::array<double, 2>{s.design().alphaBar.slopeMin, s.design().alphaBar.slopeMax});
          }},
-        positive(
-            "max_patch_size_m",
-            [](Scene & s) -> auto& { return s.patching.workflow2.maxPatchSizeM; }, 1e5,
-            "largest patch diagonal Workflow 2 proposes (handling on site, 3.5.3)"),
+        positive("max_patch_size_m", EGG_AT(patching.workflow2.maxPatchSizeM), 1e5,
+                 "largest patch diagonal Workflow 2 proposes (handling on site, 3.5.3)"),
         {"block_grid", "two integers in [1, 16]",
          "Workflow 2's grid of patches [along u, along v] (default: screened)", readBlockGrid,
          [](const Scene& s) {
            return s.patching.workflow2.blockGrid[0] > 0 ? some(s.patching.workflow2.blockGrid)
                                                         : std::nullopt;
          }},
-        integer(
-            "max_splits", [](Scene & s) -> auto& { return s.patching.layout.maxSplits; }, 0, 10000,
-            "Workflow 1: splits before it gives up"),
+        integer("max_splits", EGG_AT(patching.layout.maxSplits), 0, 10000,
+                "Workflow 1: splits before it gives up"),
         {"smoothing", "true or false",
          "smooth a patch whose eta fails (2.3.3); default: yes for a given layout, no in the "
          "workflows (they split)",
@@ -401,9 +395,8 @@ std::vector<SceneSection> makeSections() {
          [](const Scene& s) {
            return s.patching.smoothing ? some(*s.patching.smoothing) : std::nullopt;
          }},
-        number(
-            "min_patch_size_m", [](Scene & s) -> auto& { return s.patching.layout.minSideM; }, 0.0,
-            1e5, "Workflow 1: no split makes a side shorter than this (0: 2.5 mean edge lengths)"),
+        number("min_patch_size_m", EGG_AT(patching.layout.minSideM), 0.0, 1e5,
+               "Workflow 1: no split makes a side shorter than this (0: 2.5 mean edge lengths)"),
         {"corners", "array of [x, y, z]",
          "a given layout's corners on the surface, metres (with patches as index quads)",
          readCorners,
@@ -414,8 +407,7 @@ std::vector<SceneSection> makeSections() {
          }},
         {"patches", "array of four corners",
          "a given layout: per patch four corners [x, y, z], or four indices into corners (a corner "
-         "may lie on another "
-         "patch's side: a T-junction)",
+         "may lie on another patch's side: a T-junction)",
          readPatches,
          [](const Scene& s) {
            return s.patching.quads.empty() ? std::nullopt : some(s.patching.quads);
@@ -431,28 +423,19 @@ std::vector<SceneSection> makeSections() {
          [](const Scene& s) {
            return s.design().members.count > 0 ? some(s.design().members.count) : some("auto");
          }},
-        number(
-            "member_spacing_factor",
-            [](Scene & s) -> auto& { return s.design().members.spacingFactor; }, 2.0, 1000.0,
-            "auto members: target spacing between members = this x the lamella width (2.4.4)"),
-        integer(
-            "map_resolution", [](Scene & s) -> auto& { return s.design().maps.resolution; }, 8,
-            2000, "samples per side of the distance maps (2.4.1)"),
-        number(
-            "map_tolerance_relative",
-            [](Scene & s) -> auto& { return s.design().maps.toleranceRelative; }, 0.0, 0.1,
-            "largest miss of a map row interpolated between exact ones, over the shorter side; 0: "
-            "every row exact"),
-        integer(
-            "map_proxy_vertices", [](Scene & s) -> auto& { return s.design().maps.proxyVertices; },
-            0, 10000000,
-            "distance maps on a coarse proxy of at most this many vertices (0: on the patch "
-            "itself)"),
-        number(
-            "min_planar_angle_rad",
-            [](Scene & s) -> auto& { return s.design().alphaBar.minPlanarAngle; }, 0.0, 0.78,
-            "smallest inner angle of the planar quad, so that the cut grid does not fold flat "
-            "(criterion iv)"),
+        number("member_spacing_factor", EGG_AT(design().members.spacingFactor), 2.0, 1000.0,
+               "auto members: target spacing between members = this x the lamella width (2.4.4)"),
+        integer("map_resolution", EGG_AT(design().maps.resolution), 8, 2000,
+                "samples per side of the distance maps (2.4.1)"),
+        number("map_tolerance_relative", EGG_AT(design().maps.toleranceRelative), 0.0, 0.1,
+               "largest miss of a map row interpolated between exact ones, over the shorter side; "
+               "0: every row exact"),
+        integer("map_proxy_vertices", EGG_AT(design().maps.proxyVertices), 0, 10000000,
+                "distance maps on a coarse proxy of at most this many vertices (0: on the patch "
+                "itself)"),
+        number("min_planar_angle_rad", EGG_AT(design().alphaBar.minPlanarAngle), 0.0, 0.78,
+               "smallest inner angle of the planar quad, so that the cut grid does not fold flat "
+               "(criterion iv)"),
         {"alpha_bar", "\"min\", \"max\", \"unrolled\" or radians in (0, pi)",
          "which alpha_bar of the feasible range the grid is built at (Problem 2.3)", readAlphaBar,
          [](const Scene& s) { return some(alphaBarJson(s.design().alphaBar)); }}},
@@ -461,12 +444,9 @@ std::vector<SceneSection> makeSections() {
   sections.push_back(
       {"lamella",
        "The section and material every member is cut from.",
-       {positive(
-            "width_m", [](Scene & s) -> auto& { return s.lamella.widthM; }, 10.0,
-            "section width w (strong axis)"),
-        positive(
-            "thickness_m", [](Scene & s) -> auto& { return s.lamella.thicknessM; }, 10.0,
-            "section thickness t (weak axis), at most the width"),
+       {positive("width_m", EGG_AT(lamella.widthM), 10.0, "section width w (strong axis)"),
+        positive("thickness_m", EGG_AT(lamella.thicknessM), 10.0,
+                 "section thickness t (weak axis), at most the width"),
         {"material", "string",
          "the material (E, G, density, strengths) from the catalogue: " + materialNames(),
          [](JsonSection& j, Scene& s) {
@@ -478,112 +458,88 @@ std::vector<SceneSection> makeSections() {
   sections.push_back(
       {"simulation",
        "The deployment with discrete elastic rods and sliding bolts (Section 2.5).",
-       {boolean(
-            "enabled", [](Scene & s) -> auto& { return s.simulation.enabled; },
-            "simulate the deployed grid"),
-        boolean(
-            "gravity", [](Scene & s) -> auto& { return s.simulation.rods.model.gravity; },
-            "self-weight from the material's density (3.5.2)"),
-        number(
-            "friction_mu", [](Scene & s) -> auto& { return s.simulation.rods.model.frictionMu; },
-            0.0, 2.0, "pseudo-friction coefficient of E_p (2.5)"),
-        boolean(
-            "notches", [](Scene & s) -> auto& { return s.simulation.rods.model.notches; },
-            "bolts slide in their notches (RMS2 of 2.6.2); false: plain holes"),
-        boolean(
-            "compare_without_notches",
-            [](Scene & s) -> auto& { return s.simulation.rods.compareWithoutNotches; },
-            "also simulate every patch with plain holes (RMS1 of 2.6.2): a second full run per "
-            "patch"),
-        choice(
-            "supports", [](Scene & s) -> auto& { return s.simulation.supports; },
-            {{SupportChoice::Auto, "auto"},
-             {SupportChoice::Anchors, "anchors"},
-             {SupportChoice::DesignBoundary, "design_boundary"}},
-            "where the grid is held: anchors (corners, curvature extrema, 2.4.6), design_boundary "
-            "(also every connection "
-            "on a side no other patch shares, 3.5.3), auto: anchors for one patch, design_boundary "
-            "for several"),
-        boolean(
-            "hold_shared_sides", [](Scene & s) -> auto& { return s.simulation.holdSharedSides; },
-            "patch by patch with design_boundary supports, also hold the sides shared with a "
-            "neighbour (Fig. 3.17)"),
-        boolean(
-            "join_patches", [](Scene & s) -> auto& { return s.simulation.joinPatches; },
-            "also simulate the whole structure, neighbours bolted along their shared lamellas "
-            "(3.5.3)"),
-        boolean(
-            "fasten_bolts",
-            [](Scene & s) -> auto& { return s.simulation.rods.fastenBoltsUnderLoad; },
-            "under self-weight, bolts tightened at the weightless equilibrium before the grid "
-            "carries its weight"),
-        number(
-            "newton_tolerance",
-            [](Scene & s) -> auto& { return s.simulation.rods.solver.tolerance; }, 1e-16, 1e-2,
-            "Newton stops when its decrement falls below this x the energy scale"),
-        number(
-            "time_limit_s", [](Scene & s) -> auto& { return s.simulation.rods.solver.timeLimitS; },
-            0.1, 1e6,
-            "wall-clock hang guard of each solve (the iteration limit, not this, decides "
-            "results)")},
+       {boolean("enabled", EGG_AT(simulation.enabled), "simulate the deployed grid"),
+        boolean("gravity", EGG_AT(simulation.rods.model.gravity),
+                "self-weight from the material's density (3.5.2)"),
+        number("friction_mu", EGG_AT(simulation.rods.model.frictionMu), 0.0, 2.0,
+               "pseudo-friction coefficient of E_p (2.5)"),
+        boolean("notches", EGG_AT(simulation.rods.model.notches),
+                "bolts slide in their notches (RMS2 of 2.6.2); false: plain holes"),
+        boolean("compare_without_notches", EGG_AT(simulation.rods.compareWithoutNotches),
+                "also simulate every patch with plain holes (RMS1 of 2.6.2): a second full run per "
+                "patch"),
+        choice("supports", EGG_AT(simulation.supports),
+               {{SupportChoice::Auto, "auto"},
+                {SupportChoice::Anchors, "anchors"},
+                {SupportChoice::DesignBoundary, "design_boundary"}},
+               "where the grid is held: anchors (corners, curvature extrema, 2.4.6), "
+               "design_boundary (also every connection on a side no other patch shares, 3.5.3), "
+               "auto: anchors for one patch, design_boundary for several"),
+        boolean("hold_shared_sides", EGG_AT(simulation.holdSharedSides),
+                "patch by patch with design_boundary supports, also hold the sides shared with a "
+                "neighbour (Fig. 3.17)"),
+        boolean("join_patches", EGG_AT(simulation.joinPatches),
+                "also simulate the whole structure, neighbours bolted along their shared lamellas "
+                "(3.5.3)"),
+        boolean("fasten_bolts", EGG_AT(simulation.rods.fastenBoltsUnderLoad),
+                "under self-weight, bolts tightened at the weightless equilibrium before the grid "
+                "carries its weight"),
+        number("newton_tolerance", EGG_AT(simulation.rods.solver.tolerance), 1e-16, 1e-2,
+               "Newton stops when its decrement falls below this x the energy scale"),
+        number("time_limit_s", EGG_AT(simulation.rods.solver.timeLimitS), 0.1, 1e6,
+               "wall-clock hang guard of each solve (the iteration limit, not this, decides "
+               "results)")},
        {}});
 
-  const auto fab = [](auto member) {
-    return [member](Scene & s) -> auto& { return member(s.fabrication.options); };
-  };
   sections.push_back(
       {"fabrication",
        "What the workshop cuts (Sections 3.5, 3.6.1); lengths in millimetres.",
-       {boolean(
-            "enabled", [](Scene & s) -> auto& { return s.fabrication.enabled; },
-            "write cut files, stickers, supports, BOM"),
-        pair("sheet_mm", fab([](auto& f) -> auto& { return f.sheetMm; }), 1.0, 1e5,
+       {boolean("enabled", EGG_AT(fabrication.enabled), "write cut files, stickers, supports, BOM"),
+        pair("sheet_mm", EGG_AT(fabrication.options.sheetMm), 1.0, 1e5,
              "stock sheet or laser bed; strips run along the first side"),
-        positive("bolt_diameter_mm", fab([](auto& f) -> auto& { return f.boltDiameterMm; }), 1000.0,
+        positive("bolt_diameter_mm", EGG_AT(fabrication.options.boltDiameterMm), 1000.0,
                  "hole diameter and slot width"),
-        number("kerf_mm", fab([](auto& f) -> auto& { return f.kerfMm; }), 0.0, 100.0,
+        number("kerf_mm", EGG_AT(fabrication.options.kerfMm), 0.0, 100.0,
                "width the cutter removes between parts"),
-        number("margin_mm", fab([](auto& f) -> auto& { return f.marginMm; }), 0.0, 1e4,
+        number("margin_mm", EGG_AT(fabrication.options.marginMm), 0.0, 1e4,
                "unused border of every sheet"),
-        number("min_notch_mm", fab([](auto& f) -> auto& { return f.minNotchMm; }), 0.0, 1e4,
+        number("min_notch_mm", EGG_AT(fabrication.options.minNotchMm), 0.0, 1e4,
                "shorter notches are cut as plain holes (mesh noise, 2.4.5)"),
-        positive("stock_length_mm", fab([](auto& f) -> auto& { return f.stockLengthMm; }), 1e6,
+        positive("stock_length_mm", EGG_AT(fabrication.options.stockLengthMm), 1e6,
                  "longest piece a lamella is cut from; longer lamellas are spliced"),
-        optionalNumber("end_overhang_mm", fab([](auto& f) -> auto& { return f.endOverhangMm; }),
-                       0.0, 1e4, "strip beyond the end connections (default: half the width)"),
-        optionalNumber("splice_clearance_mm",
-                       fab([](auto& f) -> auto& { return f.spliceClearanceMm; }), 0.0, 1e5,
-                       "no hole or slot this close to a splice (default: the width)"),
-        optionalNumber("min_splice_clearance_mm",
-                       fab([](auto& f) -> auto& { return f.minSpliceClearanceMm; }), 0.0, 1e5,
+        optionalNumber("end_overhang_mm", EGG_AT(fabrication.options.endOverhangMm), 0.0, 1e4,
+                       "strip beyond the end connections (default: half the width)"),
+        optionalNumber("splice_clearance_mm", EGG_AT(fabrication.options.spliceClearanceMm), 0.0,
+                       1e5, "no hole or slot this close to a splice (default: the width)"),
+        optionalNumber("min_splice_clearance_mm", EGG_AT(fabrication.options.minSpliceClearanceMm),
+                       0.0, 1e5,
                        "where no position is that clear, at least this (default 3.5 bolt "
                        "diameters, EN 1995-1-1 8.4)"),
-        optionalNumber("label_height_mm", fab([](auto& f) -> auto& { return f.labelHeightMm; }),
-                       0.1, 1000.0, "engraved text height (default 0.35 w, 1..30 mm)"),
-        choice("splice_joint", fab([](auto& f) -> auto& { return f.spliceJoint; }),
+        optionalNumber("label_height_mm", EGG_AT(fabrication.options.labelHeightMm), 0.1, 1000.0,
+                       "engraved text height (default 0.35 w, 1..30 mm)"),
+        choice("splice_joint", EGG_AT(fabrication.options.spliceJoint),
                {{fabrication::SpliceJoint::Plate, "plate"},
                 {fabrication::SpliceJoint::Scarf, "scarf"},
                 {fabrication::SpliceJoint::PlateOrScarf, "plate_or_scarf"}},
                "splices as bolted plates, glued scarfs, or plates with scarfs where no plate fits"),
-        number("scarf_slope", fab([](auto& f) -> auto& { return f.scarfSlope; }), 4.0, 40.0,
+        number("scarf_slope", EGG_AT(fabrication.options.scarfSlope), 4.0, 40.0,
                "scarf run per unit of thickness (1:12)"),
-        number("scarf_efficiency", fab([](auto& f) -> auto& { return f.scarfEfficiency; }), 0.01,
-               1.0, "glued joint strength over the plain strip's"),
-        number("sticker_margin_mm", fab([](auto& f) -> auto& { return f.stickerMarginMm; }), 0.0,
-               1000.0, "PTFE sticker beyond the swept contact area (3.5.1)"),
+        number("scarf_efficiency", EGG_AT(fabrication.options.scarfEfficiency), 0.01, 1.0,
+               "glued joint strength over the plain strip's"),
+        number("sticker_margin_mm", EGG_AT(fabrication.options.stickerMarginMm), 0.0, 1000.0,
+               "PTFE sticker beyond the swept contact area (3.5.1)"),
         {"sticker_sheet_mm", "two numbers in [1, 100000], optional",
          "PTFE foil sheet (default: sheet_mm)", readStickerSheet,
          [](const Scene& s) {
            const auto& sheet = s.fabrication.options.stickerSheetMm;
            return sheet ? some(*sheet) : std::nullopt;
          }},
-        optionalNumber("ground_height_m", fab([](auto& f) -> auto& { return f.groundHeightM; }),
-                       -1e5, 1e5,
+        optionalNumber("ground_height_m", EGG_AT(fabrication.options.groundHeightM), -1e5, 1e5,
                        "ground plane z of the supports, metres (default: 0.1 m below the lowest)"),
-        optionalNumber("support_block_mm", fab([](auto& f) -> auto& { return f.supportBlockMm; }),
-                       1.0, 1e5, "footprint side of a support block (default 3 w)"),
+        optionalNumber("support_block_mm", EGG_AT(fabrication.options.supportBlockMm), 1.0, 1e5,
+                       "footprint side of a support block (default 3 w)"),
         boolean("supports_at_boundary_connections",
-                fab([](auto& f) -> auto& { return f.supportsAtBoundaryConnections; }),
+                EGG_AT(fabrication.options.supportsAtBoundaryConnections),
                 "a support at every boundary connection (3.5.2 iv), not only at anchors")},
        checkFabrication});
   return sections;

@@ -38,9 +38,10 @@ struct SceneSection {
 // Every section in the order the parser reads them; the first is the top level (name, outputs).
 const std::vector<SceneSection>& sceneSections();
 
-// Builders of the common kinds. `member` is a captureless lambda naming where the value lives:
-//   [](Scene& s) -> auto& { return s.simulation.rods.model.frictionMu; }
-// The default is whatever Scene{} holds there.
+// Builders of the common kinds. `member` is a captureless lambda naming where the value lives,
+// EGG_AT(simulation.rods.model.frictionMu) for short. The default is whatever Scene{} holds there.
+#define EGG_AT(path) \
+  [](::egg::pipeline::Scene & s) -> auto& { return s.path; }
 namespace field {
 
 template <class Member>

@@ -15,6 +15,7 @@ PACKAGES=(
   python3-ezdxf librsvg2-bin poppler-utils admesh
   parallel                   # egg sweep: jobs.txt on one machine (issue 18, test_sweep)
   clang libclang-rt-14-dev   # scripts/fuzz.sh: libFuzzer targets (issue 17)
+  clang-format clang-tidy    # .clang-format (checked by the Format test), .clang-tidy (identifier naming)
   chromium                   # test_report_html: report.html rendered headless (skipped without it)
 )
 

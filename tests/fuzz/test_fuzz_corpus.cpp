@@ -34,7 +34,8 @@ TEST(FuzzCorpus, SceneParserAcceptsOrRaisesATypedError) {
   int accepted = 0;
   for (const auto& f : files) {
     const std::string bytes = bytesOf(f);
-    EXPECT_NO_THROW(accepted += scene(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size())) << f;
+    EXPECT_NO_THROW(accepted += scene(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()))
+        << f;
   }
   EXPECT_GE(accepted, 1) << "the valid seeds parse";
 }
@@ -48,12 +49,15 @@ TEST_P(MeshCorpus, LoaderAcceptsOrRaisesATypedError) {
   int accepted = 0;
   for (const auto& f : files) {
     const std::string bytes = bytesOf(f);
-    EXPECT_NO_THROW(accepted += mesh("." + target, reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size())) << f;
+    EXPECT_NO_THROW(accepted += mesh("." + target, reinterpret_cast<const uint8_t*>(bytes.data()),
+                                     bytes.size()))
+        << f;
   }
   EXPECT_GE(accepted, 1) << "the valid seeds load";
 }
 
-INSTANTIATE_TEST_SUITE_P(Loaders, MeshCorpus, ::testing::Values("obj", "stl", "ply", "off", "gltf", "glb"));
+INSTANTIATE_TEST_SUITE_P(Loaders, MeshCorpus,
+                         ::testing::Values("obj", "stl", "ply", "off", "gltf", "glb"));
 
 }  // namespace
 }  // namespace egg::fuzz

@@ -43,24 +43,6 @@ struct BenchArgs {
   bool json = false;
 };
 
-// A bump patch with about `vertices` vertices (edge length from the area, corrected once).
-TriMesh bumpWithVertices(int vertices) {
-  samples::Params params;
-  for (const auto& info : samples::listSamples()) {
-    if (info.name == "bump") params = info.defaults;
-  }
-  const double area =
-      params.count("length") && params.count("width") ? params["length"] * params["width"] : 100.0;
-  double edge = std::sqrt(2.0 * area / (std::sqrt(3.0) * vertices));
-  TriMesh mesh = samples::generateSample("bump", {}, edge);
-  const double ratio = double(mesh.n_vertices()) / vertices;
-  if (ratio < 0.85 || ratio > 1.15) {
-    edge *= std::sqrt(ratio);
-    mesh = samples::generateSample("bump", {}, edge);
-  }
-  return mesh;
-}
-
 // Surface points along the side x = xmin (or xmax) of the patch, evenly in y.
 std::vector<SurfacePoint> sidePoints(const TriMesh& mesh, int count, bool maxSide) {
   const BoundingBox box = boundingBox(mesh);
@@ -275,7 +257,7 @@ int runBench(const BenchArgs& args) {
   std::vector<Case> cases;
   for (int size : args.sizes) {
     Case c;
-    c.mesh = bumpWithVertices(size);
+    c.mesh = samples::generateSampleWithVertices("bump", size);
     geodesic::DistanceSolverOptions options;
     options.threads = args.threads;
     const geodesic::DistanceSolver solver(c.mesh, options);

@@ -1,11 +1,6 @@
 #include "apps/bench/stress_suite.hpp"
 #include "core/timing.hpp"
-
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include "samples/generators/obj_grid.hpp"
 
 #include <fmt/format.h>
 
@@ -15,104 +10,14 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
-#include <thread>
 
 namespace egg::app {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-ChildOutcome runChild(const std::function<int()>& body, double timeLimitS,
-                      const fs::path& logFile) {
-  ChildOutcome out;
-  std::fflush(nullptr);
-  const Stopwatch watch;
-  const pid_t pid = fork();
-  if (pid < 0) {
-    out.output = "fork failed";
-    out.exitCode = 127;
-    return out;
-  }
-  if (pid == 0) {
-    setpgid(0, 0);  // own group: a timeout kills the child and anything it started
-    const int fd = open(logFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      dup2(fd, 1);
-      dup2(fd, 2);
-      close(fd);
-    }
-    int code = 3;
-    try {
-      code = body();
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "uncaught exception: %s\n", e.what());
-    }
-    std::fflush(nullptr);
-    _exit(code);
-  }
-  int status = 0;
-  struct rusage usage {};
-  for (;;) {
-    const pid_t r = wait4(pid, &status, WNOHANG, &usage);
-    const double elapsed = watch.seconds();
-    if (r == pid) break;
-    if (elapsed > timeLimitS) {
-      out.timedOut = true;
-      kill(-pid, SIGKILL);
-      kill(pid, SIGKILL);
-      wait4(pid, &status, 0, &usage);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  out.seconds = watch.seconds();
-  out.peakRssMb = usage.ru_maxrss / 1024.0;  // kB on Linux
-  if (!out.timedOut) {
-    if (WIFSIGNALED(status))
-      out.signal = WTERMSIG(status);
-    else if (WIFEXITED(status))
-      out.exitCode = WEXITSTATUS(status);
-  }
-  std::ifstream in(logFile);
-  std::stringstream text;
-  text << in.rdbuf();
-  out.output = text.str();
-  return out;
-}
-
 namespace {
 
-// A regular grid of nx x ny cells over [-lx/2, lx/2] x [-ly/2, ly/2] on z = height(x, y), two
-// triangles per cell; `skip(x, y)` drops a cell (holes). Offset shifts the whole grid in x.
-struct Obj {
-  std::string text;
-  int vertices = 0;
-};
-void addGrid(Obj& obj, int nx, int ny, double lx, double ly,
-             const std::function<double(double, double)>& height,
-             const std::function<bool(double, double)>& skip = {}, double offsetX = 0.0) {
-  const int base = obj.vertices;
-  std::string& s = obj.text;
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i) {
-      const double x = -lx / 2 + lx * i / nx, y = -ly / 2 + ly * j / ny;
-      s += fmt::format("v {:.9g} {:.9g} {:.9g}\n", x + offsetX, y, height(x, y));
-    }
-  obj.vertices += (nx + 1) * (ny + 1);
-  auto id = [&](int i, int j) { return base + j * (nx + 1) + i + 1; };
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const double cx = -lx / 2 + lx * (i + 0.5) / nx, cy = -ly / 2 + ly * (j + 0.5) / ny;
-      if (skip && skip(cx, cy)) continue;
-      s += fmt::format("f {} {} {}\nf {} {} {}\n", id(i, j), id(i + 1, j), id(i + 1, j + 1),
-                       id(i, j), id(i + 1, j + 1), id(i, j + 1));
-    }
-}
-std::function<double(double, double)> bump(double h, double sigma) {
-  return [h, sigma](double x, double y) {
-    return h * std::exp(-(x * x + y * y) / (2 * sigma * sigma));
-  };
-}
-void save(const fs::path& p, const Obj& obj) {
+void save(const fs::path& p, const samples::ObjText& obj) {
   std::ofstream f(p);
   f << obj.text;
   if (!f) throw std::runtime_error("cannot write " + p.string());
@@ -210,32 +115,33 @@ std::vector<PipelineStressCase> pipelineStressCases() {
   add("sliver_triangles", "sliver_triangles", "bump 10 m as 200 x 4 cells (triangles 50:1)",
       meshScene("sliver"))
       .writeMesh = [](const fs::path& p) {
-    Obj o;
-    addGrid(o, 200, 4, 10, 10, bump(2, 2));
+    samples::ObjText o;
+    samples::addHeightFieldGrid(o, 200, 4, 10, 10, samples::gaussianBump(2, 2));
     save(p, o);
   };
   add("holes", "holes", "bump 10 m, 40 x 40 cells, two round holes r 1.2 m", meshScene("holes"))
       .writeMesh = [](const fs::path& p) {
-    Obj o;
-    addGrid(o, 40, 40, 10, 10, bump(2, 2), [](double x, double y) {
-      return std::hypot(x - 2.5, y - 2.5) < 1.2 || std::hypot(x + 2.5, y + 2.5) < 1.2;
-    });
+    samples::ObjText o;
+    samples::addHeightFieldGrid(
+        o, 40, 40, 10, 10, samples::gaussianBump(2, 2), [](double x, double y) {
+          return std::hypot(x - 2.5, y - 2.5) < 1.2 || std::hypot(x + 2.5, y + 2.5) < 1.2;
+        });
     save(p, o);
   };
   add("disconnected", "disconnected", "two bumps 10 m apart, keep_largest_component false",
       meshScene("disc"))
       .writeMesh = [](const fs::path& p) {
-    Obj o;
-    addGrid(o, 20, 20, 10, 10, bump(2, 2));
-    addGrid(o, 20, 20, 10, 10, bump(2, 2), {}, 20.0);
+    samples::ObjText o;
+    samples::addHeightFieldGrid(o, 20, 20, 10, 10, samples::gaussianBump(2, 2));
+    samples::addHeightFieldGrid(o, 20, 20, 10, 10, samples::gaussianBump(2, 2), {}, 20.0);
     save(p, o);
   };
   cases.back().scene["surface"]["keep_largest_component"] = false;
   add("non_manifold", "non_manifold", "bump 10 m plus a fin: one edge with three faces",
       meshScene("nonman"))
       .writeMesh = [](const fs::path& p) {
-    Obj o;
-    addGrid(o, 20, 20, 10, 10, bump(2, 2));
+    samples::ObjText o;
+    samples::addHeightFieldGrid(o, 20, 20, 10, 10, samples::gaussianBump(2, 2));
     // the interior edge (10,10)-(11,10) of the 21 x 21 vertex grid gets a third face
     const int a = 10 * 21 + 10 + 1, b = a + 1;
     o.text += "v 0.25 0 5\n";
@@ -252,8 +158,8 @@ std::vector<PipelineStressCase> pipelineStressCases() {
   big.surfaceOnly = true;
   big.timeLimitS = 300.0;
   big.writeMesh = [](const fs::path& p) {
-    Obj o;
-    addGrid(o, 708, 707, 100, 100, bump(20, 20));
+    samples::ObjText o;
+    samples::addHeightFieldGrid(o, 708, 707, 100, 100, samples::gaussianBump(20, 20));
     save(p, o);
   };
   return cases;

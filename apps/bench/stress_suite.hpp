@@ -5,6 +5,8 @@
 // per case. A case passes when it converges or stops with a stated reason (a typed error from
 // core/errors.hpp is the right answer for a non-manifold or disconnected mesh); it fails on a
 // non-finite number, a crash, a timeout, or a non-zero exit without a message.
+#include "core/io/child_process.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -13,21 +15,6 @@
 #include <vector>
 
 namespace egg::app {
-
-struct ChildOutcome {
-  bool timedOut = false;
-  int exitCode = -1;  // valid when signal == 0 and !timedOut
-  int signal = 0;     // the signal that ended the child (a crash), 0 if it exited
-  double seconds = 0.0;
-  double peakRssMb = 0.0;  // the child's own peak resident set (wait4 rusage)
-  std::string output;      // the child's stdout and stderr, interleaved
-};
-
-// Forks; the child sends stdout and stderr to a file, runs `body` and exits with its return code
-// (an escaping exception: code 3 with its message). Killed (with its process group) after
-// timeLimit_s. Never throws for what the child does.
-ChildOutcome runChild(const std::function<int()>& body, double timeLimitS,
-                      const std::filesystem::path& logFile);
 
 struct PipelineStressCase {
   std::string name;

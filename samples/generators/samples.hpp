@@ -36,4 +36,9 @@ bool isSample(const std::string& name);
 // or the edge length is not positive / would give an absurd number of triangles.
 TriMesh generateSample(const std::string& name, const Params& params, double edgeLengthM);
 
+// The sample with its default parameters meshed to about `vertices` vertices (within 15 %): the
+// edge length from its footprint (length x width, 100 m^2 without them), corrected once by the
+// count it gave. Benchmarks size their surfaces by this.
+TriMesh generateSampleWithVertices(const std::string& name, int vertices);
+
 }  // namespace egg::samples

@@ -1,7 +1,7 @@
 #pragma once
 // Turning what the user names into a validated surface mesh: a procedural sample, a mesh file
 // (through assimp), or a scene file's `surface` section. Shared by every subcommand that takes
-// a SURFACE argument (DESIGN.md "The egg command").
+// a SURFACE argument (docs/architecture.md "The `egg` command").
 #include "core/mesh/mesh.hpp"
 #include "pipeline/scene.hpp"
 

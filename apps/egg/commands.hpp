@@ -11,7 +11,7 @@
 
 namespace egg::app {
 
-// Exit codes (docs/architecture.md "The egg command").
+// Exit codes (docs/architecture.md "The `egg` command").
 constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 constexpr int kExitBadInput = 2;

@@ -486,6 +486,8 @@ std::vector<SceneSection> makeSections() {
                 "carries its weight"),
         number("newton_tolerance", EGG_AT(simulation.rods.solver.tolerance), 1e-16, 1e-2,
                "Newton stops when its decrement falls below this x the energy scale"),
+        integer("max_newton_iterations", EGG_AT(simulation.rods.solver.maxIterations), 1, 100000,
+                "Newton iterations of a solve (all load steps) before it stops unconverged"),
         number("time_limit_s", EGG_AT(simulation.rods.solver.timeLimitS), 0.1, 1e6,
                "wall-clock hang guard of each solve (the iteration limit, not this, decides "
                "results)")},

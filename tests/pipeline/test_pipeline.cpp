@@ -115,6 +115,33 @@ TEST(Pipeline, InfeasiblePatchIsReportedNotFatal) {
   fs::remove_all(out);
 }
 
+// simulation.max_newton_iterations reaches the rod solver: a budget of 2 Newton iterations cannot
+// deploy the bump's grid, and the run says so (exit 1) with every figure of the report.
+TEST(Pipeline, TheNewtonBudgetOfTheSceneBoundsTheDeployment) {
+  Scene scene = parseScene(
+      [] {
+        nlohmann::json j = sceneToJson(bumpPatchScene());
+        j.erase("path");
+        j["simulation"]["max_newton_iterations"] = 2;
+        j["outputs"] = {"report"};
+        return j;
+      }(),
+      "/virtual/bump_patch.json");
+  EXPECT_EQ(scene.simulation.rods.solver.maxIterations, 2);
+  const fs::path out =
+      fs::temp_directory_path() / ("egg_pipeline_budget_" + std::to_string(::getpid()));
+  PipelineOptions options;
+  options.outDir = out;
+  const PipelineResult result = runPipeline(scene, options);
+  const auto& sim = result.report["simulation"];
+  ASSERT_TRUE(sim["ran"].get<bool>());
+  EXPECT_FALSE(sim["converged"].get<bool>());
+  EXPECT_LE(sim["patches"][0]["iterations"].get<int>(), 2);
+  ASSERT_EQ(result.failures.size(), 1u);
+  EXPECT_EQ(result.failures[0].rfind("simulation: ", 0), 0u) << result.failures[0];
+  fs::remove_all(out);
+}
+
 // Self-weight (Section 3.5.2): the report gives each patch's sag from its weightless equilibrium,
 // and a sag means the same grid without gravity would sit higher.
 TEST(Pipeline, SlowSelfWeightReportsTheSag) {

@@ -60,6 +60,7 @@ TEST(Scene, DefaultsFillEverythingButTheSurface) {
   EXPECT_DOUBLE_EQ(s.design().members.spacingFactor, egg::MemberOptions{}.spacingFactor);
   EXPECT_DOUBLE_EQ(s.simulation.rods.solver.tolerance, egg::rods::SolverOptions{}.tolerance);
   EXPECT_DOUBLE_EQ(s.simulation.rods.solver.timeLimitS, egg::rods::SolverOptions{}.timeLimitS);
+  EXPECT_EQ(s.simulation.rods.solver.maxIterations, egg::rods::SolverOptions{}.maxIterations);
   EXPECT_TRUE(s.wants("cut_files"));
 }
 
@@ -74,7 +75,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
     "lamella": {"width_m": 0.5, "thickness_m": 0.05, "material": "birch_plywood"},
     "simulation": {"enabled": false, "gravity": false, "friction_mu": 0.3, "notches": false, "join_patches": false,
                    "compare_without_notches": true, "hold_shared_sides": false, "newton_tolerance": 1e-6,
-                   "time_limit_s": 30},
+                   "time_limit_s": 30, "max_newton_iterations": 40},
     "fabrication": {"enabled": false, "sheet_mm": [3000, 1500], "bolt_diameter_mm": 10, "kerf_mm": 0.3,
                     "margin_mm": 12, "min_notch_mm": 2, "stock_length_mm": 5000, "end_overhang_mm": 40,
                     "splice_clearance_mm": 300, "label_height_mm": 12, "sticker_margin_mm": 3,
@@ -126,6 +127,7 @@ TEST(Scene, ReadsEveryDocumentedKey) {
   EXPECT_DOUBLE_EQ(back.design().members.spacingFactor, 11.0);
   EXPECT_DOUBLE_EQ(back.simulation.rods.solver.tolerance, 1e-6);
   EXPECT_DOUBLE_EQ(back.simulation.rods.solver.timeLimitS, 30.0);
+  EXPECT_EQ(back.simulation.rods.solver.maxIterations, 40);
   EXPECT_FALSE(back.simulation.joinPatches);
   EXPECT_TRUE(back.simulation.rods.compareWithoutNotches);
   EXPECT_FALSE(back.simulation.holdSharedSides);

@@ -73,13 +73,14 @@ PatchJoins patchJoins(const patching::PatchGraph& graph, const std::vector<const
     const double lengthA = (la.family == Family::U ? ga.u : ga.v)[la.member].planarLength;
     const double lengthB = (lb.family == Family::U ? gb.u : gb.v)[lb.member].planarLength;
     int bolts = 0;
-    for (const auto& [pa, sa] : ca) {
+    for (const auto& [position, sA] : ca) {
+      const Eigen::Vector3d& pa = position;  // clang before 16 cannot capture a structured binding
       const auto nearest =
           std::min_element(cb.begin(), cb.end(), [&](const auto& x, const auto& y) {
             return (x.first - pa).squaredNorm() < (y.first - pa).squaredNorm();
           });
       if (nearest == cb.end() || (nearest->first - pa).norm() > toleranceM) continue;
-      out.bolts.push_back({ua.patch, la.rod, std::clamp(sa, 0.0, lengthA), ub.patch, lb.rod,
+      out.bolts.push_back({ua.patch, la.rod, std::clamp(sA, 0.0, lengthA), ub.patch, lb.rod,
                            std::clamp(nearest->second, 0.0, lengthB)});
       ++bolts;
     }

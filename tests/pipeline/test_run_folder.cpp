@@ -1,4 +1,3 @@
-#include "pipeline/report.hpp"
 #include "pipeline/run_folder.hpp"
 
 #include "core/errors.hpp"
@@ -34,26 +33,6 @@ class TempDir : public ::testing::Test {
   void TearDown() override { fs::remove_all(root); }
   fs::path root;
 };
-
-TEST(RunReport, HasEveryRequiredKeyAndExplainsStagesThatDidNotRun) {
-  RunReport report(nlohmann::json{{"name", "t"}});
-  report.stageRan("surface", 0.5);
-  report.section("surface") = {{"vertices", 4}};
-  report.stageSkipped("simulation", "the scene disables it");
-  const auto doc = report.finish(1.25);
-  for (const char* key : {"scene", "units", "surface", "stages", "patches", "coverage",
-                          "propagation", "simulation", "fabrication", "timings"}) {
-    EXPECT_TRUE(doc.contains(key)) << key;
-  }
-  EXPECT_TRUE(doc["stages"]["surface"]["ran"].get<bool>());
-  EXPECT_DOUBLE_EQ(doc["stages"]["surface"]["seconds"].get<double>(), 0.5);
-  EXPECT_FALSE(doc["simulation"]["ran"].get<bool>());
-  EXPECT_EQ(doc["simulation"]["skipped_reason"], "the scene disables it");
-  EXPECT_FALSE(doc["stages"]["fabrication"]["ran"].get<bool>());
-  EXPECT_TRUE(doc["patches"].is_array());
-  EXPECT_DOUBLE_EQ(doc["timings"]["total_s"].get<double>(), 1.25);
-  EXPECT_EQ(doc["surface"]["vertices"], 4);
-}
 
 TEST_F(TempDir, StagedDirectoryAppearsOnlyOnCommitAndReplacesTheOldRun) {
   const fs::path out = root / "run";

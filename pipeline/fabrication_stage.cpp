@@ -63,6 +63,9 @@ void fabricationStage(RunState& state) {
                        assembly::sharedLamellae(state.patching->graph, gridsOf(state.patches)));
     state.report.stageRan("fabrication", watch.seconds());
     state.report.section("fabrication") = fab.report;
+    // Every stage's warnings also in the top-level list, where a reader looks first.
+    for (const auto& w : fab.report.value("warnings", nlohmann::json::array()))
+      state.report.warn("fabrication: " + (w.is_string() ? w.get<std::string>() : w.dump()));
     state.failures.insert(state.failures.end(), fab.failures.begin(), fab.failures.end());
   } catch (const InvalidInput& e) {
     state.report.stageSkipped(

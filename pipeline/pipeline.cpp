@@ -3,6 +3,7 @@
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/timing.hpp"
+#include "pipeline/acceptance.hpp"
 #include "pipeline/grid_stage.hpp"
 #include "pipeline/report_html.hpp"
 #include "pipeline/run_folder.hpp"
@@ -93,8 +94,12 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   writeOutputs(state);
 
   result.seconds = total.seconds();
-  result.failures = std::move(state.failures);
   result.report = state.report.finish(result.seconds);
+  // The verdict: the finished figures against the scene's acceptance limits.
+  const Verdict verdict = judgeRun(result.report, scene.acceptance);
+  result.report["acceptance"] = verdictJson(verdict);
+  for (const std::string& f : verdict.failures()) state.failures.push_back(f);
+  result.failures = std::move(state.failures);
   if (!result.failures.empty()) result.report["failures"] = result.failures;
   if (scene.wants("report")) {
     // The same, for a person, with PNG previews of its figures named in report.json.

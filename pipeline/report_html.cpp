@@ -90,6 +90,33 @@ std::string barChart(const std::string& id, const std::vector<std::pair<std::str
   return svg + "</svg>\n";
 }
 
+// The verdict (acceptance.hpp): every criterion with its value and limit, at the top.
+std::string acceptanceSection(const json& report) {
+  const json acceptance = at(report, "acceptance");
+  if (!acceptance.is_object()) return {};
+  const bool passed = acceptance.value("passed", false);
+  std::string html = std::string("<div class=\"") + (passed ? "passed" : "failures") +
+                     "\" id=\"acceptance\"><p>Acceptance: " +
+                     (passed ? "every criterion met" : "criteria missed") +
+                     " (limits from the scene's <code>acceptance</code> section; span " +
+                     text(at(acceptance, "span_m")) + " m)</p><table class=\"figures\">\n";
+  html += "<tr><th>criterion</th><th>value</th><th>limit</th><th>verdict</th></tr>\n";
+  for (const json& c : at(acceptance, "criteria")) {
+    const std::string unit = c.value("unit", std::string());
+    const std::string u = unit.empty() ? "" : " " + unit;
+    html += "<tr><td>" + escapeXml(c.value("what", std::string())) + "</td>";
+    if (c.value("evaluated", false)) {
+      html += "<td>" + text(at(c, "value")) + u + "</td><td>" + text(at(c, "limit")) + u + " (" +
+              escapeXml(c.value("limit_rule", std::string())) + ")</td><td>" +
+              (c.value("passed", false) ? "ok" : "<b>failed</b>") + "</td></tr>\n";
+    } else {
+      html += "<td colspan=\"3\">not evaluated: " +
+              escapeXml(c.value("not_evaluated_reason", std::string())) + "</td></tr>\n";
+    }
+  }
+  return html + "</table></div>\n";
+}
+
 std::string stageTimes(const json& report) {
   std::string out =
       "<h2 id=\"stage-times\">Stage times</h2>\n<table "
@@ -362,7 +389,7 @@ const char* kStyle =
 h1{font-size:24px}h2{font-size:19px;margin-top:32px;border-bottom:1px solid #ccc}
 table{border-collapse:collapse;margin:8px 0}th,td{padding:2px 8px;text-align:left;font-size:13px;vertical-align:top}
 table.list tr:nth-child(even){background:#f3f5f8}table.list th{background:#dde4ee}
-table.figures th{font-weight:normal;color:#555}.failures{background:#fdecea;border:1px solid #c62828;padding:4px 12px}
+table.figures th{font-weight:normal;color:#555}.failures{background:#fdecea;border:1px solid #c62828;padding:4px 12px}.passed{background:#e8f5e9;border:1px solid #2e7d32;padding:4px 12px}
 .warnings{background:#fff8e1;border:1px solid #f9a825;padding:4px 12px}.missing{color:#777;font-style:italic}
 svg.chart{display:block;margin:8px 0}.figure{border:1px solid #ddd;display:inline-block;max-width:100%})";
 
@@ -399,13 +426,13 @@ std::string reportHtml(const json& report, const std::string& planSvg, const std
     for (const auto& f : failures) html += "<li>" + text(f) + "</li>\n";
     html += "</ul></div>\n";
   }
+  html += acceptanceSection(report);
+  // Every stage's warnings are in the top-level list (fabrication's included), shown open.
   std::vector<std::string> warnings;
   for (const auto& w : at(report, "warnings"))
     warnings.push_back(w.is_string() ? w.get<std::string>() : w.dump());
-  for (const auto& w : at(at(report, "fabrication"), "warnings"))
-    warnings.push_back("fabrication: " + (w.is_string() ? w.get<std::string>() : w.dump()));
   if (!warnings.empty()) {
-    html += "<div class=\"warnings\" id=\"warnings\"><details><summary>" +
+    html += "<div class=\"warnings\" id=\"warnings\"><details open><summary>" +
             std::to_string(warnings.size()) + " warnings</summary><ul>\n";
     for (const auto& w : warnings) html += "<li>" + escapeXml(w) + "</li>\n";
     html += "</ul></details></div>\n";

@@ -8,6 +8,7 @@
 #include "fabrication/options.hpp"
 #include "patching/workflow1.hpp"
 #include "patching/workflow2.hpp"
+#include "pipeline/acceptance.hpp"
 
 #include <Eigen/Core>
 #include <array>
@@ -102,6 +103,7 @@ struct Scene {
   Lamella lamella;
   SimulationChoice simulation;
   FabricationChoice fabrication;
+  AcceptanceLimits acceptance;  // the verdict's limits (acceptance.hpp, docs/acceptance.md)
   std::vector<std::string> outputs{"report",   "plan",     "cut_files",
                                    "stickers", "supports", "previews"};
 

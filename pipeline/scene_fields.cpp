@@ -544,6 +544,20 @@ std::vector<SceneSection> makeSections() {
                 EGG_AT(fabrication.options.supportsAtBoundaryConnections),
                 "a support at every boundary connection (3.5.2 iv), not only at anchors")},
        checkFabrication});
+
+  sections.push_back(
+      {"acceptance",
+       "The limits a run is judged by (docs/acceptance.md): a run that misses one fails (exit 1) "
+       "and names it. Lengths are fractions of the span, the longer side of the surface's plan.",
+       {number("max_error_over_span", EGG_AT(acceptance.maxErrorOverSpan), 1e-6, 1.0,
+               "largest distance of the deployed grid from the design surface (span / 50)"),
+        number("rmse_over_span", EGG_AT(acceptance.rmseOverSpan), 1e-6, 1.0,
+               "its root mean square (span / 200)"),
+        number("max_sag_over_span", EGG_AT(acceptance.maxSagOverSpan), 1e-6, 1.0,
+               "largest sag under self-weight from the weightless equilibrium (span / 250)"),
+        number("max_stress_ratio", EGG_AT(acceptance.maxStressRatio), 1e-3, 100.0,
+               "largest bending and torsion stress of a lamella over its strength")},
+       {}});
   return sections;
 }
 

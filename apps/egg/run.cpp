@@ -56,13 +56,13 @@ void registerRunCommand(CLI::App& parent, Action& action) {
             scene.name);
         return kExitOk;
       }
+      // The summary (acceptance.hpp) ends with "passed" only when the run has no failure.
       if (args->json) {
         std::cout << result.report.dump(2) << "\n";
+        std::cerr << runSummary(result.report, result.outDir, result.seconds);
       } else {
-        std::cout << fmt::format("egg run: {} done in {:.2f} s; results in {}\n", scene.name,
-                                 result.seconds, result.outDir.string());
+        std::cout << runSummary(result.report, result.outDir, result.seconds);
       }
-      for (const auto& failure : result.failures) std::cerr << "egg run: " << failure << "\n";
       return result.failures.empty() ? kExitOk : kExitFailure;
     };
   });

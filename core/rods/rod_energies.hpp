@@ -139,17 +139,20 @@ inline S connectionEnergy(const V3<S>& g0, const V3<S>& g1, const S& thetaG, con
 
 // A fastened bolt (thesis 5.1, "fastening the connections of members after deployment ultimately
 // fixes interior grid angles"): the crossing angle of the two edges that hold it is held at its
-// value when it was fastened, by a rotational spring on the unit tangents' cosine and sine,
-// weight * ((cos - cos0)^2 + (sin - sin0)^2) ~ weight * (alpha - alpha0)^2 for small changes, the
-// same stiffness at any crossing angle.
+// value when it was fastened, by a rotational spring on the unit tangents' cosine and signed sine
+// about `axis` (the joint's normal when it was fastened), weight * ((cos - cos0)^2 + (sin -
+// sin0)^2) ~ weight * (alpha - alpha0)^2 for small changes, the same stiffness at any crossing
+// angle. The sine is signed, not |e_g x e_h|: the norm has a cusp where the two lamellas are
+// parallel (the bolts joining two patches' boundary lamellas), which made those stencils strongly
+// indefinite and Newton shift-bound (issue 36).
 template <class S>
 inline S fastenedJointEnergy(const V3<S>& g0, const V3<S>& g1, const V3<S>& h0, const V3<S>& h1,
-                             double cos0, double sin0, double weight) {
+                             double cos0, double sin0, const Eigen::Vector3d& axis, double weight) {
   using std::sqrt;
   const V3<S> eg = g1 - g0, eh = h1 - h0;
   const S scale = 1.0 / sqrt(squaredNorm(eg) * squaredNorm(eh));
   const S c = dot(eg, eh) * scale;
-  const S sn = norm(cross(eg, eh)) * scale;
+  const S sn = dot(cross(eg, eh), constant<S>(axis)) * scale;
   return weight * ((c - cos0) * (c - cos0) + (sn - sin0) * (sn - sin0));
 }
 

@@ -8,7 +8,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
+#include <tuple>
 
 namespace egg::rods {
 
@@ -110,10 +112,11 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
     return p;
   };
 
+  std::vector<std::array<bool, 2>> startGiven;  // per bolt: lower, upper side start given
   for (const Connection& c : network.connections) {
     const bool aLower = network.rods[c.rodA].layer == 0;
     Bolt bolt;
-    auto makeSide = [&](int rod, double s, const Notch& notch) {
+    auto makeSide = [&](int rod, double s, const Notch& notch, const std::optional<double>& start) {
       BoltSide side;
       const double length = notch.beforeM + notch.afterM;
       if (options.notches && length > 1e-6 * rods_[rod].h) {
@@ -121,17 +124,19 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
         side.notchMax = s + notch.afterM;
         // Start strictly inside the notch: the log barrier E_n is infinite at its ends.
         const double margin = 0.01 * length;
-        s = std::clamp(s, side.notchMin + margin, side.notchMax - margin);
+        s = std::clamp(start.value_or(s), side.notchMin + margin, side.notchMax - margin);
         side.betaDof = dof++;
       }
       side.point = pointAt(rod, s);
       return side;
     };
-    BoltSide sideA = makeSide(c.rodA, c.sAM, c.notchA);
-    BoltSide sideB = makeSide(c.rodB, c.sBM, c.notchB);
+    BoltSide sideA = makeSide(c.rodA, c.sAM, c.notchA, c.startAM);
+    BoltSide sideB = makeSide(c.rodB, c.sBM, c.notchB, c.startBM);
     bolt.aIsLower = aLower;
     bolt.lower = aLower ? sideA : sideB;
     bolt.upper = aLower ? sideB : sideA;
+    const bool startA = c.startAM.has_value(), startB = c.startBM.has_value();
+    startGiven.push_back({aLower ? startA : startB, aLower ? startB : startA});
     const RodData& ra = rods_[c.rodA];
     const RodData& rb = rods_[c.rodB];
     bolt.offset = 0.5 * (ra.thickness + rb.thickness);
@@ -188,10 +193,13 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
   auto pointPosition = [&](const RodPoint& p) {
     return ((1.0 - p.beta) * vertex(p.rod, p.edge) + p.beta * vertex(p.rod, p.edge + 1)).eval();
   };
-  for (Bolt& b : bolts_) {
+  // A side whose start is given (Connection::startAM/startBM) stays there.
+  for (size_t k = 0; k < bolts_.size(); ++k) {
+    Bolt& b = bolts_[k];
     for (int pass = 0; pass < 2; ++pass) {
-      for (auto [side, other] : {std::pair{&b.lower, &b.upper}, std::pair{&b.upper, &b.lower}}) {
-        if (side->betaDof < 0) continue;
+      for (auto [side, other, given] : {std::tuple{&b.lower, &b.upper, startGiven[k][0]},
+                                        std::tuple{&b.upper, &b.lower, startGiven[k][1]}}) {
+        if (side->betaDof < 0 || given) continue;
         const Eigen::Vector3d target = pointPosition(other->point);
         const double margin = 0.01 * (side->notchMax - side->notchMin);
         const double from = side->notchMin + margin, to = side->notchMax - margin;
@@ -304,8 +312,11 @@ void RodModel::fastenBolts() {
     const Eigen::Vector3d eh = (vertex(b.upper.point.rod, b.upper.point.edge + 1) -
                                 vertex(b.upper.point.rod, b.upper.point.edge))
                                    .normalized();
+    // The axis of the signed sine: the lower lamella's normal at the bolt, along e_g x e_h up to
+    // the small tilt between the two lamellas, and defined where they are parallel.
+    b.fastenedAxis = edgeNormal(b.lower.point.rod, b.lower.point.edge);
     b.fastenedCos = eg.dot(eh);
-    b.fastenedSin = eg.cross(eh).norm();
+    b.fastenedSin = eg.cross(eh).dot(b.fastenedAxis);
     const RodData& lower = rods_[b.lower.point.rod];
     const RodData& upper = rods_[b.upper.point.rod];
     const double softer =

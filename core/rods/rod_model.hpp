@@ -35,6 +35,22 @@ struct ModelOptions {
   void validate() const;  // throws InvalidInput naming the field
 };
 
+// Which Hessian RodModel::derivatives assembles: the exact one, or one with the penalty
+// constraints' stencils (bolts, fastened joints, anchors) replaced by their nearest positive
+// semidefinite matrices (projected Newton), the rods' own bending, twisting and stretching kept
+// exact: the solver's fallback where the exact Hessian is indefinite (rod_solver.cpp).
+enum class HessianTerms { Exact, ProjectedConstraints };
+
+// The buffers of RodModel::derivatives, kept by the caller between calls so that a Newton run
+// allocates them once (on the Yas's joined structure, fresh buffers at every iteration cost a
+// fifth of the run in page faults, issue 36). The Hessian is the triplets of all parts in order.
+struct DerivativeBuffers {
+  std::vector<EdgeFrameDerivatives> frames;                   // per edge
+  std::vector<Eigen::VectorXd> gradients;                     // per part
+  std::vector<std::vector<Eigen::Triplet<double>>> triplets;  // per part: lower triangle
+  std::vector<double> energies;                               // per part
+};
+
 // Stiffness of a rod from its section and material (thin rectangular strip).
 RodStiffness stiffnessOf(const Rod& rod);
 
@@ -104,7 +120,12 @@ class RodModel {
   // Energy, gradient (size dofCount) and Hessian triplets (lower triangle, row >= col) at z, on
   // `threads` threads.
   double derivatives(const Eigen::VectorXd& z, Eigen::VectorXd& gradient,
-                     std::vector<Eigen::Triplet<double>>& hessian, int threads = 1) const;
+                     std::vector<Eigen::Triplet<double>>& hessian, int threads = 1,
+                     HessianTerms terms = HessianTerms::Exact) const;
+  // The same into reusable buffers: the Hessian triplets are buffers.triplets' parts, in order
+  // (the same triplets, in the same order, as the call above returns).
+  double derivatives(const Eigen::VectorXd& z, Eigen::VectorXd& gradient,
+                     DerivativeBuffers& buffers, int threads, HessianTerms terms) const;
   // Largest step fraction in (0, 1] that keeps every sliding bolt strictly inside its edge range.
   double maxStep(const Eigen::VectorXd& z, const Eigen::VectorXd& direction) const;
   // Accepts z as the new state: transports reference frames in time, moves bolts that left their
@@ -141,8 +162,9 @@ class RodModel {
     bool aIsLower = true;   // the connection's rod a is the lower one
     double offset = 0.0;    // (t_lower + t_upper)/2
     double positionWeight = 0.0, angleWeight = 0.0;
-    double fastenedWeight = 0.0;  // 0 until fastenBolts()
-    double fastenedCos = 0.0, fastenedSin = 0.0;
+    double fastenedWeight = 0.0;                  // 0 until fastenBolts()
+    double fastenedCos = 0.0, fastenedSin = 0.0;  // sine about fastenedAxis
+    Eigen::Vector3d fastenedAxis = Eigen::Vector3d::UnitZ();
   };
   struct AnchorData {
     RodPoint point;
@@ -167,7 +189,8 @@ class RodModel {
   SliderParameters sliderParameters(const BoltSide& side) const;
   // Material frame of every edge differentiated w.r.t. (edge vector, theta), for the Hessian pass
   // (EdgeFrameDerivatives: bend_twist_derivatives.hpp).
-  std::vector<EdgeFrameDerivatives> frameDerivatives(const Eigen::VectorXd& z, int threads) const;
+  void frameDerivatives(const Eigen::VectorXd& z, int threads,
+                        std::vector<EdgeFrameDerivatives>& frames) const;
   template <class Visitor>
   void forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int part, int parts,
                       const std::vector<EdgeFrameDerivatives>* frames) const;

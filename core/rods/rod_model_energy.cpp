@@ -5,6 +5,8 @@
 
 #include "core/rods/connection_derivatives.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -33,39 +35,74 @@ struct EnergySum {
   double total = 0.0;
   template <size_t N, class F>
   void operator()(const std::array<int, N>& /*dofs*/, const std::array<double, N>& values,
-                  const F& f) {
+                  const F& f, bool /*projectable*/ = false) {
     total += f(values);
   }
   // A stencil with closed-form derivatives `d` (not needed for the energy alone).
   template <size_t N, class F, class D>
   void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& values, const F& f,
-                  const D& /*d*/) {
+                  const D& /*d*/, bool /*projectable*/) {
     (*this)(dofs, values, f);
   }
 };
 
+// The local Hessian H of one stencil replaced by its nearest positive semidefinite matrix
+// (negative eigenvalues set to zero): projected Newton (Teran et al. 2005). A sum of such
+// stencils is positive semidefinite, so the solver's fallback needs no diagonal shift for them.
+template <int N, class H>
+Eigen::Matrix<double, N, N> projectedHessian(const H& hessian) {
+  Eigen::Matrix<double, N, N> m;
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j <= i; ++j) m(i, j) = m(j, i) = hessian(i, j);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eigen(m);
+  if (eigen.eigenvalues().minCoeff() >= 0.0) return m;
+  return eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
+         eigen.eigenvectors().transpose();
+}
+
 // Accumulates energy, gradient and Hessian triplets of stencils (exact, by HyperDual).
 struct DerivativeSum {
   double total = 0.0;
+  HessianTerms terms = HessianTerms::Exact;
   Eigen::VectorXd gradient;
   std::vector<Eigen::Triplet<double>> triplets;
   template <size_t N, class F>
-  void operator()(const std::array<int, N>& dofs, const std::array<double, N>& values, const F& f) {
+  // `projectable`: whether HessianTerms::ProjectedConstraints projects the stencil: the penalty
+  // constraints (bolts, fastened joints, anchors), whose negative curvature away from their
+  // constraint is an artefact of the penalty. Not stretching (a compressed edge's negative
+  // curvature is the geometric stiffness that lets a rod buckle: projected, Newton converged onto
+  // the unstable straight state), nor the notches' friction bumps, nor end moments.
+  void operator()(const std::array<int, N>& dofs, const std::array<double, N>& values, const F& f,
+                  bool projectable = false) {
     using D = HyperDual<static_cast<int>(N)>;
     std::array<D, N> variables;
     for (size_t i = 0; i < N; ++i) {
       variables[i] = dofs[i] >= 0 ? D::variable(values[i], static_cast<int>(i)) : D(values[i]);
     }
     const D result = f(variables);
-    scatter(dofs, result.v, result.g, [&](int i, int j) { return result.hessian(i, j); });
+    add(
+        dofs, result.v, result.g, [&](int i, int j) { return result.hessian(i, j); }, projectable);
   }
   // The same with the derivatives computed in closed form by d() (energy, gradient, full Hessian).
+  // `projectable`: false for the bending and twisting stencils, which HessianTerms::
+  // ProjectedConstraints keeps exact.
   template <size_t N, class F, class D>
   void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& /*values*/,
-                  const F& /*f*/, const D& d) {
+                  const F& /*f*/, const D& d, bool projectable) {
     const auto result = d();
-    scatter(dofs, result.energy, result.gradient,
-            [&](int i, int j) { return result.hessian(i, j); });
+    add(
+        dofs, result.energy, result.gradient, [&](int i, int j) { return result.hessian(i, j); },
+        projectable);
+  }
+  template <size_t N, class G, class H>
+  void add(const std::array<int, N>& dofs, double energy, const G& g, const H& hessian,
+           bool projectable) {
+    if (projectable && terms == HessianTerms::ProjectedConstraints) {
+      const auto projected = projectedHessian<static_cast<int>(N)>(hessian);
+      scatter(dofs, energy, g, [&](int i, int j) { return projected(i, j); });
+    } else {
+      scatter(dofs, energy, g, hessian);
+    }
   }
   template <size_t N, class G, class H>
   void scatter(const std::array<int, N>& dofs, double energy, const G& g, const H& hessian) {
@@ -131,9 +168,9 @@ void runParts(int threads, const Work& work) {
 
 }  // namespace
 
-std::vector<EdgeFrameDerivatives> RodModel::frameDerivatives(const Eigen::VectorXd& z,
-                                                             int threads) const {
-  std::vector<EdgeFrameDerivatives> frames(references_.size());
+void RodModel::frameDerivatives(const Eigen::VectorXd& z, int threads,
+                                std::vector<EdgeFrameDerivatives>& frames) const {
+  frames.resize(references_.size());
   runParts(threads, [&](int part) {
     for (int r = 0; r < rodCount(); ++r) {
       for (int j = 0; j < rods_[r].edges; ++j) {
@@ -144,7 +181,6 @@ std::vector<EdgeFrameDerivatives> RodModel::frameDerivatives(const Eigen::Vector
       }
     }
   });
-  return frames;
 }
 
 template <class Visitor>
@@ -205,7 +241,8 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
           [&]() {
             return onVertices(bendTwistDerivatives((*frames)[index - 1], (*frames)[index],
                                                    data.stiffness, data.h));
-          });
+          },
+          false);
     }
   }
   for (const Bolt& b : bolts_) {
@@ -238,7 +275,8 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
               (*frames)[edgeReferenceBase_[b.upper.point.rod] + b.upper.point.edge];
           return connectionDerivatives(at(0), at(3), fg, values[7], at(8), at(11), fh, values[15],
                                        b.offset, stiffFactor_ * b.positionWeight, b.angleWeight);
-        });
+        },
+        true);
   }
   for (const Bolt& b : bolts_) {
     if (b.fastenedWeight <= 0.0 || !mine()) continue;
@@ -249,10 +287,13 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
     for (int c = 0; c < 6; ++c) dofs[c] = vertexDof(b.lower.point.rod, b.lower.point.edge) + c;
     for (int c = 0; c < 6; ++c) dofs[6 + c] = vertexDof(b.upper.point.rod, b.upper.point.edge) + c;
     for (int c = 0; c < 12; ++c) values[c] = z[dofs[c]];
-    visit(dofs, values, [&](const auto& v) {
-      return fastenedJointEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v3(v, 9), b.fastenedCos,
-                                 b.fastenedSin, b.fastenedWeight);
-    });
+    visit(
+        dofs, values,
+        [&](const auto& v) {
+          return fastenedJointEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v3(v, 9), b.fastenedCos,
+                                     b.fastenedSin, b.fastenedAxis, b.fastenedWeight);
+        },
+        true);
   }
   for (const Bolt& b : bolts_) {
     for (const BoltSide* s : {&b.lower, &b.upper}) {
@@ -269,11 +310,14 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
     for (int c = 0; c < 6; ++c) dofs[c] = vertexDof(a.point.rod, a.point.edge) + c;
     dofs[6] = thetaDof(a.point.rod, a.point.edge);
     for (int c = 0; c < 7; ++c) values[c] = z[dofs[c]];
-    visit(dofs, values, [&](const auto& v) {
-      const auto m = frameOf(v, a.point.rod, a.point.edge, 0, 3, 6).normal;
-      return anchorEnergy(v3(v, 0), v3(v, 3), m, a.point.beta, a.target, a.targetNormal,
-                          stiffFactor_ * a.positionWeight, a.angleWeight);
-    });
+    visit(
+        dofs, values,
+        [&](const auto& v) {
+          const auto m = frameOf(v, a.point.rod, a.point.edge, 0, 3, 6).normal;
+          return anchorEnergy(v3(v, 0), v3(v, 3), m, a.point.beta, a.target, a.targetNormal,
+                              stiffFactor_ * a.positionWeight, a.angleWeight);
+        },
+        true);
   }
   for (const EndMoment& m : endMoments_) {
     if (!mine()) continue;
@@ -348,24 +392,43 @@ double RodModel::energy(const Eigen::VectorXd& z) const {
 }
 
 double RodModel::derivatives(const Eigen::VectorXd& z, Eigen::VectorXd& gradient,
-                             std::vector<Eigen::Triplet<double>>& hessian, int threads) const {
-  threads = std::max(1, threads);
-  std::vector<DerivativeSum> sums(kParts);
-  const std::vector<EdgeFrameDerivatives> frames = frameDerivatives(z, threads);
-  runParts(threads, [&](int part) {
-    sums[part].gradient = Eigen::VectorXd::Zero(dofCount_);
-    forEachStencil(z, sums[part], part, kParts, &frames);
-  });
-  gradient = constantGradient_;
+                             std::vector<Eigen::Triplet<double>>& hessian, int threads,
+                             HessianTerms terms) const {
+  DerivativeBuffers buffers;
+  const double e = derivatives(z, gradient, buffers, threads, terms);
   hessian.clear();
   size_t total = 0;
-  for (auto& s : sums) total += s.triplets.size();
+  for (const auto& part : buffers.triplets) total += part.size();
   hessian.reserve(total);
+  for (const auto& part : buffers.triplets) hessian.insert(hessian.end(), part.begin(), part.end());
+  return e;
+}
+
+double RodModel::derivatives(const Eigen::VectorXd& z, Eigen::VectorXd& gradient,
+                             DerivativeBuffers& buffers, int threads, HessianTerms terms) const {
+  threads = std::max(1, threads);
+  frameDerivatives(z, threads, buffers.frames);
+  buffers.gradients.resize(kParts);
+  buffers.triplets.resize(kParts);
+  buffers.energies.assign(kParts, 0.0);
+  runParts(threads, [&](int part) {
+    DerivativeSum sum;
+    sum.terms = terms;
+    // The part's buffers move into the sum and back: their capacity is kept between calls.
+    sum.gradient = std::move(buffers.gradients[part]);
+    sum.triplets = std::move(buffers.triplets[part]);
+    sum.gradient.setZero(dofCount_);
+    sum.triplets.clear();
+    forEachStencil(z, sum, part, kParts, &buffers.frames);
+    buffers.gradients[part] = std::move(sum.gradient);
+    buffers.triplets[part] = std::move(sum.triplets);
+    buffers.energies[part] = sum.total;
+  });
+  gradient = constantGradient_;
   double e = constantGradient_.dot(z);
-  for (auto& s : sums) {
-    gradient += s.gradient;
-    hessian.insert(hessian.end(), s.triplets.begin(), s.triplets.end());
-    e += s.total;
+  for (int part = 0; part < kParts; ++part) {
+    gradient += buffers.gradients[part];
+    e += buffers.energies[part];
   }
   return e;
 }

@@ -76,6 +76,14 @@ void validateNetwork(const RodNetwork& network) {
       checkPosition(network, rod, s - notch.beforeM, name + " (notch start)");
       checkPosition(network, rod, s + notch.afterM, name + " (notch end)");
     }
+    for (const auto& [start, rod, s, notch] :
+         {std::tuple{con.startAM, con.rodA, con.sAM, con.notchA},
+          std::tuple{con.startBM, con.rodB, con.sBM, con.notchB}}) {
+      if (start && !(*start >= s - notch.beforeM - 1e-9 && *start <= s + notch.afterM + 1e-9)) {
+        throw InvalidInput(name + ": start position " + std::to_string(*start) +
+                           " m lies outside the notch of rod " + std::to_string(rod));
+      }
+    }
   }
   for (size_t a = 0; a < network.anchors.size(); ++a) {
     const Anchor& anchor = network.anchors[a];

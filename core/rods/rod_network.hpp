@@ -8,6 +8,7 @@
 // straight (planar, as cut) lamella from its first end, so 0 <= s <= length_m.
 #include <Eigen/Core>
 
+#include <optional>
 #include <vector>
 
 namespace egg::rods {
@@ -62,6 +63,10 @@ struct Connection {
   double sBM = 0.0;  // bolt position along rod b in the planar grid
   Notch notchA;      // notch in rod a (zero: plain hole)
   Notch notchB;      // notch in rod b
+  // Where a sliding bolt starts along rod a / rod b: a previous equilibrium's position (the joined
+  // run starts every bolt where its patch's own run left it, startFrom in simulation.hpp). Empty:
+  // where the two guess curves cross within the notch. Ignored for a plain hole.
+  std::optional<double> startAM, startBM;
 };
 
 // A point of a rod held at a point of the design surface with the lamella normal along the given

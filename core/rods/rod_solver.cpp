@@ -63,19 +63,27 @@ class FreeHessian {
   explicit FreeHessian(std::vector<int> freeIndex, int freeCount)
       : freeIndex_(std::move(freeIndex)), matrix_(freeCount, freeCount) {}
 
-  // Returns true when the pattern changed (the factorisation needs a new symbolic analysis).
-  bool assemble(const std::vector<Eigen::Triplet<double>>& triplets) {
-    bool same = triplets.size() == rows_.size();
-    for (size_t k = 0; same && k < triplets.size(); ++k) {
-      same = triplets[k].row() == rows_[k] && triplets[k].col() == cols_[k];
+  // The triplets are the parts' in order (DerivativeBuffers). Returns true when the pattern
+  // changed (the factorisation needs a new symbolic analysis).
+  bool assemble(const std::vector<std::vector<Eigen::Triplet<double>>>& parts) {
+    size_t count = 0;
+    for (const auto& part : parts) count += part.size();
+    bool same = count == rows_.size();
+    for (size_t p = 0, k = 0; same && p < parts.size(); ++p) {
+      for (size_t i = 0; same && i < parts[p].size(); ++i, ++k)
+        same = parts[p][i].row() == rows_[k] && parts[p][i].col() == cols_[k];
     }
-    if (!same) rebuild(triplets);
-    double* values = matrix_.valuePtr();
-    std::fill(values, values + matrix_.nonZeros(), 0.0);
-    for (size_t k = 0; k < triplets.size(); ++k) {
-      if (slot_[k] >= 0) values[slot_[k]] += triplets[k].value();
+    if (!same) {
+      std::vector<Eigen::Triplet<double>> triplets;
+      triplets.reserve(count);
+      for (const auto& part : parts) triplets.insert(triplets.end(), part.begin(), part.end());
+      rebuild(triplets);
     }
-    base_.assign(values, values + matrix_.nonZeros());
+    base_.assign(matrix_.nonZeros(), 0.0);
+    for (size_t p = 0, k = 0; p < parts.size(); ++p) {
+      for (size_t i = 0; i < parts[p].size(); ++i, ++k)
+        if (slot_[k] >= 0) base_[slot_[k]] += parts[p][i].value();
+    }
     return !same;
   }
   // Diagonal of the assembled (unshifted) Hessian.
@@ -312,15 +320,29 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
 
   SolverResult result;
   Eigen::VectorXd gradient(n);
-  std::vector<Eigen::Triplet<double>> triplets;
+  DerivativeBuffers buffers;
   FreeHessian hessian(freeIndex, freeCount);
   Factorisation solvers[2];  // two: see newtonDirection
   double shift = 0.0;        // relative diagonal shift that last made the Hessian positive definite
+  // Projected-Newton fallback: where the exact Hessian is indefinite (a bolt or a compressed edge
+  // far from its rest state), the constraint and stretching stencils are projected onto positive
+  // semidefinite matrices before any diagonal shift is tried. The shift is relative to a diagonal
+  // that stretching dominates: any shift large enough for an indefinite bolt stencil also swamps
+  // the soft bending and sagging modes, and Newton crawls (the Yas's joined structure: 479
+  // iterations shift-bound). After a failed exact trial the exact Hessian is skipped for 1, 2, 4
+  // and at most 8 iterations, so that a run that stays indefinite does not pay for a useless
+  // factorisation every time, and one that reaches a stable equilibrium ends with exact Newton
+  // steps (quadratic convergence).
+  int skipExact = 0, exactBackoff = 1;
 
   for (int iteration = 0;; ++iteration) {
     const double reached = elapsed();
     const Eigen::VectorXd z = model.state();
-    const double energy = model.derivatives(z, gradient, triplets, options.threads);
+    const bool tryExact = skipExact == 0;
+    if (skipExact > 0) --skipExact;
+    const double energy =
+        model.derivatives(z, gradient, buffers, options.threads,
+                          tryExact ? HessianTerms::Exact : HessianTerms::ProjectedConstraints);
     Eigen::VectorXd g(freeCount);
     for (int i = 0; i < n; ++i) {
       if (freeIndex[i] >= 0) g[freeIndex[i]] = gradient[i];
@@ -331,19 +353,44 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     result.seconds = elapsed();
     if (stopsBeforeStep(energy, g, options, result)) return result;
 
-    const bool newPattern = hessian.assemble(triplets);
-    const Eigen::VectorXd diagonal = hessian.diagonal();
-    const double largestDiagonal = diagonal.cwiseAbs().maxCoeff();
-    const Eigen::VectorXd scale = diagonal.cwiseAbs().cwiseMax(1e-12 * largestDiagonal + 1e-300);
+    const bool newPattern = hessian.assemble(buffers.triplets);
     // A new pattern needs a new symbolic analysis; the second factorisation copies the first's.
     if (newPattern) {
-      solvers[0].analyzePattern(hessian.shifted(0.0, scale));
+      solvers[0].analyzePattern(hessian.shifted(0.0, Eigen::VectorXd()));
       if (options.threads >= 2) solvers[1] = solvers[0];
     }
 
     Eigen::VectorXd direction;
-    const bool factored =
-        newtonDirection(hessian, solvers, g, scale, options.threads, shift, result, direction);
+    bool exactDirection = false;  // from the unshifted exact Hessian: positive definite
+    auto assembleTerms = [&](HessianTerms terms) {  // at the same state: g and energy unchanged
+      model.derivatives(z, gradient, buffers, options.threads, terms);
+      hessian.assemble(buffers.triplets);
+    };
+    auto unshifted = [&]() {
+      ++result.factorisations;
+      if (!solvers[0].factorize(hessian.shifted(0.0, Eigen::VectorXd()))) return false;
+      direction = -solvers[0].solve(g);
+      return direction.allFinite() && direction.dot(g) < 0.0;
+    };
+    auto shifted = [&]() {
+      const Eigen::VectorXd diagonal = hessian.diagonal();
+      const double largestDiagonal = diagonal.cwiseAbs().maxCoeff();
+      const Eigen::VectorXd scale = diagonal.cwiseAbs().cwiseMax(1e-12 * largestDiagonal + 1e-300);
+      return newtonDirection(hessian, solvers, g, scale, options.threads, shift, result, direction);
+    };
+    bool factored = false;
+    if (tryExact) {
+      exactDirection = factored = unshifted();
+      if (factored) {
+        exactBackoff = 1;
+        shift = 0.0;
+      } else {
+        skipExact = exactBackoff;
+        exactBackoff = std::min(2 * exactBackoff, 8);
+        assembleTerms(HessianTerms::ProjectedConstraints);
+      }
+    }
+    if (!factored) factored = shifted();
     if (!factored) {
       result.status = SolverStatus::Stalled;
       result.reason = "Hessian could not be made positive definite";
@@ -354,6 +401,22 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     const double external = model.externalPotential(z);
     const double internal = energy - external;
     const double energyScale = std::abs(internal) + std::abs(external) + model.energyUnit();
+    if (result.decrement <= options.tolerance * energyScale && !exactDirection) {
+      // A projected Hessian hides negative curvature, so a small decrement there may be a saddle:
+      // the exact Hessian decides, as it always did before the fallback existed (with its shift
+      // search where it is indefinite), and the next iterations try it first again.
+      skipExact = 0;
+      exactBackoff = 1;
+      assembleTerms(HessianTerms::Exact);
+      exactDirection = !tryExact && unshifted();  // tried: it failed at this state
+      factored = exactDirection || shifted();
+      if (!factored) {
+        result.status = SolverStatus::Stalled;
+        result.reason = "Hessian could not be made positive definite";
+        return result;
+      }
+      result.decrement = -direction.dot(g);
+    }
     if (result.decrement <= options.tolerance * energyScale) {
       result.status = SolverStatus::Converged;
       result.converged = true;

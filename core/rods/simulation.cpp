@@ -44,6 +44,19 @@ void startFrom(RodNetwork& network, const SimulationRun& run) {
     network.rods[r].guess = run.contactPoints[r];
     network.rods[r].guessNormals = run.normals[r];
   }
+  // The bolts restart where the run left them in their notches (not where the guess curves
+  // happen to cross, which a search of the notch finds only to its sampling: the joined run then
+  // began with every fastened joint off its equilibrium).
+  if (run.boltPositionsM.size() != network.connections.size()) {
+    throw InvalidInput("startFrom: the run has " + std::to_string(run.boltPositionsM.size()) +
+                       " bolts, the network " + std::to_string(network.connections.size()) +
+                       " connections");
+  }
+  for (size_t c = 0; c < network.connections.size(); ++c) {
+    Connection& con = network.connections[c];
+    con.startAM = run.boltPositionsM[c][0];
+    con.startBM = run.boltPositionsM[c][1];
+  }
 }
 
 SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* surface,

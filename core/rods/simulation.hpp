@@ -82,9 +82,10 @@ struct SimulationResult {
 };
 
 // Sets every rod's initial guess to the deployed state of `run` (its contact points and lamella
-// normals: what a guess is, rod_network.hpp), so that a further run starts from that equilibrium
-// whichever layer each rod lies in now. Throws InvalidInput when the rods or their vertex counts
-// do not match.
+// normals: what a guess is, rod_network.hpp) and every sliding bolt's start to where the run left
+// it (Connection::startAM/startBM), so that a further run starts from that equilibrium whichever
+// layer each rod lies in now. Throws InvalidInput when the rods, their vertex counts or the
+// connections do not match.
 void startFrom(RodNetwork& network, const SimulationRun& run);
 
 // One run; `surface` may be null (no error measure).

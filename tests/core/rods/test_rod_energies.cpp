@@ -150,7 +150,30 @@ TEST(RodEnergies, FastenedJointGradientAndHessianMatchFiniteDifferences) {
   const std::array<double, 12> x{0.1, 0.0, 0.05, 1.1, 0.2, -0.1, 0.4, -0.6, 0.1, 0.7, 0.5, 0.0};
   expectExactDerivatives(x, [&](const auto& v) {
     return fastenedJointEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v3(v, 9), std::cos(1.2), std::sin(1.2),
-                               40.0);
+                               Eigen::Vector3d(0.0, 0.6, 0.8), 40.0);
+  });
+}
+
+// The joints between two patches hold parallel lamellas (crossing angle 0): there the energy
+// must be smooth. With the unsigned sine |e_g x e_h| its second derivative across alpha = 0 jumped
+// from -2 weight to +2 weight (a cusp), which made Newton shift-bound on the joined structure.
+TEST(RodEnergies, FastenedJointIsSmoothAcrossParallelLamellas) {
+  const double weight = 3.0;
+  const V3<double> g0{0, 0, 0}, g1{1, 0, 0}, h0{0, 0, 0.04};
+  auto energy = [&](double alpha) {
+    const V3<double> h1{h0.x + std::cos(alpha), h0.y + std::sin(alpha), h0.z};
+    return fastenedJointEnergy(g0, g1, h0, h1, 1.0, 0.0, Eigen::Vector3d::UnitZ(), weight);
+  };
+  // Central second differences on both sides of 0 and at 0: 2 weight cos(alpha) everywhere.
+  const double d = 1e-3;
+  for (double alpha : {-0.01, 0.0, 0.01}) {
+    const double second = (energy(alpha + d) - 2.0 * energy(alpha) + energy(alpha - d)) / (d * d);
+    EXPECT_NEAR(second, 2.0 * weight * std::cos(alpha), 1e-5) << alpha;
+  }
+  const std::array<double, 12> x{0, 0, 0, 1, 0, 0, 0, 0, 0.04, 1, 1e-9, 0.04};
+  expectExactDerivatives(x, [&](const auto& v) {
+    return fastenedJointEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v3(v, 9), 1.0, 0.0,
+                               Eigen::Vector3d::UnitZ(), weight);
   });
 }
 
@@ -162,7 +185,8 @@ TEST(RodEnergies, FastenedJointCostsTwoWeightOneMinusCosOfTheAngleTurned) {
   for (double delta : {0.0, 1e-3, 0.05, 0.4, -0.3}) {
     const double a = alpha0 + delta;
     const V3<double> h1{h0.x + 2.0 * std::cos(a), h0.y + 2.0 * std::sin(a), h0.z};
-    EXPECT_NEAR(fastenedJointEnergy(g0, g1, h0, h1, std::cos(alpha0), std::sin(alpha0), weight),
+    EXPECT_NEAR(fastenedJointEnergy(g0, g1, h0, h1, std::cos(alpha0), std::sin(alpha0),
+                                    Eigen::Vector3d::UnitZ(), weight),
                 2.0 * weight * (1.0 - std::cos(delta)), 1e-12)
         << delta;
   }

@@ -20,6 +20,11 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_;
 };
 
+// Wall-clock seconds since a steady_clock time point taken earlier.
+inline double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
 // CPU seconds the calling thread has used.
 inline double threadCpuSeconds() {
   timespec t{};

@@ -16,7 +16,7 @@
 namespace egg::fabrication {
 namespace {
 
-int colourOf(Layer layer) { return layer == Layer::Cut ? 1 : 5; }  // ACI 1 red, 5 blue
+int aciColourOf(Layer layer) { return layer == Layer::Cut ? 1 : 5; }  // ACI 1 red, 5 blue
 
 DL_Attributes attributesOf(Layer layer) {
   // Colour and line type BYLAYER (256): the layer decides, as CAM software expects.
@@ -154,7 +154,7 @@ std::string toDxf(const Drawing& d) {
     dxf.writeLayer(*dw, DL_LayerData("0", 0), DL_Attributes("", 7, -1, "CONTINUOUS", 1.0));
     for (Layer layer : {Layer::Cut, Layer::Engrave, Layer::Label}) {
       dxf.writeLayer(*dw, DL_LayerData(layerName(layer), 0),
-                     DL_Attributes("", colourOf(layer), -1, "CONTINUOUS", 1.0));
+                     DL_Attributes("", aciColourOf(layer), -1, "CONTINUOUS", 1.0));
     }
     dw->tableEnd();
     dw->tableStyle(1);

@@ -17,10 +17,10 @@
 namespace egg::patching {
 namespace {
 
-using EdgeKey = std::pair<int, int>;
-EdgeKey edgeKey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
+using PatchEdgeKey = std::pair<int, int>;
+PatchEdgeKey patchEdgeKey(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
 
-std::string format(const Eigen::Vector3d& p) {
+std::string formatPoint(const Eigen::Vector3d& p) {
   return fmt::format("({:.4g}, {:.4g}, {:.4g})", p.x(), p.y(), p.z());
 }
 
@@ -33,12 +33,12 @@ struct Flood {
   void seed(int f) {
     if (f >= 0 && faces.insert(f).second) queue.push_back(f);
   }
-  void step(const TriMesh& mesh, const std::set<EdgeKey>& constrained) {
+  void step(const TriMesh& mesh, const std::set<PatchEdgeKey>& constrained) {
     const auto fh = TriMesh::FaceHandle(queue.front());
     queue.pop_front();
     for (auto heh : mesh.fh_range(fh)) {
       const int a = mesh.from_vertex_handle(heh).idx(), b = mesh.to_vertex_handle(heh).idx();
-      if (constrained.count(edgeKey(a, b))) continue;
+      if (constrained.count(patchEdgeKey(a, b))) continue;
       const auto opposite = mesh.opposite_face_handle(heh);
       if (!opposite.is_valid()) {
         touchesBoundary = true;
@@ -74,17 +74,17 @@ LayoutPatch cutLayoutPatch(const PatchLayout& layout, int index, const LayoutOpt
 
   // Sides may share only their common corners.
   std::map<int, int> owner;
-  std::set<EdgeKey> constrained;
+  std::set<PatchEdgeKey> constrained;
   for (int k = 0; k < 4; ++k) {
     for (size_t i = 0; i < chains[k].size(); ++i) {
-      if (i > 0) constrained.insert(edgeKey(chains[k][i - 1], chains[k][i]));
+      if (i > 0) constrained.insert(patchEdgeKey(chains[k][i - 1], chains[k][i]));
       const int v = chains[k][i];
       const bool corner = i == 0 || i + 1 == chains[k].size();
       if (corner) continue;
       auto [it, inserted] = owner.emplace(v, k);
       if (!inserted && it->second != k)
         throw InfeasiblePatch(fmt::format("boundaries {} and {} cross at {}", it->second, k,
-                                          format(vertexPosition(v))));
+                                          formatPoint(vertexPosition(v))));
     }
   }
   for (int k = 0; k < 4; ++k)

@@ -32,7 +32,7 @@ json claddingEntry(const CladdingFunction& u, const CladdingFunction& v,
 
 namespace {
 
-double positive(const json& j, const std::string& key, const std::string& where) {
+double positiveField(const json& j, const std::string& key, const std::string& where) {
   if (!j.contains(key) || !j[key].is_number() || !(j[key].get<double>() > 0.0))
     throw InvalidInput(where + "." + key + " must be a positive number");
   return j[key].get<double>();
@@ -63,8 +63,8 @@ CladdingCurve curveFrom(const json& j, const std::string& family, const std::str
   if (!j.is_object()) throw InvalidInput(where + " must be an object");
   CladdingCurve c;
   c.family = family;
-  c.startSideM = positive(j, "start_side_m", where);
-  c.endSideM = positive(j, "end_side_m", where);
+  c.startSideM = positiveField(j, "start_side_m", where);
+  c.endSideM = positiveField(j, "end_side_m", where);
   c.points = pairs(j, "points_x1", "points_x2", where);
   c.members = pairs(j, "members_x1", "members_x2", where);
   return c;
@@ -91,7 +91,7 @@ std::optional<CladdingPlot> claddingFromReport(const json& patchEntry) {
   if (bounds.size() != 2 || !(bounds[0] > 0.0 && bounds[1] > bounds[0]))
     throw InvalidInput(where + ".slope_bounds must be [k_min, k_max] with 0 < k_min < k_max");
   plot.slopeMin = bounds[0], plot.slopeMax = bounds[1];
-  plot.infiniteSlopeFactor = positive(c, "infinite_slope_factor", where);
+  plot.infiniteSlopeFactor = positiveField(c, "infinite_slope_factor", where);
   plot.u = curveFrom(c.value("u", json()), "u", where + ".u");
   plot.v = curveFrom(c.value("v", json()), "v", where + ".v");
   return plot;

@@ -44,7 +44,7 @@ std::vector<rods::DeviationSample> historyFromJson(const json& history, const st
 
 namespace {
 constexpr double kPanelLeft = 64.0, kPanelWidth = 300.0, kPanelGap = 90.0, kTop = 40.0,
-                 kHeight = 200.0;
+                 kPlotHeight = 200.0;
 const char* kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                           "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
 // Ten colours, then the same dashed, then dotted: 30 series stay apart (Yas and Lilium have 12-16
@@ -65,7 +65,7 @@ PlotFrame errorTimeFrame(int panel, const std::vector<ErrorTimeSeries>& series) 
   return {kPanelLeft + panel * (kPanelWidth + kPanelGap),
           kTop,
           kPanelWidth,
-          kHeight,
+          kPlotHeight,
           0.0,
           seconds > 0.0 ? seconds : 1.0,
           0.0,
@@ -80,7 +80,7 @@ std::string errorTimeSvg(const std::string& id, const std::string& title,
     if (!s.samples.empty()) drawn.push_back(&s);
   const int legendRows = (static_cast<int>(drawn.size()) + 5) / 6;
   const double width = kPanelLeft + 2 * kPanelWidth + kPanelGap + 30.0,
-               height = kTop + kHeight + 50.0 + 16.0 * legendRows;
+               height = kTop + kPlotHeight + 50.0 + 16.0 * legendRows;
   std::string svg = fmt::format(
       "<svg id=\"{0}\" class=\"chart\" width=\"{1:.0f}\" height=\"{2:.0f}\" "
       "viewBox=\"0 0 {1:.0f} {2:.0f}\" font-family=\"sans-serif\" font-size=\"11\" role=\"img\">\n"
@@ -130,7 +130,7 @@ std::string errorTimeSvg(const std::string& id, const std::string& title,
   }
   for (size_t k = 0; k < drawn.size(); ++k) {
     const double x = kPanelLeft + 110.0 * static_cast<double>(k % 6),
-                 y = kTop + kHeight + 50.0 + 16.0 * static_cast<double>(k / 6);
+                 y = kTop + kPlotHeight + 50.0 + 16.0 * static_cast<double>(k / 6);
     svg += fmt::format(
         "<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"{3}\" "
         "stroke-width=\"2\"{7}/>"

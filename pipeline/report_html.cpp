@@ -36,7 +36,7 @@ json at(const json& j, const std::string& key) {
   return j.is_object() && j.contains(key) ? j[key] : json();
 }
 
-double number(const json& j, const std::string& key, double fallback = 0.0) {
+double numberOr(const json& j, const std::string& key, double fallback = 0.0) {
   const json v = at(j, key);
   return v.is_number() ? v.get<double>() : fallback;
 }
@@ -129,7 +129,7 @@ std::string stageTimes(const json& report) {
     const bool ran = at(s, "ran").is_boolean() && s["ran"].get<bool>();
     out += "<tr><td>" + escapeXml(stage) + "</td><td>" + (ran ? "yes" : "no") + "</td><td>" +
            text(at(s, "seconds")) + "</td><td>" + text(at(s, "skipped_reason")) + "</td></tr>\n";
-    bars.emplace_back(stage, number(s, "seconds"));
+    bars.emplace_back(stage, numberOr(s, "seconds"));
   }
   out += "</table>\n";
   out += "<p>Total " + text(at(at(report, "timings"), "total_s")) + " s.</p>\n";
@@ -270,7 +270,7 @@ std::string simulationSection(const json& report) {
            "</td><td>" + text(at(p, "iterations")) + "</td><td>" + text(at(p, "rmse_m")) +
            "</td><td>" + text(at(p, "max_error_m")) + "</td><td>" + text(at(p, "seconds")) +
            "</td><td>" + text(at(p, "failure")) + "</td></tr>\n";
-    bars.emplace_back("patch " + at(p, "patch").dump(), number(p, "max_error_m"));
+    bars.emplace_back("patch " + at(p, "patch").dump(), numberOr(p, "max_error_m"));
   }
   out += "</table>\n<p>Largest deviation per patch:</p>\n";
   return out + barChart("simulation-error-chart", bars, "m");
@@ -309,7 +309,7 @@ std::string fabricationSection(const json& report) {
     std::vector<std::pair<std::string, double>> lamellas;
     for (const auto& s : stress)
       lamellas.emplace_back(at(s, "id").is_string() ? s["id"].get<std::string>() : "?",
-                            number(s, "ratio"));
+                            numberOr(s, "ratio"));
     double largest = 0.0;
     for (const auto& l : lamellas) largest = std::max(largest, l.second);
     const int bins = std::max(1, static_cast<int>(std::ceil(largest / 0.1 - 1e-9)));

@@ -65,7 +65,7 @@ int PropagatedChain::memberIndex(int node, int member) const {
 
 namespace {
 
-int familyIndex(Family f) { return f == Family::U ? 0 : 1; }
+int familySlot(Family f) { return f == Family::U ? 0 : 1; }
 
 struct Link {
   int boundary = -1;
@@ -156,7 +156,7 @@ std::optional<Built> buildChain(const patching::PatchGraph& graph,
     built.chain.nodes.push_back({nodes[k].patch, f, forward, mirrored});
     const PatchSideData& data = patches[nodes[k].patch];
     PiecewiseLinearMap h =
-        forward ? data.cladding[familyIndex(f)] : data.cladding[familyIndex(f)].inverted();
+        forward ? data.cladding[familySlot(f)] : data.cladding[familySlot(f)].inverted();
     built.maps.push_back(std::make_unique<PiecewiseLinearMap>(mirrored ? h.mirrored() : h));
     built.problem.maps.push_back(built.maps.back().get());
   }
@@ -165,7 +165,7 @@ std::optional<Built> buildChain(const patching::PatchGraph& graph,
     const Family f = nodes[node].family;
     const PatchSideData& data = patches[nodes[node].patch];
     return std::pair{data.sideLengths[side],
-                     data.minGapM[familyIndex(f)][familySideRole(f, side).first ? 1 : 0]};
+                     data.minGapM[familySlot(f)][familySideRole(f, side).first ? 1 : 0]};
   };
   double longest = 0.0;
   for (size_t i = 0; i <= n; ++i) {
@@ -364,7 +364,7 @@ void propagateBranching(const patching::PatchGraph& graph,
         if (use.from > kPieceTolerance) addOriginal(boundary, chainAt(use.from));
         if (use.to < 1.0 - kPieceTolerance) addOriginal(boundary, chainAt(use.to));
         const NodeKey otherKey = keyOf(other);
-        const auto [oc, on] = out.nodeOf[otherKey.patch][familyIndex(otherKey.family)];
+        const auto [oc, on] = out.nodeOf[otherKey.patch][familySlot(otherKey.family)];
         if (oc < 0) continue;  // not solved yet (or not propagated): it will take ours
         for (const auto& [rho, i] :
              membersOnPiece(sideParameters(out.chains[oc], on, other.side), otherKey.family, other))
@@ -408,8 +408,8 @@ void addJoints(const patching::PatchGraph& graph, LayoutPropagation& out) {
     if (boundary.uses.size() != 2) continue;
     const auto &ua = boundary.uses[0], &ub = boundary.uses[1];
     const NodeKey ka = keyOf(ua), kb = keyOf(ub);
-    const auto [ca, na] = out.nodeOf[ka.patch][familyIndex(ka.family)];
-    const auto [cb, nb] = out.nodeOf[kb.patch][familyIndex(kb.family)];
+    const auto [ca, na] = out.nodeOf[ka.patch][familySlot(ka.family)];
+    const auto [cb, nb] = out.nodeOf[kb.patch][familySlot(kb.family)];
     if (ca < 0 || cb < 0) continue;
     SharedPiece piece;
     piece.boundary = boundary.id;
@@ -480,9 +480,9 @@ LayoutPropagation propagateLayout(const patching::PatchGraph& graph,
     const int index = static_cast<int>(out.chains.size());
     for (size_t k = 0; k < built.chain.nodes.size(); ++k) {
       const auto& node = built.chain.nodes[k];
-      out.x1[node.patch][familyIndex(node.family)] =
+      out.x1[node.patch][familySlot(node.family)] =
           built.chain.startParameters(static_cast<int>(k));
-      out.nodeOf[node.patch][familyIndex(node.family)] = {index, static_cast<int>(k)};
+      out.nodeOf[node.patch][familySlot(node.family)] = {index, static_cast<int>(k)};
     }
     out.evennessBefore += built.chain.solution.evennessBefore;
     out.evennessAfter += built.chain.solution.evennessAfter;

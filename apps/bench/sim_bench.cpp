@@ -29,7 +29,7 @@ namespace egg::app {
 namespace {
 
 // With --json, stdout carries only the JSON document; the human table goes to stderr.
-std::FILE* tableStream(bool json) { return json ? stderr : stdout; }
+std::FILE* simTableStream(bool json) { return json ? stderr : stdout; }
 
 struct SimBenchArgs {
   std::vector<double> spacings{1.0, 0.8, 0.72};
@@ -67,7 +67,7 @@ TimedRun timedRun(const rods::RodNetwork& network, const rods::SurfaceDistance& 
 int runSimBench(const SimBenchArgs& args) {
   if (args.repeats < 1) throw InvalidInput("--repeats must be >= 1");
   nlohmann::json rows = nlohmann::json::array();
-  fmt::print(tableStream(args.json),
+  fmt::print(simTableStream(args.json),
              "egg bench sim: cylinder vault R 5 m, 8 m long, exact geodesic grid at +-45 deg, "
              "lamellas 50 x 5 mm,\n"
              "supports at every member end, notches +-{:.0f} % of the spacing on inner bolts{}, {} "
@@ -78,7 +78,7 @@ int runSimBench(const SimBenchArgs& args) {
              args.reference ? ";\nplain_s = the same grid with plain holes (no sliding, RMS1 run), "
                               "ratio = seconds / plain_s"
                             : "");
-  fmt::print(tableStream(args.json),
+  fmt::print(simTableStream(args.json),
              "{:>7} {:>8} {:>8} {:>5} {:>9} {:>5} {:>8} {:>15} {:>9} {:>4} {:>9} {:>9} {:>8} {:>5} "
              "{:>6}\n",
              "spacing", "vertices", "unknowns", "bolts", "tolerance", "iters", "seconds",
@@ -106,7 +106,7 @@ int runSimBench(const SimBenchArgs& args) {
       const double rmse = run.deviation ? run.deviation->rmseM : 0.0;
       const double maxError = run.deviation ? run.deviation->maxM : 0.0;
       const double ratio = plain ? notched.medianSeconds / plain->medianSeconds : 0.0;
-      fmt::print(tableStream(args.json),
+      fmt::print(simTableStream(args.json),
                  "{:>7.2f} {:>8} {:>8} {:>5} {:>9.0e} {:>5} {:>8.3f} {:>15} {:>9.2e} {:>4} "
                  "{:>9.4f} {:>9.4f} {:>8} {:>5} {:>6}\n",
                  spacing, run.vertices, run.unknowns, grid.network.connections.size(), tolerance,
@@ -117,7 +117,7 @@ int runSimBench(const SimBenchArgs& args) {
                  plain ? std::to_string(plain->run.solver.iterations) : "-",
                  plain ? fmt::format("{:.2f}", ratio) : "-");
       if (!run.solver.converged)
-        fmt::print(tableStream(args.json), "        not converged: {}\n", run.solver.reason);
+        fmt::print(simTableStream(args.json), "        not converged: {}\n", run.solver.reason);
       nlohmann::json row{{"spacing_m", spacing},
                          {"vertices", run.vertices},
                          {"unknowns", run.unknowns},
@@ -195,7 +195,7 @@ bool runPipelineSuite(const StressArgs& args, nlohmann::json& rows) {
     ::execv(exe.c_str(), argv.data());
     return 127;
   };
-  std::FILE* out = tableStream(args.json);
+  std::FILE* out = simTableStream(args.json);
   fmt::print(out,
              "\negg stress --suite pipeline: fixed scenes and meshes through the real pipeline, "
              "one child process\n"
@@ -238,17 +238,17 @@ int runStress(const StressArgs& args) {
     if (args.json) std::cout << nlohmann::json{{"pipeline", prow}}.dump(2) << "\n";
     return ok ? kExitOk : kExitFailure;
   }
-  fmt::print(tableStream(args.json),
+  fmt::print(simTableStream(args.json),
              "egg stress: cylinder vault (radius = length = 3 f, spacing 0.75 f, width 0.05 f) "
              "under self-weight;\n"
              "every case converges or says why, never NaN (limits: {} s, {} iterations)\n",
              args.timeLimit, args.maxIterations);
   fmt::print(
-      tableStream(args.json),
+      simTableStream(args.json),
       "sag = largest displacement from the weightless equilibrium, in % of the vault's extent; a "
       "converged\n"
       "case that sags several % has found a collapsed equilibrium (the jump of Fig. 3.11)\n");
-  fmt::print(tableStream(args.json),
+  fmt::print(simTableStream(args.json),
              "{:<28} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>10} {:>9} {:>7}  {}\n", "case",
              "scale_m", "w:t", "E_GPa", "rho", "iters", "seconds", "rmse_m", "nrmse", "sag_%",
              "result");
@@ -259,7 +259,7 @@ int runStress(const StressArgs& args) {
                                : o.converged ? "converged"
                                              : "stopped: " + o.reason;
     const double sagPercent = o.extentM > 0.0 ? 100.0 * o.sagM / o.extentM : 0.0;
-    fmt::print(tableStream(args.json),
+    fmt::print(simTableStream(args.json),
                "{:<28} {:>9.3g} {:>6.0f} {:>8.3g} {:>6.0f} {:>6} {:>8.2f} {:>10.3g} {:>9.3g} "
                "{:>7.2f}  {}\n",
                c.name, 3.0 * c.scale, c.widthToThickness, 1e-9 * c.youngsModulusPa, c.densityKgM3,

@@ -51,12 +51,12 @@ std::string field(const std::string& text) {
   return out + "\"";
 }
 
-double number(const json& j, const json::json_pointer& p) {
+double jsonNumber(const json& j, const json::json_pointer& p) {
   return j.contains(p) && j[p].is_number() ? j[p].get<double>() : NAN;
 }
-std::string csvNumber(double x) { return std::isfinite(x) ? fmt::format("{:.6g}", x) : ""; }
+std::string csvCell(double x) { return std::isfinite(x) ? fmt::format("{:.6g}", x) : ""; }
 
-struct Row {
+struct SweepRow {
   std::string variant, status;
   std::vector<std::string> values;
   double patches = NAN, joinedRmse = NAN, joinedMax = NAN, rmse = NAN, maxError = NAN, mass = NAN,
@@ -68,7 +68,7 @@ struct Row {
 };
 
 // Error against mass, linear axes, the front joined and filled (pipeline_bench's paretoFront).
-std::string svgOf(const std::vector<Row>& rows) {
+std::string svgOf(const std::vector<SweepRow>& rows) {
   const double w = 760, h = 480, left = 70, right = 40, top = 30, bottom = 60;
   double mMin = std::numeric_limits<double>::infinity(), mMax = 0, eMax = 0;
   for (const auto& r : rows)
@@ -150,7 +150,7 @@ int collectSweep(const fs::path& dir) {
   const std::vector<std::string> header = splitCsv(line);
   if (header.empty() || header[0] != "variant")
     throw InvalidInput((dir / "variants.csv").string() + ": the first column must be 'variant'");
-  std::vector<Row> rows;
+  std::vector<SweepRow> rows;
   int missing = 0;
   for (int lineNo = 2; std::getline(lines, line); ++lineNo) {
     if (line.empty()) continue;
@@ -162,7 +162,7 @@ int collectSweep(const fs::path& dir) {
     if (!portableNameProblem(fields[0], 200).empty())
       throw InvalidInput(
           fmt::format("{}: line {}: bad variant name", (dir / "variants.csv").string(), lineNo));
-    Row row;
+    SweepRow row;
     row.variant = fields[0];
     row.values.assign(fields.begin() + 1, fields.end());
     const fs::path reportFile = dir / "runs" / row.variant / "report.json";
@@ -180,15 +180,15 @@ int collectSweep(const fs::path& dir) {
     if (row.status != "ok") ++missing;
     if (report.is_object()) {
       using P = json::json_pointer;
-      row.patches = number(report, P("/patching/patches"));
-      row.rmse = number(report, P("/simulation/rmse_m")),
-      row.maxError = number(report, P("/simulation/max_error_m"));
-      row.joinedRmse = number(report, P("/simulation/joined/rmse_m")),
-      row.joinedMax = number(report, P("/simulation/joined/max_error_m"));
-      row.mass = number(report, P("/fabrication/mass_kg")),
-      row.stress = number(report, P("/fabrication/max_stress_ratio"));
-      row.lamellas = number(report, P("/fabrication/lamellae")),
-      row.wall = number(report, P("/timings/total_s"));
+      row.patches = jsonNumber(report, P("/patching/patches"));
+      row.rmse = jsonNumber(report, P("/simulation/rmse_m")),
+      row.maxError = jsonNumber(report, P("/simulation/max_error_m"));
+      row.joinedRmse = jsonNumber(report, P("/simulation/joined/rmse_m")),
+      row.joinedMax = jsonNumber(report, P("/simulation/joined/max_error_m"));
+      row.mass = jsonNumber(report, P("/fabrication/mass_kg")),
+      row.stress = jsonNumber(report, P("/fabrication/max_stress_ratio"));
+      row.lamellas = jsonNumber(report, P("/fabrication/lamellae")),
+      row.wall = jsonNumber(report, P("/timings/total_s"));
     }
     rows.push_back(std::move(row));
   }
@@ -208,10 +208,10 @@ int collectSweep(const fs::path& dir) {
   for (const auto& r : rows) {
     csv += r.variant;
     for (const auto& v : r.values) csv.append(1, ',').append(field(v));
-    csv += fmt::format(",{},{},{},{},{},{},{},{},{},{},{}\n", r.status, csvNumber(r.patches),
-                       csvNumber(r.joinedRmse), csvNumber(r.joinedMax), csvNumber(r.rmse),
-                       csvNumber(r.maxError), csvNumber(r.mass), csvNumber(r.stress),
-                       csvNumber(r.lamellas), csvNumber(r.wall), r.pareto ? 1 : 0);
+    csv += fmt::format(",{},{},{},{},{},{},{},{},{},{},{}\n", r.status, csvCell(r.patches),
+                       csvCell(r.joinedRmse), csvCell(r.joinedMax), csvCell(r.rmse),
+                       csvCell(r.maxError), csvCell(r.mass), csvCell(r.stress), csvCell(r.lamellas),
+                       csvCell(r.wall), r.pareto ? 1 : 0);
     if (r.status != "ok")
       std::cerr << fmt::format("egg sweep: {}: {} ({})\n", r.variant, r.status,
                                (dir / "runs" / r.variant / "report.json").string());

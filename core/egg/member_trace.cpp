@@ -293,7 +293,7 @@ StripSolution solveInStrip(const Patch& patch, const Strip& strip, const PlanarQ
   return solution;
 }
 
-double polylineLength(const std::vector<Eigen::Vector3d>& line) {
+double traceLength(const std::vector<Eigen::Vector3d>& line) {
   double total = 0.0;
   for (size_t k = 1; k < line.size(); ++k) total += (line[k] - line[k - 1]).norm();
   return total;
@@ -407,7 +407,7 @@ void traceInnerMember(const Patch& patch, const geodesic::DistanceSolver& solver
     // member fell back to bracketing with full fields (~20 ms on the 3.4k bench patch).
     if (solution.matched) {
       const double mismatch =
-          polylineLength(solution.positions) - planarDistance(quad, m.family, m.x1, solution.x2);
+          traceLength(solution.positions) - planarDistance(quad, m.family, m.x1, solution.x2);
       if (std::abs(mismatch) <= tolerance) {
         setPath(patch, m, solution.x2, solution.points, solution.positions);
         return;

@@ -1,4 +1,5 @@
 #include "core/egg/patch_design.hpp"
+#include "core/timing.hpp"
 
 #include "core/errors.hpp"
 #include "core/mesh/smoothing.hpp"
@@ -25,10 +26,6 @@ void EggOptions::validate() const {
 }
 
 namespace {
-
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 // The patch vertex nearest to the mean of its vertices: a point on the patch to split at when no
 // peak says where (the mean itself lies off a curved patch).
@@ -62,7 +59,7 @@ DesignFailure etaFailure(const Patch& patch, const std::vector<EtaCheck>& checks
   return f;
 }
 
-double meanSide(const PatchDistanceMaps& maps) {
+double designMeanSide(const PatchDistanceMaps& maps) {
   // The same expression (and rounding) as alpha_bar.cpp's scale of the cladding tolerances.
   return 0.25 * (maps.sides[0] + maps.sides[1] + maps.sides[2] + maps.sides[3]);
 }
@@ -166,7 +163,7 @@ PatchDesign failed(PatchDesign d, DesignFailure failure,
                    std::chrono::steady_clock::time_point started) {
   d.feasible = false;
   d.failure = std::move(failure);
-  d.seconds.total = since(started);
+  d.seconds.total = secondsSince(started);
   return d;
 }
 
@@ -184,7 +181,7 @@ PatchDesign designPatch(Patch patch, const EggOptions& options) {
   auto t = std::chrono::steady_clock::now();
   std::shared_ptr<const geodesic::DistanceSolver> solver =
       std::make_shared<geodesic::DistanceSolver>(d.patch.mesh);
-  d.seconds.uniqueness = since(t);
+  d.seconds.uniqueness = secondsSince(t);
 
   // The maps and the eta check in one go (Sections 2.4.2, 2.3.3, 3.4.1): the maps hold the
   // diagonals; the check adds one field per K peak and one from each p1 (per peak and family),
@@ -246,14 +243,14 @@ PatchDesign designPatch(Patch patch, const EggOptions& options) {
       measureDiagonalsNearTheBound(d.maps, d.patch, *solver, d.peaks))
     d.propagations += 2;
   d.propagations += d.maps.propagations + etaFields.propagations();
-  d.seconds.distanceMaps = since(t);
+  d.seconds.distanceMaps = secondsSince(t);
 
   t = std::chrono::steady_clock::now();
   d.uniqueness = checkUniqueness(d.patch, d.peaks, etaFields, d.maps, options.uniqueness);
   d.uniqueness.propagations = etaFields.propagations();
   if (!d.uniqueness.passed && options.uniqueness.smooth) {
     if (std::optional<DesignFailure> f = smoothUntilUnique(d, solver, options)) {
-      d.seconds.uniqueness += since(t);
+      d.seconds.uniqueness += secondsSince(t);
       return failed(std::move(d), std::move(*f), started);
     }
   }
@@ -268,15 +265,15 @@ PatchDesign designPatch(Patch patch, const EggOptions& options) {
             << " m < longest geodesic " << u.longestGeodesicM << " m; smoothing rounds "
             << u.smoothingRounds << ")";
     f.message = message.str();
-    d.seconds.uniqueness += since(t);
+    d.seconds.uniqueness += secondsSince(t);
     return failed(std::move(d), std::move(f), started);
   }
-  d.seconds.uniqueness += since(t);
+  d.seconds.uniqueness += secondsSince(t);
   if (d.uniqueness.smoothingRounds > 0) {
     t = std::chrono::steady_clock::now();
     d.maps = computeDistanceMaps(d.patch, *solver, options.maps);
     d.propagations += d.maps.propagations;
-    d.seconds.distanceMaps += since(t);
+    d.seconds.distanceMaps += secondsSince(t);
   }
 
   t = std::chrono::steady_clock::now();
@@ -284,12 +281,12 @@ PatchDesign designPatch(Patch patch, const EggOptions& options) {
     d.alphaBar = solveAlphaBar(d.maps, options.alphaBar);
   } catch (const InfeasiblePatch& e) {
     DesignFailure f = slopeFailure(d, e.what());
-    d.seconds.sqp = since(t);  // with the classification of the failure
+    d.seconds.sqp = secondsSince(t);  // with the classification of the failure
     return failed(std::move(d), std::move(f), started);
   }
-  d.seconds.sqp = since(t);
+  d.seconds.sqp = secondsSince(t);
   d.feasible = true;
-  d.seconds.total = since(started);
+  d.seconds.total = secondsSince(started);
   return d;
 }
 
@@ -344,7 +341,7 @@ CladdingFunction claddingAt(const PatchDesign& design, Family family, double alp
   if (!quad)
     throw InvalidInput("claddingAt: alpha_bar = " + std::to_string(alphaBar) +
                        " rad gives no convex planar quad with this patch's sides (criterion iv)");
-  return claddingFunction(design.maps.map(family), *quad, family, meanSide(design.maps),
+  return claddingFunction(design.maps.map(family), *quad, family, designMeanSide(design.maps),
                           options.cladding);
 }
 

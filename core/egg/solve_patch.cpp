@@ -1,15 +1,10 @@
 #include "core/egg/solve_patch.hpp"
+#include "core/timing.hpp"
 
 #include <chrono>
 #include <utility>
 
 namespace egg {
-
-namespace {
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-}  // namespace
 
 EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>& corners,
                    const EggOptions& options) {
@@ -18,7 +13,7 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
 
   auto t = std::chrono::steady_clock::now();
   Patch patch = makePatch(surface, corners, options.patch);
-  const double patchSeconds = since(t);
+  const double patchSeconds = secondsSince(t);
 
   PatchDesign design = designPatch(std::move(patch), options);
   requireFeasible(design);
@@ -30,18 +25,18 @@ EggResult solveEgg(const TriMesh& surface, const std::array<Eigen::Vector3d, 4>&
   t = std::chrono::steady_clock::now();
   result.membersU = placeDesignMembers(design, Family::U, options.members);
   result.membersV = placeDesignMembers(design, Family::V, options.members);
-  result.seconds.members = since(t);
+  result.seconds.members = secondsSince(t);
 
   t = std::chrono::steady_clock::now();
   result.grid = traceDesignGrid(design, result.membersU, result.membersV, options.grid);
-  result.seconds.tracing = since(t);
+  result.seconds.tracing = secondsSince(t);
   result.propagations = design.propagations + design.patch.propagations + result.grid.propagations;
 
   result.patch = std::move(design.patch);
   result.uniqueness = std::move(design.uniqueness);
   result.maps = std::move(design.maps);
   result.alphaBar = std::move(design.alphaBar);
-  result.seconds.total = since(started);
+  result.seconds.total = secondsSince(started);
   return result;
 }
 

@@ -1,4 +1,5 @@
 #include "core/egg/uniqueness.hpp"
+#include "core/timing.hpp"
 
 #include "core/curvature/curvature.hpp"
 #include "core/egg/patch_maps.hpp"
@@ -25,10 +26,6 @@ void UniquenessOptions::validate() const {
 }
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 // Offsets of the family's start and end side samples in uniquenessPeakTargets.
 int sideOffset(Family family, bool end, int n) {

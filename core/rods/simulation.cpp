@@ -13,7 +13,7 @@ namespace egg::rods {
 
 namespace {
 template <class... Args>
-std::string format(const char* pattern, Args... args) {
+std::string formatMessage(const char* pattern, Args... args) {
   char buffer[512];
   std::snprintf(buffer, sizeof(buffer), pattern, args...);
   return buffer;
@@ -145,8 +145,8 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     factorisations = run.solver.factorisations += factorisations;
     evaluations = run.solver.energyEvaluations += evaluations;
     if (run.solver.status == SolverStatus::IterationLimit) {
-      run.solver.reason = format("no convergence in %d iterations (decrement %.3g J)", iterations,
-                                 run.solver.decrement);
+      run.solver.reason = formatMessage("no convergence in %d iterations (decrement %.3g J)",
+                                        iterations, run.solver.decrement);
     }
     // A load step that ran out of iterations or time far from the weightless equilibrium, still
     // going down: the grid is falling through, not converging slowly.
@@ -156,7 +156,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
       const double moved = largestDisplacement();
       if (moved > options.collapseFraction * extent) {
         run.solver.status = SolverStatus::Collapsed;
-        run.solver.reason = format(
+        run.solver.reason = formatMessage(
             "collapses under its own weight: after %d iterations a vertex has moved %.3g m (%.1f "
             "%% of the grid's "
             "extent %.3g m) from the %s and the energy is still decreasing (decrement %.3g J): "

@@ -16,7 +16,7 @@ std::vector<Eigen::Vector3d> gridCorners(const TriMesh& surface, double half) {
           surface, geodesic::snapToSurface(surface, {-half + half * i, -half + half * j, 0.0})));
   return corners;
 }
-const std::vector<std::array<int, 4>> kTwoByTwo{
+const std::vector<std::array<int, 4>> kGraphTwoByTwo{
     {0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
 
 std::vector<std::vector<int>> cutAll(const PatchLayout& layout) {
@@ -30,7 +30,7 @@ TEST(PatchGraph, TwoByTwoHasFourSharedSidesAndFourChains) {
   const TriMesh surface = samples::generateSample(
       "bump", {{"length", 8}, {"width", 8}, {"height", 1}, {"sigma", 1.5}}, 0.3);
   const geodesic::DistanceSolver solver(surface);
-  const PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 3.0), kTwoByTwo);
+  const PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 3.0), kGraphTwoByTwo);
   const PatchGraph graph = buildPatchGraph(layout);
   int shared = 0, free = 0;
   for (const auto& b : graph.boundaries) {
@@ -67,7 +67,7 @@ TEST(PatchGraph, TwoByTwoHasFourSharedSidesAndFourChains) {
 TEST(PatchGraph, PlaneCutIntoFourIsFullyCovered) {
   const TriMesh surface = samples::generateSample("plane", {{"length", 6}, {"width", 6}}, 0.4);
   const geodesic::DistanceSolver solver(surface);
-  const PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 3.0), kTwoByTwo);
+  const PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 3.0), kGraphTwoByTwo);
   const Coverage coverage = computeCoverage(layout, cutAll(layout));
   EXPECT_NEAR(coverage.fraction, 1.0, 1e-12);
   EXPECT_NEAR(coverage.coveredAreaM2, 36.0, 1e-9);

@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<Eigen::Vector3d> gridCorners(const TriMesh& surface, double half) {
+std::vector<Eigen::Vector3d> planGridCorners(const TriMesh& surface, double half) {
   std::vector<Eigen::Vector3d> corners;
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i)
@@ -26,7 +26,7 @@ std::vector<Eigen::Vector3d> gridCorners(const TriMesh& surface, double half) {
           surface, geodesic::snapToSurface(surface, {-half + half * i, -half + half * j, 0.0})));
   return corners;
 }
-const std::vector<std::array<int, 4>> kTwoByTwo{
+const std::vector<std::array<int, 4>> kPlanTwoByTwo{
     {0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
 
 std::string readText(const fs::path& path) {
@@ -76,7 +76,7 @@ struct Scene {
   TriMesh surface = samples::generateSample(
       "bump", {{"length", 8}, {"width", 8}, {"height", 2}, {"sigma", 1}}, 0.2);
   geodesic::DistanceSolver solver{surface};
-  PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 2.5), kTwoByTwo);
+  PatchLayout layout = makeLayout(surface, solver, planGridCorners(surface, 2.5), kPlanTwoByTwo);
   std::vector<SurfacePeak> peaks = findSurfacePeaks(surface);
   Coverage coverage;
   Scene() {

@@ -10,7 +10,7 @@ namespace egg::patching {
 namespace {
 
 // A 1.8 m tall Gaussian bump (sigma 1.5 m) on 8 x 8 m: too tall for one patch over its peak.
-TriMesh tallBump() {
+TriMesh workflowTallBump() {
   return samples::generateSample(
       "bump", {{"height", 1.8}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
 }
@@ -33,7 +33,7 @@ PatchLayout layoutOf(const TriMesh& surface, const geodesic::DistanceSolver& sol
 }
 
 TEST(Workflow1, SlowOneFamilyFailingGetsASideOverThePeakAndANeighbourATJunction) {
-  const TriMesh surface = tallBump();
+  const TriMesh surface = workflowTallBump();
   const geodesic::DistanceSolver solver(surface);
   // Patch 0: 6 x 2 m across the peak (its u members, along x, fail eta; Section 3.4.1). Patch 1:
   // its neighbour below y = -1, which shares patch 0's side 0.
@@ -74,7 +74,7 @@ TEST(Workflow1, SlowOneFamilyFailingGetsASideOverThePeakAndANeighbourATJunction)
 }
 
 TEST(Workflow1, SlowBothFamiliesFailingGetACornerAtThePeak) {
-  const TriMesh surface = tallBump();
+  const TriMesh surface = workflowTallBump();
   const geodesic::DistanceSolver solver(surface);
   const PatchLayout initial =
       layoutOf(surface, solver, {{-3, -3, 0}, {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, {{0, 1, 2, 3}});
@@ -96,7 +96,7 @@ TEST(Workflow1, SlowBothFamiliesFailingGetACornerAtThePeak) {
 }
 
 TEST(Workflow1, SlowAnImpossibleLayoutEndsWithAClearReason) {
-  const TriMesh surface = tallBump();
+  const TriMesh surface = workflowTallBump();
   const geodesic::DistanceSolver solver(surface);
   const PatchLayout initial =
       layoutOf(surface, solver, {{-3, -3, 0}, {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}}, {{0, 1, 2, 3}});

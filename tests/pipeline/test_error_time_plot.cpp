@@ -16,7 +16,7 @@ std::vector<rods::DeviationSample> samples() {
   return {{0, 0, 0.0, 0.0, 0.0}, {8, 0, 1.0, 0.05, 0.2}, {16, 1, 2.0, 0.1, 0.5}};
 }
 
-std::string attribute(const std::string& svg, const std::string& id, const std::string& name) {
+std::string svgAttribute(const std::string& svg, const std::string& id, const std::string& name) {
   const std::regex element("id=\"" + id + "\"[^>]*?" + name + "=\"([^\"]*)\"");
   std::smatch match;
   return std::regex_search(svg, match, element) ? match[1].str() : std::string("<none>");
@@ -62,10 +62,10 @@ TEST(ErrorTimePlot, KnownSamplesPlotToKnownCoordinates) {
   EXPECT_EQ(svg.rfind("<svg id=\"error-time-test\" class=\"chart\"", 0), 0u);
   EXPECT_NE(svg.find("a &lt;title&gt;"), std::string::npos);
   // RMSE: (0 s, 0) (1 s, 0.05) (2 s, 0.1) -> y = 240 - 200 e / 0.108.
-  EXPECT_EQ(attribute(svg, "error-time-test-rmse-0", "points"),
+  EXPECT_EQ(svgAttribute(svg, "error-time-test-rmse-0", "points"),
             fmt::format("64.00,240.00 214.00,{:.2f} 364.00,{:.2f}", 240.0 - 200.0 * 0.05 / 0.108,
                         240.0 - 200.0 * 0.1 / 0.108));
-  EXPECT_EQ(attribute(svg, "error-time-test-max-0", "points"),
+  EXPECT_EQ(svgAttribute(svg, "error-time-test-max-0", "points"),
             fmt::format("454.00,240.00 604.00,{:.2f} 754.00,{:.2f}", 240.0 - 200.0 * 0.2 / 0.54,
                         40.0 + 200.0 * (1.0 - 0.5 / 0.54)));
   // Each sample a dot, in both panels: (1 s, 0.2 m) in the max panel.
@@ -77,7 +77,7 @@ TEST(ErrorTimePlot, KnownSamplesPlotToKnownCoordinates) {
       svg.find(fmt::format("<circle cx=\"604.00\" cy=\"{:.2f}\"", 240.0 - 200.0 * 0.2 / 0.54)),
       std::string::npos);
   // The empty series is not drawn and not in the legend.
-  EXPECT_EQ(attribute(svg, "error-time-test-rmse-1", "points"), "<none>");
+  EXPECT_EQ(svgAttribute(svg, "error-time-test-rmse-1", "points"), "<none>");
   EXPECT_EQ(svg.find("patch 1"), std::string::npos);
   EXPECT_NE(svg.find(">patch 0<"), std::string::npos);
 }

@@ -11,7 +11,7 @@
 namespace egg::samples::detail {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kMesherPi = std::numbers::pi;
 
 SurfaceSpec build(const std::string& name, Params overrides = {}) {
   for (const auto& entry : testSurfaceSamples()) {
@@ -26,7 +26,8 @@ SurfaceSpec build(const std::string& name, Params overrides = {}) {
 TEST(SurfaceMesher, AreaEstimateIsWithinAPercent) {
   EXPECT_NEAR(estimateArea(build("plane")), 100.0, 1e-6);
   // Cap of polar angle psi: 2 pi R^2 (1 - cos psi), cos psi = 0.6 for extent 8 of radius 10.
-  EXPECT_NEAR(estimateArea(build("sphere")), 2 * kPi * 100 * 0.4, 0.01 * 2 * kPi * 100 * 0.4);
+  EXPECT_NEAR(estimateArea(build("sphere")), 2 * kMesherPi * 100 * 0.4,
+              0.01 * 2 * kMesherPi * 100 * 0.4);
 }
 
 TEST(SurfaceMesher, BoundaryVerticesLieOnTheExactCurvesAndRequiredPointsAreVertices) {
@@ -42,7 +43,7 @@ TEST(SurfaceMesher, BoundaryVerticesLieOnTheExactCurvesAndRequiredPointsAreVerti
     // On the base (z = 0), the top circle (z = 4), or a ruling at azimuth +-pi/2.
     const double azimuth = std::atan2(p.y(), p.x());
     const bool onCurve = std::abs(p.z()) < 1e-12 || std::abs(p.z() - 4.0) < 1e-12 ||
-                         std::abs(std::abs(azimuth) - kPi / 2) < 1e-12;
+                         std::abs(std::abs(azimuth) - kMesherPi / 2) < 1e-12;
     EXPECT_TRUE(onCurve) << p.transpose();
   }
   EXPECT_TRUE(required);

@@ -14,7 +14,7 @@ namespace egg::samples {
 namespace {
 
 using Eigen::Vector3d;
-constexpr double kPi = std::numbers::pi;
+constexpr double kSurfacesPi = std::numbers::pi;
 
 // Checks every vertex against `residual` (zero on the surface) and every face normal against the
 // outward direction `outward(centroid)`.
@@ -54,18 +54,19 @@ TEST(TestSurfaces, SphereCapAndHemisphere) {
       hemisphere, [](const Vector3d& p) { return p.norm() - 2.0; },
       [](const Vector3d& c) { return c; });
   EXPECT_NEAR(boundingBox(hemisphere).min.z(), 0.0, 1e-12);
-  EXPECT_NEAR(surfaceArea(hemisphere), 2 * kPi * 4.0, 0.02 * 2 * kPi * 4.0);
+  EXPECT_NEAR(surfaceArea(hemisphere), 2 * kSurfacesPi * 4.0, 0.02 * 2 * kSurfacesPi * 4.0);
 }
 
 TEST(TestSurfaces, CylinderVault) {
-  const TriMesh mesh = generateSample("cylinder", {{"angle", kPi / 2}}, 0.4);
+  const TriMesh mesh = generateSample("cylinder", {{"angle", kSurfacesPi / 2}}, 0.4);
   expectOnSurface(
       mesh, [](const Vector3d& p) { return std::hypot(p.y(), p.z()) - 5.0; },
       [](const Vector3d& c) { return Vector3d(0, c.y(), c.z()); });
   const auto box = boundingBox(mesh);
   EXPECT_NEAR(box.size().x(), 10.0, 1e-12);
-  EXPECT_NEAR(box.size().y(), 2 * 5.0 * std::sin(kPi / 4), 1e-9);  // the arc's corners are vertices
-  EXPECT_NEAR(box.min.z(), 5.0 * std::cos(kPi / 4), 1e-9);
+  EXPECT_NEAR(box.size().y(), 2 * 5.0 * std::sin(kSurfacesPi / 4),
+              1e-9);  // the arc's corners are vertices
+  EXPECT_NEAR(box.min.z(), 5.0 * std::cos(kSurfacesPi / 4), 1e-9);
 }
 
 TEST(TestSurfaces, ConeFrustumAndPointedCone) {
@@ -79,7 +80,7 @@ TEST(TestSurfaces, ConeFrustumAndPointedCone) {
   expectOnSurface(frustum, residual, outward);
   EXPECT_NEAR(boundingBox(frustum).max.z(), 4.0, 1e-9);  // top circle of radius 1
   // Half of a frustum's lateral area pi (R + r) slant.
-  EXPECT_NEAR(surfaceArea(frustum), 0.5 * kPi * 6.0 * std::sqrt(16.0 + 16.0), 0.015 * 53.3);
+  EXPECT_NEAR(surfaceArea(frustum), 0.5 * kSurfacesPi * 6.0 * std::sqrt(16.0 + 16.0), 0.015 * 53.3);
   const TriMesh pointed = generateSample("cone", {{"top_radius", 0.0}}, 0.3);
   expectOnSurface(pointed, residual, outward);
   bool apex = false;
@@ -121,7 +122,8 @@ TEST(TestSurfaces, BumpAndWaves) {
   expectOnSurface(
       waves,
       [](const Vector3d& p) {
-        return p.z() - 0.3 * std::sin(2 * kPi * p.x() / 4.0) * std::sin(2 * kPi * p.y() / 4.0);
+        return p.z() - 0.3 * std::sin(2 * kSurfacesPi * p.x() / 4.0) *
+                           std::sin(2 * kSurfacesPi * p.y() / 4.0);
       },
       [](const Vector3d&) { return kUp; });
 }

@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
+std::string slurpFile(const fs::path& p) {
   std::ifstream in(p);
   std::stringstream s;
   s << in.rdbuf();
@@ -65,7 +65,7 @@ TEST(SweepCollect, SlowSmallSweepRunsWithGnuParallelAndCollects) {
                     .c_str()),
             0);
 
-  std::istringstream csv(slurp(out / "sweep.csv"));
+  std::istringstream csv(slurpFile(out / "sweep.csv"));
   std::string line;
   ASSERT_TRUE(std::getline(csv, line));
   const auto header = split(line);
@@ -82,7 +82,7 @@ TEST(SweepCollect, SlowSmallSweepRunsWithGnuParallelAndCollects) {
     EXPECT_EQ(f[col["variant"]], rows == 1 ? "v001" : "v002");
     EXPECT_EQ(f[col["/lamella/thickness_m"]], rows == 1 ? "0.01" : "0.02");
     EXPECT_EQ(f[col["status"]], "ok");
-    const auto report = nlohmann::json::parse(slurp(out / "runs" / f[0] / "report.json"));
+    const auto report = nlohmann::json::parse(slurpFile(out / "runs" / f[0] / "report.json"));
     EXPECT_EQ(std::stod(f[col["patches"]]), report["patching"]["patches"].get<double>());
     const double rmse = std::stod(f[col["rmse_m"]]), maxError = std::stod(f[col["max_error_m"]]),
                  wall = std::stod(f[col["wall_s"]]);
@@ -93,7 +93,7 @@ TEST(SweepCollect, SlowSmallSweepRunsWithGnuParallelAndCollects) {
     EXPECT_NEAR(wall, report["timings"]["total_s"].get<double>(), 1e-5 * wall);
   }
   EXPECT_EQ(rows, 2);
-  const std::string svg = slurp(out / "sweep.svg");
+  const std::string svg = slurpFile(out / "sweep.svg");
   EXPECT_NE(svg.find("against lamella mass"), std::string::npos);
   if (std::system("command -v rsvg-convert > /dev/null 2>&1") == 0) {
     EXPECT_EQ(std::system(("rsvg-convert " + shellQuote((out / "sweep.svg").string()) + " -o " +
@@ -108,7 +108,7 @@ TEST(SweepCollect, SlowSmallSweepRunsWithGnuParallelAndCollects) {
                          " > /dev/null 2>&1")
                             .c_str()),
             0);
-  EXPECT_NE(slurp(out / "sweep.csv").find("v002,0.02,missing,"), std::string::npos);
+  EXPECT_NE(slurpFile(out / "sweep.csv").find("v002,0.02,missing,"), std::string::npos);
   fs::remove_all(d);
 }
 

@@ -14,7 +14,7 @@ namespace {
 using Engine = DistanceSolverOptions::Engine;
 using testing::facePoint;
 
-DistanceSolverOptions withEngine(Engine engine) {
+DistanceSolverOptions setupWithEngine(Engine engine) {
   DistanceSolverOptions o;
   o.engine = engine;
   return o;
@@ -22,8 +22,8 @@ DistanceSolverOptions withEngine(Engine engine) {
 
 TEST(PropagationSetup, PeakBytesCountTheWindowsHeldAndTheMeshArrays) {
   const TriMesh mesh = testing::gridMesh(30, 30, 3.0, 3.0, testing::bump(1.5, 1.5, 0.6, 0.7), 0.2);
-  const DistanceSolver stored(mesh, withEngine(Engine::StoredWindows));
-  const DistanceSolver front(mesh, withEngine(Engine::FrontOnly));
+  const DistanceSolver stored(mesh, setupWithEngine(Engine::StoredWindows));
+  const DistanceSolver front(mesh, setupWithEngine(Engine::FrontOnly));
   const SurfacePoint s = vertexPoint(mesh, 15 * 31 + 4);
   const auto a = stored.distances(s), b = front.distances(s);
   const double nv = static_cast<double>(mesh.n_vertices()),
@@ -36,7 +36,7 @@ TEST(PropagationSetup, PeakBytesCountTheWindowsHeldAndTheMeshArrays) {
   EXPECT_LT(b.peakBytes, a.peakBytes);
   // A field's count does not depend on what the thread computed before (a larger field first).
   const TriMesh big = testing::gridMesh(60, 60, 3.0, 3.0, testing::flat);
-  DistanceSolver(big, withEngine(Engine::FrontOnly)).distances(vertexPoint(big, 5));
+  DistanceSolver(big, setupWithEngine(Engine::FrontOnly)).distances(vertexPoint(big, 5));
   EXPECT_EQ(front.distances(s).peakBytes, b.peakBytes);
 }
 
@@ -45,9 +45,9 @@ TEST(PropagationSetup, ScratchReusedAcrossEnginesAndMeshesGivesTheFreshFields) {
   const TriMesh two = testing::sphereMesh(1.0, 12, 20);
   const SurfacePoint s1 = facePoint(40, 0.2, 0.3, 0.5), s2 = facePoint(100, 0.6, 0.2, 0.2);
   const std::vector<SurfacePoint> targets = {facePoint(7, 0.3, 0.3, 0.4)};
-  const DistanceSolver frontOne(one, withEngine(Engine::FrontOnly)),
-      storedTwo(two, withEngine(Engine::StoredWindows));
-  const DistanceSolver frontTwo(two, withEngine(Engine::FrontOnly));
+  const DistanceSolver frontOne(one, setupWithEngine(Engine::FrontOnly)),
+      storedTwo(two, setupWithEngine(Engine::StoredWindows));
+  const DistanceSolver frontTwo(two, setupWithEngine(Engine::FrontOnly));
   const auto first = frontOne.distances(s1, targets);
   const auto second = storedTwo.distances(s2, targets);
   const auto third = frontTwo.distances(s2, targets);
@@ -77,7 +77,7 @@ TEST(PropagationSetup, AnEdgeSourceIsTheSameGivenInEitherFace) {
     return p;
   };
   for (const Engine engine : {Engine::StoredWindows, Engine::FrontOnly}) {
-    const DistanceSolver solver(mesh, withEngine(engine));
+    const DistanceSolver solver(mesh, setupWithEngine(engine));
     const auto a = solver.distances(onEdge(h0)), b = solver.distances(onEdge(h1));
     for (size_t v = 0; v < a.vertexDistances.size(); ++v) {
       EXPECT_NEAR(a.vertexDistances[v], b.vertexDistances[v], 1e-12) << "vertex " << v;

@@ -52,7 +52,7 @@ void expectExactDerivatives(const std::array<double, N>& x, const F& f, double t
 
 using testing::referenceNear;
 
-const RodStiffness kStiffness{2.0e4, 3.0, 70.0, 1.7};
+const RodStiffness kEnergyStiffness{2.0e4, 3.0, 70.0, 1.7};
 
 TEST(RodEnergies, ParallelTransportMapsFromToAndPreservesAngles) {
   const V3<double> from = constant<double>(Eigen::Vector3d(1, 2, 3).normalized());
@@ -84,7 +84,8 @@ TEST(RodEnergies, BendTwistGradientAndHessianMatchFiniteDifferences) {
     const EdgeReference r1 =
         referenceNear(Eigen::Vector3d(x[6] - x[3], x[7] - x[4], x[8] - x[5]), rng);
     expectExactDerivatives(x, [&](const auto& v) {
-      return bendTwistEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v[9], v[10], r0, r1, kStiffness, 1.1);
+      return bendTwistEnergy(v3(v, 0), v3(v, 3), v3(v, 6), v[9], v[10], r0, r1, kEnergyStiffness,
+                             1.1);
     });
   }
 }
@@ -98,20 +99,20 @@ TEST(RodEnergies, BendingOfAKinkMatchesTwoTanHalfAngleAboutEachAxis) {
   const EdgeReference r1{t1, Eigen::Vector3d(-std::sin(phi), 0.0, std::cos(phi))};
   const V3<double> x0{0, 0, 0}, x1{1, 0, 0}, x2{1 + t1.x(), 0, t1.z()};
   // Turning towards the normal m1 = z: weak-axis bending.
-  EXPECT_NEAR(bendTwistEnergy(x0, x1, x2, 0.0, 0.0, r0, r1, kStiffness, l),
-              0.5 * kStiffness.bendingWeak * kappa * kappa / l, 1e-12);
+  EXPECT_NEAR(bendTwistEnergy(x0, x1, x2, 0.0, 0.0, r0, r1, kEnergyStiffness, l),
+              0.5 * kEnergyStiffness.bendingWeak * kappa * kappa / l, 1e-12);
   // Same kink with the lamella normal along y (theta = -pi/2 rotates m1 from z to y): strong axis.
   const double quarter = -M_PI / 2.0;
-  EXPECT_NEAR(bendTwistEnergy(x0, x1, x2, quarter, quarter, r0, r1, kStiffness, l),
-              0.5 * kStiffness.bendingStrong * kappa * kappa / l, 1e-9);
+  EXPECT_NEAR(bendTwistEnergy(x0, x1, x2, quarter, quarter, r0, r1, kEnergyStiffness, l),
+              0.5 * kEnergyStiffness.bendingStrong * kappa * kappa / l, 1e-9);
 }
 
 TEST(RodEnergies, TwistOfAStraightRodIsTheAngleDifference) {
   const EdgeReference r{Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ()};
   const V3<double> x0{0, 0, 0}, x1{1, 0, 0}, x2{2, 0, 0};
   const double twist = 0.3, l = 0.8;
-  EXPECT_NEAR(bendTwistEnergy(x0, x1, x2, 0.1, 0.1 + twist, r, r, kStiffness, l),
-              0.5 * kStiffness.twisting * twist * twist / l, 1e-14);
+  EXPECT_NEAR(bendTwistEnergy(x0, x1, x2, 0.1, 0.1 + twist, r, r, kEnergyStiffness, l),
+              0.5 * kEnergyStiffness.twisting * twist * twist / l, 1e-14);
 }
 
 TEST(RodEnergies, ConnectionGradientAndHessianMatchFiniteDifferences) {

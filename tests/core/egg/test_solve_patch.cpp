@@ -37,7 +37,7 @@ void expectGridCriteria(const EggResult& r) {
   }
 }
 
-EggOptions fastOptions() {
+EggOptions solveFastOptions() {
   EggOptions options;
   options.maps.resolution = 41;
   options.members.lamellaWidthM = 0.1;
@@ -77,7 +77,7 @@ void expectUnrolledGrid(const EggResult& r, const testing::RuledCylinder& cylind
 
 TEST(SolvePatch, DevelopableCylinderAtUnrolledAngleGivesTheUnrolledGrid) {
   const testing::RuledCylinder cylinder;
-  EggOptions options = fastOptions();
+  EggOptions options = solveFastOptions();
   parseAlphaBarChoice("unrolled", options.alphaBar);
   const EggResult r = solveEgg(cylinder.mesh(), cylinderCorners(cylinder), options);
   EXPECT_TRUE(r.alphaBar.degenerate);
@@ -90,7 +90,7 @@ TEST(SolvePatch, DevelopableCylinderAtAlphaMinIsNotchFreeToo) {
   // the grid at alpha_min is notch-free as well (for a parallelogram F is the identity and this is
   // elementary; for this general quad it holds to rounding). Notches are reported, and zero.
   const testing::RuledCylinder cylinder;
-  const EggResult r = solveEgg(cylinder.mesh(), cylinderCorners(cylinder), fastOptions());
+  const EggResult r = solveEgg(cylinder.mesh(), cylinderCorners(cylinder), solveFastOptions());
   EXPECT_LT(r.alphaBar.alphaBar, r.patch.innerAngles[0]);
   EXPECT_NEAR(r.alphaBar.alphaBar, r.alphaBar.alphaMin, 0.0);
   expectGridCriteria(r);
@@ -117,7 +117,7 @@ TEST(SolvePatch, SpherePatchHasFeasibleRangeSlopesInBoundsAndNotches) {
   const double xy[4][2] = {{-4, -4}, {4.2, -3.8}, {4, 4}, {-3.8, 4.2}};
   for (int k = 0; k < 4; ++k)
     corners[k] = {xy[k][0], xy[k][1], std::sqrt(100.0 - xy[k][0] * xy[k][0] - xy[k][1] * xy[k][1])};
-  const EggOptions options = fastOptions();
+  const EggOptions options = solveFastOptions();
   const EggResult r = solveEgg(mesh, corners, options);
   ASSERT_TRUE(r.alphaBar.rangeFound);
   EXPECT_LT(r.alphaBar.alphaMin, r.alphaBar.alphaMax);
@@ -137,10 +137,10 @@ TEST(SolvePatch, SpherePatchHasFeasibleRangeSlopesInBoundsAndNotches) {
 namespace egg {
 namespace {
 
-const std::array<Eigen::Vector3d, 4> kBumpCorners{
+const std::array<Eigen::Vector3d, 4> kSolveBumpCorners{
     Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {-3, 3, 0}};
 
-TriMesh bumpMesh(double height) {
+TriMesh solveBumpMesh(double height) {
   return samples::generateSample(
       "bump", {{"height", height}, {"sigma", 1.5}, {"length", 8.0}, {"width", 8.0}}, 0.35);
 }
@@ -149,7 +149,7 @@ TEST(SolvePatch, DevelopableCylinderWithMapsOnAProxyStillGivesTheUnrolledGrid) {
   // The maps on a coarse proxy only steer F, C and the tracing guesses; tracing on the fine patch
   // restores criterion (i), so at the unrolled angle the grid is still notch-free and unrolled.
   const testing::RuledCylinder cylinder;
-  EggOptions options = fastOptions();
+  EggOptions options = solveFastOptions();
   options.maps.proxyVertices = 150;
   parseAlphaBarChoice("unrolled", options.alphaBar);
   const EggResult r = solveEgg(cylinder.mesh(), cylinderCorners(cylinder), options);
@@ -158,8 +158,8 @@ TEST(SolvePatch, DevelopableCylinderWithMapsOnAProxyStillGivesTheUnrolledGrid) {
 }
 
 TEST(SolvePatch, BumpPatchNeedsNoSmoothingAndHasNotches) {
-  const EggOptions options = fastOptions();
-  const EggResult r = solveEgg(bumpMesh(1.0), kBumpCorners, options);
+  const EggOptions options = solveFastOptions();
+  const EggResult r = solveEgg(solveBumpMesh(1.0), kSolveBumpCorners, options);
   EXPECT_EQ(r.uniqueness.smoothingRounds, 0);  // skipped: eta already below eta_max
   EXPECT_LE(std::max(r.uniqueness.etaU, r.uniqueness.etaV), options.uniqueness.etaMax);
   ASSERT_TRUE(r.alphaBar.rangeFound);
@@ -176,25 +176,26 @@ TEST(SolvePatch, BumpPatchNeedsNoSmoothingAndHasNotches) {
 
 TEST(SolvePatch, BadCornersStopTheSolveWithTheirReason) {
   // The solver passes the patch's reason on and computes nothing else (no crash, no partial grid).
-  const TriMesh mesh = bumpMesh(1.0);
+  const TriMesh mesh = solveBumpMesh(1.0);
   try {
-    solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {0, -2, 0}, {3, -3, 0}, {0, 3, 0}}, fastOptions());
+    solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {0, -2, 0}, {3, -3, 0}, {0, 3, 0}},
+             solveFastOptions());
     ADD_FAILURE() << "a concave quad was accepted";
   } catch (const InfeasiblePatch& e) {
     EXPECT_NE(std::string(e.what()).find("criterion iv"), std::string::npos) << e.what();
   }
   EXPECT_THROW(solveEgg(mesh, {Eigen::Vector3d(-3, -3, 0), {3, -3, 0}, {3, 3, 0}, {30, 30, 0}},
-                        fastOptions()),
+                        solveFastOptions()),
                InvalidInput);
 }
 
 TEST(SolvePatch, TallBumpFailsEtaAndPassesAfterSmoothing) {
-  EggOptions options = fastOptions();
+  EggOptions options = solveFastOptions();
   options.uniqueness.smooth = false;
-  const TriMesh mesh = bumpMesh(2.0);
-  EXPECT_THROW(solveEgg(mesh, kBumpCorners, options), InfeasiblePatch);
+  const TriMesh mesh = solveBumpMesh(2.0);
+  EXPECT_THROW(solveEgg(mesh, kSolveBumpCorners, options), InfeasiblePatch);
   options.uniqueness.smooth = true;
-  const EggResult r = solveEgg(mesh, kBumpCorners, options);
+  const EggResult r = solveEgg(mesh, kSolveBumpCorners, options);
   EXPECT_GT(r.uniqueness.etaBeforeSmoothing, options.uniqueness.etaMax);
   EXPECT_GT(r.uniqueness.smoothingRounds, 0);
   EXPECT_LE(std::max(r.uniqueness.etaU, r.uniqueness.etaV), options.uniqueness.etaMax);
@@ -215,7 +216,7 @@ TEST(SolvePatch, DevelopableConeAtUnrolledAngleGivesTheUnrolledGrid) {
   const double polar[4][2] = {{4.0, 0.15}, {4.2, 1.05}, {8.2, 1.0}, {7.8, 0.2}};
   std::array<Eigen::Vector3d, 4> corners;
   for (int k = 0; k < 4; ++k) corners[k] = cone.fromUnrolled(polar[k][0], polar[k][1]);
-  EggOptions options = fastOptions();
+  EggOptions options = solveFastOptions();
   parseAlphaBarChoice("unrolled", options.alphaBar);
   const EggResult r = solveEgg(cone.mesh(), corners, options);
   EXPECT_TRUE(r.alphaBar.degenerate);
@@ -247,7 +248,7 @@ TEST(SolvePatch, DevelopableConeAtAlphaMinIsNotchFreeAndNotTheUnrolledGrid) {
   const double polar[4][2] = {{4.0, 0.15}, {4.2, 1.05}, {8.2, 1.0}, {7.8, 0.2}};
   std::array<Eigen::Vector3d, 4> corners;
   for (int k = 0; k < 4; ++k) corners[k] = cone.fromUnrolled(polar[k][0], polar[k][1]);
-  const EggResult r = solveEgg(cone.mesh(), corners, fastOptions());
+  const EggResult r = solveEgg(cone.mesh(), corners, solveFastOptions());
   ASSERT_TRUE(r.alphaBar.rangeFound);
   EXPECT_NEAR(r.alphaBar.alphaBar, r.alphaBar.alphaMin, 0.0);
   EXPECT_LT(r.alphaBar.alphaBar, r.patch.innerAngles[0] - 0.1);
@@ -273,7 +274,7 @@ TEST(SolvePatch, MeshedCylinderAtUnrolledAngleIsNearlyNotchFree) {
   const auto at = [](double x, double phi) {
     return Eigen::Vector3d(x, 5 * std::sin(phi), 5 * std::cos(phi));
   };
-  EggOptions options = fastOptions();
+  EggOptions options = solveFastOptions();
   parseAlphaBarChoice("unrolled", options.alphaBar);
   const EggResult r = solveEgg(mesh, {at(-3, -0.6), at(3, -0.6), at(3, 0.6), at(-3, 0.6)}, options);
   EXPECT_TRUE(r.alphaBar.degenerate);

@@ -22,7 +22,7 @@ bool ran(const json& section) {
   return section.is_object() && section.value("ran", true) && !section.contains("skipped_reason");
 }
 
-std::string skipReason(const json& section, const std::string& stage) {
+std::string notRunReason(const json& section, const std::string& stage) {
   if (section.is_object() && section.contains("skipped_reason"))
     return stage + " did not run: " + section["skipped_reason"].get<std::string>();
   return stage + " did not run";
@@ -75,7 +75,7 @@ Verdict judgeRun(const json& report, const AcceptanceLimits& limits) {
   // would stand. Its failure is the simulation's own; the shape criteria wait for an equilibrium.
   const bool simulated = ran(simulation) && simulation.value("converged", true);
   const std::string noSimulation = ran(simulation) ? std::string("the simulation did not converge")
-                                                   : skipReason(simulation, "the simulation");
+                                                   : notRunReason(simulation, "the simulation");
 
   // The patch-by-patch deployment (every patch held along its sides, as the thesis simulated
   // them) and the joined structure (the patches bolted to each other, held at the design
@@ -158,7 +158,7 @@ Verdict judgeRun(const json& report, const AcceptanceLimits& limits) {
   stress.limitRule = fmt::format("acceptance.max_stress_ratio = {:.4g}", limits.maxStressRatio);
   const bool stressed = ran(fabrication) && number(fabrication, "max_stress_ratio", value);
   evaluate(stress, stressed, value,
-           skipReason(fabrication, "fabrication (which computes the lamella stresses)"));
+           notRunReason(fabrication, "fabrication (which computes the lamella stresses)"));
   v.criteria.push_back(stress);
   return v;
 }

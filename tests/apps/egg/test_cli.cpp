@@ -140,6 +140,40 @@ TEST_F(Cli, RunWritesACompleteReport) {
   EXPECT_FALSE(report["simulation"]["ran"].get<bool>());
 }
 
+// Issue 36: a 20 m birch dome (4.4 m rise) cut from 200 x 8 mm lamellas cannot carry its own
+// weight. The run completes, but ends with exit 1 and says so on the terminal, naming each missed
+// criterion with its value and limit; at 20 mm the same dome stands and passes.
+TEST_F(Cli, ACollapsingDomeEndsWithExit1AndNamesTheCriteria) {
+  auto dome = [&](const std::string& name, double thicknessM) {
+    return write(name + ".json", R"({"name": ")" + name + R"(",
+      "surface": {"sample": "sphere", "params": {"radius": 13.56, "extent": 10}, "edge_length_m": 0.5},
+      "patching": {"workflow": 2, "max_patch_size_m": 25},
+      "grid": {"members_per_family": "auto", "map_resolution": 100},
+      "lamella": {"width_m": 0.2, "thickness_m": )" +
+                                     std::to_string(thicknessM) +
+                                     R"(, "material": "birch_plywood"},
+      "simulation": {"enabled": true, "gravity": true}, "fabrication": {"enabled": false},
+      "outputs": ["report"]})");
+  };
+  const auto collapsed =
+      runEgg({"run", dome("thin", 0.008).string(), "--out", (root / "thin").string(), "--quiet"});
+  ASSERT_EQ(collapsed.code, kExitFailure) << collapsed.out << collapsed.err;
+  EXPECT_NE(collapsed.out.find("max_sag"), std::string::npos) << collapsed.out;
+  EXPECT_NE(collapsed.out.find("FAILED"), std::string::npos) << collapsed.out;
+  EXPECT_EQ(collapsed.out.find("passed"), std::string::npos) << collapsed.out;
+  std::ifstream in(root / "thin" / "report.json");
+  const auto report = nlohmann::json::parse(in);
+  EXPECT_FALSE(report["acceptance"]["passed"].get<bool>());
+  bool named = false;
+  for (const auto& failure : report["failures"])
+    named |= failure.get<std::string>().find("patch_by_patch_max_error") != std::string::npos;
+  EXPECT_TRUE(named) << report["failures"].dump();
+  const auto standing =
+      runEgg({"run", dome("thick", 0.02).string(), "--out", (root / "thick").string(), "--quiet"});
+  EXPECT_EQ(standing.code, kExitOk) << standing.out << standing.err;
+  EXPECT_NE(standing.out.find("passed"), std::string::npos) << standing.out;
+}
+
 }  // namespace
 }  // namespace egg::app
 
@@ -306,6 +340,7 @@ TEST_F(Cli, AbsurdOrNanFlagsAreBadInputBeforeAnyWork) {
       {"bench", "sim", "--notch-fraction", "nan"},
       {"bench", "sim", "--spacings", "0.001"},
       {"bench", "sim", "--threads", "100000"},
+      {"bench", "sim", "--joined", "lilium", "--thread-counts", "0"},
       {"bench", "grid", "--height", "nan"},
       {"bench", "grid", "--sizes", "2000000000"},
       {"bench", "grid", "--map-tolerance", "nan"},

@@ -8,6 +8,7 @@
 #include "pipeline/simulation_stage.hpp"
 
 #include <fmt/core.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -64,6 +65,8 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
     rods::SimulationOptions options = rodsOptions(scene);
     options.compareWithoutNotches = false;  // RMS1/RMS2 stay a per-patch figure
     options.scaleFactor = boundingBox(surface).size().norm();
+    // One structure, one solve: its stencils on every thread TBB may use (egg run --threads).
+    options.solver.threads = std::max(1, tbb::this_task_arena::max_concurrency());
     if (out.warmStart) {
       options.gravitySteps = 0;                      // the start carries its weight already
       options.solver.stiffnessContinuation = false;  // and is no far-off guess to soften towards
@@ -101,6 +104,12 @@ nlohmann::json joinedSection(const JoinedRun& joined) {
   j["unknowns"] = run.unknowns;
   j["factorisations"] = run.solver.factorisations;         // Cholesky, shift trials included
   j["energy_evaluations"] = run.solver.energyEvaluations;  // line-search trials
+  const rods::SolverPhases& phases = run.solver.phases;
+  j["phases_s"] = {{"derivatives", phases.derivativesS},
+                   {"symbolic_analysis", phases.analysisS},
+                   {"factorisation", phases.factorS},
+                   {"line_search", phases.lineSearchS}};
+  j["symbolic_analyses"] = phases.analyses;
   j["status"] = rods::toString(run.solver.status);
   if (!joined.simulation->converged) j["reason"] = joined.simulation->reason;
   if (run.deviation) {

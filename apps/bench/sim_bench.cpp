@@ -1,6 +1,7 @@
 // `egg bench sim` (time against error of the rod simulation at several tolerances) and
 // `egg stress` (stiff and extreme cases: converge or say why, never NaN, never hang).
 #include "apps/bench/bench_stats.hpp"
+#include "apps/bench/joined_bench.hpp"
 #include "apps/egg/commands.hpp"
 
 #include "apps/bench/stress_suite.hpp"
@@ -41,6 +42,7 @@ struct SimBenchArgs {
   bool reference = true;
   std::string csv;
   bool json = false;
+  JoinedSimBenchArgs joined;  // --joined: the samples' joined structures instead of the vault
 };
 
 // Runs one simulation `repeats` times (deterministic: the same iterations and result every
@@ -66,6 +68,12 @@ TimedRun timedRun(const rods::RodNetwork& network, const rods::SurfaceDistance& 
 
 int runSimBench(const SimBenchArgs& args) {
   if (args.repeats < 1) throw InvalidInput("--repeats must be >= 1");
+  if (!args.joined.samples.empty()) {
+    JoinedSimBenchArgs joined = args.joined;
+    joined.repeats = args.repeats;
+    joined.json = args.json;
+    return runJoinedSimBench(joined);
+  }
   nlohmann::json rows = nlohmann::json::array();
   fmt::print(simTableStream(args.json),
              "egg bench sim: cylinder vault R 5 m, 8 m long, exact geodesic grid at +-45 deg, "
@@ -321,6 +329,14 @@ void registerSimBench(CLI::App& bench, Action& action) {
                 "skip the plain-hole reference run of each row");
   cmd->add_option("--csv", args->csv, "also write the table as CSV");
   cmd->add_flag("--json", args->json, "also print the table as JSON");
+  cmd->add_option("--joined", args->joined.samples,
+                  "instead: the joined structure of these samples (e.g. "
+                  "great_court,lilium,yas), through the pipeline")
+      ->delimiter(',');
+  cmd->add_option("--thread-counts", args->joined.threadCounts,
+                  "with --joined: thread counts (egg run --threads) to run each sample at")
+      ->delimiter(',')
+      ->check(CLI::Range(1, kMaxThreads));
   cmd->callback([args, &action] { action = [args] { return runSimBench(*args); }; });
 }
 

@@ -7,6 +7,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -144,10 +146,10 @@ SliderParameters RodModel::sliderParameters(const BoltSide& side) const {
 namespace {
 
 // The stencils are split into a fixed number of parts (round robin, so each part gets a mix of
-// every kind) that the threads take one at a time. Fixed parts reduced in part order give results
-// that do not depend on the thread count or on scheduling, bit for bit; taking parts as they come
-// keeps both cores busy when another process preempts one thread (with one static half per
-// thread, measured under load: two threads slower than one).
+// every kind) that TBB's threads take one at a time (`egg run --threads` bounds them). Fixed parts
+// reduced in part order give results that do not depend on the thread count or on scheduling, bit
+// for bit; taking parts as they come keeps every core busy when another process preempts one
+// thread (with one static half per thread, measured under load: two threads slower than one).
 constexpr int kParts = 16;
 
 template <class Work>
@@ -156,14 +158,9 @@ void runParts(int threads, const Work& work) {
     for (int part = 0; part < kParts; ++part) work(part);
     return;
   }
-  std::atomic<int> next{0};
-  auto worker = [&]() {
-    for (int part = next++; part < kParts; part = next++) work(part);
-  };
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threads; ++t) workers.emplace_back(worker);
-  worker();
-  for (auto& w : workers) w.join();
+  tbb::parallel_for(tbb::blocked_range<int>(0, kParts, 1), [&](const tbb::blocked_range<int>& r) {
+    for (int part = r.begin(); part < r.end(); ++part) work(part);
+  });
 }
 
 }  // namespace

@@ -54,6 +54,19 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Adds the wall time of its scope to one phase's seconds.
+class PhaseTimer {
+ public:
+  explicit PhaseTimer(double& seconds) : seconds_(seconds), start_(Clock::now()) {}
+  ~PhaseTimer() { seconds_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
+  PhaseTimer(const PhaseTimer&) = delete;
+  PhaseTimer& operator=(const PhaseTimer&) = delete;
+
+ private:
+  double& seconds_;
+  Clock::time_point start_;
+};
+
 // The Hessian of the free unknowns as a sparse lower triangle whose pattern changes only when a
 // bolt moves to another edge: the triplets of the model come in the same order every iteration,
 // so each is mapped once to its slot in the matrix and later iterations only add values (no
@@ -242,6 +255,7 @@ bool newtonDirection(FreeHessian& hessian, Factorisation (&solvers)[2], const Ei
        trial = trial == 0.0 ? 1e-8 : trial * 10.0) {
     trials.push_back(trial);
   }
+  const PhaseTimer timer(result.phases.factorS);
   auto attempt = [&](int which, double trial, Eigen::VectorXd& out) {
     Factorisation& solver = solvers[which];
     if (!solver.factorize(hessian.shifted(trial, scale, which))) return false;
@@ -291,6 +305,7 @@ bool lineSearch(RodModel& model, const Eigen::VectorXd& z, const Eigen::VectorXd
   for (int i = 0; i < n; ++i) {
     if (freeIndex[i] >= 0) step[i] = direction[freeIndex[i]];
   }
+  const PhaseTimer timer(result.phases.lineSearchS);
   double alpha = model.maxStep(z, step);
   bool accepted = false;
   for (int tries = 0; tries < 60 && alpha > 1e-14; ++tries) {
@@ -340,9 +355,13 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     const Eigen::VectorXd z = model.state();
     const bool tryExact = skipExact == 0;
     if (skipExact > 0) --skipExact;
-    const double energy =
-        model.derivatives(z, gradient, buffers, options.threads,
-                          tryExact ? HessianTerms::Exact : HessianTerms::ProjectedConstraints);
+    double energy = 0.0;
+    {
+      const PhaseTimer timer(result.phases.derivativesS);
+      energy =
+          model.derivatives(z, gradient, buffers, options.threads,
+                            tryExact ? HessianTerms::Exact : HessianTerms::ProjectedConstraints);
+    }
     Eigen::VectorXd g(freeCount);
     for (int i = 0; i < n; ++i) {
       if (freeIndex[i] >= 0) g[freeIndex[i]] = gradient[i];
@@ -353,9 +372,15 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     result.seconds = elapsed();
     if (stopsBeforeStep(energy, g, options, result)) return result;
 
-    const bool newPattern = hessian.assemble(buffers.triplets);
+    bool newPattern = false;
+    {
+      const PhaseTimer timer(result.phases.derivativesS);
+      newPattern = hessian.assemble(buffers.triplets);
+    }
     // A new pattern needs a new symbolic analysis; the second factorisation copies the first's.
     if (newPattern) {
+      const PhaseTimer timer(result.phases.analysisS);
+      ++result.phases.analyses;
       solvers[0].analyzePattern(hessian.shifted(0.0, Eigen::VectorXd()));
       if (options.threads >= 2) solvers[1] = solvers[0];
     }
@@ -363,10 +388,12 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     Eigen::VectorXd direction;
     bool exactDirection = false;  // from the unshifted exact Hessian: positive definite
     auto assembleTerms = [&](HessianTerms terms) {  // at the same state: g and energy unchanged
+      const PhaseTimer timer(result.phases.derivativesS);
       model.derivatives(z, gradient, buffers, options.threads, terms);
       hessian.assemble(buffers.triplets);
     };
     auto unshifted = [&]() {
+      const PhaseTimer timer(result.phases.factorS);
       ++result.factorisations;
       if (!solvers[0].factorize(hessian.shifted(0.0, Eigen::VectorXd()))) return false;
       direction = -solvers[0].solve(g);
@@ -447,12 +474,22 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
 
 }  // namespace
 
+SolverPhases& SolverPhases::operator+=(const SolverPhases& o) {
+  derivativesS += o.derivativesS;
+  analysisS += o.analysisS;
+  factorS += o.factorS;
+  lineSearchS += o.lineSearchS;
+  analyses += o.analyses;
+  return *this;
+}
+
 SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
   options.validate();
   const auto start = Clock::now();
   Observation observe(options.observer, start);
   const double finalFactor = model.stiffTermsFactor();
   int iterations = 0, switches = 0, factorisations = 0, evaluations = 0;
+  SolverPhases phases;
   if (options.stiffnessContinuation) {
     SolverOptions stage = options;
     stage.tolerance = std::max(options.tolerance, 1e-6);  // warm starts only: no need to be exact
@@ -463,6 +500,7 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
       switches += r.boltEdgeSwitches;
       factorisations += r.factorisations;
       evaluations += r.energyEvaluations;
+      phases += r.phases;
       if (r.status == SolverStatus::TimeLimit || r.status == SolverStatus::NonFinite ||
           iterations >= options.maxIterations) {
         model.setStiffTermsFactor(finalFactor);
@@ -472,6 +510,7 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
         out.boltEdgeSwitches = switches;
         out.factorisations = factorisations;
         out.energyEvaluations = evaluations;
+        out.phases = phases;
         observe.last(model, out);
         observe.record(out);
         return out;
@@ -483,6 +522,7 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
   result.boltEdgeSwitches += switches;
   result.factorisations += factorisations;
   result.energyEvaluations += evaluations;
+  result.phases += phases;
   observe.last(model, result);
   observe.record(result);
   return result;

@@ -32,7 +32,7 @@ struct SolverOptions {
   double timeLimitS = 900.0;
   double tolerance =
       1e-10;        // stop when the Newton decrement g^T H^-1 g is below tolerance x energy scale
-  int threads = 2;  // threads assembling the Hessian
+  int threads = 2;  // assembling the Hessian: 1 on this thread, more: on TBB's threads
   // Newton in Cartesian coordinates crawls along the inextensibility valley of thin rods (each step
   // is cut short by stretching, ~100 iterations for a cantilever). Solving first with the stiff
   // terms (stretching, position penalties) softened by 1e-4, 1e-3, ... and then at full stiffness
@@ -55,6 +55,17 @@ enum class SolverStatus { Converged, IterationLimit, TimeLimit, Stalled, NonFini
 
 const char* toString(SolverStatus status);
 
+// Where a solve's wall time went (egg bench sim, report.json's joined section), summed over the
+// continuation stages and load steps of one simulation.
+struct SolverPhases {
+  double derivativesS = 0.0;  // energy, gradient and Hessian stencils, assembled into the matrix
+  double analysisS = 0.0;     // symbolic analyses (ordering, elimination tree, supernodes)
+  double factorS = 0.0;       // numeric factorisations and solves, shift trials included
+  double lineSearchS = 0.0;   // energy evaluations of the line search
+  int analyses = 0;           // symbolic analyses: a new pattern (a bolt moved to another edge)
+  SolverPhases& operator+=(const SolverPhases& o);
+};
+
 struct SolverResult {
   SolverStatus status = SolverStatus::IterationLimit;
   bool converged = false;
@@ -69,6 +80,7 @@ struct SolverResult {
   int energyEvaluations = 0;     // line-search trials
   int observations = 0;          // calls of options.observer
   double observerSeconds = 0.0;  // wall time spent in them
+  SolverPhases phases;
 };
 
 // Runs Newton from the model's current state and leaves the model at the last accepted state

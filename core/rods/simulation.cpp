@@ -73,6 +73,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   const bool fromStart = options.model.gravity && steps == 0;  // sag measured from the start state
   SolverOptions solverOptions = options.solver;
   int iterations = 0, switches = 0, step = 0, factorisations = 0, evaluations = 0;
+  SolverPhases phases;
   // Error against run time: the solver's observer, shifted to the run's iterations and clock (a
   // load step's minimiseEnergy counts from zero), measures the contact points when asked.
   double observing = 0.0;  // seconds spent in the observer so far, left out of the samples' clock
@@ -144,6 +145,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     switches = run.solver.boltEdgeSwitches += switches;
     factorisations = run.solver.factorisations += factorisations;
     evaluations = run.solver.energyEvaluations += evaluations;
+    phases = run.solver.phases += phases;
     if (run.solver.status == SolverStatus::IterationLimit) {
       run.solver.reason = formatMessage("no convergence in %d iterations (decrement %.3g J)",
                                         iterations, run.solver.decrement);

@@ -6,8 +6,8 @@
 // Eigen's blocked kernels cost more than they save there).
 // Why not Eigen's SimplicialLLT: it updates one scalar entry at a time through index lists; on the
 // benchmark grid (3330 unknowns, 90k nonzeros in L) that took half of the solver's critical path.
-// The ordering is Eigen's AMD, as in SimplicialLLT. Like SimplicialLLT, factorisation stops at the
-// first pivot that is not positive (the solver's shift search relies on that).
+// The ordering is CHOLMOD's choice of AMD or METIS, whichever fills less. Like SimplicialLLT,
+// factorisation stops at the first pivot that is not positive (the shift search relies on that).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 

@@ -28,7 +28,7 @@ Rod lamella(int layer, double length) {
 TEST(JoinedNetwork, OffsetsRodIndicesAndAddsJoinBolts) {
   RodNetwork a, b;
   a.rods = {lamella(0, 1.0), lamella(1, 1.0)};
-  a.connections.push_back(Connection{0, 0.5, 1, 0.5, {}, {}});
+  a.connections.push_back(Connection{0, 0.5, 1, 0.5, {}, {}, {}, {}});
   b.rods = {lamella(1, 1.0)};
   Anchor anchor;
   anchor.rod = 0;

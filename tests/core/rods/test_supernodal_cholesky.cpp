@@ -58,8 +58,8 @@ TEST(SupernodalCholesky, SolvesLikeSimplicialLLT) {
     ASSERT_TRUE(cholesky.factorize(lower));
     Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower> reference(lower);
     ASSERT_EQ(reference.info(), Eigen::Success);
-    // Same ordering and symbolic structure: as many nonzeros in L as SimplicialLLT.
-    EXPECT_EQ(cholesky.factorNonZeros(), reference.matrixL().nestedExpression().nonZeros());
+    // CHOLMOD's ordering (the better of AMD and METIS) fills no more than SimplicialLLT's AMD.
+    EXPECT_LE(cholesky.factorNonZeros(), reference.matrixL().nestedExpression().nonZeros());
     EXPECT_LT(cholesky.supernodeCount(), lower.rows());
     std::mt19937 rng(1);
     std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -15,16 +15,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// samples/scenes/bump_1x2.json: two 3 x 6 m patches of the bump side by side, no self-weight.
 Scene twoPatchScene(bool join) {
-  Scene scene = parseScene(nlohmann::json::parse(R"({
-    "name": "bump_1x2",
-    "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1.0, "sigma": 1.5}, "edge_length_m": 0.4},
-    "patching": {"patches": [[[-3,-3,0],[0,-3,0],[0,3,0],[-3,3,0]], [[0,-3,0],[3,-3,0],[3,3,0],[0,3,0]]]},
-    "grid": {"map_resolution": 30, "members_per_family": 5},
-    "lamella": {"width_m": 0.05, "thickness_m": 0.005},
-    "simulation": {"gravity": false},
-    "outputs": ["report"]})"),
-                           "/virtual/bump_1x2.json");
+  Scene scene = loadScene(fs::path(EGG_SOURCE_DIR) / "samples/scenes/bump_1x2.json");
   scene.simulation.joinPatches = join;
   return scene;
 }

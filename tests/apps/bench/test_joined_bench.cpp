@@ -7,9 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <unistd.h>
 #include <filesystem>
-#include <fstream>
 
 namespace egg::app {
 namespace {
@@ -17,16 +15,8 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(JoinedSimBench, TwoPatchesBoltedGiveOneRowPerThreadCountWithItsPhases) {
-  const fs::path scene =
-      fs::temp_directory_path() / ("egg_joined_bench_" + std::to_string(::getpid()) + ".json");
-  std::ofstream(scene) << R"({
-    "name": "bump_1x2",
-    "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1.0, "sigma": 1.5}, "edge_length_m": 0.4},
-    "patching": {"patches": [[[-3,-3,0],[0,-3,0],[0,3,0],[-3,3,0]], [[0,-3,0],[3,-3,0],[3,3,0],[0,3,0]]]},
-    "grid": {"map_resolution": 30, "members_per_family": 5},
-    "lamella": {"width_m": 0.05, "thickness_m": 0.005},
-    "simulation": {"gravity": false},
-    "outputs": ["report"]})";
+  // Two patches of the bump sharing a side (the scene of tests/pipeline/test_joined_simulation).
+  const fs::path scene = fs::path(EGG_SOURCE_DIR) / "samples/scenes/bump_1x2.json";
   JoinedSimBenchArgs args;
   args.samples = {scene.string()};
   args.threadCounts = {1, 2};
@@ -36,7 +26,6 @@ TEST(JoinedSimBench, TwoPatchesBoltedGiveOneRowPerThreadCountWithItsPhases) {
   const int code = runJoinedSimBench(args);
   const std::string out = testing::internal::GetCapturedStdout();
   const std::string table = testing::internal::GetCapturedStderr();
-  fs::remove(scene);
   ASSERT_EQ(code, kExitOk) << table;
   const auto rows = nlohmann::json::parse(out);
   ASSERT_EQ(rows.size(), 2u);

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <cstdio>
 
 #include <cmath>
 #include <filesystem>
@@ -25,6 +26,18 @@ fs::path scratch(const std::string& name) {
   fs::remove_all(p);
   return p;
 }
+
+// The ccx files of every test, removed when the suite ends.
+class ScratchCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(fs::temp_directory_path() / ("egg_verification_" + std::to_string(getpid())),
+                   ignored);
+  }
+};
+[[maybe_unused]] ::testing::Environment* const kCleanup =
+    ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
 
 #define SKIP_WITHOUT_CCX()                                                      \
   if (findCcx().empty()) GTEST_SKIP() << "ccx is not installed (calculix-ccx)"; \
@@ -222,6 +235,41 @@ TEST(StructuralCheck, CcxFailureIsARunFailureWithItsMessage) {
   } catch (const SolverFailure& e) {
     EXPECT_NE(std::string(e.what()).find("ccx bad"), std::string::npos) << e.what();
   }
+}
+
+// The cross-check on a small bolted grid under self-weight: the rod simulation's sag (bolts
+// fastened at the weightless equilibrium) against ccx's, node by node. A shallow vault (radius 30
+// m, 3 m span): its lamellas are barely bent, so the rods' deployment prestress, which ccx's
+// stress-free beams do not carry, plays no part. What remains differs by construction: torsion
+// (ccx's isotropic beams have G = E/2, here matched by the rods' G), the bolts (rigid steel beams
+// against the rods' penalty springs) and the supports (pinned arms against penalty anchors).
+// Measured: DER 2.03 mm, FE 2.16 mm, RMS difference 0.13 mm (6.5 % of the sag). On deeper vaults
+// the two part (docs/verification.md): that is the prestress.
+TEST(StructuralCheck, RodSimulationAndFeAgreeOnTheSagOfAShallowBoltedVault) {
+  SKIP_WITHOUT_CCX();
+  rods::CylinderGridParameters p;
+  p.radiusM = 30.0;
+  p.halfAngleRad = 0.05;
+  p.lengthM = 2.0;
+  p.spacingM = 0.5;
+  p.notchFraction = 0.0;
+  p.section = {0.05, 0.01};
+  p.material = {10.0e9, 5.0e9, 500.0};  // G = E/2, as ccx's beams with nu = 0
+  const rods::SampleGrid grid = rods::cylinderGrid(p);
+  const DerSelfWeight der = derSelfWeight(grid.network, rods::SimulationOptions{});
+  MaterialProperties strength;
+  strength.bendingStrengthPa = 24e6;
+  const FeModel model = feModelFromRods(grid.network, der.weightless, strength);
+  CheckOptions check;
+  check.bucklingModes = 0;
+  const CheckResult r = runCheck(model, scratch("vault"), check);
+  const SagComparison sag = compareSag(der, r.mesh, r.cases[0]);
+  EXPECT_GT(sag.points, 100);
+  EXPECT_GT(sag.derMaxSagM, 1e-3);
+  EXPECT_NEAR(sag.feMaxSagM, sag.derMaxSagM, 0.10 * sag.derMaxSagM);
+  EXPECT_LT(sag.rmsM, 0.10 * sag.derMaxSagM);
+  EXPECT_LT(sag.maxM, 0.25 * sag.derMaxSagM);
+  EXPECT_LT(r.cases[0].equilibriumResidual, 1e-6);
 }
 
 TEST(StructuralCheck, BucklingVerdictNamesItsThresholds) {

@@ -72,6 +72,7 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
       options.solver.stiffnessContinuation = false;  // and is no far-off guess to soften towards
     }
     out.simulation = rods::simulateGrid(joined.network, surface, options);
+    out.network = joined;
   } catch (const Error& e) {
     out.failure = e.what();
   }
@@ -138,12 +139,10 @@ std::string collapsedWhileHeld(const std::vector<SolvedPatch>& patches) {
   return {};
 }
 
-std::optional<rods::SimulationRun> addJoinedSimulation(const PatchingRun& run,
-                                                       const std::vector<SolvedPatch>& patches,
-                                                       const TriMesh& surface, const Scene& scene,
-                                                       bool propagated, int solved,
-                                                       nlohmann::json& simulation,
-                                                       bool patchesHeldAllRound) {
+std::optional<rods::SimulationRun> addJoinedSimulation(
+    const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
+    const Scene& scene, bool propagated, int solved, nlohmann::json& simulation,
+    bool patchesHeldAllRound, std::optional<rods::JoinedNetwork>* network) {
   simulation["patch_by_patch"] = {{"rmse_m", simulation["rmse_m"]},
                                   {"max_error_m", simulation["max_error_m"]},
                                   {"converged", simulation["converged"]},
@@ -165,6 +164,7 @@ std::optional<rods::SimulationRun> addJoinedSimulation(const PatchingRun& run,
   JoinedRun joined = simulateJoined(run, patches, surface, scene);
   simulation["joined"] = joinedSection(joined);
   if (!joined.simulation) return std::nullopt;
+  if (network) *network = std::move(joined.network);
   return std::move(joined.simulation->deployed);
 }
 

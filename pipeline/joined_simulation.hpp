@@ -19,11 +19,12 @@ struct JoinedRun {
   std::optional<rods::SimulationResult>
       simulation;  // the joined structure (with notches as the scene says)
   std::vector<rods::PatchJoin> joins;
-  std::vector<char> swapped;  // per patch: u members on top
-  int sidesJoined = 0;        // shared sides carrying at least one bolt
-  int sidesSkipped = 0;       // shared sides whose lamellas fell in one layer
-  bool warmStart = false;     // started from the converged patch-by-patch equilibria
-  std::string failure;        // an error of the joined run (not non-convergence)
+  std::optional<rods::JoinedNetwork> network;  // what was simulated
+  std::vector<char> swapped;                   // per patch: u members on top
+  int sidesJoined = 0;                         // shared sides carrying at least one bolt
+  int sidesSkipped = 0;                        // shared sides whose lamellas fell in one layer
+  bool warmStart = false;  // started from the converged patch-by-patch equilibria
+  std::string failure;     // an error of the joined run (not non-convergence)
   double seconds = 0.0;
 };
 
@@ -40,12 +41,10 @@ nlohmann::json joinedSection(const JoinedRun& joined);
 // patch that collapsed there skips the joined run (collapsedWhileHeld), which would only spend its
 // whole iteration budget falling (Yas: 500 iterations, ~8 minutes on 142k unknowns).
 // Returns the joined run's deployed state when it ran (for the report's deviation figure).
-std::optional<rods::SimulationRun> addJoinedSimulation(const PatchingRun& run,
-                                                       const std::vector<SolvedPatch>& patches,
-                                                       const TriMesh& surface, const Scene& scene,
-                                                       bool propagated, int solved,
-                                                       nlohmann::json& simulation,
-                                                       bool patchesHeldAllRound = false);
+std::optional<rods::SimulationRun> addJoinedSimulation(
+    const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
+    const Scene& scene, bool propagated, int solved, nlohmann::json& simulation,
+    bool patchesHeldAllRound = false, std::optional<rods::JoinedNetwork>* network = nullptr);
 
 // Why the joined run is pointless, or empty: the first patch whose patch-by-patch run (held along
 // all its sides) collapsed under its own weight (Section 3.5.2, Fig. 3.11).

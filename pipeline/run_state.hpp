@@ -4,6 +4,7 @@
 // function of its file taking plain inputs; the state only carries results between them.
 #include "core/egg/solve_patch.hpp"
 #include "core/geodesic/distance_solver.hpp"
+#include "core/rods/joined_network.hpp"
 #include "core/rods/simulation.hpp"
 #include "pipeline/patching_stage.hpp"
 #include "pipeline/report.hpp"
@@ -31,6 +32,7 @@ struct SolvedPatch {
   std::optional<rods::SimulationResult> simulation;
   std::string
       simulationFailure;  // why the simulation could not run (an error, not non-convergence)
+  std::optional<rods::RodNetwork> network;  // what was simulated (the verification stage's input)
   rods::SolverStatus deployedStatus() const {
     return simulation->deployed.solver.status;
   }  // needs simulation
@@ -59,6 +61,7 @@ struct RunState {
   propagation::LayoutTracing tracing;                     // grid, with propagated members
   std::vector<SolvedPatch> patches;           // patching (ids, corners), grid, simulation
   std::optional<rods::SimulationRun> joined;  // simulation: the joined structure's deployment
+  std::optional<rods::JoinedNetwork> joinedNetwork;  // simulation: what `joined` deployed
 };
 
 }  // namespace egg::pipeline

@@ -95,6 +95,16 @@ struct FabricationChoice {
   fabrication::FabricationOptions options;
 };
 
+// "loads": the FE check's load cases (verification stage, docs/verification.md). Self-weight is
+// always a case; these add cases of their own (with self-weight).
+struct LoadsChoice {
+  double uniformKnM2 = 0.0;  // snow or live load on the plan area; 0: no such case
+  double pointLoadKn = 0.0;  // downwards at each named connection; 0: no such case
+  std::vector<std::string> pointLoadConnections;  // FE bolt names, e.g. "P0_C12", "J3"
+  int bucklingModes = 3;       // linear buckling factors of the governing case; 0: none
+  double ccxTimeLimitS = 600;  // per ccx run
+};
+
 struct Scene {
   std::filesystem::path path;  // where it was read from (for messages, relative files)
   std::string name;
@@ -104,6 +114,7 @@ struct Scene {
   SimulationChoice simulation;
   FabricationChoice fabrication;
   AcceptanceLimits acceptance;  // the verdict's limits (acceptance.hpp, docs/acceptance.md)
+  LoadsChoice loads;
   std::vector<std::string> outputs{"report",   "plan",     "cut_files",
                                    "stickers", "supports", "previews"};
 

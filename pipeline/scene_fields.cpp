@@ -295,6 +295,22 @@ void checkFabrication(JsonSection& j, Scene& scene) {
     j.fail("margin_mm", "leaves no room on the sheet");
 }
 
+void readPointLoadConnections(JsonSection& j, Scene& scene) {
+  if (!j.has("point_load_connections")) return;
+  const json& v = j.raw("point_load_connections");
+  if (!v.is_array()) j.fail("point_load_connections", "must be an array of connection names");
+  for (const auto& item : v) {
+    if (!item.is_string() || item.get<std::string>().empty())
+      j.fail("point_load_connections", "each entry must be a name, got " + brief(item));
+    scene.loads.pointLoadConnections.push_back(item.get<std::string>());
+  }
+}
+
+void checkLoads(JsonSection& j, Scene& scene) {
+  if (scene.loads.pointLoadKn > 0 && scene.loads.pointLoadConnections.empty())
+    j.fail("point_load_kn", "needs point_load_connections");
+}
+
 std::string materialNames() {
   std::string names;
   for (const auto& m : materialCatalog()) names += (names.empty() ? "" : ", ") + m.name;
@@ -317,8 +333,9 @@ std::vector<SceneSection> makeSections() {
          "the scene's name: the default run folder out/<name> (default: the file's stem)", readName,
          [](const Scene& s) { return some(s.name); }},
         {"outputs", "array of names",
-         "what the run writes: report, plan, cut_files, stickers, supports, previews (default: "
-         "all)",
+         "what the run writes: report, plan, cut_files, stickers, supports, previews, fem "
+         "(default: "
+         "all but fem)",
          readOutputs, [](const Scene& s) { return some(s.outputs); }}},
        {}});
 
@@ -558,6 +575,23 @@ std::vector<SceneSection> makeSections() {
         number("max_stress_ratio", EGG_AT(acceptance.maxStressRatio), 1e-3, 100.0,
                "largest bending and torsion stress of a lamella over its strength")},
        {}});
+  sections.push_back(
+      {"loads",
+       "Load cases of the FE check (output \"fem\", docs/verification.md); self-weight is always "
+       "one.",
+       {number("uniform_kn_m2", EGG_AT(loads.uniformKnM2), 0.0, 100.0,
+               "snow or live load on the plan area, shared by tributary plan length (0: no case)"),
+        number("point_load_kn", EGG_AT(loads.pointLoadKn), 0.0, 1e4,
+               "downwards at each of point_load_connections (0: no case)"),
+        {"point_load_connections", "array of names",
+         "FE connection names (model.inp sets: P<patch>_C<i>, J<i> between patches)",
+         readPointLoadConnections,
+         [](const Scene& s) { return some(s.loads.pointLoadConnections); }},
+        integer("buckling_modes", EGG_AT(loads.bucklingModes), 0, 20,
+                "linear buckling factors of the governing case (0: no buckling step)"),
+        number("ccx_time_limit_s", EGG_AT(loads.ccxTimeLimitS), 1.0, 1e5,
+               "each ccx run is stopped after this")},
+       checkLoads});
   return sections;
 }
 

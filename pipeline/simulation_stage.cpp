@@ -62,6 +62,7 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
       options.scaleFactor = boundingBox(patch.egg->patch.mesh).size().norm();
       if (solved > 1) options.solver.threads = 1;
       patch.simulation = rods::simulateGrid(network, surface, options);
+      patch.network = std::move(network);
     } catch (const Error& e) {
       patch.simulationFailure = e.what();
     }
@@ -213,7 +214,7 @@ void simulationStage(RunState& state) {
   section["seconds"] = watch.seconds();  // patch by patch (wall, patches in parallel)
   state.joined = addJoinedSimulation(*state.patching, state.patches, state.surface->mesh, scene,
                                      state.members.has_value(), solvedCount(state.patches), section,
-                                     heldAllRound);
+                                     heldAllRound, &state.joinedNetwork);
   if (scene.wants("report"))
     writeDeployedPlan(state.joined ? &*state.joined : nullptr, state.patches, state.surface->mesh,
                       state.staging / "deployed.svg");

@@ -6,6 +6,7 @@
 #include "pipeline/propagation_stage.hpp"
 #include "pipeline/simulation_stage.hpp"
 #include "pipeline/surface_stage.hpp"
+#include "pipeline/verification_stage.hpp"
 
 #include <algorithm>
 
@@ -20,14 +21,15 @@ const char* toString(StageId stage) {
     case StageId::Grid: return "grid";
     case StageId::Simulation: return "simulation";
     case StageId::Fabrication: return "fabrication";
+    case StageId::Verification: return "verification";
   }
   return "unknown";
 }
 
 const std::vector<StageId>& allStages() {
   static const std::vector<StageId> stages{
-      StageId::Surface, StageId::Patching,   StageId::Design,     StageId::Propagation,
-      StageId::Grid,    StageId::Simulation, StageId::Fabrication};
+      StageId::Surface, StageId::Patching,   StageId::Design,      StageId::Propagation,
+      StageId::Grid,    StageId::Simulation, StageId::Fabrication, StageId::Verification};
   return stages;
 }
 
@@ -53,6 +55,8 @@ const std::vector<Stage>& stageTable() {
        fabricationDisabled,
        fabricationSkipReason,
        fabricationStage},
+      // The FE check of the deployed structure with CalculiX (docs/verification.md).
+      {S::Verification, {S::Simulation}, 0.9, nullptr, verificationSkipReason, verificationStage},
   };
   return table;
 }
@@ -70,6 +74,7 @@ const std::vector<Output>& outputTable() {
       {"cut_files", {S::Fabrication}, "cut/sheet_NN.svg, .dxf, sheets.pdf, bom.csv"},
       {"stickers", {S::Fabrication}, "cut/stickers_NN.svg, .dxf, stickers.pdf"},
       {"supports", {S::Fabrication}, "supports/supports.csv, supports/support_NNN.stl"},
+      {"fem", {S::Verification}, "fem/model.inp, fem/<case>.inp, .dat, .frd, fem/buckle.*"},
   };
   return table;
 }

@@ -10,7 +10,16 @@
 
 namespace egg::pipeline {
 
-enum class StageId { Surface, Patching, Design, Propagation, Grid, Simulation, Fabrication };
+enum class StageId {
+  Surface,
+  Patching,
+  Design,
+  Propagation,
+  Grid,
+  Simulation,
+  Fabrication,
+  Verification
+};
 // The key of the stage in report.json "stages" ("surface", ..., "fabrication").
 const char* toString(StageId stage);
 // Every stage in data-flow order (what report.json's "stages" lists).

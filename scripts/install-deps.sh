@@ -17,6 +17,7 @@ PACKAGES=(
   clang libclang-rt-14-dev   # scripts/fuzz.sh: libFuzzer targets (issue 17)
   clang-format clang-tidy    # .clang-format (checked by the Format test), .clang-tidy (identifier naming)
   chromium                   # test_report_html: report.html rendered headless (skipped without it)
+  calculix-ccx               # verification/: the FE check of the deployed grid (issue 37)
 )
 
 missing=()

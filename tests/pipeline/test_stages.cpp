@@ -44,6 +44,9 @@ TEST(Stages, EachOutputNeedsItsStagesAndNothingElse) {
   cut.insert(S::Fabrication);
   for (const char* output : {"cut_files", "stickers", "supports"})
     EXPECT_EQ(neededBy({output}), cut) << output;
+  std::set<StageId> fem = report;
+  fem.insert(S::Verification);
+  EXPECT_EQ(neededBy({"fem"}), fem);
   EXPECT_TRUE(neededBy({}).empty());
   std::set<StageId> all = report;
   all.insert(S::Fabrication);
@@ -57,7 +60,7 @@ TEST(Stages, EveryOutputIsKnownToTheTable) {
     EXPECT_FALSE(output.needs.empty()) << output.name;
   }
   EXPECT_EQ(names, (std::set<std::string>{"report", "previews", "plan", "cut_files", "stickers",
-                                          "supports"}));
+                                          "supports", "fem"}));
 }
 
 }  // namespace

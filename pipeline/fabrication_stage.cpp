@@ -64,6 +64,7 @@ void fabricationStage(RunState& state) {
     state.report.stageRan("fabrication", watch.seconds());
     state.report.section("fabrication") = fab.report;
     state.failures.insert(state.failures.end(), fab.failures.begin(), fab.failures.end());
+    state.fabricated = std::move(fab.result);
   } catch (const InvalidInput& e) {
     state.report.stageSkipped(
         "fabrication", std::string("the grid cannot be cut with these settings: ") + e.what());

@@ -5,6 +5,7 @@
 #include "core/egg/solve_patch.hpp"
 #include "core/geodesic/distance_solver.hpp"
 #include "core/rods/simulation.hpp"
+#include "fabrication/fabricate.hpp"
 #include "pipeline/patching_stage.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/scene.hpp"
@@ -59,6 +60,7 @@ struct RunState {
   propagation::LayoutTracing tracing;                     // grid, with propagated members
   std::vector<SolvedPatch> patches;           // patching (ids, corners), grid, simulation
   std::optional<rods::SimulationRun> joined;  // simulation: the joined structure's deployment
+  std::optional<fabrication::FabricationResult> fabricated;  // fabrication (the model's supports)
 };
 
 }  // namespace egg::pipeline

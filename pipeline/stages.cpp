@@ -70,6 +70,10 @@ const std::vector<Output>& outputTable() {
       {"cut_files", {S::Fabrication}, "cut/sheet_NN.svg, .dxf, sheets.pdf, bom.csv"},
       {"stickers", {S::Fabrication}, "cut/stickers_NN.svg, .dxf, stickers.pdf"},
       {"supports", {S::Fabrication}, "supports/supports.csv, supports/support_NNN.stl"},
+      // The supports come from the fabrication stage (none when it is off).
+      {"model",
+       {S::Grid, S::Simulation, S::Fabrication},
+       "model.glb, model.3dm, model.obj, supports.glb, supports.stl"},
   };
   return table;
 }

@@ -318,7 +318,7 @@ std::vector<SceneSection> makeSections() {
          [](const Scene& s) { return some(s.name); }},
         {"outputs", "array of names",
          "what the run writes: report, plan, cut_files, stickers, supports, previews (default: "
-         "all)",
+         "these six), model (the 3D model: model.glb, model.3dm, model.obj, supports.glb/.stl)",
          readOutputs, [](const Scene& s) { return some(s.outputs); }}},
        {}});
 

@@ -151,7 +151,7 @@ json rhinoDescription(const StructureModel& model) {
           {"objects", std::move(objects)}};
 }
 
-void write3dm(const StructureModel& model, const fs::path& path, double timeLimitS) {
+double write3dm(const StructureModel& model, const fs::path& path, double timeLimitS) {
   if (const std::string why = rhinoUnavailableReason(); !why.empty())
     throw Error(path.string() + ": cannot write the 3dm: " + why);
   const json description = rhinoDescription(model);
@@ -165,6 +165,7 @@ void write3dm(const StructureModel& model, const fs::path& path, double timeLimi
     std::error_code ignored;
     for (const fs::path& p : {input, output, log}) fs::remove(p, ignored);
   };
+  double nodeSeconds = 0.0;
   try {
     writeFileAtomically(input, description.dump());
     const std::string node = nodeProgram().string();
@@ -184,6 +185,7 @@ void write3dm(const StructureModel& model, const fs::path& path, double timeLimi
       throw Error(fmt::format("{}: the 3dm writer ({} {}) {}: {}", path.string(), node, script, how,
                               run.output.substr(0, 2000)));
     }
+    nodeSeconds = run.seconds;
     std::error_code ec;
     fs::rename(output, target, ec);
     if (ec) throw WriteError(path.string() + ": cannot put the 3dm in place: " + ec.message());
@@ -192,6 +194,7 @@ void write3dm(const StructureModel& model, const fs::path& path, double timeLimi
     throw;
   }
   cleanUp();
+  return nodeSeconds;
 }
 
 }  // namespace egg::exporter

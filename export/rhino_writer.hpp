@@ -29,8 +29,8 @@ nlohmann::json rhinoDescription(const StructureModel& model);
 
 // Writes `path` through node (atomically: a temporary file beside it, renamed when node
 // succeeded). Throws Error with node's output when node fails or runs past timeLimitS, WriteError
-// when the file cannot be put in place.
-void write3dm(const StructureModel& model, const std::filesystem::path& path,
-              double timeLimitS = 300.0);
+// when the file cannot be put in place. Returns the seconds node ran (the rest is the description).
+double write3dm(const StructureModel& model, const std::filesystem::path& path,
+                double timeLimitS = 300.0);
 
 }  // namespace egg::exporter

@@ -192,7 +192,9 @@ void writeModelOutputs(RunState& state) {
     writeFileAtomically(state.staging / name, bytes);
     files.push_back({{"path", name}, {"bytes", bytes.size()}});
   };
+  section["model_s"] = watch.seconds();  // the deployed state, deviations, supports placed
   write("model.glb", exporter::glbBytes(model));
+  section["glb_s"] = watch.seconds() - section["model_s"].get<double>();
   write("model.obj", exporter::modelObj(model));
   const bool blocks = std::any_of(model.supports.begin(), model.supports.end(),
                                   [](const auto& s) { return !s.solid.triangles.empty(); });
@@ -206,7 +208,7 @@ void writeModelOutputs(RunState& state) {
   }
   if (const std::string why = exporter::rhinoUnavailableReason(); why.empty()) {
     const Stopwatch rhino;
-    exporter::write3dm(model, state.staging / "model.3dm");
+    section["rhino_node_s"] = exporter::write3dm(model, state.staging / "model.3dm");
     files.push_back({{"path", "model.3dm"},
                      {"bytes", std::filesystem::file_size(state.staging / "model.3dm")}});
     section["rhino_s"] = rhino.seconds();

@@ -1,15 +1,16 @@
 // Renders a .glb to a PNG with headless Chromium, for looking at the model (no dependency but
 // Chromium): writes an HTML page holding the file and a small WebGL2 renderer (flat shading,
 // material colour x COLOR_0, translucent materials last) and screenshots it.
-//   node render_glb.mjs model.glb out.png [azimuth_deg=35] [elevation_deg=30] [size=1400]
+//   node render_glb.mjs model.glb out.png [azimuth_deg=35] [elevation_deg=30] [size=1400] [zoom=1]
+// zoom > 1 looks at the middle of the model from closer (to see ribbons and bolts).
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 
-const [file, png, az = '35', el = '30', size = '1400'] = process.argv.slice(2);
+const [file, png, az = '35', el = '30', size = '1400', zoom = '1'] = process.argv.slice(2);
 if (!file || !png) {
-  console.error('usage: node render_glb.mjs model.glb out.png [azimuth_deg] [elevation_deg] [size]');
+  console.error('usage: node render_glb.mjs model.glb out.png [azimuth_deg] [elevation_deg] [size] [zoom]');
   process.exit(2);
 }
 const b64 = fs.readFileSync(file).toString('base64');
@@ -51,13 +52,13 @@ for (const d of draws) { const P = acc(d.p.attributes.POSITION); d.P = P;
 const centre = lo.map((v, k) => (v + hi[k]) / 2), radius = Math.hypot(hi[0]-lo[0], hi[1]-lo[1], hi[2]-lo[2]) / 2;
 const az = ${Number(az)} * Math.PI / 180, el = ${Number(el)} * Math.PI / 180;
 const dir = [Math.cos(el) * Math.sin(az), Math.sin(el), Math.cos(el) * Math.cos(az)];
-const dist = radius / Math.sin(Math.PI / 10) * 1.05;
+const dist = radius / Math.sin(Math.PI / 10) * 1.05 / ${Number(zoom)};
 const eye = centre.map((c, k) => c + dist * dir[k]);
 function lookAt(e, c) { const f = c.map((v,k) => v - e[k]); const fl = Math.hypot(...f); f.forEach((v,k) => f[k] = v/fl);
   let s = [f[1]*0 - f[2]*1, f[2]*0 - f[0]*0, f[0]*1 - f[1]*0]; const sl = Math.hypot(...s); s = s.map(v => v/sl);
   const u = [s[1]*f[2]-s[2]*f[1], s[2]*f[0]-s[0]*f[2], s[0]*f[1]-s[1]*f[0]];
   return [s[0],u[0],-f[0],0, s[1],u[1],-f[1],0, s[2],u[2],-f[2],0, -(s[0]*e[0]+s[1]*e[1]+s[2]*e[2]), -(u[0]*e[0]+u[1]*e[1]+u[2]*e[2]), f[0]*e[0]+f[1]*e[1]+f[2]*e[2], 1]; }
-const near = dist - 1.2 * radius > 0.01 ? dist - 1.2 * radius : 0.01, far = dist + 1.2 * radius, t = 1 / Math.tan(Math.PI / 10);
+const near = Math.max(dist - 1.2 * radius, dist / 1000), far = dist + 1.2 * radius, t = 1 / Math.tan(Math.PI / 10);
 const proj = [t,0,0,0, 0,t,0,0, 0,0,(far+near)/(near-far),-1, 0,0,2*far*near/(near-far),0];
 const viewProj = mul(proj, lookAt(eye, centre));
 const gl = document.getElementById('c').getContext('webgl2', {antialias: true, preserveDrawingBuffer: true});

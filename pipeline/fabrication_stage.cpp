@@ -67,6 +67,7 @@ void fabricationStage(RunState& state) {
     for (const auto& w : fab.report.value("warnings", nlohmann::json::array()))
       state.report.warn("fabrication: " + (w.is_string() ? w.get<std::string>() : w.dump()));
     state.failures.insert(state.failures.end(), fab.failures.begin(), fab.failures.end());
+    state.fabricated = std::move(fab.result);
   } catch (const InvalidInput& e) {
     state.report.stageSkipped(
         "fabrication", std::string("the grid cannot be cut with these settings: ") + e.what());

@@ -155,13 +155,16 @@ json patchEntry(const SolvedPatch& patch) {
 
 namespace {
 
+// One object and group per polyline, named by `names` (lamella ids).
 std::string polylinesObj(const std::vector<std::vector<Eigen::Vector3d>>& lines,
-                         const std::string& comment) {
+                         const std::vector<std::string>& names, const std::string& comment) {
   std::ostringstream out;
   out.precision(10);
   out << "# " << comment << "\n";
   int next = 1;
-  for (const auto& line : lines) {
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const auto& line = lines[i];
+    if (i < names.size()) out << "o " << names[i] << "\ng " << names[i] << "\n";
     for (const auto& p : line) out << "v " << p.x() << " " << p.y() << " " << p.z() << "\n";
     out << "l";
     for (size_t k = 0; k < line.size(); ++k) out << " " << next + static_cast<int>(k);
@@ -181,12 +184,18 @@ void writePatchFiles(const SolvedPatch& patch, const std::filesystem::path& dir,
   if (ec) throw WriteError(dir.string() + ": cannot create the patch folder: " + ec.message());
   writeGridJson(*patch.egg, (dir / "grid.json").string(), patch.id);
   if (!scene.wants("previews")) return;
-  writeGridObj(patch.egg->grid, (dir / "grid.obj").string());
+  writeGridObj(patch.egg->grid, (dir / "grid.obj").string(), patch.id);
   writePlanarSvg(patch.egg->grid, (dir / "planar.svg").string());
   if (patch.simulation) {
+    // Rods are the u members, then the v members (assembly/grid_to_rods.hpp).
+    std::vector<std::string> names;
+    for (const auto* family : {&patch.egg->grid.u, &patch.egg->grid.v})
+      for (const auto& m : *family)
+        names.push_back(
+            fmt::format("P{}-{}{}", patch.id, m.family == Family::U ? "U" : "V", m.index));
     writeFileAtomically(
         dir / "deployed.obj",
-        polylinesObj(patch.simulation->deployed.centrelines,
+        polylinesObj(patch.simulation->deployed.centrelines, names,
                      fmt::format("eggshell patch {}: deployed lamella centrelines (m)", patch.id)));
   }
 }

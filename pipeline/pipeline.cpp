@@ -5,6 +5,7 @@
 #include "core/timing.hpp"
 #include "pipeline/acceptance.hpp"
 #include "pipeline/grid_stage.hpp"
+#include "pipeline/model_stage.hpp"
 #include "pipeline/report_html.hpp"
 #include "pipeline/run_folder.hpp"
 #include "pipeline/stages.hpp"
@@ -41,6 +42,7 @@ void writeOutputs(RunState& state) {
               state.staging / "plan.svg", plan);
     state.report.section("plan") = plan;
   }
+  if (scene.wants("model") && solvedCount(state.patches) > 0) writeModelOutputs(state);
 }
 
 }  // namespace

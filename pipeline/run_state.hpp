@@ -6,6 +6,7 @@
 #include "core/geodesic/distance_solver.hpp"
 #include "core/rods/joined_network.hpp"
 #include "core/rods/simulation.hpp"
+#include "fabrication/fabricate.hpp"
 #include "pipeline/patching_stage.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/scene.hpp"
@@ -62,6 +63,7 @@ struct RunState {
   std::vector<SolvedPatch> patches;           // patching (ids, corners), grid, simulation
   std::optional<rods::SimulationRun> joined;  // simulation: the joined structure's deployment
   std::optional<rods::JoinedNetwork> joinedNetwork;  // simulation: what `joined` deployed
+  std::optional<fabrication::FabricationResult> fabricated;  // fabrication (the model's supports)
 };
 
 }  // namespace egg::pipeline

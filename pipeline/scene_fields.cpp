@@ -333,9 +333,9 @@ std::vector<SceneSection> makeSections() {
          "the scene's name: the default run folder out/<name> (default: the file's stem)", readName,
          [](const Scene& s) { return some(s.name); }},
         {"outputs", "array of names",
-         "what the run writes: report, plan, cut_files, stickers, supports, previews, fem "
-         "(default: "
-         "all but fem)",
+         "what the run writes: report, plan, cut_files, stickers, supports, previews (default: "
+         "these six), fem (the FE check: fem/), model (the 3D model: model.glb, model.3dm, "
+         "model.obj, supports.glb/.stl)",
          readOutputs, [](const Scene& s) { return some(s.outputs); }}},
        {}});
 

@@ -75,6 +75,10 @@ const std::vector<Output>& outputTable() {
       {"stickers", {S::Fabrication}, "cut/stickers_NN.svg, .dxf, stickers.pdf"},
       {"supports", {S::Fabrication}, "supports/supports.csv, supports/support_NNN.stl"},
       {"fem", {S::Verification}, "fem/model.inp, fem/<case>.inp, .dat, .frd, fem/buckle.*"},
+      // The supports come from the fabrication stage (none when it is off).
+      {"model",
+       {S::Grid, S::Simulation, S::Fabrication},
+       "model.glb, model.3dm, model.obj, supports.glb, supports.stl"},
   };
   return table;
 }

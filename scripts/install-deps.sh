@@ -18,7 +18,27 @@ PACKAGES=(
   clang-format clang-tidy    # .clang-format (checked by the Format test), .clang-tidy (identifier naming)
   chromium                   # test_report_html: report.html rendered headless (skipped without it)
   calculix-ccx               # verification/: the FE check of the deployed grid (issue 37)
+  libtinygltf-dev            # export/glb_writer.cpp: model.glb (issue 38)
+  nodejs                     # export/js: model.3dm (rhino3dm) and the GLB/3dm checks (issue 38)
 )
+# npm for export/js's packages: Debian's package only where no npm came with Node.js already.
+command -v npm >/dev/null || PACKAGES+=(npm)
+
+# The npm packages of export/js (rhino3dm, gltf-validator), exactly as its package-lock.json pins
+# them; only when node_modules is missing or older than the lockfile.
+install_npm_packages() {
+  local js
+  js="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/export/js"
+  [ -f "$js/package-lock.json" ] || return 0
+  if [ -f "$js/node_modules/.package-lock.json" ] &&
+     [ "$js/node_modules/.package-lock.json" -nt "$js/package-lock.json" ]; then
+    echo "install-deps: npm packages of export/js present"
+    return 0
+  fi
+  command -v npm >/dev/null || { echo "install-deps: npm is missing (Debian package npm)" >&2; return 1; }
+  echo "install-deps: npm ci in $js"
+  (cd "$js" && npm ci --no-audit --no-fund)
+}
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -29,6 +49,7 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#PACKAGES[@]} packages present"
+  install_npm_packages
   exit 0
 fi
 
@@ -41,3 +62,4 @@ echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+install_npm_packages

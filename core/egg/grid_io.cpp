@@ -122,14 +122,16 @@ void writeGridJson(const EggResult& result, const std::string& path, int patchId
   writeFileAtomically(path, gridJson(result, patchId));
 }
 
-void writeGridObj(const EggGrid& grid, const std::string& path) {
+void writeGridObj(const EggGrid& grid, const std::string& path, int patchId) {
   std::ostringstream out;
   out.precision(12);
   out << "# eggshell spatial grid: u members, v members (polylines on the surface), metres\n";
   int next = 1;
   for (const auto* family : {&grid.u, &grid.v})
     for (const auto& m : *family) {
-      out << "o " << (m.family == Family::U ? "u" : "v") << m.index << "\n";
+      const std::string id = "P" + std::to_string(patchId) + "-" +
+                             (m.family == Family::U ? "U" : "V") + std::to_string(m.index);
+      out << "o " << id << "\ng " << id << "\n";
       for (const auto& p : m.spatial) out << "v " << p.x() << " " << p.y() << " " << p.z() << "\n";
       out << "l";
       for (size_t k = 0; k < m.spatial.size(); ++k) out << " " << next + static_cast<int>(k);

@@ -13,7 +13,9 @@ namespace egg {
 std::string gridJson(const EggResult& result, int patchId = 0);
 
 void writeGridJson(const EggResult& result, const std::string& path, int patchId = 0);
-void writeGridObj(const EggGrid& grid, const std::string& path);
+// One object and group per member named by its lamella id, "P<patch>-U<i>" / "P<patch>-V<j>" (the
+// cut sheets' and the 3D model's names).
+void writeGridObj(const EggGrid& grid, const std::string& path, int patchId = 0);
 // Planar grid preview: u members blue, v members orange, notches as thick strokes along the
 // member (length |l|, towards the sliding direction), anchors as red squares.
 void writePlanarSvg(const EggGrid& grid, const std::string& path);

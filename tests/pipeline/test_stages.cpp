@@ -51,6 +51,8 @@ TEST(Stages, EachOutputNeedsItsStagesAndNothingElse) {
   std::set<StageId> all = report;
   all.insert(S::Fabrication);
   EXPECT_EQ(neededBy({"plan", "report", "cut_files"}), all);
+  // The 3D model: the deployed lamellas and the fabrication stage's supports (issue 38).
+  EXPECT_EQ(neededBy({"model"}), all);
 }
 
 TEST(Stages, EveryOutputIsKnownToTheTable) {
@@ -60,7 +62,7 @@ TEST(Stages, EveryOutputIsKnownToTheTable) {
     EXPECT_FALSE(output.needs.empty()) << output.name;
   }
   EXPECT_EQ(names, (std::set<std::string>{"report", "previews", "plan", "cut_files", "stickers",
-                                          "supports", "fem"}));
+                                          "supports", "fem", "model"}));
 }
 
 }  // namespace

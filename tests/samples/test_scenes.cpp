@@ -56,9 +56,9 @@ void expectDesignKeys(const json& scene) {
     if (scene.contains(section)) expectOnlyKeys(scene[section], keys, section);
   }
   for (const auto& output : scene.value("outputs", json::array())) {
-    EXPECT_TRUE(
-        std::set<std::string>({"report", "plan", "cut_files", "stickers", "supports", "previews"})
-            .count(output.get<std::string>()));
+    EXPECT_TRUE(std::set<std::string>(
+                    {"report", "plan", "cut_files", "stickers", "supports", "previews", "model"})
+                    .count(output.get<std::string>()));
   }
   // Section 3.5.2: a lamella thinner than a fifth of its width behaves like a geodesic strip.
   EXPECT_LE(scene["lamella"]["thickness_m"].get<double>(),

@@ -34,7 +34,7 @@ TEST(GridIo, WritesJsonObjAndSvgThatReadBack) {
       std::filesystem::temp_directory_path() / ("egg_grid_io_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   writeGridJson(r, (dir / "grid.json").string(), 7);
-  writeGridObj(r.grid, (dir / "grid.obj").string());
+  writeGridObj(r.grid, (dir / "grid.obj").string(), 7);
   writePlanarSvg(r.grid, (dir / "grid.svg").string());
 
   const auto doc = nlohmann::json::parse(slurp(dir / "grid.json"));
@@ -50,6 +50,9 @@ TEST(GridIo, WritesJsonObjAndSvgThatReadBack) {
   size_t lines = 0, pos = 0;
   while ((pos = obj.find("\nl ", pos)) != std::string::npos) ++lines, ++pos;
   EXPECT_EQ(lines, 10u);
+  // Members named by their lamella ids (issue 38).
+  EXPECT_NE(obj.find("\no P7-U0\ng P7-U0\n"), std::string::npos);
+  EXPECT_NE(obj.find("\no P7-V4\ng P7-V4\n"), std::string::npos);
   const std::string svg = slurp(dir / "grid.svg");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("</svg>"), std::string::npos);

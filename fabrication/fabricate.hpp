@@ -33,8 +33,12 @@ struct FabricationResult {
   int anchorsOnSharedSides = 0;   // grid anchors without a support: held by the neighbouring patch
   int narrowedSupportBlocks = 0;  // default blocks narrowed to keep their tops above the ground
   Nesting lamellaNesting, stickerNesting;
-  std::vector<Drawing> sheets;         // lamella sheets
-  std::vector<Drawing> stickerSheets;  // PTFE foil sheets
+  std::vector<Drawing> sheets;                // lamella sheets, or boards (options.stock)
+  std::vector<Drawing> stickerSheets;         // PTFE foil sheets
+  std::vector<std::string> sheetIds;          // "L01" (sheets) or "B01" (boards), on each sheet
+  std::vector<std::string> stickerSheetIds;   // "F01"
+  std::vector<std::vector<int>> pieceSheets;  // per lamella, per segment: its sheet (index)
+  SheetWidthSuggestion sheetWidthSuggestion;  // sheets only: the width that wastes least
   FeatureCounts counts;
   int connections = 0;         // bolts: connections, those merged on a shared lamella once
   int splices = 0;             // all joints, scarfs included

@@ -2,6 +2,7 @@
 
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "fabrication/assembly_drawings.hpp"
 #include "fabrication/cut_sheets.hpp"
 #include "fabrication/dxf_writer.hpp"
 #include "fabrication/pdf_writer.hpp"
@@ -104,6 +105,7 @@ std::vector<std::string> writeFabricationFiles(const FabricationResult& r,
   if (outputs.cutFiles) {
     writeSheets(r.sheets, boards ? "board_" : "sheet_", boards ? "boards.pdf" : "sheets.pdf");
     if (boards) write("cut/boards.csv", boardsCsv(r));
+    if (!r.assembly.empty()) write("cut/assembly.pdf", assemblyPdf(r));
   }
   if (outputs.stickers) writeSheets(r.stickerSheets, "stickers_", "stickers.pdf");
   if (outputs.supports) {

@@ -191,6 +191,8 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches,
   }
   for (const auto& s : r.stickers) r.stickerAreaM2 += s.areaM2();
   layOutCutSheets(r);
+  r.shared = shared;
+  r.assembly = assemblyPatches(patches, r.lamellae, shared, options.minNotchMm / 1000.0);
 
   // Supports.
   r.supports = planSupports(patches, options, &r.groundHeightM, &r.anchorsOnSharedSides);

@@ -213,6 +213,7 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
   const std::vector<std::string> expected{"cut/sheet_01.svg",
                                           "cut/sheet_01.dxf",
                                           "cut/sheets.pdf",
+                                          "cut/assembly.pdf",
                                           "cut/stickers_01.svg",
                                           "cut/stickers_01.dxf",
                                           "cut/stickers.pdf",
@@ -325,6 +326,16 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
       const auto run = testing::runTool("rsvg-convert --format=png --output " + path.string() +
                                         ".png " + path.string());
       EXPECT_EQ(run.status, 0) << f << ": " << run.output;
+    } else if (f == "cut/assembly.pdf") {
+      // ISO pages (A3 by default) and every lamella id of the run in the text.
+      const auto info = testing::runTool("pdfinfo " + path.string());
+      EXPECT_NE(info.output.find("(A3)"), std::string::npos) << info.output;
+      const auto text = testing::runTool("pdftotext " + path.string() + " -");
+      for (const auto& plan : r.lamellae)
+        EXPECT_NE(text.output.find(plan.id), std::string::npos) << plan.id;
+      EXPECT_NE(text.output.find("P0-C1-1"), std::string::npos);  // connections labelled
+      EXPECT_NE(text.output.find("support plan"), std::string::npos);
+      EXPECT_NE(text.output.find("Reason"), std::string::npos);
     } else if (path.extension() == ".pdf") {
       const auto run = testing::runTool("pdfinfo " + path.string());
       EXPECT_NE(run.output.find("Pages:           1"), std::string::npos)
@@ -375,7 +386,8 @@ TEST(Fabricate, MultiPageSheetsPdf) {
   EXPECT_EQ(r.lamellaNesting.sheets, 3);
   const auto dir = testing::scratchDir("fabricate_pages");
   const auto files = writeFabricationFiles(r, dir, {true, false, false});
-  EXPECT_EQ(files.size(), 3u * 2u + 1u + 1u + 1u);  // svg + dxf per sheet, pdf, bom.csv, cut.zip
+  // svg + dxf per sheet, sheets.pdf, assembly.pdf, bom.csv, cut.zip
+  EXPECT_EQ(files.size(), 3u * 2u + 4u);
   const auto run = testing::runTool("pdfinfo " + (dir / "cut/sheets.pdf").string());
   EXPECT_NE(run.output.find("Pages:           3"), std::string::npos) << run.output;
 }

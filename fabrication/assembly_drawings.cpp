@@ -141,6 +141,7 @@ void planarPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p) {
   for (const auto& c : p.connections) {
     const Eigen::Vector2d q = v.page(c.planar);
     cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_new_path(cr);  // no line from the last label to the dot
     cairo_arc(cr, q.x(), q.y(), 0.5, 0.0, 2.0 * M_PI);
     cairo_fill(cr);
     label(cr, q + Eigen::Vector2d(0.8, 1.2), size, c.id);
@@ -187,6 +188,7 @@ void deployedPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p) {
   cairo_set_source_rgb(cr, 0, 0, 0);
   for (const auto& c : p.connections) {
     const Eigen::Vector2d q = v.page(axo(c.spatial));
+    cairo_new_path(cr);  // no line from the last label to the dot
     cairo_arc(cr, q.x(), q.y(), 0.4, 0.0, 2.0 * M_PI);
     cairo_fill(cr);
     label(cr, q + Eigen::Vector2d(0.6, 1.0), size, c.id);
@@ -224,6 +226,7 @@ void supportPlanPage(PdfDocument& pdf, PaperSize paper, const std::vector<Assemb
   cairo_set_source_rgb(cr, 0.8, 0.0, 0.0);
   for (const auto& s : supports) {
     const Eigen::Vector2d q = v.page({s.position.x(), s.position.y()});
+    cairo_new_path(cr);
     cairo_rectangle(cr, q.x() - 0.8, q.y() - 0.8, 1.6, 1.6);
     cairo_fill(cr);
     label(cr, q + Eigen::Vector2d(1.2, 0.0), 1.8, s.id);

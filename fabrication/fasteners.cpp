@@ -37,7 +37,7 @@ BoltSize boltSize(double diameterMm, double gripMm) {
     b.lengthMm = standardLength(needed);
     b.name = fmt("M%gx%g", row.d, b.lengthMm);
     b.note =
-        fmt("grip + 2 washers + nut %.1f mm + 2 pitches = %.1f mm, rounded up", row.nut, needed) +
+        fmt("grip + 2 washers + nut %.1f mm + 2 pitches = %.1f mm; rounded up", row.nut, needed) +
         "; add the PTFE stickers' thickness";
     b.washerName = fmt("ISO 7089 %gx%gx%g", row.washerInner, row.washerOuter, row.washerThickness);
     b.washerThicknessMm = row.washerThickness;

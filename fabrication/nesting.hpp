@@ -5,9 +5,9 @@
 // the usable length), then rows are stacked onto sheets. Rows are packed two ways, best-fit
 // decreasing (each part, longest first, into the row it leaves the least room in) and by minimum
 // bin slack (each row, started with the longest part left, filled by the subset of the others
-// that leaves least room), each followed by trying to dissolve every row into the others; the one
-// with fewer sheets is kept. shelfSheets reports what the first-fit shelves eggshell used before
-// take, for comparison.
+// that leaves least room), each followed by trying to dissolve its emptiest rows into the others;
+// the one with fewer sheets is kept. shelfSheets reports what the first-fit shelves eggshell used
+// before take, for comparison.
 // Sheets hold their fullest rows first, so the last sheet's offcut is the largest.
 #include <array>
 #include <string>

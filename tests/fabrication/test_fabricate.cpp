@@ -2,6 +2,7 @@
 
 #include "core/egg/solve_patch.hpp"
 #include "core/errors.hpp"
+#include "fabrication/fasteners.hpp"
 #include "samples/generators/samples.hpp"
 #include "tests/support/fabrication_hand_grid.hpp"
 
@@ -375,6 +376,20 @@ TEST(Fabricate, LamellasLongerThanTheStockAreSplitClearOfTheirHoles) {
   const std::string bom = bomCsv(r);
   EXPECT_NE(bom.find("\nsplice,,6,"), std::string::npos) << bom;
   EXPECT_NE(bom.find("\nsplice_joint,P0-U1 S1,1,150.00,10.00,1.00,"), std::string::npos) << bom;
+}
+
+TEST(Fabricate, BoltSizesFromTheIsoTables) {
+  // M16 through two 50 mm lamellas: grip 100 + 2 x 3 (ISO 7089 17x30x3) + 14.8 (ISO 4032 nut)
+  // + 2 x 2 (pitch) = 124.8 mm, the next standard length 130 mm; through three: 174.8 -> 180.
+  const BoltSize two = boltSize(16.0, 100.0), three = boltSize(16.0, 150.0);
+  EXPECT_EQ(two.name, "M16x130");
+  EXPECT_DOUBLE_EQ(two.lengthMm, 130.0);
+  EXPECT_EQ(three.name, "M16x180");
+  EXPECT_EQ(two.washerName, "ISO 7089 17x30x3");
+  EXPECT_EQ(two.note.find(','), std::string::npos);  // a CSV field
+  // Above 200 mm the steps are 20 mm: M8 through 190 mm: 190 + 3.2 + 6.8 + 2.5 = 202.5 -> 220.
+  EXPECT_DOUBLE_EQ(boltSize(8.0, 190.0).lengthMm, 220.0);
+  EXPECT_EQ(boltSize(9.0, 20.0).name, "d9x20");  // no M9: the grip, and a note
 }
 
 TEST(Fabricate, MultiPageSheetsPdf) {

@@ -1,7 +1,9 @@
 #include "fabrication/drawing.hpp"
 
 #include "core/io/xml_text.hpp"
+#include "fabrication/stroke_text.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -12,8 +14,36 @@ const char* layerName(Layer layer) {
     case Layer::Cut: return "CUT";
     case Layer::Engrave: return "ENGRAVE";
     case Layer::Label: return "LABEL";
+    case Layer::Reference: return "REFERENCE";
+    case Layer::Toolpath: return "TOOLPATH";
   }
   return "CUT";
+}
+
+int layerAci(Layer layer) {
+  switch (layer) {
+    case Layer::Cut: return 1;
+    case Layer::Engrave: return 5;
+    case Layer::Label: return 3;
+    case Layer::Reference: return 8;
+    case Layer::Toolpath: return 6;
+  }
+  return 7;
+}
+
+const char* layerRgb(Layer layer) {
+  switch (layer) {
+    case Layer::Cut: return "#ff0000";
+    case Layer::Engrave: return "#0000ff";
+    case Layer::Label: return "#00ff00";
+    case Layer::Reference: return "#808080";
+    case Layer::Toolpath: return "#ff00ff";
+  }
+  return "#000000";
+}
+
+double viewingStrokeMm(const Drawing& d) {
+  return std::max(0.1, std::max(d.widthMm, d.heightMm) / 1000.0);
 }
 
 std::vector<Eigen::Vector2d> slotCorners(const DrawSlot& slot) {
@@ -25,9 +55,6 @@ std::vector<Eigen::Vector2d> slotCorners(const DrawSlot& slot) {
 }
 
 namespace {
-
-// Laser software keys on colour: pure red cuts, pure blue engraves. A hairline is 0.01 mm.
-const char* colourOf(Layer layer) { return layer == Layer::Cut ? "#ff0000" : "#0000ff"; }
 
 std::string number(double x) {
   char buffer[64];
@@ -48,14 +75,19 @@ std::string toSvg(const Drawing& d) {
     << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << number(d.widthMm)
     << "mm\" height=\"" << number(d.heightMm) << "mm\" viewBox=\"0 0 " << number(d.widthMm) << " "
     << number(d.heightMm) << "\">\n"
-    << "<title>" << escapeXml(d.title) << "</title>\n";
-  const std::string stroke = "fill=\"none\" stroke-width=\"0.01\"";
-  for (Layer layer : {Layer::Cut, Layer::Engrave, Layer::Label}) {
+    << "<title>" << escapeXml(d.title) << "</title>\n"
+    << "<desc>Millimetres. One group per layer, each its own colour (CUT red, ENGRAVE blue, LABEL "
+       "green single-stroke text, REFERENCE grey, TOOLPATH magenta); stroke widths are for "
+       "viewing only.</desc>\n";
+  const std::string stroke =
+      "fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\" stroke-width=\"" +
+      number(viewingStrokeMm(d)) + "\"";
+  for (Layer layer : kLayers) {
     s << "<g id=\"" << layerName(layer) << "\">\n";
     for (const auto& c : d.circles) {
       if (c.layer != layer) continue;
       s << "<circle cx=\"" << X(c.centre) << "\" cy=\"" << Y(c.centre) << "\" r=\""
-        << number(c.radius) << "\" " << stroke << " stroke=\"" << colourOf(layer) << "\"/>\n";
+        << number(c.radius) << "\" " << stroke << " stroke=\"" << layerRgb(layer) << "\"/>\n";
     }
     for (const auto& slot : d.slots) {
       if (slot.layer != layer) continue;
@@ -66,22 +98,28 @@ std::string toSvg(const Drawing& d) {
       s << "<path d=\"M " << X(k[0]) << " " << Y(k[0]) << " L " << X(k[1]) << " " << Y(k[1])
         << " A " << r << " " << r << " 0 0 0 " << X(k[2]) << " " << Y(k[2]) << " L " << X(k[3])
         << " " << Y(k[3]) << " A " << r << " " << r << " 0 0 0 " << X(k[0]) << " " << Y(k[0])
-        << " Z\" " << stroke << " stroke=\"" << colourOf(layer) << "\"/>\n";
+        << " Z\" " << stroke << " stroke=\"" << layerRgb(layer) << "\"/>\n";
     }
     for (const auto& p : d.polylines) {
       if (p.layer != layer || p.points.empty()) continue;
       s << "<" << (p.closed ? "polygon" : "polyline") << " points=\"";
       for (size_t i = 0; i < p.points.size(); ++i)
         s << (i ? " " : "") << X(p.points[i]) << "," << Y(p.points[i]);
-      s << "\" " << stroke << " stroke=\"" << colourOf(layer) << "\"/>\n";
+      s << "\" " << stroke << " stroke=\"" << layerRgb(layer) << "\"/>\n";
     }
     for (const auto& t : d.texts) {
       if (t.layer != layer) continue;
-      s << "<text x=\"" << X(t.anchor) << "\" y=\"" << Y(t.anchor)
-        << "\" font-family=\"sans-serif\" font-size=\"" << number(t.height) << "\" text-anchor=\""
-        << (t.align == TextAlign::Left ? "start" : "middle")
-        << "\" dominant-baseline=\"central\" fill=\"" << colourOf(layer) << "\" stroke=\"none\">"
-        << escapeXml(t.text) << "</text>\n";
+      // One path per text, its strokes as subpaths; the text and where it is anchored kept in
+      // the path's title and description (single-stroke text has no font to read it back from).
+      s << "<path class=\"text\" d=\"";
+      for (const auto& line : placedStrokes(t)) {
+        for (size_t i = 0; i < line.size(); ++i)
+          s << (i ? "L " : "M ") << X(line[i]) << " " << Y(line[i]) << " ";
+      }
+      s << "\" " << stroke << " stroke=\"" << layerRgb(layer) << "\"><title>" << escapeXml(t.text)
+        << "</title><desc>anchor " << X(t.anchor) << " " << number(t.anchor.y()) << " height "
+        << number(t.height) << (t.align == TextAlign::Left ? " left" : " centre")
+        << "</desc></path>\n";
     }
     s << "</g>\n";
   }

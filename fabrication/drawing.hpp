@@ -1,15 +1,22 @@
 #pragma once
 // A cut sheet as plain 2D geometry in millimetres (y up, origin at the sheet's lower left corner),
-// written by the SVG, DXF and PDF writers. Three layers as laser and CNC software expect them:
-// CUT (red hairline, through), ENGRAVE (blue, marks: arrows, splice lines), LABEL (engraved text).
+// written by the SVG, DXF and PDF writers. One layer per operation, each its own colour, because
+// laser and CNC software assign operations by colour: CUT (red, through), ENGRAVE (blue, marks:
+// arrows, splice lines), LABEL (green, engraved single-stroke text), REFERENCE (grey, not cut: the
+// sheet's outline and id), TOOLPATH (magenta, a router bit's centre path, only with a tool
+// diameter).
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
 namespace egg::fabrication {
 
-enum class Layer { Cut, Engrave, Label };
-const char* layerName(Layer layer);  // "CUT", "ENGRAVE", "LABEL"
+enum class Layer { Cut, Engrave, Label, Reference, Toolpath };
+inline constexpr Layer kLayers[] = {Layer::Cut, Layer::Engrave, Layer::Label, Layer::Reference,
+                                    Layer::Toolpath};
+const char* layerName(Layer layer);  // "CUT", "ENGRAVE", "LABEL", "REFERENCE", "TOOLPATH"
+int layerAci(Layer layer);  // AutoCAD colour index: 1 red, 5 blue, 3 green, 8 grey, 6 magenta
+const char* layerRgb(Layer layer);  // the same colour as "#rrggbb" (ezdxf's ACI table)
 
 struct DrawCircle {
   Layer layer = Layer::Cut;
@@ -53,8 +60,13 @@ struct Drawing {
 // a - r n, b - r n, b + r n, a + r n with n the left normal of a->b (a degenerate slot uses +x).
 std::vector<Eigen::Vector2d> slotCorners(const DrawSlot& slot);
 
+// The stroke width of the SVG and the fitted PDF, for viewing only (CAM software ignores it): a
+// thousandth of the sheet's longer side, at least 0.1 mm, so that a sheet shown whole on a screen
+// (about 1000 pixels across) still has one-pixel lines.
+double viewingStrokeMm(const Drawing& drawing);
+
 // SVG 1.1 in millimetres (width/height in mm, viewBox in mm, y flipped so the sheet reads as in the
-// DXF): cut = red (#ff0000) hairline, engrave = blue (#0000ff) hairline, labels = blue text.
+// DXF): one <g> per layer in its colour, texts as single-stroke paths (stroke_text.hpp).
 std::string toSvg(const Drawing& drawing);
 
 }  // namespace egg::fabrication

@@ -2,6 +2,7 @@
 
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "fabrication/stroke_text.hpp"
 
 #include <dl_dxf.h>
 #include <dl_writer_ascii.h>
@@ -15,8 +16,6 @@
 
 namespace egg::fabrication {
 namespace {
-
-int aciColourOf(Layer layer) { return layer == Layer::Cut ? 1 : 5; }  // ACI 1 red, 5 blue
 
 DL_Attributes attributesOf(Layer layer) {
   // Colour and line type BYLAYER (256): the layer decides, as CAM software expects.
@@ -49,13 +48,9 @@ void writeEntities(DL_Dxf& dxf, DL_WriterA& dw, const Drawing& d) {
     if (p.points.size() >= 2) writePolyline(dxf, dw, p.layer, p.points, {}, p.closed);
   }
   for (const auto& t : d.texts) {
-    // Horizontal justification 0 = left, 1 = centre; vertical 2 = middle. With a justification
-    // other than left/baseline the alignment point (codes 11/21) places the text.
-    const int h = t.align == TextAlign::Left ? 0 : 1;
-    dxf.writeText(dw,
-                  DL_TextData(t.anchor.x(), t.anchor.y(), 0.0, t.anchor.x(), t.anchor.y(), 0.0,
-                              t.height, 1.0, 0, h, 2, t.text, "Standard", 0.0),
-                  attributesOf(t.layer));
+    // Single-stroke outlines (stroke_text.hpp), not TEXT: no CAM tool needs a font, and importers
+    // that drop TEXT keep every label.
+    for (const auto& stroke : placedStrokes(t)) writePolyline(dxf, dw, t.layer, stroke, {}, false);
   }
 }
 
@@ -119,20 +114,24 @@ std::string withObjectOwners(const std::string& text) {
 
 }  // namespace
 
-std::string toDxf(const Drawing& d) {
+std::string toDxf(const Drawing& d, DxfVersion version) {
+  const bool r12 = version == DxfVersion::R12;
   // dxflib writes only to a named file: write into a private temporary file and read it back, so
   // that the caller places the text atomically (core/io/atomic_file.hpp).
   const auto tmp =
       std::filesystem::temp_directory_path() / ("egg_dxf_" + temporarySuffix() + ".dxf");
   {
     DL_Dxf dxf;
-    std::unique_ptr<DL_WriterA> dw(dxf.out(tmp.string().c_str(), DL_Codes::AC1015));
+    std::unique_ptr<DL_WriterA> dw(
+        dxf.out(tmp.string().c_str(), r12 ? DL_Codes::AC1009 : DL_Codes::AC1015));
     if (!dw) throw WriteError("cannot write a temporary DXF file " + tmp.string());
     dxf.writeHeader(*dw);
-    dw->dxfString(9, "$INSUNITS");
-    dw->dxfInt(70, 4);  // millimetres
-    dw->dxfString(9, "$MEASUREMENT");
-    dw->dxfInt(70, 1);  // metric
+    if (!r12) {  // R12 knows neither; its readers take the numbers as they are (millimetres)
+      dw->dxfString(9, "$INSUNITS");
+      dw->dxfInt(70, 4);  // millimetres
+      dw->dxfString(9, "$MEASUREMENT");
+      dw->dxfInt(70, 1);  // metric
+    }
     dw->dxfString(9, "$EXTMIN");
     dw->dxfReal(10, 0.0);
     dw->dxfReal(20, 0.0);
@@ -150,11 +149,11 @@ std::string toDxf(const Drawing& d) {
     dxf.writeLinetype(*dw, DL_LinetypeData("BYLAYER", "", 0, 0, 0.0));
     dxf.writeLinetype(*dw, DL_LinetypeData("CONTINUOUS", "Solid line", 0, 0, 0.0));
     dw->tableEnd();
-    dw->tableLayers(4);
+    dw->tableLayers(1 + static_cast<int>(std::size(kLayers)));
     dxf.writeLayer(*dw, DL_LayerData("0", 0), DL_Attributes("", 7, -1, "CONTINUOUS", 1.0));
-    for (Layer layer : {Layer::Cut, Layer::Engrave, Layer::Label}) {
+    for (Layer layer : kLayers) {
       dxf.writeLayer(*dw, DL_LayerData(layerName(layer), 0),
-                     DL_Attributes("", aciColourOf(layer), -1, "CONTINUOUS", 1.0));
+                     DL_Attributes("", layerAci(layer), -1, "CONTINUOUS", 1.0));
     }
     dw->tableEnd();
     dw->tableStyle(1);
@@ -166,24 +165,30 @@ std::string toDxf(const Drawing& d) {
     dxf.writeAppid(*dw, "ACAD");
     dw->tableEnd();
     dxf.writeDimStyle(*dw, 2.5, 0.625, 0.625, 0.625, 2.5);
-    dxf.writeBlockRecord(*dw);
-    dw->tableEnd();
+    if (!r12) {  // block records and layout blocks are AutoCAD 2000's; R12 has neither
+      dxf.writeBlockRecord(*dw);
+      dw->tableEnd();
+    }
     dw->sectionEnd();
 
     dw->sectionBlocks();
-    dxf.writeBlock(*dw, DL_BlockData("*Model_Space", 0, 0.0, 0.0, 0.0));
-    dxf.writeEndBlock(*dw, "*Model_Space");
-    dxf.writeBlock(*dw, DL_BlockData("*Paper_Space", 0, 0.0, 0.0, 0.0));
-    dxf.writeEndBlock(*dw, "*Paper_Space");
-    dxf.writeBlock(*dw, DL_BlockData("*Paper_Space0", 0, 0.0, 0.0, 0.0));
-    dxf.writeEndBlock(*dw, "*Paper_Space0");
+    if (!r12) {
+      dxf.writeBlock(*dw, DL_BlockData("*Model_Space", 0, 0.0, 0.0, 0.0));
+      dxf.writeEndBlock(*dw, "*Model_Space");
+      dxf.writeBlock(*dw, DL_BlockData("*Paper_Space", 0, 0.0, 0.0, 0.0));
+      dxf.writeEndBlock(*dw, "*Paper_Space");
+      dxf.writeBlock(*dw, DL_BlockData("*Paper_Space0", 0, 0.0, 0.0, 0.0));
+      dxf.writeEndBlock(*dw, "*Paper_Space0");
+    }
     dw->sectionEnd();
 
     dw->sectionEntities();
     writeEntities(dxf, *dw, d);
     dw->sectionEnd();
-    dxf.writeObjects(*dw);
-    dxf.writeObjectsEnd(*dw);
+    if (!r12) {
+      dxf.writeObjects(*dw);
+      dxf.writeObjectsEnd(*dw);
+    }
     dw->dxfEOF();
     dw->close();
   }
@@ -193,7 +198,7 @@ std::string toDxf(const Drawing& d) {
   std::error_code ignored;
   std::filesystem::remove(tmp, ignored);
   if (!in) throw WriteError("cannot read back the temporary DXF file " + tmp.string());
-  return withObjectOwners(text.str());
+  return r12 ? text.str() : withObjectOwners(text.str());
 }
 
 }  // namespace egg::fabrication

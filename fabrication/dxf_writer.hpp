@@ -1,14 +1,17 @@
 #pragma once
-// DXF (AutoCAD 2000, AC1015) of a drawing, through dxflib: $INSUNITS = 4 (millimetres), layers
-// CUT (red), ENGRAVE (blue), LABEL (blue); holes as CIRCLE, slots as closed LWPOLYLINE with
-// half-circle bulges, marks as LWPOLYLINE, labels as TEXT aligned at their middle.
+// DXF of a drawing through dxflib: AutoCAD 2000 (AC1015, $INSUNITS = 4, millimetres) or, for old
+// CAM software, R12 (AC1009: POLYLINE instead of LWPOLYLINE, no units variable: the numbers are
+// millimetres). One layer per operation, each its own colour index (drawing.hpp); holes as
+// CIRCLE, slots as closed polylines with half-circle bulges, marks as polylines, labels as open
+// polylines of single-stroke text (stroke_text.hpp): no TEXT entity, no font.
 #include "fabrication/drawing.hpp"
+#include "fabrication/options.hpp"
 
 #include <string>
 
 namespace egg::fabrication {
 
 // The DXF text of `drawing`. Throws WriteError when dxflib cannot write its temporary file.
-std::string toDxf(const Drawing& drawing);
+std::string toDxf(const Drawing& drawing, DxfVersion version = DxfVersion::R2000);
 
 }  // namespace egg::fabrication

@@ -2,6 +2,7 @@
 
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
+#include "fabrication/cut_sheets.hpp"
 #include "fabrication/dxf_writer.hpp"
 #include "fabrication/pdf_writer.hpp"
 #include "fabrication/sheet_layout.hpp"
@@ -20,24 +21,6 @@ std::string formatted(const char* format, double value) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, format, value);
   return buffer;
-}
-
-std::string numbered(const std::string& stem, int number, int digits,
-                     const std::string& extension) {
-  char buffer[16];
-  std::snprintf(buffer, sizeof buffer, "%0*d", digits, number);
-  return stem + buffer + extension;
-}
-
-std::vector<Drawing> emptySheets(int count, std::array<double, 2> sizeMm,
-                                 const std::string& title) {
-  std::vector<Drawing> sheets(count);
-  for (int i = 0; i < count; ++i) {
-    sheets[i].title = title + " " + std::to_string(i + 1) + "/" + std::to_string(count);
-    sheets[i].widthMm = sizeMm[0];
-    sheets[i].heightMm = sizeMm[1];
-  }
-  return sheets;
 }
 
 void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult& r) {
@@ -201,44 +184,15 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches,
   r.volumeM3 = r.totalLengthM * w * t;
   r.massKg = r.volumeM3 * r.material.densityKgM3;
 
-  // Lamella sheets: every segment is a part.
-  std::vector<NestPart> parts;
-  std::vector<std::pair<int, int>> partOf;  // (lamella, segment)
-  for (size_t i = 0; i < r.lamellae.size(); ++i) {
-    const auto& plan = r.lamellae[i];
-    for (size_t k = 0; k < plan.segments.size(); ++k) {
-      parts.push_back(
-          {segmentLabel(plan, static_cast<int>(k)), plan.segments[k].lengthMm(), plan.widthMm});
-      partOf.emplace_back(static_cast<int>(i), static_cast<int>(k));
-    }
-  }
-  r.lamellaNesting =
-      nestParts(parts, options.sheetMm, options.kerfMm, options.marginMm, "fabrication.sheet_mm");
-  r.sheets = emptySheets(r.lamellaNesting.sheets, options.sheetMm, "lamella sheet");
-  for (size_t p = 0; p < parts.size(); ++p) {
-    const auto& at = r.lamellaNesting.placements[p];
-    drawLamellaSegment(r.lamellae[partOf[p].first], partOf[p].second, {at.xMm, at.yMm}, options,
-                       r.sheets[at.sheet]);
-  }
-
-  // PTFE stickers.
+  // Lamella sheets (or boards) and PTFE sticker sheets, nested and drawn (cut_sheets.cpp).
   for (const auto& patch : patches) {
     auto stickers = planStickers(patch, r.lamellae, options);
     r.stickers.insert(r.stickers.end(), stickers.begin(), stickers.end());
   }
-  std::vector<NestPart> stickerParts;
-  for (const auto& s : r.stickers) {
-    stickerParts.push_back({"sticker " + s.id, s.lengthMm, s.widthMm});
-    r.stickerAreaM2 += s.areaM2();
-  }
-  r.stickerNesting = nestParts(stickerParts, options.effectiveStickerSheetMm(), options.kerfMm,
-                               options.marginMm, "fabrication.sticker_sheet_mm");
-  r.stickerSheets =
-      emptySheets(r.stickerNesting.sheets, options.effectiveStickerSheetMm(), "PTFE sticker sheet");
-  for (size_t p = 0; p < r.stickers.size(); ++p) {
-    const auto& at = r.stickerNesting.placements[p];
-    drawSticker(r.stickers[p], {at.xMm, at.yMm}, options, r.stickerSheets[at.sheet]);
-  }
+  for (const auto& s : r.stickers) r.stickerAreaM2 += s.areaM2();
+  layOutCutSheets(r);
+  r.shared = shared;
+  r.assembly = assemblyPatches(patches, r.lamellae, shared, options.minNotchMm / 1000.0);
 
   // Supports.
   r.supports = planSupports(patches, options, &r.groundHeightM, &r.anchorsOnSharedSides);
@@ -309,115 +263,6 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches,
   return r;
 }
 
-std::string bomCsv(const FabricationResult& r) {
-  std::ostringstream s;
-  const auto& o = r.options;
-  s << "item,id,count,length_mm,width_mm,thickness_mm,area_m2,volume_m3,mass_kg,note\n";
-  char line[512];
-  const double rho = r.material.densityKgM3;
-  for (size_t i = 0; i < r.lamellae.size(); ++i) {
-    const auto& p = r.lamellae[i];
-    int holes = 0, slots = 0;
-    for (const auto& f : p.features) (f.kind == FeatureKind::Slot ? slots : holes)++;
-    const double volume = p.lengthMm * p.widthMm * o.lamellaThicknessMm * 1e-9;
-    const char* notCut = p.unspliceable.empty()
-                             ? ""
-                             : "; NOT CUT: no splice position (report.json unspliceable_lamellae)";
-    std::snprintf(line, sizeof line,
-                  "lamella,%s,1,%.2f,%.2f,%.2f,,%.6g,%.6g,%s; %d holes; %d slots; %zu segments; "
-                  "stress ratio %.3f%s\n",
-                  p.id.c_str(), p.lengthMm, p.widthMm, o.lamellaThicknessMm, volume, volume * rho,
-                  r.material.name.c_str(), holes, slots, p.segments.size(), r.stress[i].stressRatio,
-                  notCut);
-    s << line;
-  }
-  s << "splice,," << r.splices - r.scarfJoints
-    << ",,,,,,,butt joints with bolted plates clear of holes by "
-    << formatted("%.1f", o.effectiveSpliceClearanceMm())
-    << " mm where a stock length allows, else at least "
-    << formatted("%.1f", o.effectiveMinSpliceClearanceMm()) << " mm\n";
-  if (r.scarfJoints > 0) {
-    s << "scarf,," << r.scarfJoints << "," << formatted("%.1f", o.scarfLengthMm())
-      << ",,,,,,glued scarf joints 1:" << formatted("%g", o.scarfSlope)
-      << " to 1:" << formatted("%g", 2.0 * o.scarfSlope)
-      << " (length_mm: the shortest), glued before assembly; the pieces overlap on the slope\n";
-  }
-  // Every splice: where along its lamella (length_mm = the cut's distance from the strip's start).
-  for (size_t i = 0; i < r.lamellae.size(); ++i) {
-    const auto& p = r.lamellae[i];
-    for (size_t k = 0; k < p.splicesMm.size(); ++k) {
-      if (k < p.spliceIsScarf.size() && p.spliceIsScarf[k]) {
-        std::snprintf(line, sizeof line,
-                      "splice_joint,%s S%zu,1,%.2f,%.2f,%.2f,,,,scarf between pieces %zu and %zu; "
-                      "feather ends %.1f mm from "
-                      "the nearest hole or slot; %.0f mm long; stress ratio %.3f\n",
-                      p.id.c_str(), k + 1, p.splicesMm[k], p.widthMm, o.lamellaThicknessMm, k + 1,
-                      k + 2, p.spliceClearancesMm[k],
-                      p.segments[k].endMm - p.segments[k + 1].startMm, r.stress[i].scarfRatios[k]);
-      } else {
-        std::snprintf(line, sizeof line,
-                      "splice_joint,%s S%zu,1,%.2f,%.2f,%.2f,,,,between pieces %zu and %zu; %.1f "
-                      "mm free each side\n",
-                      p.id.c_str(), k + 1, p.splicesMm[k], p.widthMm, o.lamellaThicknessMm, k + 1,
-                      k + 2, p.spliceClearancesMm[k]);
-      }
-      s << line;
-    }
-  }
-  s << "bolt,," << r.connections << ",,,,,,,diameter " << formatted("%.1f", o.boltDiameterMm)
-    << " mm; one per connection (merged on shared lamellas)\n";
-  s << "washer,," << 2 * r.connections << ",,,,,,,two per bolt\n";
-  s << "brass_sleeve,," << r.counts.slots << ",,,,,,,one per slot (Section 3.5.1)\n";
-  s << "ptfe_sticker,," << r.stickers.size() << ",,,," << formatted("%.6g", r.stickerAreaM2)
-    << ",,,two per notched connection (Section 3.5.1)\n";
-  s << "support,," << r.supports.size() << ",,,,,,,see supports/supports.csv\n";
-  s << "lamella_sheet,," << r.lamellaNesting.sheets << "," << o.sheetMm[0] << "," << o.sheetMm[1]
-    << "," << o.lamellaThicknessMm << ",,,,yield " << formatted("%.3f", r.lamellaNesting.yield)
-    << "\n";
-  s << "sticker_sheet,," << r.stickerNesting.sheets << "," << o.effectiveStickerSheetMm()[0] << ","
-    << o.effectiveStickerSheetMm()[1] << ",,,,,PTFE foil\n";
-  s << "total_lamellae,," << r.lamellae.size() << "," << formatted("%.2f", r.totalLengthM * 1000.0)
-    << ",,,," << formatted("%.6g", r.volumeM3) << "," << formatted("%.6g", r.massKg)
-    << ",self-weight " << formatted("%.1f", r.massKg * 9.81) << " N\n";
-  return s.str();
-}
-
-std::vector<std::string> writeFabricationFiles(const FabricationResult& r,
-                                               const std::filesystem::path& dir,
-                                               const FabricationOutputs& outputs) {
-  std::vector<std::string> files;
-  auto write = [&](const std::string& relative, const std::string& text) {
-    const auto path = dir / relative;
-    std::error_code error;
-    std::filesystem::create_directories(path.parent_path(), error);
-    if (error)
-      throw WriteError("cannot create the folder " + path.parent_path().string() + ": " +
-                       error.message());
-    writeFileAtomically(path, text);
-    files.push_back(relative);
-  };
-  auto writeSheets = [&](const std::vector<Drawing>& sheets, const std::string& stem,
-                         const std::string& pdf) {
-    for (size_t i = 0; i < sheets.size(); ++i) {
-      write(numbered("cut/" + stem, static_cast<int>(i + 1), 2, ".svg"), toSvg(sheets[i]));
-      write(numbered("cut/" + stem, static_cast<int>(i + 1), 2, ".dxf"), toDxf(sheets[i]));
-    }
-    if (!sheets.empty()) write("cut/" + pdf, toPdf(sheets));
-  };
-  if (outputs.cutFiles) writeSheets(r.sheets, "sheet_", "sheets.pdf");
-  if (outputs.stickers) writeSheets(r.stickerSheets, "stickers_", "stickers.pdf");
-  if (outputs.supports) {
-    write("supports/supports.csv", supportsCsv(r.supports));
-    for (size_t i = 0; i < r.supports.size(); ++i) {
-      if (!r.supports[i].block) continue;
-      write(numbered("supports/support_", static_cast<int>(i + 1), 3, ".stl"),
-            toBinaryStl(r.supportSolids[i], "eggshell support " + r.supports[i].id + " (mm)"));
-    }
-  }
-  write("bom.csv", bomCsv(r));
-  return files;
-}
-
 nlohmann::json fabricationReport(const FabricationResult& r,
                                  const std::vector<std::string>& files) {
   nlohmann::json j;
@@ -438,6 +283,23 @@ nlohmann::json fabricationReport(const FabricationResult& r,
   j["narrowed_support_blocks"] = r.narrowedSupportBlocks;
   j["sheets"] = r.lamellaNesting.sheets;
   j["yield"] = r.lamellaNesting.yield;
+  // Nesting (issue 38): what each sheet holds, against the first-fit shelves used before and the
+  // least number of rows any packing needs; the sheet width that wastes least.
+  j["stock"] = toString(r.options.stock);
+  j["sheet_ids"] = r.sheetIds;
+  j["sheet_utilisation"] = r.lamellaNesting.sheetUtilisation;
+  j["rows"] = r.lamellaNesting.rows;
+  j["rows_lower_bound"] = r.lamellaNesting.rowsLowerBound;
+  j["shelf_sheets"] = r.lamellaNesting.shelfSheets;
+  j["sticker_sheet_utilisation"] = r.stickerNesting.sheetUtilisation;
+  j["sticker_shelf_sheets"] = r.stickerNesting.shelfSheets;
+  if (r.sheetWidthSuggestion.sheets > 0) {
+    const auto& s = r.sheetWidthSuggestion;
+    j["suggested_sheet_mm"] = {r.options.sheetMm[0], s.widthMm};
+    j["suggested_sheet_rows"] = s.rowsPerSheet;
+    j["suggested_sheet_count"] = s.sheets;
+    j["suggested_sheet_yield"] = s.yield;
+  }
   j["material"] = r.material.name;
   j["total_length_m"] = r.totalLengthM;
   j["volume_m3"] = r.volumeM3;

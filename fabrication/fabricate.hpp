@@ -5,6 +5,7 @@
 //   FabricationResult r = fabricate(patches, options);          // pure: geometry and numbers
 //   auto files = writeFabricationFiles(r, runDir, outputs);      // cut/, supports/, bom.csv
 //   report["fabrication"] = fabricationReport(r, files);
+#include "fabrication/assembly_patch.hpp"
 #include "fabrication/drawing.hpp"
 #include "fabrication/lamella_plan.hpp"
 #include "fabrication/nesting.hpp"
@@ -33,8 +34,14 @@ struct FabricationResult {
   int anchorsOnSharedSides = 0;   // grid anchors without a support: held by the neighbouring patch
   int narrowedSupportBlocks = 0;  // default blocks narrowed to keep their tops above the ground
   Nesting lamellaNesting, stickerNesting;
-  std::vector<Drawing> sheets;         // lamella sheets
-  std::vector<Drawing> stickerSheets;  // PTFE foil sheets
+  std::vector<Drawing> sheets;                // lamella sheets, or boards (options.stock)
+  std::vector<Drawing> stickerSheets;         // PTFE foil sheets
+  std::vector<std::string> sheetIds;          // "L01" (sheets) or "B01" (boards), on each sheet
+  std::vector<std::string> stickerSheetIds;   // "F01"
+  std::vector<std::vector<int>> pieceSheets;  // per lamella, per segment: its sheet (index)
+  SheetWidthSuggestion sheetWidthSuggestion;  // sheets only: the width that wastes least
+  std::vector<AssemblyPatch> assembly;        // for cut/assembly.pdf
+  std::vector<SharedBoundary> shared;         // the shared sides fabricate() was given
   FeatureCounts counts;
   int connections = 0;         // bolts: connections, those merged on a shared lamella once
   int splices = 0;             // all joints, scarfs included
@@ -65,7 +72,7 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches,
 
 // Which files to write (the scene's outputs "cut_files", "stickers", "supports").
 struct FabricationOutputs {
-  bool cutFiles = true;  // cut/sheet_NN.svg, cut/sheet_NN.dxf, cut/sheets.pdf
+  bool cutFiles = true;  // cut/sheet_NN.svg, .dxf, sheets.pdf, assembly.pdf, cut.zip
   bool stickers = true;  // cut/stickers_NN.svg, cut/stickers_NN.dxf, cut/stickers.pdf
   bool supports = true;  // supports/supports.csv, supports/support_NNN.stl
 };

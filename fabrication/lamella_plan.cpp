@@ -20,7 +20,7 @@ double LamellaFeature::maxXMm(double boltDiameterMm) const {
 
 std::string LamellaFeature::label() const {
   std::string text = connectionId;
-  for (const auto& merged : alsoConnections) text += "=P" + std::to_string(merged.first);
+  for (const auto& id : alsoConnectionIds) text += "=" + id;
   return text;
 }
 
@@ -121,9 +121,11 @@ std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patch
   }
   mergeSharedBoundaries(plans, shared, 0.5);
   const double piece = longestPieceMm(options);
-  const std::string field = piece < options.stockLengthMm
-                                ? "fabrication.sheet_mm (the longest strip a sheet holds)"
-                                : "fabrication.stock_length_mm";
+  const std::string field =
+      options.stock == CutStock::Boards
+          ? "fabrication.stock_length_mm (a board less its trimmed ends, fabrication.margin_mm)"
+      : piece < options.stockLengthMm ? "fabrication.sheet_mm (the longest strip a sheet holds)"
+                                      : "fabrication.stock_length_mm";
   for (auto& plan : plans) {
     try {
       placeSplices(plan, piece, options.effectiveSpliceClearanceMm(), options.boltDiameterMm, field,
@@ -143,6 +145,8 @@ std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patch
 }
 
 double longestPieceMm(const FabricationOptions& options) {
+  // Boards: a board's length less its trimmed ends; sheets: also the sheet's usable first side.
+  if (options.stock == CutStock::Boards) return options.stockLengthMm - 2.0 * options.marginMm;
   return std::min(options.stockLengthMm, options.sheetMm[0] - 2.0 * options.marginMm);
 }
 
@@ -405,6 +409,9 @@ int mergeSharedBoundaries(std::vector<LamellaPlan>& plans,
         same->alsoConnections.emplace_back(f.patchId, f.connection);
         same->alsoConnections.insert(same->alsoConnections.end(), f.alsoConnections.begin(),
                                      f.alsoConnections.end());
+        same->alsoConnectionIds.push_back(f.connectionId);
+        same->alsoConnectionIds.insert(same->alsoConnectionIds.end(), f.alsoConnectionIds.begin(),
+                                       f.alsoConnectionIds.end());
         ++merged;
       } else {
         a.features.push_back(f);

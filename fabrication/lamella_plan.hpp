@@ -27,7 +27,10 @@ struct LamellaFeature {
   // Further connections this one bolt holds: a shared boundary lamella's hole where the members
   // of both patches meet it (mergeSharedBoundaries). (patch, connection) pairs.
   std::vector<std::pair<int, int>> alsoConnections;
-  std::string label() const;  // connectionId, plus "=P<patch>" for every merged connection
+  std::vector<std::string> alsoConnectionIds;  // their ids, "P<patch>-C<i>-<j>", in that order
+  // connectionId, plus "=" and the other patch's connection id for every merged connection
+  // ("P0-C8-0=P1-C0-3"): the crew finds the hole from either patch's drawing.
+  std::string label() const;
   bool holds(int patch, int connection) const;
   // Extent along the strip of what is cut (the hole, or the slot including its round ends).
   double minXMm(double boltDiameterMm) const;

@@ -46,6 +46,41 @@ const char* toString(SpliceJoint joint) {
   return "unknown";
 }
 
+const char* toString(DxfVersion version) { return version == DxfVersion::R12 ? "R12" : "R2000"; }
+
+const char* toString(PaperSize size) {
+  switch (size) {
+    case PaperSize::A0: return "A0";
+    case PaperSize::A1: return "A1";
+    case PaperSize::A2: return "A2";
+    case PaperSize::A3: return "A3";
+    case PaperSize::A4: return "A4";
+  }
+  return "A3";
+}
+
+std::array<double, 2> paperSizeMm(PaperSize size) {
+  switch (size) {
+    case PaperSize::A0: return {841.0, 1189.0};
+    case PaperSize::A1: return {594.0, 841.0};
+    case PaperSize::A2: return {420.0, 594.0};
+    case PaperSize::A3: return {297.0, 420.0};
+    case PaperSize::A4: return {210.0, 297.0};
+  }
+  return {297.0, 420.0};
+}
+
+const char* toString(SheetPdf mode) {
+  switch (mode) {
+    case SheetPdf::Fit: return "fit";
+    case SheetPdf::Tile: return "tile";
+    case SheetPdf::TrueSize: return "true_size";
+  }
+  return "fit";
+}
+
+const char* toString(CutStock stock) { return stock == CutStock::Boards ? "boards" : "sheet"; }
+
 void FabricationOptions::validate() const {
   requirePositive("lamella.width_m", lamellaWidthMm);
   requirePositive("lamella.thickness_m", lamellaThicknessMm);
@@ -95,6 +130,14 @@ void FabricationOptions::validate() const {
     if (2.0 * marginMm >= std::min((*stickerSheetMm)[0], (*stickerSheetMm)[1])) {
       fail("fabrication.sticker_sheet_mm",
            "leaves no room inside the margin (fabrication.margin_mm)");
+    }
+  }
+  if (toolDiameterMm) {
+    requirePositive("fabrication.tool_diameter_mm", *toolDiameterMm);
+    if (*toolDiameterMm >= boltDiameterMm) {
+      fail("fabrication.tool_diameter_mm",
+           "must be smaller than the bolt holes and slots (fabrication.bolt_diameter_mm): a bit "
+           "as wide or wider cannot rout them");
     }
   }
   if (groundHeightM && !std::isfinite(*groundHeightM))

@@ -32,6 +32,26 @@ enum class SpliceJoint { Plate, Scarf, PlateOrScarf };
 // "plate", "scarf", "plate_or_scarf" (the scene's and bom.csv's spelling).
 const char* toString(SpliceJoint joint);
 
+// DXF flavour of the cut files: AutoCAD 2000 (LWPOLYLINE, $INSUNITS) or R12 for old CAM software.
+enum class DxfVersion { R2000, R12 };
+const char* toString(DxfVersion version);  // "R2000", "R12"
+
+// ISO 216 paper for the PDFs (sheets.pdf, assembly.pdf).
+enum class PaperSize { A0, A1, A2, A3, A4 };
+const char* toString(PaperSize size);               // "A0" .. "A4"
+std::array<double, 2> paperSizeMm(PaperSize size);  // portrait: {short side, long side}
+
+// How sheets.pdf shows a sheet: fitted to one page at a printed 1:n scale, tiled over pages at
+// 1:1 (to check parts against the print), or one page of the sheet's own size with hairlines
+// (what a laser's print driver takes).
+enum class SheetPdf { Fit, Tile, TrueSize };
+const char* toString(SheetPdf mode);  // "fit", "tile", "true_size"
+
+// What the lamellas are cut from: sheets (strips nested in rows) or linear stock, boards of the
+// lamella's width and stock_length_mm long (a cutting list, cut/boards.csv).
+enum class CutStock { Sheet, Boards };
+const char* toString(CutStock stock);  // "sheet", "boards"
+
 struct FabricationOptions {
   double lamellaWidthMm = 250.0;  // w, across the strip (scene lamella.width_m)
   double lamellaThicknessMm =
@@ -73,6 +93,15 @@ struct FabricationOptions {
   std::optional<double> supportBlockMm;  // footprint side of a support block; default 3 w
   bool supportsAtBoundaryConnections =
       false;  // a support at every boundary connection (3.5.2 iv), not only at anchors
+  DxfVersion dxfVersion = DxfVersion::R2000;
+  PaperSize paperSize = PaperSize::A3;  // sheets.pdf and assembly.pdf
+  SheetPdf sheetPdf = SheetPdf::Fit;
+  CutStock stock = CutStock::Sheet;
+  // A router bit's diameter (50-80 mm plywood is routed, not lasered): parts lie at least this
+  // far apart so the bit passes between them, and the DXF gains a TOOLPATH layer with the bit's
+  // centre path (outlines offset outwards, holes and slots inwards by the radius). Unset: a laser
+  // (kerf_mm only).
+  std::optional<double> toolDiameterMm;
 
   // Throws InvalidInput naming the scene field ("fabrication.sheet_mm: ...").
   void validate() const;
@@ -84,6 +113,8 @@ struct FabricationOptions {
                     effectiveSpliceClearanceMm());
   }
   double effectiveLabelHeightMm() const;
+  // The gap between nested parts: the kerf, or the router bit where one is set.
+  double partGapMm() const { return std::max(kerfMm, toolDiameterMm.value_or(0.0)); }
   double scarfLengthMm() const { return scarfSlope * lamellaThicknessMm; }
   std::array<double, 2> effectiveStickerSheetMm() const { return stickerSheetMm.value_or(sheetMm); }
   double effectiveSupportBlockMm() const { return supportBlockMm.value_or(3.0 * lamellaWidthMm); }

@@ -1,52 +1,40 @@
 #include "fabrication/pdf_writer.hpp"
 
-#include "core/errors.hpp"
+#include "fabrication/pdf_pages.hpp"
+#include "fabrication/stroke_text.hpp"
 
-#include <cairo-pdf.h>
 #include <cairo.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace egg::fabrication {
 namespace {
 
-constexpr double kPointsPerMm = 72.0 / 25.4;
-
-cairo_status_t appendToString(void* closure, const unsigned char* data, unsigned int length) {
-  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
-  return CAIRO_STATUS_SUCCESS;
-}
-
 void setColour(cairo_t* cr, Layer layer) {
-  if (layer == Layer::Cut) {
-    cairo_set_source_rgb(cr, 1.0, 0.0, 0.0);
-  } else {
-    cairo_set_source_rgb(cr, 0.0, 0.0, 1.0);
-  }
+  unsigned r = 0, g = 0, b = 0;
+  std::sscanf(layerRgb(layer), "#%02x%02x%02x", &r, &g, &b);
+  cairo_set_source_rgb(cr, r / 255.0, g / 255.0, b / 255.0);
 }
 
-void stroke(cairo_t* cr, Layer layer) {
-  setColour(cr, layer);
-  // A hairline does not show on paper: 0.1 mm, in the page's millimetre units.
-  cairo_set_line_width(cr, 0.1);
-  cairo_stroke(cr);
-}
-
-void drawPage(cairo_t* cr, const Drawing& d) {
-  cairo_save(cr);
-  // Millimetres with y up, origin at the sheet's lower left corner.
-  cairo_scale(cr, kPointsPerMm, kPointsPerMm);
-  cairo_translate(cr, 0.0, d.heightMm);
-  cairo_scale(cr, 1.0, -1.0);
-  // The sheet outline in grey, for orientation only (not a cut).
-  cairo_rectangle(cr, 0.0, 0.0, d.widthMm, d.heightMm);
-  cairo_set_source_rgb(cr, 0.7, 0.7, 0.7);
-  cairo_set_line_width(cr, 0.2);
-  cairo_stroke(cr);
+// The sheet's content in its own millimetres (y up): the caller has set the transform.
+void drawSheet(cairo_t* cr, const Drawing& d, double lineMm) {
+  cairo_set_line_width(cr, lineMm);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  auto stroke = [&](Layer layer) {
+    setColour(cr, layer);
+    cairo_stroke(cr);
+  };
+  auto polyline = [&](const std::vector<Eigen::Vector2d>& points, bool closed) {
+    cairo_move_to(cr, points[0].x(), points[0].y());
+    for (size_t i = 1; i < points.size(); ++i) cairo_line_to(cr, points[i].x(), points[i].y());
+    if (closed) cairo_close_path(cr);
+  };
   for (const auto& c : d.circles) {
     cairo_new_sub_path(cr);
     cairo_arc(cr, c.centre.x(), c.centre.y(), c.radius, 0.0, 2.0 * M_PI);
-    stroke(cr, c.layer);
+    stroke(c.layer);
   }
   for (const auto& s : d.slots) {
     const auto k = slotCorners(s);
@@ -58,58 +46,117 @@ void drawPage(cairo_t* cr, const Drawing& d) {
     cairo_line_to(cr, k[3].x(), k[3].y());
     cairo_arc(cr, s.a.x(), s.a.y(), s.radius, angle + M_PI / 2.0, angle + 3.0 * M_PI / 2.0);
     cairo_close_path(cr);
-    stroke(cr, s.layer);
+    stroke(s.layer);
   }
   for (const auto& p : d.polylines) {
     if (p.points.size() < 2) continue;
-    cairo_move_to(cr, p.points[0].x(), p.points[0].y());
-    for (size_t i = 1; i < p.points.size(); ++i)
-      cairo_line_to(cr, p.points[i].x(), p.points[i].y());
-    if (p.closed) cairo_close_path(cr);
-    stroke(cr, p.layer);
+    polyline(p.points, p.closed);
+    stroke(p.layer);
   }
-  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   for (const auto& t : d.texts) {
-    cairo_save(cr);
-    cairo_translate(cr, t.anchor.x(), t.anchor.y());
-    cairo_scale(cr, 1.0, -1.0);  // text upright again
-    cairo_set_font_size(cr, t.height);
-    cairo_text_extents_t e;
-    cairo_text_extents(cr, t.text.c_str(), &e);
-    const double x = t.align == TextAlign::Left ? -e.x_bearing : -(e.x_bearing + e.width / 2.0);
-    cairo_move_to(cr, x, -(e.y_bearing + e.height / 2.0));
-    setColour(cr, t.layer);
-    cairo_show_text(cr, t.text.c_str());
-    cairo_restore(cr);
+    for (const auto& line : placedStrokes(t)) polyline(line, false);
+    stroke(t.layer);
   }
-  cairo_restore(cr);
+}
+
+// Page millimetres (y down) to the sheet's (y up) with the sheet's point (x0, y0) at the page's
+// (px, py) - the upper left corner of what shows - at 1:n.
+void sheetTransform(cairo_t* cr, double px, double py, double x0, double y1, double n) {
+  cairo_translate(cr, px, py);
+  cairo_scale(cr, 1.0 / n, -1.0 / n);
+  cairo_translate(cr, -x0, -y1);
+}
+
+std::string sizeText(const Drawing& d) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.0f x %.0f mm", d.widthMm, d.heightMm);
+  return buffer;
+}
+
+// Tiles at 1:1: columns and rows of the page's drawing area, portrait or landscape (fewer pages).
+struct Tiling {
+  PageFrame frame;
+  int columns = 1, rows = 1;
+};
+
+Tiling tiling(const Drawing& d, PaperSize paper) {
+  Tiling best;
+  for (bool landscape : {true, false}) {
+    Tiling t;
+    t.frame = pageFrame(paper, landscape);
+    t.columns = std::max(1, static_cast<int>(std::ceil(d.widthMm / t.frame.areaWidth - 1e-9)));
+    t.rows = std::max(1, static_cast<int>(std::ceil(d.heightMm / t.frame.areaHeight - 1e-9)));
+    if (landscape || t.columns * t.rows < best.columns * best.rows) best = t;
+  }
+  return best;
 }
 
 }  // namespace
 
-std::string toPdf(const std::vector<Drawing>& pages) {
-  std::string bytes;
-  const double w0 = pages.empty() ? 210.0 : pages[0].widthMm,
-               h0 = pages.empty() ? 297.0 : pages[0].heightMm;
-  cairo_surface_t* surface = cairo_pdf_surface_create_for_stream(
-      appendToString, &bytes, w0 * kPointsPerMm, h0 * kPointsPerMm);
-  cairo_t* cr = cairo_create(surface);
-  for (const auto& page : pages) {
-    cairo_pdf_surface_set_size(surface, page.widthMm * kPointsPerMm, page.heightMm * kPointsPerMm);
-    drawPage(cr, page);
-    cairo_show_page(cr);
+int tilePageCount(const Drawing& sheet, PaperSize paper) {
+  const Tiling t = tiling(sheet, paper);
+  return t.columns * t.rows;
+}
+
+std::string toPdf(const std::vector<Drawing>& sheets, SheetPdf mode, PaperSize paper) {
+  PdfDocument pdf;
+  for (const auto& d : sheets) {
+    if (mode == SheetPdf::TrueSize) {
+      cairo_t* cr = pdf.beginPage(pageFrameOfSize(d.widthMm, d.heightMm));
+      sheetTransform(cr, 0.0, 0.0, 0.0, d.heightMm, 1.0);
+      drawSheet(cr, d, 0.0254);
+      pdf.endPage();
+      continue;
+    }
+    if (mode == SheetPdf::Fit) {
+      const bool landscape = d.widthMm >= d.heightMm;
+      const PageFrame f = pageFrame(paper, landscape);
+      const double n = fittingScale({d.widthMm, d.heightMm}, {f.areaWidth, f.areaHeight});
+      cairo_t* cr = pdf.beginPage(f);
+      cairo_save(cr);
+      sheetTransform(cr, f.areaX, f.areaY, 0.0, d.heightMm, n);
+      // The sheet's edge in grey, then the parts; lines 0.25 mm on paper.
+      cairo_rectangle(cr, 0.0, 0.0, d.widthMm, d.heightMm);
+      cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
+      cairo_set_line_width(cr, 0.25 * n);
+      cairo_stroke(cr);
+      drawSheet(cr, d, 0.25 * n);
+      cairo_restore(cr);
+      drawTitleBand(cr, f, d.title,
+                    "sheet " + sizeText(d) + ", scale " + scaleText(n) + " on " + toString(paper) +
+                        "; red cut, blue engrave, green label, grey reference",
+                    n);
+      pdf.endPage();
+      continue;
+    }
+    const Tiling t = tiling(d, paper);
+    const PageFrame& f = t.frame;
+    for (int row = 0; row < t.rows; ++row) {
+      for (int column = 0; column < t.columns; ++column) {
+        cairo_t* cr = pdf.beginPage(f);
+        const double x0 = column * f.areaWidth, y1 = d.heightMm - row * f.areaHeight;
+        cairo_save(cr);
+        cairo_rectangle(cr, f.areaX, f.areaY, f.areaWidth, f.areaHeight);
+        cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
+        cairo_set_line_width(cr, 0.2);
+        cairo_stroke_preserve(cr);
+        cairo_clip(cr);
+        sheetTransform(cr, f.areaX, f.areaY, x0, y1, 1.0);
+        drawSheet(cr, d, 0.25);
+        cairo_restore(cr);
+        char where[160];
+        std::snprintf(where, sizeof where,
+                      "tile row %d of %d, column %d of %d: x %.0f..%.0f mm, y %.0f..%.0f mm of "
+                      "the sheet (%s) at 1:1 on %s",
+                      row + 1, t.rows, column + 1, t.columns, x0,
+                      std::min(d.widthMm, x0 + f.areaWidth), std::max(0.0, y1 - f.areaHeight), y1,
+                      sizeText(d).c_str(), toString(paper));
+        drawTitleBand(cr, f, d.title, where, 1.0);
+        pdf.endPage();
+      }
+    }
   }
-  const cairo_status_t status = cairo_status(cr);
-  cairo_destroy(cr);
-  cairo_surface_finish(surface);
-  const cairo_status_t surfaceStatus = cairo_surface_status(surface);
-  cairo_surface_destroy(surface);
-  if (status != CAIRO_STATUS_SUCCESS || surfaceStatus != CAIRO_STATUS_SUCCESS) {
-    throw WriteError(
-        std::string("cairo could not write the PDF: ") +
-        cairo_status_to_string(status != CAIRO_STATUS_SUCCESS ? status : surfaceStatus));
-  }
-  return bytes;
+  return pdf.finish();
 }
 
 }  // namespace egg::fabrication

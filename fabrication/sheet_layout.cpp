@@ -1,12 +1,27 @@
 #include "fabrication/sheet_layout.hpp"
 
+#include "fabrication/stroke_text.hpp"
+
 #include <algorithm>
 #include <cmath>
 
 namespace egg::fabrication {
 
 double textLengthMm(const std::string& text, double heightMm) {
-  return 0.6 * heightMm * static_cast<double>(text.size());
+  return strokeTextWidthMm(text, heightMm);
+}
+
+void drawSheetFrame(const std::string& id, const std::string& note, double marginMm,
+                    Drawing& drawing) {
+  const double w = drawing.widthMm, h = drawing.heightMm;
+  drawing.polylines.push_back({Layer::Reference, {{0.0, 0.0}, {w, 0.0}, {w, h}, {0.0, h}}, true});
+  const double height = std::clamp(0.6 * marginMm, 2.0, 30.0);
+  const double y = marginMm >= height ? marginMm / 2.0 : height;
+  drawing.texts.push_back({Layer::Reference,
+                           {std::max(marginMm, height), y},
+                           height,
+                           id + "  " + note,
+                           TextAlign::Left});
 }
 
 std::string segmentLabel(const LamellaPlan& plan, int segment) {
@@ -24,6 +39,25 @@ void drawArrow(Drawing& drawing, const Eigen::Vector2d& from, double length, dou
       {Layer::Engrave,
        {tip + Eigen::Vector2d(back, head / 2.0), tip, tip + Eigen::Vector2d(back, -head / 2.0)},
        false});
+}
+
+// A router bit's centre path around a part's rectangular outline (lower left `a`, upper right
+// `b`): the outline offset outwards by the bit's radius, quarter circles round the corners (every
+// corner of a part is convex, so no dog-bone or relief is ever needed).
+void addOutlineToolpath(Drawing& drawing, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                        double radius) {
+  std::vector<Eigen::Vector2d> path;
+  const Eigen::Vector2d corners[4] = {{b.x(), a.y()}, b, {a.x(), b.y()}, a};
+  const int steps = 8;
+  for (int c = 0; c < 4; ++c) {
+    // Corner c's arc from the outward normal of the edge before it to that of the edge after.
+    const double from = -M_PI / 2.0 + c * M_PI / 2.0;
+    for (int k = 0; k <= steps; ++k) {
+      const double phi = from + (M_PI / 2.0) * k / steps;
+      path.push_back(corners[c] + radius * Eigen::Vector2d(std::cos(phi), std::sin(phi)));
+    }
+  }
+  drawing.polylines.push_back({Layer::Toolpath, path, true});
 }
 
 }  // namespace
@@ -76,6 +110,10 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
       {Layer::Cut,
        {at(seg.startMm, 0), at(seg.endMm, 0), at(seg.endMm, w), at(seg.startMm, w)},
        true});
+  // A router's bit (FabricationOptions::toolDiameterMm, smaller than the holes): its centre path
+  // outside the outline, inside every hole and slot.
+  const double rt = options.toolDiameterMm.value_or(0.0) / 2.0;
+  if (rt > 0.0) addOutlineToolpath(drawing, at(seg.startMm, 0), at(seg.endMm, w), rt);
   // Occupied stretches along the strip (features and their labels), for the lamella label.
   std::vector<std::pair<double, double>> occupied;
   for (const auto& f : plan.features) {
@@ -88,17 +126,31 @@ void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vecto
       for (const auto& p : clippedStadium(f.xMm, f.xMm + f.slideMm, r, seg.startMm, seg.endMm))
         outline.push_back(at(p.x(), w / 2.0 + p.y()));
       if (outline.size() >= 3) drawing.polylines.push_back({Layer::Cut, outline, true});
+      if (rt > 0.0) {
+        // The cut-out runs through the piece's end, where the outline's cut is: the bit's centre
+        // stays r - rt off the slot's axis and may run to the end itself.
+        std::vector<Eigen::Vector2d> path;
+        for (const auto& p :
+             clippedStadium(f.xMm, f.xMm + f.slideMm, r - rt, seg.startMm, seg.endMm))
+          path.push_back(at(p.x(), w / 2.0 + p.y()));
+        if (path.size() >= 3) drawing.polylines.push_back({Layer::Toolpath, path, true});
+      }
       continue;
     }
     const Eigen::Vector2d centre = at(f.xMm, w / 2.0);
     if (f.kind == FeatureKind::Slot) {
       drawing.slots.push_back({Layer::Cut, centre, centre + Eigen::Vector2d(f.slideMm, 0.0), r});
+      if (rt > 0.0) {
+        drawing.slots.push_back(
+            {Layer::Toolpath, centre, centre + Eigen::Vector2d(f.slideMm, 0.0), r - rt});
+      }
       const double length =
           f.slideMm > 0 ? std::max(f.slideMm, 2.0 * h) : std::min(f.slideMm, -2.0 * h);
       drawArrow(drawing, at(f.xMm, (w / 2.0 - r) / 2.0), length,
                 std::min(0.5 * h, (w / 2.0 - r) / 2.0));
     } else {
       drawing.circles.push_back({Layer::Cut, centre, r});
+      if (rt > 0.0) drawing.circles.push_back({Layer::Toolpath, centre, r - rt});
     }
     // After the feature, or before it where the label would run off the segment's end.
     const std::string text = f.label();
@@ -151,11 +203,17 @@ void drawSticker(const Sticker& s, const Eigen::Vector2d& origin, const Fabricat
   auto at = [&](double x, double y) { return Eigen::Vector2d(origin + Eigen::Vector2d(x, y)); };
   drawing.polylines.push_back({Layer::Cut, {at(0, 0), at(L, 0), at(L, w), at(0, w)}, true});
   const Eigen::Vector2d bolt = at(s.boltXMm, w / 2.0);
+  const double rt = options.toolDiameterMm.value_or(0.0) / 2.0;
   if (s.slideMm != 0.0) {
     drawing.slots.push_back({Layer::Cut, bolt, bolt + Eigen::Vector2d(s.slideMm, 0.0), r});
+    if (rt > 0.0)
+      drawing.slots.push_back(
+          {Layer::Toolpath, bolt, bolt + Eigen::Vector2d(s.slideMm, 0.0), r - rt});
   } else {
     drawing.circles.push_back({Layer::Cut, bolt, r});
+    if (rt > 0.0) drawing.circles.push_back({Layer::Toolpath, bolt, r - rt});
   }
+  if (rt > 0.0) addOutlineToolpath(drawing, at(0, 0), at(L, w), rt);
   // Labels in the longer end beside the cut-out.
   const double lo = std::min(s.boltXMm, s.boltXMm + s.slideMm) - r,
                hi = std::max(s.boltXMm, s.boltXMm + s.slideMm) + r;

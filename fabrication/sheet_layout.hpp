@@ -7,8 +7,8 @@
 //  w/2);
 //  - connection id: LABEL text of height 0.7 h, left-aligned at (feature end + 0.25 h, w/2), or
 //  ending
-//    0.25 h before the feature where it would run off the segment (text length 0.6 of its height
-//    per character);
+//    0.25 h before the feature where it would run off the segment (the single-stroke font's
+//    widths);
 //  - slide arrow: ENGRAVE polyline at y = (w/2 - r)/2, from x towards x + slide (at least 2 h
 //  long),
 //    with a two-stroke head at its tip;
@@ -24,8 +24,14 @@
 
 namespace egg::fabrication {
 
-// Estimated length of a text line: 0.6 of its height per character (sans-serif).
+// The length of a text line in the single-stroke font (stroke_text.hpp).
 double textLengthMm(const std::string& text, double heightMm);
+
+// The sheet's REFERENCE layer: its outline and "<id>  <note>" in the bottom margin (text height
+// 0.6 of the margin, 2..30 mm; with a margin under 2 mm the text overlaps the parts' band, but on
+// a layer that is neither cut nor engraved).
+void drawSheetFrame(const std::string& id, const std::string& note, double marginMm,
+                    Drawing& drawing);
 
 // Draws segment `segment` of `plan` with the part's lower left corner at `origin`.
 void drawLamellaSegment(const LamellaPlan& plan, int segment, const Eigen::Vector2d& origin,

@@ -559,7 +559,31 @@ std::vector<SceneSection> makeSections() {
                        "footprint side of a support block (default 3 w)"),
         boolean("supports_at_boundary_connections",
                 EGG_AT(fabrication.options.supportsAtBoundaryConnections),
-                "a support at every boundary connection (3.5.2 iv), not only at anchors")},
+                "a support at every boundary connection (3.5.2 iv), not only at anchors"),
+        // Issue 38: what the workshop's software and paper take.
+        choice("stock", EGG_AT(fabrication.options.stock),
+               {{fabrication::CutStock::Sheet, "sheet"}, {fabrication::CutStock::Boards, "boards"}},
+               "lamellas nested on sheets, or cut from boards of the lamella's width and "
+               "stock_length_mm (cut/boards.csv)"),
+        choice("dxf_version", EGG_AT(fabrication.options.dxfVersion),
+               {{fabrication::DxfVersion::R2000, "R2000"}, {fabrication::DxfVersion::R12, "R12"}},
+               "DXF flavour of the cut files (R12 for old CAM software)"),
+        choice("sheet_pdf", EGG_AT(fabrication.options.sheetPdf),
+               {{fabrication::SheetPdf::Fit, "fit"},
+                {fabrication::SheetPdf::Tile, "tile"},
+                {fabrication::SheetPdf::TrueSize, "true_size"}},
+               "sheets.pdf: a sheet fitted to a page at 1:n, tiled at 1:1, or at its own size "
+               "with hairlines (laser print drivers)"),
+        choice("paper_size", EGG_AT(fabrication.options.paperSize),
+               {{fabrication::PaperSize::A0, "A0"},
+                {fabrication::PaperSize::A1, "A1"},
+                {fabrication::PaperSize::A2, "A2"},
+                {fabrication::PaperSize::A3, "A3"},
+                {fabrication::PaperSize::A4, "A4"}},
+               "ISO paper of sheets.pdf and assembly.pdf"),
+        optionalNumber("tool_diameter_mm", EGG_AT(fabrication.options.toolDiameterMm), 0.1, 100.0,
+                       "router bit: parts this far apart, TOOLPATH layer (default: a laser, "
+                       "kerf_mm only)")},
        checkFabrication});
 
   sections.push_back(

@@ -11,6 +11,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev
   libcairo2-dev libdxflib-dev
+  libhersheyfont-dev hershey-fonts-data libzip-dev   # fabrication: single-stroke labels, cut.zip (issue 38)
   librsvg2-dev               # pipeline/svg_png.cpp: PNG previews of report.html's figures
   python3-ezdxf librsvg2-bin poppler-utils admesh
   parallel                   # egg sweep: jobs.txt on one machine (issue 18, test_sweep)

@@ -9,7 +9,7 @@
 namespace egg::fabrication {
 namespace {
 
-TEST(DxfWriter, R2000InMillimetresWithThreeLayersPassesEzdxfAudit) {
+TEST(DxfWriter, R2000InMillimetresOneColourPerLayerPassesEzdxfAudit) {
   Drawing d;
   d.widthMm = 120.0;
   d.heightMm = 80.0;
@@ -27,7 +27,7 @@ TEST(DxfWriter, R2000InMillimetresWithThreeLayersPassesEzdxfAudit) {
   EXPECT_EQ(dxf["audit_fixes"], 0);
   EXPECT_EQ(dxf["insunits"], 4);  // millimetres
   EXPECT_EQ(dxf["version"], "AC1015");
-  for (const char* layer : {"CUT", "ENGRAVE", "LABEL"}) {
+  for (const char* layer : {"CUT", "ENGRAVE", "LABEL", "REFERENCE", "TOOLPATH"}) {
     EXPECT_NE(std::find(dxf["layers"].begin(), dxf["layers"].end(), layer), dxf["layers"].end())
         << layer;
   }
@@ -52,24 +52,50 @@ TEST(DxfWriter, R2000InMillimetresWithThreeLayersPassesEzdxfAudit) {
       }
     } else if (e["type"] == "TEXT") {
       ++texts;
-      EXPECT_EQ(e["layer"], "LABEL");
-      EXPECT_EQ(e["valign"], 2);  // middle
-      ASSERT_FALSE(e["align"].is_null());
-      if (e["text"] == "P0-U1") {
-        EXPECT_EQ(e["halign"], 1);
-        EXPECT_NEAR(e["align"][0].get<double>(), 70.0, 1e-9);
-        EXPECT_NEAR(e["align"][1].get<double>(), 20.0, 1e-9);
-        EXPECT_NEAR(e["height"].get<double>(), 3.0, 1e-9);
-      } else {
-        EXPECT_EQ(e["text"], "P0-C1-0");
-        EXPECT_EQ(e["halign"], 0);
-        EXPECT_NEAR(e["align"][0].get<double>(), 12.0, 1e-9);
-      }
     }
   }
   EXPECT_EQ(circles, 1);
-  EXPECT_EQ(polylines, 3);
-  EXPECT_EQ(texts, 2);
+  // The slot, the outline, the mark and the labels' strokes: P0-U1 6, P0-C1-0 8.
+  EXPECT_EQ(polylines, 3 + 6 + 8);
+  EXPECT_EQ(texts, 0);  // labels are single-stroke polylines, no TEXT
+  // One colour per layer: CUT 1, ENGRAVE 5, LABEL 3, REFERENCE 8, TOOLPATH 6.
+  EXPECT_EQ(dxf["layer_colours"]["CUT"], 1);
+  EXPECT_EQ(dxf["layer_colours"]["ENGRAVE"], 5);
+  EXPECT_EQ(dxf["layer_colours"]["LABEL"], 3);
+  EXPECT_EQ(dxf["layer_colours"]["REFERENCE"], 8);
+  EXPECT_EQ(dxf["layer_colours"]["TOOLPATH"], 6);
+}
+
+TEST(DxfWriter, R12ForOldCamSoftwarePassesEzdxfAudit) {
+  Drawing d;
+  d.widthMm = 120.0;
+  d.heightMm = 80.0;
+  d.circles.push_back({Layer::Cut, {10.0, 20.0}, 1.5});
+  d.slots.push_back({Layer::Cut, {30.0, 20.0}, {40.0, 20.0}, 2.0});
+  d.polylines.push_back({Layer::Cut, {{0, 0}, {100, 0}, {100, 40}, {0, 40}}, true});
+  d.texts.push_back({Layer::Label, {70.0, 20.0}, 3.0, "P0-U1", TextAlign::Centre});
+  const auto dir = testing::scratchDir("dxf_writer_r12");
+  std::ofstream(dir / "r12.dxf") << toDxf(d, DxfVersion::R12);
+  const auto dxf = testing::readDxf(dir / "r12.dxf");
+  ASSERT_TRUE(dxf.contains("entities"));
+  EXPECT_EQ(dxf["version"], "AC1009");
+  EXPECT_EQ(dxf["audit_errors"], 0);
+  EXPECT_EQ(dxf["layer_colours"]["LABEL"], 3);
+  int circles = 0, polylines = 0, bulgedSlots = 0, other = 0;
+  for (const auto& e : dxf["entities"]) {
+    if (e["type"] == "CIRCLE") {
+      ++circles;
+    } else if (e["type"] == "POLYLINE") {
+      ++polylines;
+      if (e["points"].size() == 4 && e["points"][1][2] == 1.0 && e["closed"]) ++bulgedSlots;
+    } else {
+      ++other;
+    }
+  }
+  EXPECT_EQ(circles, 1);
+  EXPECT_EQ(polylines, 2 + 6);  // slot, outline, 6 strokes of P0-U1
+  EXPECT_EQ(bulgedSlots, 1);
+  EXPECT_EQ(other, 0);  // no LWPOLYLINE (R2000) and no TEXT
 }
 
 TEST(DxfWriter, EmptyDrawingIsStillAValidFile) {

@@ -2,10 +2,14 @@
 
 #include "core/egg/solve_patch.hpp"
 #include "core/errors.hpp"
+#include "fabrication/fasteners.hpp"
 #include "samples/generators/samples.hpp"
 #include "tests/support/fabrication_hand_grid.hpp"
 
 #include <gtest/gtest.h>
+
+#include <set>
+#include <sstream>
 
 #include <cmath>
 #include <iostream>
@@ -26,7 +30,7 @@ struct Point {
 const Point kHolesU1[] = {{220.5, 10.0}, {420.5, 10.0}};
 const Point kSlotU1[] = {{320.5, 8.5}, {325.5, 11.5}};         // corners a - r n and b + r n
 const Point kSlotV1[] = {{110.0, 32.5}, {107.0, 29.5}};        // sliding -3 mm: a = 110, b = 107
-const Point kLabelU1 = {215.5 + (16.07 + 103.5) / 2.0, 10.0};  // lamella label, centred
+const Point kLabelU1 = {215.5 + (22.65 + 103.5) / 2.0, 10.0};  // lamella label, centred
 const Point kLabelC10 = {222.75, 10.0};                        // connection label, left-aligned
 
 bool near(double a, double b) { return std::abs(a - b) <= 0.01; }  // the acceptance tolerance
@@ -53,7 +57,15 @@ TEST(Fabricate, HandGridCountsMatchTheGrid) {
   EXPECT_TRUE(widthWarning);
 
   const std::string bom = bomCsv(r);
-  EXPECT_EQ(std::count(bom.begin(), bom.end(), '\n'), 1 + 6 + 9);
+  // Header, 6 lamellas, 9 totals, one bolt size, one washer size, one row for sheet L01.
+  EXPECT_EQ(std::count(bom.begin(), bom.end(), '\n'), 1 + 6 + 9 + 3);
+  EXPECT_NE(bom.find(",note,sheet\n"), std::string::npos) << bom;
+  EXPECT_NE(bom.find("\nlamella_sheet,L01,1,"), std::string::npos) << bom;
+  // Every row has the header's 11 fields; a lamella names its sheet.
+  std::istringstream rows(bom);
+  for (std::string row; std::getline(rows, row);)
+    EXPECT_EQ(std::count(row.begin(), row.end(), ','), 10) << row;
+  EXPECT_NE(bom.find("stress ratio 0.000,L01\n"), std::string::npos) << bom;
   EXPECT_NE(bom.find("\nbolt,,9,"), std::string::npos) << bom;
   EXPECT_NE(bom.find("\nwasher,,18,"), std::string::npos) << bom;
   EXPECT_NE(bom.find("\nbrass_sleeve,,2,"), std::string::npos) << bom;
@@ -199,12 +211,29 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
   const auto r = fabricate({{0, &grid, std::nullopt}}, handOptions());
   const auto dir = testing::scratchDir("fabricate");
   const auto files = writeFabricationFiles(r, dir);
-  const std::vector<std::string> expected{
-      "cut/sheet_01.svg",         "cut/sheet_01.dxf",         "cut/sheets.pdf",
-      "cut/stickers_01.svg",      "cut/stickers_01.dxf",      "cut/stickers.pdf",
-      "supports/supports.csv",    "supports/support_001.stl", "supports/support_002.stl",
-      "supports/support_003.stl", "supports/support_004.stl", "bom.csv"};
+  const std::vector<std::string> expected{"cut/sheet_01.svg",
+                                          "cut/sheet_01.dxf",
+                                          "cut/sheets.pdf",
+                                          "cut/assembly.pdf",
+                                          "cut/stickers_01.svg",
+                                          "cut/stickers_01.dxf",
+                                          "cut/stickers.pdf",
+                                          "supports/supports.csv",
+                                          "supports/support_001.stl",
+                                          "supports/support_002.stl",
+                                          "supports/support_003.stl",
+                                          "supports/support_004.stl",
+                                          "bom.csv",
+                                          "cut.zip"};
   EXPECT_EQ(files, expected);
+  // cut.zip holds the cut set and the BOM (unzip -l lists them).
+  if (testing::haveTool("unzip")) {
+    const auto list = testing::runTool("unzip -l " + (dir / "cut.zip").string());
+    EXPECT_EQ(list.status, 0) << list.output;
+    for (const char* f : {"cut/sheet_01.dxf", "cut/stickers.pdf", "bom.csv"})
+      EXPECT_NE(list.output.find(f), std::string::npos) << list.output;
+    EXPECT_EQ(list.output.find("supports/"), std::string::npos) << list.output;
+  }
 
   // SVG: holes, slots and labels at the hand positions.
   const auto svg = testing::readSvg(testing::readText(dir / "cut/sheet_01.svg"));
@@ -241,8 +270,16 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
   EXPECT_EQ(dxf["audit_errors"], 0);
   EXPECT_EQ(dxf["audit_fixes"], 0);
   EXPECT_EQ(dxf["insunits"], 4);
-  int circles = 0, slotsFound = 0;
-  bool labelU1 = false, labelC10 = false;
+  int circles = 0, slotsFound = 0, texts = 0, strokesU1 = 0, strokesC10 = 0, sheetId = 0;
+  // Labels are single strokes on LABEL: P0-U1 centred on its anchor (15.57 mm wide: 109 font units
+  // at 3 / 21 mm each, capitals 3 mm high), P0-C1-0 starting at its anchor (15.4 mm at 2.1).
+  auto inside = [](const nlohmann::json& points, double x0, double x1, double y0, double y1) {
+    for (const auto& p : points) {
+      if (p[0] < x0 - 0.01 || p[0] > x1 + 0.01 || p[1] < y0 - 0.01 || p[1] > y1 + 0.01)
+        return false;
+    }
+    return true;
+  };
   for (const auto& e : dxf["entities"]) {
     if (e["type"] == "CIRCLE") {
       ++circles;
@@ -253,17 +290,29 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
           ++slotsFound;
         }
       }
-    } else if (e["type"] == "TEXT") {
-      labelU1 |= e["text"] == "P0-U1" && near(e["align"][0], kLabelU1.x) &&
-                 near(e["align"][1], kLabelU1.y);
-      labelC10 |= e["text"] == "P0-C1-0" && near(e["align"][0], kLabelC10.x) &&
-                  near(e["align"][1], kLabelC10.y);
+    } else if (e["type"] == "TEXT" || e["type"] == "MTEXT") {
+      ++texts;
     }
+    if (e["type"] == "LWPOLYLINE" && e["layer"] == "LABEL") {
+      strokesU1 += inside(e["points"], kLabelU1.x - 7.786, kLabelU1.x + 7.786, kLabelU1.y - 1.5,
+                          kLabelU1.y + 1.5);
+      strokesC10 += inside(e["points"], kLabelC10.x, kLabelC10.x + 15.4, kLabelC10.y - 1.05,
+                           kLabelC10.y + 1.05);
+    }
+    if (e["type"] == "LWPOLYLINE" && e["layer"] == "REFERENCE") ++sheetId;
   }
   EXPECT_EQ(circles, 16);
   EXPECT_EQ(slotsFound, 2);
-  EXPECT_TRUE(labelU1);
-  EXPECT_TRUE(labelC10);
+  EXPECT_EQ(texts, 0);  // no TEXT: no CAM tool needs a font
+  // P0-U1: P (2 strokes), 0, -, U, 1 (one each) = 6; P0-C1-0: 2 + 1 + 1 + 1 + 1 + 1 + 1 = 8.
+  EXPECT_EQ(strokesU1, 6);
+  EXPECT_EQ(strokesC10, 8);
+  EXPECT_GT(sheetId, 10);  // the sheet's outline and "L01 ..." in single strokes
+  // One colour index per layer.
+  std::set<int> colours;
+  for (const char* layer : {"CUT", "ENGRAVE", "LABEL", "REFERENCE", "TOOLPATH"})
+    colours.insert(dxf["layer_colours"][layer].get<int>());
+  EXPECT_EQ(colours.size(), 5u);
 
   // Every DXF audits clean, every SVG renders, each PDF has its page count, every STL is closed.
   for (const auto& f : files) {
@@ -278,10 +327,22 @@ TEST(Fabricate, WrittenFilesReadBackAtTheHandPositions) {
       const auto run = testing::runTool("rsvg-convert --format=png --output " + path.string() +
                                         ".png " + path.string());
       EXPECT_EQ(run.status, 0) << f << ": " << run.output;
+    } else if (f == "cut/assembly.pdf") {
+      // ISO pages (A3 by default) and every lamella id of the run in the text.
+      const auto info = testing::runTool("pdfinfo " + path.string());
+      EXPECT_NE(info.output.find("(A3)"), std::string::npos) << info.output;
+      const auto text = testing::runTool("pdftotext " + path.string() + " -");
+      for (const auto& plan : r.lamellae)
+        EXPECT_NE(text.output.find(plan.id), std::string::npos) << plan.id;
+      EXPECT_NE(text.output.find("P0-C1-1"), std::string::npos);  // connections labelled
+      EXPECT_NE(text.output.find("support plan"), std::string::npos);
+      EXPECT_NE(text.output.find("Reason"), std::string::npos);
     } else if (path.extension() == ".pdf") {
       const auto run = testing::runTool("pdfinfo " + path.string());
       EXPECT_NE(run.output.find("Pages:           1"), std::string::npos)
           << f << ": " << run.output;
+      // Fitted on A3 (the default), landscape.
+      EXPECT_NE(run.output.find("(A3)"), std::string::npos) << f << ": " << run.output;
     } else if (path.extension() == ".stl") {
       const auto run = testing::runTool("admesh " + path.string());
       EXPECT_EQ(run.status, 0) << run.output;
@@ -317,6 +378,20 @@ TEST(Fabricate, LamellasLongerThanTheStockAreSplitClearOfTheirHoles) {
   EXPECT_NE(bom.find("\nsplice_joint,P0-U1 S1,1,150.00,10.00,1.00,"), std::string::npos) << bom;
 }
 
+TEST(Fabricate, BoltSizesFromTheIsoTables) {
+  // M16 through two 50 mm lamellas: grip 100 + 2 x 3 (ISO 7089 17x30x3) + 14.8 (ISO 4032 nut)
+  // + 2 x 2 (pitch) = 124.8 mm, the next standard length 130 mm; through three: 174.8 -> 180.
+  const BoltSize two = boltSize(16.0, 100.0), three = boltSize(16.0, 150.0);
+  EXPECT_EQ(two.name, "M16x130");
+  EXPECT_DOUBLE_EQ(two.lengthMm, 130.0);
+  EXPECT_EQ(three.name, "M16x180");
+  EXPECT_EQ(two.washerName, "ISO 7089 17x30x3");
+  EXPECT_EQ(two.note.find(','), std::string::npos);  // a CSV field
+  // Above 200 mm the steps are 20 mm: M8 through 190 mm: 190 + 3.2 + 6.8 + 2.5 = 202.5 -> 220.
+  EXPECT_DOUBLE_EQ(boltSize(8.0, 190.0).lengthMm, 220.0);
+  EXPECT_EQ(boltSize(9.0, 20.0).name, "d9x20");  // no M9: the grip, and a note
+}
+
 TEST(Fabricate, MultiPageSheetsPdf) {
   // A tighter sheet: 2 strips per sheet (one row of 210 + 0.5 + 210 on 440 - 10 usable... per row).
   const EggGrid grid = handGrid();
@@ -326,7 +401,8 @@ TEST(Fabricate, MultiPageSheetsPdf) {
   EXPECT_EQ(r.lamellaNesting.sheets, 3);
   const auto dir = testing::scratchDir("fabricate_pages");
   const auto files = writeFabricationFiles(r, dir, {true, false, false});
-  EXPECT_EQ(files.size(), 3u * 2u + 1u + 1u);  // svg + dxf per sheet, the pdf, bom.csv
+  // svg + dxf per sheet, sheets.pdf, assembly.pdf, bom.csv, cut.zip
+  EXPECT_EQ(files.size(), 3u * 2u + 4u);
   const auto run = testing::runTool("pdfinfo " + (dir / "cut/sheets.pdf").string());
   EXPECT_NE(run.output.find("Pages:           3"), std::string::npos) << run.output;
 }

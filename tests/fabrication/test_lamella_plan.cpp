@@ -174,7 +174,8 @@ TEST(LamellaPlan, SharedBoundaryLamellaCarriesTheHolesOfBothPatches) {
     ASSERT_EQ(f.alsoConnections.size(), 1u);
     EXPECT_EQ(f.alsoConnections[0], std::make_pair(1, 3 * k));  // patch 1's connection (k, 0)
     EXPECT_TRUE(f.holds(1, 3 * k));
-    EXPECT_EQ(f.label(), "P0-C" + std::to_string(k) + "-2=P1");
+    // The other patch's connection by its id: patch 1's connection (k, 0).
+    EXPECT_EQ(f.label(), "P0-C" + std::to_string(k) + "-2=P1-C" + std::to_string(k) + "-0");
   }
   EXPECT_EQ(std::count_if(plans.begin(), plans.end(),
                           [](const LamellaPlan& p) { return p.id == "P1-V0"; }),

@@ -60,5 +60,53 @@ TEST(Nesting, PartLargerThanTheSheetIsAClearErrorNamingIt) {
       InvalidInput);
 }
 
+TEST(Nesting, MinimumSlackRowsBeatFirstFitShelves) {
+  // Rows of 100 mm (no margin, kerf or gap), one row per sheet: parts 50, 40, 30, 30, 25, 25.
+  // First fit decreasing: {50, 40}, {30, 30, 25}, {25} = 3 rows; best fit the same. The total is
+  // 200 = 2 full rows, which minimum bin slack finds: {50, 25, 25}, {40, 30, 30}.
+  std::vector<NestPart> parts;
+  for (double length : {30.0, 50.0, 25.0, 40.0, 25.0, 30.0}) parts.push_back({"p", length, 10.0});
+  const Nesting n = nestParts(parts, {100.0, 10.0}, 0.0, 0.0, "f");
+  EXPECT_EQ(n.shelfSheets, 3);
+  EXPECT_EQ(n.sheets, 2);
+  EXPECT_EQ(n.rows, 2);
+  EXPECT_EQ(n.rowsLowerBound, 2);
+  ASSERT_EQ(n.sheetUtilisation.size(), 2u);
+  EXPECT_DOUBLE_EQ(n.sheetUtilisation[0], 1.0);
+  EXPECT_DOUBLE_EQ(n.sheetUtilisation[1], 1.0);
+  EXPECT_DOUBLE_EQ(n.yield, 1.0);
+  // Each sheet's parts end to end: lengths on one sheet sum to 100, none overlaps.
+  double onFirst = 0.0;
+  for (size_t k = 0; k < parts.size(); ++k) {
+    if (n.placements[k].sheet == 0) onFirst += parts[k].lengthMm;
+  }
+  EXPECT_DOUBLE_EQ(onFirst, 100.0);
+}
+
+TEST(Nesting, UtilisationPerSheetAddsUpToTheYield) {
+  // Five 90 x 40 parts on 200 x 100 sheets: 2 rows of 2 on the first, one part on the second.
+  std::vector<NestPart> parts(5, NestPart{"p", 90.0, 40.0});
+  const Nesting n = nestParts(parts, {200.0, 100.0}, 1.0, 5.0, "f");
+  ASSERT_EQ(n.sheets, 2);
+  EXPECT_DOUBLE_EQ(n.sheetUtilisation[0], 4 * 3600.0 / 20000.0);
+  EXPECT_DOUBLE_EQ(n.sheetUtilisation[1], 3600.0 / 20000.0);
+  EXPECT_NEAR(n.yield, (n.sheetUtilisation[0] + n.sheetUtilisation[1]) / 2.0, 1e-12);
+}
+
+TEST(Nesting, SuggestsTheSheetWidthThatHoldsAnotherRow) {
+  // Strips 500 mm wide, 0.2 mm kerf, 10 mm margin: a 2500 mm sheet holds 4 rows (5 would need
+  // 5 x 500 + 4 x 0.2 + 20 = 2520.8 mm). 20 strips of 13000 mm on 13500-long sheets: 5 sheets of
+  // 4 rows; at 2520.8 mm, 4 sheets of 5.
+  EXPECT_DOUBLE_EQ(sheetWidthForRows(5, 500.0, 0.2, 10.0), 2520.8);
+  std::vector<NestPart> parts(20, NestPart{"s", 13000.0, 500.0});
+  const Nesting now = nestParts(parts, {13500.0, 2500.0}, 0.2, 10.0, "f");
+  EXPECT_EQ(now.sheets, 5);
+  const SheetWidthSuggestion s = suggestSheetWidth(parts, {13500.0, 2500.0}, 0.2, 10.0);
+  EXPECT_DOUBLE_EQ(s.widthMm, 2520.8);
+  EXPECT_EQ(s.rowsPerSheet, 5);
+  EXPECT_EQ(s.sheets, 4);
+  EXPECT_NEAR(s.yield, 20 * 13000.0 * 500.0 / (4 * 13500.0 * 2520.8), 1e-12);
+}
+
 }  // namespace
 }  // namespace egg::fabrication

@@ -29,7 +29,8 @@ TEST(SheetLayout, HandLamellaPrimitivesAtKnownMillimetres) {
   EXPECT_TRUE(d.slots[0].a.isApprox(Eigen::Vector2d(320.5, 10.0)));
   EXPECT_TRUE(d.slots[0].b.isApprox(Eigen::Vector2d(325.5, 10.0)));
   // Connection labels 0.25 h after each feature's end; the lamella label centred in the longest gap
-  // (from the first label's end 7.25 + 0.6 * 2.1 * 7 = 16.07 to the slot's start 103.5).
+  // (from the first label's end 7.25 + 15.4 = 22.65 to the slot's start 103.5). "P0-C1-0" is 154
+  // font units wide in futural.jhf (its glyphs' left and right bounds), at 2.1 / 21 mm per unit.
   ASSERT_EQ(d.texts.size(), 4u);
   EXPECT_EQ(d.texts[0].text, "P0-C1-0");
   EXPECT_NEAR(d.texts[0].anchor.x(), 222.75, 1e-12);
@@ -38,10 +39,10 @@ TEST(SheetLayout, HandLamellaPrimitivesAtKnownMillimetres) {
   EXPECT_NEAR(d.texts[1].anchor.x(), 327.75, 1e-12);
   // The end hole's label would run off the strip: it ends 0.25 h before the hole instead.
   EXPECT_EQ(d.texts[2].text, "P0-C1-2");
-  EXPECT_NEAR(d.texts[2].anchor.x(), 215.5 + 203.5 - 0.75 - 0.6 * 2.1 * 7, 1e-9);
+  EXPECT_NEAR(d.texts[2].anchor.x(), 215.5 + 203.5 - 0.75 - 15.4, 1e-9);
   EXPECT_EQ(d.texts[3].text, "P0-U1");
   EXPECT_EQ(d.texts[3].align, TextAlign::Centre);
-  EXPECT_NEAR(d.texts[3].anchor.x(), 215.5 + (16.07 + 103.5) / 2.0, 1e-9);
+  EXPECT_NEAR(d.texts[3].anchor.x(), 215.5 + (22.65 + 103.5) / 2.0, 1e-9);
   EXPECT_NEAR(d.texts[3].anchor.y(), 10.0, 1e-12);
   // The slide arrow: engraved at y = 5 + (5 - 1.5) / 2, from the bolt's planar position 6 mm (2 h)
   // in the sliding direction (+x), with a head.

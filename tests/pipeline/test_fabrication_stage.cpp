@@ -77,10 +77,17 @@ TEST(FabricationStage, OneCallWritesWhatTheSceneAsksForAndReportsIt) {
   const auto dir = fabrication::testing::scratchDir("stage");
   const auto stage = fabricateScene(scene, {{0, &grid, std::nullopt}}, dir);
   // No "stickers" output: no sticker sheets written (the stickers are still counted).
-  const std::vector<std::string> expected{
-      "cut/sheet_01.svg",         "cut/sheet_01.dxf",         "cut/sheets.pdf",
-      "supports/supports.csv",    "supports/support_001.stl", "supports/support_002.stl",
-      "supports/support_003.stl", "supports/support_004.stl", "bom.csv"};
+  const std::vector<std::string> expected{"cut/sheet_01.svg",
+                                          "cut/sheet_01.dxf",
+                                          "cut/sheets.pdf",
+                                          "cut/assembly.pdf",
+                                          "supports/supports.csv",
+                                          "supports/support_001.stl",
+                                          "supports/support_002.stl",
+                                          "supports/support_003.stl",
+                                          "supports/support_004.stl",
+                                          "bom.csv",
+                                          "cut.zip"};
   EXPECT_EQ(stage.files, expected);
   for (const auto& f : expected) EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
   EXPECT_EQ(stage.report["lamellae"], 6);

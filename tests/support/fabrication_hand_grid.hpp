@@ -133,13 +133,16 @@ import json, sys, ezdxf
 doc = ezdxf.readfile(sys.argv[1])
 auditor = doc.audit()
 out = {"audit_errors": len(auditor.errors), "audit_fixes": len(auditor.fixes), "insunits": doc.header.get("$INSUNITS", 0),
-       "version": doc.dxfversion, "layers": [l.dxf.name for l in doc.layers], "entities": []}
+       "version": doc.dxfversion, "layers": [l.dxf.name for l in doc.layers], "entities": [],
+       "layer_colours": {l.dxf.name: l.dxf.color for l in doc.layers}}
 for e in doc.modelspace():
     d = {"type": e.dxftype(), "layer": e.dxf.layer}
     if e.dxftype() == "CIRCLE":
         d["centre"] = [e.dxf.center.x, e.dxf.center.y]; d["radius"] = e.dxf.radius
     elif e.dxftype() == "LWPOLYLINE":
         d["points"] = [[p[0], p[1], p[4]] for p in e.get_points()]; d["closed"] = bool(e.closed)
+    elif e.dxftype() == "POLYLINE":
+        d["points"] = [[v.dxf.location.x, v.dxf.location.y, v.dxf.bulge] for v in e.vertices]; d["closed"] = bool(e.is_closed)
     elif e.dxftype() == "TEXT":
         d["text"] = e.dxf.text; d["insert"] = [e.dxf.insert.x, e.dxf.insert.y]
         d["align"] = [e.dxf.align_point.x, e.dxf.align_point.y] if e.dxf.hasattr("align_point") else None
@@ -177,12 +180,13 @@ inline nlohmann::json readSvg(const std::string& svg) {
        ++it) {
     out["circles"].push_back({std::stod((*it)[1]), h - std::stod((*it)[2]), std::stod((*it)[3])});
   }
+  // Single-stroke texts: the text in the path's title, its anchor (y up) and height in its desc.
   const std::regex text(
-      R"re(<text x="([-0-9.]+)" y="([-0-9.]+)" font-family="[^"]*" font-size="([-0-9.]+)"[^>]*>([^<]*)</text>)re");
+      R"re(<path class="text" d="[^"]*"[^>]*><title>([^<]*)</title><desc>anchor ([-0-9.]+) ([-0-9.]+) height ([-0-9.]+) [a-z]+</desc>)re");
   for (auto it = std::sregex_iterator(svg.begin(), svg.end(), text); it != std::sregex_iterator();
        ++it) {
     out["texts"].push_back(
-        {std::stod((*it)[1]), h - std::stod((*it)[2]), std::stod((*it)[3]), (*it)[4].str()});
+        {std::stod((*it)[2]), std::stod((*it)[3]), std::stod((*it)[4]), (*it)[1].str()});
   }
   const std::regex path(R"re(<path d="([^"]*)")re");
   const std::regex number(R"re(-?[0-9]+\.[0-9]+)re");

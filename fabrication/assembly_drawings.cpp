@@ -1,0 +1,437 @@
+#include "fabrication/assembly_drawings.hpp"
+
+#include "fabrication/pdf_pages.hpp"
+
+#include <cairo.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <limits>
+#include <map>
+#include <set>
+
+namespace egg::fabrication {
+namespace {
+
+std::string memberId(int patch, bool isU, int index) {
+  return "P" + std::to_string(patch) + (isU ? "-U" : "-V") + std::to_string(index);
+}
+
+std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
+  char buffer[160];
+  std::snprintf(buffer, sizeof buffer, format, a, b, c);
+  return buffer;
+}
+
+// A model-to-page mapping: model coordinates (metres, y up) fitted into a page's drawing area at
+// the standard scale 1:n (model millimetres per page millimetre), centred.
+struct View {
+  double n = 1.0, x0 = 0.0, y1 = 0.0, px = 0.0, py = 0.0;
+  Eigen::Vector2d page(const Eigen::Vector2d& m) const {
+    return {px + (m.x() - x0) * 1000.0 / n, py + (y1 - m.y()) * 1000.0 / n};
+  }
+};
+
+View fit(const std::vector<Eigen::Vector2d>& points, const PageFrame& f) {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  if (points.empty()) lo = hi = Eigen::Vector2d::Zero();
+  const Eigen::Vector2d size = (hi - lo).cwiseMax(1e-3) * 1000.0;
+  // Leave room for labels beyond the outermost members.
+  View v;
+  v.n = fittingScale({size.x(), size.y()}, {f.areaWidth - 20.0, f.areaHeight - 12.0});
+  v.x0 = lo.x();
+  v.y1 = hi.y();
+  v.px = f.areaX + (f.areaWidth - size.x() / v.n) / 2.0;
+  v.py = f.areaY + (f.areaHeight - size.y() / v.n) / 2.0;
+  return v;
+}
+
+// Isometric axonometry (ISO 5456-3, unit axis factors): lengths along x, y and z are true to the
+// page's scale.
+Eigen::Vector2d axo(const Eigen::Vector3d& p) {
+  const double c = std::cos(M_PI / 6.0), s = std::sin(M_PI / 6.0);
+  return {(p.x() - p.y()) * c, p.z() + (p.x() + p.y()) * s};
+}
+
+void label(cairo_t* cr, const Eigen::Vector2d& at, double size, const std::string& text,
+           bool centred = false) {
+  cairo_set_font_size(cr, size);
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, text.c_str(), &e);
+  cairo_move_to(cr, at.x() - (centred ? e.width / 2.0 : 0.0), at.y() + size / 2.8);
+  cairo_show_text(cr, text.c_str());
+}
+
+void arrow(cairo_t* cr, const Eigen::Vector2d& from, const Eigen::Vector2d& direction,
+           double length) {
+  const Eigen::Vector2d d = direction.normalized(), n(-d.y(), d.x());
+  const Eigen::Vector2d tip = from + length * d;
+  cairo_move_to(cr, from.x(), from.y());
+  cairo_line_to(cr, tip.x(), tip.y());
+  cairo_move_to(cr, (tip - 0.35 * length * d + 0.2 * length * n).x(),
+                (tip - 0.35 * length * d + 0.2 * length * n).y());
+  cairo_line_to(cr, tip.x(), tip.y());
+  cairo_line_to(cr, (tip - 0.35 * length * d - 0.2 * length * n).x(),
+                (tip - 0.35 * length * d - 0.2 * length * n).y());
+  cairo_stroke(cr);
+}
+
+// Pages of text lines (the order, the joins, the support table).
+class TextPages {
+ public:
+  TextPages(PdfDocument& pdf, PaperSize paper, std::string title)
+      : pdf_(pdf), frame_(pageFrame(paper, true)), title_(std::move(title)) {}
+  void line(const std::string& text, double size = 3.0) {
+    if (!cr_ || y_ + size * 1.5 > frame_.areaY + frame_.areaHeight) newPage();
+    cairo_set_source_rgb(cr_, 0, 0, 0);
+    cairo_set_font_size(cr_, size);
+    cairo_move_to(cr_, frame_.areaX, y_ + size);
+    cairo_show_text(cr_, text.c_str());
+    y_ += size * 1.5;
+  }
+  void finish() {
+    if (cr_) end();
+  }
+
+ private:
+  void newPage() {
+    if (cr_) end();
+    cr_ = pdf_.beginPage(frame_);
+    y_ = frame_.areaY;
+    ++page_;
+  }
+  void end() {
+    // Text pages are not to scale; the bar still lets a reader check the print's size.
+    drawTitleBand(cr_, frame_, title_ + (page_ > 1 ? " (continued)" : ""),
+                  "text page (not to scale): the bar is 1:1 to check the print", 1.0);
+    pdf_.endPage();
+    cr_ = nullptr;
+  }
+  PdfDocument& pdf_;
+  PageFrame frame_;
+  std::string title_;
+  cairo_t* cr_ = nullptr;
+  double y_ = 0.0;
+  int page_ = 0;
+};
+
+void planarPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p) {
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& m : p.members) points.push_back(m.planarStart), points.push_back(m.planarEnd);
+  const PageFrame f = pageFrame(paper, true);
+  const View v = fit(points, f);
+  cairo_t* cr = pdf.beginPage(f);
+  cairo_set_line_width(cr, 0.35);
+  for (const auto& m : p.members) {
+    cairo_set_source_rgb(cr, m.isU ? 0.75 : 0.0, 0.0, m.isU ? 0.0 : 0.75);
+    const Eigen::Vector2d a = v.page(m.planarStart), b = v.page(m.planarEnd);
+    cairo_move_to(cr, a.x(), a.y());
+    cairo_line_to(cr, b.x(), b.y());
+    cairo_stroke(cr);
+    // The id beyond both ends of the member.
+    const Eigen::Vector2d d =
+        (b - a).norm() > 0 ? Eigen::Vector2d((b - a).normalized()) : Eigen::Vector2d(1.0, 0.0);
+    label(cr, a - 5.0 * d, 2.2, m.id, true);
+    label(cr, b + 5.0 * d, 2.2, m.id, true);
+  }
+  const double size = std::clamp(0.25 * 1000.0 / v.n * 0.2, 0.8, 1.8);
+  for (const auto& c : p.connections) {
+    const Eigen::Vector2d q = v.page(c.planar);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_new_path(cr);  // no line from the last label to the dot
+    cairo_arc(cr, q.x(), q.y(), 0.5, 0.0, 2.0 * M_PI);
+    cairo_fill(cr);
+    label(cr, q + Eigen::Vector2d(0.8, 1.2), size, c.id);
+    // Notch directions: where the bolt slides while deploying, along its member.
+    cairo_set_line_width(cr, 0.25);
+    if (c.slideU.norm() > 0.0) {
+      cairo_set_source_rgb(cr, 0.75, 0.0, 0.0);
+      arrow(cr, q, Eigen::Vector2d(c.slideU.x(), -c.slideU.y()), 3.0);
+    }
+    if (c.slideV.norm() > 0.0) {
+      cairo_set_source_rgb(cr, 0.0, 0.0, 0.75);
+      arrow(cr, q, Eigen::Vector2d(c.slideV.x(), -c.slideV.y()), 3.0);
+    }
+  }
+  drawTitleBand(cr, f,
+                "patch P" + std::to_string(p.patchId) + ": planar grid as laid out and bolted",
+                "plan on the ground, scale " + scaleText(v.n) + " on " + toString(paper) +
+                    "; u lamellas red, v blue; arrows: where each slotted bolt slides while "
+                    "deploying (red along u, blue along v)",
+                v.n);
+  pdf.endPage();
+}
+
+void deployedPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p) {
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& m : p.members) {
+    for (const auto& q : m.deployed) points.push_back(axo(q));
+  }
+  const PageFrame f = pageFrame(paper, true);
+  const View v = fit(points, f);
+  cairo_t* cr = pdf.beginPage(f);
+  cairo_set_line_width(cr, 0.35);
+  for (const auto& m : p.members) {
+    if (m.deployed.size() < 2) continue;
+    cairo_set_source_rgb(cr, m.isU ? 0.75 : 0.0, 0.0, m.isU ? 0.0 : 0.75);
+    for (size_t k = 0; k < m.deployed.size(); ++k) {
+      const Eigen::Vector2d q = v.page(axo(m.deployed[k]));
+      k ? cairo_line_to(cr, q.x(), q.y()) : cairo_move_to(cr, q.x(), q.y());
+    }
+    cairo_stroke(cr);
+    label(cr, v.page(axo(m.deployed.front())) + Eigen::Vector2d(-2.0, -2.0), 2.2, m.id, true);
+  }
+  const double size = std::clamp(0.25 * 1000.0 / v.n * 0.2, 0.8, 1.8);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  for (const auto& c : p.connections) {
+    const Eigen::Vector2d q = v.page(axo(c.spatial));
+    cairo_new_path(cr);  // no line from the last label to the dot
+    cairo_arc(cr, q.x(), q.y(), 0.4, 0.0, 2.0 * M_PI);
+    cairo_fill(cr);
+    label(cr, q + Eigen::Vector2d(0.6, 1.0), size, c.id);
+  }
+  drawTitleBand(cr, f, "patch P" + std::to_string(p.patchId) + ": deployed, axonometric",
+                "isometric (ISO 5456-3), lengths along x, y, z at " + scaleText(v.n) + " on " +
+                    toString(paper) + "; same ids as the planar grid",
+                v.n);
+  pdf.endPage();
+}
+
+void supportPlanPage(PdfDocument& pdf, PaperSize paper, const std::vector<AssemblyPatch>& patches,
+                     const std::vector<Support>& supports) {
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& p : patches) {
+    for (const auto& m : p.members) {
+      for (const auto& q : m.deployed) points.emplace_back(q.x(), q.y());
+    }
+  }
+  for (const auto& s : supports) points.emplace_back(s.position.x(), s.position.y());
+  const PageFrame f = pageFrame(paper, true);
+  const View v = fit(points, f);
+  cairo_t* cr = pdf.beginPage(f);
+  cairo_set_line_width(cr, 0.2);
+  cairo_set_source_rgb(cr, 0.7, 0.7, 0.7);
+  for (const auto& p : patches) {
+    for (const auto& m : p.members) {
+      for (size_t k = 0; k < m.deployed.size(); ++k) {
+        const Eigen::Vector2d q = v.page({m.deployed[k].x(), m.deployed[k].y()});
+        k ? cairo_line_to(cr, q.x(), q.y()) : cairo_move_to(cr, q.x(), q.y());
+      }
+      cairo_stroke(cr);
+    }
+  }
+  cairo_set_source_rgb(cr, 0.8, 0.0, 0.0);
+  for (const auto& s : supports) {
+    const Eigen::Vector2d q = v.page({s.position.x(), s.position.y()});
+    cairo_new_path(cr);
+    cairo_rectangle(cr, q.x() - 0.8, q.y() - 0.8, 1.6, 1.6);
+    cairo_fill(cr);
+    label(cr, q + Eigen::Vector2d(1.2, 0.0), 1.8, s.id);
+  }
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  drawTitleBand(cr, f, "support plan",
+                "plan (site x right, y up), scale " + scaleText(v.n) + " on " + toString(paper) +
+                    "; coordinates in the table that follows and supports/supports.csv",
+                v.n);
+  pdf.endPage();
+}
+
+}  // namespace
+
+std::vector<AssemblyPatch> assemblyPatches(const std::vector<FabricationPatch>& patches,
+                                           const std::vector<LamellaPlan>& lamellae,
+                                           const std::vector<SharedBoundary>& shared,
+                                           double minNotchM) {
+  (void)lamellae;
+  // A shared side's member B is cut as A's lamella: draw it with A's id.
+  std::map<std::tuple<int, bool, int>, std::string> renamed;
+  for (const auto& s : shared) {
+    renamed[{s.patchB, s.familyB == Family::U, s.indexB}] =
+        memberId(s.patchA, s.familyA == Family::U, s.indexA);
+  }
+  std::vector<AssemblyPatch> out;
+  for (const auto& patch : patches) {
+    AssemblyPatch a;
+    a.patchId = patch.patchId;
+    const EggGrid& g = *patch.grid;
+    for (bool isU : {true, false}) {
+      const auto& family = isU ? g.u : g.v;
+      for (size_t i = 0; i < family.size(); ++i) {
+        AssemblyMember m;
+        const auto key = std::make_tuple(patch.patchId, isU, static_cast<int>(i));
+        m.id =
+            renamed.count(key) ? renamed[key] : memberId(patch.patchId, isU, static_cast<int>(i));
+        m.isU = isU;
+        m.planarStart = family[i].planarStart;
+        m.planarEnd = family[i].planarEnd;
+        const size_t k = isU ? i : g.u.size() + i;
+        m.deployed = patch.deployedCentrelines && k < patch.deployedCentrelines->size()
+                         ? (*patch.deployedCentrelines)[k]
+                         : family[i].spatial;
+        a.members.push_back(std::move(m));
+      }
+    }
+    const int nv = static_cast<int>(g.v.size());
+    for (size_t k = 0; k < g.connections.size(); ++k) {
+      const GridConnection& c = g.connections[k];
+      AssemblyConnection ac;
+      ac.id = "P" + std::to_string(patch.patchId) + "-C" + std::to_string(k / nv) + "-" +
+              std::to_string(k % nv);
+      ac.planar = c.planar;
+      ac.spatial = c.spatial;
+      auto along = [](const GridMember& m, double l) -> Eigen::Vector2d {
+        const Eigen::Vector2d d = m.planarEnd - m.planarStart;
+        return d.norm() > 0.0 ? Eigen::Vector2d(d.normalized() * l) : Eigen::Vector2d::Zero();
+      };
+      // Notches as cut (none on boundary members, none below min_notch_mm).
+      const GridMember &u = g.u[c.memberU], &v = g.v[c.memberV];
+      if (!u.boundary && std::abs(c.notchU) >= minNotchM) ac.slideU = along(u, c.notchU);
+      if (!v.boundary && std::abs(c.notchV) >= minNotchM) ac.slideV = along(v, c.notchV);
+      a.connections.push_back(ac);
+    }
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
+std::vector<int> assemblyOrder(const std::vector<AssemblyPatch>& patches,
+                               const std::vector<Support>& supports,
+                               const std::vector<SharedBoundary>& shared,
+                               std::vector<std::string>* reasons) {
+  std::map<int, int> supportCount;
+  for (const auto& s : supports) ++supportCount[s.patchId];
+  std::map<int, std::set<int>> neighbours;
+  for (const auto& s : shared) {
+    neighbours[s.patchA].insert(s.patchB);
+    neighbours[s.patchB].insert(s.patchA);
+  }
+  std::vector<int> order;
+  std::set<int> placed;
+  while (order.size() < patches.size()) {
+    // A new start (the first, or a part of the structure not joined to what stands): the patch
+    // with the most supports, ties the lower id.
+    int start = -1;
+    for (const auto& p : patches) {
+      if (placed.count(p.patchId)) continue;
+      if (start < 0 || supportCount[p.patchId] > supportCount[start]) start = p.patchId;
+    }
+    std::deque<int> queue{start};
+    placed.insert(start);
+    if (reasons) {
+      reasons->push_back("P" + std::to_string(start) + " first: it stands on the most supports (" +
+                         std::to_string(supportCount[start]) +
+                         ") and needs no other patch to hold it");
+    }
+    while (!queue.empty()) {
+      const int p = queue.front();
+      queue.pop_front();
+      order.push_back(p);
+      for (int q : neighbours[p]) {
+        if (placed.count(q)) continue;
+        placed.insert(q);
+        queue.push_back(q);
+        if (reasons) {
+          reasons->push_back("P" + std::to_string(q) + " after P" + std::to_string(p) +
+                             ": it shares a side with P" + std::to_string(p) +
+                             ", whose lamella on that side is already standing to bolt to");
+        }
+      }
+    }
+  }
+  return order;
+}
+
+std::string assemblyPdf(const FabricationResult& r) {
+  const PaperSize paper = r.options.paperSize;
+  PdfDocument pdf;
+  std::vector<std::string> reasons;
+  const auto order = assemblyOrder(r.assembly, r.supports, r.shared, &reasons);
+  std::map<int, const AssemblyPatch*> byId;
+  for (const auto& p : r.assembly) byId[p.patchId] = &p;
+  {
+    TextPages text(pdf, paper, "assembly order");
+    text.line("Assembly order", 5.0);
+    text.line(
+        "Patches are assembled flat on the ground, deployed and fixed one after another "
+        "(Section 3.6: multi-patch grids are deployed and combined sequentially).");
+    for (const auto& reason : reasons) text.line("  " + reason);
+    int step = 1;
+    for (int id : order) {
+      const AssemblyPatch& p = *byId[id];
+      text.line("");
+      text.line(std::to_string(step++) + ". Patch P" + std::to_string(id), 4.0);
+      std::string u, v;
+      for (const auto& m : p.members)
+        (m.isU ? u : v) += (m.isU ? u : v).empty() ? m.id : " " + m.id;
+      text.line(
+          "  a. Lay the u lamellas on the ground at their planar positions (next pages), in "
+          "this order: " +
+          u.substr(0, 150) + (u.size() > 150 ? " ..." : ""));
+      for (size_t k = 150; k < u.size(); k += 170) text.line("     " + u.substr(k, 170));
+      text.line("  b. Lay the v lamellas across them, on top, in this order: " + v.substr(0, 150) +
+                (v.size() > 150 ? " ..." : ""));
+      for (size_t k = 150; k < v.size(); k += 170) text.line("     " + v.substr(k, 170));
+      text.line(
+          "     Reason: one family wholly below the other (no weaving), so the grid can "
+          "scissor open; a shared side's lamella is already standing from the patch before.");
+      text.line(
+          "  c. Stick the PTFE stickers at every slotted connection, then bolt every "
+          "connection: tighten at plain holes, leave slotted bolts snug so they can slide.");
+      text.line(
+          "  d. Deploy the patch and fix its boundary joints to its supports (support plan).");
+    }
+    text.finish();
+  }
+  for (int id : order) {
+    planarPage(pdf, paper, *byId[id]);
+    deployedPage(pdf, paper, *byId[id]);
+  }
+  supportPlanPage(pdf, paper, r.assembly, r.supports);
+  {
+    TextPages table(pdf, paper, "support coordinates");
+    table.line(
+        "Supports (site coordinates in metres; the contact plane's inclination and direction "
+        "in degrees)",
+        4.0);
+    for (const auto& s : r.supports) {
+      table.line(s.id + "   " + s.connectionId + "   x " + fmt("%.3f", s.position.x()) + "   y " +
+                     fmt("%.3f", s.position.y()) + "   z " + fmt("%.3f", s.position.z()) +
+                     "   inclination " + fmt("%.1f", s.inclinationDeg) + "   direction " +
+                     fmt("%.1f", s.directionDeg) + "   " + (s.block ? "block" : "bracket") + "   " +
+                     s.reason,
+                 2.8);
+    }
+    table.finish();
+  }
+  if (!r.shared.empty()) {
+    TextPages joins(pdf, paper, "joins between patches");
+    joins.line("Joins between patches: one lamella carries both patches' holes on a shared side",
+               4.0);
+    for (const auto& s : r.shared) {
+      const std::string a = memberId(s.patchA, s.familyA == Family::U, s.indexA),
+                        b = memberId(s.patchB, s.familyB == Family::U, s.indexB);
+      joins.line("");
+      joins.line(a + " of patch P" + std::to_string(s.patchA) + " is also " + b + " of patch P" +
+                     std::to_string(s.patchB) + (s.reversed ? " (running the other way)" : "") +
+                     ": cut once, as " + a,
+                 3.2);
+      for (const auto& plan : r.lamellae) {
+        if (plan.id != a) continue;
+        std::string line;
+        for (const auto& f : plan.features) {
+          if (f.alsoConnectionIds.empty()) continue;
+          line += (line.empty() ? "" : "   ") + f.label();
+          if (line.size() > 150) joins.line("  bolts through both: " + line, 2.8), line.clear();
+        }
+        if (!line.empty()) joins.line("  bolts through both: " + line, 2.8);
+      }
+    }
+    joins.finish();
+  }
+  return pdf.finish();
+}
+
+}  // namespace egg::fabrication

@@ -3,6 +3,7 @@
 #include "fabrication/pdf_pages.hpp"
 
 #include <cairo.h>
+#include <fmt/printf.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,12 +18,6 @@ namespace {
 
 std::string memberId(int patch, bool isU, int index) {
   return "P" + std::to_string(patch) + (isU ? "-U" : "-V") + std::to_string(index);
-}
-
-std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
-  char buffer[160];
-  std::snprintf(buffer, sizeof buffer, format, a, b, c);
-  return buffer;
 }
 
 // A model-to-page mapping: model coordinates (metres, y up) fitted into a page's drawing area at
@@ -397,11 +392,12 @@ std::string assemblyPdf(const FabricationResult& r) {
         "in degrees)",
         4.0);
     for (const auto& s : r.supports) {
-      table.line(s.id + "   " + s.connectionId + "   x " + fmt("%.3f", s.position.x()) + "   y " +
-                     fmt("%.3f", s.position.y()) + "   z " + fmt("%.3f", s.position.z()) +
-                     "   inclination " + fmt("%.1f", s.inclinationDeg) + "   direction " +
-                     fmt("%.1f", s.directionDeg) + "   " + (s.block ? "block" : "bracket") + "   " +
-                     s.reason,
+      table.line(s.id + "   " + s.connectionId + "   x " + fmt::sprintf("%.3f", s.position.x()) +
+                     "   y " + fmt::sprintf("%.3f", s.position.y()) + "   z " +
+                     fmt::sprintf("%.3f", s.position.z()) + "   inclination " +
+                     fmt::sprintf("%.1f", s.inclinationDeg) + "   direction " +
+                     fmt::sprintf("%.1f", s.directionDeg) + "   " +
+                     (s.block ? "block" : "bracket") + "   " + s.reason,
                  2.8);
     }
     table.finish();

@@ -1,6 +1,7 @@
 #include "fabrication/fabricate.hpp"
 #include "fabrication/fasteners.hpp"
 
+#include <fmt/printf.h>
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -8,12 +9,6 @@
 
 namespace egg::fabrication {
 namespace {
-
-std::string formatted(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
 
 // The sheets (or boards) lamella i's pieces are on, in piece order: "L03 L07".
 std::string sheetsOf(const FabricationResult& r, size_t i) {
@@ -44,12 +39,14 @@ std::string fastenerRows(const FabricationResult& r) {
   std::ostringstream s;
   for (const auto& [layers, count] : boltsByLayers) {
     const BoltSize b = boltSize(o.boltDiameterMm, layers * o.lamellaThicknessMm);
-    s << "bolt_size," << b.name << "," << count << "," << formatted("%.0f", b.lengthMm) << ",,,,,,"
-      << layers << " lamellas (grip " << formatted("%.0f", b.gripMm) << " mm); " << b.note << "\n";
+    s << "bolt_size," << b.name << "," << count << "," << fmt::sprintf("%.0f", b.lengthMm)
+      << ",,,,,," << layers << " lamellas (grip " << fmt::sprintf("%.0f", b.gripMm) << " mm); "
+      << b.note << "\n";
   }
   const BoltSize any = boltSize(o.boltDiameterMm, 2.0 * o.lamellaThicknessMm);
   s << "washer_size," << any.washerName << "," << 2 * r.connections << ",,,"
-    << formatted("%.1f", any.washerThicknessMm) << ",,,,two per bolt; " << any.washerNote << "\n";
+    << fmt::sprintf("%.1f", any.washerThicknessMm) << ",,,,two per bolt; " << any.washerNote
+    << "\n";
   return s.str();
 }
 
@@ -79,13 +76,13 @@ std::string bomCsv(const FabricationResult& r) {
   }
   s << "splice,," << r.splices - r.scarfJoints
     << ",,,,,,,butt joints with bolted plates clear of holes by "
-    << formatted("%.1f", o.effectiveSpliceClearanceMm())
+    << fmt::sprintf("%.1f", o.effectiveSpliceClearanceMm())
     << " mm where a stock length allows, else at least "
-    << formatted("%.1f", o.effectiveMinSpliceClearanceMm()) << " mm\n";
+    << fmt::sprintf("%.1f", o.effectiveMinSpliceClearanceMm()) << " mm\n";
   if (r.scarfJoints > 0) {
-    s << "scarf,," << r.scarfJoints << "," << formatted("%.1f", o.scarfLengthMm())
-      << ",,,,,,glued scarf joints 1:" << formatted("%g", o.scarfSlope)
-      << " to 1:" << formatted("%g", 2.0 * o.scarfSlope)
+    s << "scarf,," << r.scarfJoints << "," << fmt::sprintf("%.1f", o.scarfLengthMm())
+      << ",,,,,,glued scarf joints 1:" << fmt::sprintf("%g", o.scarfSlope)
+      << " to 1:" << fmt::sprintf("%g", 2.0 * o.scarfSlope)
       << " (length_mm: the shortest), glued before assembly; the pieces overlap on the slope\n";
   }
   // Every splice: where along its lamella (length_mm = the cut's distance from the strip's start).
@@ -120,28 +117,29 @@ std::string bomCsv(const FabricationResult& r) {
       s << line;
     }
   }
-  s << "bolt,," << r.connections << ",,,,,,,diameter " << formatted("%.1f", o.boltDiameterMm)
+  s << "bolt,," << r.connections << ",,,,,,,diameter " << fmt::sprintf("%.1f", o.boltDiameterMm)
     << " mm; one per connection (merged on shared lamellas)\n";
   s << "washer,," << 2 * r.connections << ",,,,,,,two per bolt\n";
   s << fastenerRows(r);
   s << "brass_sleeve,," << r.counts.slots << ",,,,,,,one per slot (Section 3.5.1)\n";
-  s << "ptfe_sticker,," << r.stickers.size() << ",,,," << formatted("%.6g", r.stickerAreaM2)
+  s << "ptfe_sticker,," << r.stickers.size() << ",,,," << fmt::sprintf("%.6g", r.stickerAreaM2)
     << ",,,two per notched connection (Section 3.5.1)\n";
   s << "support,," << r.supports.size() << ",,,,,,,see supports/supports.csv\n";
   const bool boards = o.stock == CutStock::Boards;
   s << (boards ? "board,," : "lamella_sheet,,") << r.lamellaNesting.sheets << ","
     << (boards ? o.stockLengthMm : o.sheetMm[0]) << ","
     << (boards ? o.lamellaWidthMm : o.sheetMm[1]) << "," << o.lamellaThicknessMm << ",,,,yield "
-    << formatted("%.3f", r.lamellaNesting.yield) << "\n";
+    << fmt::sprintf("%.3f", r.lamellaNesting.yield) << "\n";
   for (size_t k = 0; k < r.sheetIds.size(); ++k) {
     s << (boards ? "board," : "lamella_sheet,") << r.sheetIds[k] << ",1,,,,,,,utilisation "
-      << formatted("%.3f", r.lamellaNesting.sheetUtilisation[k]) << "," << r.sheetIds[k] << "\n";
+      << fmt::sprintf("%.3f", r.lamellaNesting.sheetUtilisation[k]) << "," << r.sheetIds[k] << "\n";
   }
   s << "sticker_sheet,," << r.stickerNesting.sheets << "," << o.effectiveStickerSheetMm()[0] << ","
     << o.effectiveStickerSheetMm()[1] << ",,,,,PTFE foil\n";
-  s << "total_lamellae,," << r.lamellae.size() << "," << formatted("%.2f", r.totalLengthM * 1000.0)
-    << ",,,," << formatted("%.6g", r.volumeM3) << "," << formatted("%.6g", r.massKg)
-    << ",self-weight " << formatted("%.1f", r.massKg * 9.81) << " N\n";
+  s << "total_lamellae,," << r.lamellae.size() << ","
+    << fmt::sprintf("%.2f", r.totalLengthM * 1000.0) << ",,,," << fmt::sprintf("%.6g", r.volumeM3)
+    << "," << fmt::sprintf("%.6g", r.massKg) << ",self-weight "
+    << fmt::sprintf("%.1f", r.massKg * 9.81) << " N\n";
   // Rows without a sheet get an empty last field: every row has the header's 11 fields.
   std::string padded;
   std::istringstream rows(s.str());

@@ -7,6 +7,7 @@
 #include "fabrication/pdf_writer.hpp"
 #include "fabrication/sheet_layout.hpp"
 
+#include <fmt/printf.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,18 +18,12 @@
 namespace egg::fabrication {
 namespace {
 
-std::string formatted(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
-
 void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult& r) {
   const auto& o = r.options;
   // Section 3.5.2: t < w/5, or the lamella no longer behaves like a geodesic ribbon.
   if (o.lamellaThicknessMm >= o.lamellaWidthMm / 5.0) {
-    r.warnings.push_back("lamella thickness " + formatted("%.3g", o.lamellaThicknessMm) +
-                         " mm is not below w/5 = " + formatted("%.3g", o.lamellaWidthMm / 5.0) +
+    r.warnings.push_back("lamella thickness " + fmt::sprintf("%.3g", o.lamellaThicknessMm) +
+                         " mm is not below w/5 = " + fmt::sprintf("%.3g", o.lamellaWidthMm / 5.0) +
                          " mm (Section 3.5.2)");
   }
   // Section 3.5.2: for desktop and medium models a width of about 2 % of the size works well.
@@ -45,14 +40,15 @@ void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult&
     const double ratio = o.lamellaWidthMm / sizeMm;
     if (sizeMm <= 10000.0 && (ratio < 0.01 || ratio > 0.04)) {
       r.warnings.push_back(
-          "lamella width " + formatted("%.3g", o.lamellaWidthMm) + " mm is " +
-          formatted("%.2f", 100.0 * ratio) + " % of the model size " + formatted("%.0f", sizeMm) +
+          "lamella width " + fmt::sprintf("%.3g", o.lamellaWidthMm) + " mm is " +
+          fmt::sprintf("%.2f", 100.0 * ratio) + " % of the model size " +
+          fmt::sprintf("%.0f", sizeMm) +
           " mm; about 2 % works well for desktop and medium models (Section 3.5.2)");
     }
   }
   if (r.maxStressRatio > 1.0) {
     r.warnings.push_back("lamella " + r.maxStressLamella + " is stressed to " +
-                         formatted("%.2f", r.maxStressRatio) + " of the strength of " +
+                         fmt::sprintf("%.2f", r.maxStressRatio) + " of the strength of " +
                          r.material.name + " (Section 3.5.2: check sigma = E kappa t / 2)");
   }
   // Splices that had to go closer to a hole or slot than splice_clearance_mm (placeSplices): the
@@ -73,20 +69,20 @@ void checkRules(const std::vector<FabricationPatch>& patches, FabricationResult&
   if (tightest) {
     r.warnings.push_back(
         std::to_string(tight) + " splices lie closer than fabrication.splice_clearance_mm = " +
-        formatted("%.0f", o.effectiveSpliceClearanceMm()) +
+        fmt::sprintf("%.0f", o.effectiveSpliceClearanceMm()) +
         " mm to a hole or slot (no clearer position within a stock length); the tightest, " +
         tightest->id + " S" + std::to_string(tightestIndex + 1) + " at " +
-        formatted("%.0f", tightest->splicesMm[tightestIndex]) + " mm, has " +
-        formatted("%.0f", tightest->spliceClearancesMm[tightestIndex]) +
+        fmt::sprintf("%.0f", tightest->splicesMm[tightestIndex]) + " mm, has " +
+        fmt::sprintf("%.0f", tightest->spliceClearancesMm[tightestIndex]) +
         " mm free each side: a splice plate there is at most " +
-        formatted("%.0f", 2.0 * tightest->spliceClearancesMm[tightestIndex]) +
+        fmt::sprintf("%.0f", 2.0 * tightest->spliceClearancesMm[tightestIndex]) +
         " mm long (bom.csv splice_joint rows)");
   }
   if (r.maxScarfRatio > 1.0) {
     r.warnings.push_back("scarf joint " + r.maxScarfJoint + " is stressed to " +
-                         formatted("%.2f", r.maxScarfRatio) +
+                         fmt::sprintf("%.2f", r.maxScarfRatio) +
                          " of its strength (fabrication.scarf_efficiency " +
-                         formatted("%.2f", o.scarfEfficiency) + " of " + r.material.name +
+                         fmt::sprintf("%.2f", o.scarfEfficiency) + " of " + r.material.name +
                          ", net of the holes and slots it crosses): move it or use plates");
   }
   if (r.counts.droppedBoundary > 0) {
@@ -201,7 +197,7 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches,
   for (auto& s : r.supports) {
     if (!s.block) {
       r.supportSolids.emplace_back();  // no block: listed in supports.csv as a bracket
-      brackets.push_back(s.id + " (" + formatted("%.1f", s.inclinationDeg) + " deg)");
+      brackets.push_back(s.id + " (" + fmt::sprintf("%.1f", s.inclinationDeg) + " deg)");
       continue;
     }
     // A steep contact plane close to the ground (the foot of a wall, as at the Lilium's base)
@@ -247,7 +243,7 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches,
     });
     std::vector<std::string> named;
     for (size_t i = 0; i < deepest.size() && i < 10; ++i) {
-      named.push_back(deepest[i]->id + " (" + formatted("%.0f", deepest[i]->belowGroundMm) +
+      named.push_back(deepest[i]->id + " (" + fmt::sprintf("%.0f", deepest[i]->belowGroundMm) +
                       " mm)");
     }
     r.warnings.push_back(std::to_string(sunk.size()) +

@@ -62,7 +62,7 @@ struct RunState {
   propagation::LayoutTracing tracing;                     // grid, with propagated members
   std::vector<SolvedPatch> patches;           // patching (ids, corners), grid, simulation
   std::optional<rods::SimulationRun> joined;  // simulation: the joined structure's deployment
-  std::optional<rods::JoinedNetwork> joinedNetwork;  // simulation: what `joined` deployed
+  std::optional<rods::JoinedNetwork> joinedNetwork;          // simulation: what `joined` deployed
   std::optional<fabrication::FabricationResult> fabricated;  // fabrication (the model's supports)
 };
 

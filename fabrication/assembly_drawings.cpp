@@ -3,6 +3,7 @@
 #include "fabrication/pdf_pages.hpp"
 
 #include <cairo.h>
+#include <fmt/format.h>
 #include <fmt/printf.h>
 
 #include <algorithm>
@@ -273,8 +274,7 @@ std::vector<AssemblyPatch> assemblyPatches(const std::vector<FabricationPatch>& 
     for (size_t k = 0; k < g.connections.size(); ++k) {
       const GridConnection& c = g.connections[k];
       AssemblyConnection ac;
-      ac.id = "P" + std::to_string(patch.patchId) + "-C" + std::to_string(k / nv) + "-" +
-              std::to_string(k % nv);
+      ac.id = fmt::format("P{}-C{}-{}", patch.patchId, k / nv, k % nv);
       ac.planar = c.planar;
       ac.spatial = c.spatial;
       auto along = [](const GridMember& m, double l) -> Eigen::Vector2d {
@@ -329,9 +329,10 @@ std::vector<int> assemblyOrder(const std::vector<AssemblyPatch>& patches,
         placed.insert(q);
         queue.push_back(q);
         if (reasons) {
-          reasons->push_back("P" + std::to_string(q) + " after P" + std::to_string(p) +
-                             ": it shares a side with P" + std::to_string(p) +
-                             ", whose lamella on that side is already standing to bolt to");
+          reasons->push_back(
+              fmt::format("P{} after P{}: it shares a side with P{}, whose lamella "
+                          "on that side is already standing to bolt to",
+                          q, p, p));
         }
       }
     }

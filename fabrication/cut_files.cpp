@@ -43,8 +43,15 @@ std::string zipArchive(const std::vector<std::pair<std::string, std::string>>& f
   }
   for (const auto& [name, text] : files) {
     zip_source_t* entry = zip_source_buffer(archive, text.data(), text.size(), 0);
-    if (!entry || zip_file_add(archive, name.c_str(), entry, ZIP_FL_ENC_UTF_8) < 0) {
-      if (entry) zip_source_free(entry);
+    const zip_int64_t index =
+        entry ? zip_file_add(archive, name.c_str(), entry, ZIP_FL_ENC_UTF_8) : -1;
+    // Deflate level 1: the DXF and SVG text of a large roof is tens of MB, and level 1 costs a
+    // fraction of the default's time for a few per cent more bytes; PDFs are deflated already.
+    const bool pdf = name.size() >= 4 && name.compare(name.size() - 4, 4, ".pdf") == 0;
+    if (index < 0 ||
+        zip_set_file_compression(archive, static_cast<zip_uint64_t>(index),
+                                 pdf ? ZIP_CM_STORE : ZIP_CM_DEFLATE, pdf ? 0 : 1) < 0) {
+      if (entry && index < 0) zip_source_free(entry);
       zip_error_set(&error, zip_error_code_zip(zip_get_error(archive)), 0);
       zip_discard(archive);
       zip_source_free(buffer);

@@ -1,21 +1,71 @@
 #include "fabrication/dxf_writer.hpp"
 
 #include "core/errors.hpp"
-#include "core/io/atomic_file.hpp"
 #include "fabrication/stroke_text.hpp"
 
 #include <dl_dxf.h>
 #include <dl_writer_ascii.h>
 
-#include <filesystem>
-#include <fstream>
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 namespace egg::fabrication {
 namespace {
+
+// dxflib's DL_WriterA writes to a named file and flushes after every real: ~20,000 write calls
+// of 30 bytes per Great Court sheet, through a temporary file that then has to be read back. This
+// writer keeps the text in memory instead (no temporary file at all), in the same ASCII layout:
+// the group code right-aligned in three columns on its own line, the value on the next. DL_Dxf
+// takes a DL_WriterA&, and the group-value functions are virtual in dxflib's DL_Writer, so
+// overriding them here catches every line dxflib writes. The base class is constructed with an
+// empty file name, which opens nothing (its stream stays closed and unused).
+class MemoryDxfWriter final : public DL_WriterA {
+ public:
+  explicit MemoryDxfWriter(DL_Codes::version version) : DL_WriterA("", version) {
+    text_.reserve(1 << 20);
+  }
+  void dxfReal(int gc, double value) const override {
+    // Shortest round-trip decimal in fixed notation (CAM readers do not all take exponents),
+    // locale-independent, with a decimal point always.
+    char buffer[400];
+    auto [end, ec] =
+        std::to_chars(buffer, buffer + sizeof buffer - 2, value, std::chars_format::fixed);
+    if (ec != std::errc()) throw WriteError("a DXF number out of range");
+    if (std::find(buffer, end, '.') == end) {
+      *end++ = '.';
+      *end++ = '0';
+    }
+    line(gc, std::string_view(buffer, static_cast<size_t>(end - buffer)));
+  }
+  void dxfInt(int gc, int value) const override { line(gc, std::to_string(value)); }
+  void dxfHex(int gc, int value) const override {
+    char buffer[16];
+    std::snprintf(buffer, sizeof buffer, "%X", static_cast<unsigned>(value));
+    line(gc, buffer);
+  }
+  void dxfString(int gc, const char* value) const override { line(gc, value ? value : ""); }
+  void dxfString(int gc, const std::string& value) const override { line(gc, value); }
+  std::string take() { return std::move(text_); }
+
+ private:
+  void line(int gc, std::string_view value) const {
+    if (gc < 10)
+      text_ += "  ";
+    else if (gc < 100)
+      text_ += ' ';
+    text_ += std::to_string(gc);
+    text_ += '\n';
+    text_ += value;
+    text_ += '\n';
+  }
+  mutable std::string text_;
+};
 
 DL_Attributes attributesOf(Layer layer) {
   // Colour and line type BYLAYER (256): the layer decides, as CAM software expects.
@@ -116,15 +166,13 @@ std::string withObjectOwners(const std::string& text) {
 
 std::string toDxf(const Drawing& d, DxfVersion version) {
   const bool r12 = version == DxfVersion::R12;
-  // dxflib writes only to a named file: write into a private temporary file and read it back, so
-  // that the caller places the text atomically (core/io/atomic_file.hpp).
-  const auto tmp =
-      std::filesystem::temp_directory_path() / ("egg_dxf_" + temporarySuffix() + ".dxf");
+  DL_Dxf dxf;
+  const DL_Codes::version dxfVersion = r12 ? DL_Codes::AC1009 : DL_Codes::AC1015;
+  // DL_Dxf keeps the version its entity writers follow private, set only by out(): an empty file
+  // name sets it and opens nothing (out() returns null when the file does not open).
+  if (dxf.out("", dxfVersion) != nullptr) throw WriteError("dxflib opened a file with no name");
+  auto dw = std::make_unique<MemoryDxfWriter>(dxfVersion);
   {
-    DL_Dxf dxf;
-    std::unique_ptr<DL_WriterA> dw(
-        dxf.out(tmp.string().c_str(), r12 ? DL_Codes::AC1009 : DL_Codes::AC1015));
-    if (!dw) throw WriteError("cannot write a temporary DXF file " + tmp.string());
     dxf.writeHeader(*dw);
     if (!r12) {  // R12 knows neither; its readers take the numbers as they are (millimetres)
       dw->dxfString(9, "$INSUNITS");
@@ -190,15 +238,9 @@ std::string toDxf(const Drawing& d, DxfVersion version) {
       dxf.writeObjectsEnd(*dw);
     }
     dw->dxfEOF();
-    dw->close();
   }
-  std::ifstream in(tmp, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  std::error_code ignored;
-  std::filesystem::remove(tmp, ignored);
-  if (!in) throw WriteError("cannot read back the temporary DXF file " + tmp.string());
-  return r12 ? text.str() : withObjectOwners(text.str());
+  std::string text = dw->take();
+  return r12 ? text : withObjectOwners(text);
 }
 
 }  // namespace egg::fabrication

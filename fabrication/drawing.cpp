@@ -4,6 +4,7 @@
 #include "fabrication/stroke_text.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <sstream>
 
@@ -56,10 +57,14 @@ std::vector<Eigen::Vector2d> slotCorners(const DrawSlot& slot) {
 
 namespace {
 
+// "%.4f" (0.1 µm), through std::to_chars: the same digits, locale-free, several times faster
+// than snprintf (a Yas sheet set has millions of coordinates).
 std::string number(double x) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.4f", x);
-  std::string s(buffer);
+  char buffer[400];
+  const auto [end, ec] =
+      std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::fixed, 4);
+  if (ec != std::errc()) return "0.0000";  // beyond 1e396: no coordinate of a drawing
+  std::string s(buffer, end);
   if (s == "-0.0000") s = "0.0000";
   return s;
 }

@@ -614,7 +614,9 @@ std::vector<SceneSection> makeSections() {
         integer("buckling_modes", EGG_AT(loads.bucklingModes), 0, 20,
                 "linear buckling factors of the governing case (0: no buckling step)"),
         number("ccx_time_limit_s", EGG_AT(loads.ccxTimeLimitS), 1.0, 1e5,
-               "each ccx run is stopped after this")},
+               "each ccx run is stopped after this"),
+        integer("max_fe_elements", EGG_AT(loads.maxFeElements), 1, 10000000,
+                "beam elements above which the FE decks are written to fem/ but ccx is not run")},
        checkLoads});
   return sections;
 }

@@ -6,8 +6,10 @@
 #include "verification/structural_check.hpp"
 
 #include <fmt/core.h>
+#include <tbb/task_arena.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace egg::pipeline {
@@ -159,16 +161,26 @@ void verificationStage(RunState& state) {
     check.planAreaM2 = planArea(state.surface->mesh);
     check.bucklingModes = scene.loads.bucklingModes;
     check.ccx.timeLimitS = scene.loads.ccxTimeLimitS;
+    check.ccx.threads = std::max(1, tbb::this_task_arena::max_concurrency());
+    check.maxElements = scene.loads.maxFeElements;
     state.progress("verification: ccx", 0.93);
     const fs::path folder = state.staging / "fem";
     const verification::CheckResult r = verification::runCheck(model, folder, check);
     removeScratch(folder);
-    const verification::SagComparison sag = verification::compareSag(der, r.mesh, r.cases[0]);
     section["ccx_version"] = r.ccxVersion;
     section["model_file"] = "fem/model.inp";
     section["model"] = {{"nodes", r.mesh.nodes.size()},      {"elements", r.mesh.elements.size()},
                         {"lamellas", model.lamellas.size()}, {"bolts", model.bolts.size()},
                         {"supports", model.supports.size()}, {"plan_area_m2", check.planAreaM2}};
+    section["solved"] = r.solved;
+    if (!r.solved) {
+      // Not a failure: the model is there for the engineer; the run says plainly it is unsolved.
+      section["not_solved_reason"] = r.notSolvedReason;
+      state.report.warn("verification: not solved: " + r.notSolvedReason);
+      section["seconds"] = watch.seconds();
+      return;
+    }
+    const verification::SagComparison sag = verification::compareSag(der, r.mesh, r.cases[0]);
     json cases = json::array();
     for (const auto& c : r.cases) cases.push_back(caseJson(c));
     section["cases"] = cases;

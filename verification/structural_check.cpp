@@ -203,6 +203,25 @@ CheckResult runCheck(const FeModel& model, const fs::path& folder, const CheckOp
   fs::create_directories(folder, ec);
   if (ec) throw WriteError("cannot create " + folder.string() + ": " + ec.message());
   writeText(folder / "model.inp", modelInp(model, out.mesh));
+  const int elements = static_cast<int>(out.mesh.elements.size());
+  if (options.maxElements > 0 && elements > options.maxElements) {
+    for (const LoadCase& c : cases)
+      writeText(folder / (c.name + ".inp"),
+                caseInp("model.inp", nodalLoads(model, out.mesh, c, options.planAreaM2)));
+    if (options.bucklingModes > 0)
+      writeText(
+          folder / "buckle.inp",
+          buckleInp("model.inp", nodalLoads(model, out.mesh, cases.front(), options.planAreaM2),
+                    options.bucklingModes));
+    out.solved = false;
+    out.notSolvedReason = fmt::format(
+        "the FE model has {} beam elements, above the {} that ccx is run on here "
+        "(loads.max_fe_elements); its decks are written: run `ccx -i {}` (and each other case, "
+        "buckle) in the fem folder, or raise the limit",
+        elements, options.maxElements, cases.front().name);
+    out.seconds = watch.seconds();
+    return out;
+  }
   const Deployment deployment = deploymentOf(model);
   std::vector<std::vector<Eigen::Vector3d>> caseLoads;
   for (const LoadCase& c : cases) {

@@ -4,6 +4,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -23,6 +24,7 @@ ChildOutcome runChild(const std::function<int()>& body, double timeLimitS,
   ChildOutcome out;
   std::fflush(nullptr);
   const Stopwatch watch;
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) {
     out.output = "fork failed";
@@ -31,6 +33,12 @@ ChildOutcome runChild(const std::function<int()>& body, double timeLimitS,
   }
   if (pid == 0) {
     setpgid(0, 0);  // own group: a timeout kills the child and anything it started
+    // Its own group also keeps a terminal's Ctrl-C from it, so it must not outlive us: the kernel
+    // kills it when the thread that forked it ends (egg killed, interrupted or crashed; runChild
+    // is called from the thread that runs the stage, which lives as long as the run). A parent
+    // that died before this line is caught by the getppid check.
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(125);
     const int fd = open(logFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       dup2(fd, 1);

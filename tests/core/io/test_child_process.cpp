@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -74,6 +75,45 @@ TEST(ChildProcess, ACrashIsItsSignalAndTheMemoryIsTheChilds) {
       10.0, LogFile("mem"));
   EXPECT_EQ(big.exitCode, 0);
   EXPECT_GT(big.peakRssMb, 190.0);
+}
+
+// egg killed while a child runs (ccx, Node.js): the child goes with it, not on for ever in its own
+// process group. A middle process plays egg: it starts a hanging child through runChild, which
+// writes its pid to a pipe; the middle process is then killed with SIGKILL.
+TEST(ChildProcess, AChildDoesNotOutliveAKilledParent) {
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  const pid_t middle = ::fork();
+  ASSERT_GE(middle, 0);
+  if (middle == 0) {
+    ::close(fds[0]);
+    const int out = fds[1];
+    runChild(
+        [out] {
+          const pid_t me = ::getpid();
+          if (::write(out, &me, sizeof me) != sizeof me) return 1;
+          for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+          return 0;
+        },
+        60.0, LogFile("orphan"));
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  pid_t child = 0;
+  ASSERT_EQ(::read(fds[0], &child, sizeof child), static_cast<ssize_t>(sizeof child));
+  ::close(fds[0]);
+  ASSERT_GT(child, 0);
+  EXPECT_EQ(::kill(child, 0), 0);  // running
+  ::kill(middle, SIGKILL);
+  int status = 0;
+  ::waitpid(middle, &status, 0);
+  bool gone = false;
+  for (int i = 0; i < 200 && !gone; ++i) {  // up to 2 s; it is a zombie of init at most briefly
+    gone = ::kill(child, 0) != 0;
+    if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_TRUE(gone) << "child " << child << " outlived its killed parent";
+  if (!gone) ::kill(child, SIGKILL);
 }
 
 }  // namespace

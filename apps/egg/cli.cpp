@@ -33,6 +33,7 @@ int runCli(int argc, char** argv) {
   registerPatchingBench(*bench, action);
   registerPipelineBench(*bench, action);
   registerSimBench(*bench, action);
+  registerFemBench(*bench, action);
 
   try {
     app.parse(argc, argv);

@@ -27,6 +27,7 @@ void registerGeodesicCommand(CLI::App& parent,
                              Action& action);  // geodesic_commands.cpp (egg geodesic)
 void registerGeodesicBench(CLI::App& bench, Action& action);  // apps/bench/geodesic_bench.cpp
 void registerSimBench(CLI::App& bench, Action& action);       // sim_commands.cpp (egg bench sim)
+void registerFemBench(CLI::App& bench, Action& action);       // apps/bench/fem_bench.cpp
 void registerGridBench(CLI::App& bench, Action& action);      // grid_commands.cpp (egg bench grid)
 void registerLayoutBench(CLI::App& bench, Action& action);    // layout_bench.cpp (egg bench layout)
 void registerPatchingBench(CLI::App& bench,

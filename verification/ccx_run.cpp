@@ -54,13 +54,14 @@ ChildOutcome execCcx(const fs::path& ccx, const fs::path& folder,
 
 }  // namespace
 
-std::string ccxVersion() {
+std::string ccxVersion(const fs::path& folder) {
   const fs::path ccx = findCcx();
   if (ccx.empty()) return {};
-  const fs::path log = fs::temp_directory_path() / fmt::format("egg_ccx_version_{}.log", getpid());
+  // In the caller's own folder: a log at a predictable name in $TMPDIR could be a planted link.
+  const fs::path log = folder / "ccx_version.log";
   CcxOptions options;
   options.timeLimitS = 20.0;
-  const ChildOutcome out = execCcx(ccx, fs::temp_directory_path(), {"-v"}, options, log);
+  const ChildOutcome out = execCcx(ccx, fs::absolute(folder), {"-v"}, options, log);
   std::error_code ignored;
   fs::remove(log, ignored);
   std::smatch m;

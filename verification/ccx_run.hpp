@@ -14,8 +14,8 @@ namespace egg::verification {
 
 // The `ccx` on PATH, or empty.
 std::filesystem::path findCcx();
-// "2.20" from `ccx -v`; empty when there is no ccx.
-std::string ccxVersion();
+// "2.20" from `ccx -v` (its output logged in `folder`, then removed); empty when there is no ccx.
+std::string ccxVersion(const std::filesystem::path& folder);
 
 struct CcxOptions {
   double timeLimitS = 600.0;

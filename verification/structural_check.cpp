@@ -183,7 +183,10 @@ CaseResult readCase(const FeModel& model, const FeMesh& mesh, const fs::path& fo
 CheckResult runCheck(const FeModel& model, const fs::path& folder, const CheckOptions& options) {
   const Stopwatch watch;
   CheckResult out;
-  out.ccxVersion = ccxVersion();
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) throw WriteError("cannot create " + folder.string() + ": " + ec.message());
+  out.ccxVersion = ccxVersion(folder);
   if (out.ccxVersion.empty()) throw SolverFailure("ccx (CalculiX) is not installed");
   out.mesh = buildMesh(model);
   std::vector<LoadCase> cases = options.cases;
@@ -199,9 +202,6 @@ CheckResult runCheck(const FeModel& model, const fs::path& folder, const CheckOp
       throw InvalidInput("load case name \"" + c.name +
                          "\": letters, digits and underscores, not model/buckle");
   }
-  std::error_code ec;
-  fs::create_directories(folder, ec);
-  if (ec) throw WriteError("cannot create " + folder.string() + ": " + ec.message());
   writeText(folder / "model.inp", modelInp(model, out.mesh));
   const int elements = static_cast<int>(out.mesh.elements.size());
   if (options.maxElements > 0 && elements > options.maxElements) {

@@ -4,6 +4,7 @@
 
 #include <fmt/core.h>
 
+#include <cstdio>
 #include <exception>
 #include <iostream>
 
@@ -44,7 +45,15 @@ int runCli(int argc, char** argv) {
   }
   if (!action) return kExitBadInput;
   try {
-    return action();
+    const int code = action();
+    // A lost standard output (a full disk, /dev/full, a pipe closed early) is a failed run, never
+    // success: the JSON or table a script reads from it is gone (issue 40).
+    std::cout.flush();
+    if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      std::cerr << "egg: cannot write to standard output\n";
+      return code == kExitOk ? kExitFailure : code;
+    }
+    return code;
   } catch (const InvalidInput& e) {
     std::cerr << "egg: invalid input: " << e.what() << "\n";
     return kExitBadInput;

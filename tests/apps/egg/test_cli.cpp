@@ -1,6 +1,7 @@
 // Drives the `egg` program through runCli, as a user would from the shell: exit codes,
 // messages, and the promise that bad input leaves no partial output folder.
 #include "apps/egg/commands.hpp"
+#include "core/io/child_process.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -33,6 +34,22 @@ Outcome runEgg(std::vector<std::string> args) {
   const int code = runCli(static_cast<int>(argv.size()), argv.data());
   Outcome o{code, testing::internal::GetCapturedStdout(), testing::internal::GetCapturedStderr()};
   return o;
+}
+
+// Standard output on a full device: the run fails and says so (a script would read nothing).
+TEST(CliOutput, AFullStandardOutputIsAFailureNotSuccess) {
+  const fs::path log = fs::temp_directory_path() / ("egg_cli_full_" + std::to_string(::getpid()));
+  const ChildOutcome o = runChild(
+      [] {
+        if (!std::freopen("/dev/full", "w", stdout)) return 99;
+        std::string a = "egg", b = "scene-reference";
+        char* argv[] = {a.data(), b.data()};
+        return runCli(2, argv);
+      },
+      60.0, log);
+  fs::remove(log);
+  EXPECT_EQ(o.exitCode, kExitFailure) << o.output;
+  EXPECT_NE(o.output.find("cannot write to standard output"), std::string::npos) << o.output;
 }
 
 class Cli : public ::testing::Test {

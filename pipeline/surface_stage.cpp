@@ -10,11 +10,47 @@
 
 #include <fmt/core.h>
 #include <chrono>
+#include <cmath>
 
 namespace egg::pipeline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// A roof in metres is between half a metre (a test piece) and two kilometres across. Outside that
+// the mesh was almost certainly modelled in other units (issue 39: a millimetre OBJ read as metres
+// is 20 km wide, and patching then fails with a message about patch sizes). The error names the
+// size found and the scale_to_m that brings it nearest a typical roof (50 m).
+void checkPlausibleSize(const std::filesystem::path& file, const TriMesh& mesh, double scaleToM) {
+  constexpr double kSmallestM = 0.5, kLargestM = 2000.0;
+  const double size = boundingBox(mesh).size().maxCoeff();
+  if (size >= kSmallestM && size <= kLargestM) return;
+  struct Unit {
+    double toM;
+    const char* name;
+  };
+  static constexpr Unit kUnits[] = {{0.001, "millimetres"}, {0.01, "centimetres"},
+                                    {0.0254, "inches"},     {0.3048, "feet"},
+                                    {1.0, "metres"},        {1000.0, "kilometres"}};
+  const Unit* best = nullptr;
+  double bestDistance = 0.0;
+  for (const Unit& u : kUnits) {
+    const double scaled = size / scaleToM * u.toM;
+    if (scaled < kSmallestM || scaled > kLargestM) continue;
+    const double distance = std::abs(std::log(scaled / 50.0));
+    if (!best || distance < bestDistance) best = &u, bestDistance = distance;
+  }
+  std::string hint = "no common unit makes it a roof's size: check the model";
+  if (best)
+    hint = fmt::format(
+        "if it was modelled in {}, set \"surface\": {{\"scale_to_m\": {}}} "
+        "(it is then {:.4g} m across)",
+        best->name, best->toM, size / scaleToM * best->toM);
+  throw InvalidInput(fmt::format(
+      "{}: the surface is {:.4g} m across (file coordinates times surface.scale_to_m = {}), not "
+      "the size of a roof in metres ({} m to {} m); {}",
+      file.string(), size, scaleToM, kSmallestM, kLargestM, hint));
+}
 
 LoadedSurface fromFile(const std::filesystem::path& file, double scaleToM, bool keepLargest) {
   const auto start = Clock::now();
@@ -30,6 +66,7 @@ LoadedSurface fromFile(const std::filesystem::path& file, double scaleToM, bool 
   } catch (const InvalidInput& e) {
     throw InvalidInput(file.string() + ": " + e.what());
   }
+  checkPlausibleSize(file, out.mesh, scaleToM);
   out.description = file.string();
   out.warnings = diagnostics.warnings;
   out.seconds = std::chrono::duration<double>(Clock::now() - start).count();

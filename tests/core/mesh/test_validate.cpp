@@ -215,6 +215,34 @@ TEST(Validate, StlStyleSoupIsMergedIntoOneSurface) {
   EXPECT_TRUE(contains(message, "38 duplicate vertices")) << message;
 }
 
+// Exact copies of a vertex are how OBJ and STL store shared corners: merged without a warning.
+// Copies that differ by less than the tolerance are a real defect of the model: merged and
+// reported.
+TEST(Validate, ExactCopiesMergeSilentlyNearCopiesAreReported) {
+  const TriangleSoup shared = grid(3);
+  auto split = [&](double offset) {
+    TriangleSoup soup;
+    for (const auto& tri : shared.triangles) {
+      const int base = static_cast<int>(soup.vertices.size());
+      for (int v : tri) soup.vertices.push_back(shared.vertices[v]);
+      soup.triangles.push_back({base, base + 1, base + 2});
+    }
+    soup.vertices[0] += Eigen::Vector3d(offset, 0.0, 0.0);  // one corner a little off
+    return soup;
+  };
+  MeshRepairDiagnostics exact;
+  const TriMesh a = prepareMesh(split(0.0), {}, exact);
+  EXPECT_EQ(a.n_vertices(), 16u);
+  EXPECT_EQ(exact.mergedVertices, 54 - 16);
+  EXPECT_TRUE(exact.warnings.empty()) << exact.warnings.front();
+  MeshRepairDiagnostics near;
+  const TriMesh b = prepareMesh(split(1e-9), {}, near);
+  EXPECT_EQ(b.n_vertices(), 16u);
+  EXPECT_EQ(near.mergedVertices, 54 - 16);
+  ASSERT_EQ(near.warnings.size(), 1u);
+  EXPECT_TRUE(contains(near.warnings[0], "merged 1 duplicate vertices")) << near.warnings[0];
+}
+
 TEST(Validate, IndexOutOfRangeAndEmptyAreRejected) {
   TriangleSoup soup = grid(1);
   soup.triangles.push_back({0, 2, 9});

@@ -46,6 +46,23 @@ void ProgressLine::finish() {
   lastLength_ = 0;
 }
 
+StageLog::StageLog(std::ostream& out, double heartbeatS)
+    : out_(out), heartbeatS_(heartbeatS), started_(std::chrono::steady_clock::now()) {}
+
+void StageLog::update(double fraction, const std::string& what) {
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  const std::string stage = what.substr(0, what.find(':'));
+  if (stage == stage_ && elapsed - lastLineS_ < heartbeatS_) return;
+  const bool entered = stage != stage_;
+  stage_ = stage;
+  lastLineS_ = elapsed;
+  const double percent = std::isfinite(fraction) ? std::clamp(fraction, 0.0, 1.0) * 100.0 : 0.0;
+  out_ << fmt::format("egg: {:7.1f} s {:3.0f}% {}{}\n", elapsed, percent, what,
+                      entered ? "" : " (still)")
+       << std::flush;
+}
+
 void ProgressLine::clear() {
   if (!drawn_) return;
   std::cerr << '\r' << std::string(lastLength_, ' ') << '\r' << std::flush;

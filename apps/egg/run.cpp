@@ -44,9 +44,14 @@ void registerRunCommand(CLI::App& parent, Action& action) {
       options.outDir = args->out.empty() ? std::filesystem::path("out") / scene.name
                                          : std::filesystem::path(args->out);
       ProgressLine bar(!args->quiet);  // drawn only on a terminal
+      StageLog log(std::cerr);         // elsewhere: a line per stage (and every 15 s in one)
       if (bar.shown())
         options.progress = [&bar](const std::string& stage, double fraction) {
           bar.update(fraction, stage);
+        };
+      else if (!args->quiet)
+        options.progress = [&log](const std::string& stage, double fraction) {
+          log.update(fraction, stage);
         };
       const PipelineResult result = runPipeline(scene, options);
       bar.finish();

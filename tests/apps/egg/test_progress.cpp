@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <pty.h>
 #include <sys/wait.h>
@@ -28,6 +32,27 @@ TEST(Progress, QuietWhenNotATerminal) {
   EXPECT_FALSE(off.shown());
   ProgressLine on(true);
   EXPECT_EQ(on.shown(), ProgressLine::stderrIsTerminal());
+}
+
+// Not on a terminal: a line when a stage starts, none for its sub-steps, and one more when a stage
+// has gone on for the heartbeat interval.
+TEST(Progress, ALogGetsALinePerStageAndAHeartbeat) {
+  std::ostringstream out;
+  StageLog log(out, 0.05);
+  log.update(0.0, "surface: loading");
+  log.update(0.1, "surface: curvature");  // same stage: nothing
+  log.update(0.2, "patching");
+  std::this_thread::sleep_for(std::chrono::milliseconds(80));
+  log.update(0.5, "patching: block 3");  // past the heartbeat: "still"
+  const std::string text = out.str();
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 3u) << text;
+  EXPECT_NE(lines[0].find("  0% surface: loading"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[1].find(" 20% patching"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[2].find(" 50% patching: block 3 (still)"), std::string::npos) << lines[2];
+  EXPECT_EQ(lines[0].rfind("egg: ", 0), 0u);
 }
 
 // On a real terminal (a pseudo-terminal here): update draws "\r<line>", clear wipes it with as

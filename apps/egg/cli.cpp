@@ -3,10 +3,12 @@
 #include "core/errors.hpp"
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <string>
 
 namespace egg::app {
 
@@ -44,6 +46,21 @@ int runCli(int argc, char** argv) {
     return code == 0 ? kExitOk : kExitBadInput;
   }
   if (!action) return kExitBadInput;
+  // With --json a script reads stdout: a failure is a JSON object there too (issue 39), beside
+  // the message on stderr.
+  bool json = false;
+  for (int i = 1; i < argc; ++i) json = json || std::string(argv[i]) == "--json";
+  const auto fail = [json](const char* kind, const std::string& prefix, const std::string& what,
+                           int code) {
+    std::cerr << "egg: " << prefix << what << "\n";
+    if (json)
+      std::cout << nlohmann::json{{"error",
+                                   {{"kind", kind}, {"message", what}, {"exit_code", code}}}}
+                       .dump(2)
+                << "\n"
+                << std::flush;
+    return code;
+  };
   try {
     const int code = action();
     // A lost standard output (a full disk, /dev/full, a pipe closed early) is a failed run, never
@@ -55,23 +72,17 @@ int runCli(int argc, char** argv) {
     }
     return code;
   } catch (const InvalidInput& e) {
-    std::cerr << "egg: invalid input: " << e.what() << "\n";
-    return kExitBadInput;
+    return fail("invalid_input", "invalid input: ", e.what(), kExitBadInput);
   } catch (const WriteError& e) {
-    std::cerr << "egg: cannot write output: " << e.what() << "\n";
-    return kExitFailure;
+    return fail("write_error", "cannot write output: ", e.what(), kExitFailure);
   } catch (const IoError& e) {
-    std::cerr << "egg: " << e.what() << "\n";
-    return kExitBadInput;
+    return fail("io_error", "", e.what(), kExitBadInput);
   } catch (const InfeasiblePatch& e) {
-    std::cerr << "egg: infeasible patch: " << e.what() << "\n";
-    return kExitFailure;
+    return fail("infeasible_patch", "infeasible patch: ", e.what(), kExitFailure);
   } catch (const SolverFailure& e) {
-    std::cerr << "egg: solver failure: " << e.what() << "\n";
-    return kExitFailure;
+    return fail("solver_failure", "solver failure: ", e.what(), kExitFailure);
   } catch (const std::exception& e) {
-    std::cerr << "egg: internal error: " << e.what() << "\n";
-    return kExitFailure;
+    return fail("internal_error", "internal error: ", e.what(), kExitFailure);
   }
 }
 

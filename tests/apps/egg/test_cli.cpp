@@ -86,6 +86,18 @@ TEST_F(Cli, MissingSceneIsBadInputAndWritesNothing) {
   EXPECT_FALSE(fs::exists(root / "out"));
 }
 
+// A script that asked for --json parses the failure from stdout: kind, message, exit code.
+TEST_F(Cli, WithJsonAFailureIsAJsonObjectOnStdout) {
+  const auto o = runEgg(
+      {"run", (root / "nope.json").string(), "--out", (root / "out").string(), "--json", "-q"});
+  EXPECT_EQ(o.code, kExitBadInput);
+  const auto j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j["error"]["kind"], "io_error");
+  EXPECT_EQ(j["error"]["exit_code"], kExitBadInput);
+  EXPECT_NE(j["error"]["message"].get<std::string>().find("nope.json"), std::string::npos);
+  EXPECT_NE(o.err.find("nope.json"), std::string::npos) << o.err;
+}
+
 TEST_F(Cli, BrokenSceneIsBadInputNamingTheFieldAndWritesNothing) {
   const auto scene =
       write("typo.json", R"({"surface": {"sample": "plane"}, "grid": {"alpha": "min"}})");

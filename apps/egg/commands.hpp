@@ -18,8 +18,11 @@ constexpr int kExitBadInput = 2;
 
 using Action = std::function<int()>;
 
-void registerSurfaceCommand(CLI::App& parent, Action& action);         // surface.cpp
-void registerRunCommand(CLI::App& parent, Action& action);             // run.cpp
+void registerSurfaceCommand(CLI::App& parent, Action& action);  // surface.cpp
+void registerRunCommand(CLI::App& parent, Action& action);      // run.cpp
+// The scene `egg run` takes without one: samples/great_court.json in the working folder, else
+// beside the program (build/bin/egg in a source tree, bin/ with share/eggshell installed).
+std::string defaultRunScene();
 void registerSceneReferenceCommand(CLI::App& parent, Action& action);  // scene_reference.cpp
 // `egg bench <kind>`: bench is a group; each benchmark registers under it.
 // (Helpers add their register functions here, one line each, and one call in cli.cpp.)

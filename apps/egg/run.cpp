@@ -13,9 +13,29 @@
 namespace egg::app {
 using namespace egg::pipeline;
 
+namespace {
+constexpr const char* kDefaultScene = "samples/great_court.json";
+}  // namespace
+
+// `egg run` with no scene from any folder (issue 39): the default sample in the working folder,
+// else beside the program (a source build's build/bin/egg, an install's bin/egg with
+// share/eggshell). An explicit scene is always taken as given.
+std::string defaultRunScene() {
+  if (std::filesystem::exists(kDefaultScene)) return kDefaultScene;
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) return kDefaultScene;
+  for (const auto& candidate : {exe.parent_path() / "../.." / kDefaultScene,
+                                exe.parent_path() / "../share/eggshell" / kDefaultScene}) {
+    if (std::filesystem::exists(candidate))
+      return std::filesystem::weakly_canonical(candidate).string();
+  }
+  return kDefaultScene;  // the error then names the path looked for
+}
+
 void registerRunCommand(CLI::App& parent, Action& action) {
   struct Args {
-    std::string scene = "samples/great_court.json";
+    std::string scene;  // empty: defaultScene()
     std::string out;
     bool json = false;
     bool quiet = false;
@@ -35,7 +55,7 @@ void registerRunCommand(CLI::App& parent, Action& action) {
       ->check(CLI::Range(1, kMaxThreads));
   cmd->callback([args, &action] {
     action = [args]() {
-      const Scene scene = loadScene(args->scene);
+      const Scene scene = loadScene(args->scene.empty() ? defaultRunScene() : args->scene);
       std::optional<tbb::global_control> threadLimit;
       if (args->threads > 0)
         threadLimit.emplace(tbb::global_control::max_allowed_parallelism,

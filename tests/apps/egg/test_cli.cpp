@@ -86,6 +86,17 @@ TEST_F(Cli, MissingSceneIsBadInputAndWritesNothing) {
   EXPECT_FALSE(fs::exists(root / "out"));
 }
 
+// `egg run` without a scene works from any folder: the default sample is found beside the program.
+TEST_F(Cli, TheDefaultSceneIsFoundFromAnyFolder) {
+  const fs::path before = fs::current_path();
+  fs::current_path(root);
+  const std::string scene = defaultRunScene();
+  fs::current_path(before);
+  EXPECT_TRUE(fs::path(scene).is_absolute()) << scene;
+  EXPECT_TRUE(fs::exists(scene)) << scene;
+  EXPECT_EQ(fs::path(scene).filename(), "great_court.json");
+}
+
 // A script that asked for --json parses the failure from stdout: kind, message, exit code.
 TEST_F(Cli, WithJsonAFailureIsAJsonObjectOnStdout) {
   const auto o = runEgg(

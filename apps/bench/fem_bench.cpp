@@ -33,10 +33,8 @@ int runFemBench(const FemBenchArgs& args) {
              "nodes", "solved", "stage_s", "ccx_s", "equil_res", "buckle1", "der_fe_mm");
   nlohmann::json rows = nlohmann::json::array();
   bool ok = true;
-  // A folder of this bench's own, unpredictable, never a path it was given.
-  const std::filesystem::path work =
-      std::filesystem::temp_directory_path() /
-      fmt::format("{}bench-fem-{}-{}", temporaryFilePrefix(), ::getpid(), temporarySuffix());
+  // A folder of this bench's own, never a path it was given.
+  const std::filesystem::path work = makePrivateTempFolder("egg-bench-fem");
   for (const std::string& name : args.scenes) {
     pipeline::Scene scene = pipeline::loadScene(pipeline::benchSceneFile(name));
     scene.outputs = {"report", "fem"};
@@ -47,7 +45,7 @@ int runFemBench(const FemBenchArgs& args) {
       pipeline::PipelineOptions options;
       options.outDir = work / "run";
       const pipeline::PipelineResult result = pipeline::runPipeline(scene, options);
-      std::filesystem::remove_all(work);
+      std::filesystem::remove_all(work / "run");
       v = result.report.value("verification", nlohmann::json::object());
       stage.push_back(v.value("seconds", 0.0));
       double c = 0.0;
@@ -77,6 +75,8 @@ int runFemBench(const FemBenchArgs& args) {
                     {"ccx_seconds", median(ccx)},
                     {"verification", v}});
   }
+  std::error_code ignored;  // a folder of its own (makePrivateTempFolder): nothing else in it
+  std::filesystem::remove_all(work, ignored);
   if (args.json) std::cout << rows.dump(2) << "\n";
   return ok ? kExitOk : kExitFailure;
 }

@@ -6,6 +6,7 @@
 #include "apps/bench/bench_stats.hpp"
 #include "apps/egg/commands.hpp"
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/scene.hpp"
 
@@ -34,8 +35,7 @@ int runJoinedSimBench(const JoinedSimBenchArgs& args) {
              "factor_s", "search_s", "analys_s", "rmse_m", "max_m");
   nlohmann::json rows = nlohmann::json::array();
   bool ok = true;
-  const std::filesystem::path work =
-      std::filesystem::temp_directory_path() / fmt::format("egg-bench-joined-{}", ::getpid());
+  const std::filesystem::path work = makePrivateTempFolder("egg-bench-joined");
   for (const std::string& name : args.samples) {
     pipeline::Scene scene = pipeline::loadScene(pipeline::benchSceneFile(name));
     scene.simulation.joinPatches = true;
@@ -50,7 +50,7 @@ int runJoinedSimBench(const JoinedSimBenchArgs& args) {
         pipeline::PipelineOptions options;
         options.outDir = work / "run";  // a folder of this bench's own, never a path it was given
         const pipeline::PipelineResult result = pipeline::runPipeline(scene, options);
-        std::filesystem::remove_all(work);
+        std::filesystem::remove_all(work / "run");
         joined = result.report["simulation"].value("joined", nlohmann::json::object());
         seconds.push_back(joined.value("seconds", 0.0));
       }
@@ -75,6 +75,8 @@ int runJoinedSimBench(const JoinedSimBenchArgs& args) {
                       {"joined", joined}});
     }
   }
+  std::error_code ignored;  // a folder of its own (makePrivateTempFolder): nothing else in it
+  std::filesystem::remove_all(work, ignored);
   if (args.json) std::cout << rows.dump(2) << "\n";
   return ok ? kExitOk : kExitFailure;
 }

@@ -191,8 +191,7 @@ struct StressArgs {
 // The pipeline suite (stress_suite.hpp): each case is `egg run` (or surface + geodesic) in a child.
 bool runPipelineSuite(const StressArgs& args, nlohmann::json& rows) {
   namespace fs = std::filesystem;
-  const fs::path work = fs::temp_directory_path() / fmt::format("egg-stress-{}", ::getpid());
-  fs::create_directories(work);
+  const fs::path work = makePrivateTempFolder("egg-stress");
   const fs::path exe = fs::read_symlink("/proc/self/exe");
   const EggCommand command = [exe](const std::vector<std::string>& a) {
     std::vector<std::string> all{exe.string()};

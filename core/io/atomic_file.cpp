@@ -9,6 +9,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <system_error>
@@ -28,6 +29,17 @@ std::string temporarySuffix() {
 }
 
 std::string temporaryFilePrefix() { return ".egg-tmp-"; }
+
+fs::path makePrivateTempFolder(const std::string& stem) {
+  std::error_code error;
+  const fs::path base = fs::temp_directory_path(error);
+  if (error) throw WriteError("no temporary folder ($TMPDIR): " + error.message());
+  std::string name = (base / (stem + "-XXXXXX")).string();
+  if (::mkdtemp(name.data()) == nullptr)
+    throw WriteError("cannot make a private folder in " + base.string() +
+                     " ($TMPDIR): " + std::strerror(errno));
+  return name;
+}
 
 pid_t leftoverPid(const std::string& name, const std::string& prefix) {
   if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) return -1;

@@ -25,6 +25,12 @@ std::filesystem::path checkedOutputTarget(const std::filesystem::path& path);
 // A random suffix for temporary names (8 characters of [0-9a-z]).
 std::string temporarySuffix();
 
+// A new folder of this process's own in $TMPDIR (mkdtemp: created here, mode 0700, never an
+// existing folder or a planted link), named `stem`-XXXXXX. Throws WriteError naming $TMPDIR when
+// it cannot be made (missing, full, read-only). Benchmarks and the stress suite work in one, so
+// that their cleanup removes nothing but what they made (issue 40).
+std::filesystem::path makePrivateTempFolder(const std::string& stem);
+
 // Temporary files of writeFileAtomically are named `.egg-tmp-PID-SUFFIX` in the target's folder.
 // A kill leaves them behind; the next write into that folder removes those whose process is dead.
 std::string temporaryFilePrefix();  // ".egg-tmp-"

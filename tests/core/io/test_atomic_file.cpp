@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include <chrono>
+#include <cstdlib>
 
 namespace egg {
 namespace {
@@ -168,6 +169,33 @@ TEST(AtomicFile, PortableNamesAndAbbreviatedMessages) {
   EXPECT_LT(abbreviate(huge).size(), 260u);
   EXPECT_NE(abbreviate(huge).find("10000000 characters"), std::string::npos);
   EXPECT_EQ(abbreviate(std::string("a\0b", 3)), "a\\x00b");
+}
+
+// A bench's or the stress suite's working folder: new each time, the process's own (0700), and a
+// clear error when $TMPDIR is unusable, never a predictable path that could already exist.
+TEST(PrivateTempFolder, IsNewOwnedAndFailsClearlyWithoutTmpdir) {
+  const std::filesystem::path a = makePrivateTempFolder("egg-test-private");
+  const std::filesystem::path b = makePrivateTempFolder("egg-test-private");
+  EXPECT_NE(a, b);
+  EXPECT_TRUE(std::filesystem::is_directory(a));
+  EXPECT_EQ(std::filesystem::status(a).permissions() & std::filesystem::perms::all,
+            std::filesystem::perms::owner_all);
+  EXPECT_EQ(a.filename().string().rfind("egg-test-private-", 0), 0u);
+  std::filesystem::remove_all(a);
+  std::filesystem::remove_all(b);
+  const char* old = std::getenv("TMPDIR");
+  const std::string saved = old ? old : "";
+  ::setenv("TMPDIR", "/nonexistent-egg-tmpdir", 1);
+  try {
+    makePrivateTempFolder("egg-test-private");
+    ADD_FAILURE() << "no error without a temporary folder";
+  } catch (const WriteError& e) {
+    EXPECT_NE(std::string(e.what()).find("TMPDIR"), std::string::npos) << e.what();
+  }
+  if (old)
+    ::setenv("TMPDIR", saved.c_str(), 1);
+  else
+    ::unsetenv("TMPDIR");
 }
 
 }  // namespace

@@ -155,11 +155,40 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
   }
 
   const fs::path out = fs::absolute(options.out).lexically_normal();
+  // Paths go into jobs.txt (one job per line) and slurm.sh's #SBATCH lines, which sbatch reads
+  // itself, unquoted: a control character (a newline above all) would split a job or inject a
+  // line there (issue 40). Refused, naming the option.
+  const auto refuseControl = [](const std::string& path, const char* option) {
+    for (unsigned char c : path)
+      if (c < 0x20 || c == 0x7f)
+        throw InvalidInput(
+            fmt::format("{} \"{}\": a path with a control character cannot go "
+                        "into jobs.txt and slurm.sh",
+                        option, abbreviate(path, 80)));
+  };
+  refuseControl(out.string(), "--out");
+  refuseControl(fs::absolute(options.eggBinary).string(), "the egg binary's path");
   std::error_code ec;
   if (fs::exists(out) && !fs::is_directory(out))
     throw InvalidInput(out.string() + ": exists and is not a folder");
   if (fs::is_directory(out) && !fs::is_empty(out) && !options.force)
     throw InvalidInput(out.string() + ": exists and is not empty (--force writes into it)");
+  // --force replaces an earlier sweep's scenes/ only: a scenes/ folder with anything else in it
+  // (the user's own scenes, the base scene among them) is refused before anything is written.
+  if (fs::is_directory(out / "scenes")) {
+    for (const auto& entry : fs::directory_iterator(out / "scenes")) {
+      const std::string name = entry.path().filename().string();
+      const bool variant = entry.is_regular_file() && !entry.is_symlink() && name.size() >= 9 &&
+                           name[0] == 'v' && name.compare(name.size() - 5, 5, ".json") == 0 &&
+                           std::all_of(name.begin() + 1, name.end() - 5,
+                                       [](char c) { return c >= '0' && c <= '9'; });
+      if (!variant)
+        throw InvalidInput(fmt::format(
+            "{}: holds {}, which no sweep wrote; --force replaces only an earlier sweep's "
+            "vNNN.json files there (choose another --out)",
+            (out / "scenes").string(), abbreviate(name, 80)));
+    }
+  }
   // Everything goes to a staging folder beside DIR first: a bad variant writes nothing.
   const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
   fs::create_directories(parent);
@@ -218,7 +247,7 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
       fs::rename(staging, out);
     } else {
       // --force into an existing DIR: only the files this command writes are replaced.
-      fs::remove_all(out / "scenes");
+      fs::remove_all(out / "scenes");  // an earlier sweep's vNNN.json only (checked above)
       for (const char* name : {"scenes", "jobs.txt", "variants.csv", "slurm.sh"})
         fs::rename(staging / name, out / name);
       fs::remove_all(staging);

@@ -87,6 +87,32 @@ TEST(Sweep, ExpandsGridAndZipGroup) {
   fs::remove_all(d);
 }
 
+// Paths in jobs.txt and slurm.sh: a newline would split a job or inject a #SBATCH line; a user's
+// own scenes/ folder is never replaced by --force.
+TEST(Sweep, ControlCharactersInPathsAndForeignScenesAreRefused) {
+  const fs::path d = freshDir("hostile");
+  writeBase(d);
+  std::ofstream(d / "in" / "sweep.json")
+      << R"({"base": "base.json", "parameters": {"lamella.width_m": [0.1, 0.2]}})";
+  try {
+    expandSweep({d / "in" / "sweep.json", d / "out\n#SBATCH --x", "/bin/egg", false});
+    FAIL() << "a newline in --out was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("--out"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(d / "out\n#SBATCH --x"));
+  fs::create_directories(d / "mine" / "scenes");
+  std::ofstream(d / "mine" / "scenes" / "base.json") << "{}";
+  EXPECT_THROW(expandSweep({d / "in" / "sweep.json", d / "mine", "/bin/egg", true}), InvalidInput);
+  EXPECT_TRUE(fs::exists(d / "mine" / "scenes" / "base.json"));
+  EXPECT_FALSE(fs::exists(d / "mine" / "jobs.txt"));
+  // An earlier sweep's own scenes are replaced.
+  expandSweep({d / "in" / "sweep.json", d / "out", "/bin/egg", false});
+  expandSweep({d / "in" / "sweep.json", d / "out", "/bin/egg", true});
+  EXPECT_TRUE(fs::exists(d / "out" / "scenes" / "v002.json"));
+  fs::remove_all(d);
+}
+
 TEST(Sweep, KeyNotInBaseSceneIsNamedAndNothingWritten) {
   const fs::path d = freshDir("badkey");
   writeBase(d);

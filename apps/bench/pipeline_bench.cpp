@@ -5,6 +5,7 @@
 #include "apps/egg/commands.hpp"
 #include "apps/egg/progress.hpp"
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 #include "core/io/xml_text.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/scene.hpp"
@@ -23,6 +24,7 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <sstream>
 
 namespace egg::app {
 using namespace egg::pipeline;
@@ -78,7 +80,8 @@ double number(const nlohmann::json& j, const char* key) {
 std::string csvNumber(double x) { return std::isfinite(x) ? fmt::format("{:.6g}", x) : ""; }
 
 void writeCsv(const std::filesystem::path& file, const std::vector<Row>& rows) {
-  std::ofstream out(file);
+  // Atomically, never through a link or into a FIFO (writeFileAtomically's checks; issue 40).
+  std::ostringstream out;
   out << "scene,edge_factor,edge_length_m,map_proxy_vertices,wall_s,vertices,patches,rmse_m,max_"
          "error_m,joined_rmse_m,"
          "joined_max_error_m,converged,failures,pareto,paper_rmse_m,paper_max_error_m,varied,map_"
@@ -99,7 +102,7 @@ void writeCsv(const std::filesystem::path& file, const std::vector<Row>& rows) {
         << csvNumber(r.thicknessM) << ',' << (known ? std::to_string(paper->second.patches) : "")
         << '\n';
   }
-  if (!out) throw IoError("cannot write " + file.string());
+  writeFileAtomically(file, out.str());
 }
 
 const std::array<const char*, 6> kColours{"#1f77b4", "#d62728", "#2ca02c",
@@ -225,9 +228,7 @@ void writeSvg(const std::filesystem::path& file, const std::vector<Row>& rows) {
       "hover a point for the knob it varies</text>\n",
       h - 8);
   svg += "</svg>\n";
-  std::ofstream out(file);
-  out << svg;
-  if (!out) throw IoError("cannot write " + file.string());
+  writeFileAtomically(file, svg);
 }
 
 std::string variantName(const std::string& scene, const PipelineVariant& v, size_t index) {

@@ -380,6 +380,25 @@ void writeMeshFile(const fs::path& path, const TriangleSoup& soup,
   // The main file last, so it never refers to a companion file (glTF's .bin) that is not there yet.
   std::stable_partition(produced.begin(), produced.end(),
                         [&](const auto& f) { return fs::path(f.first) != target; });
+  // A companion file (glTF's .bin) is a path the user did not name: it may replace only the
+  // companion of an earlier export to the same target (whose text refers to it), never a file of
+  // theirs that happens to share its name (issue 40).
+  for (const auto& [name, bytes] : produced) {
+    const fs::path file(name);
+    if (file == target || !fs::exists(fs::symlink_status(file))) continue;
+    std::string earlier;
+    {
+      std::ifstream in(target, std::ios::binary);
+      std::ostringstream text;
+      if (in) text << in.rdbuf();
+      earlier = text.str();
+    }
+    if (earlier.find(file.filename().string()) == std::string::npos)
+      throw WriteError("cannot write mesh " + quoted(path) + ": its companion file " +
+                       quoted(file) +
+                       " exists and is not an earlier export's (remove it, or export .glb, "
+                       "which is one file)");
+  }
   for (const auto& [name, bytes] : produced) {
     const fs::path file(name);
     if (file.parent_path() != directory)

@@ -250,6 +250,25 @@ TEST(MeshIo, BadFilesAreIoErrorsNamingTheFile) {
   expectIoErrorNaming(dir / "lines.obj", "");
 }
 
+// glTF writes a companion .bin nobody named: it never replaces a file of the user's, only the
+// companion of an earlier export to the same .gltf.
+TEST(MeshIo, AGltfCompanionNeverReplacesAUsersFile) {
+  TempDir dir;
+  const TriangleSoup soup = wavySurface(2);
+  std::ofstream(dir / "x.bin") << "mine";
+  EXPECT_THROW(writeMeshFile(dir / "x.gltf", soup), WriteError);
+  std::ifstream mine(dir / "x.bin");
+  std::string text;
+  std::getline(mine, text);
+  EXPECT_EQ(text, "mine");
+  EXPECT_FALSE(fs::exists(dir / "x.gltf"));
+  fs::remove(dir / "x.bin");
+  writeMeshFile(dir / "x.gltf", soup);
+  writeMeshFile(dir / "x.gltf", soup);  // the earlier export's own companion is replaced
+  EXPECT_TRUE(fs::exists(dir / "x.bin"));
+  EXPECT_EQ(readMeshFile(dir / "x.gltf").triangles.size(), soup.triangles.size());
+}
+
 TEST(MeshIo, WriteErrorsNameTheFileAndLeaveNothing) {
   TempDir dir;
   const TriangleSoup soup = wavySurface(2);

@@ -180,39 +180,59 @@ inline nlohmann::json readSvg(const std::string& svg) {
        ++it) {
     out["circles"].push_back({std::stod((*it)[1]), h - std::stod((*it)[2]), std::stod((*it)[3])});
   }
-  // Single-stroke texts: the text in the path's title, its anchor (y up) and height in its desc.
-  const std::regex text(
-      R"re(<path class="text" d="[^"]*"[^>]*><title>([^<]*)</title><desc>anchor ([-0-9.]+) ([-0-9.]+) height ([-0-9.]+) [a-z]+</desc>)re");
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), text); it != std::sregex_iterator();
-       ++it) {
-    out["texts"].push_back(
-        {std::stod((*it)[2]), std::stod((*it)[3]), std::stod((*it)[4]), (*it)[1].str()});
-  }
-  const std::regex path(R"re(<path d="([^"]*)")re");
+  // Attribute values are found with string searches, not std::regex: libstdc++'s regex recurses
+  // once per character of `[^"]*`, and a label's stroke path is thousands of characters (a stack
+  // overflow under AddressSanitizer's larger frames). attribute(from, prefix) is the value after
+  // the next `prefix` (which ends in the opening quote) and where it ends, or npos.
+  struct Value {
+    size_t begin = std::string::npos, end = std::string::npos;
+  };
+  const auto attribute = [&svg](size_t from, const std::string& prefix) {
+    Value v;
+    const size_t start = svg.find(prefix, from);
+    if (start == std::string::npos) return v;
+    const size_t end = svg.find('"', start + prefix.size());
+    if (end != std::string::npos) v = {start + prefix.size(), end};
+    return v;
+  };
   const std::regex number(R"re(-?[0-9]+\.[0-9]+)re");
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), path); it != std::sregex_iterator();
-       ++it) {
-    // M x y L x y A r r 0 0 0 x y L x y A r r 0 0 0 x y Z: keep the four corners.
+  const auto numbers = [&number](const std::string& d) {
     std::vector<double> v;
-    const std::string d = (*it)[1];
     for (auto n = std::sregex_iterator(d.begin(), d.end(), number); n != std::sregex_iterator();
          ++n)
       v.push_back(std::stod((*n)[0]));
-    if (v.size() < 12) continue;
-    out["slots"].push_back({v[0], h - v[1], v[2], h - v[3], v[6], h - v[7], v[8], h - v[9]});
+    return v;
+  };
+  // Single-stroke texts: the text in the path's title, its anchor (y up) and height in its desc.
+  const std::regex desc(R"re(^anchor ([-0-9.]+) ([-0-9.]+) height ([-0-9.]+) [a-z]+$)re");
+  for (Value v = attribute(0, "<path class=\"text\" d=\""); v.end != std::string::npos;
+       v = attribute(v.end, "<path class=\"text\" d=\"")) {
+    const size_t close = svg.find('>', v.end), title = svg.find("><title>", v.end);
+    const size_t titleEnd = svg.find("</title><desc>", v.end), descEnd = svg.find("</desc>", v.end);
+    if (title != close || titleEnd == std::string::npos || descEnd == std::string::npos) continue;
+    const std::string anchor = svg.substr(titleEnd + 14, descEnd - titleEnd - 14);
+    std::smatch d;
+    if (!std::regex_match(anchor, d, desc)) continue;
+    out["texts"].push_back({std::stod(d[1]), std::stod(d[2]), std::stod(d[3]),
+                            svg.substr(title + 8, titleEnd - title - 8)});
   }
-  const std::regex poly(R"re(<(polygon|polyline) points="([^"]*)")re");
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), poly); it != std::sregex_iterator();
-       ++it) {
-    std::vector<double> v;
-    const std::string d = (*it)[2];
-    int k = 0;
-    for (auto n = std::sregex_iterator(d.begin(), d.end(), number); n != std::sregex_iterator();
-         ++n, ++k) {
-      const double x = std::stod((*n)[0]);
-      v.push_back(k % 2 ? h - x : x);
-    }
-    out["polylines"].push_back(v);
+  for (Value v = attribute(0, "<path d=\""); v.end != std::string::npos;
+       v = attribute(v.end, "<path d=\"")) {
+    // M x y L x y A r r 0 0 0 x y L x y A r r 0 0 0 x y Z: keep the four corners.
+    const std::vector<double> p = numbers(svg.substr(v.begin, v.end - v.begin));
+    if (p.size() < 12) continue;
+    out["slots"].push_back({p[0], h - p[1], p[2], h - p[3], p[6], h - p[7], p[8], h - p[9]});
+  }
+  // Polygons and polylines in document order.
+  for (size_t from = 0;;) {
+    const Value a = attribute(from, "<polygon points=\""),
+                b = attribute(from, "<polyline points=\"");
+    const Value v = a.begin < b.begin ? a : b;
+    if (v.end == std::string::npos) break;
+    from = v.end;
+    std::vector<double> p = numbers(svg.substr(v.begin, v.end - v.begin));
+    for (size_t k = 1; k < p.size(); k += 2) p[k] = h - p[k];
+    out["polylines"].push_back(p);
   }
   return out;
 }

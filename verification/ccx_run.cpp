@@ -34,18 +34,21 @@ namespace {
 ChildOutcome execCcx(const fs::path& ccx, const fs::path& folder,
                      const std::vector<std::string>& args, const CcxOptions& options,
                      const fs::path& log) {
+  // Everything the child needs is built here, in the parent: after the fork only system calls
+  // run. Once RLIMIT_AS is set, an allocation in the child fails (under AddressSanitizer, whose
+  // shadow already exceeds any limit, every mmap does: CI saw "ERROR: Failed to mmap", signal 6).
+  std::vector<char*> argv{const_cast<char*>(ccx.c_str())};
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const std::string threads = std::to_string(options.threads);
+  const rlim_t bytes = static_cast<rlim_t>(options.memoryLimitMb * 1024.0 * 1024.0);
   return runChild(
       [&]() -> int {
         if (chdir(folder.c_str()) != 0) return 126;
-        const rlim_t bytes = static_cast<rlim_t>(options.memoryLimitMb * 1024.0 * 1024.0);
-        const struct rlimit limit { bytes, bytes };
-        setrlimit(RLIMIT_AS, &limit);
-        const std::string threads = std::to_string(options.threads);
         setenv("OMP_NUM_THREADS", threads.c_str(), 1);
         setenv("CCX_NPROC_EQUATION_SOLVER", threads.c_str(), 1);
-        std::vector<char*> argv{const_cast<char*>(ccx.c_str())};
-        for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-        argv.push_back(nullptr);
+        const struct rlimit limit { bytes, bytes };
+        setrlimit(RLIMIT_AS, &limit);
         execv(ccx.c_str(), argv.data());
         return 127;  // exec failed
       },

@@ -18,7 +18,8 @@ struct ChildOutcome {
 
 // Forks; the child sends stdout and stderr to a file, runs `body` and exits with its return code
 // (an escaping exception: code 3 with its message). Killed (with its process group) after
-// timeLimit_s. Never throws for what the child does.
+// timeLimit_s. Never throws for what the child does. A body that limits the child's memory
+// (RLIMIT_AS) before an exec must not allocate after it: build argv in the caller.
 ChildOutcome runChild(const std::function<int()>& body, double timeLimitS,
                       const std::filesystem::path& logFile);
 

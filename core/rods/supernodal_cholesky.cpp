@@ -60,6 +60,150 @@ std::vector<int> fillReducingOrder(const Eigen::SparseMatrix<double>& lower) {
   return position;
 }
 
+// The raw arrays of a factorisation (SupernodalCholesky's members): the numeric loop is a free
+// function so that it can be compiled twice, for AVX2 and for plain x86-64, and picked when the
+// program starts (GCC target_clones). Without FMA the vector code does the same operations in the
+// same order as the scalar one: both give the same factor to the bit (docs/measurements.md, issue
+// 36).
+struct FactorArrays {
+  int count;
+  const int *first, *rowStart, *rows;
+  const long* valueStart;
+  const int* supernodeOf;
+  double* values;
+  int *head, *next, *pointer, *relative, *localRow;
+  double* accumulator;
+};
+
+// sum_k[ii] = sum over t of L_K(p + ii, t) L_K(p + jj + k, t) for rows ii in [from, to) and the
+// C target columns jj + k (sum_k at sums + k * stride), in a fixed order per entry: four source
+// columns per pass, then one at a time (one load and store of a sum for four products).
+template <int C>
+[[gnu::always_inline]] inline void sumColumns(const double* lK, int mK, int wK, int p, int jj,
+                                              int from, int to, double* sums, int stride) {
+  double* const sumA = sums;
+  double* const sumB = sums + (C == 2 ? stride : 0);
+  int t = 0;
+  if (wK >= 4) {
+    const double* s0 = lK + p;
+    const double *s1 = s0 + mK, *s2 = s1 + mK, *s3 = s2 + mK;
+    const double a0 = s0[jj], a1 = s1[jj], a2 = s2[jj], a3 = s3[jj];
+    const double b0 = s0[jj + C - 1], b1 = s1[jj + C - 1], b2 = s2[jj + C - 1], b3 = s3[jj + C - 1];
+    for (int ii = from; ii < to; ++ii) {
+      sumA[ii] = a0 * s0[ii] + a1 * s1[ii] + a2 * s2[ii] + a3 * s3[ii];
+      if constexpr (C == 2) sumB[ii] = b0 * s0[ii] + b1 * s1[ii] + b2 * s2[ii] + b3 * s3[ii];
+    }
+    t = 4;
+  } else {
+    for (int ii = from; ii < to; ++ii) {
+      sumA[ii] = 0.0;
+      if constexpr (C == 2) sumB[ii] = 0.0;
+    }
+  }
+  for (; t + 4 <= wK; t += 4) {
+    const double* s0 = lK + static_cast<long>(t) * mK + p;
+    const double *s1 = s0 + mK, *s2 = s1 + mK, *s3 = s2 + mK;
+    const double a0 = s0[jj], a1 = s1[jj], a2 = s2[jj], a3 = s3[jj];
+    const double b0 = s0[jj + C - 1], b1 = s1[jj + C - 1], b2 = s2[jj + C - 1], b3 = s3[jj + C - 1];
+    for (int ii = from; ii < to; ++ii) {
+      sumA[ii] += a0 * s0[ii] + a1 * s1[ii] + a2 * s2[ii] + a3 * s3[ii];
+      if constexpr (C == 2) sumB[ii] += b0 * s0[ii] + b1 * s1[ii] + b2 * s2[ii] + b3 * s3[ii];
+    }
+  }
+  for (; t < wK; ++t) {
+    const double* source = lK + static_cast<long>(t) * mK + p;
+    const double a = source[jj], b = source[jj + C - 1];
+    for (int ii = from; ii < to; ++ii) {
+      sumA[ii] += a * source[ii];
+      if constexpr (C == 2) sumB[ii] += b * source[ii];
+    }
+  }
+}
+
+// Left-looking over supernodes; false at the first pivot that is not positive.
+__attribute__((target_clones("avx2", "default"))) bool factorSupernodes(const FactorArrays& x) {
+  for (int J = 0; J < x.count; ++J) {
+    const int f = x.first[J], last = x.first[J + 1] - 1, w = x.first[J + 1] - x.first[J];
+    const int* rowsJ = x.rows + x.rowStart[J];
+    const int m = x.rowStart[J + 1] - x.rowStart[J];
+    double* const blockData = x.values + x.valueStart[J];
+    for (int i = 0; i < m; ++i) x.relative[rowsJ[i]] = i;
+    // Updates from every earlier supernode with rows in this one's columns.
+    for (int K = x.head[J]; K != -1;) {
+      const int nextK = x.next[K];
+      const int* rowsK = x.rows + x.rowStart[K];
+      const int mK = x.rowStart[K + 1] - x.rowStart[K], wK = x.first[K + 1] - x.first[K];
+      const double* const lK = x.values + x.valueStart[K];
+      const int p = x.pointer[K];
+      int q = p;
+      while (q < mK && rowsK[q] <= last) ++q;
+      // Subtract L_K(rows p.., :) L_K(rows p..q-1, :)^T from this supernode's columns, column
+      // by column with contiguous inner loops (blocks are too small for a blocked product).
+      const int r = mK - p, c = q - p;
+      for (int ii = 0; ii < r; ++ii) x.localRow[ii] = x.relative[rowsK[p + ii]];
+      // Two target columns per pass share the loads of the source columns (the loop is bound by
+      // loads, not products); the first column's diagonal row goes alone.
+      int jj = 0;
+      for (; jj + 1 < c; jj += 2) {
+        double* const sumA = x.accumulator;
+        double* const sumB = x.accumulator + r;
+        sumColumns<1>(lK, mK, wK, p, jj, jj, jj + 1, sumA, r);
+        sumColumns<2>(lK, mK, wK, p, jj, jj + 1, r, sumA, r);
+        double* columnA = blockData + static_cast<long>(rowsK[p + jj] - f) * m;
+        double* columnB = blockData + static_cast<long>(rowsK[p + jj + 1] - f) * m;
+        columnA[x.localRow[jj]] -= sumA[jj];
+        for (int ii = jj + 1; ii < r; ++ii) {
+          columnA[x.localRow[ii]] -= sumA[ii];
+          columnB[x.localRow[ii]] -= sumB[ii];
+        }
+      }
+      if (jj < c) {
+        double* const sum = x.accumulator;
+        sumColumns<1>(lK, mK, wK, p, jj, jj, r, sum, r);
+        double* column = blockData + static_cast<long>(rowsK[p + jj] - f) * m;
+        for (int ii = jj; ii < r; ++ii) column[x.localRow[ii]] -= sum[ii];
+      }
+      x.pointer[K] = q;
+      if (q < mK) {
+        const int target = x.supernodeOf[rowsK[q]];
+        x.next[K] = x.head[target];
+        x.head[target] = K;
+      }
+      K = nextK;
+    }
+    // Column by column: L(:, j) = (A(:, j) - L(:, 0..j-1) L(j, 0..j-1)^T) / L(j, j).
+    double* a = blockData;
+    for (int j = 0; j < w; ++j) {
+      double* column = a + static_cast<long>(j) * m;
+      int t = 0;
+      for (; t + 4 <= j; t += 4) {
+        const double* p0 = a + static_cast<long>(t) * m;
+        const double *p1 = p0 + m, *p2 = p1 + m, *p3 = p2 + m;
+        const double f0 = p0[j], f1 = p1[j], f2 = p2[j], f3 = p3[j];
+        for (int i = j; i < m; ++i) column[i] -= f0 * p0[i] + f1 * p1[i] + f2 * p2[i] + f3 * p3[i];
+      }
+      for (; t < j; ++t) {
+        const double* previous = a + static_cast<long>(t) * m;
+        const double factor = previous[j];
+        for (int i = j; i < m; ++i) column[i] -= factor * previous[i];
+      }
+      const double pivot = column[j];
+      if (!(pivot > 0.0)) return false;
+      const double root = std::sqrt(pivot);
+      column[j] = root;
+      const double inverse = 1.0 / root;
+      for (int i = j + 1; i < m; ++i) column[i] *= inverse;
+    }
+    if (m > w) {
+      x.pointer[J] = w;
+      const int target = x.supernodeOf[rowsJ[w]];
+      x.next[J] = x.head[target];
+      x.head[target] = J;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower) {
@@ -145,7 +289,7 @@ void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower
   pointer_.assign(count, 0);
   relative_.assign(n_, 0);
   localRow_.assign(n_, 0);
-  accumulator_.assign(n_, 0.0);
+  accumulator_.assign(2 * static_cast<size_t>(n_), 0.0);
 }
 
 bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
@@ -159,95 +303,12 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
   std::fill(values_.begin(), values_.end(), 0.0);
   const double* input = lower.valuePtr();
   for (size_t k = 0; k < slot_.size(); ++k) values_[slot_[k]] += input[k];
-  const int count = supernodeCount();
   std::fill(head_.begin(), head_.end(), -1);
-  using Block = Eigen::Map<Eigen::MatrixXd>;
-  for (int J = 0; J < count; ++J) {
-    const int f = first_[J], last = first_[J + 1] - 1, w = first_[J + 1] - first_[J];
-    const int* rowsJ = rows_.data() + rowStart_[J];
-    const int m = rowStart_[J + 1] - rowStart_[J];
-    Block block(values_.data() + valueStart_[J], m, w);
-    for (int i = 0; i < m; ++i) relative_[rowsJ[i]] = i;
-    // Updates from every earlier supernode with rows in this one's columns.
-    for (int K = head_[J]; K != -1;) {
-      const int nextK = next_[K];
-      const int* rowsK = rows_.data() + rowStart_[K];
-      const int mK = rowStart_[K + 1] - rowStart_[K], wK = first_[K + 1] - first_[K];
-      const Block LK(values_.data() + valueStart_[K], mK, wK);
-      const int p = pointer_[K];
-      int q = p;
-      while (q < mK && rowsK[q] <= last) ++q;
-      // Subtract L_K(rows p.., :) L_K(rows p..q-1, :)^T from this supernode's columns, column
-      // by column with contiguous inner loops (blocks are too small for a blocked product).
-      const int r = mK - p, c = q - p;
-      for (int ii = 0; ii < r; ++ii) localRow_[ii] = relative_[rowsK[p + ii]];
-      for (int jj = 0; jj < c; ++jj) {
-        double* column = block.data() + static_cast<long>(rowsK[p + jj] - f) * m;
-        double* sum = accumulator_.data();
-        // Four source columns per pass: one load and store of the sum for four products.
-        int t = 0;
-        if (wK >= 4) {
-          const double* s0 = LK.data() + p;
-          const double *s1 = s0 + mK, *s2 = s1 + mK, *s3 = s2 + mK;
-          const double f0 = s0[jj], f1 = s1[jj], f2 = s2[jj], f3 = s3[jj];
-          for (int ii = jj; ii < r; ++ii)
-            sum[ii] = f0 * s0[ii] + f1 * s1[ii] + f2 * s2[ii] + f3 * s3[ii];
-          t = 4;
-        } else {
-          for (int ii = jj; ii < r; ++ii) sum[ii] = 0.0;
-        }
-        for (; t + 4 <= wK; t += 4) {
-          const double* s0 = LK.data() + static_cast<long>(t) * mK + p;
-          const double *s1 = s0 + mK, *s2 = s1 + mK, *s3 = s2 + mK;
-          const double f0 = s0[jj], f1 = s1[jj], f2 = s2[jj], f3 = s3[jj];
-          for (int ii = jj; ii < r; ++ii)
-            sum[ii] += f0 * s0[ii] + f1 * s1[ii] + f2 * s2[ii] + f3 * s3[ii];
-        }
-        for (; t < wK; ++t) {
-          const double* source = LK.data() + static_cast<long>(t) * mK + p;
-          const double factor = source[jj];
-          for (int ii = jj; ii < r; ++ii) sum[ii] += factor * source[ii];
-        }
-        for (int ii = jj; ii < r; ++ii) column[localRow_[ii]] -= sum[ii];
-      }
-      pointer_[K] = q;
-      if (q < mK) {
-        const int target = supernodeOf_[rowsK[q]];
-        next_[K] = head_[target];
-        head_[target] = K;
-      }
-      K = nextK;
-    }
-    // Column by column: L(:, j) = (A(:, j) - L(:, 0..j-1) L(j, 0..j-1)^T) / L(j, j).
-    double* a = block.data();
-    for (int j = 0; j < w; ++j) {
-      double* column = a + static_cast<long>(j) * m;
-      int t = 0;
-      for (; t + 4 <= j; t += 4) {
-        const double* p0 = a + static_cast<long>(t) * m;
-        const double *p1 = p0 + m, *p2 = p1 + m, *p3 = p2 + m;
-        const double f0 = p0[j], f1 = p1[j], f2 = p2[j], f3 = p3[j];
-        for (int i = j; i < m; ++i) column[i] -= f0 * p0[i] + f1 * p1[i] + f2 * p2[i] + f3 * p3[i];
-      }
-      for (; t < j; ++t) {
-        const double* previous = a + static_cast<long>(t) * m;
-        const double factor = previous[j];
-        for (int i = j; i < m; ++i) column[i] -= factor * previous[i];
-      }
-      const double pivot = column[j];
-      if (!(pivot > 0.0)) return false;
-      const double root = std::sqrt(pivot);
-      column[j] = root;
-      const double inverse = 1.0 / root;
-      for (int i = j + 1; i < m; ++i) column[i] *= inverse;
-    }
-    if (m > w) {
-      pointer_[J] = w;
-      const int target = supernodeOf_[rowsJ[w]];
-      next_[J] = head_[target];
-      head_[target] = J;
-    }
-  }
+  const FactorArrays arrays{
+      supernodeCount(),    first_.data(),    rowStart_.data(),   rows_.data(), valueStart_.data(),
+      supernodeOf_.data(), values_.data(),   head_.data(),       next_.data(), pointer_.data(),
+      relative_.data(),    localRow_.data(), accumulator_.data()};
+  if (!factorSupernodes(arrays)) return false;
   factored_ = true;
   return true;
 }

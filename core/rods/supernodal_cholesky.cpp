@@ -65,6 +65,12 @@ std::vector<int> fillReducingOrder(const Eigen::SparseMatrix<double>& lower) {
 // program starts (GCC target_clones). Without FMA the vector code does the same operations in the
 // same order as the scalar one: both give the same factor to the bit (docs/measurements.md, issue
 // 36).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define EGG_FACTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define EGG_FACTOR_CLONES
+#endif
+
 struct FactorArrays {
   int count;
   const int *first, *rowStart, *rows;
@@ -121,7 +127,7 @@ template <int C>
 }
 
 // Left-looking over supernodes; false at the first pivot that is not positive.
-__attribute__((target_clones("avx2", "default"))) bool factorSupernodes(const FactorArrays& x) {
+EGG_FACTOR_CLONES bool factorSupernodes(const FactorArrays& x) {
   for (int J = 0; J < x.count; ++J) {
     const int f = x.first[J], last = x.first[J + 1] - 1, w = x.first[J + 1] - x.first[J];
     const int* rowsJ = x.rows + x.rowStart[J];

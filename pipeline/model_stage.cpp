@@ -181,48 +181,62 @@ exporter::StructureModel structureModel(const RunState& state) {
   return model;
 }
 
-void writeModelOutputs(RunState& state) {
-  const Stopwatch watch;
-  state.progress("model", 0.96);
-  json& section = state.report.section("model");
-  section = {{"ran", true}};
-  const exporter::StructureModel model = structureModel(state);
-  json files = json::array();
-  auto write = [&](const std::string& name, const std::string& bytes) {
-    writeFileAtomically(state.staging / name, bytes);
-    files.push_back({{"path", name}, {"bytes", bytes.size()}});
-  };
-  section["model_s"] = watch.seconds();  // the deployed state, deviations, supports placed
-  write("model.glb", exporter::glbBytes(model));
-  section["glb_s"] = watch.seconds() - section["model_s"].get<double>();
-  write("model.obj", exporter::modelObj(model));
-  const bool blocks = std::any_of(model.supports.begin(), model.supports.end(),
-                                  [](const auto& s) { return !s.solid.triangles.empty(); });
-  if (blocks) {
-    write("supports.glb", exporter::supportsGlbBytes(model));
-    write("supports.stl", exporter::supportsStl(model));
-  } else {
-    section["supports_skipped"] = model.supportsNote.empty()
-                                      ? "no support block (every support is a bracket or none)"
-                                      : model.supportsNote;
-  }
+ModelOutputs::ModelOutputs(RunState& state) : state_(state) {
+  model_ = structureModel(state);
+  modelS_ = watch_.seconds();  // the deployed state, deviations, supports placed
   if (const std::string why = exporter::rhinoUnavailableReason(); why.empty()) {
-    const Stopwatch rhino;
-    section["rhino_node_s"] = exporter::write3dm(model, state.staging / "model.3dm");
-    files.push_back({{"path", "model.3dm"},
-                     {"bytes", std::filesystem::file_size(state.staging / "model.3dm")}});
-    section["rhino_s"] = rhino.seconds();
+    rhinoWatch_.restart();
+    // std::async: an exception in the writer comes back through get() in finish().
+    rhino_ = std::async(std::launch::async, [this] {
+      return exporter::write3dm(model_, state_.staging / "model.3dm");
+    });
   } else {
-    section["rhino_skipped"] = why;
+    state.report.section("model")["rhino_skipped"] = why;
     state.report.warn("model.3dm not written: " + why);
   }
+}
+
+ModelOutputs::~ModelOutputs() {
+  if (rhino_.valid()) rhino_.wait();
+}
+
+void ModelOutputs::finish() {
+  state_.progress("model", 0.96);
+  json& section = state_.report.section("model");
+  section["ran"] = true;
+  section["model_s"] = modelS_;
+  json files = json::array();
+  auto write = [&](const std::string& name, const std::string& bytes) {
+    writeFileAtomically(state_.staging / name, bytes);
+    files.push_back({{"path", name}, {"bytes", bytes.size()}});
+  };
+  const Stopwatch glb;
+  write("model.glb", exporter::glbBytes(model_));
+  section["glb_s"] = glb.seconds();
+  write("model.obj", exporter::modelObj(model_));
+  const bool blocks = std::any_of(model_.supports.begin(), model_.supports.end(),
+                                  [](const auto& s) { return !s.solid.triangles.empty(); });
+  if (blocks) {
+    write("supports.glb", exporter::supportsGlbBytes(model_));
+    write("supports.stl", exporter::supportsStl(model_));
+  } else {
+    section["supports_skipped"] = model_.supportsNote.empty()
+                                      ? "no support block (every support is a bracket or none)"
+                                      : model_.supportsNote;
+  }
+  if (rhino_.valid()) {
+    section["rhino_node_s"] = rhino_.get();
+    files.push_back({{"path", "model.3dm"},
+                     {"bytes", std::filesystem::file_size(state_.staging / "model.3dm")}});
+    section["rhino_s"] = rhinoWatch_.seconds();  // from its start: it ran beside the rest
+  }
   section.update({{"files", files},
-                  {"centreline_source", exporter::toString(model.source)},
-                  {"lamellas", model.lamellas.size()},
-                  {"bolts", model.bolts.size()},
-                  {"supports", model.supports.size()},
-                  {"max_deviation_m", model.maxDeviationM()},
-                  {"seconds", watch.seconds()}});
+                  {"centreline_source", exporter::toString(model_.source)},
+                  {"lamellas", model_.lamellas.size()},
+                  {"bolts", model_.bolts.size()},
+                  {"supports", model_.supports.size()},
+                  {"max_deviation_m", model_.maxDeviationM()},
+                  {"seconds", watch_.seconds()}});
 }
 
 }  // namespace egg::pipeline

@@ -12,6 +12,8 @@
 
 #include <fmt/core.h>
 
+#include <optional>
+
 namespace egg::pipeline {
 namespace {
 
@@ -31,6 +33,9 @@ std::string skipReason(const Stage& stage, const RunState& state) {
 void writeOutputs(RunState& state) {
   const Scene& scene = state.scene;
   state.progress("writing", 0.9);
+  // model.3dm's writer (a separate process) starts first and runs beside the files below.
+  std::optional<ModelOutputs> model;
+  if (scene.wants("model") && solvedCount(state.patches) > 0) model.emplace(state);
   if (scene.wants("previews") || scene.wants("report"))
     for (const auto& p : state.patches)
       writePatchFiles(p, state.staging / fmt::format("patch_{:03d}", p.id), scene);
@@ -42,7 +47,7 @@ void writeOutputs(RunState& state) {
               state.staging / "plan.svg", plan);
     state.report.section("plan") = plan;
   }
-  if (scene.wants("model") && solvedCount(state.patches) > 0) writeModelOutputs(state);
+  if (model) model->finish();
 }
 
 }  // namespace

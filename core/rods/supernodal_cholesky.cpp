@@ -6,8 +6,13 @@
 #include <cholmod.h>
 #include <Eigen/OrderingMethods>
 
+#include <tbb/task_group.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <functional>
+#include <numeric>
 
 namespace egg::rods {
 namespace {
@@ -71,15 +76,29 @@ std::vector<int> fillReducingOrder(const Eigen::SparseMatrix<double>& lower) {
 #define EGG_FACTOR_CLONES
 #endif
 
+// A subtree with less work than this (multiply-adds, about a millisecond) is factorised by one
+// thread: a task costs more than it would save.
+constexpr double kSerialSubtreeWork = 2e6;
+
 struct FactorArrays {
-  int count;
   const int *first, *rowStart, *rows;
   const long* valueStart;
   const int* supernodeOf;
   double* values;
-  int *head, *next, *pointer, *relative, *localRow;
-  double* accumulator;
+  int *head, *next, *pointer;
 };
+
+// Pushes supernode K onto the list of supernodes that update `target`. Lists of an ancestor
+// receive from subtrees factorised on other threads at the same time; a list is read only once
+// every descendant of its supernode is done.
+inline void pushUpdate(const FactorArrays& x, int target, int K) {
+  std::atomic_ref<int> head(x.head[target]);
+  int old = head.load(std::memory_order_relaxed);
+  do {
+    x.next[K] = old;
+  } while (
+      !head.compare_exchange_weak(old, K, std::memory_order_release, std::memory_order_relaxed));
+}
 
 // sum_k[ii] = sum over t of L_K(p + ii, t) L_K(p + jj + k, t) for rows ii in [from, to) and the
 // C target columns jj + k (sum_k at sums + k * stride), in a fixed order per entry: four source
@@ -126,17 +145,25 @@ template <int C>
   }
 }
 
-// Left-looking over supernodes; false at the first pivot that is not positive.
-EGG_FACTOR_CLONES bool factorSupernodes(const FactorArrays& x) {
-  for (int J = 0; J < x.count; ++J) {
+// Supernode J, left-looking: every update from its descendants, then its own columns; false at
+// the first pivot that is not positive. The updates come in increasing order of their source, so
+// that the factor does not depend on which thread finished first.
+EGG_FACTOR_CLONES bool factorSupernode(const FactorArrays& x, CholeskyWorkspace& work, int J) {
+  {
     const int f = x.first[J], last = x.first[J + 1] - 1, w = x.first[J + 1] - x.first[J];
     const int* rowsJ = x.rows + x.rowStart[J];
     const int m = x.rowStart[J + 1] - x.rowStart[J];
     double* const blockData = x.values + x.valueStart[J];
-    for (int i = 0; i < m; ++i) x.relative[rowsJ[i]] = i;
+    int* const relative = work.relative.data();
+    int* const localRow = work.localRow.data();
+    double* const accumulator = work.accumulator.data();
+    for (int i = 0; i < m; ++i) relative[rowsJ[i]] = i;
     // Updates from every earlier supernode with rows in this one's columns.
-    for (int K = x.head[J]; K != -1;) {
-      const int nextK = x.next[K];
+    std::vector<int>& sources = work.sources;
+    sources.clear();
+    for (int K = x.head[J]; K != -1; K = x.next[K]) sources.push_back(K);
+    std::sort(sources.begin(), sources.end(), std::greater<>());
+    for (const int K : sources) {
       const int* rowsK = x.rows + x.rowStart[K];
       const int mK = x.rowStart[K + 1] - x.rowStart[K], wK = x.first[K + 1] - x.first[K];
       const double* const lK = x.values + x.valueStart[K];
@@ -146,36 +173,31 @@ EGG_FACTOR_CLONES bool factorSupernodes(const FactorArrays& x) {
       // Subtract L_K(rows p.., :) L_K(rows p..q-1, :)^T from this supernode's columns, column
       // by column with contiguous inner loops (blocks are too small for a blocked product).
       const int r = mK - p, c = q - p;
-      for (int ii = 0; ii < r; ++ii) x.localRow[ii] = x.relative[rowsK[p + ii]];
+      for (int ii = 0; ii < r; ++ii) localRow[ii] = relative[rowsK[p + ii]];
       // Two target columns per pass share the loads of the source columns (the loop is bound by
       // loads, not products); the first column's diagonal row goes alone.
       int jj = 0;
       for (; jj + 1 < c; jj += 2) {
-        double* const sumA = x.accumulator;
-        double* const sumB = x.accumulator + r;
+        double* const sumA = accumulator;
+        double* const sumB = accumulator + r;
         sumColumns<1>(lK, mK, wK, p, jj, jj, jj + 1, sumA, r);
         sumColumns<2>(lK, mK, wK, p, jj, jj + 1, r, sumA, r);
         double* columnA = blockData + static_cast<long>(rowsK[p + jj] - f) * m;
         double* columnB = blockData + static_cast<long>(rowsK[p + jj + 1] - f) * m;
-        columnA[x.localRow[jj]] -= sumA[jj];
+        columnA[localRow[jj]] -= sumA[jj];
         for (int ii = jj + 1; ii < r; ++ii) {
-          columnA[x.localRow[ii]] -= sumA[ii];
-          columnB[x.localRow[ii]] -= sumB[ii];
+          columnA[localRow[ii]] -= sumA[ii];
+          columnB[localRow[ii]] -= sumB[ii];
         }
       }
       if (jj < c) {
-        double* const sum = x.accumulator;
+        double* const sum = accumulator;
         sumColumns<1>(lK, mK, wK, p, jj, jj, r, sum, r);
         double* column = blockData + static_cast<long>(rowsK[p + jj] - f) * m;
-        for (int ii = jj; ii < r; ++ii) column[x.localRow[ii]] -= sum[ii];
+        for (int ii = jj; ii < r; ++ii) column[localRow[ii]] -= sum[ii];
       }
       x.pointer[K] = q;
-      if (q < mK) {
-        const int target = x.supernodeOf[rowsK[q]];
-        x.next[K] = x.head[target];
-        x.head[target] = K;
-      }
-      K = nextK;
+      if (q < mK) pushUpdate(x, x.supernodeOf[rowsK[q]], K);
     }
     // Column by column: L(:, j) = (A(:, j) - L(:, 0..j-1) L(j, 0..j-1)^T) / L(j, j).
     double* a = blockData;
@@ -202,9 +224,7 @@ EGG_FACTOR_CLONES bool factorSupernodes(const FactorArrays& x) {
     }
     if (m > w) {
       x.pointer[J] = w;
-      const int target = x.supernodeOf[rowsJ[w]];
-      x.next[J] = x.head[target];
-      x.head[target] = J;
+      pushUpdate(x, x.supernodeOf[rowsJ[w]], J);
     }
   }
   return true;
@@ -293,9 +313,8 @@ void SupernodalCholesky::analyzePattern(const Eigen::SparseMatrix<double>& lower
   head_.assign(count, -1);
   next_.assign(count, -1);
   pointer_.assign(count, 0);
-  relative_.assign(n_, 0);
-  localRow_.assign(n_, 0);
-  accumulator_.assign(2 * static_cast<size_t>(n_), 0.0);
+  analyzeTree();
+  workspaces_ = std::make_shared<Workspaces>(CholeskyWorkspace(n_));
 }
 
 bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
@@ -310,13 +329,76 @@ bool SupernodalCholesky::factorize(const Eigen::SparseMatrix<double>& lower) {
   const double* input = lower.valuePtr();
   for (size_t k = 0; k < slot_.size(); ++k) values_[slot_[k]] += input[k];
   std::fill(head_.begin(), head_.end(), -1);
-  const FactorArrays arrays{
-      supernodeCount(),    first_.data(),    rowStart_.data(),   rows_.data(), valueStart_.data(),
-      supernodeOf_.data(), values_.data(),   head_.data(),       next_.data(), pointer_.data(),
-      relative_.data(),    localRow_.data(), accumulator_.data()};
-  if (!factorSupernodes(arrays)) return false;
+  const FactorArrays arrays{first_.data(),      rowStart_.data(),    rows_.data(),
+                            valueStart_.data(), supernodeOf_.data(), values_.data(),
+                            head_.data(),       next_.data(),        pointer_.data()};
+  std::atomic<bool> failed{false};
+  // A subtree of the elimination tree needs only its own supernodes: disjoint subtrees are
+  // factorised on TBB's threads at the same time, down to subtrees of little work, which one
+  // thread takes in order (postorder: a subtree is a range of supernodes).
+  const std::function<void(int)> subtree = [&](int J) {
+    if (failed.load(std::memory_order_relaxed)) return;
+    if (!postordered_ || work_[J] < kSerialSubtreeWork) {
+      CholeskyWorkspace& work = workspaces_->local();
+      for (int s = subtreeFirst_[J]; s <= J && !failed.load(std::memory_order_relaxed); ++s)
+        if (!factorSupernode(arrays, work, s)) failed = true;
+      return;
+    }
+    tbb::task_group group;
+    for (int k = childStart_[J]; k < childStart_[J + 1]; ++k)
+      group.run([&, child = children_[k]] { subtree(child); });
+    group.wait();
+    if (!failed.load() && !factorSupernode(arrays, workspaces_->local(), J)) failed = true;
+  };
+  if (postordered_) {
+    tbb::task_group group;
+    for (const int root : roots_) group.run([&, root] { subtree(root); });
+    group.wait();
+  } else {
+    CholeskyWorkspace& work = workspaces_->local();
+    for (int J = 0; J < supernodeCount() && !failed; ++J)
+      if (!factorSupernode(arrays, work, J)) failed = true;
+  }
+  if (failed) return false;
   factored_ = true;
   return true;
+}
+
+// The supernodal elimination tree: the parent of a supernode is the one holding its first row
+// below its columns. Its children, the work of each subtree (multiply-adds of its columns' outer
+// products) and whether every subtree is a range of supernodes (CHOLMOD's postorder; the AMD
+// fallback is not postordered and then runs in one thread).
+void SupernodalCholesky::analyzeTree() {
+  const int count = supernodeCount();
+  std::vector<int> parent(count, -1), size(count, 1);
+  childStart_.assign(count + 2, 0);
+  work_.assign(count, 0.0);
+  subtreeFirst_.resize(count);
+  std::iota(subtreeFirst_.begin(), subtreeFirst_.end(), 0);
+  roots_.clear();
+  postordered_ = true;
+  for (int s = 0; s < count; ++s) {
+    const int w = first_[s + 1] - first_[s], m = rowStart_[s + 1] - rowStart_[s];
+    for (int c = 0; c < w; ++c) work_[s] += static_cast<double>(m - c) * (m - c);
+    if (m > w) parent[s] = supernodeOf_[rows_[rowStart_[s] + w]];
+  }
+  for (int s = 0; s < count; ++s) {  // children have smaller numbers: their sums are complete
+    if (parent[s] < 0) {
+      roots_.push_back(s);
+      continue;
+    }
+    work_[parent[s]] += work_[s];
+    size[parent[s]] += size[s];
+    subtreeFirst_[parent[s]] = std::min(subtreeFirst_[parent[s]], subtreeFirst_[s]);
+    ++childStart_[parent[s] + 2];
+  }
+  for (int s = 0; s < count; ++s)
+    postordered_ = postordered_ && s - subtreeFirst_[s] + 1 == size[s];
+  for (int s = 0; s < count; ++s) childStart_[s + 2] += childStart_[s + 1];
+  children_.assign(childStart_[count + 1], 0);
+  for (int s = 0; s < count; ++s)
+    if (parent[s] >= 0) children_[childStart_[parent[s] + 1]++] = s;
+  childStart_.pop_back();
 }
 
 Eigen::VectorXd SupernodalCholesky::solve(const Eigen::VectorXd& b) const {

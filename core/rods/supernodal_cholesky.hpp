@@ -11,9 +11,20 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <tbb/enumerable_thread_specific.h>
+
+#include <memory>
 #include <vector>
 
 namespace egg::rods {
+
+// One thread's scratch space in a factorisation (sized for n unknowns).
+struct CholeskyWorkspace {
+  explicit CholeskyWorkspace(int n = 0)
+      : relative(n), localRow(n), accumulator(2 * static_cast<size_t>(n)) {}
+  std::vector<int> relative, localRow, sources;
+  std::vector<double> accumulator;
+};
 
 class SupernodalCholesky {
  public:
@@ -43,9 +54,15 @@ class SupernodalCholesky {
   std::vector<long> slot_;                        // input nonzero k -> position in values_
   std::vector<int> patternOuter_, patternInner_;  // the analysed pattern (compressed columns)
   bool factored_ = false;                         // the last factorize succeeded
-  // Work space of factorize.
-  std::vector<int> head_, next_, pointer_, relative_, localRow_;
-  std::vector<double> accumulator_;
+  // The supernodal elimination tree (analyzeTree).
+  std::vector<int> childStart_, children_, subtreeFirst_, roots_;
+  std::vector<double> work_;
+  bool postordered_ = false;
+  // Work space of factorize: update lists, and one workspace per thread.
+  std::vector<int> head_, next_, pointer_;
+  using Workspaces = tbb::enumerable_thread_specific<CholeskyWorkspace>;
+  std::shared_ptr<Workspaces> workspaces_;  // shared by copies: each thread uses its own
+  void analyzeTree();
 };
 
 }  // namespace egg::rods

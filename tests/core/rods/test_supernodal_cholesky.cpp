@@ -5,6 +5,7 @@
 #include "core/errors.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 #include <Eigen/SparseCholesky>
 
 #include <random>
@@ -83,6 +84,35 @@ TEST(SupernodalCholesky, RefactorisesNewValuesOnTheSamePattern) {
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(lower.rows(), -1.0, 2.0);
   const Eigen::SparseMatrix<double> full = lower.selfadjointView<Eigen::Lower>();
   EXPECT_LT((full * cholesky.solve(b) - b).norm(), 1e-12 * b.norm());
+}
+
+TEST(SupernodalCholesky, SubtreesOnSeveralThreadsGiveTheOneThreadFactorToTheBit) {
+  // Large enough that subtrees are factorised as separate tasks (over 2e6 multiply-adds).
+  const Eigen::SparseMatrix<double> lower = gridMatrix(40, 36, 6, 0.5, 21);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(lower.rows(), -1.0, 2.0);
+  auto solveWith = [&](int threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    SupernodalCholesky cholesky;
+    cholesky.analyzePattern(lower);
+    EXPECT_TRUE(cholesky.factorize(lower));
+    return Eigen::VectorXd(cholesky.solve(b));
+  };
+  const Eigen::VectorXd one = solveWith(1);
+  for (int repeat = 0; repeat < 3; ++repeat) {
+    const Eigen::VectorXd four = solveWith(4);
+    for (int i = 0; i < one.size(); ++i) ASSERT_EQ(one[i], four[i]) << "unknown " << i;
+  }
+  const Eigen::SparseMatrix<double> full = lower.selfadjointView<Eigen::Lower>();
+  EXPECT_LT((full * one - b).norm(), 1e-12 * b.norm());
+  // A pivot that fails in one subtree fails the whole factorisation, on any thread count.
+  Eigen::SparseMatrix<double> broken = lower;
+  broken.coeffRef(123, 123) = -1.0;
+  for (int threads : {1, 4}) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    SupernodalCholesky cholesky;
+    cholesky.analyzePattern(broken);
+    EXPECT_FALSE(cholesky.factorize(broken)) << threads << " threads";
+  }
 }
 
 TEST(SupernodalCholesky, RejectsIndefiniteMatrices) {

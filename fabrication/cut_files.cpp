@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <functional>
+#include <future>
 #include <numeric>
 #include <utility>
 
@@ -36,7 +37,7 @@ std::string numbered(const std::string& stem, int number, int digits,
 
 // A zip archive (deflated) of (name, content) pairs, built in memory through libzip so that the
 // caller writes it atomically like every other file.
-std::string zipArchive(const std::vector<std::pair<std::string, std::string>>& files) {
+std::string zipArchive(const std::vector<std::pair<std::string, const std::string*>>& files) {
   zip_error_t error;
   zip_error_init(&error);
   zip_source_t* buffer = zip_source_buffer_create(nullptr, 0, 0, &error);
@@ -48,7 +49,7 @@ std::string zipArchive(const std::vector<std::pair<std::string, std::string>>& f
     zipFailed(&error, "open");
   }
   for (const auto& [name, text] : files) {
-    zip_source_t* entry = zip_source_buffer(archive, text.data(), text.size(), 0);
+    zip_source_t* entry = zip_source_buffer(archive, text->data(), text->size(), 0);
     const zip_int64_t index =
         entry ? zip_file_add(archive, name.c_str(), entry, ZIP_FL_ENC_UTF_8) : -1;
     // Deflate level 1: the DXF and SVG text of a large roof is tens of MB, and level 1 costs a
@@ -146,27 +147,37 @@ std::vector<std::string> writeFabricationFiles(const FabricationResult& r,
       },
       tbb::simple_partitioner());  // job by job: a PDF is worth hundreds of sheets
 
-  std::vector<std::string> files;
-  std::vector<std::pair<std::string, std::string>> archived;  // cut.zip: the cut set and the BOM
+  // Then cut.zip is deflated on one thread while the files are written on others (each write
+  // waits for its fsync): on the Yas, 2.0 s of deflating and 1.8 s of writing one after the
+  // other before.
+  std::vector<std::pair<std::string, const std::string*>> archived;  // the cut set and the BOM
   for (size_t k = 0; k < jobs.size(); ++k) {
     const std::string& relative = jobs[k].first;
-    const auto path = dir / relative;
-    std::error_code error;
-    std::filesystem::create_directories(path.parent_path(), error);
-    if (error)
-      throw WriteError("cannot create the folder " + path.parent_path().string() + ": " +
-                       error.message());
-    writeFileAtomically(path, texts[k]);
-    files.push_back(relative);
     if (relative.rfind("cut/", 0) == 0 || relative == "bom.csv")
-      archived.emplace_back(relative, std::move(texts[k]));
-    texts[k] = std::string();
+      archived.emplace_back(relative, &texts[k]);
   }
-  if ((outputs.cutFiles || outputs.stickers) && archived.size() > 1) {
+  std::future<std::string> zip;
+  if ((outputs.cutFiles || outputs.stickers) && archived.size() > 1)
+    zip = std::async(std::launch::async, [&archived] { return zipArchive(archived); });
+  std::vector<std::string> files;
+  try {
+    for (size_t k = 0; k < jobs.size(); ++k) {
+      const auto folder = (dir / jobs[k].first).parent_path();
+      std::error_code error;
+      std::filesystem::create_directories(folder, error);
+      if (error)
+        throw WriteError("cannot create the folder " + folder.string() + ": " + error.message());
+    }
+    tbb::parallel_for(size_t{0}, jobs.size(),
+                      [&](size_t k) { writeFileAtomically(dir / jobs[k].first, texts[k]); });
+  } catch (...) {
+    if (zip.valid()) zip.wait();  // it reads the texts
+    throw;
+  }
+  for (const auto& job : jobs) files.push_back(job.first);
+  if (zip.valid()) {
     // One archive of the whole cut set for the workshop (the Yas writes over a thousand files).
-    const std::string zip = zipArchive(archived);
-    archived.clear();
-    writeFileAtomically(dir / "cut.zip", zip);
+    writeFileAtomically(dir / "cut.zip", zip.get());
     files.push_back("cut.zip");
   }
   return files;

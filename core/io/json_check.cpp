@@ -48,8 +48,14 @@ class ShapeScanner : public json::json_sax_t {
     std::size_t index;
   };
 
+  // A value is complete: an array moves to its next index, an object forgets the key, so that a
+  // syntax error after the value (a truncated file) is not blamed on the key before it.
   bool value() {
-    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+    if (frames_.empty()) return true;
+    if (frames_.back().array)
+      ++frames_.back().index;
+    else
+      frames_.back().key.clear();
     return true;
   }
   bool open(bool array) {
@@ -72,7 +78,7 @@ class ShapeScanner : public json::json_sax_t {
     for (const auto& f : frames_) {
       if (f.array)
         out += "[" + std::to_string(f.index) + "]";
-      else
+      else if (!f.key.empty())
         out += (out.empty() ? "" : ".") + abbreviate(f.key, 80);
       if (out.size() > 160) return out.substr(0, 160) + "...";
     }

@@ -314,6 +314,22 @@ TEST(SceneSafety, MessagesShowAtMostAShortPieceOfTheValue) {
   EXPECT_LT(m2.size(), 1000u);
 }
 
+// A truncated scene file was blamed on the last complete key ("surface: not valid JSON").
+TEST(SceneSafety, ASyntaxErrorAfterACompleteValueNamesNoKey) {
+  const std::string m = messageOf(
+      [&] { parseSceneText(R"({"name": "x", "surface": {"sample": "bump"}, )", "cut.json"); });
+  EXPECT_EQ(m.find("surface"), std::string::npos) << m;
+  EXPECT_NE(m.find("cut.json: not valid JSON"), std::string::npos) << m;
+  // Inside a value, the error still names where it is.
+  const std::string m2 = messageOf([&] {
+    parseSceneText(R"({"surface": {"sample": "bump"}, "grid": {"alpha_bar": 1e999}})", "n.json");
+  });
+  EXPECT_NE(m2.find("grid.alpha_bar"), std::string::npos) << m2;
+  const std::string m3 = messageOf(
+      [&] { parseSceneText(R"({"surface": {"sample": "bump"}, "grid": [1, 2, }})", "a.json"); });
+  EXPECT_NE(m3.find("grid[2]"), std::string::npos) << m3;
+}
+
 // Issue 17: a deeply nested value in a typed field crashed (SIGSEGV) in the message's dump.
 TEST(SceneSafety, DeeplyNestedValuesNeitherCrashNorFlood) {
   const int depth = 70000;

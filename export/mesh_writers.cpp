@@ -34,16 +34,8 @@ std::string modelObj(const StructureModel& model) {
   if (!model.surface.triangles.empty()) objMesh(out, "surface", model.surface, next);
   for (const auto& l : model.lamellas)
     objMesh(out, l.id, ribbonOf(l, model.widthM, model.thicknessM).mesh, next);
-  std::map<int, ModelMesh> bolts;
-  for (const auto& b : model.bolts) {
-    ModelMesh& all = bolts[b.patch];
-    const ModelMesh one = boltSolid(b, model.boltDiameterM, 2.0 * model.thicknessM);
-    const int base = static_cast<int>(all.vertices.size());
-    all.vertices.insert(all.vertices.end(), one.vertices.begin(), one.vertices.end());
-    for (const auto& t : one.triangles)
-      all.triangles.push_back(t + Eigen::Vector3i::Constant(base));
-  }
-  for (const auto& [patch, mesh] : bolts) objMesh(out, fmt::format("P{}-bolts", patch), mesh, next);
+  for (const auto& [patch, mesh] : boltMeshesByPatch(model))
+    objMesh(out, fmt::format("P{}-bolts", patch), mesh, next);
   for (const auto& s : model.supports)
     if (!s.solid.triangles.empty()) objMesh(out, s.id, s.solid, next);
   return out;

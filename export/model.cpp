@@ -165,6 +165,19 @@ ModelMesh boltSolid(const ModelBolt& bolt, double diameterM, double lengthM) {
   return m;
 }
 
+std::map<int, ModelMesh> boltMeshesByPatch(const StructureModel& model) {
+  std::map<int, ModelMesh> bolts;
+  for (const auto& b : model.bolts) {
+    ModelMesh& all = bolts[b.patch];
+    const ModelMesh one = boltSolid(b, model.boltDiameterM, 2.0 * model.thicknessM);
+    const int base = static_cast<int>(all.vertices.size());
+    all.vertices.insert(all.vertices.end(), one.vertices.begin(), one.vertices.end());
+    for (const auto& t : one.triangles)
+      all.triangles.push_back(t + Eigen::Vector3i::Constant(base));
+  }
+  return bolts;
+}
+
 Eigen::Vector3d deviationColour(double deviationM, double maxM) {
   // Viridis at 0, 1/4, 1/2, 3/4, 1 (sRGB), converted to linear RGB for glTF's COLOR_0.
   static const std::array<Eigen::Vector3d, 5> stops{

@@ -6,6 +6,7 @@
 // (mesh_writers.hpp). Nothing here depends on how the grid was designed or deployed.
 #include <Eigen/Core>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,9 @@ Ribbon ribbonOf(const ModelLamella& lamella, double widthM, double thicknessM);
 
 // A bolt as a closed hexagonal prism of `diameterM` through both layers (2 t long).
 ModelMesh boltSolid(const ModelBolt& bolt, double diameterM, double lengthM);
+// Every bolt of the model as its solid (through both layers), merged into one mesh per patch:
+// the OBJ and the 3dm write a patch's bolts as one object. Ordered by patch id.
+std::map<int, ModelMesh> boltMeshesByPatch(const StructureModel& model);
 
 // The colour of a deviation on the model's scale: 0 dark blue through green to yellow at maxM
 // (viridis end points; a model without deviation is all one colour). Linear RGB in 0..1.

@@ -113,18 +113,9 @@ json rhinoDescription(const StructureModel& model) {
                 {"sheet", l.sheet}}}});
     objects.push_back(std::move(o));
   }
-  std::map<int, ModelMesh> bolts;
   std::map<int, int> boltCount;
-  for (const auto& b : model.bolts) {
-    ModelMesh& all = bolts[b.patch];
-    const ModelMesh one = boltSolid(b, model.boltDiameterM, 2.0 * model.thicknessM);
-    const int base = static_cast<int>(all.vertices.size());
-    all.vertices.insert(all.vertices.end(), one.vertices.begin(), one.vertices.end());
-    for (const auto& t : one.triangles)
-      all.triangles.push_back(t + Eigen::Vector3i::Constant(base));
-    ++boltCount[b.patch];
-  }
-  for (const auto& [patch, mesh] : bolts) {
+  for (const auto& b : model.bolts) ++boltCount[b.patch];
+  for (const auto& [patch, mesh] : boltMeshesByPatch(model)) {
     json o = meshJson(mesh);
     o.update({{"name", fmt::format("P{}-bolts", patch)},
               {"layer", fmt::format("P{}", patch)},

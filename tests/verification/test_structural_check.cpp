@@ -94,21 +94,28 @@ TEST(StructuralCheck, CantileverUnderSelfWeightMatchesClosedForm) {
   EXPECT_NEAR(c.maxUtilisation, c.top[0].loadStressPa / 24e6, 1e-12);
 }
 
-TEST(StructuralCheck, SimplySupportedLamellaUnderSelfWeightMatchesClosedForm) {
-  SKIP_WITHOUT_CCX();
-  const double L = 2.0;
-  FeModel model = straightLamella(L);
-  FeSupport hinge;  // bending about the width axis free, torsion held
-  hinge.name = "LEFT";
+// A hinge at s = 0 (bending about the width axis free, torsion held) and a roller at s = L that
+// slides along the lamella (x free): simply supported about the weak axis.
+std::vector<FeSupport> hingeAndRoller(double L, const std::string& hingeName,
+                                      const std::string& rollerName) {
+  FeSupport hinge;
+  hinge.name = hingeName;
   hinge.at = {0, 0.0};
   hinge.kind = SupportKind::Hinge;
   hinge.axis = Eigen::Vector3d::UnitY();
   FeSupport roller;
-  roller.name = "RIGHT";
+  roller.name = rollerName;
   roller.at = {0, L};
   roller.kind = SupportKind::Pin;
   roller.fixed = {false, true, true};
-  model.supports = {hinge, roller};
+  return {hinge, roller};
+}
+
+TEST(StructuralCheck, SimplySupportedLamellaUnderSelfWeightMatchesClosedForm) {
+  SKIP_WITHOUT_CCX();
+  const double L = 2.0;
+  FeModel model = straightLamella(L);
+  model.supports = hingeAndRoller(L, "LEFT", "RIGHT");
   CheckOptions options;
   options.bucklingModes = 0;
   const CheckResult r = runCheck(model, scratch("simply_supported"), options);
@@ -126,17 +133,7 @@ TEST(StructuralCheck, PinnedColumnBucklesAtTheEulerLoad) {
   const double L = 2.0;
   FeModel model = straightLamella(L);
   model.materials[0].densityKgM3 = 0.0;
-  FeSupport hinge;
-  hinge.name = "BASE";
-  hinge.at = {0, 0.0};
-  hinge.kind = SupportKind::Hinge;
-  hinge.axis = Eigen::Vector3d::UnitY();
-  FeSupport top;
-  top.name = "TOP";
-  top.at = {0, L};
-  top.kind = SupportKind::Pin;
-  top.fixed = {false, true, true};
-  model.supports = {hinge, top};
+  model.supports = hingeAndRoller(L, "BASE", "TOP");
   const FeMesh mesh = buildMesh(model);
   const fs::path folder = scratch("euler");
   fs::create_directories(folder);

@@ -37,6 +37,8 @@ struct SceneSection {
 
 // Every section in the order the parser reads them; the first is the top level (name, outputs).
 const std::vector<SceneSection>& sceneSections();
+// Appends lamella, simulation, fabrication, acceptance and loads (scene_fields_structure.cpp).
+void addStructureSections(std::vector<SceneSection>& sections);
 
 // Builders of the common kinds. `member` is a captureless lambda naming where the value lives,
 // EGG_AT(simulation.rods.model.frictionMu) for short. The default is whatever Scene{} holds there.
@@ -46,6 +48,12 @@ namespace field {
 
 template <class Member>
 using ValueOf = std::remove_reference_t<std::invoke_result_t<Member, Scene&>>;
+
+// A field's value for the echo.
+template <class T>
+std::optional<nlohmann::json> some(const T& value) {
+  return nlohmann::json(value);
+}
 
 template <class Member>
 auto writer(Member member) {

@@ -29,6 +29,12 @@ std::string text(const json& value, int digits = 4) {
     return fmt::format("{}", value.get<long long>());
   if (value.is_number()) return fmt::format("{:.{}g}", value.get<double>(), digits);
   if (value.is_string()) return escapeXml(value.get<std::string>());
+  if (value.is_array() &&
+      std::all_of(value.begin(), value.end(), [](const json& v) { return v.is_number(); })) {
+    std::string out;  // a list of numbers (buckling factors): "1.891, 2.259"
+    for (const auto& v : value) out += (out.empty() ? "" : ", ") + text(v, digits);
+    return out.empty() ? "&ndash;" : out;
+  }
   return escapeXml(value.dump());
 }
 
@@ -405,11 +411,60 @@ std::string deployedSection(const std::string& deployedSvg) {
   return out + "<div class=\"figure\">\n" + deployedSvg.substr(start) + "</div>\n";
 }
 
+// The FE check (output "fem"): what ccx found per load case, buckling, the cross-check against
+// the rods, and the figure; or why it was not solved.
+std::string verificationSection(const json& report, const std::string& figureSvg) {
+  const json stage = at(at(report, "stages"), "verification");
+  const json v = at(report, "verification");
+  if (!v.is_object() && !(at(stage, "ran").is_boolean() && !stage["ran"].get<bool>())) return "";
+  std::string out = "<h2 id=\"verification\">Structural check (CalculiX)</h2>\n";
+  if (!v.is_object() || v.empty())
+    return out + "<p class=\"missing\">Not run: " + text(at(stage, "skipped_reason")) + "</p>\n";
+  if (v.contains("failure"))
+    return out + "<p class=\"failures\">Failed: " + text(at(v, "failure")) + "</p>\n";
+  const json model = at(v, "model");
+  out += figures({{"structure", text(at(v, "structure"))},
+                  {"ccx version", text(at(v, "ccx_version"))},
+                  {"model", text(at(v, "model_file")) + ": " + text(at(model, "nodes")) +
+                                " nodes, " + text(at(model, "elements")) + " beam elements"}});
+  if (at(v, "solved").is_boolean() && !v["solved"].get<bool>())
+    return out + "<p class=\"missing\">Not solved: " + text(at(v, "not_solved_reason")) + "</p>\n";
+  out +=
+      "<table class=\"list\"><tr><th>load case</th><th>max displacement m</th><th>reactions / "
+      "load</th><th>equilibrium residual</th><th>max utilisation</th><th>worst lamella</th></tr>\n";
+  for (const auto& c : at(v, "cases")) {
+    const json top = at(c, "top");
+    const std::string worst =
+        top.is_array() && !top.empty() ? text(at(top[0], "lamella")) : std::string("-");
+    out += "<tr><td>" + text(at(c, "name")) + "</td><td>" + text(at(c, "max_displacement_m")) +
+           "</td><td>" + text(at(c, "reaction_ratio"), 8) + "</td><td>" +
+           text(at(c, "equilibrium_residual")) + "</td><td>" + text(at(c, "max_utilisation")) +
+           "</td><td>" + worst + "</td></tr>\n";
+  }
+  out += "</table>\n";
+  const json sag = at(v, "der_vs_fem");
+  out += figures(
+      {{"buckling factors (case " + text(at(v, "buckling_case")) + ")",
+        text(at(v, "buckling_factors"))},
+       {"buckling verdict", text(at(v, "buckling_verdict"))},
+       {"rods vs FE sag under self-weight: RMS / max difference (m)",
+        text(at(sag, "rms_m")) + " / " + text(at(sag, "max_m"))},
+       {"where the two models differ by construction", text(at(sag, "differs_by_construction"))}});
+  const size_t start = figureSvg.find("<svg");
+  if (start == std::string::npos) return out;
+  // Inlined without the namespace the file carries (the page's charts have none).
+  std::string svg = figureSvg.substr(start);
+  if (const size_t ns = svg.find(" xmlns=\"http://www.w3.org/2000/svg\"");
+      ns != std::string::npos && ns < svg.find('>'))
+    svg.erase(ns, 35);
+  return out + "<div class=\"figure\">\n" + svg + "</div>\n";
+}
+
 }  // namespace
 
 std::string reportHtml(const json& report, const std::string& planSvg, const std::string& bomCsv,
                        const std::vector<std::pair<int, std::string>>& planarSvgs,
-                       const std::string& deployedSvg) {
+                       const std::string& deployedSvg, const std::string& verificationSvg) {
   const json scene = at(report, "scene");
   const std::string name =
       at(scene, "name").is_string() ? scene["name"].get<std::string>() : "eggshell run";
@@ -439,7 +494,8 @@ std::string reportHtml(const json& report, const std::string& planSvg, const std
   }
   html += stageTimes(report) + planSection(planSvg) + patchesSection(report) +
           patchGridsSection(planarSvgs) + claddingSection(report) + simulationSection(report) +
-          errorTimeSection(report) + deployedSection(deployedSvg) + fabricationSection(report) +
+          errorTimeSection(report) + deployedSection(deployedSvg) +
+          verificationSection(report, verificationSvg) + fabricationSection(report) +
           bomSection(bomCsv);
   return html + "</body>\n</html>\n";
 }
@@ -482,7 +538,8 @@ std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, co
     if (!text.empty()) planar.emplace_back(id, text);
   }
   const std::string html =
-      reportHtml(report, planSvg, readIfThere("bom.csv"), planar, readIfThere("deployed.svg"));
+      reportHtml(report, planSvg, readIfThere("bom.csv"), planar, readIfThere("deployed.svg"),
+                 readIfThere("fem/verification.svg"));
   writeFileAtomically(runDir / "report.html", html);
   // PNG previews of the same figures (issue 18): the plan wide enough to read, the charts at their
   // size.

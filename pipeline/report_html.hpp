@@ -18,11 +18,13 @@ namespace egg::pipeline {
 // may be empty: that section then says why it is missing). Every text from the report is escaped.
 // `planarSvgs` are (patch id, patch_NNN/planar.svg text), inlined as the planar-grids section;
 // `deployedSvg` the text of deployed.svg (deviation_plan.hpp), inlined after the simulation
-// figures.
+// figures; `verificationSvg` the text of fem/verification.svg (verification_figure.hpp), inlined in
+// the structural check's section.
 std::string reportHtml(const nlohmann::json& report, const std::string& planSvg,
                        const std::string& bomCsv,
                        const std::vector<std::pair<int, std::string>>& planarSvgs = {},
-                       const std::string& deployedSvg = {});
+                       const std::string& deployedSvg = {},
+                       const std::string& verificationSvg = {});
 
 // The figures of the page as stand-alone SVG texts, (id, svg): plan.svg when given, then every
 // chart of `html` (the output of reportHtml), each with the SVG namespace so it renders alone.

@@ -1,8 +1,10 @@
 #include "pipeline/verification_stage.hpp"
 
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 #include "core/materials/materials.hpp"
 #include "core/timing.hpp"
+#include "pipeline/verification_figure.hpp"
 #include "verification/structural_check.hpp"
 
 #include <fmt/core.h>
@@ -207,6 +209,11 @@ void verificationStage(RunState& state) {
                         c.name, c.equilibriumResidual));
     }
     section["max_equilibrium_residual"] = worst;
+    // The figure of report.html's section, also a file beside the decks.
+    std::string figure = verificationSvg(r);
+    figure.insert(4, " xmlns=\"http://www.w3.org/2000/svg\"");
+    writeFileAtomically(folder / "verification.svg", figure);
+    section["figure"] = "fem/verification.svg";
   } catch (const Error& e) {
     section["failure"] = e.what();
     state.failures.push_back(std::string("verification: ") + e.what());

@@ -170,6 +170,7 @@ CaseResult readCase(const FeModel& model, const FeMesh& mesh, const fs::path& fo
     const double u = fm > 0 ? (bend + load) / fm : 0.0;
     if (u >= worst[e.owner].utilisation) worst[e.owner] = {worst[e.owner].lamella, u, bend, load};
   }
+  for (const auto& w : worst) out.lamellaUtilisation.push_back(w.utilisation);
   std::sort(worst.begin(), worst.end(),
             [](const auto& a, const auto& b) { return a.utilisation > b.utilisation; });
   if (!worst.empty()) out.maxUtilisation = worst.front().utilisation;

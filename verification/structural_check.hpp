@@ -46,6 +46,7 @@ struct CaseResult {
   double equilibriumResidual = 0.0;  // |reactions + applied| / |applied|
   double maxUtilisation = 0.0;
   std::vector<LamellaUtilisation> top;         // the ten highest, worst first
+  std::vector<double> lamellaUtilisation;      // per lamella of the model, in its order
   std::vector<Eigen::Vector3d> displacements;  // per mesh node (m)
   double seconds = 0.0;                        // ccx's run
 };

@@ -71,6 +71,14 @@ TEST(VerificationStage, SlowTheJoinedBumpIsSolvedByCcxAndHeldAgainstTheRods) {
   EXPECT_NE(inp.find("J0"), std::string::npos);
   EXPECT_TRUE(fs::exists(run.out / "fem" / "self_weight.frd"));
   EXPECT_TRUE(fs::exists(run.out / "fem" / "buckle.dat"));
+  // The report's section: the figures and the picture (also beside the decks, with its preview).
+  EXPECT_EQ(v["figure"], "fem/verification.svg");
+  EXPECT_NE(text(run.out / "fem" / "verification.svg").find("Buckling mode 1"), std::string::npos);
+  const std::string html = text(run.out / "report.html");
+  EXPECT_NE(html.find("Structural check (CalculiX)"), std::string::npos);
+  EXPECT_NE(html.find("<svg id=\"verification\""), std::string::npos);
+  EXPECT_NE(html.find("EN 1993-1-1"), std::string::npos);
+  EXPECT_TRUE(fs::exists(run.out / "preview" / "verification.png"));
 }
 
 TEST(VerificationStage, AboveTheElementLimitTheDecksAreWrittenAndTheRunSaysUnsolved) {
@@ -97,6 +105,10 @@ TEST(VerificationStage, AboveTheElementLimitTheDecksAreWrittenAndTheRunSaysUnsol
   for (const char* deck : {"model.inp", "self_weight.inp", "buckle.inp"})
     EXPECT_TRUE(fs::exists(run.out / "fem" / deck)) << deck;
   EXPECT_FALSE(fs::exists(run.out / "fem" / "self_weight.frd"));
+  // report.html says so in its section, without a figure.
+  const std::string html = text(run.out / "report.html");
+  EXPECT_NE(html.find("Not solved: "), std::string::npos);
+  EXPECT_FALSE(fs::exists(run.out / "fem" / "verification.svg"));
 }
 
 }  // namespace

@@ -125,6 +125,11 @@ StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::mo
   const fs::path parent = target_.parent_path();
   std::error_code ec;
   fs::create_directories(parent, ec);
+  // A file where the path needs a folder is the user's path, not the machine: bad input (exit 2).
+  if (ec == std::errc::not_a_directory || ec == std::errc::file_exists)
+    throw InvalidInput("output folder " + abbreviate(target_.string()) + ": " +
+                       abbreviate(parent.string()) +
+                       " is not a folder (a file stands where the path needs one)");
   if (ec) throw WriteError(parent.string() + ": cannot create folder: " + ec.message());
   recoverInterruptedRuns();
   if (const std::string problem = runFolderReplaceProblem(target_); !problem.empty())

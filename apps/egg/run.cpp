@@ -47,7 +47,11 @@ void registerRunCommand(CLI::App& parent, Action& action) {
       "Run the whole pipeline on a scene file and write report.json and the requested outputs.");
   cmd->add_option("scene", args->scene, "Scene file (default: samples/great_court.json)");
   cmd->add_option("--out,-o", args->out,
-                  "Run folder (default: out/<scene name>); replaced whole when the run completes");
+                  "Run folder (default: out/<scene name>); replaced whole when the run completes")
+      ->check([](const std::string& v) {
+        return v.empty() ? std::string("an empty path: leave --out out for out/<scene name>")
+                         : std::string();
+      });
   cmd->add_flag("--json", args->json, "Print the report as JSON on stdout");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress on stderr");
   cmd->add_option("-j,--threads", args->threads,

@@ -410,6 +410,21 @@ TEST_F(Cli, AnOutputOntoADeviceIsRefused) {
   EXPECT_TRUE(fs::is_character_file("/dev/null"));
 }
 
+// Issue 40: `--out ""` wrote to ./out/<name>, and --out below a regular file was exit 1 (a write
+// failure) though it is the user's path that cannot be.
+TEST_F(Cli, AnEmptyOutOrOneBelowAFileIsBadInputBeforeAnyWork) {
+  const auto scene = write("s.json", R"({"surface": {"sample": "bump"}, "outputs": ["report"]})");
+  const Outcome empty = runEgg({"run", scene.string(), "--out", "", "--quiet"});
+  EXPECT_EQ(empty.code, kExitBadInput) << empty.err;
+  EXPECT_NE(empty.err.find("--out: an empty path"), std::string::npos) << empty.err;
+  const auto file = write("plain.txt", "the user's");
+  const Outcome below =
+      runEgg({"run", scene.string(), "--out", (file / "run").string(), "--quiet"});
+  EXPECT_EQ(below.code, kExitBadInput) << below.err;
+  EXPECT_NE(below.err.find("is not a folder"), std::string::npos) << below.err;
+  EXPECT_TRUE(fs::is_regular_file(file));
+}
+
 // Issue 17: a folder as the scene and 1e400 in a field were "internal error", exit 1.
 TEST_F(Cli, AFolderAsSceneAndAnOverflowingNumberAreBadInputNamingTheField) {
   fs::create_directories(root / "dir.json");

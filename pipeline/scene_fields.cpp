@@ -136,8 +136,14 @@ void readWorkflow(JsonSection& j, Scene& scene) {
 void readBlockGrid(JsonSection& j, Scene& scene) {
   if (!j.has("block_grid")) return;
   const json& v = j.raw("block_grid");
-  if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer() ||
-      v[0].get<int>() < 1 || v[0].get<int>() > 16 || v[1].get<int>() < 1 || v[1].get<int>() > 16)
+  // Compared as 64-bit integers (get<int> wrapped 4294967297 to 1), an unsigned one as unsigned.
+  const auto count = [](const json& x) {
+    return x.is_number_integer() &&
+           (x.is_number_unsigned() ? x.get<unsigned long long>() <= 16
+                                   : x.get<long long>() >= 1 && x.get<long long>() <= 16) &&
+           x.get<long long>() >= 1;
+  };
+  if (!v.is_array() || v.size() != 2 || !count(v[0]) || !count(v[1]))
     j.fail("block_grid",
            "must be two patch counts [along u, along v], each 1..16, got " + brief(v));
   scene.patching.workflow2.blockGrid = {v[0].get<int>(), v[1].get<int>()};

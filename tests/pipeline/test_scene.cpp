@@ -182,7 +182,9 @@ TEST(Scene, BadValuesAreErrorsNamingTheFieldAndFile) {
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"eta_max": 0.9}})")
                 .find("patching.eta_max"),
             std::string::npos);
-  for (const char* bad : {"[4]", "[0, 2]", "[2, 17]", "[2.5, 2]", "\"4x4\""}) {
+  // Issue 40: 4294967297 and -4294967295 were read as 1 (truncated to int).
+  for (const char* bad : {"[4]", "[0, 2]", "[2, 17]", "[2.5, 2]", "\"4x4\"", "[4294967297, 1]",
+                          "[-4294967295, 1]", "[18446744073709551615, 1]"}) {
     const std::string e = errorOf(
         std::string(R"({"surface": {"sample": "bump"}, "patching": {"block_grid": )") + bad + "}}");
     EXPECT_NE(e.find("patching.block_grid"), std::string::npos) << bad << ": " << e;

@@ -203,6 +203,17 @@ void readPatches(JsonSection& j, Scene& scene) {
         quad[c] = found;
       }
     }
+    // The same corner twice, or a patch given twice (its lamellas and mass counted twice).
+    std::array<int, 4> sorted = quad;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+      j.fail(key, "names one corner twice: a patch needs four distinct corners");
+    for (size_t k = 0; k < out.quads.size(); ++k) {
+      std::array<int, 4> other = out.quads[k];
+      std::sort(other.begin(), other.end());
+      if (other == sorted)
+        j.fail(key, "has the corners of patches[" + std::to_string(k) + "]: a patch given twice");
+    }
     out.patches.push_back(corners);
     out.quads.push_back(quad);
   }

@@ -182,6 +182,16 @@ TEST(Scene, BadValuesAreErrorsNamingTheFieldAndFile) {
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"eta_max": 0.9}})")
                 .find("patching.eta_max"),
             std::string::npos);
+  // Issue 40: a patch given twice (in another corner order) or with a corner twice was accepted.
+  const std::string twice =
+      errorOf(R"({"surface": {"sample": "bump"}, "patching": {"workflow": 1, "patches": [)"
+              R"([[0,0,0],[1,0,0],[1,1,0],[0,1,0]], [[1,0,0],[1,1,0],[0,1,0],[0,0,0]]]}})");
+  EXPECT_NE(twice.find("patching.patches[1]: has the corners of patches[0]"), std::string::npos)
+      << twice;
+  const std::string corner =
+      errorOf(R"({"surface": {"sample": "bump"}, "patching": {"workflow": 1, "corners": )"
+              R"([[0,0,0],[1,0,0],[1,1,0]], "patches": [[0, 1, 2, 1]]}})");
+  EXPECT_NE(corner.find("names one corner twice"), std::string::npos) << corner;
   // Issue 40: 4294967297 and -4294967295 were read as 1 (truncated to int).
   for (const char* bad : {"[4]", "[0, 2]", "[2, 17]", "[2.5, 2]", "\"4x4\"", "[4294967297, 1]",
                           "[-4294967295, 1]", "[18446744073709551615, 1]"}) {

@@ -3,6 +3,8 @@
 #include "core/materials/materials.hpp"
 #include "pipeline/scene_fields.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -33,6 +35,13 @@ void checkFabrication(JsonSection& j, Scene& scene) {
   const fabrication::FabricationOptions& f = scene.fabrication.options;
   if (2.0 * f.marginMm >= std::min(f.sheetMm[0], f.sheetMm[1]))
     j.fail("margin_mm", "leaves no room on the sheet");
+  // The engraving runs along the lamella: a taller text leaves the part (issue 40: 1000 mm was
+  // accepted and engraved off the sheet).
+  const double widthMm = 1000.0 * scene.lamella.widthM;
+  if (f.labelHeightMm && *f.labelHeightMm > widthMm)
+    j.fail("label_height_mm", fmt::format("{:g} mm is taller than the lamella ({:g} mm wide): the "
+                                          "engraving would leave the part",
+                                          *f.labelHeightMm, widthMm));
 }
 
 void readPointLoadConnections(JsonSection& j, Scene& scene) {

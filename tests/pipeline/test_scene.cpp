@@ -182,6 +182,15 @@ TEST(Scene, BadValuesAreErrorsNamingTheFieldAndFile) {
   EXPECT_NE(errorOf(R"({"surface": {"sample": "bump"}, "patching": {"eta_max": 0.9}})")
                 .find("patching.eta_max"),
             std::string::npos);
+  // Issue 40: a label taller than the lamella was engraved off the part.
+  const std::string label =
+      errorOf(R"({"surface": {"sample": "bump"}, "lamella": {"width_m": 0.05}, )"
+              R"("fabrication": {"label_height_mm": 60}})");
+  EXPECT_NE(label.find("fabrication.label_height_mm: 60 mm is taller than the lamella (50 mm"),
+            std::string::npos)
+      << label;
+  EXPECT_NO_THROW(parse(R"({"surface": {"sample": "bump"}, "lamella": {"width_m": 0.05}, )"
+                        R"("fabrication": {"label_height_mm": 50}})"));
   // Issue 40: a patch given twice (in another corner order) or with a corner twice was accepted.
   const std::string twice =
       errorOf(R"({"surface": {"sample": "bump"}, "patching": {"workflow": 1, "patches": [)"

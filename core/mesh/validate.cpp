@@ -512,26 +512,6 @@ bool isError(const MeshIssue& issue, const MeshCheckOptions& options) {
 
 }  // namespace
 
-std::string toString(MeshIssueKind kind) {
-  switch (kind) {
-    case MeshIssueKind::Empty: return "empty";
-    case MeshIssueKind::IndexOutOfRange: return "index_out_of_range";
-    case MeshIssueKind::NonFiniteVertex: return "non_finite_vertex";
-    case MeshIssueKind::RepeatedVertex: return "repeated_vertex";
-    case MeshIssueKind::DuplicateVertices: return "duplicate_vertices";
-    case MeshIssueKind::DuplicateTriangles: return "duplicate_triangles";
-    case MeshIssueKind::DegenerateFaces: return "degenerate_faces";
-    case MeshIssueKind::SliverFaces: return "sliver_faces";
-    case MeshIssueKind::NonManifoldEdges: return "non_manifold_edges";
-    case MeshIssueKind::NonManifoldVertices: return "non_manifold_vertices";
-    case MeshIssueKind::IsolatedVertices: return "isolated_vertices";
-    case MeshIssueKind::SeveralComponents: return "several_components";
-    case MeshIssueKind::InconsistentOrientation: return "inconsistent_orientation";
-    case MeshIssueKind::NotOrientable: return "not_orientable";
-  }
-  return "unknown";
-}
-
 void MeshCheckOptions::validate() const {
   if (!(mergeToleranceRelative >= 0.0 && mergeToleranceRelative < 0.01))
     throw InvalidInput("MeshCheckOptions.merge_tolerance_relative must be in [0, 0.01), got " +
@@ -545,22 +525,6 @@ void MeshCheckOptions::validate() const {
   if (maxNamedElements < 1)
     throw InvalidInput("MeshCheckOptions.max_named_elements must be at least 1, got " +
                        std::to_string(maxNamedElements));
-}
-
-bool MeshCheckResult::has(MeshIssueKind kind) const { return find(kind) != nullptr; }
-
-const MeshIssue* MeshCheckResult::find(MeshIssueKind kind) const {
-  for (const auto& issue : issues)
-    if (issue.kind == kind) return &issue;
-  return nullptr;
-}
-
-bool MeshCheckResult::acceptable() const { return !hasErrors; }
-
-std::string MeshCheckResult::summary() const {
-  std::string s;
-  for (const auto& issue : issues) s += (s.empty() ? "" : "\n") + issue.message;
-  return s;
 }
 
 MeshCheckResult checkMesh(const TriangleSoup& soup, const MeshCheckOptions& options) {

@@ -93,9 +93,7 @@ double largest(const std::vector<Eigen::Vector3d>& v) {
 }  // namespace vfig
 }  // namespace
 
-using namespace vfig;
-
-const verification::CaseResult& governingCase(const CheckResult& result) {
+const verification::CaseResult& governingCase(const verification::CheckResult& result) {
   if (result.cases.empty()) throw InvalidInput("verificationSvg: a check without load cases");
   for (const auto& c : result.cases)
     if (c.name == result.buckling.loadCase) return c;
@@ -104,7 +102,8 @@ const verification::CaseResult& governingCase(const CheckResult& result) {
       [](const auto& a, const auto& b) { return a.maxUtilisation < b.maxUtilisation; });
 }
 
-std::string verificationSvg(const CheckResult& result) {
+std::string verificationSvg(const verification::CheckResult& result) {
+  using namespace vfig;  // inside the function: a file-scope directive leaks into unity neighbours
   if (!result.solved) throw InvalidInput("verificationSvg: the check was not solved");
   const auto& mesh = result.mesh;
   const auto& governing = governingCase(result);

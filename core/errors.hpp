@@ -4,13 +4,22 @@
 // failure).
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace egg {
 
 // Base of every eggshell error, so callers can catch the family in one place.
+// Where it is known, the file and the field (a scene key's dotted path, "lamella.width_m") at
+// fault travel beside the message, for `egg --json`'s error object (issue 39).
 class Error : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit Error(const std::string& message, std::string file = {}, std::string field = {})
+      : std::runtime_error(message), file_(std::move(file)), field_(std::move(field)) {}
+  const std::string& file() const noexcept { return file_; }
+  const std::string& field() const noexcept { return field_; }
+
+ private:
+  std::string file_, field_;
 };
 
 // The caller handed us something unusable: a bad option, a broken mesh, a malformed scene.

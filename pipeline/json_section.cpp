@@ -1,5 +1,7 @@
 #include "pipeline/json_section.hpp"
 
+#include <algorithm>
+
 #include "core/io/atomic_file.hpp"
 
 #include <cmath>
@@ -57,7 +59,8 @@ JsonSection::JsonSection(const json& node, std::string path, std::string origin)
 
 void JsonSection::fail(const std::string& key, const std::string& what) const {
   const std::string field = abbreviate(dotted(key));
-  throw InvalidInput(abbreviate(origin_) + ": " + field + (field.empty() ? "" : ": ") + what);
+  throw InvalidInput(abbreviate(origin_) + ": " + field + (field.empty() ? "" : ": ") + what,
+                     origin_, dotted(key));
 }
 
 std::string JsonSection::dotted(const std::string& key) const {
@@ -146,6 +149,16 @@ JsonSection JsonSection::child(const std::string& key) {
 
 void JsonSection::rejectUnknownKeys() const {
   for (auto it = node_.begin(); it != node_.end(); ++it) {
+    // "$comment" (JSON Schema's spelling of a comment, which `egg init` writes) is a note to the
+    // reader in any section: a string or an array of strings, never read.
+    if (it.key() == "$comment") {
+      const json& v = it.value();
+      const bool text = v.is_string() ||
+                        (v.is_array() && std::all_of(v.begin(), v.end(),
+                                                     [](const json& x) { return x.is_string(); }));
+      if (!text) fail(it.key(), "a comment must be a string or an array of strings");
+      continue;
+    }
     if (!known_.count(it.key())) {
       std::string allowed;
       for (const auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;

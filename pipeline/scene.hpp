@@ -155,5 +155,8 @@ nlohmann::json sceneToJson(const Scene& scene);
 // The scene reference (docs/scene-reference.md): every section and key with its type, range,
 // default and what it does, from the same field lists the parser reads.
 std::string sceneReferenceMarkdown();
+// The JSON Schema (draft 2020-12) of a scene file, from the same field lists: types, ranges,
+// enums, defaults and docs, unknown keys refused (docs/scene.schema.json, `egg scene-schema`).
+nlohmann::json sceneJsonSchema();
 
 }  // namespace egg::pipeline

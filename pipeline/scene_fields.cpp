@@ -6,6 +6,7 @@
 #include "core/materials/materials.hpp"
 #include "pipeline/run_folder.hpp"
 #include "pipeline/stages.hpp"
+#include "samples/generators/samples.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -36,6 +37,24 @@ std::string alternatives(const std::vector<std::string>& names) {
   return out;
 }
 
+json numberSchema(double lo, double hi) {
+  return {{"type", "number"}, {"minimum", lo}, {"maximum", hi}};
+}
+
+json positiveSchema(double hi) {
+  return {{"type", "number"}, {"exclusiveMinimum", 0}, {"maximum", hi}};
+}
+
+json integerSchema(long long lo, long long hi) {
+  return {{"type", "integer"}, {"minimum", lo}, {"maximum", hi}};
+}
+
+json pairSchema(double lo, double hi) {
+  return {{"type", "array"}, {"items", numberSchema(lo, hi)}, {"minItems", 2}, {"maxItems", 2}};
+}
+
+json stringSchema() { return {{"type", "string"}, {"minLength", 1}}; }
+
 }  // namespace field
 
 namespace {
@@ -56,6 +75,29 @@ Eigen::Vector3d point3(const json& v, const JsonSection& where, const std::strin
 }
 
 json pointJson(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+const json kPointSchema = {
+    {"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 3}, {"maxItems", 3}};
+
+// A patch: four corners [x, y, z], or four indices into "corners".
+json patchesSchema() {
+  const json index = {{"type", "integer"}, {"minimum", 0}};
+  const json corner = {{"anyOf", json::array({kPointSchema, index})}};
+  const json patch = {{"type", "array"}, {"items", corner}, {"minItems", 4}, {"maxItems", 4}};
+  return {{"type", "array"}, {"items", patch}, {"maxItems", kMaxPatches}};
+}
+
+json outputsSchema() {
+  json names = json::array();
+  for (const Output& output : outputTable()) names.push_back(output.name);
+  return {{"type", "array"}, {"items", {{"enum", names}}}, {"uniqueItems", true}};
+}
+
+json sampleSchema() {
+  json names = json::array();
+  for (const auto& info : samples::listSamples()) names.push_back(info.name);
+  return {{"enum", names}};
+}
 
 // --- top level --------------------------------------------------------------------------------
 
@@ -272,6 +314,12 @@ void readAlphaBar(JsonSection& j, Scene& scene) {
   }
 }
 
+json alphaBarSchema() {
+  const json modes = {{"enum", json::array({"min", "max", "unrolled"})}};
+  const json angle = {{"type", "number"}, {"exclusiveMinimum", 0}, {"exclusiveMaximum", M_PI}};
+  return {{"anyOf", json::array({modes, angle})}};
+}
+
 json alphaBarJson(const AlphaBarOptions& a) {
   switch (a.choice) {
     case AlphaBarChoice::Min: return "min";
@@ -298,12 +346,12 @@ std::vector<SceneSection> makeSections() {
        "The scene itself.",
        {{"name", "string",
          "the scene's name: the default run folder out/<name> (default: the file's stem)", readName,
-         [](const Scene& s) { return some(s.name); }},
+         [](const Scene& s) { return some(s.name); }, stringSchema()},
         {"outputs", "array of names",
          "what the run writes: report, plan, cut_files, stickers, supports, previews (default: "
          "these six), fem (the FE check: fem/), model (the 3D model: model.glb, model.3dm, "
          "model.obj, supports.glb/.stl)",
-         readOutputs, [](const Scene& s) { return some(s.outputs); }}},
+         readOutputs, [](const Scene& s) { return some(s.outputs); }, outputsSchema()}},
        {}});
 
   sections.push_back(
@@ -311,25 +359,33 @@ std::vector<SceneSection> makeSections() {
        "The design surface (Section 4.4.1): a procedural sample or a mesh file. Required.",
        {{"sample", "string",
          "a procedural sample (`egg surface --list`); exactly one of sample and file", readSample,
-         [](const Scene& s) { return isSample(s) ? some(s.surface.sample) : std::nullopt; }},
+         [](const Scene& s) { return isSample(s) ? some(s.surface.sample) : std::nullopt; },
+         sampleSchema()},
         {"file", "string", "a mesh file (OBJ, STL, PLY, OFF, glTF), relative to the scene's folder",
          readFile,
-         [](const Scene& s) { return isSample(s) ? std::nullopt : some(s.surface.file.string()); }},
-        {"params", "object of numbers", "the sample's parameters (`egg surface --list`)",
+         [](const Scene& s) { return isSample(s) ? std::nullopt : some(s.surface.file.string()); },
+         stringSchema()},
+        {"params",
+         "object of numbers",
+         "the sample's parameters (`egg surface --list`)",
          readParams,
-         [](const Scene& s) { return isSample(s) ? some(s.surface.params) : std::nullopt; }},
+         [](const Scene& s) { return isSample(s) ? some(s.surface.params) : std::nullopt; },
+         {{"type", "object"},
+          {"additionalProperties", {{"type", json::array({"number", "boolean"})}}}}},
         {"edge_length_m", "number in (0, 10000]",
          "target triangle edge length of a sample (default: the sample's own)",
          [](JsonSection& j, Scene& s) {
            s.surface.edgeLengthM = j.positive(
                "edge_length_m", isSample(s) ? defaultSampleEdgeLength(s.surface.sample) : 1.0, 1e4);
          },
-         [](const Scene& s) { return isSample(s) ? some(s.surface.edgeLengthM) : std::nullopt; }},
+         [](const Scene& s) { return isSample(s) ? some(s.surface.edgeLengthM) : std::nullopt; },
+         positiveSchema(1e4)},
         {"scale_to_m", "number in (0, 1e+06]", "a mesh file's coordinates times this are metres",
          [](JsonSection& j, Scene& s) {
            s.surface.scaleToM = j.positive("scale_to_m", s.surface.scaleToM, 1e6);
          },
-         [](const Scene& s) { return isSample(s) ? std::nullopt : some(s.surface.scaleToM); }},
+         [](const Scene& s) { return isSample(s) ? std::nullopt : some(s.surface.scaleToM); },
+         positiveSchema(1e6)},
         boolean("keep_largest_component", EGG_AT(surface.keepLargestComponent),
                 "keep the largest connected component of a mesh file (with a warning) instead of "
                 "failing")},
@@ -345,7 +401,8 @@ std::vector<SceneSection> makeSections() {
          [](const Scene& s) {
            return s.patching.workflowGiven || s.patching.quads.empty() ? some(s.patching.workflow)
                                                                        : std::nullopt;
-         }},
+         },
+         integerSchema(1, 2)},
         number("eta_max", EGG_AT(design().uniqueness.etaMax), 1.0, 2.0,
                "largest ratio of geodesic lengths a patch may have (uniqueness, Sections 2.3.3, "
                "3.4.1)"),
@@ -359,18 +416,23 @@ std::vector<SceneSection> makeSections() {
          [](const Scene& s) {
            return some(
                std::array<double, 2>{s.design().alphaBar.slopeMin, s.design().alphaBar.slopeMax});
-         }},
+         },
+         pairSchema(1e-6, 1e6)},
         positive("max_patch_size_m", EGG_AT(patching.workflow2.maxPatchSizeM), 1e5,
                  "largest patch diagonal Workflow 2 proposes (handling on site, 3.5.3)"),
-        {"block_grid", "two integers in [1, 16]",
-         "Workflow 2's grid of patches [along u, along v] (default: screened)", readBlockGrid,
+        {"block_grid",
+         "two integers in [1, 16]",
+         "Workflow 2's grid of patches [along u, along v] (default: screened)",
+         readBlockGrid,
          [](const Scene& s) {
            return s.patching.workflow2.blockGrid[0] > 0 ? some(s.patching.workflow2.blockGrid)
                                                         : std::nullopt;
-         }},
+         },
+         {{"type", "array"}, {"items", integerSchema(1, 16)}, {"minItems", 2}, {"maxItems", 2}}},
         integer("max_splits", EGG_AT(patching.layout.maxSplits), 0, 10000,
                 "Workflow 1: splits before it gives up"),
-        {"smoothing", "true or false",
+        {"smoothing",
+         "true or false",
          "smooth a patch whose eta fails (2.3.3); default: yes for a given layout, no in the "
          "workflows (they split)",
          [](JsonSection& j, Scene& s) {
@@ -378,35 +440,44 @@ std::vector<SceneSection> makeSections() {
          },
          [](const Scene& s) {
            return s.patching.smoothing ? some(*s.patching.smoothing) : std::nullopt;
-         }},
+         },
+         {{"type", "boolean"}}},
         number("min_patch_size_m", EGG_AT(patching.layout.minSideM), 0.0, 1e5,
                "Workflow 1: no split makes a side shorter than this (0: 2.5 mean edge lengths)"),
-        {"corners", "array of [x, y, z]",
+        {"corners",
+         "array of [x, y, z]",
          "a given layout's corners on the surface, metres (with patches as index quads)",
          readCorners,
          [](const Scene& s) {
            json corners = json::array();
            for (const auto& c : s.patching.corners) corners.push_back(pointJson(c));
            return corners.empty() ? std::nullopt : some(corners);
-         }},
+         },
+         {{"type", "array"},
+          {"items", kPointSchema},
+          {"minItems", 1},
+          {"maxItems", 4 * kMaxPatches}}},
         {"patches", "array of four corners",
          "a given layout: per patch four corners [x, y, z], or four indices into corners (a corner "
          "may lie on another patch's side: a T-junction)",
          readPatches,
          [](const Scene& s) {
            return s.patching.quads.empty() ? std::nullopt : some(s.patching.quads);
-         }}},
+         },
+         patchesSchema()}},
        checkPatching});
 
   sections.push_back(
       {"grid",
        "Every patch's planar grid (Sections 2.4.3-2.4.6).",
-       {{"members_per_family", "\"auto\" or an integer in [2, 10000]",
+       {{"members_per_family",
+         "\"auto\" or an integer in [2, 10000]",
          "members of each family, boundary members included; auto: from the spacing below (2.4.4)",
          readMembersPerFamily,
          [](const Scene& s) {
            return s.design().members.count > 0 ? some(s.design().members.count) : some("auto");
-         }},
+         },
+         {{"anyOf", json::array({{{"const", "auto"}}, integerSchema(2, 10000)})}}},
         number("member_spacing_factor", EGG_AT(design().members.spacingFactor), 2.0, 1000.0,
                "auto members: target spacing between members = this x the lamella width (2.4.4)"),
         integer("map_resolution", EGG_AT(design().maps.resolution), 8, 2000,
@@ -422,7 +493,7 @@ std::vector<SceneSection> makeSections() {
                "(criterion iv)"),
         {"alpha_bar", "\"min\", \"max\", \"unrolled\" or radians in (0, pi)",
          "which alpha_bar of the feasible range the grid is built at (Problem 2.3)", readAlphaBar,
-         [](const Scene& s) { return some(alphaBarJson(s.design().alphaBar)); }}},
+         [](const Scene& s) { return some(alphaBarJson(s.design().alphaBar)); }, alphaBarSchema()}},
        checkGrid});
 
   addStructureSections(sections);  // scene_fields_structure.cpp

@@ -25,6 +25,9 @@ struct SceneField {
   // Its value in the echo; std::nullopt leaves the key out (an unset optional, a key that does not
   // apply: a sample's edge length for a mesh file).
   std::function<std::optional<nlohmann::json>(const Scene&)> write;
+  // What the key accepts, as a JSON Schema (draft 2020-12) fragment: the scene's schema
+  // (`egg scene-schema`, docs/scene.schema.json) is generated from these, like the reference.
+  nlohmann::json schema;
 };
 
 struct SceneSection {
@@ -68,58 +71,75 @@ std::string numberText(double x);
 // "\"a\", \"b\" or \"c\"".
 std::string alternatives(const std::vector<std::string>& names);
 
+// Schema fragments of the common kinds.
+nlohmann::json numberSchema(double lo, double hi);
+nlohmann::json positiveSchema(double hi);
+nlohmann::json integerSchema(long long lo, long long hi);
+nlohmann::json pairSchema(double lo, double hi);
+nlohmann::json stringSchema();
+
 template <class Member>
 SceneField number(std::string key, Member member, double lo, double hi, std::string doc) {
   const std::string k = key;
-  return {std::move(key), "number in " + range(lo, hi), std::move(doc),
-          [=](JsonSection& j, Scene& s) { member(s) = j.number(k, member(s), lo, hi); },
-          writer(member)};
+  return {
+      std::move(key), "number in " + range(lo, hi),
+      std::move(doc), [=](JsonSection& j, Scene& s) { member(s) = j.number(k, member(s), lo, hi); },
+      writer(member), numberSchema(lo, hi)};
 }
 
 // A number in (0, hi].
 template <class Member>
 SceneField positive(std::string key, Member member, double hi, std::string doc) {
   const std::string k = key;
-  return {std::move(key), "number in (0, " + numberText(hi) + "]", std::move(doc),
-          [=](JsonSection& j, Scene& s) { member(s) = j.positive(k, member(s), hi); },
-          writer(member)};
+  return {
+      std::move(key), "number in (0, " + numberText(hi) + "]",
+      std::move(doc), [=](JsonSection& j, Scene& s) { member(s) = j.positive(k, member(s), hi); },
+      writer(member), positiveSchema(hi)};
 }
 
 template <class Member>
 SceneField integer(std::string key, Member member, int lo, int hi, std::string doc) {
   const std::string k = key;
-  return {std::move(key), "integer in " + range(lo, hi), std::move(doc),
+  return {std::move(key),
+          "integer in " + range(lo, hi),
+          std::move(doc),
           [=](JsonSection& j, Scene& s) { member(s) = j.integer(k, member(s), lo, hi); },
-          writer(member)};
+          writer(member),
+          integerSchema(lo, hi)};
 }
 
 template <class Member>
 SceneField boolean(std::string key, Member member, std::string doc) {
   const std::string k = key;
-  return {std::move(key), "true or false", std::move(doc),
-          [=](JsonSection& j, Scene& s) { member(s) = j.boolean(k, member(s)); }, writer(member)};
+  return {std::move(key), "true or false",
+          std::move(doc), [=](JsonSection& j, Scene& s) { member(s) = j.boolean(k, member(s)); },
+          writer(member), {{"type", "boolean"}}};
 }
 
 template <class Member>
 SceneField pair(std::string key, Member member, double lo, double hi, std::string doc) {
   const std::string k = key;
-  return {std::move(key), "two numbers in " + range(lo, hi), std::move(doc),
-          [=](JsonSection& j, Scene& s) { member(s) = j.pair(k, member(s), lo, hi); },
-          writer(member)};
+  return {
+      std::move(key), "two numbers in " + range(lo, hi),
+      std::move(doc), [=](JsonSection& j, Scene& s) { member(s) = j.pair(k, member(s), lo, hi); },
+      writer(member), pairSchema(lo, hi)};
 }
 
 // A std::optional<double>: absent keeps the derived default, named in `doc`.
 template <class Member>
 SceneField optionalNumber(std::string key, Member member, double lo, double hi, std::string doc) {
   const std::string k = key;
-  return {std::move(key), "number in " + range(lo, hi) + ", optional", std::move(doc),
+  return {std::move(key),
+          "number in " + range(lo, hi) + ", optional",
+          std::move(doc),
           [=](JsonSection& j, Scene& s) {
             if (j.has(k)) member(s) = j.number(k, 0.0, lo, hi);
           },
           [=](const Scene& s) -> std::optional<nlohmann::json> {
             const auto& value = member(const_cast<Scene&>(s));
             return value ? std::optional<nlohmann::json>(*value) : std::nullopt;
-          }};
+          },
+          numberSchema(lo, hi)};
 }
 
 // An enum spelled by name: `names` lists every value with its spelling.
@@ -130,7 +150,9 @@ SceneField choice(std::string key, Member member,
   for (const auto& entry : names) spellings.push_back(entry.second);
   const std::string spelled = alternatives(spellings);
   const std::string k = key;
-  return {std::move(key), "one of " + spelled, std::move(doc),
+  return {std::move(key),
+          "one of " + spelled,
+          std::move(doc),
           [=](JsonSection& j, Scene& s) {
             if (!j.has(k)) return;
             const std::string text = j.text(k, "");
@@ -146,7 +168,8 @@ SceneField choice(std::string key, Member member,
             for (const auto& [v, name] : names)
               if (v == value) return nlohmann::json(name);
             return std::nullopt;
-          }};
+          },
+          {{"enum", spellings}}};
 }
 
 }  // namespace field

@@ -66,6 +66,12 @@ std::string materialNames() {
   return names;
 }
 
+nlohmann::json materialSchema() {
+  nlohmann::json names = nlohmann::json::array();
+  for (const auto& m : materialCatalog()) names.push_back(m.name);
+  return {{"enum", names}};
+}
+
 }  // namespace
 
 void addStructureSections(std::vector<SceneSection>& sections) {
@@ -81,7 +87,7 @@ void addStructureSections(std::vector<SceneSection>& sections) {
          [](JsonSection& j, Scene& s) {
            s.lamella.material = j.text("material", s.lamella.material);
          },
-         [](const Scene& s) { return some(s.lamella.material); }}},
+         [](const Scene& s) { return some(s.lamella.material); }, materialSchema()}},
        checkLamella});
 
   sections.push_back(
@@ -164,7 +170,8 @@ void addStructureSections(std::vector<SceneSection>& sections) {
          [](const Scene& s) {
            const auto& sheet = s.fabrication.options.stickerSheetMm;
            return sheet ? some(*sheet) : std::nullopt;
-         }},
+         },
+         pairSchema(1.0, 1e5)},
         optionalNumber("ground_height_m", EGG_AT(fabrication.options.groundHeightM), -1e5, 1e5,
                        "ground plane z of the supports, metres (default: 0.1 m below the lowest)"),
         optionalNumber("support_block_mm", EGG_AT(fabrication.options.supportBlockMm), 1.0, 1e5,
@@ -219,10 +226,12 @@ void addStructureSections(std::vector<SceneSection>& sections) {
                "snow or live load on the plan area, shared by tributary plan length (0: no case)"),
         number("point_load_kn", EGG_AT(loads.pointLoadKn), 0.0, 1e4,
                "downwards at each of point_load_connections (0: no case)"),
-        {"point_load_connections", "array of names",
+        {"point_load_connections",
+         "array of names",
          "FE connection names (model.inp sets: P<patch>_C<i>, J<i> between patches)",
          readPointLoadConnections,
-         [](const Scene& s) { return some(s.loads.pointLoadConnections); }},
+         [](const Scene& s) { return some(s.loads.pointLoadConnections); },
+         {{"type", "array"}, {"items", stringSchema()}}},
         integer("buckling_modes", EGG_AT(loads.bucklingModes), 0, 20,
                 "linear buckling factors of the governing case (0: no buckling step)"),
         number("ccx_time_limit_s", EGG_AT(loads.ccxTimeLimitS), 1.0, 1e5,

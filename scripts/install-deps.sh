@@ -14,6 +14,7 @@ PACKAGES=(
   libhersheyfont-dev hershey-fonts-data libzip-dev   # fabrication: single-stroke labels, cut.zip (issue 38)
   librsvg2-dev               # pipeline/svg_png.cpp: PNG previews of report.html's figures
   python3-ezdxf librsvg2-bin poppler-utils admesh
+  python3-jsonschema         # test_scene_schema: the scene schema checked by an independent validator (issue 39)
   parallel                   # egg sweep: jobs.txt on one machine (issue 18, test_sweep)
   clang libclang-rt-14-dev   # scripts/fuzz.sh: libFuzzer targets (issue 17)
   clang-format clang-tidy    # .clang-format (checked by the Format test), .clang-tidy (identifier naming)
@@ -25,7 +26,7 @@ PACKAGES=(
 # npm for export/js's packages: Debian's package only where no npm came with Node.js already.
 command -v npm >/dev/null || PACKAGES+=(npm)
 
-# The npm packages of export/js (rhino3dm, gltf-validator), exactly as its package-lock.json pins
+# The npm packages of export/js (rhino3dm, gltf-validator; three and esbuild bundle the 3D view at build time), exactly as its package-lock.json pins
 # them; only when node_modules is missing or older than the lockfile.
 install_npm_packages() {
   local js

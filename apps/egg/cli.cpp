@@ -21,6 +21,7 @@ int runCli(int argc, char** argv) {
 
   Action action;
   registerRunCommand(app, action);
+  registerInitCommand(app, action);
   registerSceneReferenceCommand(app, action);
   registerSurfaceCommand(app, action);
   registerGeodesicCommand(app, action);
@@ -50,15 +51,27 @@ int runCli(int argc, char** argv) {
   // the message on stderr.
   bool json = false;
   for (int i = 1; i < argc; ++i) json = json || std::string(argv[i]) == "--json";
-  const auto fail = [json](const char* kind, const std::string& prefix, const std::string& what,
+  // file and field: where the library knew them (a scene key, a file that cannot be read), else
+  // null.
+  const auto fail = [json](const char* kind, const std::string& prefix, const std::exception& e,
                            int code) {
+    const std::string what = e.what();
     std::cerr << "egg: " << prefix << what << "\n";
-    if (json)
+    if (json) {
+      const auto* error = dynamic_cast<const Error*>(&e);
+      const auto known = [](const std::string& s) {
+        return s.empty() ? nlohmann::json(nullptr) : nlohmann::json(s);
+      };
       std::cout << nlohmann::json{{"error",
-                                   {{"kind", kind}, {"message", what}, {"exit_code", code}}}}
+                                   {{"kind", kind},
+                                    {"message", what},
+                                    {"file", known(error ? error->file() : "")},
+                                    {"field", known(error ? error->field() : "")},
+                                    {"exit_code", code}}}}
                        .dump(2)
                 << "\n"
                 << std::flush;
+    }
     return code;
   };
   try {
@@ -72,17 +85,17 @@ int runCli(int argc, char** argv) {
     }
     return code;
   } catch (const InvalidInput& e) {
-    return fail("invalid_input", "invalid input: ", e.what(), kExitBadInput);
+    return fail("invalid_input", "invalid input: ", e, kExitBadInput);
   } catch (const WriteError& e) {
-    return fail("write_error", "cannot write output: ", e.what(), kExitFailure);
+    return fail("write_error", "cannot write output: ", e, kExitFailure);
   } catch (const IoError& e) {
-    return fail("io_error", "", e.what(), kExitBadInput);
+    return fail("io_error", "", e, kExitBadInput);
   } catch (const InfeasiblePatch& e) {
-    return fail("infeasible_patch", "infeasible patch: ", e.what(), kExitFailure);
+    return fail("infeasible_patch", "infeasible patch: ", e, kExitFailure);
   } catch (const SolverFailure& e) {
-    return fail("solver_failure", "solver failure: ", e.what(), kExitFailure);
+    return fail("solver_failure", "solver failure: ", e, kExitFailure);
   } catch (const std::exception& e) {
-    return fail("internal_error", "internal error: ", e.what(), kExitFailure);
+    return fail("internal_error", "internal error: ", e, kExitFailure);
   }
 }
 

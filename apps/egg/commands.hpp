@@ -23,7 +23,12 @@ void registerRunCommand(CLI::App& parent, Action& action);      // run.cpp
 // The scene `egg run` takes without one: samples/great_court.json in the working folder, else
 // beside the program (build/bin/egg in a source tree, bin/ with share/eggshell installed).
 std::string defaultRunScene();
-void registerSceneReferenceCommand(CLI::App& parent, Action& action);  // scene_reference.cpp
+// A file of the source tree (relative to its root) beside the program: build/bin/egg in a source
+// tree, bin/egg with share/eggshell installed. Empty when neither has it.
+std::string besideProgram(const std::string& relative);
+void registerInitCommand(CLI::App& parent, Action& action);  // init.cpp (egg init)
+// scene_reference.cpp: `egg scene-reference` and `egg scene-schema`.
+void registerSceneReferenceCommand(CLI::App& parent, Action& action);
 // `egg bench <kind>`: bench is a group; each benchmark registers under it.
 // (Helpers add their register functions here, one line each, and one call in cli.cpp.)
 void registerGeodesicCommand(CLI::App& parent,

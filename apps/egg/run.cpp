@@ -17,20 +17,24 @@ namespace {
 constexpr const char* kDefaultScene = "samples/great_court.json";
 }  // namespace
 
-// `egg run` with no scene from any folder (issue 39): the default sample in the working folder,
-// else beside the program (a source build's build/bin/egg, an install's bin/egg with
-// share/eggshell). An explicit scene is always taken as given.
-std::string defaultRunScene() {
-  if (std::filesystem::exists(kDefaultScene)) return kDefaultScene;
+std::string besideProgram(const std::string& relative) {
   std::error_code error;
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (error) return kDefaultScene;
-  for (const auto& candidate : {exe.parent_path() / "../.." / kDefaultScene,
-                                exe.parent_path() / "../share/eggshell" / kDefaultScene}) {
+  if (error) return "";
+  for (const auto& candidate : {exe.parent_path() / "../.." / relative,
+                                exe.parent_path() / "../share/eggshell" / relative}) {
     if (std::filesystem::exists(candidate))
       return std::filesystem::weakly_canonical(candidate).string();
   }
-  return kDefaultScene;  // the error then names the path looked for
+  return "";
+}
+
+// `egg run` with no scene from any folder (issue 39): the default sample in the working folder,
+// else beside the program. An explicit scene is always taken as given.
+std::string defaultRunScene() {
+  if (std::filesystem::exists(kDefaultScene)) return kDefaultScene;
+  const std::string found = besideProgram(kDefaultScene);
+  return found.empty() ? kDefaultScene : found;  // the error then names the path looked for
 }
 
 void registerRunCommand(CLI::App& parent, Action& action) {

@@ -1,5 +1,6 @@
-// `egg scene-reference [--out FILE]`: the scene file reference (docs/scene-reference.md), generated
-// from the field lists the parser reads.
+// `egg scene-reference [--out FILE]`: the scene file reference (docs/scene-reference.md), and
+// `egg scene-schema [--out FILE]`: its JSON Schema (docs/scene.schema.json), both generated from
+// the field lists the parser reads.
 #include "apps/egg/commands.hpp"
 #include "core/io/atomic_file.hpp"
 #include "pipeline/scene.hpp"
@@ -22,6 +23,23 @@ void registerSceneReferenceCommand(CLI::App& parent, Action& action) {
         std::cout << text;
       else
         writeFileAtomically(*out, text);
+      return kExitOk;
+    };
+  });
+
+  auto schemaOut = std::make_shared<std::string>();
+  CLI::App* schema = parent.add_subcommand(
+      "scene-schema",
+      "Print the scene file's JSON Schema (draft 2020-12): editors complete and check a scene "
+      "whose \"$schema\" names it (docs/scene.schema.json).");
+  schema->add_option("--out,-o", *schemaOut, "write it to this file instead of stdout");
+  schema->callback([schemaOut, &action] {
+    action = [schemaOut] {
+      const std::string text = pipeline::sceneJsonSchema().dump(2) + "\n";
+      if (schemaOut->empty())
+        std::cout << text;
+      else
+        writeFileAtomically(*schemaOut, text);
       return kExitOk;
     };
   });

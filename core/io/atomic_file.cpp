@@ -92,7 +92,9 @@ fs::path checkedOutputTarget(const fs::path& path) {
     status = fs::status(path, ec);
     if (ec || !fs::exists(status)) return path;  // a dangling link: rename replaces the link itself
     target = fs::canonical(path, ec);
-    if (ec) throw WriteError(path.string() + ": cannot resolve the symbolic link: " + ec.message());
+    if (ec)
+      throw WriteError(path.string() + ": cannot resolve the symbolic link: " + ec.message(),
+                       path.string());
   }
   if (!fs::is_regular_file(status)) {
     const char* kind = fs::is_directory(status)        ? "a folder"
@@ -102,7 +104,8 @@ fs::path checkedOutputTarget(const fs::path& path) {
                        : fs::is_socket(status)         ? "a socket"
                                                        : "not a regular file";
     throw WriteError(path.string() + ": exists and is " + kind +
-                     "; refusing to replace it with a file (choose another output path)");
+                         "; refusing to replace it with a file (choose another output path)",
+                     path.string());
   }
   return target;
 }
@@ -143,7 +146,8 @@ bool writeNewFile(const fs::path& temp, const std::string& text, int& error) {
 void writeFileAtomically(const fs::path& path, const std::string& text) {
   if (path.empty()) throw WriteError("cannot write a file: empty path");
   if (path.native().find('\0') != std::string::npos)
-    throw WriteError(abbreviate(path.string()) + ": the path contains a NUL character");
+    throw WriteError(abbreviate(path.string()) + ": the path contains a NUL character",
+                     path.string());
   const fs::path target = checkedOutputTarget(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   removeDeadLeftovers(dir, temporaryFilePrefix(), false);
@@ -156,17 +160,19 @@ void writeFileAtomically(const fs::path& path, const std::string& text) {
   if (!writeNewFile(temp, text, error)) {
     std::error_code ignored;
     fs::remove(temp, ignored);
-    throw WriteError(path.string() + ": write failed: " + std::strerror(error) +
-                     (error == ENOSPC || error == EFBIG || error == EDQUOT
-                          ? " (disk full or file too large)"
-                          : ""));
+    throw WriteError(
+        path.string() + ": write failed: " + std::strerror(error) +
+            (error == ENOSPC || error == EFBIG || error == EDQUOT ? " (disk full or file too large)"
+                                                                  : ""),
+        path.string());
   }
   std::error_code ec;
   fs::rename(temp, target, ec);
   if (ec) {
     std::error_code ignored;
     fs::remove(temp, ignored);
-    throw WriteError(path.string() + ": cannot move finished file into place: " + ec.message());
+    throw WriteError(path.string() + ": cannot move finished file into place: " + ec.message(),
+                     path.string());
   }
 }
 
@@ -178,18 +184,19 @@ int openRegularInput(const fs::path& path, std::size_t maxBytes, const std::stri
                      off_t& size) {
   const std::string name = abbreviate(path.string());
   if (path.native().find('\0') != std::string::npos)
-    throw IoError(name + ": the " + what + " path contains a NUL character");
+    throw IoError(name + ": the " + what + " path contains a NUL character", path.string());
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
   if (fd < 0) {
     const int error = errno;
-    if (error == ENOENT) throw IoError(name + ": cannot open " + what + ": no such file");
-    throw IoError(name + ": cannot open " + what + ": " + std::strerror(error));
+    if (error == ENOENT)
+      throw IoError(name + ": cannot open " + what + ": no such file", path.string());
+    throw IoError(name + ": cannot open " + what + ": " + std::strerror(error), path.string());
   }
   struct stat st {};
   if (::fstat(fd, &st) != 0) {
     const int error = errno;
     ::close(fd);
-    throw IoError(name + ": cannot inspect " + what + ": " + std::strerror(error));
+    throw IoError(name + ": cannot inspect " + what + ": " + std::strerror(error), path.string());
   }
   if (!S_ISREG(st.st_mode)) {
     ::close(fd);
@@ -199,12 +206,13 @@ int openRegularInput(const fs::path& path, std::size_t maxBytes, const std::stri
                        : S_ISBLK(st.st_mode)  ? "a block device"
                        : S_ISSOCK(st.st_mode) ? "a socket"
                                               : "not a regular file";
-    throw IoError(name + ": the " + what + " is " + kind + ", not a regular file");
+    throw IoError(name + ": the " + what + " is " + kind + ", not a regular file", path.string());
   }
   if (static_cast<unsigned long long>(st.st_size) > maxBytes) {
     ::close(fd);
     throw IoError(name + ": the " + what + " is too large (" + std::to_string(st.st_size) +
-                  " bytes; at most " + std::to_string(maxBytes) + ")");
+                      " bytes; at most " + std::to_string(maxBytes) + ")",
+                  path.string());
   }
   // Regular files never block: back to ordinary reads.
   ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
@@ -226,15 +234,17 @@ std::string readRegularFile(const fs::path& path, std::size_t maxBytes, const st
     if (n < 0) {
       const int error = errno;
       ::close(fd);
-      throw IoError(abbreviate(path.string()) + ": cannot read " + what + ": " +
-                    std::strerror(error));
+      throw IoError(
+          abbreviate(path.string()) + ": cannot read " + what + ": " + std::strerror(error),
+          path.string());
     }
     if (n == 0) break;
     text.append(buffer, static_cast<size_t>(n));
     if (text.size() > maxBytes) {  // grew while we read
       ::close(fd);
       throw IoError(abbreviate(path.string()) + ": the " + what + " is too large (at most " +
-                    std::to_string(maxBytes) + " bytes)");
+                        std::to_string(maxBytes) + " bytes)",
+                    path.string());
     }
   }
   ::close(fd);

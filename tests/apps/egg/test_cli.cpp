@@ -107,6 +107,56 @@ TEST_F(Cli, WithJsonAFailureIsAJsonObjectOnStdout) {
   EXPECT_EQ(j["error"]["exit_code"], kExitBadInput);
   EXPECT_NE(j["error"]["message"].get<std::string>().find("nope.json"), std::string::npos);
   EXPECT_NE(o.err.find("nope.json"), std::string::npos) << o.err;
+  EXPECT_EQ(j["error"]["file"], (root / "nope.json").string());
+  EXPECT_TRUE(j["error"]["field"].is_null());
+}
+
+// Issue 39: a script learns the file and the key at fault without parsing the message.
+TEST_F(Cli, WithJsonABadSceneKeyNamesItsFileAndField) {
+  const auto scene =
+      write("bad.json", R"({"surface": {"sample": "plane"}, "lamella": {"width_m": -1}})");
+  const auto o = runEgg({"run", scene.string(), "--out", (root / "out").string(), "--json", "-q"});
+  EXPECT_EQ(o.code, kExitBadInput);
+  const auto j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j["error"]["kind"], "invalid_input");
+  EXPECT_EQ(j["error"]["file"], scene.string());
+  EXPECT_EQ(j["error"]["field"], "lamella.width_m");
+  const auto syntax =
+      write("syntax.json", R"({"surface": {"sample": "plane", "edge_length_m": }})");
+  const auto s = runEgg({"run", syntax.string(), "--json", "-q"});
+  const auto k = nlohmann::json::parse(s.out);
+  EXPECT_EQ(k["error"]["file"], syntax.string());
+  EXPECT_EQ(k["error"]["field"], "surface.edge_length_m");
+  EXPECT_FALSE(fs::exists(root / "out"));
+}
+
+// Issue 39: `egg init` writes a scene that `egg run` takes as it is, and never replaces a file.
+TEST_F(Cli, InitWritesAStartingSceneThatRunsAsItIs) {
+  const auto scene = root / "start" / "bump.json";
+  fs::create_directories(scene.parent_path());
+  const auto init = runEgg({"init", "bump", "--out", scene.string()});
+  ASSERT_EQ(init.code, kExitOk) << init.err;
+  EXPECT_NE(init.err.find("run it with: egg run " + scene.string()), std::string::npos) << init.err;
+  const auto text = nlohmann::json::parse(std::ifstream(scene));
+  EXPECT_TRUE(text.contains("$comment"));
+  const auto run = runEgg({"run", scene.string(), "--out", (root / "out").string(), "-q"});
+  EXPECT_EQ(run.code, kExitOk) << run.out << run.err;
+  EXPECT_TRUE(fs::exists(root / "out" / "report.json"));
+
+  // An existing file is kept unless --force.
+  std::ofstream(root / "mine.json") << "my notes";
+  const auto again = runEgg({"init", "bump", "--out", (root / "mine.json").string()});
+  EXPECT_EQ(again.code, kExitBadInput);
+  EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+  std::ifstream mine(root / "mine.json");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(mine), {}), "my notes");
+  EXPECT_EQ(runEgg({"init", "bump", "--out", (root / "mine.json").string(), "--force"}).code,
+            kExitOk);
+  // Without --out it prints the scene; the schema prints as JSON too.
+  const auto printed = runEgg({"init", "plane"});
+  EXPECT_EQ(nlohmann::json::parse(printed.out)["surface"]["sample"], "plane");
+  const auto schema = runEgg({"scene-schema"});
+  EXPECT_EQ(nlohmann::json::parse(schema.out)["title"], "eggshell scene");
 }
 
 TEST_F(Cli, BrokenSceneIsBadInputNamingTheFieldAndWritesNothing) {

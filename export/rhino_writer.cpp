@@ -24,7 +24,15 @@ using nlohmann::json;
 
 fs::path exportJsDir() {
   if (const char* env = std::getenv("EGG_EXPORT_JS"); env && *env) return env;
-  return EGG_EXPORT_JS_DIR;
+  std::error_code ec;
+  if (fs::is_directory(EGG_EXPORT_JS_DIR, ec)) return EGG_EXPORT_JS_DIR;  // a source build
+  // An installed program (cmake --install, the .deb): share/eggshell/export/js beside bin/.
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path installed = exe.parent_path() / "../share/eggshell/export/js";
+    if (fs::is_directory(installed, ec)) return installed.lexically_normal();
+  }
+  return EGG_EXPORT_JS_DIR;  // the message then names where it looked
 }
 
 fs::path nodeProgram() {

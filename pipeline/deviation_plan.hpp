@@ -14,6 +14,8 @@ namespace egg::pipeline {
 struct DeployedRod {
   std::vector<Eigen::Vector3d> points;
   std::vector<double> distanceM;
+  int patch = -1;  // layout patch id
+  int rod = -1;    // the rod's index in its patch's network
 };
 
 // The colour of a distance on the bar from 0 (blue #2c7bb6) through scale/2 (pale yellow #ffffbf)

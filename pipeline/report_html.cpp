@@ -1,5 +1,7 @@
 #include "pipeline/report_html.hpp"
 
+#include "pipeline/deployed_view.hpp"
+
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/io/xml_text.hpp"
@@ -464,7 +466,8 @@ std::string verificationSection(const json& report, const std::string& figureSvg
 
 std::string reportHtml(const json& report, const std::string& planSvg, const std::string& bomCsv,
                        const std::vector<std::pair<int, std::string>>& planarSvgs,
-                       const std::string& deployedSvg, const std::string& verificationSvg) {
+                       const std::string& deployedSvg, const std::string& verificationSvg,
+                       const std::string& deployedViewJson) {
   const json scene = at(report, "scene");
   const std::string name =
       at(scene, "name").is_string() ? scene["name"].get<std::string>() : "eggshell run";
@@ -494,9 +497,9 @@ std::string reportHtml(const json& report, const std::string& planSvg, const std
   }
   html += stageTimes(report) + planSection(planSvg) + patchesSection(report) +
           patchGridsSection(planarSvgs) + claddingSection(report) + simulationSection(report) +
-          errorTimeSection(report) + deployedSection(deployedSvg) +
-          verificationSection(report, verificationSvg) + fabricationSection(report) +
-          bomSection(bomCsv);
+          errorTimeSection(report) + deployedViewSection(deployedViewJson) +
+          deployedSection(deployedSvg) + verificationSection(report, verificationSvg) +
+          fabricationSection(report) + bomSection(bomCsv);
   return html + "</body>\n</html>\n";
 }
 
@@ -539,7 +542,7 @@ std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, co
   }
   const std::string html =
       reportHtml(report, planSvg, readIfThere("bom.csv"), planar, readIfThere("deployed.svg"),
-                 readIfThere("fem/verification.svg"));
+                 readIfThere("fem/verification.svg"), readIfThere("deployed.json"));
   writeFileAtomically(runDir / "report.html", html);
   // PNG previews of the same figures (issue 18): the plan wide enough to read, the charts at their
   // size.

@@ -23,8 +23,8 @@ namespace egg::pipeline {
 std::string reportHtml(const nlohmann::json& report, const std::string& planSvg,
                        const std::string& bomCsv,
                        const std::vector<std::pair<int, std::string>>& planarSvgs = {},
-                       const std::string& deployedSvg = {},
-                       const std::string& verificationSvg = {});
+                       const std::string& deployedSvg = {}, const std::string& verificationSvg = {},
+                       const std::string& deployedViewJson = {});
 
 // The figures of the page as stand-alone SVG texts, (id, svg): plan.svg when given, then every
 // chart of `html` (the output of reportHtml), each with the SVG namespace so it renders alone.

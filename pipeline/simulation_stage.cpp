@@ -1,5 +1,7 @@
 #include "pipeline/simulation_stage.hpp"
 
+#include "pipeline/deployed_view.hpp"
+
 #include "assembly/boundary_members.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
@@ -148,31 +150,59 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
 
 namespace {
 
-// deployed.svg: the joined structure when it ran, else every patch's own deployment (3.5.2).
-void writeDeployedPlan(const rods::SimulationRun* joined, const std::vector<SolvedPatch>& patches,
-                       const TriMesh& surface, const std::filesystem::path& file) {
-  std::vector<const rods::SimulationRun*> runs;
-  if (joined)
-    runs.push_back(joined);
-  else
+// deployed.svg and deployed.json: the joined structure when it ran, else every patch's own
+// deployment (3.5.2).
+void writeDeployedFigures(const rods::SimulationRun* joined, const rods::JoinedNetwork* network,
+                          const std::vector<SolvedPatch>& patches, const TriMesh& surface,
+                          const std::filesystem::path& folder) {
+  // (run, layout patch id, first rod of the patch in the run), in rod order.
+  struct Part {
+    const rods::SimulationRun* run;
+    int patch;
+    int firstRod;
+  };
+  std::vector<Part> parts;
+  if (joined) {
+    // The joined network holds the patches with a grid, in layout order (joined_simulation.cpp).
+    size_t k = 0;
     for (const auto& p : patches)
-      if (p.simulation) runs.push_back(&p.simulation->deployed);
-  if (runs.empty()) return;
+      if (p.egg) {
+        parts.push_back(
+            {joined, p.id, network && k < network->firstRod.size() ? network->firstRod[k] : -1});
+        ++k;
+      }
+  } else {
+    for (const auto& p : patches)
+      if (p.simulation) parts.push_back({&p.simulation->deployed, p.id, 0});
+  }
+  if (parts.empty()) return;
   const rods::SurfaceDistance distance(surface);
   std::vector<DeployedRod> rods;
-  for (const rods::SimulationRun* run : runs)
-    for (const auto& points : run->contactPoints) {
+  const auto addRun = [&](const rods::SimulationRun& run, const std::vector<Part>& ofRun) {
+    for (size_t r = 0; r < run.contactPoints.size(); ++r) {
       DeployedRod rod;
-      rod.points = points;
-      for (const auto& p : points) rod.distanceM.push_back(distance.distance(p));
+      rod.points = run.contactPoints[r];
+      for (const auto& p : rod.points) rod.distanceM.push_back(distance.distance(p));
+      // The last part starting at or before r owns it.
+      for (const Part& part : ofRun)
+        if (part.firstRod >= 0 && part.firstRod <= static_cast<int>(r))
+          rod.patch = part.patch, rod.rod = static_cast<int>(r) - part.firstRod;
       rods.push_back(std::move(rod));
     }
-  writeFileAtomically(
-      file,
-      deployedPlanSvg(rods, joined ? "Deployed grid (joined structure), seen from above, coloured "
-                                     "by the distance to the design surface"
-                                   : "Deployed grid (each patch on its own supports), seen from "
-                                     "above, coloured by the distance to the design surface"));
+  };
+  if (joined) {
+    addRun(*joined, parts);
+  } else {
+    for (const Part& part : parts) addRun(*part.run, {part});
+  }
+  const std::string caption =
+      joined ? "Deployed grid (joined structure), coloured by the distance to the design surface"
+             : "Deployed grid (each patch on its own supports), coloured by the distance to the "
+               "design surface";
+  writeFileAtomically(folder / "deployed.svg",
+                      deployedPlanSvg(rods, caption + ", seen from above"));
+  writeFileAtomically(folder / "deployed.json",
+                      deployedViewJson(rods, surface, caption).dump() + "\n");
 }
 
 }  // namespace
@@ -216,8 +246,9 @@ void simulationStage(RunState& state) {
                                      state.members.has_value(), solvedCount(state.patches), section,
                                      heldAllRound, &state.joinedNetwork);
   if (scene.wants("report"))
-    writeDeployedPlan(state.joined ? &*state.joined : nullptr, state.patches, state.surface->mesh,
-                      state.staging / "deployed.svg");
+    writeDeployedFigures(state.joined ? &*state.joined : nullptr,
+                         state.joinedNetwork ? &*state.joinedNetwork : nullptr, state.patches,
+                         state.surface->mesh, state.staging);
   // A deployment that did not reach equilibrium is a failure of the run (exit 1), whose report
   // still carries every figure.
   if (!section["converged"].get<bool>())

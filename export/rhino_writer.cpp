@@ -56,7 +56,7 @@ std::string rhinoUnavailableReason() {
   std::error_code ec;
   if (!fs::is_regular_file(dir / "write3dm.mjs", ec))
     return "the 3dm writer script " + (dir / "write3dm.mjs").string() + " is missing";
-  if (!fs::is_regular_file(dir / "node_modules" / "rhino3dm" / "rhino3dm.module.js", ec))
+  if (!fs::is_regular_file(dir / "node_modules" / "rhino3dm" / "rhino3dm.js", ec))
     return "the npm package rhino3dm is not installed in " + dir.string() +
            " (run scripts/install-deps.sh, which runs npm ci there)";
   return "";

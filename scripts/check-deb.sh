@@ -21,6 +21,6 @@ cp "$deb" "$root/tmp/"
 mount -t proc proc "$root/proc"
 trap 'umount "$root/proc"' EXIT
 chroot "$root" apt-get update -qq
-chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "/tmp/$(basename "$deb")"
+chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --reinstall "/tmp/$(basename "$deb")"
 chroot "$root" bash -c 'rm -rf /tmp/w && mkdir /tmp/w && cd /tmp/w && time egg run && ls out/great_court'
 echo "check-deb: the package installs and runs the default scene on a clean Debian 12 ($root)"

@@ -4,7 +4,10 @@
 // objects. Passes when there is exactly one layer per patch and family named so, and one object
 // named P<k>-<F><i> on its family's layer with its id and length_m user strings per lamella.
 import fs from 'node:fs';
-import rhino3dm from './node_modules/rhino3dm/rhino3dm.module.js';
+import { createRequire } from 'node:module';
+// The CommonJS build: Debian 12's Node.js 18 reads rhino3dm.module.js (ES syntax in a package
+// without "type": "module") as CommonJS and fails; rhino3dm.js loads on Node 18 and later.
+const rhino3dm = createRequire(import.meta.url)('./node_modules/rhino3dm/rhino3dm.js');
 
 const [file, layersArg, lamellasArg] = process.argv.slice(2);
 if (!file || layersArg === undefined || lamellasArg === undefined) {

@@ -3,7 +3,10 @@
 // Layers with their parents, one mesh object per entry with its name, layer, vertex colours and
 // user strings. Exits non-zero with a message on any problem (the caller reports it).
 import fs from 'node:fs';
-import rhino3dm from './node_modules/rhino3dm/rhino3dm.module.js';
+import { createRequire } from 'node:module';
+// The CommonJS build: Debian 12's Node.js 18 reads rhino3dm.module.js (ES syntax in a package
+// without "type": "module") as CommonJS and fails; rhino3dm.js loads on Node 18 and later.
+const rhino3dm = createRequire(import.meta.url)('./node_modules/rhino3dm/rhino3dm.js');
 
 const [input, output] = process.argv.slice(2);
 if (!input || !output) {

@@ -16,7 +16,7 @@ for f in bin/egg share/eggshell/samples/great_court.json share/eggshell/samples/
          share/eggshell/export/js/write3dm.mjs share/eggshell/README.md; do
   [ -e "$tmp/prefix/$f" ] || fail "$f is not installed"
 done
-[ -f "$share/export/js/node_modules/rhino3dm/rhino3dm.module.js" ] || fail "rhino3dm is not installed"
+[ -f "$share/export/js/node_modules/rhino3dm/rhino3dm.js" ] || fail "rhino3dm is not installed"
 [ ! -e "$share/export/js/node_modules/gltf-validator" ] || fail "gltf-validator (a test tool) is installed"
 
 mkdir "$tmp/elsewhere"

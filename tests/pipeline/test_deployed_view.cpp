@@ -3,6 +3,7 @@
 #include "pipeline/deployed_view.hpp"
 #include "pipeline/report_html.hpp"
 #include "samples/generators/samples.hpp"
+#include "tests/support/tool_run.hpp"
 
 #include <gtest/gtest.h>
 
@@ -63,21 +64,10 @@ TEST(DeployedView, TheSectionCarriesItsScriptAndCannotBeEndedByTheData) {
   EXPECT_NE(deployedViewSection("").find("No 3D view"), std::string::npos);
 }
 
-std::pair<std::string, int> viewShell(const std::string& command) {
-  std::string out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return {"", -1};
-  std::array<char, 4096> buffer{};
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  return {out, WIFEXITED(status) ? WEXITSTATUS(status) : -1};
-}
-
 // The page's script counts the canvas pixels that are not background after its first frame
 // (readPixels) and leaves the count on the view's element; Chromium's DOM dump shows it.
 TEST(DeployedView, HeadlessChromiumDrawsTheViewOfAReport) {
-  if (viewShell("command -v chromium >/dev/null 2>&1").second != 0)
+  if (!egg::test::haveTool("chromium"))
     GTEST_SKIP() << "chromium is not installed (Debian package chromium, scripts/install-deps.sh)";
   const auto dir =
       std::filesystem::temp_directory_path() / ("egg_deployed_view_" + std::to_string(getpid()));
@@ -90,8 +80,8 @@ TEST(DeployedView, HeadlessChromiumDrawsTheViewOfAReport) {
       "chromium --headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader "
       "--no-first-run --disable-extensions --virtual-time-budget=10000 --user-data-dir=" +
       (dir / "profile").string() + " ";
-  const auto [dom, status] =
-      viewShell(chromium + "--dump-dom file://" + (dir / "report.html").string() + " 2>/dev/null");
+  const auto [status, dom] =
+      egg::test::runTool(chromium + "--dump-dom file://" + (dir / "report.html").string());
   ASSERT_EQ(status, 0) << dom;
   const size_t at = dom.find("id=\"egg-view\"");
   ASSERT_NE(at, std::string::npos) << dom.substr(0, 2000);

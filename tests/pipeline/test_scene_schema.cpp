@@ -6,6 +6,7 @@
 #include "pipeline/scene_fields.hpp"
 #include "pipeline/scene_template.hpp"
 #include "samples/generators/samples.hpp"
+#include "tests/support/tool_run.hpp"
 
 #include <gtest/gtest.h>
 
@@ -29,10 +30,7 @@ std::string schemaTestText(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-struct Validation {
-  int status = -1;
-  std::string output;
-};
+using Validation = egg::test::ToolRun;
 
 // Validates each file against the schema with python3-jsonschema (Draft 2020-12), an
 // implementation independent of ours; prints "FILE: ok" or "FILE: error: ...".
@@ -50,15 +48,7 @@ for f in sys.argv[2:]:
 )";
   std::string command = "/usr/bin/python3 " + script.string() + " " + schema.string();
   for (const auto& f : files) command += " " + f.string();
-  Validation out;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return out;
-  std::array<char, 4096> buffer{};
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    out.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  out.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const Validation out = egg::test::runTool(command);
   fs::remove(script);
   return out;
 }

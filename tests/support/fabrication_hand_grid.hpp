@@ -4,6 +4,7 @@
 // installs them.
 #include "core/egg/grid.hpp"
 #include "fabrication/options.hpp"
+#include "tests/support/tool_run.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -93,26 +94,9 @@ inline FabricationOptions handOptions() {
   return o;
 }
 
-struct ToolRun {
-  int status = -1;
-  std::string output;
-};
-
-// Runs a shell command, capturing stdout and stderr.
-inline ToolRun runTool(const std::string& command) {
-  ToolRun run;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buffer{};
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    run.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-inline bool haveTool(const std::string& name) { return runTool("command -v " + name).status == 0; }
+using egg::test::haveTool;
+using egg::test::runTool;
+using egg::test::ToolRun;
 
 // A fresh, empty folder for one test (the process id keeps parallel runs of other checkouts apart).
 inline std::filesystem::path scratchDir(const std::string& name) {

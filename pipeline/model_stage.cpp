@@ -225,9 +225,18 @@ void ModelOutputs::finish() {
                                       : model_.supportsNote;
   }
   if (rhino_.valid()) {
-    section["rhino_node_s"] = rhino_.get();
-    files.push_back({{"path", "model.3dm"},
-                     {"bytes", std::filesystem::file_size(state_.staging / "model.3dm")}});
+    try {
+      section["rhino_node_s"] = rhino_.get();
+      files.push_back({{"path", "model.3dm"},
+                       {"bytes", std::filesystem::file_size(state_.staging / "model.3dm")}});
+    } catch (const IoError&) {
+      throw;  // the run folder cannot be written: the run fails as a whole, as for any file
+    } catch (const Error& e) {
+      // The writer is a separate program (Node.js with rhino3dm): when it fails, the run still
+      // completes with every other file and its report, and fails naming it (exit code 1).
+      section["rhino_error"] = e.what();
+      state_.failures.push_back(std::string("model.3dm not written: ") + e.what());
+    }
     section["rhino_s"] = rhinoWatch_.seconds();  // from its start: it ran beside the rest
   }
   section.update({{"files", files},

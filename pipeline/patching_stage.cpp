@@ -6,13 +6,16 @@
 #include "core/errors.hpp"
 #include "core/geodesic/distance_solver.hpp"
 #include "core/io/atomic_file.hpp"
+#include "patching/curvature_sheet.hpp"
 #include "patching/injectivity.hpp"
-#include "patching/plan_svg.hpp"
+#include "patching/site_plan.hpp"
+#include "pipeline/elevations.hpp"
 
 #include <fmt/core.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 
 namespace egg::pipeline {
 
@@ -185,20 +188,23 @@ void writePatchesJson(const PatchingRun& run, const std::filesystem::path& file)
   writeFileAtomically(file, doc.dump(1) + "\n");
 }
 
-void writePlan(const PatchingRun& run, const TriMesh& surface,
-               const geodesic::DistanceSolver& surfaceSolver, const Scene& scene,
-               const std::filesystem::path& file, json& report) {
-  const auto started = std::chrono::steady_clock::now();
-  patching::PlanDrawing drawing;
+namespace {
+
+// The analytical sheet: the layout over the K map, with the surface's K peaks and their
+// injectivity circles (computed here: only this sheet needs them) and the cut-offs.
+json writeCurvatureSheet(const RunState& state, const std::filesystem::path& file) {
+  const PatchingRun& run = *state.patching;
+  const TriMesh& surface = state.surface->mesh;
+  patching::CurvatureDrawing drawing;
   drawing.surface = &surface;
   drawing.layout = &run.layout.layout;
   for (const auto& p : run.layout.patches)
     drawing.patchProblems.push_back(p.feasible() ? "" : p.failure);
   drawing.peaks = patching::findSurfacePeaks(surface);
-  drawing.circles = patching::injectivityCircles(surface, surfaceSolver, drawing.peaks);
+  drawing.circles = patching::injectivityCircles(surface, *state.surfaceSolver, drawing.peaks);
   drawing.coverage = &run.coverage;
-  drawing.title = scene.name;
-  patching::writePlanSvg(file, drawing);
+  drawing.title = state.scene.name + ": curvature and injectivity";
+  patching::writeCurvatureSheet(file, drawing);
   json peaks = json::array();
   for (size_t i = 0; i < drawing.peaks.size(); ++i) {
     const auto& peak = drawing.peaks[i];
@@ -211,7 +217,44 @@ void writePlan(const PatchingRun& run, const TriMesh& surface,
                      {"circle_covers_surface", circle.coversSurface},
                      {"circle_length_m", circle.lengthM}});
   }
-  report["peaks"] = peaks;
+  return peaks;
+}
+
+// The architect's plan: outlines, areas, members, supports, dimensions, section lines.
+int writeSitePlan(const RunState& state, const std::filesystem::path& file) {
+  const PatchingRun& run = *state.patching;
+  patching::SitePlanDrawing drawing;
+  drawing.surface = &state.surface->mesh;
+  drawing.layout = &run.layout.layout;
+  for (const auto& p : run.layout.patches) {
+    drawing.patchProblems.push_back(p.feasible() ? "" : p.failure);
+    drawing.patchAreasM2.push_back(p.cut ? p.cut->patch.area : 0.0);
+  }
+  drawing.coverage = &run.coverage;
+  for (const auto& p : state.patches) {
+    if (!p.egg) continue;
+    for (const auto* family : {&p.egg->grid.u, &p.egg->grid.v})
+      for (const auto& m : *family)
+        drawing.members.push_back({p.id, m.family == Family::U, m.boundary, m.spatial});
+  }
+  if (state.fabricated)
+    for (const auto& s : state.fabricated->supports)
+      drawing.supports.push_back({s.id, s.position, !s.block});
+  for (const auto& s : sectionPlanes(state.surface->mesh))
+    drawing.sections.push_back({s.name, s.alongX, s.atM});
+  drawing.title = state.scene.name;
+  const std::string svg = patching::sitePlanSvg(drawing);
+  writeFileAtomically(file, svg);
+  const size_t at = svg.find("data-labels-left-out=\"");
+  return at == std::string::npos ? 0 : std::atoi(svg.c_str() + at + 22);
+}
+
+}  // namespace
+
+void writePlan(const RunState& state, const std::filesystem::path& folder, json& report) {
+  const auto started = std::chrono::steady_clock::now();
+  report["labels_left_out"] = writeSitePlan(state, folder / "plan.svg");
+  report["peaks"] = writeCurvatureSheet(state, folder / "curvature.svg");
   report["seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }

@@ -36,11 +36,10 @@ PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& 
 // report.json: patching{}, boundaries[], t_junctions[], chains[], coverage{}.
 void addPatchingReport(const PatchingRun& run, nlohmann::json& report);
 
-// plan.svg (patching/plan_svg.hpp): the layout over the K map, with the surface's K peaks and
-// their injectivity circles (computed here: only the plan needs them) and the cut-offs.
-void writePlan(const PatchingRun& run, const TriMesh& surface,
-               const geodesic::DistanceSolver& surfaceSolver, const Scene& scene,
-               const std::filesystem::path& file, nlohmann::json& report);
+// plan.svg (patching/site_plan.hpp: the architect's plan, with the grids' members and the
+// supports when those stages ran) and curvature.svg (patching/plan_svg.hpp: the K map, K peaks and
+// injectivity circles, cut-offs). report: labels_left_out, peaks[], seconds.
+void writePlan(const RunState& state, const std::filesystem::path& folder, nlohmann::json& report);
 
 // patches.json: corners, sides (polylines), patches, boundaries, T-junctions, chains, splits.
 void writePatchesJson(const PatchingRun& run, const std::filesystem::path& file);

@@ -43,8 +43,7 @@ void writeOutputs(RunState& state) {
     state.progress("plan", 0.95);
     writePatchesJson(*state.patching, state.staging / "patches.json");
     nlohmann::json plan;
-    writePlan(*state.patching, state.surface->mesh, *state.surfaceSolver, scene,
-              state.staging / "plan.svg", plan);
+    writePlan(state, state.staging, plan);
     state.report.section("plan") = plan;
   }
   if (model) model->finish();

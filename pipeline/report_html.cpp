@@ -144,7 +144,7 @@ std::string stageTimes(const json& report) {
   return out + barChart("stage-time-chart", bars, "s");
 }
 
-std::string planSection(const std::string& planSvg) {
+std::string planSection(const std::string& planSvg, const std::string& curvatureSvg) {
   std::string out = "<h2 id=\"plan\">Plan of patches</h2>\n";
   const size_t start = planSvg.find("<svg");
   if (start == std::string::npos) {
@@ -155,7 +155,15 @@ std::string planSection(const std::string& planSvg) {
   // plan.svg inlined: without its XML declaration, scaled to the page.
   std::string svg = planSvg.substr(start);
   svg.insert(4, " class=\"plan\" style=\"max-width:100%;height:auto\"");
-  return out + "<div class=\"figure\">\n" + svg + "\n</div>\n";
+  out += "<div class=\"figure\">\n" + svg + "\n</div>\n";
+  // The analytical sheet (curvature.svg) as a chart of its own: <svg id="curvature"> gets its
+  // PNG preview.
+  const size_t k = curvatureSvg.find("<svg");
+  if (k == std::string::npos) return out;
+  std::string sheet = curvatureSvg.substr(k);
+  sheet.insert(4, " id=\"curvature\" style=\"max-width:100%;height:auto\"");
+  return out + "<h3>Curvature and injectivity (curvature.svg)</h3>\n<div class=\"figure\">\n" +
+         sheet + "\n</div>\n";
 }
 
 std::string patchesSection(const json& report) {
@@ -413,6 +421,17 @@ std::string deployedSection(const std::string& deployedSvg) {
   return out + "<div class=\"figure\">\n" + deployedSvg.substr(start) + "</div>\n";
 }
 
+// elevations.svg inlined (an <svg id="elevations">: it gets its PNG preview).
+std::string elevationsSection(const std::string& elevationsSvg) {
+  std::string out = "<h2 id=\"elevations-and-sections\">Elevations and sections</h2>\n";
+  const size_t start = elevationsSvg.find("<svg");
+  if (start == std::string::npos)
+    return out +
+           "<p class=\"missing\">No elevations: the simulation did not run "
+           "(elevations.svg).</p>\n";
+  return out + "<div class=\"figure\">\n" + elevationsSvg.substr(start) + "</div>\n";
+}
+
 // The FE check (output "fem"): what ccx found per load case, buckling, the cross-check against
 // the rods, and the figure; or why it was not solved.
 std::string verificationSection(const json& report, const std::string& figureSvg) {
@@ -464,10 +483,7 @@ std::string verificationSection(const json& report, const std::string& figureSvg
 
 }  // namespace
 
-std::string reportHtml(const json& report, const std::string& planSvg, const std::string& bomCsv,
-                       const std::vector<std::pair<int, std::string>>& planarSvgs,
-                       const std::string& deployedSvg, const std::string& verificationSvg,
-                       const std::string& deployedViewJson) {
+std::string reportHtml(const json& report, const ReportFiles& files) {
   const json scene = at(report, "scene");
   const std::string name =
       at(scene, "name").is_string() ? scene["name"].get<std::string>() : "eggshell run";
@@ -495,11 +511,13 @@ std::string reportHtml(const json& report, const std::string& planSvg, const std
     for (const auto& w : warnings) html += "<li>" + escapeXml(w) + "</li>\n";
     html += "</ul></details></div>\n";
   }
-  html += stageTimes(report) + planSection(planSvg) + patchesSection(report) +
-          patchGridsSection(planarSvgs) + claddingSection(report) + simulationSection(report) +
-          errorTimeSection(report) + deployedViewSection(deployedViewJson) +
-          deployedSection(deployedSvg) + verificationSection(report, verificationSvg) +
-          fabricationSection(report) + bomSection(bomCsv);
+  html += stageTimes(report) + planSection(files.planSvg, files.curvatureSvg) +
+          patchesSection(report) + patchGridsSection(files.planarSvgs) + claddingSection(report) +
+          simulationSection(report) + errorTimeSection(report) +
+          deployedViewSection(files.deployedViewJson) + deployedSection(files.deployedSvg) +
+          elevationsSection(files.elevationsSvg) +
+          verificationSection(report, files.verificationSvg) + fabricationSection(report) +
+          bomSection(files.bomCsv);
   return html + "</body>\n</html>\n";
 }
 
@@ -531,18 +549,22 @@ std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, co
     if (!std::filesystem::is_regular_file(path, error)) return "";
     return readRegularFile(path, std::size_t{1} << 30, file);
   };
-  const std::string planSvg = readIfThere("plan.svg");
-  std::vector<std::pair<int, std::string>> planar;
+  ReportFiles files;
+  files.planSvg = readIfThere("plan.svg");
+  files.curvatureSvg = readIfThere("curvature.svg");
   for (const auto& p : at(report, "patches")) {
     if (!at(p, "id").is_number_integer()) continue;
     const int id = p["id"].get<int>();
     const std::string file = fmt::format("patch_{:03d}/planar.svg", id);
     const std::string text = readIfThere(file.c_str());
-    if (!text.empty()) planar.emplace_back(id, text);
+    if (!text.empty()) files.planarSvgs.emplace_back(id, text);
   }
-  const std::string html =
-      reportHtml(report, planSvg, readIfThere("bom.csv"), planar, readIfThere("deployed.svg"),
-                 readIfThere("fem/verification.svg"), readIfThere("deployed.json"));
+  files.bomCsv = readIfThere("bom.csv");
+  files.deployedSvg = readIfThere("deployed.svg");
+  files.elevationsSvg = readIfThere("elevations.svg");
+  files.verificationSvg = readIfThere("fem/verification.svg");
+  files.deployedViewJson = readIfThere("deployed.json");
+  const std::string html = reportHtml(report, files);
   writeFileAtomically(runDir / "report.html", html);
   // PNG previews of the same figures (issue 18): the plan wide enough to read, the charts at their
   // size.
@@ -551,7 +573,7 @@ std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, co
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error) throw WriteError("cannot create " + dir.string() + ": " + error.message());
-  const auto figures = reportFigures(html, planSvg);
+  const auto figures = reportFigures(html, files.planSvg);
   for (const auto& [id, svg] : figures) {
     std::string file = id;
     std::replace(file.begin(), file.end(), '-', '_');
@@ -561,7 +583,9 @@ std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, co
   // the Great Court took ~0.6 s one after the other. An exception in any is rethrown here.
   tbb::parallel_for(size_t{0}, figures.size(), [&](size_t k) {
     writePngFromSvg(figures[k].second, runDir / previews[k],
-                    figures[k].first == "plan" ? kPlanPreviewPx : kChartPreviewPx);
+                    figures[k].first == "plan" || figures[k].first == "curvature"
+                        ? kPlanPreviewPx
+                        : kChartPreviewPx);
   });
   return previews;
 }

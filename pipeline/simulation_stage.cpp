@@ -1,6 +1,7 @@
 #include "pipeline/simulation_stage.hpp"
 
 #include "pipeline/deployed_view.hpp"
+#include "pipeline/elevations.hpp"
 
 #include "assembly/boundary_members.hpp"
 #include "core/errors.hpp"
@@ -201,6 +202,13 @@ void writeDeployedFigures(const rods::SimulationRun* joined, const rods::JoinedN
                "design surface";
   writeFileAtomically(folder / "deployed.svg",
                       deployedPlanSvg(rods, caption + ", seen from above"));
+  writeFileAtomically(folder / "elevations.svg",
+                      elevationsSvg(surface, rods,
+                                    joined ? "Elevations and sections of the deployed grid (joined "
+                                             "structure) against the design surface"
+                                           : "Elevations and sections of the deployed grid (each "
+                                             "patch on its own supports) against the design "
+                                             "surface"));
   writeFileAtomically(folder / "deployed.json",
                       deployedViewJson(rods, surface, caption).dump() + "\n");
 }

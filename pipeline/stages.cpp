@@ -66,11 +66,11 @@ const std::vector<Output>& outputTable() {
   static const std::vector<Output> table{
       {"report",
        {S::Grid, S::Simulation},
-       "report.json, report.html, deployed.svg, patch_NNN/grid.json"},
+       "report.json, report.html, deployed.svg, elevations.svg, patch_NNN/grid.json"},
       {"previews",
        {S::Grid, S::Simulation},
        "report.html's PNG previews, patch_NNN/grid.obj, planar.svg, deployed.obj"},
-      {"plan", {S::Design}, "patches.json, plan.svg"},
+      {"plan", {S::Design}, "patches.json, plan.svg, curvature.svg"},
       {"cut_files", {S::Fabrication}, "cut/sheet_NN.svg, .dxf, sheets.pdf, bom.csv"},
       {"stickers", {S::Fabrication}, "cut/stickers_NN.svg, .dxf, stickers.pdf"},
       {"supports", {S::Fabrication}, "supports/supports.csv, supports/support_NNN.stl"},

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -72,6 +73,40 @@ TEST(ModelStage, TwoByTwoGridWritesAValidModelOfEveryLamella) {
       (out / "model.3dm").string() + " P0-U,P0-V,P1-U,P1-V,P2-U,P2-V,P3-U,P3-V 32");
   EXPECT_EQ(rhino.exitCode, 0) << rhino.output;
   fs::remove_all(out);
+}
+
+// A 3dm writer that fails (here a stand-in script that exits 3; in the field a broken Node.js or
+// rhino3dm) is a failure of the run, named in its report, not an internal error without one.
+TEST(ModelStage, AFailingRhinoWriterIsARunFailureWithTheReportWritten) {
+  const fs::path tmp =
+      fs::temp_directory_path() / ("egg_model_badjs_" + std::to_string(::getpid()));
+  const fs::path js = tmp / "js", out = tmp / "run";
+  fs::create_directories(js / "node_modules" / "rhino3dm");
+  std::ofstream(js / "write3dm.mjs") << "console.error('rhino3dm broke'); process.exit(3);\n";
+  std::ofstream(js / "node_modules" / "rhino3dm" / "rhino3dm.js") << "\n";
+  const char* before = std::getenv("EGG_EXPORT_JS");
+  const std::string saved = before ? before : "";
+  ::setenv("EGG_EXPORT_JS", js.c_str(), 1);
+  PipelineOptions options;
+  options.outDir = out;
+  const PipelineResult result = runPipeline(twoByTwoGridScene(), options);
+  if (before)
+    ::setenv("EGG_EXPORT_JS", saved.c_str(), 1);
+  else
+    ::unsetenv("EGG_EXPORT_JS");
+  ASSERT_EQ(result.failures.size(), 1u) << nlohmann::json(result.failures).dump(1);
+  EXPECT_EQ(result.failures[0].rfind("model.3dm not written: ", 0), 0u) << result.failures[0];
+  EXPECT_NE(result.failures[0].find("exited with 3"), std::string::npos) << result.failures[0];
+  EXPECT_NE(result.failures[0].find("rhino3dm broke"), std::string::npos) << result.failures[0];
+  EXPECT_EQ(result.report["failures"], nlohmann::json(result.failures));
+  EXPECT_TRUE(result.report["model"].contains("rhino_error"));
+  EXPECT_TRUE(fs::exists(out / "report.json"));
+  EXPECT_TRUE(fs::exists(out / "model.glb"));
+  EXPECT_FALSE(fs::exists(out / "model.3dm"));
+  // Nothing of the writer's is left behind (its temporary input, output and log).
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_EQ(entry.path().filename().string().find(".log"), std::string::npos) << entry.path();
+  fs::remove_all(tmp);
 }
 
 }  // namespace

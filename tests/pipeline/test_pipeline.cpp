@@ -2,6 +2,9 @@
 // report's invariants checked against each other and against the thesis' criteria.
 #include "pipeline/pipeline.hpp"
 
+#include "core/io/atomic_file.hpp"
+
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -257,9 +260,33 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   EXPECT_EQ(joined["history"].back()["rmse_m"], joined["rmse_m"]);
   EXPECT_EQ(joined["history"].back()["iteration"], joined["iterations"]);
   EXPECT_TRUE(fs::exists(out / "patches.json"));
-  EXPECT_TRUE(fs::exists(out / "plan.svg"));
   EXPECT_TRUE(fs::exists(out / "report.json"));
   EXPECT_TRUE(fs::exists(out / "cut" / "sheets.pdf"));
+  // The architect's plan carries what the later stages made: every patch's members, every support
+  // of the fabrication stage, each patch's surface area; the analytical sheet and the elevations
+  // sit beside it, and report.html shows all three.
+  const std::string plan = readRegularFile(out / "plan.svg", 1 << 26, "plan.svg");
+  EXPECT_NE(plan.find("class=\"members-u"), std::string::npos);
+  EXPECT_NE(plan.find("class=\"members-v"), std::string::npos);
+  int supportMarks = 0;
+  for (size_t at = plan.find(" id=\"support-S"); at != std::string::npos;
+       at = plan.find(" id=\"support-S", at + 1))
+    ++supportMarks;
+  EXPECT_EQ(supportMarks, report["fabrication"]["supports"].get<int>());
+  for (const auto& p : report["patches"])
+    EXPECT_NE(plan.find(fmt::format(">{:.1f} m²<", p["area_m2"].get<double>())), std::string::npos)
+        << "patch " << p["id"] << ": areas under 10 m² keep one decimal";
+  EXPECT_EQ(report["plan"]["labels_left_out"], 0);
+  EXPECT_TRUE(fs::exists(out / "curvature.svg"));
+  const std::string elevations = readRegularFile(out / "elevations.svg", 1 << 26, "elevations");
+  EXPECT_NE(elevations.find("<g id=\"section-a\""), std::string::npos);
+  EXPECT_NE(elevations.find("<circle cx="), std::string::npos) << "no lamella cut by a section";
+  const std::string html = readRegularFile(out / "report.html", 1 << 28, "report.html");
+  EXPECT_NE(html.find("<svg id=\"elevations\""), std::string::npos);
+  EXPECT_NE(html.find("<svg id=\"curvature\""), std::string::npos);
+  for (const char* preview :
+       {"preview/plan.png", "preview/curvature.png", "preview/elevations.png"})
+    EXPECT_TRUE(fs::exists(out / preview)) << preview;
   EXPECT_FALSE(fs::exists(out / "patch_000" / "grid.obj"));  // previews were not asked for
   // Fabrication: 4 patches x 8 members, the 4 shared sides cut once each (one lamella carrying the
   // holes of both patches).

@@ -79,7 +79,7 @@ const std::string kBom =
     "bolt,,63,,,,,,,diameter 16.0 mm; one per connection, merged on shared lamellas\n";
 
 TEST(ReportHtml, SelfContainedPageWithEverySection) {
-  const std::string html = reportHtml(sampleReport(), kPlan, kBom);
+  const std::string html = reportHtml(sampleReport(), {.planSvg = kPlan, .bomCsv = kBom});
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   // Nothing fetched from anywhere: no script, link, image, import or external url.
   for (const char* external :
@@ -155,7 +155,7 @@ TEST(ReportHtml, MissingPartsSayWhy) {
   report["simulation"] = {{"ran", false},
                           {"skipped_reason", "the scene disables it (simulation.enabled = false)"}};
   report["fabrication"] = {{"ran", false}, {"skipped_reason", "no requested output needs it"}};
-  const std::string html = reportHtml(report, "", "");
+  const std::string html = reportHtml(report, {});
   EXPECT_NE(html.find("No plan: the scene's outputs do not contain \"plan\""), std::string::npos);
   EXPECT_NE(html.find("Not run: the scene disables it (simulation.enabled = false)"),
             std::string::npos);
@@ -166,7 +166,7 @@ TEST(ReportHtml, MissingPartsSayWhy) {
   EXPECT_EQ(html.find("id=\"stress-histogram\""), std::string::npos);
   EXPECT_NE(html.find("No error history: the simulation did not run."), std::string::npos);
   report["patches"] = nlohmann::json::array();
-  EXPECT_NE(reportHtml(report, "", "").find("No cladding functions: no patch grid was traced."),
+  EXPECT_NE(reportHtml(report, {}).find("No cladding functions: no patch grid was traced."),
             std::string::npos);
 }
 
@@ -253,7 +253,7 @@ TEST(ReportHtml, WritesAPngPreviewOfEveryFigure) {
 }
 
 TEST(ReportHtml, FiguresStandAloneWithTheSvgNamespace) {
-  const std::string html = reportHtml(sampleReport(), kPlan, kBom);
+  const std::string html = reportHtml(sampleReport(), {.planSvg = kPlan, .bomCsv = kBom});
   const auto figures = reportFigures(html, kPlan);
   // plan, stage times, the cladding functions of patch 0 (patch 1 has none), simulation error,
   // error against time patch by patch and joined, stress histogram, highest stresses.

@@ -1,6 +1,7 @@
-#include "patching/plan_svg.hpp"
+#include "patching/curvature_sheet.hpp"
 
 #include "core/io/xml_text.hpp"
+#include "patching/plan_drawing.hpp"
 
 #include "core/curvature/curvature.hpp"
 #include "core/errors.hpp"
@@ -19,35 +20,14 @@
 namespace egg::patching {
 namespace {
 
-// Map from metres (plan xy) to page pixels: x to the right, north (y) up.
-struct Projection {
-  double xmin = 0.0, ymax = 0.0, scale = 1.0, left = 0.0, top = 0.0;
-  double px(double x) const { return left + (x - xmin) * scale; }
-  double py(double y) const { return top + (ymax - y) * scale; }
-};
-
-std::string point(const Projection& p, const Eigen::Vector3d& q) {
-  return fmt::format("{:.1f},{:.1f}", p.px(q.x()), p.py(q.y()));
-}
-
-std::string pointList(const Projection& p, const std::vector<Eigen::Vector3d>& points) {
-  std::string out;
-  for (const auto& q : points) {
-    if (!out.empty()) out += ' ';
-    out += point(p, q);
-  }
-  return out;
-}
-
-// Text with a white halo, so labels stay readable over the colour map and the lines.
-std::string label(double x, double y, const std::string& text, double size,
-                  const std::string& extra = "", const std::string& anchor = "middle") {
-  return fmt::format(
-      "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{:.0f}\" text-anchor=\"{}\" "
-      "paint-order=\"stroke\" stroke=\"#fff\" "
-      "stroke-width=\"3\" stroke-linejoin=\"round\"{}>{}</text>\n",
-      x, y, size, anchor, extra, escapeXml(text));
-}
+using plan::boundaryLoops;
+using plan::centroidXY;
+using plan::label;
+using plan::Legend;
+using plan::point;
+using plan::pointList;
+using plan::Projection;
+using plan::wrap;
 
 // Diverging ColorBrewer RdBu: blue for negative K, white at 0, red for positive; v in [-1, 1].
 std::string divergingColour(double v) {
@@ -65,106 +45,10 @@ std::string divergingColour(double v) {
 constexpr int kHalfBins = 8;  // the K map uses 2 * 8 + 1 colours
 double binValue(int bin) { return static_cast<double>(bin - kHalfBins) / kHalfBins; }
 
-// A round length for the scale bar: 1, 2 or 5 times a power of ten, at most `target`.
-double roundLength(double target) {
-  const double decade = std::pow(10.0, std::floor(std::log10(target)));
-  for (double m : {5.0, 2.0, 1.0})
-    if (m * decade <= target) return m * decade;
-  return decade;
-}
-
 std::string number(double v) { return fmt::format("{:.3g}", v); }
 
-// Boundary loops of a mesh (each a closed list of vertex positions).
-std::vector<std::vector<Eigen::Vector3d>> boundaryLoops(const TriMesh& mesh) {
-  std::vector<std::vector<Eigen::Vector3d>> loops;
-  std::vector<char> seen(mesh.n_halfedges(), 0);
-  for (auto h : mesh.halfedges()) {
-    if (!mesh.is_boundary(h) || seen[h.idx()]) continue;
-    std::vector<Eigen::Vector3d> loop;
-    for (auto g = h; !seen[g.idx()]; g = mesh.next_halfedge_handle(g)) {
-      seen[g.idx()] = 1;
-      loop.push_back(toEigen(mesh.point(mesh.from_vertex_handle(g))));
-    }
-    loops.push_back(std::move(loop));
-  }
-  return loops;
-}
-
-double signedAreaXY(const std::vector<Eigen::Vector3d>& loop) {
-  double a = 0.0;
-  for (size_t i = 0; i < loop.size(); ++i) {
-    const auto& p = loop[i];
-    const auto& q = loop[(i + 1) % loop.size()];
-    a += 0.5 * (p.x() * q.y() - q.x() * p.y());
-  }
-  return a;
-}
-
-// Area centroid of a polygon in plan (the vertex mean for a degenerate one).
-Eigen::Vector2d centroidXY(const std::vector<Eigen::Vector3d>& loop) {
-  Eigen::Vector2d c = Eigen::Vector2d::Zero(), mean = Eigen::Vector2d::Zero();
-  double a = 0.0;
-  for (size_t i = 0; i < loop.size(); ++i) {
-    const Eigen::Vector2d p = loop[i].head<2>(), q = loop[(i + 1) % loop.size()].head<2>();
-    const double w = p.x() * q.y() - q.x() * p.y();
-    a += w, c += w * (p + q), mean += p;
-  }
-  if (loop.empty()) return c;
-  if (std::abs(a) < 1e-12) return mean / static_cast<double>(loop.size());
-  return c / (3.0 * a);
-}
-
-// Outline of layout patch p: its four sides' segment chains, corner to corner.
-std::vector<Eigen::Vector3d> patchOutline(const PatchLayout& layout, int p) {
-  std::vector<Eigen::Vector3d> outline;
-  for (const PatchSideSegments& side : layout.patchSides[p])
-    for (const auto& [segment, reversed] : side) {
-      std::vector<int> chain = layout.segments[segment].chain;
-      if (reversed) std::reverse(chain.begin(), chain.end());
-      for (size_t i = 0; i + 1 < chain.size(); ++i)  // the last vertex starts the next piece
-        outline.push_back(toEigen(layout.mesh.mesh.point(TriMesh::VertexHandle(chain[i]))));
-    }
-  return outline;
-}
-
-// Greedy word wrap at `width` characters.
-std::vector<std::string> wrap(const std::string& text, size_t width) {
-  std::vector<std::string> lines{""};
-  size_t start = 0;
-  while (start < text.size()) {
-    size_t end = text.find(' ', start);
-    if (end == std::string::npos) end = text.size();
-    const std::string word = text.substr(start, end - start);
-    if (!lines.back().empty() && lines.back().size() + 1 + word.size() > width) lines.push_back("");
-    if (!lines.back().empty()) lines.back() += ' ';
-    lines.back() += word;
-    start = end + 1;
-  }
-  return lines;
-}
-
-// Legend rows, laid out top to bottom in the column right of the map.
-struct Legend {
-  double x = 0.0, y = 0.0;
-  std::string svg;
-  void gap(double h) { y += h; }
-  void text(const std::string& t, double size = 12, const std::string& extra = "") {
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{:.0f}\"{}>{}</text>\n", x,
-                       y + size, size, extra, escapeXml(t));
-    y += size + 5;
-  }
-  // A swatch (any SVG drawn in a 30 x 14 box at (sx, sy)) and its text.
-  void item(const std::string& swatch, const std::string& t) {
-    svg += fmt::format("<g transform=\"translate({:.1f},{:.1f})\">{}</g>\n", x, y, swatch);
-    svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\">{}</text>\n", x + 40,
-                       y + 11, escapeXml(t));
-    y += 20;
-  }
-};
-
 // Throws InvalidInput when the drawing's parts do not fit together.
-void validateDrawing(const PlanDrawing& drawing) {
+void validateDrawing(const CurvatureDrawing& drawing) {
   drawing.options.validate();
   if (drawing.surface == nullptr || drawing.surface->n_faces() == 0)
     throw InvalidInput("plan.svg: no surface to draw");
@@ -194,7 +78,7 @@ struct Page {
 };
 
 // Page: the map on the left (width_px wide, at most 1.4 times as tall), the legend on the right.
-Page pageOf(const PlanDrawing& drawing) {
+Page pageOf(const CurvatureDrawing& drawing) {
   const BoundingBox box = boundingBox(*drawing.surface);
   Page page;
   page.margin = 30.0, page.titleHeight = drawing.title.empty() ? 0.0 : 34.0,
@@ -219,7 +103,7 @@ struct CurvatureMap {
 
 // K colour map: faces binned into 17 colours, one path per colour (each face stroked in its own
 // colour to hide the anti-aliasing seams between faces).
-CurvatureMap curvatureMap(const PlanDrawing& drawing, const Projection& proj) {
+CurvatureMap curvatureMap(const CurvatureDrawing& drawing, const Projection& proj) {
   const TriMesh& surface = *drawing.surface;
   const int nv = static_cast<int>(surface.n_vertices());
   CurvatureMap out;
@@ -266,36 +150,8 @@ CurvatureMap curvatureMap(const PlanDrawing& drawing, const Projection& proj) {
   return out;
 }
 
-// Label at the deepest face (most face steps from the cut-off's border; the one nearest the
-// centroid among those): the centroid of a ring lies outside it.
-Eigen::Vector3d cutOffLabelPoint(const TriMesh& lm, const CutOff& cut) {
-  std::vector<int> depth(lm.n_faces(), -2);  // -2 not in the cut-off, -1 not reached yet
-  for (int f : cut.faces) depth[f] = -1;
-  std::vector<int> queue;
-  for (int f : cut.faces) {
-    int neighbours = 0;
-    for (auto g : lm.ff_range(TriMesh::FaceHandle(f))) neighbours += depth[g.idx()] != -2;
-    if (neighbours < 3 && depth[f] == -1) depth[f] = 0, queue.push_back(f);
-  }
-  for (size_t i = 0; i < queue.size(); ++i)
-    for (auto g : lm.ff_range(TriMesh::FaceHandle(queue[i])))
-      if (depth[g.idx()] == -1) depth[g.idx()] = depth[queue[i]] + 1, queue.push_back(g.idx());
-  Eigen::Vector3d at = cut.centroid;
-  int bestDepth = -1;
-  double best = std::numeric_limits<double>::infinity();
-  for (int f : cut.faces) {
-    const auto fv = faceVertices(lm, f);
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) c += toEigen(lm.point(TriMesh::VertexHandle(fv[k]))) / 3.0;
-    const double dist = (c - cut.centroid).head<2>().norm();
-    if (depth[f] > bestDepth || (depth[f] == bestDepth && dist < best))
-      bestDepth = depth[f], best = dist, at = c;
-  }
-  return at;
-}
-
 // Cut-offs: grey under a hatch (group opacity, so overlapping face strokes do not show).
-std::string cutOffsSvg(const PlanDrawing& drawing, const Projection& proj) {
+std::string cutOffsSvg(const CurvatureDrawing& drawing, const Projection& proj) {
   std::string body;
   const TriMesh& lm = drawing.layout->mesh.mesh;
   for (size_t c = 0; c < drawing.coverage->cutOffs.size(); ++c) {
@@ -317,9 +173,10 @@ std::string cutOffsSvg(const PlanDrawing& drawing, const Projection& proj) {
         "stroke=\"#808080\" "
         "stroke-width=\"0.6\" d=\"{}\"/></g><path fill=\"url(#hatch-cutoff)\" d=\"{}\"/></g>\n",
         c, d, d);
-    const Eigen::Vector3d at = cutOffLabelPoint(lm, cut);
+    const Eigen::Vector3d at = plan::cutOffLabelPoint(lm, cut);
     body += label(proj.px(at.x()), proj.py(at.y()) + 4,
-                  fmt::format("cut-off {:.3g} m²", cut.areaM2), 11, " fill=\"#333\"");
+                  "cut-off " + plan::plainNumber(cut.areaM2, cut.areaM2 < 10.0 ? 1 : 0) + " m²", 11,
+                  " fill=\"#333\"");
   }
   return body;
 }
@@ -328,9 +185,7 @@ std::string cutOffsSvg(const PlanDrawing& drawing, const Projection& proj) {
 std::string outlineSvg(const TriMesh& surface, const Projection& proj) {
   std::string body;
   auto loops = boundaryLoops(surface);
-  size_t outer = 0;
-  for (size_t i = 0; i < loops.size(); ++i)
-    if (std::abs(signedAreaXY(loops[i])) > std::abs(signedAreaXY(loops[outer]))) outer = i;
+  const size_t outer = plan::outerLoop(loops);
   for (size_t i = 0; i < loops.size(); ++i)
     body += fmt::format(
         "<polygon id=\"{}\" fill=\"none\" stroke=\"#1a1a1a\" stroke-width=\"2.5\" "
@@ -343,7 +198,7 @@ std::string outlineSvg(const TriMesh& surface, const Projection& proj) {
 // Patch outlines with their ids; infeasible ones hatched, labelled with the index of their reason.
 // The outlines go to `body`, the ids to `labels`, the distinct problems, in order of first
 // appearance, to `reasons`.
-void patchOutlinesSvg(const PlanDrawing& drawing, const Projection& proj, std::string& body,
+void patchOutlinesSvg(const CurvatureDrawing& drawing, const Projection& proj, std::string& body,
                       std::string& labels, std::vector<std::string>& reasons) {
   const PatchLayout* layout = drawing.layout;
   const int patchCount = layout ? static_cast<int>(layout->patches.size()) : 0;
@@ -355,7 +210,7 @@ void patchOutlinesSvg(const PlanDrawing& drawing, const Projection& proj, std::s
       reason = static_cast<int>(it - reasons.begin());
       if (it == reasons.end()) reasons.push_back(problem);
     }
-    const auto outline = patchOutline(*layout, p);
+    const auto outline = plan::patchOutline(*layout, p);
     body += fmt::format(
         "<polygon id=\"patch-{}\" class=\"patch{}\" fill=\"{}\" stroke=\"#000\" stroke-width=\"2\" "
         "stroke-linejoin=\"round\" points=\"{}\"/>\n",
@@ -371,7 +226,7 @@ void patchOutlinesSvg(const PlanDrawing& drawing, const Projection& proj, std::s
 // Injectivity circles, then the p_max markers and their labels on top of everything. The circles
 // go to `body` (a note for each that encloses the whole surface to `notes`), the markers to
 // `labels`.
-void circlesAndPeaksSvg(const PlanDrawing& drawing, const Page& page, std::string& body,
+void circlesAndPeaksSvg(const CurvatureDrawing& drawing, const Page& page, std::string& body,
                         std::string& labels, std::vector<std::string>& notes) {
   const Projection& proj = page.proj;
   for (size_t i = 0; i < drawing.circles.size(); ++i) {
@@ -399,6 +254,11 @@ void circlesAndPeaksSvg(const PlanDrawing& drawing, const Page& page, std::strin
   for (const auto& circle : drawing.circles)
     if (!peakVertices.count(circle.peakVertex))
       markers.emplace_back(circle.centre, fmt::format("r = {} m", number(circle.radiusM)));
+  // Markers first, then their labels where they overlap no marker, no other label and stay on
+  // the map; a label with no free place goes to the legend's notes.
+  plan::LabelLayout layout(page.mapRight + 0.5 * page.margin, page.mapBottom + 18);
+  for (const auto& [at, text] : markers)
+    layout.reserve(plan::LabelLayout::boxAround(proj.px(at.x()), proj.py(at.y()), 1, 1, 10));
   for (size_t i = 0; i < markers.size(); ++i) {
     const double x = proj.px(markers[i].first.x()), y = proj.py(markers[i].first.y());
     labels += fmt::format(
@@ -407,13 +267,23 @@ void circlesAndPeaksSvg(const PlanDrawing& drawing, const Page& page, std::strin
         "stroke-width=\"2\"/><path d=\"M{:.1f},{:.1f}h8M{:.1f},{:.1f}v8\" stroke=\"#fff\" "
         "stroke-width=\"1.5\"/></g>\n",
         i, x, y, x - 4, y, x, y - 4);
-    // Beside the marker, on the side where it stays inside the map (width estimated at 0.6 em a
-    // character).
     const std::string text = fmt::format("p{}  {}", i, markers[i].second);
-    const bool left = x + 10 + 0.6 * 12 * static_cast<double>(text.size()) > page.mapRight;
-    const double ty = y - 8 < proj.top + 12 ? y + 20 : y - 8;
-    labels +=
-        label(left ? x - 10 : x + 10, ty, text, 12, " fill=\"#4a0072\"", left ? "end" : "start");
+    const size_t chars = text.size();
+    const double half = 0.5 * (0.62 * 12 * static_cast<double>(chars) + 4.0);
+    std::vector<Eigen::Vector2d> candidates;
+    for (int ring = 0; ring < 4; ++ring) {
+      const double dy = 16.0 * ring;
+      for (const Eigen::Vector2d c :
+           {Eigen::Vector2d(x + 10 + half, y - 8 - dy), Eigen::Vector2d(x - 10 - half, y - 8 - dy),
+            Eigen::Vector2d(x + 10 + half, y + 14 + dy),
+            Eigen::Vector2d(x - 10 - half, y + 14 + dy)})
+        candidates.push_back(c);
+    }
+    Eigen::Vector2d at;
+    if (layout.place(candidates, chars, 1, 12, at))
+      labels += label(at.x(), at.y() + 4, text, 12, " fill=\"#4a0072\"");
+    else
+      notes.push_back(text + " (label left out on the map: no free place)");
   }
 }
 
@@ -422,32 +292,11 @@ double scaleBarY(const Page& page) { return page.mapBottom + 24; }
 
 // Scale bar (a round length near a fifth of the plan's width) and north arrow, under the map.
 std::string scaleBarSvg(const Page& page) {
-  const Projection& proj = page.proj;
-  const double barM = roundLength(0.2 * page.dx), barPx = barM * proj.scale;
-  const double barY = scaleBarY(page), barX = page.margin;
-  std::string scaleBar = fmt::format(
-      "<g id=\"scale\"><rect id=\"scale-bar\" x=\"{:.3f}\" y=\"{:.1f}\" width=\"{:.3f}\" "
-      "height=\"8\" fill=\"#fff\" stroke=\"#000\" "
-      "stroke-width=\"1.2\"/><rect x=\"{:.3f}\" y=\"{:.1f}\" width=\"{:.3f}\" height=\"8\" "
-      "fill=\"#000\"/>\n",
-      barX, barY, barPx, barX, barY, 0.5 * barPx);
-  scaleBar +=
-      fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\">0</text>", barX - 3, barY + 24);
-  scaleBar += fmt::format(
-      "<text id=\"scale-label\" x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\" "
-      "text-anchor=\"middle\">{} m</text></g>\n",
-      barX + barPx, barY + 24, fmt::format("{:g}", barM));
-  const double northX = page.mapRight - 10, northY = barY - 6;
-  scaleBar += fmt::format(
-      "<g id=\"north\"><path d=\"M{0:.1f},{1:.1f}l-7,18l7,-5l7,5z\" fill=\"#000\"/>"
-      "<text x=\"{0:.1f}\" y=\"{2:.1f}\" font-size=\"13\" font-weight=\"bold\" "
-      "text-anchor=\"middle\">N</text></g>\n",
-      northX, northY, northY + 32);
-  return scaleBar;
+  return plan::scaleBarSvg(page.proj, page.dx, page.margin, scaleBarY(page), page.mapRight - 10);
 }
 
 // Legend.
-Legend legendOf(const PlanDrawing& drawing, const Page& page, const CurvatureMap& kMap,
+Legend legendOf(const CurvatureDrawing& drawing, const Page& page, const CurvatureMap& kMap,
                 const std::vector<std::string>& reasons, const std::vector<std::string>& notes) {
   const double kScale = kMap.kScale;
   Legend legend;
@@ -508,8 +357,8 @@ Legend legendOf(const PlanDrawing& drawing, const Page& page, const CurvatureMap
   if (drawing.coverage != nullptr || !notes.empty()) {
     legend.gap(8);
     if (drawing.coverage != nullptr)
-      legend.text(fmt::format("coverage {:.1f} % of {:.4g} m²", 100.0 * drawing.coverage->fraction,
-                              drawing.coverage->surfaceAreaM2),
+      legend.text(fmt::format("coverage {:.1f} % of {} m²", 100.0 * drawing.coverage->fraction,
+                              plan::plainNumber(drawing.coverage->surfaceAreaM2)),
                   11);
     for (const auto& note : notes)
       for (const auto& line : wrap(note, 44)) legend.text(line, 11);
@@ -520,7 +369,7 @@ Legend legendOf(const PlanDrawing& drawing, const Page& page, const CurvatureMap
 }
 
 // The SVG document round the map's body and the legend.
-std::string documentSvg(const PlanDrawing& drawing, const Page& page, const std::string& body,
+std::string documentSvg(const CurvatureDrawing& drawing, const Page& page, const std::string& body,
                         const Legend& legend) {
   const double margin = page.margin;
   const double width = legend.x + page.legendWidth;
@@ -553,16 +402,17 @@ std::string documentSvg(const PlanDrawing& drawing, const Page& page, const std:
 
 }  // namespace
 
-void PlanSvgOptions::validate() const {
+void CurvatureSheetOptions::validate() const {
   if (!(widthPx >= 200.0 && widthPx <= 20000.0))
     throw InvalidInput(
-        fmt::format("PlanSvgOptions.width_px must be in [200, 20000], got {}", widthPx));
+        fmt::format("CurvatureSheetOptions.width_px must be in [200, 20000], got {}", widthPx));
   if (!(curvaturePercentile > 0.0 && curvaturePercentile <= 100.0))
-    throw InvalidInput(fmt::format(
-        "PlanSvgOptions.curvature_percentile must be in (0, 100], got {}", curvaturePercentile));
+    throw InvalidInput(
+        fmt::format("CurvatureSheetOptions.curvature_percentile must be in (0, 100], got {}",
+                    curvaturePercentile));
 }
 
-std::string planSvg(const PlanDrawing& drawing) {
+std::string curvatureSheetSvg(const CurvatureDrawing& drawing) {
   validateDrawing(drawing);
   const Page page = pageOf(drawing);
   const CurvatureMap kMap = curvatureMap(drawing, page.proj);
@@ -580,8 +430,8 @@ std::string planSvg(const PlanDrawing& drawing) {
   return documentSvg(drawing, page, body, legend);
 }
 
-void writePlanSvg(const std::filesystem::path& path, const PlanDrawing& drawing) {
-  writeFileAtomically(path, planSvg(drawing));
+void writeCurvatureSheet(const std::filesystem::path& path, const CurvatureDrawing& drawing) {
+  writeFileAtomically(path, curvatureSheetSvg(drawing));
 }
 
 }  // namespace egg::patching

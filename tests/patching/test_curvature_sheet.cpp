@@ -1,8 +1,10 @@
-#include "patching/plan_svg.hpp"
+#include "patching/curvature_sheet.hpp"
 
 #include "core/errors.hpp"
 #include "core/geodesic/distance_solver.hpp"
 #include "samples/generators/samples.hpp"
+#include "tests/support/bump_layout.hpp"
+#include "tests/support/svg_text.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,79 +20,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<Eigen::Vector3d> planGridCorners(const TriMesh& surface, double half) {
-  std::vector<Eigen::Vector3d> corners;
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i)
-      corners.push_back(position(
-          surface, geodesic::snapToSurface(surface, {-half + half * i, -half + half * j, 0.0})));
-  return corners;
-}
-const std::vector<std::array<int, 4>> kPlanTwoByTwo{
-    {0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
+namespace svgtext = egg::test::svg;
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using Scene = testing::BumpLayout;
 
-// Occurrences of `needle` (plain finds: libstdc++'s std::regex recurses per character and would
-// overflow the stack on the long K-map paths).
-int count(const std::string& text, const std::string& needle) {
-  int n = 0;
-  for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
-  return n;
-}
-
-// The start tag of the element with id `id` ("" if none).
-std::string element(const std::string& svg, const std::string& id) {
-  const size_t at = svg.find(" id=\"" + id + "\"");
-  if (at == std::string::npos) return "";
-  const size_t open = svg.rfind('<', at), close = svg.find('>', at);
-  return svg.substr(open, close - open + 1);
-}
-
-// Attribute `name` of the element with id `id`.
-std::string attribute(const std::string& svg, const std::string& id, const std::string& name) {
-  const std::string tag = element(svg, id);
-  const std::string key = " " + name + "=\"";
-  const size_t at = tag.find(key);
-  if (at == std::string::npos) return "";
-  const size_t start = at + key.size();
-  return tag.substr(start, tag.find('"', start) - start);
-}
-
-// The text content of the element with id `id`.
-std::string textOf(const std::string& svg, const std::string& id) {
-  const std::string tag = element(svg, id);
-  if (tag.empty()) return "";
-  const size_t start = svg.find(tag) + tag.size();
-  return svg.substr(start, svg.find('<', start) - start);
-}
-
-// A 2 x 2 layout on a bump (K = 4 / m^2 at the top, r = 1.57 m) over the middle 5 x 5 m of an
-// 8 x 8 m surface: the cut-off is the ring outside the layout.
-struct Scene {
-  TriMesh surface = samples::generateSample(
-      "bump", {{"length", 8}, {"width", 8}, {"height", 2}, {"sigma", 1}}, 0.2);
-  geodesic::DistanceSolver solver{surface};
-  PatchLayout layout = makeLayout(surface, solver, planGridCorners(surface, 2.5), kPlanTwoByTwo);
-  std::vector<SurfacePeak> peaks = findSurfacePeaks(surface);
-  Coverage coverage;
-  Scene() {
-    std::vector<std::vector<int>> faces(4);
-    for (int p = 0; p < 4; ++p) faces[p] = cutLayoutPatch(layout, p).layoutFace;
-    coverage = computeCoverage(layout, faces);
-  }
-};
-
-TEST(PlanSvg, TwoByTwoOnABumpRendersWithOutlinesCircleCutOffAndScaleBar) {
+TEST(CurvatureSheet, TwoByTwoOnABumpRendersWithOutlinesCircleCutOffAndScaleBar) {
   const Scene scene;
   ASSERT_EQ(scene.peaks.size(), 1u);
   ASSERT_EQ(scene.coverage.cutOffs.size(), 1u);
-  PlanDrawing drawing;
+  CurvatureDrawing drawing;
   drawing.surface = &scene.surface;
   drawing.layout = &scene.layout;
   drawing.patchProblems = {"", "", "",
@@ -104,8 +42,8 @@ TEST(PlanSvg, TwoByTwoOnABumpRendersWithOutlinesCircleCutOffAndScaleBar) {
   const fs::path dir = fs::temp_directory_path() / ("egg_plan_svg_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path svgPath = dir / "plan.svg", pngPath = dir / "plan.png";
-  writePlanSvg(svgPath, drawing);
-  const std::string svg = readText(svgPath);
+  writeCurvatureSheet(svgPath, drawing);
+  const std::string svg = svgtext::readText(svgPath);
 
   // It renders (a missing rsvg-convert fails the test: scripts/install-deps.sh installs
   // librsvg2-bin).
@@ -118,23 +56,23 @@ TEST(PlanSvg, TwoByTwoOnABumpRendersWithOutlinesCircleCutOffAndScaleBar) {
   EXPECT_GT(fs::file_size(pngPath), 10000u);
 
   // One outline per patch, each with its id as text; the infeasible one says its reason index.
-  EXPECT_EQ(count(svg, "<polygon id=\"patch-"), 4);
+  EXPECT_EQ(svgtext::count(svg, "<polygon id=\"patch-"), 4);
   for (int p = 0; p < 4; ++p) {
-    EXPECT_EQ(element(svg, "patch-" + std::to_string(p)).rfind("<polygon", 0), 0u) << p;
-    EXPECT_EQ(element(svg, "patch-label-" + std::to_string(p)).rfind("<text", 0), 0u) << p;
-    EXPECT_EQ(textOf(svg, "patch-label-" + std::to_string(p)),
+    EXPECT_EQ(svgtext::element(svg, "patch-" + std::to_string(p)).rfind("<polygon", 0), 0u) << p;
+    EXPECT_EQ(svgtext::element(svg, "patch-label-" + std::to_string(p)).rfind("<text", 0), 0u) << p;
+    EXPECT_EQ(svgtext::textOf(svg, "patch-label-" + std::to_string(p)),
               p == 3 ? "3 [1]" : std::to_string(p));
   }
-  EXPECT_NE(attribute(svg, "patch-3", "class").find("infeasible"), std::string::npos);
+  EXPECT_NE(svgtext::attribute(svg, "patch-3", "class").find("infeasible"), std::string::npos);
   EXPECT_NE(svg.find("[1] eta_u = 1.004 &gt; eta_max = 1.0015"), std::string::npos);
-  EXPECT_EQ(count(svg, " id=\"circle-"), 1);
-  EXPECT_EQ(count(svg, " id=\"pmax-"), 1);
-  EXPECT_EQ(count(svg, " id=\"cutoff-"), 1);
+  EXPECT_EQ(svgtext::count(svg, " id=\"circle-"), 1);
+  EXPECT_EQ(svgtext::count(svg, " id=\"pmax-"), 1);
+  EXPECT_EQ(svgtext::count(svg, " id=\"cutoff-"), 1);
   EXPECT_NE(svg.find("bump &lt;2 x 2&gt; &amp; one circle"), std::string::npos);  // text is escaped
 
   // The scale: the outline's width in px over the surface's width in m is the page scale, and the
   // scale bar's width in px is its label in m times that scale.
-  const std::string outline = attribute(svg, "outline", "points");
+  const std::string outline = svgtext::attribute(svg, "outline", "points");
   ASSERT_FALSE(outline.empty());
   double xmin = 1e300, xmax = -1e300;
   std::stringstream points(outline);
@@ -148,10 +86,10 @@ TEST(PlanSvg, TwoByTwoOnABumpRendersWithOutlinesCircleCutOffAndScaleBar) {
   ASSERT_NE(rootAt, std::string::npos);
   const double declared = std::stod(svg.substr(rootAt + 15));
   EXPECT_NEAR(scale, declared, 0.2 / box.size().x());  // points are written to 0.1 px
-  const std::string barLabel = textOf(svg, "scale-label");
+  const std::string barLabel = svgtext::textOf(svg, "scale-label");
   ASSERT_EQ(barLabel.substr(barLabel.size() - 2), " m") << barLabel;
   const double barM = std::stod(barLabel);
-  const double barPx = std::stod(attribute(svg, "scale-bar", "width"));
+  const double barPx = std::stod(svgtext::attribute(svg, "scale-bar", "width"));
   EXPECT_NEAR(barPx, barM * declared, 1e-3);
   EXPECT_NEAR(barPx, barM * scale, 0.2 * barM / box.size().x() + 1e-3);
   // A round length: 1, 2 or 5 times a power of ten, between a tenth and a fifth of the width.
@@ -165,19 +103,19 @@ TEST(PlanSvg, TwoByTwoOnABumpRendersWithOutlinesCircleCutOffAndScaleBar) {
     fs::remove_all(dir);  // EGG_KEEP_PLAN=1 keeps it to look at
 }
 
-TEST(PlanSvg, SurfaceAloneAndBadInput) {
+TEST(CurvatureSheet, SurfaceAloneAndBadInput) {
   const TriMesh surface = samples::generateSample("plane", {{"length", 6}, {"width", 3}}, 0.5);
-  PlanDrawing drawing;
-  EXPECT_THROW(planSvg(drawing), InvalidInput);  // no surface
+  CurvatureDrawing drawing;
+  EXPECT_THROW(curvatureSheetSvg(drawing), InvalidInput);  // no surface
   drawing.surface = &surface;
-  const std::string svg = planSvg(drawing);  // K = 0 everywhere: still a plan
+  const std::string svg = curvatureSheetSvg(drawing);  // K = 0 everywhere: still a plan
   EXPECT_NE(svg.find("id=\"outline\""), std::string::npos);
   EXPECT_EQ(svg.find("id=\"patch-"), std::string::npos);
   drawing.gaussian = Eigen::VectorXd::Zero(3);
-  EXPECT_THROW(planSvg(drawing), InvalidInput);  // one value per vertex
+  EXPECT_THROW(curvatureSheetSvg(drawing), InvalidInput);  // one value per vertex
   drawing.gaussian.resize(0);
   drawing.options.widthPx = 10;
-  EXPECT_THROW(planSvg(drawing), InvalidInput);
+  EXPECT_THROW(curvatureSheetSvg(drawing), InvalidInput);
 }
 
 }  // namespace
@@ -188,7 +126,7 @@ namespace {
 
 // The Great Court roof at its scene edge length (1 m): its K peaks, their circles (open where they
 // run into the Reading Room or off the roof), and the plan of the surface alone.
-TEST(PlanSvg, SlowGreatCourtPeaksCirclesAndPlan) {
+TEST(CurvatureSheet, SlowGreatCourtPeaksCirclesAndPlan) {
   const TriMesh surface = samples::generateSample("great_court", {}, 1.0);
   const auto t0 = std::chrono::steady_clock::now();
   const auto peaks = findSurfacePeaks(surface);
@@ -217,16 +155,16 @@ TEST(PlanSvg, SlowGreatCourtPeaksCirclesAndPlan) {
     EXPECT_LT(circles[i].maxDistanceErrorM, 1e-9 * circles[i].radiusM) << i;
     EXPECT_LT(peaks[i].radiusM, boundingBox(surface).size().norm()) << i;
   }
-  PlanDrawing drawing;
+  CurvatureDrawing drawing;
   drawing.surface = &surface;
   drawing.peaks = peaks;
   drawing.circles = circles;
   drawing.title = "great_court: K peaks and injectivity circles";
-  const std::string svg = planSvg(drawing);
-  EXPECT_EQ(count(svg, " id=\"hole-"), 1);  // the Reading Room
-  EXPECT_EQ(count(svg, " id=\"circle-"), static_cast<int>(circles.size()));
+  const std::string svg = curvatureSheetSvg(drawing);
+  EXPECT_EQ(svgtext::count(svg, " id=\"hole-"), 1);  // the Reading Room
+  EXPECT_EQ(svgtext::count(svg, " id=\"circle-"), static_cast<int>(circles.size()));
   if (std::getenv("EGG_KEEP_PLAN") != nullptr)
-    writePlanSvg(fs::temp_directory_path() / "great_court_plan.svg", drawing);
+    writeCurvatureSheet(fs::temp_directory_path() / "great_court_plan.svg", drawing);
 }
 
 }  // namespace

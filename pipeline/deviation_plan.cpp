@@ -1,6 +1,7 @@
 #include "pipeline/deviation_plan.hpp"
 
 #include "core/io/xml_text.hpp"
+#include "patching/plan_drawing.hpp"
 
 #include <fmt/core.h>
 
@@ -48,7 +49,8 @@ std::string deployedPlanSvg(const std::vector<DeployedRod>& rods, const std::str
   const double plotW = 900.0, pad = 20.0, barW = 110.0;
   const double spanX = std::max(maxX - minX, 1e-9), spanY = std::max(maxY - minY, 1e-9);
   const double s = plotW / std::max(spanX, spanY);
-  const double w = spanX * s + 2 * pad + barW, h = std::max(spanY * s, 260.0) + 2 * pad + 30.0;
+  const double w = spanX * s + 2 * pad + barW,
+               h = std::max(spanY * s, 260.0) + 2 * pad + 30.0 + 44.0;  // + the scale bar
   const double scale = deviationScale(maxD);
   const auto px = [&](const Eigen::Vector3d& p) {
     return fmt::format("{:.1f},{:.1f}", pad + (p.x() - minX) * s, pad + 24.0 + (maxY - p.y()) * s);
@@ -93,6 +95,11 @@ std::string deployedPlanSvg(const std::vector<DeployedRod>& rods, const std::str
       "<text x=\"{:.1f}\" y=\"{:.1f}\">cm from the</text><text x=\"{:.1f}\" y=\"{:.1f}\">design "
       "surface</text>\n",
       bx - 6.0, by + bh + 22.0, bx - 6.0, by + bh + 36.0);
+  // A scale bar and north arrow under the plan (y is north, as on plan.svg).
+  patching::plan::Projection proj;
+  proj.scale = s;
+  svg += patching::plan::scaleBarSvg(proj, spanX, pad, pad + 24.0 + spanY * s + 14.0,
+                                     pad + spanX * s - 10.0);
   return svg + "</svg>\n";
 }
 

@@ -144,6 +144,27 @@ std::string stageTimes(const json& report) {
   return out + barChart("stage-time-chart", bars, "s");
 }
 
+// A figure inlined beside others: the ids inside it (not its root's) and the url(#...) references
+// to them get `prefix`, so that the page's ids stay unique (plan.svg and curvature.svg both have a
+// "patch-0", every sheet a "scale-bar").
+std::string prefixIds(std::string svg, const std::string& prefix) {
+  const size_t rootEnd = svg.find('>');
+  if (rootEnd == std::string::npos) return svg;
+  std::string out = svg.substr(0, rootEnd + 1);
+  for (size_t at = rootEnd + 1; at < svg.size();) {
+    const size_t id = svg.find(" id=\"", at), url = svg.find("url(#", at);
+    const size_t next = std::min(id, url);
+    if (next == std::string::npos) {
+      out.append(svg, at, std::string::npos);
+      break;
+    }
+    const size_t keep = next + 5;  // past ` id="` or `url(#`
+    out.append(svg, at, keep - at).append(prefix);
+    at = keep;
+  }
+  return out;
+}
+
 std::string planSection(const std::string& planSvg, const std::string& curvatureSvg) {
   std::string out = "<h2 id=\"plan\">Plan of patches</h2>\n";
   const size_t start = planSvg.find("<svg");
@@ -160,7 +181,7 @@ std::string planSection(const std::string& planSvg, const std::string& curvature
   // PNG preview.
   const size_t k = curvatureSvg.find("<svg");
   if (k == std::string::npos) return out;
-  std::string sheet = curvatureSvg.substr(k);
+  std::string sheet = prefixIds(curvatureSvg.substr(k), "curvature-");
   sheet.insert(4, " id=\"curvature\" style=\"max-width:100%;height:auto\"");
   return out + "<h3>Curvature and injectivity (curvature.svg)</h3>\n<div class=\"figure\">\n" +
          sheet + "\n</div>\n";
@@ -418,7 +439,8 @@ std::string deployedSection(const std::string& deployedSvg) {
     return out +
            "<p class=\"missing\">No deployed grid: the simulation did not run "
            "(deployed.svg).</p>\n";
-  return out + "<div class=\"figure\">\n" + deployedSvg.substr(start) + "</div>\n";
+  return out + "<div class=\"figure\">\n" + prefixIds(deployedSvg.substr(start), "deployed-") +
+         "</div>\n";
 }
 
 // elevations.svg inlined (an <svg id="elevations">: it gets its PNG preview).
@@ -429,7 +451,8 @@ std::string elevationsSection(const std::string& elevationsSvg) {
     return out +
            "<p class=\"missing\">No elevations: the simulation did not run "
            "(elevations.svg).</p>\n";
-  return out + "<div class=\"figure\">\n" + elevationsSvg.substr(start) + "</div>\n";
+  return out + "<div class=\"figure\">\n" + prefixIds(elevationsSvg.substr(start), "elevations-") +
+         "</div>\n";
 }
 
 // The FE check (output "fem"): what ccx found per load case, buckling, the cross-check against

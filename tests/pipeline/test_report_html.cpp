@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -271,6 +272,39 @@ TEST(ReportHtml, FiguresStandAloneWithTheSvgNamespace) {
 // A real browser opens the page offline: headless Chromium parses it (the inline SVG charts become
 // SVG elements in its DOM) and renders it to a screenshot with far more ink than an empty page of
 // the same size rendered in the same run.
+// plan.svg, curvature.svg, deployed.svg and elevations.svg each have a "scale-bar", and the two
+// sheets both a "patch-0": inlined on one page, every id stays unique and every url(#...) still
+// finds its pattern.
+TEST(ReportHtml, InlinedSheetsKeepTheirIdsUniqueAndTheirPatternsResolved) {
+  const std::string sheet =
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"40\" height=\"30\"><defs><pattern "
+      "id=\"hatch\" width=\"4\" height=\"4\"/></defs><rect id=\"patch-0\" "
+      "fill=\"url(#hatch)\" width=\"40\" height=\"30\"/><rect id=\"scale-bar\" width=\"8\" "
+      "height=\"2\"/></svg>\n";
+  const std::string figure =
+      "<svg id=\"deployed\" xmlns=\"http://www.w3.org/2000/svg\"><rect id=\"scale-bar\"/></svg>";
+  ReportFiles files;
+  files.planSvg = sheet;
+  files.curvatureSvg = sheet;
+  files.deployedSvg = figure;
+  files.elevationsSvg =
+      "<svg id=\"elevations\" xmlns=\"http://www.w3.org/2000/svg\"><rect id=\"scale-bar\"/></svg>";
+  const std::string html = reportHtml(sampleReport(), files);
+  std::map<std::string, int> ids;
+  for (size_t at = html.find(" id=\""); at != std::string::npos; at = html.find(" id=\"", at + 1)) {
+    const size_t start = at + 5;
+    ++ids[html.substr(start, html.find('"', start) - start)];
+  }
+  for (const auto& [id, n] : ids)
+    EXPECT_EQ(n, 1) << "id \"" << id << "\" appears " << n << " times";
+  for (const char* id :
+       {"patch-0", "curvature-patch-0", "scale-bar", "curvature-scale-bar", "deployed-scale-bar",
+        "elevations-scale-bar", "deployed", "elevations", "curvature", "hatch", "curvature-hatch"})
+    EXPECT_EQ(ids[id], 1) << id;
+  EXPECT_NE(html.find("url(#curvature-hatch)"), std::string::npos);
+  EXPECT_NE(html.find("url(#hatch)"), std::string::npos);
+}
+
 TEST(ReportHtml, HeadlessChromiumRendersThePage) {
   if (run("command -v chromium >/dev/null 2>&1").second != 0) {
     GTEST_SKIP() << "chromium is not installed (Debian package chromium, scripts/install-deps.sh): "

@@ -15,8 +15,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <memory>
+#include <utility>
 
 namespace egg::app {
 using namespace egg::pipeline;
@@ -29,16 +31,26 @@ struct LayoutBenchArgs {
 };
 
 int runLayoutBench(const LayoutBenchArgs& args) {
-  const Scene scene = parseScene(nlohmann::json::parse(fmt::format(R"({{
+  // The 2 x 2 layout's corners on the bump itself (z = h(x, y)), so that every edge length in the
+  // option's range meshes a surface they lie on.
+  const auto corner = [](double x, double y) {
+    return nlohmann::json::array({x, y, std::exp(-(x * x + y * y) / (2 * 1.5 * 1.5))});
+  };
+  nlohmann::json patches = nlohmann::json::array();
+  for (const auto& [x0, y0] : {std::pair{-3.0, -3.0}, {0.0, -3.0}, {-3.0, 0.0}, {0.0, 0.0}})
+    patches.push_back(
+        {corner(x0, y0), corner(x0 + 3, y0), corner(x0 + 3, y0 + 3), corner(x0, y0 + 3)});
+  nlohmann::json doc = nlohmann::json::parse(R"({
     "name": "bench_layout",
-    "surface": {{"sample": "bump", "params": {{"length": 8, "width": 8, "height": 1.0, "sigma": 1.5}}, "edge_length_m": {}}},
-    "patching": {{"patches": [[[-3,-3,0],[0,-3,0],[0,0,1],[-3,0,0]], [[0,-3,0],[3,-3,0],[3,0,0],[0,0,1]],
-                             [[-3,0,0],[0,0,1],[0,3,0],[-3,3,0]], [[0,0,1],[3,0,0],[3,3,0],[0,3,0]]]}},
-    "grid": {{"members_per_family": 8}},
-    "lamella": {{"width_m": 0.05, "thickness_m": 0.005}},
-    "outputs": ["report"]}})",
-                                                                   args.edgeLength)),
-                                 "bench_layout.json");
+    "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1.0, "sigma": 1.5}},
+    "grid": {"members_per_family": 8},
+    "lamella": {"width_m": 0.05, "thickness_m": 0.005},
+    "outputs": ["report"]})");
+  doc["surface"]["edge_length_m"] = args.edgeLength;
+  doc["patching"]["patches"] = patches;
+  // The scene is the bench's own: its messages name the command and option the user gave.
+  const Scene scene =
+      parseScene(doc, fmt::format("egg bench layout --edge-length {}", args.edgeLength));
   const LoadedSurface surface = loadSurface(scene.surface);
   const geodesic::DistanceSolver solver(surface.mesh);
   std::map<int, std::vector<double>> wall, design;

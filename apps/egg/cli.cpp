@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -13,6 +14,11 @@
 namespace egg::app {
 
 int runCli(int argc, char** argv) {
+  // Past a file-size limit (ulimit -f, RLIMIT_FSIZE) the kernel kills the writer with SIGXFSZ, so
+  // the run ended without a word and left its staging folder (issue 40). Ignored, the write fails
+  // with EFBIG instead, and every checked write reports it naming the file: exit 1, the run
+  // folder as it was.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{
       "egg — elastic geodesic gridshells: from a design surface to a deployable grid of straight "
       "lamellas (patches, planar grids, simulation, cut files)."};

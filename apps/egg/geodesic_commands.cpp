@@ -58,6 +58,10 @@ int runGeodesic(const GeodesicArgs& args) {
   geodesic::DistanceSolverOptions options;
   if (args.exact)
     options = geodesic::DistanceSolverOptions::exact();
+  else if (!(args.mergeTolerance >= 0.0 && args.mergeTolerance < 1e-3))
+    throw InvalidInput(fmt::format(
+        "--merge-tolerance {}: must be in [0, 0.001) (a fraction of the edge length; 0: off)",
+        args.mergeTolerance));
   else
     options.imageMergeTolerance = args.mergeTolerance;
   if (args.engine == "stored")
@@ -138,8 +142,7 @@ void registerGeodesicCommand(CLI::App& parent, Action& action) {
       "the exact polyhedral distance: every saddle a pseudo-source, no near images merged");
   cmd->add_option(
          "--merge-tolerance", args->mergeTolerance,
-         "near images merged within this fraction of the edge length (DistanceSolverOptions::"
-         "imageMergeTolerance; 0: off)")
+         "near images merged within this fraction of the edge length, in [0, 0.001) (0: off)")
       ->capture_default_str()
       ->excludes("--exact");
   cmd->add_flag("--json", args->json, "print the summary as JSON");

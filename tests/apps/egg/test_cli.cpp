@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/resource.h>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -50,6 +51,34 @@ TEST(CliOutput, AFullStandardOutputIsAFailureNotSuccess) {
   fs::remove(log);
   EXPECT_EQ(o.exitCode, kExitFailure) << o.output;
   EXPECT_NE(o.output.find("cannot write to standard output"), std::string::npos) << o.output;
+}
+
+// A file-size limit (ulimit -f) below the report's size: the write fails with EFBIG and the run
+// says which file, instead of dying by SIGXFSZ without a word and leaving its staging folder.
+TEST(CliOutput, AFileSizeLimitIsANamedWriteFailureNotASignal) {
+  const fs::path dir = fs::temp_directory_path() / ("egg_cli_fsize_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path out = dir / "run", log = dir / "log";
+  const std::string scene =
+      (fs::path(EGG_SOURCE_DIR) / "samples" / "scenes" / "bump_patch.json").string();
+  const ChildOutcome o = runChild(
+      [&] {
+        const rlimit limit{256 * 1024, 256 * 1024};  // bytes: report.html is megabytes
+        if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) return 99;
+        std::string a = "egg", b = "run", c = scene, d = "--out", e = out.string(), f = "-q";
+        char* argv[] = {a.data(), b.data(), c.data(), d.data(), e.data(), f.data()};
+        return runCli(6, argv);
+      },
+      120.0, log);
+  EXPECT_EQ(o.signal, 0) << o.output;
+  EXPECT_EQ(o.exitCode, kExitFailure) << o.output;
+  EXPECT_NE(o.output.find("cannot write output"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("File too large"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(out)) << "a failed run leaves no run folder";
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_TRUE(entry.path() == log) << "left behind: " << entry.path();
+  fs::remove_all(dir);
 }
 
 class Cli : public ::testing::Test {
@@ -298,11 +327,20 @@ TEST_F(Cli, GeodesicCommandRejectsABadSourceWithoutWriting) {
   EXPECT_EQ(o.code, kExitBadInput);
   EXPECT_NE(o.err.find("--source"), std::string::npos) << o.err;
   EXPECT_FALSE(fs::exists(csv));
+  // A tolerance out of range names the option the user gave, not the solver's field.
+  for (const char* bad : {"5", "-1", "0.001"}) {
+    const auto t = runEgg({"geodesic", "plane", "--source", "0,0,0", "--merge-tolerance", bad,
+                           "--out", csv.string()});
+    EXPECT_EQ(t.code, kExitBadInput) << bad;
+    EXPECT_NE(t.err.find(std::string("--merge-tolerance ") + bad), std::string::npos) << t.err;
+    EXPECT_EQ(t.err.find("DistanceSolverOptions"), std::string::npos) << t.err;
+    EXPECT_FALSE(fs::exists(csv));
+  }
 }
 
 // --exact and --merge-tolerance reach the solver: on the sphere cap sample merging near images
 // makes fewer windows than --merge-tolerance 0, which gives --exact's distances (the cap has no
-// saddles to skip); a tolerance out of range is bad input naming the field, with nothing written.
+// saddles to skip); a tolerance out of range is bad input naming the option, with nothing written.
 TEST_F(Cli, GeodesicCommandTakesTheExactModeAndTheMergeTolerance) {
   auto run = [&](const std::string& name, std::vector<std::string> extra) {
     std::vector<std::string> args{
@@ -325,7 +363,7 @@ TEST_F(Cli, GeodesicCommandTakesTheExactModeAndTheMergeTolerance) {
   const auto bad = runEgg({"geodesic", "sphere", "--source", "1,2,9.7", "--out", csv.string(),
                            "--merge-tolerance", "-1"});
   EXPECT_EQ(bad.code, kExitBadInput);
-  EXPECT_NE(bad.err.find("imageMergeTolerance"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("--merge-tolerance -1"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(csv));
 }
 

@@ -302,6 +302,7 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
   // Problems of curves: wrapping around the surface boundary or a hole, crossing each other,
   // running through a corner that is not one of theirs.
   layout.curveProblems.assign(layout.curves.size(), "");
+  layout.crossings.clear();
   const auto problem = [&](size_t c, const std::string& what) {
     if (layout.curveProblems[c].empty()) layout.curveProblems[c] = what;
   };
@@ -341,6 +342,12 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
                         layout.curves[c].from, layout.curves[c].to, format(vertexPosition(v)));
         problem(c, what);
         problem(it->second, what);
+        const auto seen = std::find_if(
+            layout.crossings.begin(), layout.crossings.end(), [&](const PatchLayout::Crossing& x) {
+              return x.curveA == it->second && x.curveB == static_cast<int>(c);
+            });
+        if (seen == layout.crossings.end())
+          layout.crossings.push_back({it->second, static_cast<int>(c), vertexPosition(v)});
       }
     }
   }
@@ -401,6 +408,50 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
         throw InvalidInput(
             fmt::format("patch {}: no side of the layout joins corners {} and {}", p, a, b));
     }
+}
+
+std::vector<PatchOverlap> crossingPatches(const PatchLayout& layout) {
+  std::vector<std::set<int>> curvesOf(layout.patches.size());
+  for (size_t p = 0; p < layout.patchSides.size(); ++p)
+    for (const PatchSideSegments& side : layout.patchSides[p])
+      for (const auto& piece : side) curvesOf[p].insert(layout.segments[piece.first].curve);
+  std::vector<PatchOverlap> out;
+  std::set<std::pair<int, int>> pairs;
+  for (const auto& x : layout.crossings)
+    for (size_t a = 0; a < curvesOf.size(); ++a)
+      for (size_t b = a + 1; b < curvesOf.size(); ++b) {
+        const bool across = (curvesOf[a].count(x.curveA) && curvesOf[b].count(x.curveB)) ||
+                            (curvesOf[a].count(x.curveB) && curvesOf[b].count(x.curveA));
+        // Sides of one patch crossing each other: that patch is twisted, not overlapping.
+        const bool ownA = curvesOf[a].count(x.curveA) && curvesOf[a].count(x.curveB);
+        const bool ownB = curvesOf[b].count(x.curveA) && curvesOf[b].count(x.curveB);
+        if (!across || ownA || ownB || !pairs.insert({int(a), int(b)}).second) continue;
+        const auto& ca = layout.curves[x.curveA];
+        const auto& cb = layout.curves[x.curveB];
+        out.push_back({static_cast<int>(a), static_cast<int>(b),
+                       fmt::format("their sides {}-{} and {}-{} cross at {}", ca.from, ca.to,
+                                   cb.from, cb.to, format(x.at))});
+      }
+  return out;
+}
+
+std::vector<PatchOverlap> overlapFaces(const PatchLayout& layout,
+                                       const std::vector<std::vector<int>>& patchFaces) {
+  const TriMesh& mesh = layout.mesh.mesh;
+  std::vector<int> owner(mesh.n_faces(), -1);
+  std::map<std::pair<int, int>, double> shared;  // (a, b) -> area
+  for (size_t p = 0; p < patchFaces.size(); ++p)
+    for (int f : patchFaces[p]) {
+      if (f < 0 || f >= static_cast<int>(owner.size())) continue;
+      if (owner[f] >= 0 && owner[f] != static_cast<int>(p))
+        shared[{owner[f], static_cast<int>(p)}] += mesh.calc_face_area(TriMesh::FaceHandle(f));
+      else
+        owner[f] = static_cast<int>(p);
+    }
+  std::vector<PatchOverlap> out;
+  for (const auto& [pair, area] : shared)
+    out.push_back({pair.first, pair.second, fmt::format("they share {:.3g} m² of surface", area)});
+  return out;
 }
 
 }  // namespace egg::patching

@@ -62,7 +62,12 @@ struct PatchLayout {
   std::vector<LayoutSegment> segments;
   std::vector<std::array<PatchSideSegments, 4>> patchSides;
   std::vector<std::string> curveProblems;  // per curve: why it cannot bound a patch ("" = fine)
-  int propagations = 0;                    // traces spent
+  struct Crossing {
+    int curveA = -1, curveB = -1;
+    Eigen::Vector3d at = Eigen::Vector3d::Zero();
+  };
+  std::vector<Crossing> crossings;  // curves that cross away from a corner, each pair once
+  int propagations = 0;             // traces spent
   double seconds = 0.0;
 };
 
@@ -86,6 +91,20 @@ int addCurve(PatchLayout& layout, const geodesic::DistanceSolver& surfaceSolver,
 // Builds the layout mesh, the segments and the patch sides; records curve problems (sides that
 // cross, wrap around a hole). Throws InvalidInput for a patch side no curve carries.
 void finishLayout(PatchLayout& layout, const LayoutOptions& options);
+
+// Two patches that overlap: their sides cross away from a corner, or (overlapFaces) they share
+// surface between their sides.
+struct PatchOverlap {
+  int a = -1, b = -1;  // patch ids, a < b
+  std::string what;    // "their sides 1-2 and 4-5 cross at (x, y, z)", "they share 2.1 m²"
+};
+// Pairs of distinct patches whose sides cross (finishLayout's crossings; sides of one patch that
+// cross each other make that patch infeasible, not an overlap).
+std::vector<PatchOverlap> crossingPatches(const PatchLayout& layout);
+// Pairs of patches that share layout-mesh faces (`patchFaces[p]`: LayoutPatch::layoutFace, empty
+// when not cut), with the area they share.
+std::vector<PatchOverlap> overlapFaces(const PatchLayout& layout,
+                                       const std::vector<std::vector<int>>& patchFaces);
 
 // The layout's patch `index` cut from the layout mesh: its sides are the layout's chains. Throws
 // InfeasiblePatch (sides that cross or leave the surface, a hole inside, criterion iv).

@@ -68,6 +68,15 @@ PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& 
           e.what());
     }
   }();
+  // Patches the user gave that overlap are bad input (a roof covered twice: double lamellas,
+  // double mass), found before the designs where their sides cross, after them where one lies
+  // inside the other. Workflows 1 and 2 never make such layouts.
+  const auto refuseOverlaps = [&](const std::vector<patching::PatchOverlap>& overlaps) {
+    if (given && !overlaps.empty())
+      throw InvalidInput(fmt::format("{}: patching.patches[{}] and patches[{}] overlap: {}", origin,
+                                     overlaps[0].a, overlaps[0].b, overlaps[0].what));
+  };
+  refuseOverlaps(patching::crossingPatches(layout));
   run.layout = patching::designLayout(std::move(layout), surfaceSolver, options);
   std::vector<bool> usable;
   std::vector<std::vector<int>> faces;
@@ -75,6 +84,7 @@ PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& 
     usable.push_back(p.cut.has_value());
     faces.push_back(p.cut ? p.cut->layoutFace : std::vector<int>{});
   }
+  refuseOverlaps(patching::overlapFaces(run.layout.layout, faces));
   run.graph = patching::buildPatchGraph(run.layout.layout, usable);
   run.coverage = patching::computeCoverage(run.layout.layout, faces);
   const double total =

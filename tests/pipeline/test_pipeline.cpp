@@ -2,6 +2,7 @@
 // report's invariants checked against each other and against the thesis' criteria.
 #include "pipeline/pipeline.hpp"
 
+#include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
 
 #include <fmt/core.h>
@@ -12,6 +13,8 @@
 #include <tbb/global_control.h>
 
 #include <filesystem>
+
+#include <unistd.h>
 
 namespace egg::pipeline {
 namespace {
@@ -291,6 +294,48 @@ TEST(PipelineMultiPatch, SlowTwoByTwoSharesItsSidesAndReportsTheGraph) {
   // Fabrication: 4 patches x 8 members, the 4 shared sides cut once each (one lamella carrying the
   // holes of both patches).
   EXPECT_EQ(report["fabrication"]["lamellae"], 4 * 8 - 4);
+  fs::remove_all(out);
+}
+
+// Issue 40: two given patches over the same surface were designed, cut and weighed twice. Sides
+// that cross are found before the designs, a patch inside another after them; either way the run
+// is bad input naming both patches, and no run folder appears.
+TEST(PipelineMultiPatch, OverlappingGivenPatchesAreBadInputNamingBoth) {
+  const auto scene = [](const std::string& second) {
+    return parseScene(nlohmann::json::parse(R"({"name": "overlap",
+      "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1.0,
+                  "sigma": 1.5}, "edge_length_m": 0.4},
+      "patching": {"patches": [[[-3,-3,0],[0,-3,0],[0,0,1],[-3,0,0]], )" +
+                                            second + R"(]},
+      "grid": {"map_resolution": 30, "members_per_family": 4},
+      "lamella": {"width_m": 0.05, "thickness_m": 0.005},
+      "simulation": {"enabled": false}, "outputs": ["report"]})"),
+                      "/virtual/overlap.json");
+  };
+  const fs::path out = fs::temp_directory_path() / ("egg_overlap_" + std::to_string(::getpid()));
+  PipelineOptions options;
+  options.outDir = out;
+  const auto messageOf = [&](const Scene& s) -> std::string {
+    try {
+      runPipeline(s, options);
+    } catch (const InvalidInput& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  const std::string crossing = messageOf(scene("[[-2,-2,0],[1,-2,0],[1,1,0],[-2,1,0]]"));
+  EXPECT_NE(crossing.find("patching.patches[0] and patches[1] overlap: their sides"),
+            std::string::npos)
+      << crossing;
+  EXPECT_NE(crossing.find(" cross at ("), std::string::npos) << crossing;
+  const std::string inside =
+      messageOf(scene("[[-2.5,-2.5,0.1],[-0.5,-2.5,0.2],[-0.5,-0.5,0.9],[-2.5,-0.5,0.2]]"));
+  EXPECT_NE(inside.find("patching.patches[0] and patches[1] overlap: they share"),
+            std::string::npos)
+      << inside;
+  EXPECT_FALSE(fs::exists(out));
+  // Neighbours that share a side are no overlap.
+  EXPECT_EQ(messageOf(scene("[[0,-3,0],[3,-3,0],[3,0,0],[0,0,1]]")), "no error");
   fs::remove_all(out);
 }
 

@@ -215,7 +215,13 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
           scene[pointers[column]] = axes[a].values[k][index[a]];
           row.push_back(axes[a].values[k][index[a]].dump());
         }
-      scene["name"] = baseScene.name + "-" + id;
+      // A swept name is the user's label for the variant; otherwise the base's name and the id.
+      if (std::find(pointers.begin(), pointers.end(), json::json_pointer("/name")) ==
+          pointers.end())
+        scene["name"] = baseScene.name + "-" + id;
+      // Swept relative files (surface.file) are relative to the base scene's folder, like the
+      // base's own: the variant scene lives in scenes/ and would look for them there.
+      anchorFiles(scene, fs::absolute(basePath).parent_path());
       const fs::path sceneFile = out / "scenes" / (id + ".json");
       try {
         parseScene(scene, sceneFile);  // every variant must be a valid scene

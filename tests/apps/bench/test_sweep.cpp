@@ -87,6 +87,30 @@ TEST(Sweep, ExpandsGridAndZipGroup) {
   fs::remove_all(d);
 }
 
+// Issue 40: a swept `name` was overwritten by "<base>-vNNN", and swept relative surface files were
+// left relative, so every variant run from scenes/ failed to find its mesh.
+TEST(Sweep, SweptNamesAreKeptAndSweptFilesResolvedLikeTheBases) {
+  const fs::path d = freshDir("names");
+  writeBase(d);
+  std::ofstream(d / "in" / "meshes" / "n.obj") << "v 0 0 0\nv 2 0 0\nv 0 2 0\nf 1 2 3\n";
+  std::ofstream(d / "in" / "sweep.json") << R"({"base": "base.json",
+    "zip": [{"name": ["first", "second"], "surface.file": ["meshes/m.obj", "meshes/n.obj"]}]})";
+  const fs::path out = d / "out";
+  const SweepExpansion e = expandSweep({d / "in" / "sweep.json", out, "/bin/egg", false});
+  ASSERT_EQ(e.variants.size(), 2u);
+  const char* names[] = {"first", "second"};
+  const char* meshes[] = {"m.obj", "n.obj"};
+  for (int v = 0; v < 2; ++v) {
+    const auto scene = nlohmann::json::parse(slurp(out / "scenes" / (e.variants[v] + ".json")));
+    EXPECT_EQ(scene["name"], names[v]);
+    const fs::path file = scene["surface"]["file"].get<std::string>();
+    EXPECT_TRUE(file.is_absolute()) << file;
+    EXPECT_EQ(file, fs::absolute(d / "in" / "meshes" / meshes[v]).lexically_normal());
+    EXPECT_TRUE(fs::exists(file)) << file;
+  }
+  fs::remove_all(d);
+}
+
 // Paths in jobs.txt and slurm.sh: a newline would split a job or inject a #SBATCH line; a user's
 // own scenes/ folder is never replaced by --force.
 TEST(Sweep, ControlCharactersInPathsAndForeignScenesAreRefused) {

@@ -138,6 +138,9 @@ StagedDirectory::StagedDirectory(std::filesystem::path target) : target_(std::mo
       parent / ("." + name + ".staging-" + std::to_string(::getpid()) + "-" + temporarySuffix());
   fs::create_directory(staging_, ec);
   if (ec) throw WriteError(staging_.string() + ": cannot create staging folder: " + ec.message());
+  // Held until the run ends: a run into the same --out from another container or host sees the
+  // folder at work, which our PID could not tell it (issue 40).
+  lock_ = std::make_unique<LiveLock>(staging_);
   try {
     // The marker from the start (an interrupted run's staging folder is recognised by it); the
     // file list is added at commit.
@@ -164,7 +167,8 @@ void StagedDirectory::recoverInterruptedRuns() {
     for (auto [prefix, list] :
          {std::pair{&previousPrefix, &previous}, std::pair{&stagingPrefix, &staging}}) {
       const pid_t pid = leftoverPid(entry, *prefix);
-      if (pid > 0 && pid != ::getpid() && !processAlive(pid)) list->push_back(it->path());
+      if (pid > 0 && pid != ::getpid() && !leftoverInUse(it->path(), pid))
+        list->push_back(it->path());
     }
   }
   auto note = [&](const std::string& text) {
@@ -226,6 +230,10 @@ void StagedDirectory::commit() {
   if (ec && targetStatus.type() != fs::file_type::not_found)
     throw WriteError(target_.string() + ": cannot inspect the output folder: " + ec.message());
   const bool exists = fs::exists(targetStatus);
+  // The earlier results are at work while they are .NAME.previous-*: a run elsewhere must not put
+  // them back or remove them between our two renames.
+  std::unique_ptr<LiveLock> previousLock;
+  if (exists) previousLock = std::make_unique<LiveLock>(target_);
   if (exists) {
     previous = target_.parent_path() / ("." + target_.filename().string() + ".previous-" +
                                         std::to_string(::getpid()) + "-" + temporarySuffix());

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,8 @@ class StagedDirectory {
 
   std::filesystem::path target_;
   std::filesystem::path staging_;
+  std::unique_ptr<LiveLock>
+      lock_;  // on staging_, for the run's life (the folder keeps it on commit)
   bool committed_ = false;
   std::vector<std::string> notes_;
 };

@@ -4,6 +4,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -58,6 +59,28 @@ bool processAlive(pid_t pid) {
   return errno != ESRCH;  // EPERM: it exists, owned by someone else
 }
 
+LiveLock::LiveLock(const fs::path& path) {
+  fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  if (fd_ >= 0) held_ = ::flock(fd_, LOCK_EX | LOCK_NB) == 0;
+}
+
+LiveLock::~LiveLock() {
+  if (fd_ >= 0) ::close(fd_);  // releases the lock
+}
+
+bool leftoverInUse(const fs::path& path, pid_t pid) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  if (fd >= 0) {
+    const int taken = ::flock(fd, LOCK_EX | LOCK_NB);
+    const int error = errno;
+    ::close(fd);                            // releases it again when we got it
+    if (taken != 0 && error == EWOULDBLOCK) return true;  // held: at work, in any PID namespace
+  }
+  // Unlocked (or no flock here): a process of that PID alive here may still be at work on it (an
+  // egg that took no lock); a leftover is removed only when neither says so.
+  return processAlive(pid);
+}
+
 int removeDeadLeftovers(const fs::path& folder, const std::string& prefix, bool folders) {
   int removed = 0;
   std::error_code ec;
@@ -65,7 +88,7 @@ int removeDeadLeftovers(const fs::path& folder, const std::string& prefix, bool 
   for (; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     const pid_t pid = leftoverPid(name, prefix);
-    if (pid < 0 || pid == ::getpid() || processAlive(pid)) continue;
+    if (pid < 0 || pid == ::getpid() || leftoverInUse(it->path(), pid)) continue;
     std::error_code typeError;
     const fs::file_status status = it->symlink_status(typeError);
     if (typeError) continue;
@@ -120,6 +143,10 @@ bool writeNewFile(const fs::path& temp, const std::string& text, int& error) {
     error = errno;
     return false;
   }
+  // At work while written: another run's cleanup (removeDeadLeftovers) leaves it alone even when
+  // it cannot see our PID. The caller's rename follows at once; a cleanup in that instant finds the
+  // file gone or finished, and the rename reports it.
+  ::flock(fd, LOCK_EX | LOCK_NB);
   const char* data = text.data();
   size_t left = text.size();
   bool ok = true;

@@ -38,8 +38,28 @@ std::string temporaryFilePrefix();  // ".egg-tmp-"
 pid_t leftoverPid(const std::string& name, const std::string& prefix);
 // True when a process `pid` exists (kill(pid, 0) does not say ESRCH).
 bool processAlive(pid_t pid);
-// Removes the leftovers `PREFIX<pid>-*` of dead processes directly in `folder` (regular files, or
-// folders when `folders` is true). Never throws; returns how many were removed.
+// An exclusive flock held on a file or folder for the lock's lifetime: the mark that a run's
+// staging folder or temporary file is at work. Unlike a PID it is seen from every PID namespace
+// on the machine (containers) and, on NFS, through its lock manager (issue 40). A file system
+// without flock leaves it unheld; leftoverInUse then falls back on the PID.
+class LiveLock {
+ public:
+  explicit LiveLock(const std::filesystem::path& path);
+  ~LiveLock();
+  LiveLock(const LiveLock&) = delete;
+  LiveLock& operator=(const LiveLock&) = delete;
+  bool held() const { return held_; }
+
+ private:
+  int fd_ = -1;
+  bool held_ = false;
+};
+// Whether the leftover `path`, named with `pid`, belongs to a process still at work: someone
+// holds its LiveLock, or a process of that PID is alive here.
+bool leftoverInUse(const std::filesystem::path& path, pid_t pid);
+// Removes the leftovers `PREFIX<pid>-*` no process is at work on (leftoverInUse) directly in
+// `folder` (regular files, or folders when `folders` is true). Never throws; returns how many were
+// removed.
 int removeDeadLeftovers(const std::filesystem::path& folder, const std::string& prefix,
                         bool folders);
 

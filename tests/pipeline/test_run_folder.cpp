@@ -206,5 +206,40 @@ TEST_F(TempDir, InterruptedRunsAreRecoveredAndTheirLeftoversCleaned) {
   EXPECT_EQ(readAll(out / "report.json"), "earlier");
 }
 
+// Issue 40: a run in another PID namespace (a container, another host on a shared disk) has a PID
+// that means nothing here; its staging folder was deleted as a dead run's. Its lock says it is at
+// work: the folder stays while the lock is held (here by another open of it, as that run's would
+// be), and goes once it is released.
+TEST_F(TempDir, AStagingFolderAtWorkElsewhereIsLeftAloneWhateverItsPid) {
+  const fs::path out = root / "run";
+  const pid_t dead = deadPid();  // "their" PID: no process of that number here
+  const fs::path theirs = root / (".run.staging-" + std::to_string(dead) + "-abcdefgh");
+  fs::create_directories(theirs);
+  writeFileAtomically(theirs / kRunMarker, "eggshell run in progress (staging folder)\n");
+  {
+    const LiveLock atWork(theirs);
+    ASSERT_TRUE(atWork.held());
+    EXPECT_TRUE(leftoverInUse(theirs, dead));
+    StagedDirectory staged(out);
+    EXPECT_TRUE(fs::exists(theirs / kRunMarker)) << "a live run's folder was removed";
+    // Our own staging folder carries our lock: seen at work from outside too.
+    EXPECT_TRUE(leftoverInUse(staged.staging(), dead));
+  }
+  EXPECT_FALSE(leftoverInUse(theirs, dead));
+  { StagedDirectory staged(out); }
+  EXPECT_FALSE(fs::exists(theirs)) << "released, it is an interrupted run's leftover";
+  // Temporary files likewise: one locked while it is written is not cleaned up under it.
+  const fs::path temp = root / (temporaryFilePrefix() + std::to_string(dead) + "-abcdefgh");
+  writeFileAtomically(root / "seed.txt", "x");
+  std::ofstream(temp) << "half";
+  {
+    const LiveLock writing(temp);
+    writeFileAtomically(root / "other.txt", "y");  // cleans the folder's dead leftovers first
+    EXPECT_TRUE(fs::exists(temp));
+  }
+  writeFileAtomically(root / "other.txt", "z");
+  EXPECT_FALSE(fs::exists(temp));
+}
+
 }  // namespace
 }  // namespace egg::pipeline

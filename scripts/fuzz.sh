@@ -2,14 +2,14 @@
 # Builds the libFuzzer targets with clang (build-fuzz/, -DEGG_FUZZ=ON) and runs each for
 # EGG_FUZZ_RUNS inputs (default 10000), starting from tests/fuzz/corpus/<target>/ (issue 17).
 # New inputs go to build-fuzz/corpus/<target>/, crashes to build-fuzz/crashes/<target>/.
-# Usage: scripts/fuzz.sh [target ...]   (targets: scene obj stl ply off gltf glb)
+# Usage: scripts/fuzz.sh [target ...]   (targets: scene sweep cli obj stl ply off gltf glb)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v clang++ >/dev/null || { echo "fuzz: needs clang (apt-get install -y clang)" >&2; exit 1; }
 BUILD_DIR=${EGG_FUZZ_BUILD_DIR:-build-fuzz}
 RUNS=${EGG_FUZZ_RUNS:-10000}
 TARGETS=("$@")
-[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(scene obj stl ply off gltf glb)
+[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(scene sweep cli obj stl ply off gltf glb)
 if [ ! -f "$BUILD_DIR/build.ninja" ]; then
   CXX=clang++ cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
     -DEGG_FUZZ=ON -DEGG_BUILD_TESTS=OFF

@@ -104,7 +104,7 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
   json sweep;
   try {
     sweep = json::parse(readRegularFile(options.sweepFile, kMaxSweepBytes, "sweep file"));
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e400
     throw InvalidInput(where + ": not JSON: " + e.what());
   }
   if (!sweep.is_object()) throw InvalidInput(where + ": must be a JSON object");
@@ -189,6 +189,43 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
             (out / "scenes").string(), abbreviate(name, 80)));
     }
   }
+  // Variant v (0-based) of the odometer: the base with its values, named, files anchored, checked
+  // as a scene; `row` gets its values as JSON text.
+  const auto variantScene = [&](size_t v, const std::string& id, std::vector<std::string>& row) {
+    json scene = base;
+    size_t rest = v;
+    // The last axis varies fastest (odometer order).
+    std::vector<size_t> index(axes.size());
+    for (size_t a = axes.size(); a-- > 0;) index[a] = rest % axes[a].size(), rest /= axes[a].size();
+    size_t column = 0;
+    for (size_t a = 0; a < axes.size(); ++a)
+      for (size_t k = 0; k < axes[a].keys.size(); ++k, ++column) {
+        scene[pointers[column]] = axes[a].values[k][index[a]];
+        row.push_back(axes[a].values[k][index[a]].dump());
+      }
+    // A swept name is the user's label for the variant; otherwise the base's name and the id.
+    if (std::find(pointers.begin(), pointers.end(), json::json_pointer("/name")) == pointers.end())
+      scene["name"] = baseScene.name + "-" + id;
+    // Swept relative files (surface.file) are relative to the base scene's folder, like the
+    // base's own: the variant scene lives in scenes/ and would look for them there.
+    anchorFiles(scene, fs::absolute(basePath).parent_path());
+    try {
+      parseScene(scene, out / "scenes" / (id + ".json"));  // every variant must be a valid scene
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("{}: variant {}: {}", where, id, e.what()));
+    }
+    return scene;
+  };
+  if (options.dryRun) {
+    for (size_t v = 0; v < total; ++v) {
+      const std::string id = fmt::format("v{:03d}", v + 1);
+      std::vector<std::string> row;
+      variantScene(v, id, row);
+      expansion.variants.push_back(id);
+      expansion.values.push_back(std::move(row));
+    }
+    return expansion;
+  }
   // Everything goes to a staging folder beside DIR first: a bad variant writes nothing.
   const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
   fs::create_directories(parent);
@@ -202,32 +239,9 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
     const std::string egg = fs::absolute(options.eggBinary).string();
     for (size_t v = 0; v < total; ++v) {
       const std::string id = fmt::format("v{:03d}", v + 1);
-      json scene = base;
       std::vector<std::string> row;
-      size_t rest = v;
-      // The last axis varies fastest (odometer order).
-      std::vector<size_t> index(axes.size());
-      for (size_t a = axes.size(); a-- > 0;)
-        index[a] = rest % axes[a].size(), rest /= axes[a].size();
-      size_t column = 0;
-      for (size_t a = 0; a < axes.size(); ++a)
-        for (size_t k = 0; k < axes[a].keys.size(); ++k, ++column) {
-          scene[pointers[column]] = axes[a].values[k][index[a]];
-          row.push_back(axes[a].values[k][index[a]].dump());
-        }
-      // A swept name is the user's label for the variant; otherwise the base's name and the id.
-      if (std::find(pointers.begin(), pointers.end(), json::json_pointer("/name")) ==
-          pointers.end())
-        scene["name"] = baseScene.name + "-" + id;
-      // Swept relative files (surface.file) are relative to the base scene's folder, like the
-      // base's own: the variant scene lives in scenes/ and would look for them there.
-      anchorFiles(scene, fs::absolute(basePath).parent_path());
+      const json scene = variantScene(v, id, row);
       const fs::path sceneFile = out / "scenes" / (id + ".json");
-      try {
-        parseScene(scene, sceneFile);  // every variant must be a valid scene
-      } catch (const InvalidInput& e) {
-        throw InvalidInput(fmt::format("{}: variant {}: {}", where, id, e.what()));
-      }
       writeFileAtomically(staging / "scenes" / (id + ".json"), scene.dump(2) + "\n");
       jobs += fmt::format("{} run {} -o {} -q\n", shellQuote(egg), shellQuote(sceneFile.string()),
                           shellQuote((out / "runs" / id).string()));

@@ -14,6 +14,7 @@ struct SweepExpandOptions {
   std::filesystem::path out;        // DIR
   std::filesystem::path eggBinary;  // written into jobs.txt (absolute)
   bool force = false;               // write into an existing non-empty DIR
+  bool dryRun = false;  // expand and check every variant, write nothing (the fuzz target's mode)
 };
 
 struct SweepExpansion {

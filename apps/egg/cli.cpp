@@ -13,19 +13,17 @@
 
 namespace egg::app {
 
-int runCli(int argc, char** argv) {
-  // Past a file-size limit (ulimit -f, RLIMIT_FSIZE) the kernel kills the writer with SIGXFSZ, so
-  // the run ended without a word and left its staging folder (issue 40). Ignored, the write fails
-  // with EFBIG instead, and every checked write reports it naming the file: exit 1, the run
-  // folder as it was.
-  std::signal(SIGXFSZ, SIG_IGN);
-  CLI::App app{
-      "egg — elastic geodesic gridshells: from a design surface to a deployable grid of straight "
-      "lamellas (patches, planar grids, simulation, cut files)."};
+namespace {
+
+constexpr const char* kAbout =
+    "egg — elastic geodesic gridshells: from a design surface to a deployable grid of straight "
+    "lamellas (patches, planar grids, simulation, cut files).";
+
+// Every command and its options (runCli and checkCommandLine parse the same line).
+void buildCli(CLI::App& app, Action& action) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "eggshell 0.1.0");
 
-  Action action;
   registerRunCommand(app, action);
   registerInitCommand(app, action);
   registerSceneReferenceCommand(app, action);
@@ -44,6 +42,33 @@ int runCli(int argc, char** argv) {
   registerPipelineBench(*bench, action);
   registerSimBench(*bench, action);
   registerFemBench(*bench, action);
+}
+
+}  // namespace
+
+int checkCommandLine(int argc, char** argv) {
+  CLI::App app{kAbout};
+  Action action;
+  buildCli(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return e.get_exit_code() == 0 ? kExitOk : kExitBadInput;  // --help, --version: fine
+  } catch (const Error&) {
+    return kExitBadInput;  // an option callback's own check
+  }
+  return action ? kExitOk : kExitBadInput;
+}
+
+int runCli(int argc, char** argv) {
+  // Past a file-size limit (ulimit -f, RLIMIT_FSIZE) the kernel kills the writer with SIGXFSZ, so
+  // the run ended without a word and left its staging folder (issue 40). Ignored, the write fails
+  // with EFBIG instead, and every checked write reports it naming the file: exit 1, the run
+  // folder as it was.
+  std::signal(SIGXFSZ, SIG_IGN);
+  CLI::App app{kAbout};
+  Action action;
+  buildCli(app, action);
 
   try {
     app.parse(argc, argv);

@@ -66,5 +66,9 @@ constexpr int kMaxThreads = 256;
 
 // Runs the program; returns the process exit code.
 int runCli(int argc, char** argv);
+// Parses a command line as runCli does and runs nothing: kExitOk when it names a command with
+// valid options (or asks for --help / --version), kExitBadInput otherwise. Prints nothing (the
+// command-line fuzz target, tests/fuzz).
+int checkCommandLine(int argc, char** argv);
 
 }  // namespace egg::app

@@ -40,6 +40,35 @@ TEST(FuzzCorpus, SceneParserAcceptsOrRaisesATypedError) {
   EXPECT_GE(accepted, 1) << "the valid seeds parse";
 }
 
+// Issue 40: the sweep file (dry run: expanded and checked, nothing written) and the command line
+// (parsed, nothing run).
+TEST(FuzzCorpus, SweepFileAcceptsOrRaisesATypedError) {
+  const auto files = corpus("sweep");
+  ASSERT_GE(files.size(), 5u);
+  int accepted = 0;
+  for (const auto& f : files) {
+    const std::string bytes = bytesOf(f);
+    EXPECT_NO_THROW(accepted += sweep(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()))
+        << f;
+  }
+  EXPECT_EQ(accepted, 2) << "valid_grid and valid_name_and_file, and nothing else";
+}
+
+TEST(FuzzCorpus, CommandLineAcceptsOrRaisesATypedError) {
+  const auto files = corpus("cli");
+  ASSERT_GE(files.size(), 5u);
+  int accepted = 0;
+  for (const auto& f : files) {
+    const std::string bytes = bytesOf(f);
+    EXPECT_NO_THROW(accepted +=
+                    commandLine(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()))
+        << f;
+  }
+  // At least run, init, geodesic, bench layout, --help, --version and surface --list parse.
+  EXPECT_GE(accepted, 7);
+  EXPECT_LT(accepted, static_cast<int>(files.size())) << "the bad lines are refused";
+}
+
 class MeshCorpus : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(MeshCorpus, LoaderAcceptsOrRaisesATypedError) {

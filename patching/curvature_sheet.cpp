@@ -124,28 +124,27 @@ CurvatureMap curvatureMap(const CurvatureDrawing& drawing, const Projection& pro
   const double kScale = out.kScale = std::max(magnitudes[rank], 1e-9);
   const auto [kMinIt, kMaxIt] = std::minmax_element(faceK.begin(), faceK.end());
   out.kMin = *kMinIt, out.kMax = *kMaxIt;
-  std::vector<std::string> bins(2 * kHalfBins + 1);
+  std::vector<plan::PathChunks> bins;
+  for (int b = 0; b <= 2 * kHalfBins; ++b)
+    bins.emplace_back(
+        fmt::format("fill=\"{0}\" stroke=\"{0}\" stroke-width=\"0.6\" stroke-linejoin=\"round\"",
+                    divergingColour(binValue(b))));
+  std::string d;
   for (auto fh : surface.faces()) {
     const int bin =
         static_cast<int>(std::lround(std::clamp(faceK[fh.idx()] / kScale, -1.0, 1.0) * kHalfBins)) +
         kHalfBins;
-    std::string& d = bins[bin];
     const auto fv = faceVertices(surface, fh.idx());
+    d.clear();
     for (int k = 0; k < 3; ++k)
       d.append(k == 0 ? "M" : "L")
           .append(point(proj, toEigen(surface.point(TriMesh::VertexHandle(fv[k])))));
     d += "Z";
+    bins[bin].add(d);
   }
   std::string& body = out.svg;
   body += "<g id=\"curvature-map\">\n";
-  for (int b = 0; b < static_cast<int>(bins.size()); ++b)
-    if (!bins[b].empty()) {
-      const std::string colour = divergingColour(binValue(b));
-      body += fmt::format(
-          "<path fill=\"{0}\" stroke=\"{0}\" stroke-width=\"0.6\" stroke-linejoin=\"round\" "
-          "d=\"{1}\"/>\n",
-          colour, bins[b]);
-    }
+  for (auto& bin : bins) body += bin.finish();
   body += "</g>\n";
   return out;
 }
@@ -156,23 +155,25 @@ std::string cutOffsSvg(const CurvatureDrawing& drawing, const Projection& proj) 
   const TriMesh& lm = drawing.layout->mesh.mesh;
   for (size_t c = 0; c < drawing.coverage->cutOffs.size(); ++c) {
     const CutOff& cut = drawing.coverage->cutOffs[c];
+    plan::PathChunks grey("fill=\"#808080\" stroke=\"#808080\" stroke-width=\"0.6\"");
+    plan::PathChunks hatch("fill=\"url(#hatch-cutoff)\"");
     std::string d;
     for (int f : cut.faces) {
       if (f < 0 || f >= static_cast<int>(lm.n_faces()))
         throw InvalidInput(
-            fmt::format("plan.svg: cut-off {} lists face {} of a layout mesh with {} faces", c, f,
-                        lm.n_faces()));
+            fmt::format("curvature.svg: cut-off {} lists face {} of a layout mesh with {} faces", c,
+                        f, lm.n_faces()));
       const auto fv = faceVertices(lm, f);
+      d.clear();
       for (int k = 0; k < 3; ++k)
         d.append(k == 0 ? "M" : "L")
             .append(point(proj, toEigen(lm.point(TriMesh::VertexHandle(fv[k])))));
       d += "Z";
+      grey.add(d);
+      hatch.add(d);
     }
-    body += fmt::format(
-        "<g id=\"cutoff-{}\" class=\"cutoff\"><g opacity=\"0.45\"><path fill=\"#808080\" "
-        "stroke=\"#808080\" "
-        "stroke-width=\"0.6\" d=\"{}\"/></g><path fill=\"url(#hatch-cutoff)\" d=\"{}\"/></g>\n",
-        c, d, d);
+    body += fmt::format("<g id=\"cutoff-{}\" class=\"cutoff\"><g opacity=\"0.45\">{}</g>{}</g>\n",
+                        c, grey.finish(), hatch.finish());
     const Eigen::Vector3d at = plan::cutOffLabelPoint(lm, cut);
     body += label(proj.px(at.x()), proj.py(at.y()) + 4,
                   "cut-off " + plan::plainNumber(cut.areaM2, cut.areaM2 < 10.0 ? 1 : 0) + " m²", 11,

@@ -151,6 +151,20 @@ std::string plainNumber(double value, int decimals) {
   return (value < 0 ? "−" : "") + grouped + fraction;
 }
 
+void PathChunks::add(const std::string& subpath) {
+  if (!current_.empty() && current_.size() + subpath.size() > maxBytes_) {
+    out_ += "<path " + attributes_ + " d=\"" + current_ + "\"/>\n";
+    current_.clear();
+  }
+  current_ += subpath;
+}
+
+std::string PathChunks::finish() {
+  if (!current_.empty()) out_ += "<path " + attributes_ + " d=\"" + current_ + "\"/>\n";
+  current_.clear();
+  return std::move(out_);
+}
+
 void Legend::text(const std::string& t, double size, const std::string& extra) {
   svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{:.0f}\"{}>{}</text>\n", x,
                      y + size, size, extra, escapeXml(t));

@@ -52,6 +52,22 @@ std::vector<std::string> wrap(const std::string& text, size_t width);
 // (34170.4 -> "34 170"), never an exponent.
 std::string plainNumber(double value, int decimals = 0);
 
+// <path> elements sharing `attributes`, their d data added a subpath at a time ("M...L...Z") and
+// split so that no d attribute passes `maxBytes`: libxml2 (under librsvg, browsers' importers,
+// Inkscape) refuses an attribute above 10 MB, which the K map of a 140k-face mesh was (issue 40).
+class PathChunks {
+ public:
+  explicit PathChunks(std::string attributes, size_t maxBytes = size_t{1} << 20)
+      : attributes_(std::move(attributes)), maxBytes_(maxBytes) {}
+  void add(const std::string& subpath);
+  bool empty() const { return out_.empty() && current_.empty(); }
+  std::string finish();  // the elements, each on its own line
+
+ private:
+  std::string attributes_, out_, current_;
+  size_t maxBytes_;
+};
+
 // Legend rows, laid out top to bottom from (x, y).
 struct Legend {
   double x = 0.0, y = 0.0;

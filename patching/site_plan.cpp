@@ -96,21 +96,22 @@ std::string surfaceSvg(const TriMesh& surface, const Projection& proj, int& hole
 
 // Members: one path per family and weight, so the Yas's thousands of members stay small.
 std::string membersSvg(const SitePlanDrawing& d, const Projection& proj) {
-  std::string paths[2][2];  // [family U?][boundary?]
-  for (const auto& m : d.members) {
-    if (m.points.size() < 2) continue;
-    std::string& path = paths[m.familyU ? 1 : 0][m.boundary ? 1 : 0];
-    for (size_t i = 0; i < m.points.size(); ++i)
-      path.append(i == 0 ? "M" : "L").append(plan::point(proj, m.points[i]));
-  }
-  std::string out = "<g id=\"members\" fill=\"none\" stroke-linejoin=\"round\">\n";
+  std::vector<plan::PathChunks> paths;  // [2 * (family U?) + (boundary?)]
   for (int u = 0; u < 2; ++u)
     for (int b = 0; b < 2; ++b)
-      if (!paths[u][b].empty())
-        out += fmt::format(
-            "<path class=\"members-{}{}\" stroke=\"{}\" stroke-width=\"{}\" d=\"{}\"/>\n",
-            u ? "u" : "v", b ? " boundary" : "", u ? kColourU : kColourV, b ? "1.6" : "0.7",
-            paths[u][b]);
+      paths.emplace_back(fmt::format("class=\"members-{}{}\" stroke=\"{}\" stroke-width=\"{}\"",
+                                     u ? "u" : "v", b ? " boundary" : "", u ? kColourU : kColourV,
+                                     b ? "1.6" : "0.7"));
+  std::string path;
+  for (const auto& m : d.members) {
+    if (m.points.size() < 2) continue;
+    path.clear();
+    for (size_t i = 0; i < m.points.size(); ++i)
+      path.append(i == 0 ? "M" : "L").append(plan::point(proj, m.points[i]));
+    paths[2 * (m.familyU ? 1 : 0) + (m.boundary ? 1 : 0)].add(path);
+  }
+  std::string out = "<g id=\"members\" fill=\"none\" stroke-linejoin=\"round\">\n";
+  for (auto& p : paths) out += p.finish();
   return out + "</g>\n";
 }
 
@@ -119,23 +120,24 @@ std::string cutOffsSvg(const SitePlanDrawing& d, const Projection& proj) {
   std::string out;
   const TriMesh& lm = d.layout->mesh.mesh;
   for (size_t c = 0; c < d.coverage->cutOffs.size(); ++c) {
+    plan::PathChunks grey("fill=\"#cfcfcf\" stroke=\"#cfcfcf\" stroke-width=\"0.6\"");
+    plan::PathChunks hatch("fill=\"url(#sp-hatch-cutoff)\"");
     std::string path;
     for (int f : d.coverage->cutOffs[c].faces) {
       if (f < 0 || f >= static_cast<int>(lm.n_faces()))
         throw InvalidInput(fmt::format("plan.svg: cut-off {} lists face {} of a mesh with {} faces",
                                        c, f, lm.n_faces()));
       const auto fv = faceVertices(lm, f);
+      path.clear();
       for (int k = 0; k < 3; ++k)
         path.append(k == 0 ? "M" : "L")
             .append(plan::point(proj, toEigen(lm.point(TriMesh::VertexHandle(fv[k])))));
       path += "Z";
+      grey.add(path);
+      hatch.add(path);
     }
-    out += fmt::format(
-        "<g id=\"cutoff-{0}\" class=\"cutoff\"><g opacity=\"0.6\"><path fill=\"#cfcfcf\" "
-        "stroke=\"#cfcfcf\" stroke-width=\"0.6\" d=\"{1}\"/></g><path "
-        "fill=\"url(#sp-hatch-cutoff)\" "
-        "d=\"{1}\"/></g>\n",
-        c, path);
+    out += fmt::format("<g id=\"cutoff-{}\" class=\"cutoff\"><g opacity=\"0.6\">{}</g>{}</g>\n", c,
+                       grey.finish(), hatch.finish());
   }
   return out;
 }

@@ -92,9 +92,13 @@ std::string silhouetteSvg(const TriMesh& surface, const Frame& f, const Panel& p
 // The deployed centrelines projected onto the panel, points closer than a pixel to the last one
 // kept dropped (the Great Court's ~40k segments would otherwise weigh a megabyte a panel).
 std::string rodsSvg(const std::vector<DeployedRod>& rods, const Frame& f, const Panel& panel) {
+  plan::PathChunks paths(
+      "class=\"deployed\" fill=\"none\" stroke=\"#222\" stroke-opacity=\"0.75\" "
+      "stroke-width=\"0.6\"");
   std::string d;
   for (const auto& r : rods) {
     double lastX = 1e300, lastY = 1e300;
+    d.clear();
     for (size_t i = 0; i < r.points.size(); ++i) {
       const double x = f.px(panel, along(panel, r.points[i])), y = f.py(panel, r.points[i].z());
       const bool end = i + 1 == r.points.size();
@@ -102,11 +106,9 @@ std::string rodsSvg(const std::vector<DeployedRod>& rods, const Frame& f, const 
       d += fmt::format("{}{:.1f},{:.1f}", i == 0 ? "M" : "L", x, y);
       lastX = x, lastY = y;
     }
+    paths.add(d);
   }
-  return fmt::format(
-      "<path class=\"deployed\" fill=\"none\" stroke=\"#222\" stroke-opacity=\"0.75\" "
-      "stroke-width=\"0.6\" d=\"{}\"/>\n",
-      d);
+  return paths.finish();
 }
 
 // A section: the design surface cut by the plane (one segment per crossed triangle) and a dot
@@ -121,7 +123,9 @@ std::string sectionSvg(const TriMesh& surface, const std::vector<DeployedRod>& r
     const double t = side(a) / (side(a) - side(b));
     return Eigen::Vector3d(a + t * (b - a));
   };
-  std::string d;
+  plan::PathChunks cut(
+      "class=\"design-cut\" fill=\"none\" stroke=\"#111\" stroke-width=\"2\" "
+      "stroke-linecap=\"round\"");
   for (auto fh : surface.faces()) {
     const auto fv = faceVertices(surface, fh.idx());
     Eigen::Vector3d p[3];
@@ -132,14 +136,11 @@ std::string sectionSvg(const TriMesh& surface, const std::vector<DeployedRod>& r
       if ((a < 0.0) != (b < 0.0)) hits.push_back(crossing(p[k], p[(k + 1) % 3]));
     }
     if (hits.size() != 2) continue;
-    d += fmt::format("M{:.1f},{:.1f}L{:.1f},{:.1f}", f.px(panel, along(panel, hits[0])),
-                     f.py(panel, hits[0].z()), f.px(panel, along(panel, hits[1])),
-                     f.py(panel, hits[1].z()));
+    cut.add(fmt::format("M{:.1f},{:.1f}L{:.1f},{:.1f}", f.px(panel, along(panel, hits[0])),
+                        f.py(panel, hits[0].z()), f.px(panel, along(panel, hits[1])),
+                        f.py(panel, hits[1].z())));
   }
-  std::string out = fmt::format(
-      "<path class=\"design-cut\" fill=\"none\" stroke=\"#111\" stroke-width=\"2\" "
-      "stroke-linecap=\"round\" d=\"{}\"/>\n<g class=\"lamella-cuts\" fill=\"#c62828\">\n",
-      d);
+  std::string out = cut.finish() + "<g class=\"lamella-cuts\" fill=\"#c62828\">\n";
   cuts = 0;
   for (const auto& r : rods)
     for (size_t i = 0; i + 1 < r.points.size(); ++i) {

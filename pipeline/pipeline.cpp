@@ -109,7 +109,10 @@ PipelineResult runPipeline(const Scene& scene, const PipelineOptions& options) {
   if (!result.failures.empty()) result.report["failures"] = result.failures;
   if (scene.wants("report")) {
     // The same, for a person, with PNG previews of its figures named in report.json.
-    result.report["outputs"]["previews"] = writeReportHtml(out.staging(), result.report);
+    std::vector<std::string> previewProblems;
+    result.report["outputs"]["previews"] =
+        writeReportHtml(out.staging(), result.report, &previewProblems);
+    for (const std::string& p : previewProblems) result.report["warnings"].push_back(p);
     writeFileAtomically(out.staging() / "report.json", result.report.dump(2) + "\n");
   }
   out.commit();

@@ -565,7 +565,8 @@ std::vector<std::pair<std::string, std::string>> reportFigures(const std::string
   return out;
 }
 
-std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, const json& report) {
+std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, const json& report,
+                                         std::vector<std::string>* problems) {
   auto readIfThere = [&](const char* file) -> std::string {
     const auto path = runDir / file;
     std::error_code error;
@@ -604,13 +605,29 @@ std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, co
   }
   // Rasterised side by side (each with its own librsvg handle and cairo surface): 16 figures of
   // the Great Court took ~0.6 s one after the other. An exception in any is rethrown here.
+  // A figure librsvg cannot draw loses its preview, not the run: the run's own files are all
+  // there, and the problem goes to the report's warnings.
+  std::vector<std::string> failed(figures.size());
   tbb::parallel_for(size_t{0}, figures.size(), [&](size_t k) {
-    writePngFromSvg(figures[k].second, runDir / previews[k],
-                    figures[k].first == "plan" || figures[k].first == "curvature"
-                        ? kPlanPreviewPx
-                        : kChartPreviewPx);
+    try {
+      writePngFromSvg(figures[k].second, runDir / previews[k],
+                      figures[k].first == "plan" || figures[k].first == "curvature"
+                          ? kPlanPreviewPx
+                          : kChartPreviewPx);
+    } catch (const WriteError&) {
+      throw;  // the run folder cannot be written: the run fails as for any file
+    } catch (const Error& e) {
+      failed[k] = e.what();
+    }
   });
-  return previews;
+  std::vector<std::string> drawn;
+  for (size_t k = 0; k < figures.size(); ++k) {
+    if (failed[k].empty())
+      drawn.push_back(previews[k]);
+    else if (problems != nullptr)
+      problems->push_back(previews[k] + " not drawn: " + failed[k]);
+  }
+  return drawn;
 }
 
 }  // namespace egg::pipeline

@@ -43,8 +43,11 @@ inline constexpr int kChartPreviewPx = 800;
 
 // Reads the files of ReportFiles from `runDir` when present, writes `runDir`/report.html
 // atomically and a PNG of each figure under `runDir`/preview/ (svg_png.hpp). Returns the PNGs'
-// paths relative to `runDir` (report.json's outputs.previews). Throws WriteError naming the file.
+// paths relative to `runDir` (report.json's outputs.previews). A figure that cannot be drawn has no
+// PNG and a line in `problems` ("preview/x.png not drawn: why"). Throws WriteError naming the
+// file.
 std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir,
-                                         const nlohmann::json& report);
+                                         const nlohmann::json& report,
+                                         std::vector<std::string>* problems = nullptr);
 
 }  // namespace egg::pipeline

@@ -3,6 +3,7 @@
 #include "core/errors.hpp"
 
 #include <cairo.h>
+#include <gio/gio.h>
 #include <librsvg/rsvg.h>
 
 #include <cmath>
@@ -16,9 +17,15 @@ void writePngFromSvg(const std::string& svgText, const std::filesystem::path& pa
     throw InvalidInput("PNG preview " + path.string() + ": width " + std::to_string(widthPx) +
                        " px out of range");
   GError* error = nullptr;
+  // RSVG_HANDLE_FLAG_UNLIMITED: libxml2's default limits refuse a document above 10 MB, which the
+  // K map of a 140k-face mesh is (issue 40); the figures are our own, not untrusted input.
+  std::unique_ptr<GInputStream, void (*)(void*)> stream(
+      g_memory_input_stream_new_from_data(svgText.data(), static_cast<gssize>(svgText.size()),
+                                          nullptr),
+      g_object_unref);
   std::unique_ptr<RsvgHandle, void (*)(void*)> handle(
-      rsvg_handle_new_from_data(reinterpret_cast<const guint8*>(svgText.data()), svgText.size(),
-                                &error),
+      rsvg_handle_new_from_stream_sync(stream.get(), nullptr, RSVG_HANDLE_FLAG_UNLIMITED, nullptr,
+                                       &error),
       g_object_unref);
   if (!handle) {
     const std::string why = error ? error->message : "unknown";

@@ -51,5 +51,28 @@ TEST(PlanDrawing, CandidatesRingTheirCentreAtEachStep) {
     EXPECT_NEAR((c[k] - c[0]).norm(), k <= 8 ? 5.0 : 10.0, 1e-12) << k;
 }
 
+TEST(PlanDrawing, PathChunksKeepEveryDAttributeUnderTheLimitAndLoseNothing) {
+  PathChunks chunks("fill=\"#000\"", 100);
+  std::string all;
+  for (int k = 0; k < 50; ++k) {
+    const std::string sub = "M" + std::to_string(k) + ",0L1,1Z";
+    chunks.add(sub);
+    all += sub;
+  }
+  const std::string out = chunks.finish();
+  std::string joined;
+  int elements = 0;
+  for (size_t at = out.find(" d=\""); at != std::string::npos; at = out.find(" d=\"", at + 1)) {
+    const size_t end = out.find('"', at + 4);
+    EXPECT_LE(end - (at + 4), 100u);
+    joined += out.substr(at + 4, end - (at + 4));
+    ++elements;
+  }
+  EXPECT_EQ(joined, all);
+  EXPECT_GT(elements, 5);
+  EXPECT_EQ(out.rfind("<path fill=\"#000\" d=\"M0,0L1,1Z", 0), 0u);
+  EXPECT_TRUE(PathChunks("x").finish().empty());
+}
+
 }  // namespace
 }  // namespace egg::patching::plan

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -250,6 +251,27 @@ TEST(ReportHtml, WritesAPngPreviewOfEveryFigure) {
   std::ostringstream planBytes;
   planBytes << plan.rdbuf();
   EXPECT_EQ(pngSize(planBytes.str()), std::make_pair(kPlanPreviewPx, 900));
+  std::filesystem::remove_all(dir);
+}
+
+// A figure librsvg cannot read loses its preview and says so; the page and the other previews
+// are written (the run is not thrown away for a picture).
+TEST(ReportHtml, AFigureThatCannotBeDrawnLosesOnlyItsPreview) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("egg_report_badfig_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "plan.svg") << kPlan;
+  std::ofstream(dir / "deployed.svg")
+      << R"(<svg id="deployed" xmlns="http://www.w3.org/2000/svg" width="10" height="10">)"
+      << "<g><rect width=\"5\" height=\"5\"></g></svg>\n";  // </g> closes a <rect>
+  std::vector<std::string> problems;
+  const auto previews = writeReportHtml(dir, sampleReport(), &problems);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0].rfind("preview/deployed.png not drawn: ", 0), 0u) << problems[0];
+  EXPECT_EQ(std::count(previews.begin(), previews.end(), "preview/deployed.png"), 0);
+  EXPECT_EQ(std::count(previews.begin(), previews.end(), "preview/plan.png"), 1);
+  EXPECT_TRUE(std::filesystem::exists(dir / "report.html"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "preview" / "deployed.png"));
   std::filesystem::remove_all(dir);
 }
 

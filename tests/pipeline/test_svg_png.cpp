@@ -96,6 +96,22 @@ TEST(SvgPng, RejectsTextThatIsNotSvgAndBadWidths) {
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
+// Issue 40: the K map of a 140k-face mesh is 12 MB of SVG; libxml2's default limits stop at 10 MB
+// ("Premature end of data"), and the finished run was thrown away as bad input.
+TEST(SvgPng, DrawsAFigureAboveTenMegabytes) {
+  std::string svg =
+      R"(<svg xmlns="http://www.w3.org/2000/svg" width="200" height="100" viewBox="0 0 200 100">)";
+  // Twelve paths of a megabyte each (a long number: cheap to draw, as heavy to read).
+  const std::string d = "M10." + std::string(size_t{1} << 20, '0') + "1,50h1v1z";
+  for (int k = 0; k < 12; ++k) svg += "<path fill=\"#000\" d=\"" + d + "\"/>\n";
+  svg += R"(<rect x="100" width="100" height="100" fill="#000"/></svg>)";
+  const auto path = tempPng("huge");
+  writePngFromSvg(svg, path, 200);
+  const Png png = readPng(path);
+  EXPECT_EQ(png.rgb(150, 50), 0x000000u) << "the element after the 12 MB was drawn";
+  std::filesystem::remove(path);
+}
+
 TEST(SvgPng, NamesTheFileItCannotWrite) {
   const std::string svg =
       R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"><rect width="5" height="5"/></svg>)";

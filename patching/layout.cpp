@@ -204,6 +204,21 @@ PatchLayout makeLayout(const TriMesh& surface, const geodesic::DistanceSolver& s
     for (size_t j = 0; j < k; ++j)
       if ((layout.corners[k] - layout.corners[j]).norm() <= 1e-9 * (1.0 + layout.corners[k].norm()))
         throw InvalidInput(fmt::format("corners {} and {} coincide on the surface", j, k));
+  // A patch side shorter than half an edge of the mesh cannot be traced as a side: the corners
+  // fall on one vertex or one edge (four corners 1e-7 m apart ended as a solver failure without a
+  // report, issue 40).
+  const double shortest = 0.5 * meanEdgeLength(surface);
+  for (size_t p = 0; p < patches.size(); ++p)
+    for (int k = 0; k < 4; ++k)
+      for (int j = 0; j < k; ++j) {
+        const double apart = (layout.corners[patches[p][k]] - layout.corners[patches[p][j]]).norm();
+        if (apart < shortest)
+          throw InvalidInput(fmt::format(
+              "patch {}: corners {} and {} are {:.3g} m apart, less than half the mesh's mean edge "
+              "length ({:.3g} m): the mesh cannot carry such a patch (a finer "
+              "surface.edge_length_m, or corners farther apart)",
+              p, patches[p][j], patches[p][k], apart, 2 * shortest));
+      }
   layout.patches = patches;
 
   // Curves: the longest side pairs first; a side whose corners already lie on one curve is a

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <map>
 #include <random>
+#include <set>
 #include <system_error>
 
 namespace egg::pipeline {
@@ -49,12 +50,24 @@ json listRunFiles(const fs::path& folder) {
   return files;
 }
 
-std::string markerText(const json& files) {
+// Every folder of a run folder, relative paths (the marker lists them, so that an empty folder
+// someone made in the run folder afterwards is theirs, not the run's).
+json listRunFolders(const fs::path& folder) {
+  json folders = json::array();
+  for (auto it = fs::recursive_directory_iterator(folder); it != fs::recursive_directory_iterator();
+       ++it)
+    if (fs::is_directory(it->symlink_status()))
+      folders.push_back(it->path().lexically_relative(folder).string());
+  return folders;
+}
+
+std::string markerText(const json& files, const json& folders) {
   json marker{{"eggshell_run", kManifestVersion},
               {"note",
                "eggshell run folder: replaced whole by the next egg run into it, if it holds only "
                "these files"},
-              {"files", files}};
+              {"files", files},
+              {"folders", folders}};
   return marker.dump(1) + "\n";
 }
 
@@ -95,6 +108,27 @@ std::string runFolderReplaceProblem(const fs::path& folder) {
     present = listRunFiles(folder);
   } catch (const std::exception& e) {
     return std::string("cannot be listed: ") + e.what();
+  }
+  // Folders: the run's own are in the marker (or, in a marker from before folders were listed,
+  // hold a file the run wrote); any other is someone's (an empty folder made afterwards, issue 40).
+  std::set<std::string> madeFolders;
+  if (marker.contains("folders") && marker["folders"].is_array())
+    for (const auto& f : marker["folders"])
+      if (f.is_string()) madeFolders.insert(f.get<std::string>());
+  json folders;
+  try {
+    folders = listRunFolders(folder);
+  } catch (const std::exception& e) {
+    return std::string("cannot be listed: ") + e.what();
+  }
+  for (const auto& f : folders) {
+    const std::string path = f.get<std::string>();
+    if (madeFolders.count(path)) continue;
+    const auto below = written.lower_bound(path + "/");
+    if (below != written.end() && below->first.compare(0, path.size() + 1, path + "/") == 0)
+      continue;
+    return "holds the folder " + abbreviate(path) +
+           ", which the earlier run did not make; move it out or choose another --out";
   }
   for (const auto& f : present) {
     const std::string path = f["path"].get<std::string>();
@@ -219,7 +253,8 @@ void StagedDirectory::commit() {
     throw InvalidInput(target_.string() + ": " + problem +
                        "; refusing to replace it (the results are not written)");
   try {
-    writeFileAtomically(staging_ / kRunMarker, markerText(listRunFiles(staging_)));
+    writeFileAtomically(staging_ / kRunMarker,
+                        markerText(listRunFiles(staging_), listRunFolders(staging_)));
   } catch (const WriteError&) {
     throw;
   } catch (const std::exception& e) {

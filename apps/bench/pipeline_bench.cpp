@@ -237,6 +237,8 @@ std::string variantName(const std::string& scene, const PipelineVariant& v, size
 
 }  // namespace
 
+constexpr int kMaxPipelineVariants = 1000;
+
 std::vector<PipelineVariant> pipelineVariants(const PipelineBenchOptions& o,
                                               const std::string& sample) {
   const auto first = [](const auto& list, auto fallback) {
@@ -253,6 +255,17 @@ std::vector<PipelineVariant> pipelineVariants(const PipelineBenchOptions& o,
     const auto orOne = [](const auto& list, auto fallback) {
       return list.empty() ? std::vector<decltype(fallback)>{fallback} : list;
     };
+    // Each variant is a whole run per sample: the product of long lists was unbounded (issue 40).
+    double count = 1.0;
+    for (size_t n : {o.edgeFactors.size(), o.mapProxyVertices.size(), o.mapTolerances.size(),
+                     o.newtonTolerances.size(), o.spacingFactors.size()})
+      count *= static_cast<double>(std::max<size_t>(n, 1));
+    if (count > kMaxPipelineVariants)
+      throw InvalidInput(fmt::format(
+          "--product: {:.0f} combinations of --edge-factors, --map-proxy, --map-tolerances, "
+          "--newton-tolerances and --spacing-factors, more than {} runs per sample; give "
+          "shorter lists, or leave out --product to vary one knob at a time",
+          count, kMaxPipelineVariants));
     for (double e : orOne(o.edgeFactors, 1.0))
       for (int p : orOne(o.mapProxyVertices, -1))
         for (double mt : orOne(o.mapTolerances, -1.0))

@@ -229,9 +229,13 @@ SweepExpansion expandSweep(const SweepExpandOptions& options) {
   // Everything goes to a staging folder beside DIR first: a bad variant writes nothing.
   const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
   fs::create_directories(parent);
+  // A killed sweep left its staging folder (.egg-tmp-PID-*, thousands of scenes) beside DIR;
+  // those no process is at work on go now (issue 40).
+  removeDeadLeftovers(parent, temporaryFilePrefix(), true);
   const fs::path staging =
       parent / (temporaryFilePrefix() + std::to_string(::getpid()) + "-" + temporarySuffix());
   fs::create_directories(staging / "scenes");
+  const LiveLock atWork(staging);
   try {
     std::string jobs, csv = "variant";
     for (const auto& key : expansion.keys) csv += "," + csvField(key);

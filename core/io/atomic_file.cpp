@@ -73,7 +73,7 @@ bool leftoverInUse(const fs::path& path, pid_t pid) {
   if (fd >= 0) {
     const int taken = ::flock(fd, LOCK_EX | LOCK_NB);
     const int error = errno;
-    ::close(fd);                            // releases it again when we got it
+    ::close(fd);                                          // releases it again when we got it
     if (taken != 0 && error == EWOULDBLOCK) return true;  // held: at work, in any PID namespace
   }
   // Unlocked (or no flock here): a process of that PID alive here may still be at work on it (an

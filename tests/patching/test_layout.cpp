@@ -97,6 +97,38 @@ TEST(Layout, BadIndicesNameThePatch) {
   EXPECT_THROW(makeLayout(surface, solver, gridCorners(surface), {{0, 1, 1, 3}}), InvalidInput);
 }
 
+// Issue 40: four corners 1e-7 m apart ended as "solver failure" with no report; a patch whose
+// corners the mesh cannot tell apart is bad input naming them.
+TEST(Layout, CornersCloserThanTheMeshResolvesAreBadInput) {
+  const TriMesh surface = bump();
+  const geodesic::DistanceSolver solver(surface);
+  const Eigen::Vector3d c = position(surface, geodesic::snapToSurface(surface, {0.3, 0.2, 0}));
+  const std::vector<Eigen::Vector3d> corners{c, c + Eigen::Vector3d(1e-7, 0, 0),
+                                             c + Eigen::Vector3d(1e-7, 1e-7, 0),
+                                             c + Eigen::Vector3d(0, 1e-7, 0)};
+  try {
+    makeLayout(surface, solver, corners, {{0, 1, 2, 3}});
+    FAIL() << "accepted";
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_TRUE(what.find("apart, less than half the mesh's mean edge length") !=
+                    std::string::npos ||
+                what.find("coincide") != std::string::npos)
+        << what;
+  }
+  // Corners a tenth of an edge apart (distinct on the surface) say how far apart they are.
+  const double h = 0.1 * meanEdgeLength(surface);
+  try {
+    makeLayout(surface, solver,
+               {c, c + Eigen::Vector3d(h, 0, 0), c + Eigen::Vector3d(h, h, 0),
+                c + Eigen::Vector3d(0, h, 0)},
+               {{0, 1, 2, 3}});
+    FAIL() << "accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("patch 0: corners"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Layout, CrossingSidesMakeThePatchInfeasibleNotTheOthers) {
   const TriMesh surface = bump();
   const geodesic::DistanceSolver solver(surface);

@@ -69,7 +69,7 @@ TEST(PlanDrawing, PathChunksKeepEveryDAttributeUnderTheLimitAndLoseNothing) {
     ++elements;
   }
   EXPECT_EQ(joined, all);
-  EXPECT_GT(elements, 5);
+  EXPECT_GE(elements, 5);  // 50 subpaths of 9-10 bytes in 100-byte pieces
   EXPECT_EQ(out.rfind("<path fill=\"#000\" d=\"M0,0L1,1Z", 0), 0u);
   EXPECT_TRUE(PathChunks("x").finish().empty());
 }

@@ -122,6 +122,26 @@ TEST_F(TempDir, AnEarlierRunHoldingFilesTheToolDidNotWriteIsNeverReplaced) {
   EXPECT_EQ(readAll(out / "patch_000" / "grid.json"), "{\"edited\": true}");
 }
 
+// Issue 40: an empty folder made in an earlier run folder was deleted with it, silently. The run's
+// own folders are in its marker; an empty one of the run's (preview/ with no figure) is still its.
+TEST_F(TempDir, AnEmptyFolderSomeoneMadeInTheRunFolderIsTheirs) {
+  const fs::path out = root / "run";
+  {
+    StagedDirectory staged(out);
+    fs::create_directories(staged.staging() / "preview");  // empty, but the run's
+    writeFileAtomically(staged.staging() / "report.json", "{}");
+    staged.commit();
+  }
+  EXPECT_EQ(runFolderReplaceProblem(out), "");
+  fs::create_directories(out / "my notes");
+  const std::string problem = runFolderReplaceProblem(out);
+  EXPECT_NE(problem.find("holds the folder my notes"), std::string::npos) << problem;
+  EXPECT_THROW(StagedDirectory staged(out), InvalidInput);
+  EXPECT_TRUE(fs::is_directory(out / "my notes"));
+  fs::remove(out / "my notes");
+  EXPECT_NO_THROW(makeRun(out, "{}"));
+}
+
 TEST_F(TempDir, AFileAddedDuringTheRunStopsTheCommit) {
   const fs::path out = root / "run";
   makeRun(out, "{}");

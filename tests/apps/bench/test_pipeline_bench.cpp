@@ -148,6 +148,18 @@ TEST(PipelineBench, VariesOneKnobAtATimeFromTheFirstValues) {
   options.product = true;
   options.paperSection = false;
   EXPECT_EQ(pipelineVariants(options, "lilium").size(), 48u);
+  // Issue 40: long lists made an unbounded product (here 20^5 = 3.2 million runs per sample).
+  std::vector<double> many(20, 1.0);
+  options.edgeFactors = options.mapTolerances = options.newtonTolerances = options.spacingFactors =
+      many;
+  options.mapProxyVertices = std::vector<int>(20, 0);
+  try {
+    pipelineVariants(options, "lilium");
+    FAIL() << "3.2 million variants accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("--product: 3200000 combinations"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(PipelineBench, BadInputIsNamed) {

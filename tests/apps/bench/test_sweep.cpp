@@ -3,10 +3,12 @@
 #include "apps/bench/sweep.hpp"
 
 #include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/wait.h>
 #include <unistd.h>
 #include <fstream>
 #include <sstream>
@@ -108,6 +110,35 @@ TEST(Sweep, SweptNamesAreKeptAndSweptFilesResolvedLikeTheBases) {
     EXPECT_EQ(file, fs::absolute(d / "in" / "meshes" / meshes[v]).lexically_normal());
     EXPECT_TRUE(fs::exists(file)) << file;
   }
+  fs::remove_all(d);
+}
+
+// Issue 40: a killed sweep's staging folder (.egg-tmp-PID-*, beside DIR) was never cleaned; one a
+// sweep is still at work on (its lock held) stays.
+TEST(Sweep, AKilledSweepsStagingFolderIsCleanedAndALiveOneKept) {
+  const fs::path d = freshDir("leftover");
+  writeBase(d);
+  std::ofstream(d / "in" / "sweep.json")
+      << R"({"base": "base.json", "parameters": {"grid.members_per_family": [5, 7]}})";
+  const pid_t dead = [] {
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+    return child;
+  }();
+  const fs::path killed = d / (temporaryFilePrefix() + std::to_string(dead) + "-abcdefgh");
+  const fs::path live = d / (temporaryFilePrefix() + std::to_string(dead) + "-bcdefghi");
+  for (const fs::path& f : {killed, live}) {
+    fs::create_directories(f / "scenes");
+    std::ofstream(f / "scenes" / "v001.json") << "{}";
+  }
+  {
+    const LiveLock atWork(live);
+    expandSweep({d / "in" / "sweep.json", d / "out", "/bin/egg", false});
+    EXPECT_FALSE(fs::exists(killed));
+    EXPECT_TRUE(fs::exists(live / "scenes" / "v001.json"));
+  }
+  EXPECT_TRUE(fs::exists(d / "out" / "jobs.txt"));
   fs::remove_all(d);
 }
 

@@ -62,10 +62,15 @@ PatchingRun runPatching(const TriMesh& surface, const geodesic::DistanceSolver& 
     try {
       return patching::makeLayout(surface, surfaceSolver, corners, quads, options.layout);
     } catch (const InvalidInput& e) {
-      throw InvalidInput(
-          origin +
-          (workflow2 ? ": patching (Workflow 2's initial layout): " : ": patching.patches: ") +
-          e.what());
+      // Workflow 2's corners are its own: the message says what the user can change (issue 40: a
+      // one-triangle mesh talked of "patch 0: corner 1").
+      if (workflow2)
+        throw InvalidInput(fmt::format(
+            "{}: patching: Workflow 2 cannot lay out patches on this surface ({} faces): its "
+            "proposed layout is degenerate ({}); mesh it finer (surface.edge_length_m) or give "
+            "patching.patches",
+            origin, surface.n_faces(), e.what()));
+      throw InvalidInput(origin + ": patching.patches: " + e.what());
     }
   }();
   // Patches the user gave that overlap are bad input (a roof covered twice: double lamellas,

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
 
 namespace egg::app {
@@ -44,6 +45,22 @@ void buildCli(CLI::App& app, Action& action) {
   registerFemBench(*bench, action);
 }
 
+// Parses the line into `action`. The exit code when the line itself ends the run (--help and
+// --version: 0; a parse error or no command: bad input), with CLI11's text printed when `print`;
+// nothing when a command is to run.
+std::optional<int> parseLine(CLI::App& app, const Action& action, int argc, char** argv,
+                             bool print) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version are "errors" with exit code 0 in CLI11.
+    const int code = print ? app.exit(e) : e.get_exit_code();
+    return code == 0 ? kExitOk : kExitBadInput;
+  }
+  if (!action) return kExitBadInput;
+  return std::nullopt;
+}
+
 }  // namespace
 
 int checkCommandLine(int argc, char** argv) {
@@ -51,13 +68,11 @@ int checkCommandLine(int argc, char** argv) {
   Action action;
   buildCli(app, action);
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return e.get_exit_code() == 0 ? kExitOk : kExitBadInput;  // --help, --version: fine
+    if (const auto code = parseLine(app, action, argc, argv, false)) return *code;
   } catch (const Error&) {
     return kExitBadInput;  // an option callback's own check
   }
-  return action ? kExitOk : kExitBadInput;
+  return kExitOk;
 }
 
 int runCli(int argc, char** argv) {
@@ -69,15 +84,12 @@ int runCli(int argc, char** argv) {
   CLI::App app{kAbout};
   Action action;
   buildCli(app, action);
-
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    // --help and --version are "errors" with exit code 0 in CLI11.
-    const int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitBadInput;
+    if (const auto code = parseLine(app, action, argc, argv, true)) return *code;
+  } catch (const Error& e) {
+    std::cerr << "egg: invalid input: " << e.what() << "\n";  // an option callback's own check
+    return kExitBadInput;
   }
-  if (!action) return kExitBadInput;
   // With --json a script reads stdout: a failure is a JSON object there too (issue 39), beside
   // the message on stderr.
   bool json = false;

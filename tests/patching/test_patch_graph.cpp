@@ -2,20 +2,13 @@
 
 #include "core/geodesic/distance_solver.hpp"
 #include "samples/generators/samples.hpp"
+#include "tests/support/bump_layout.hpp"
 
 #include <gtest/gtest.h>
 
 namespace egg::patching {
 namespace {
 
-std::vector<Eigen::Vector3d> gridCorners(const TriMesh& surface, double half) {
-  std::vector<Eigen::Vector3d> corners;
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i)
-      corners.push_back(position(
-          surface, geodesic::snapToSurface(surface, {-half + half * i, -half + half * j, 0.0})));
-  return corners;
-}
 const std::vector<std::array<int, 4>> kGraphTwoByTwo{
     {0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
 
@@ -30,7 +23,8 @@ TEST(PatchGraph, TwoByTwoHasFourSharedSidesAndFourChains) {
   const TriMesh surface = samples::generateSample(
       "bump", {{"length", 8}, {"width", 8}, {"height", 1}, {"sigma", 1.5}}, 0.3);
   const geodesic::DistanceSolver solver(surface);
-  const PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 3.0), kGraphTwoByTwo);
+  const PatchLayout layout =
+      makeLayout(surface, solver, testing::bumpLayoutCorners(surface, 3.0), kGraphTwoByTwo);
   const PatchGraph graph = buildPatchGraph(layout);
   int shared = 0, free = 0;
   for (const auto& b : graph.boundaries) {
@@ -67,7 +61,8 @@ TEST(PatchGraph, TwoByTwoHasFourSharedSidesAndFourChains) {
 TEST(PatchGraph, PlaneCutIntoFourIsFullyCovered) {
   const TriMesh surface = samples::generateSample("plane", {{"length", 6}, {"width", 6}}, 0.4);
   const geodesic::DistanceSolver solver(surface);
-  const PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 3.0), kGraphTwoByTwo);
+  const PatchLayout layout =
+      makeLayout(surface, solver, testing::bumpLayoutCorners(surface, 3.0), kGraphTwoByTwo);
   const Coverage coverage = computeCoverage(layout, cutAll(layout));
   EXPECT_NEAR(coverage.fraction, 1.0, 1e-12);
   EXPECT_NEAR(coverage.coveredAreaM2, 36.0, 1e-9);
@@ -85,7 +80,7 @@ TEST(PatchGraph, PlaneCutIntoFourIsFullyCovered) {
 TEST(PatchGraph, TJunctionIsReported) {
   const TriMesh surface = samples::generateSample("plane", {{"length", 6}, {"width", 6}}, 0.4);
   const geodesic::DistanceSolver solver(surface);
-  const PatchLayout layout = makeLayout(surface, solver, gridCorners(surface, 3.0),
+  const PatchLayout layout = makeLayout(surface, solver, testing::bumpLayoutCorners(surface, 3.0),
                                         {{0, 1, 7, 6}, {1, 2, 5, 4}, {4, 5, 8, 7}});
   const PatchGraph graph = buildPatchGraph(layout);
   ASSERT_EQ(graph.tJunctions.size(), 1u);

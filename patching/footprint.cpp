@@ -3,6 +3,8 @@
 
 #include "core/errors.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -139,6 +141,14 @@ Footprint footprintOf(const TriMesh& mesh, const Plan& plan) {
   if (signedArea(f.outer) < 0)
     std::reverse(f.outer.begin(), f.outer.end()), std::reverse(f.outer3d.begin(), f.outer3d.end());
   for (size_t i = 1; i < order.size(); ++i) f.holes.push_back(loops[order[i]]);
+  // Four corners and four arcs between them need an outline of some vertices: a one-triangle mesh
+  // gave arcs of one point, read past their end (issue 40, found under ASan).
+  constexpr size_t kFewestOutlineVertices = 8;
+  if (f.outer.size() < kFewestOutlineVertices)
+    throw InvalidInput(fmt::format(
+        "workflow 2: the surface's outline has only {} vertices, too few to place four corners "
+        "and their sides on; mesh it finer (surface.edge_length_m) or give patching.patches",
+        f.outer.size()));
   f.tolerance = 0.5 * meanEdgeLength(mesh);
   return f;
 }
@@ -152,11 +162,13 @@ std::pair<size_t, double> Arc::locate(double u) const {
 }
 
 Vec2 Arc::at(double u) const {
+  if (points.size() < 2) return points.empty() ? Vec2::Zero() : points.front();
   const auto [hi, t] = locate(u);
   return (1.0 - t) * points[hi - 1] + t * points[hi];
 }
 
 Eigen::Vector3d Arc::at3d(double u) const {
+  if (points3d.size() < 2) return points3d.empty() ? Eigen::Vector3d::Zero() : points3d.front();
   const auto [hi, t] = locate(u);
   return (1.0 - t) * points3d[hi - 1] + t * points3d[hi];
 }

@@ -357,12 +357,13 @@ void finishLayout(PatchLayout& layout, const LayoutOptions& options) {
                         layout.curves[c].from, layout.curves[c].to, format(vertexPosition(v)));
         problem(c, what);
         problem(it->second, what);
+        const int first = it->second;  // a plain int: a lambda may not capture a binding (clang 14)
         const auto seen = std::find_if(
             layout.crossings.begin(), layout.crossings.end(), [&](const PatchLayout::Crossing& x) {
-              return x.curveA == it->second && x.curveB == static_cast<int>(c);
+              return x.curveA == first && x.curveB == static_cast<int>(c);
             });
         if (seen == layout.crossings.end())
-          layout.crossings.push_back({it->second, static_cast<int>(c), vertexPosition(v)});
+          layout.crossings.push_back({first, static_cast<int>(c), vertexPosition(v)});
       }
     }
   }

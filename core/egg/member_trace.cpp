@@ -224,7 +224,11 @@ struct StripSolution {
 StripSolution solveInStrip(const Patch& patch, const Strip& strip, const PlanarQuad& quad,
                            const GridMember& m, double x2Traced,
                            const std::vector<SurfacePoint>& traced, double tolerance) {
-  const auto [side, reversed] = familySide(m.family, true);
+  // Plain variables, not a structured binding: clang before 16 cannot capture one in a lambda
+  // (the fuzz build, scripts/fuzz.sh).
+  const auto familyEnd = familySide(m.family, true);
+  const int side = familyEnd.first;
+  const bool reversed = familyEnd.second;
   const double length = patch.sideLengths[side];
   const auto& arc = patch.sideArcLength[side];
   const double sLo = arc[strip.chainLo], sHi = arc[strip.chainLo + 1];

@@ -69,7 +69,8 @@ LiveLock::~LiveLock() {
 }
 
 bool leftoverInUse(const fs::path& path, pid_t pid) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  // O_NOFOLLOW: a link planted under a leftover's name is never opened (nor its target locked).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK | O_NOFOLLOW);
   if (fd >= 0) {
     const int taken = ::flock(fd, LOCK_EX | LOCK_NB);
     const int error = errno;
@@ -88,10 +89,13 @@ int removeDeadLeftovers(const fs::path& folder, const std::string& prefix, bool 
   for (; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     const pid_t pid = leftoverPid(name, prefix);
-    if (pid < 0 || pid == ::getpid() || leftoverInUse(it->path(), pid)) continue;
+    if (pid < 0 || pid == ::getpid()) continue;
+    // The type first: only our kinds of leftover (files, folders) are ever opened to test a lock.
     std::error_code typeError;
     const fs::file_status status = it->symlink_status(typeError);
-    if (typeError) continue;
+    if (typeError || !(fs::is_regular_file(status) || (folders && fs::is_directory(status))))
+      continue;
+    if (leftoverInUse(it->path(), pid)) continue;
     std::error_code removeError;
     if (folders && fs::is_directory(status)) {
       fs::remove_all(it->path(), removeError);

@@ -1,5 +1,6 @@
 // The scene's keys of the structure and its checks: lamella, simulation, fabrication, acceptance
 // and loads (scene_fields.cpp holds the geometry: surface, patching, grid).
+#include "core/io/atomic_file.hpp"
 #include "core/materials/materials.hpp"
 #include "pipeline/scene_fields.hpp"
 

@@ -7,6 +7,7 @@
 #include "core/io/xml_text.hpp"
 #include "pipeline/cladding_plot.hpp"
 #include "pipeline/error_time_plot.hpp"
+#include "pipeline/report_figure_sections.hpp"
 #include "pipeline/stages.hpp"
 #include "pipeline/svg_png.hpp"
 
@@ -144,49 +145,6 @@ std::string stageTimes(const json& report) {
   return out + barChart("stage-time-chart", bars, "s");
 }
 
-// A figure inlined beside others: the ids inside it (not its root's) and the url(#...) references
-// to them get `prefix`, so that the page's ids stay unique (plan.svg and curvature.svg both have a
-// "patch-0", every sheet a "scale-bar").
-std::string prefixIds(std::string svg, const std::string& prefix) {
-  const size_t rootEnd = svg.find('>');
-  if (rootEnd == std::string::npos) return svg;
-  std::string out = svg.substr(0, rootEnd + 1);
-  for (size_t at = rootEnd + 1; at < svg.size();) {
-    const size_t id = svg.find(" id=\"", at), url = svg.find("url(#", at);
-    const size_t next = std::min(id, url);
-    if (next == std::string::npos) {
-      out.append(svg, at, std::string::npos);
-      break;
-    }
-    const size_t keep = next + 5;  // past ` id="` or `url(#`
-    out.append(svg, at, keep - at).append(prefix);
-    at = keep;
-  }
-  return out;
-}
-
-std::string planSection(const std::string& planSvg, const std::string& curvatureSvg) {
-  std::string out = "<h2 id=\"plan\">Plan of patches</h2>\n";
-  const size_t start = planSvg.find("<svg");
-  if (start == std::string::npos) {
-    return out +
-           "<p class=\"missing\">No plan: the scene's outputs do not contain \"plan\" "
-           "(plan.svg).</p>\n";
-  }
-  // plan.svg inlined: without its XML declaration, scaled to the page.
-  std::string svg = planSvg.substr(start);
-  svg.insert(4, " class=\"plan\" style=\"max-width:100%;height:auto\"");
-  out += "<div class=\"figure\">\n" + svg + "\n</div>\n";
-  // The analytical sheet (curvature.svg) as a chart of its own: <svg id="curvature"> gets its
-  // PNG preview.
-  const size_t k = curvatureSvg.find("<svg");
-  if (k == std::string::npos) return out;
-  std::string sheet = prefixIds(curvatureSvg.substr(k), "curvature-");
-  sheet.insert(4, " id=\"curvature\" style=\"max-width:100%;height:auto\"");
-  return out + "<h3>Curvature and injectivity (curvature.svg)</h3>\n<div class=\"figure\">\n" +
-         sheet + "\n</div>\n";
-}
-
 std::string patchesSection(const json& report) {
   std::string out = "<h2 id=\"patches\">Patches</h2>\n";
   const json patches = at(report, "patches");
@@ -203,31 +161,6 @@ std::string patchesSection(const json& report) {
            text(at(p, "reason")) + "</td></tr>\n";
   }
   return out + "</table>\n";
-}
-
-// Each patch's flat scissor grid (Section 2.4, writePlanarSvg: U members blue, V orange, boundary
-// members thick): the patch_NNN/planar.svg files of the run, inlined small side by side.
-std::string patchGridsSection(const std::vector<std::pair<int, std::string>>& planarSvgs) {
-  std::string out = "<h2 id=\"patch-grids\">Planar grids of the patches</h2>\n";
-  if (planarSvgs.empty())
-    return out +
-           "<p class=\"missing\">No planar grids: the scene's outputs do not contain \"previews\" "
-           "(patch_NNN/planar.svg).</p>\n";
-  out +=
-      "<p>The flat grid of each patch before deployment: U members blue, V members orange, "
-      "boundary members thick.</p>\n";
-  for (const auto& [id, text] : planarSvgs) {
-    const size_t start = text.find("<svg");
-    const size_t end = text.rfind("</svg>");
-    if (start == std::string::npos || end == std::string::npos) continue;
-    std::string svg = text.substr(start, end + 6 - start);
-    svg.insert(4, fmt::format(" id=\"patch-grid-{}\" style=\"width:280px;height:auto\"", id));
-    out += fmt::format(
-        "<figure class=\"figure\" style=\"display:inline-block;margin:4px\">{}<figcaption>patch "
-        "{}</figcaption></figure>\n",
-        svg, id);
-  }
-  return out;
 }
 
 // Each traced patch's F_u and F_v (Sections 2.4.3, 2.4.4) from report.json patches[].cladding.
@@ -430,31 +363,6 @@ table.figures th{font-weight:normal;color:#555}.failures{background:#fdecea;bord
 .warnings{background:#fff8e1;border:1px solid #f9a825;padding:4px 12px}.missing{color:#777;font-style:italic}
 svg.chart{display:block;margin:8px 0}.figure{border:1px solid #ddd;display:inline-block;max-width:100%})";
 
-// deployed.svg inlined (it is an <svg id="deployed">, so it also gets its PNG preview).
-std::string deployedSection(const std::string& deployedSvg) {
-  std::string out =
-      "<h2 id=\"deployed-grid\">Deployed grid: deviation from the design surface</h2>\n";
-  const size_t start = deployedSvg.find("<svg");
-  if (start == std::string::npos)
-    return out +
-           "<p class=\"missing\">No deployed grid: the simulation did not run "
-           "(deployed.svg).</p>\n";
-  return out + "<div class=\"figure\">\n" + prefixIds(deployedSvg.substr(start), "deployed-") +
-         "</div>\n";
-}
-
-// elevations.svg inlined (an <svg id="elevations">: it gets its PNG preview).
-std::string elevationsSection(const std::string& elevationsSvg) {
-  std::string out = "<h2 id=\"elevations-and-sections\">Elevations and sections</h2>\n";
-  const size_t start = elevationsSvg.find("<svg");
-  if (start == std::string::npos)
-    return out +
-           "<p class=\"missing\">No elevations: the simulation did not run "
-           "(elevations.svg).</p>\n";
-  return out + "<div class=\"figure\">\n" + prefixIds(elevationsSvg.substr(start), "elevations-") +
-         "</div>\n";
-}
-
 // The FE check (output "fem"): what ccx found per load case, buckling, the cross-check against
 // the rods, and the figure; or why it was not solved.
 std::string verificationSection(const json& report, const std::string& figureSvg) {
@@ -534,11 +442,12 @@ std::string reportHtml(const json& report, const ReportFiles& files) {
     for (const auto& w : warnings) html += "<li>" + escapeXml(w) + "</li>\n";
     html += "</ul></details></div>\n";
   }
-  html += stageTimes(report) + planSection(files.planSvg, files.curvatureSvg) +
-          patchesSection(report) + patchGridsSection(files.planarSvgs) + claddingSection(report) +
-          simulationSection(report) + errorTimeSection(report) +
-          deployedViewSection(files.deployedViewJson) + deployedSection(files.deployedSvg) +
-          elevationsSection(files.elevationsSvg) +
+  html += stageTimes(report) + report_sections::planSection(files.planSvg, files.curvatureSvg) +
+          patchesSection(report) + report_sections::patchGridsSection(files.planarSvgs) +
+          claddingSection(report) + simulationSection(report) + errorTimeSection(report) +
+          deployedViewSection(files.deployedViewJson) +
+          report_sections::deployedSection(files.deployedSvg) +
+          report_sections::elevationsSection(files.elevationsSvg) +
           verificationSection(report, files.verificationSvg) + fabricationSection(report) +
           bomSection(files.bomCsv);
   return html + "</body>\n</html>\n";

@@ -1,0 +1,18 @@
+#pragma once
+// The sections of report.html that inline the run's SVG figures (report_html.cpp builds the page):
+// the plan and the curvature sheet, the planar grids, deployed.svg and elevations.svg.
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace egg::pipeline::report_sections {
+
+// `svg` with `prefix` on the ids inside it (not its root's) and on the url(#...) references to
+// them, so that the ids of a page inlining several figures stay unique.
+std::string prefixIds(std::string svg, const std::string& prefix);
+std::string planSection(const std::string& planSvg, const std::string& curvatureSvg);
+std::string patchGridsSection(const std::vector<std::pair<int, std::string>>& planarSvgs);
+std::string deployedSection(const std::string& deployedSvg);
+std::string elevationsSection(const std::string& elevationsSvg);
+
+}  // namespace egg::pipeline::report_sections

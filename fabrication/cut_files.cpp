@@ -105,7 +105,7 @@ std::vector<std::string> writeFabricationFiles(const FabricationResult& r,
       add(numbered("cut/" + stem, static_cast<int>(i + 1), 2, ".svg"),
           [sheet] { return toSvg(*sheet); });
       add(numbered("cut/" + stem, static_cast<int>(i + 1), 2, ".dxf"),
-          [sheet, &r] { return toDxf(*sheet, r.options.dxfVersion); });
+          [sheet, &r] { return toDxf(*sheet, r.options.dxfVersion, r.options.paperSize); });
     }
     if (!sheets.empty()) {
       add("cut/" + pdf,

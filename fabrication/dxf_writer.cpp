@@ -1,12 +1,14 @@
 #include "fabrication/dxf_writer.hpp"
 
 #include "core/errors.hpp"
+#include "fabrication/pdf_pages.hpp"
 #include "fabrication/stroke_text.hpp"
 
 #include <dl_dxf.h>
 #include <dl_writer_ascii.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cstdio>
 #include <map>
@@ -162,9 +164,39 @@ std::string withObjectOwners(const std::string& text) {
   return out;
 }
 
+// The page a CAD program prints on when nothing else is chosen. LibreCAD (and AutoCAD's
+// paper-space defaults) read the paper's limits ($PLIMMIN/$PLIMMAX), the scale of model space on
+// it ($PSVPSCALE) and where the model's origin falls on the paper ($PINSBASE). Without them
+// LibreCAD prints an A4 portrait page at 1:1, the corner of a 13.5 m sheet (issue 38). Here the
+// scene's paper, turned to the sheet's shape, at the largest standard scale that fits inside a
+// 10 mm border, the sheet centred: the print matches the fitted sheets.pdf page.
+void writePrintSetup(DL_WriterA& dw, const Drawing& d, PaperSize paper) {
+  const std::array<double, 2> portrait = paperSizeMm(paper);
+  const bool landscape = d.widthMm >= d.heightMm;
+  const double pw = landscape ? portrait[1] : portrait[0];
+  const double ph = landscape ? portrait[0] : portrait[1];
+  constexpr double kBorderMm = 10.0;
+  const double n = fittingScale({std::max(d.widthMm, 1e-3), std::max(d.heightMm, 1e-3)},
+                                {pw - 2.0 * kBorderMm, ph - 2.0 * kBorderMm});
+  dw.dxfString(9, "$PINSBASE");
+  dw.dxfReal(10, 0.5 * (pw - d.widthMm / n));
+  dw.dxfReal(20, 0.5 * (ph - d.heightMm / n));
+  dw.dxfReal(30, 0.0);
+  dw.dxfString(9, "$PLIMMIN");
+  dw.dxfReal(10, 0.0);
+  dw.dxfReal(20, 0.0);
+  dw.dxfString(9, "$PLIMMAX");
+  dw.dxfReal(10, pw);
+  dw.dxfReal(20, ph);
+  // AutoCAD 2000's variable, written in R12 files too: LibreCAD reads it in either, and R12
+  // readers skip a header variable they do not know (ezdxf's audit passes).
+  dw.dxfString(9, "$PSVPSCALE");
+  dw.dxfReal(40, 1.0 / n);
+}
+
 }  // namespace
 
-std::string toDxf(const Drawing& d, DxfVersion version) {
+std::string toDxf(const Drawing& d, DxfVersion version, PaperSize paper) {
   const bool r12 = version == DxfVersion::R12;
   DL_Dxf dxf;
   const DL_Codes::version dxfVersion = r12 ? DL_Codes::AC1009 : DL_Codes::AC1015;
@@ -180,6 +212,7 @@ std::string toDxf(const Drawing& d, DxfVersion version) {
       dw->dxfString(9, "$MEASUREMENT");
       dw->dxfInt(70, 1);  // metric
     }
+    writePrintSetup(*dw, d, paper);
     dw->dxfString(9, "$EXTMIN");
     dw->dxfReal(10, 0.0);
     dw->dxfReal(20, 0.0);

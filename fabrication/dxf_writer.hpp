@@ -11,7 +11,10 @@
 
 namespace egg::fabrication {
 
-// The DXF text of `drawing`. Throws WriteError when dxflib cannot write its temporary file.
-std::string toDxf(const Drawing& drawing, DxfVersion version = DxfVersion::R2000);
+// The DXF text of `drawing`. Its header sets up printing on `paper` (turned to the drawing's
+// shape): the drawing centred at the largest standard scale that fits, so that a CAD program's
+// print (LibreCAD's) shows the whole sheet. Throws WriteError when dxflib cannot write.
+std::string toDxf(const Drawing& drawing, DxfVersion version = DxfVersion::R2000,
+                  PaperSize paper = PaperSize::A3);
 
 }  // namespace egg::fabrication

@@ -200,7 +200,7 @@ void addStructureSections(std::vector<SceneSection>& sections) {
                 {fabrication::PaperSize::A2, "A2"},
                 {fabrication::PaperSize::A3, "A3"},
                 {fabrication::PaperSize::A4, "A4"}},
-               "ISO paper of sheets.pdf and assembly.pdf"),
+               "ISO paper of sheets.pdf, assembly.pdf and the DXF sheets' print set-up"),
         optionalNumber("tool_diameter_mm", EGG_AT(fabrication.options.toolDiameterMm), 0.1, 100.0,
                        "router bit: parts this far apart, TOOLPATH layer (default: a laser, "
                        "kerf_mm only)")},

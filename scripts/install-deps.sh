@@ -14,6 +14,7 @@ PACKAGES=(
   libhersheyfont-dev hershey-fonts-data libzip-dev   # fabrication: single-stroke labels, cut.zip (issue 38)
   librsvg2-dev               # pipeline/svg_png.cpp: PNG previews of report.html's figures
   python3-ezdxf librsvg2-bin poppler-utils admesh
+  librecad                   # test_dxf_writer: LibreCAD's own print (dxf2pdf) of a sheet DXF (issue 38)
   python3-jsonschema         # test_scene_schema: the scene schema checked by an independent validator (issue 39)
   parallel                   # egg sweep: jobs.txt on one machine (issue 18, test_sweep)
   clang libclang-rt-14-dev   # scripts/fuzz.sh: libFuzzer targets (issue 17)

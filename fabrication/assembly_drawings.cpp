@@ -1,5 +1,6 @@
 #include "fabrication/assembly_drawings.hpp"
 
+#include "fabrication/assembly_labels.hpp"
 #include "fabrication/pdf_pages.hpp"
 
 #include <cairo.h>
@@ -7,6 +8,7 @@
 #include <fmt/printf.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <deque>
@@ -50,15 +52,6 @@ View fit(const std::vector<Eigen::Vector2d>& points, const PageFrame& f) {
 Eigen::Vector2d axo(const Eigen::Vector3d& p) {
   const double c = std::cos(M_PI / 6.0), s = std::sin(M_PI / 6.0);
   return {(p.x() - p.y()) * c, p.z() + (p.x() + p.y()) * s};
-}
-
-void label(cairo_t* cr, const Eigen::Vector2d& at, double size, const std::string& text,
-           bool centred = false) {
-  cairo_set_font_size(cr, size);
-  cairo_text_extents_t e;
-  cairo_text_extents(cr, text.c_str(), &e);
-  cairo_move_to(cr, at.x() - (centred ? e.width / 2.0 : 0.0), at.y() + size / 2.8);
-  cairo_show_text(cr, text.c_str());
 }
 
 void arrow(cairo_t* cr, const Eigen::Vector2d& from, const Eigen::Vector2d& direction,
@@ -114,51 +107,136 @@ class TextPages {
   int page_ = 0;
 };
 
-void planarPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p) {
-  std::vector<Eigen::Vector2d> points;
-  for (const auto& m : p.members) points.push_back(m.planarStart), points.push_back(m.planarEnd);
+// Where the segment a-b lies inside the box [lo, hi]: its parameters t0 < t1 (Liang-Barsky), or
+// false when it misses the box.
+bool clipSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& lo,
+                 const Eigen::Vector2d& hi, double& t0, double& t1) {
+  t0 = 0.0, t1 = 1.0;
+  const Eigen::Vector2d d = b - a;
+  for (int k = 0; k < 2; ++k) {
+    for (const auto& [p, q] : {std::pair{-d[k], a[k] - lo[k]}, std::pair{d[k], hi[k] - a[k]}}) {
+      if (p == 0.0) {
+        if (q < 0.0) return false;
+      } else if (p < 0.0) {
+        t0 = std::max(t0, q / p);
+      } else {
+        t1 = std::min(t1, q / p);
+      }
+    }
+  }
+  return t0 < t1;
+}
+
+// One page of a patch's planar grid: the part inside the window [lo, hi] (model metres) at the
+// view `v`, every member clipped to it (a member cut by the window is labelled inside, at the
+// cut), the connections inside with their notch arrows, and the ids laid out.
+PageLabelCounts planarPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p, const View& v,
+                           const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
+                           const std::string& title) {
   const PageFrame f = pageFrame(paper, true);
-  const View v = fit(points, f);
   cairo_t* cr = pdf.beginPage(f);
+  PageLabels labels(cr, f);
   cairo_set_line_width(cr, 0.35);
+  std::vector<MemberLabelSpot> spots;
   for (const auto& m : p.members) {
+    double t0 = 0.0, t1 = 1.0;
+    if (!clipSegment(m.planarStart, m.planarEnd, lo, hi, t0, t1)) continue;
+    const Eigen::Vector2d d = m.planarEnd - m.planarStart;
+    const Eigen::Vector2d a = v.page(m.planarStart + t0 * d), b = v.page(m.planarStart + t1 * d);
     cairo_set_source_rgb(cr, m.isU ? 0.75 : 0.0, 0.0, m.isU ? 0.0 : 0.75);
-    const Eigen::Vector2d a = v.page(m.planarStart), b = v.page(m.planarEnd);
     cairo_move_to(cr, a.x(), a.y());
     cairo_line_to(cr, b.x(), b.y());
     cairo_stroke(cr);
-    // The id beyond both ends of the member.
-    const Eigen::Vector2d d =
+    const Eigen::Vector2d u =
         (b - a).norm() > 0 ? Eigen::Vector2d((b - a).normalized()) : Eigen::Vector2d(1.0, 0.0);
-    label(cr, a - 5.0 * d, 2.2, m.id, true);
-    label(cr, b + 5.0 * d, 2.2, m.id, true);
+    spots.push_back({m.id, m.isU, {a, b}, {t0 > 0.0 ? u : Eigen::Vector2d(-u), t1 < 1.0 ? -u : u}});
   }
   const double size = std::clamp(0.25 * 1000.0 / v.n * 0.2, 0.8, 1.8);
+  std::vector<Eigen::Vector2d> dots;
+  std::vector<std::string> ids;
   for (const auto& c : p.connections) {
+    if ((c.planar.array() < lo.array()).any() || (c.planar.array() > hi.array()).any()) continue;
     const Eigen::Vector2d q = v.page(c.planar);
+    dots.push_back(q);
+    ids.push_back(c.id);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_new_path(cr);  // no line from the last label to the dot
+    cairo_new_path(cr);  // no line from the last path to the dot
     cairo_arc(cr, q.x(), q.y(), 0.5, 0.0, 2.0 * M_PI);
     cairo_fill(cr);
-    label(cr, q + Eigen::Vector2d(0.8, 1.2), size, c.id);
     // Notch directions: where the bolt slides while deploying, along its member.
+    const Eigen::Vector2d slideU(c.slideU.x(), -c.slideU.y()), slideV(c.slideV.x(), -c.slideV.y());
     cairo_set_line_width(cr, 0.25);
-    if (c.slideU.norm() > 0.0) {
+    if (slideU.norm() > 0.0) {
       cairo_set_source_rgb(cr, 0.75, 0.0, 0.0);
-      arrow(cr, q, Eigen::Vector2d(c.slideU.x(), -c.slideU.y()), 3.0);
+      arrow(cr, q, slideU, 3.0);
     }
-    if (c.slideV.norm() > 0.0) {
+    if (slideV.norm() > 0.0) {
       cairo_set_source_rgb(cr, 0.0, 0.0, 0.75);
-      arrow(cr, q, Eigen::Vector2d(c.slideV.x(), -c.slideV.y()), 3.0);
+      arrow(cr, q, slideV, 3.0);
     }
+    labels.reserveDot(q, 0.5, {slideU, slideV}, 3.0);
   }
-  drawTitleBand(cr, f,
-                "patch P" + std::to_string(p.patchId) + ": planar grid as laid out and bolted",
+  const PageLabelCounts counts = layOutLabels(labels, spots, ids, dots, size);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  drawTitleBand(cr, f, title,
                 "plan on the ground, scale " + scaleText(v.n) + " on " + toString(paper) +
                     "; u lamellas red, v blue; arrows: where each slotted bolt slides while "
-                    "deploying (red along u, blue along v)",
+                    "deploying (red along u, blue along v)" +
+                    leftOutNote(counts, p.patchId),
                 v.n);
   pdf.endPage();
+  return counts;
+}
+
+// The whole planar grid on one page; where that leaves connection ids out, detail pages follow:
+// the grid cut into windows drawn at least twice as large (the standard scale at or above 1:n/2.5,
+// at most 8 pages, empty windows skipped), so that the crew finds the ids the overview had no
+// room for.
+void planarPages(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p) {
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& m : p.members) points.push_back(m.planarStart), points.push_back(m.planarEnd);
+  if (points.empty()) return;
+  Eigen::Vector2d lo = points.front(), hi = points.front();
+  for (const auto& q : points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  const PageFrame f = pageFrame(paper, true);
+  const View overview = fit(points, f);
+  const std::string title =
+      "patch P" + std::to_string(p.patchId) + ": planar grid as laid out and bolted";
+  const PageLabelCounts counts = planarPage(pdf, paper, p, overview, lo, hi, title);
+  if (counts.connectionsLeftOut == 0) return;
+  const Eigen::Vector2d extent = (hi - lo).cwiseMax(1e-3);
+  const double areaX = (f.areaWidth - 20.0) / 1000.0, areaY = (f.areaHeight - 12.0) / 1000.0;
+  double n = fittingScale({overview.n / 2.5, 1.0}, {1.0, 1.0});
+  int nx = 1, ny = 1;
+  for (; n < overview.n; n = fittingScale({n * 1.01, 1.0}, {1.0, 1.0})) {
+    nx = static_cast<int>(std::ceil(extent.x() / (areaX * n) - 1e-9));
+    ny = static_cast<int>(std::ceil(extent.y() / (areaY * n) - 1e-9));
+    if (nx * ny <= 8) break;
+  }
+  if (n >= overview.n) return;
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> windows;
+  for (int j = ny - 1; j >= 0; --j) {  // top row first, as the overview reads
+    for (int i = 0; i < nx; ++i) {
+      const Eigen::Vector2d a = lo + Eigen::Vector2d(extent.x() * i / nx, extent.y() * j / ny);
+      const Eigen::Vector2d b =
+          lo + Eigen::Vector2d(extent.x() * (i + 1) / nx, extent.y() * (j + 1) / ny);
+      const bool any = std::any_of(p.connections.begin(), p.connections.end(), [&](const auto& c) {
+        return (c.planar.array() >= a.array()).all() && (c.planar.array() <= b.array()).all();
+      });
+      if (any) windows.emplace_back(a, b);
+    }
+  }
+  for (size_t k = 0; k < windows.size(); ++k) {
+    const auto& [a, b] = windows[k];
+    const View v = fit({a, b}, f);
+    View at = v;
+    at.n = n;  // the detail scale, the window centred
+    const Eigen::Vector2d size = (b - a) * 1000.0 / n;
+    at.px = f.areaX + (f.areaWidth - size.x()) / 2.0;
+    at.py = f.areaY + (f.areaHeight - size.y()) / 2.0;
+    planarPage(pdf, paper, p, at, a, b,
+               fmt::format("{}: detail {} of {}", title, k + 1, windows.size()));
+  }
 }
 
 void deployedPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p) {
@@ -169,7 +247,10 @@ void deployedPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p) {
   const PageFrame f = pageFrame(paper, true);
   const View v = fit(points, f);
   cairo_t* cr = pdf.beginPage(f);
+  PageLabels labels(cr, f);
   cairo_set_line_width(cr, 0.35);
+  // Each member's ids beyond its two ends, along its chord.
+  std::vector<MemberLabelSpot> spots;
   for (const auto& m : p.members) {
     if (m.deployed.size() < 2) continue;
     cairo_set_source_rgb(cr, m.isU ? 0.75 : 0.0, 0.0, m.isU ? 0.0 : 0.75);
@@ -178,20 +259,30 @@ void deployedPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p) {
       k ? cairo_line_to(cr, q.x(), q.y()) : cairo_move_to(cr, q.x(), q.y());
     }
     cairo_stroke(cr);
-    label(cr, v.page(axo(m.deployed.front())) + Eigen::Vector2d(-2.0, -2.0), 2.2, m.id, true);
+    const Eigen::Vector2d a = v.page(axo(m.deployed.front())), b = v.page(axo(m.deployed.back()));
+    const Eigen::Vector2d u =
+        (b - a).norm() > 0 ? Eigen::Vector2d((b - a).normalized()) : Eigen::Vector2d(1.0, 0.0);
+    spots.push_back({m.id, m.isU, {a, b}, {-u, u}});
   }
   const double size = std::clamp(0.25 * 1000.0 / v.n * 0.2, 0.8, 1.8);
+  std::vector<Eigen::Vector2d> dots;
+  std::vector<std::string> ids;
   cairo_set_source_rgb(cr, 0, 0, 0);
   for (const auto& c : p.connections) {
     const Eigen::Vector2d q = v.page(axo(c.spatial));
-    cairo_new_path(cr);  // no line from the last label to the dot
+    dots.push_back(q);
+    ids.push_back(c.id);
+    cairo_new_path(cr);  // no line from the last path to the dot
     cairo_arc(cr, q.x(), q.y(), 0.4, 0.0, 2.0 * M_PI);
     cairo_fill(cr);
-    label(cr, q + Eigen::Vector2d(0.6, 1.0), size, c.id);
+    labels.reserveDot(q, 0.4, {}, 0.0);
   }
+  const PageLabelCounts counts = layOutLabels(labels, spots, ids, dots, size);
+  cairo_set_source_rgb(cr, 0, 0, 0);
   drawTitleBand(cr, f, "patch P" + std::to_string(p.patchId) + ": deployed, axonometric",
                 "isometric (ISO 5456-3), lengths along x, y, z at " + scaleText(v.n) + " on " +
-                    toString(paper) + "; same ids as the planar grid",
+                    toString(paper) + "; same ids as the planar grid" +
+                    leftOutNote(counts, p.patchId),
                 v.n);
   pdf.endPage();
 }
@@ -220,17 +311,32 @@ void supportPlanPage(PdfDocument& pdf, PaperSize paper, const std::vector<Assemb
     }
   }
   cairo_set_source_rgb(cr, 0.8, 0.0, 0.0);
+  PageLabels labels(cr, f);
   for (const auto& s : supports) {
     const Eigen::Vector2d q = v.page({s.position.x(), s.position.y()});
     cairo_new_path(cr);
     cairo_rectangle(cr, q.x() - 0.8, q.y() - 0.8, 1.6, 1.6);
     cairo_fill(cr);
-    label(cr, q + Eigen::Vector2d(1.2, 0.0), 1.8, s.id);
+    labels.reserve(q, 0.9);
   }
+  // Ids after every marker is reserved, so that no id covers another support.
+  int leftOut = 0;
+  for (const auto& s : supports) {
+    const Eigen::Vector2d q = v.page({s.position.x(), s.position.y()});
+    const Eigen::Vector2d box = labels.extent(s.id, 1.8);
+    std::vector<Eigen::Vector2d> centres = PageLabels::besideDot(q, box, 1.0);
+    for (const auto& c : PageLabels::besideDot(q, box, 3.5)) centres.push_back(c);
+    if (!labels.place(s.id, 1.8, centres, {0.8, 0.0, 0.0})) ++leftOut;
+  }
+  labels.draw();
   cairo_set_source_rgb(cr, 0, 0, 0);
   drawTitleBand(cr, f, "support plan",
                 "plan (site x right, y up), scale " + scaleText(v.n) + " on " + toString(paper) +
-                    "; coordinates in the table that follows and supports/supports.csv",
+                    "; coordinates in the table that follows and supports/supports.csv" +
+                    (leftOut > 0 ? fmt::format("; {} support ids left out where they would "
+                                               "overlap (every support is in the table)",
+                                               leftOut)
+                                 : std::string()),
                 v.n);
   pdf.endPage();
 }
@@ -382,7 +488,7 @@ std::string assemblyPdf(const FabricationResult& r) {
     text.finish();
   }
   for (int id : order) {
-    planarPage(pdf, paper, *byId[id]);
+    planarPages(pdf, paper, *byId[id]);
     deployedPage(pdf, paper, *byId[id]);
   }
   supportPlanPage(pdf, paper, r.assembly, r.supports);

@@ -5,8 +5,11 @@
 #include <cairo-pdf.h>
 #include <cairo.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 namespace egg::fabrication {
 namespace {
@@ -22,6 +25,27 @@ void text(cairo_t* cr, double x, double y, double size, const std::string& s) {
   cairo_set_font_size(cr, size);
   cairo_move_to(cr, x, y);
   cairo_show_text(cr, s.c_str());
+}
+
+// `s` broken at spaces into lines no wider than `width` at `size` (a word longer than the width
+// gets a line of its own).
+std::vector<std::string> wrapped(cairo_t* cr, const std::string& s, double size, double width) {
+  cairo_set_font_size(cr, size);
+  std::vector<std::string> lines{""};
+  size_t from = 0;
+  while (from <= s.size()) {
+    const size_t to = std::min(s.find(' ', from), s.size());
+    const std::string word = s.substr(from, to - from);
+    const std::string trial = lines.back().empty() ? word : lines.back() + " " + word;
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, trial.c_str(), &e);
+    if (e.x_advance > width && !lines.back().empty())
+      lines.push_back(word);
+    else
+      lines.back() = trial;
+    from = to + 1;
+  }
+  return lines;
 }
 
 }  // namespace
@@ -135,9 +159,22 @@ void drawTitleBand(cairo_t* cr, const PageFrame& frame, const std::string& title
   cairo_line_to(cr, frame.widthMm - kBorderMm, top - 1.0);
   cairo_stroke(cr);
   text(cr, kBorderMm, top + 4.5, 4.0, title);
-  text(cr, kBorderMm, top + 10.0, 2.8, note);
   const double barMax = std::min(80.0, frame.areaWidth / 4.0);
   const double barX = frame.widthMm - kBorderMm - barMax;
+  // The note on one line left of the scale bar, else on two in a smaller size (what a page left
+  // out, which must not run under the bar).
+  const double noteWidth = barX - kBorderMm - 4.0;
+  std::vector<std::string> lines = wrapped(cr, note, 2.8, noteWidth);
+  if (lines.size() == 1) {
+    text(cr, kBorderMm, top + 10.0, 2.8, note);
+  } else {
+    lines = wrapped(cr, note, 2.2, noteWidth);
+    for (size_t k = 0; k < lines.size() && k < 2; ++k) {
+      const bool cut = k == 1 && lines.size() > 2;
+      text(cr, kBorderMm, top + 8.6 + 2.9 * static_cast<double>(k), 2.2,
+           lines[k] + (cut ? " ..." : ""));
+    }
+  }
   text(cr, barX, top + 3.5, 3.0, "scale " + scaleText(denominator));
   drawScaleBar(cr, barX, top + 5.0, denominator, barMax);
   cairo_restore(cr);

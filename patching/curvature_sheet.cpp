@@ -274,7 +274,7 @@ void circlesAndPeaksSvg(const CurvatureDrawing& drawing, const Page& page, std::
     std::vector<Eigen::Vector2d> candidates;
     for (int ring = 0; ring < 4; ++ring) {
       const double dy = 16.0 * ring;
-      for (const Eigen::Vector2d c :
+      for (const Eigen::Vector2d& c :
            {Eigen::Vector2d(x + 10 + half, y - 8 - dy), Eigen::Vector2d(x - 10 - half, y - 8 - dy),
             Eigen::Vector2d(x + 10 + half, y + 14 + dy),
             Eigen::Vector2d(x - 10 - half, y + 14 + dy)})

@@ -220,23 +220,4 @@ bool LabelLayout::place(const std::vector<Eigen::Vector2d>& centres, size_t char
   return false;
 }
 
-bool LabelLayout::placeBox(const Box& box) {
-  if (box.x0 < page_.x0 || box.y0 < page_.y0 || box.x1 > page_.x1 || box.y1 > page_.y1)
-    return false;
-  if (std::any_of(taken_.begin(), taken_.end(), [&](const Box& b) { return b.overlaps(box); }))
-    return false;
-  taken_.push_back(box);
-  return true;
-}
-
-std::vector<Eigen::Vector2d> candidatesAround(double x, double y, double step, int rings) {
-  std::vector<Eigen::Vector2d> out{{x, y}};
-  for (int r = 1; r <= rings; ++r)
-    for (int k = 0; k < 8; ++k) {
-      const double a = k * M_PI / 4.0;
-      out.emplace_back(x + r * step * std::cos(a), y - r * step * std::sin(a));
-    }
-  return out;
-}
-
 }  // namespace egg::patching::plan

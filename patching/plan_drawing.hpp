@@ -3,6 +3,7 @@
 // curvature.svg, the analytical sheet in curvature_sheet.hpp): the page projection (plan xy, north
 // up), text with a halo, boundary loops, patch outlines, a scale bar with its north arrow, a
 // legend column, and labels placed so that they never overlap or leave the page.
+#include "core/drawing/label_layout.hpp"
 #include "core/mesh/mesh.hpp"
 #include "patching/layout.hpp"
 #include "patching/patch_graph.hpp"
@@ -84,35 +85,23 @@ struct Legend {
 std::string scaleBarSvg(const Projection& proj, double widthM, double barX, double barY,
                         double northX);
 
-// Boxes of labels already on the page; place() finds the first candidate position whose box is
-// inside the page and overlaps none of them. Text widths are estimated at 0.62 em a character
-// (DejaVu Sans, the sheets' font, averages 0.55 em over digits and lower case), heights at 1.2 em a
-// line, so a placed label keeps clear of its neighbours in any of the fonts the sheets name.
-class LabelLayout {
+// The label layout of core/drawing, with the SVG sheets' text estimate: widths at 0.62 em a
+// character (DejaVu Sans, the sheets' font, averages 0.55 em over digits and lower case), heights
+// at 1.2 em a line, so a placed label keeps clear of its neighbours in any of the fonts the sheets
+// name.
+class LabelLayout : public drawing::LabelLayout {
  public:
-  struct Box {
-    double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
-    bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
-  };
-  LabelLayout(double width, double height) : page_{0.0, 0.0, width, height} {}
+  using Box = drawing::LabelBox;
+  LabelLayout(double width, double height)
+      : drawing::LabelLayout({0.0, 0.0, width, height}, 16.0) {}
   // The box of a label of `lines` lines (the longest `chars` characters) of `size` px, centred on
   // (cx, cy).
   static Box boxAround(double cx, double cy, size_t chars, int lines, double size);
-  void reserve(const Box& box) { taken_.push_back(box); }
   // The first of `centres` (in order of preference) where the box fits; false when none does.
   bool place(const std::vector<Eigen::Vector2d>& centres, size_t chars, int lines, double size,
              Eigen::Vector2d& at);
-  // Takes `box` when it is inside the page and free.
-  bool placeBox(const Box& box);
-  const std::vector<Box>& taken() const { return taken_; }
-
- private:
-  Box page_;
-  std::vector<Box> taken_;
 };
 
-// Candidate centres around (x, y): the point itself, then rings of 8 directions at steps of
-// `step` px out to `rings` rings.
-std::vector<Eigen::Vector2d> candidatesAround(double x, double y, double step, int rings);
+using drawing::candidatesAround;
 
 }  // namespace egg::patching::plan

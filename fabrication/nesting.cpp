@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <sstream>
 
@@ -225,6 +226,43 @@ int shelfSheetCount(const Packer& packer, const std::vector<size_t>& order) {
 
 }  // namespace
 
+int binPackingLowerBound(std::vector<double> sizes, double capacity) {
+  if (sizes.empty()) return 0;
+  std::sort(sizes.begin(), sizes.end(), std::greater<>());
+  const double total = std::accumulate(sizes.begin(), sizes.end(), 0.0);
+  int best = static_cast<int>(std::ceil(total / capacity - 1e-9));  // L1
+  // prefix[k]: the sum of the k largest sizes.
+  std::vector<double> prefix(sizes.size() + 1, 0.0);
+  for (size_t k = 0; k < sizes.size(); ++k) prefix[k + 1] = prefix[k] + sizes[k];
+  // The first index whose size is at most x (sizes descending).
+  const auto firstAtMost = [&](double x) {
+    return static_cast<size_t>(
+        std::lower_bound(sizes.begin(), sizes.end(), x + kSlack, std::greater<>()) - sizes.begin());
+  };
+  // L2 (Martello and Toth 1990, Lemma 8.2): for a threshold alpha <= C/2, the parts above C - alpha
+  // (J1) and those above C/2 (J2) each need a bin of their own; the parts from alpha to C/2 (J3)
+  // fit only into what J2's bins leave free, or need bins of their own beyond that.
+  const size_t half = firstAtMost(0.5 * capacity);  // J1 + J2 = [0, half)
+  best = std::max(best, static_cast<int>(half));
+  for (size_t a = half; a < sizes.size(); ++a) {
+    if (a > half && sizes[a] == sizes[a - 1]) continue;  // each distinct alpha once
+    const double alpha = sizes[a];
+    const size_t j1 = firstAtMost(capacity - alpha);  // J1 = [0, j1), J2 = [j1, half)
+    // J3: parts in [alpha, C/2]: indices [half, last index with size >= alpha].
+    const size_t j3last = static_cast<size_t>(
+        std::upper_bound(sizes.begin(), sizes.end(), alpha - kSlack, std::greater<>()) -
+        sizes.begin());
+    const double j2Sum = prefix[half] - prefix[std::min(j1, half)];
+    const double j2Count = static_cast<double>(half - std::min(j1, half));
+    const double j3Sum = prefix[j3last] - prefix[half];
+    const double spill = j3Sum - (j2Count * capacity - j2Sum);
+    const int bound =
+        static_cast<int>(half) + std::max(0, static_cast<int>(std::ceil(spill / capacity - 1e-9)));
+    best = std::max(best, bound);
+  }
+  return best;
+}
+
 Nesting nestParts(const std::vector<NestPart>& parts, std::array<double, 2> sheetMm, double gapMm,
                   double marginMm, const std::string& field) {
   const double usableX = sheetMm[0] - 2.0 * marginMm, usableY = sheetMm[1] - 2.0 * marginMm;
@@ -280,13 +318,10 @@ Nesting nestParts(const std::vector<NestPart>& parts, std::array<double, 2> shee
       out.sheetUtilisation[sheetOf[r]] += parts[index].lengthMm * parts[index].widthMm;
     }
   }
-  double lengths = 0.0;
-  for (const auto& p : parts) {
-    total += p.lengthMm * p.widthMm;
-    lengths += p.lengthMm + gapMm;
-  }
-  out.rowsLowerBound =
-      parts.empty() ? 0 : static_cast<int>(std::ceil(lengths / (usableX + gapMm) - 1e-9));
+  for (const auto& p : parts) total += p.lengthMm * p.widthMm;
+  std::vector<double> sizes;
+  for (const auto& p : parts) sizes.push_back(p.lengthMm + gapMm);
+  out.rowsLowerBound = binPackingLowerBound(sizes, usableX + gapMm);
   for (auto& u : out.sheetUtilisation) u /= sheetMm[0] * sheetMm[1];
   out.yield = out.sheets > 0 ? total / (out.sheets * sheetMm[0] * sheetMm[1]) : 0.0;
   return out;

@@ -32,8 +32,8 @@ struct Nesting {
   double yield = 0.0;                    // parts' area over the sheets' area
   std::vector<double> sheetUtilisation;  // per sheet: its parts' area over its area
   int rows = 0;                          // rows of parts
-  int rowsLowerBound = 0;  // no packing has fewer rows: ceil(sum of lengths / row length)
-  int shelfSheets = 0;     // what first-fit shelves (eggshell before issue 38) take
+  int rowsLowerBound = 0;                // no packing has fewer rows (binPackingLowerBound)
+  int shelfSheets = 0;                   // what first-fit shelves (eggshell before issue 38) take
 };
 
 // Places every part at least `marginMm` inside a sheet of `sheetMm` and `gapMm` (kerf, or a
@@ -41,6 +41,12 @@ struct Nesting {
 // "fabrication.sheet_mm") when a part does not fit an empty sheet.
 Nesting nestParts(const std::vector<NestPart>& parts, std::array<double, 2> sheetMm, double gapMm,
                   double marginMm, const std::string& field);
+
+// A number of bins that no packing of `sizes` into bins of `capacity` goes below: the larger of
+// ceil(sum / capacity) and Martello and Toth's L2 (parts above half the capacity each need a bin
+// of their own, and what they leave free bounds what smaller parts can share). Equal to the rows
+// nestParts() found, it proves them the fewest.
+int binPackingLowerBound(std::vector<double> sizes, double capacity);
 
 // The second side of a sheet that holds `rows` rows of strips `stripWidthMm` wide exactly:
 // rows w + (rows - 1) gap + 2 margin.

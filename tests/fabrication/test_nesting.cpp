@@ -60,6 +60,19 @@ TEST(Nesting, PartLargerThanTheSheetIsAClearErrorNamingIt) {
       InvalidInput);
 }
 
+TEST(Nesting, TheRowBoundCountsPartsAboveHalfARowOneRowEach) {
+  // Four parts of 51 in rows of 100: the lengths sum to 2.04 rows, but no two share a row.
+  EXPECT_EQ(binPackingLowerBound({51, 51, 51, 51}, 100.0), 4);
+  // 70, 70 alone (nothing of 40 fits beside them); 3 x 40 need 2 more rows: 4, where the sum
+  // gives 3 (Martello and Toth's L2 with alpha = 40). Four rows are also what a packing takes.
+  EXPECT_EQ(binPackingLowerBound({40, 70, 40, 70, 40}, 100.0), 4);
+  // Small parts: the sum decides.
+  EXPECT_EQ(binPackingLowerBound({30, 30, 30, 30, 30}, 100.0), 2);
+  EXPECT_EQ(binPackingLowerBound({}, 100.0), 0);
+  // Parts of exactly half a row pair up: 2 rows.
+  EXPECT_EQ(binPackingLowerBound({50, 50, 50, 50}, 100.0), 2);
+}
+
 TEST(Nesting, MinimumSlackRowsBeatFirstFitShelves) {
   // Rows of 100 mm (no margin, kerf or gap), one row per sheet: parts 50, 40, 30, 30, 25, 25.
   // First fit decreasing: {50, 40}, {30, 30, 25}, {25} = 3 rows; best fit the same. The total is

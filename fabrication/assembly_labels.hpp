@@ -1,7 +1,7 @@
 #pragma once
 // The labels of an assembly drawing page (assembly_drawings.cpp), laid out so that none overlaps
 // another, a connection dot or a notch arrow (core/drawing/label_layout.hpp), and drawn last with
-// a white halo so that the lines under them do not cut through the text. A label with no free spot
+// a white mask so that the lines under them do not cut through the text. A label with no free spot
 // is left out and counted: on a dense corner there is no room for every connection id, and an
 // overlapped id is one a crew misreads. Page millimetres, y down.
 #include "core/drawing/label_layout.hpp"
@@ -39,7 +39,7 @@ class PageLabels {
   // each also shifted a line to either side.
   static std::vector<Eigen::Vector2d> beyondEnd(const Eigen::Vector2d& e, const Eigen::Vector2d& d,
                                                 const Eigen::Vector2d& box);
-  // Draws every placed label: a white halo, then the text as PDF text (pdftotext reads it).
+  // Draws every placed label: a white mask, then the text as PDF text (pdftotext reads it).
   void draw() const;
 
  private:

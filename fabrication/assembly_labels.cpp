@@ -88,8 +88,8 @@ void PageLabels::draw() const {
     // 28 MB.
     cairo_new_path(cr_);
     cairo_rectangle(cr_, l.centre.x() - 0.5 * e.x_advance - 0.5 * kHaloMm,
-                    l.centre.y() - 0.5 * (fe.ascent + fe.descent) + 0.1,
-                    e.x_advance + kHaloMm, fe.ascent + fe.descent - 0.2);
+                    l.centre.y() - 0.5 * (fe.ascent + fe.descent) + 0.1, e.x_advance + kHaloMm,
+                    fe.ascent + fe.descent - 0.2);
     cairo_set_source_rgb(cr_, 1, 1, 1);
     cairo_fill(cr_);
     cairo_set_source_rgb(cr_, l.rgb[0], l.rgb[1], l.rgb[2]);

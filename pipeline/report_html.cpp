@@ -382,16 +382,18 @@ std::string verificationSection(const json& report, const std::string& figureSvg
   if (at(v, "solved").is_boolean() && !v["solved"].get<bool>())
     return out + "<p class=\"missing\">Not solved: " + text(at(v, "not_solved_reason")) + "</p>\n";
   out +=
-      "<table class=\"list\"><tr><th>load case</th><th>max displacement m</th><th>reactions / "
-      "load</th><th>equilibrium residual</th><th>max utilisation</th><th>worst lamella</th></tr>\n";
+      "<table class=\"list\"><tr><th>load case</th><th>analysis</th><th>max displacement "
+      "m</th><th>reactions / load</th><th>equilibrium residual</th><th>max "
+      "utilisation</th><th>worst lamella</th></tr>\n";
   for (const auto& c : at(v, "cases")) {
     const json top = at(c, "top");
     const std::string worst =
         top.is_array() && !top.empty() ? text(at(top[0], "lamella")) : std::string("-");
-    out += "<tr><td>" + text(at(c, "name")) + "</td><td>" + text(at(c, "max_displacement_m")) +
-           "</td><td>" + text(at(c, "reaction_ratio"), 8) + "</td><td>" +
-           text(at(c, "equilibrium_residual")) + "</td><td>" + text(at(c, "max_utilisation")) +
-           "</td><td>" + worst + "</td></tr>\n";
+    const std::string analysis = at(c, "analysis") == "first_order" ? "first order" : "nonlinear";
+    out += "<tr><td>" + text(at(c, "name")) + "</td><td>" + analysis + "</td><td>" +
+           text(at(c, "max_displacement_m")) + "</td><td>" + text(at(c, "reaction_ratio"), 8) +
+           "</td><td>" + text(at(c, "equilibrium_residual")) + "</td><td>" +
+           text(at(c, "max_utilisation")) + "</td><td>" + worst + "</td></tr>\n";
   }
   out += "</table>\n";
   const json sag = at(v, "der_vs_fem");

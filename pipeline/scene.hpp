@@ -103,7 +103,8 @@ struct LoadsChoice {
   std::vector<std::string> pointLoadConnections;  // FE bolt names, e.g. "P0_C12", "J3"
   int bucklingModes = 3;       // linear buckling factors of the governing case; 0: none
   double ccxTimeLimitS = 600;  // per ccx run
-  int maxFeElements = 1000;  // above: the decks are written, ccx is not run (docs/verification.md)
+  int maxFeElements = 20000;  // above: the decks are written, ccx is not run (docs/verification.md)
+  int maxNonlinearFeElements = 1000;  // above: first-order (linear static) cases
 };
 
 struct Scene {

@@ -238,7 +238,10 @@ void addStructureSections(std::vector<SceneSection>& sections) {
         number("ccx_time_limit_s", EGG_AT(loads.ccxTimeLimitS), 1.0, 1e5,
                "each ccx run is stopped after this"),
         integer("max_fe_elements", EGG_AT(loads.maxFeElements), 1, 10000000,
-                "beam elements above which the FE decks are written to fem/ but ccx is not run")},
+                "beam elements above which the FE decks are written to fem/ but ccx is not run"),
+        integer("max_nonlinear_fe_elements", EGG_AT(loads.maxNonlinearFeElements), 0, 10000000,
+                "beam elements above which the load cases are solved first order (linear "
+                "static), their nonlinear decks written beside (0: always nonlinear)")},
        checkLoads});
 }
 

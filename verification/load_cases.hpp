@@ -38,7 +38,9 @@ std::vector<Eigen::Vector3d> nodalLoads(const FeModel& model, const FeMesh& mesh
 // nonlinearity (*STEP, NLGEOM) and tight residual controls (so that the reactions close on the
 // load to ~1e-9), displacements of every node and reactions of the supports into the .dat, and
 // stresses and displacements into the .frd. `modelFile` is the model's file name next to it.
-std::string caseInp(const std::string& modelFile, const std::vector<Eigen::Vector3d>& loads);
+// `nonlinear` false: a first-order (linear static) step, one solve, no residual iterations.
+std::string caseInp(const std::string& modelFile, const std::vector<Eigen::Vector3d>& loads,
+                    bool nonlinear = true);
 
 // A linear buckling step (*BUCKLE, `modes` factors) under the given loads from the unloaded
 // model: the factors multiply the whole case. Mode shapes into the .frd.

@@ -68,22 +68,31 @@ FeModel feModelFromRods(const rods::RodNetwork& network, const rods::SimulationR
   return model;
 }
 
-std::string bucklingVerdict(double firstFactor) {
+std::string bucklingVerdict(double firstFactor, bool firstOrderCases) {
   if (!(firstFactor > 0)) return "no positive buckling factor found under the governing case";
   if (firstFactor >= 10.0)
     return fmt::format(
         "alpha_cr = {:.3g} >= 10: buckling does not govern; a first-order analysis suffices "
         "(EN 1993-1-1 5.2.1(3))",
         firstFactor);
+  // Below 10 the load cases' own results are not the answer where they were first order.
+  const std::string firstOrder =
+      firstOrderCases ? "; the load cases here were solved first order (the model is above "
+                        "loads.max_nonlinear_fe_elements), so run their nonlinear decks "
+                        "(fem/nl_<case>.inp) before relying on them"
+                      : "";
   if (firstFactor >= 3.0)
     return fmt::format(
         "alpha_cr = {:.3g} in [3, 10): second-order effects matter; design with a geometrically "
-        "nonlinear analysis with imperfections (EN 1993-1-1 5.2.1(3), 5.2.2(5)B)",
-        firstFactor);
+        "nonlinear analysis with imperfections (EN 1993-1-1 5.2.1(3), 5.2.2(5)B){}",
+        firstFactor, firstOrder);
   return fmt::format(
       "alpha_cr = {:.3g} < 3: too close to buckling for the amplification method "
-      "(EN 1993-1-1 5.2.2(5)B); the structure needs stiffening",
-      firstFactor);
+      "(EN 1993-1-1 5.2.2(5)B){}; the structure needs stiffening{}",
+      firstFactor,
+      firstFactor < 1.0 ? ", and below 1 it buckles under the load case itself (linear buckling)"
+                        : "",
+      firstOrder);
 }
 
 namespace {
@@ -224,13 +233,20 @@ CheckResult runCheck(const FeModel& model, const fs::path& folder, const CheckOp
     return out;
   }
   const Deployment deployment = deploymentOf(model);
+  const bool nonlinear =
+      options.maxNonlinearElements <= 0 || elements <= options.maxNonlinearElements;
   std::vector<std::vector<Eigen::Vector3d>> caseLoads;
   for (const LoadCase& c : cases) {
     caseLoads.push_back(nodalLoads(model, out.mesh, c, options.planAreaM2));
-    writeText(folder / (c.name + ".inp"), caseInp("model.inp", caseLoads.back()));
+    writeText(folder / (c.name + ".inp"), caseInp("model.inp", caseLoads.back(), nonlinear));
+    // The nonlinear deck beside a first-order one, for the engineer to run where the buckling
+    // factor asks for it.
+    if (!nonlinear)
+      writeText(folder / ("nl_" + c.name + ".inp"), caseInp("model.inp", caseLoads.back()));
     const CcxOutcome run = runCcx(folder, c.name, options.ccx);
     out.cases.push_back(readCase(model, out.mesh, folder, c, caseLoads.back(), deployment));
     out.cases.back().seconds = run.seconds;
+    out.cases.back().nonlinear = nonlinear;
   }
   if (options.bucklingModes > 0) {
     size_t governing = 0;
@@ -239,7 +255,7 @@ CheckResult runCheck(const FeModel& model, const fs::path& folder, const CheckOp
     out.buckling.loadCase = cases[governing].name;
     writeText(folder / "buckle.inp",
               buckleInp("model.inp", caseLoads[governing], options.bucklingModes));
-    runCcx(folder, "buckle", options.ccx);
+    out.buckling.seconds = runCcx(folder, "buckle", options.ccx).seconds;
     const DatResults dat = readDat(folder / "buckle.dat");
     out.buckling.factors = dat.bucklingFactors;
     for (const auto& block : dat.displacementBlocks) {
@@ -254,7 +270,7 @@ CheckResult runCheck(const FeModel& model, const fs::path& folder, const CheckOp
     }
     if (out.buckling.factors.empty())
       throw SolverFailure("ccx buckle: no buckling factors in buckle.dat");
-    out.buckling.verdict = bucklingVerdict(out.buckling.factors.front());
+    out.buckling.verdict = bucklingVerdict(out.buckling.factors.front(), !nonlinear);
   }
   out.seconds = watch.seconds();
   return out;

@@ -49,6 +49,7 @@ struct CaseResult {
   std::vector<double> lamellaUtilisation;      // per lamella of the model, in its order
   std::vector<Eigen::Vector3d> displacements;  // per mesh node (m)
   double seconds = 0.0;                        // ccx's run
+  bool nonlinear = true;                       // NLGEOM; false: first order (linear static)
 };
 
 struct BucklingResult {
@@ -56,6 +57,7 @@ struct BucklingResult {
   std::vector<double> factors;
   std::string verdict;
   std::vector<std::vector<Eigen::Vector3d>> modes;  // per mode, per mesh node: shape (max 1)
+  double seconds = 0.0;                             // ccx's run
 };
 
 struct CheckOptions {
@@ -63,11 +65,16 @@ struct CheckOptions {
   double planAreaM2 = 0.0;      // for uniform plan loads
   int bucklingModes = 3;        // 0: no buckling step
   CcxOptions ccx;
-  // Beam elements above which the model and its decks are written but not solved (0: no
-  // limit). ccx expands every B32R into a 20-node brick and iterates each NLGEOM case to a tight
-  // residual: measured on 2 cores, 356 elements take 40 s, the Great Court's 7,657 ran past 10
-  // minutes in its first case (docs/verification.md).
+  // Beam elements above which the model and its decks are written but not solved (0: no limit).
   int maxElements = 0;
+  // Beam elements above which the load cases are solved first-order (linear static) instead of
+  // with geometric nonlinearity (0: always nonlinear). ccx expands every B32R into a 20-node
+  // brick and iterates each NLGEOM case to a tight residual: measured on 2 cores, the Great
+  // Court's 7,657 elements ran past 10 minutes in their first case, where one linear solve takes
+  // 9 s (docs/verification.md). First order is what EN 1993-1-1 5.2.1(3) accepts when the
+  // buckling factor is at least 10; below, the verdict says the nonlinear decks (nl_<case>.inp,
+  // written beside) must be run.
+  int maxNonlinearElements = 0;
 };
 
 struct CheckResult {
@@ -82,13 +89,15 @@ struct CheckResult {
 
 // Buckling verdict with its thresholds (EN 1993-1-1 5.2.1(3): alpha_cr >= 10, first-order
 // analysis suffices; 5.2.2(5)B: down to 3 second-order effects may be allowed for by amplification;
-// below 3 the design must change).
-std::string bucklingVerdict(double firstFactor);
+// below 3 the design must change). `firstOrderCases`: the load cases were solved linearly, so a
+// factor below 10 also says that their results do not suffice.
+std::string bucklingVerdict(double firstFactor, bool firstOrderCases = false);
 
 // Writes `folder`/model.inp and per case `folder`/<case>.inp, runs ccx on each (and on
-// buckle.inp), reads the results back. Above options.maxElements it writes them all (buckle.inp
-// under the first case) and returns unsolved, with the reason. Throws SolverFailure with ccx's
-// message when ccx fails, InvalidInput for a bad model or case.
+// buckle.inp), reads the results back; above options.maxNonlinearElements the cases are linear
+// and their NLGEOM decks nl_<case>.inp are written beside, not run. Above options.maxElements it
+// writes them all (buckle.inp under the first case) and returns unsolved, with the reason. Throws
+// SolverFailure with ccx's message when ccx fails, InvalidInput for a bad model or case.
 CheckResult runCheck(const FeModel& model, const std::filesystem::path& folder,
                      const CheckOptions& options);
 

@@ -7,8 +7,10 @@
 #include "core/rods/sample_grids.hpp"
 
 #include <gtest/gtest.h>
+
 #include <unistd.h>
 #include <cstdio>
+#include <fstream>
 
 #include <cmath>
 #include <filesystem>
@@ -126,6 +128,32 @@ TEST(StructuralCheck, SimplySupportedLamellaUnderSelfWeightMatchesClosedForm) {
   // Midspan moment q L^2 / 8.
   const double sigma = lineLoad() * L * L / 8.0 / (kW * kT * kT / 6.0);
   EXPECT_NEAR(c.top[0].loadStressPa, sigma, 0.05 * sigma);
+}
+
+// Above loads.max_nonlinear_fe_elements the cases are first order (one linear solve): the same
+// closed form (small deflection), equilibrium to the solver's precision, the nonlinear deck
+// written beside for the engineer.
+TEST(StructuralCheck, AboveTheNonlinearLimitTheCaseIsFirstOrderAndMatchesClosedForm) {
+  SKIP_WITHOUT_CCX();
+  const double L = 2.0;
+  FeModel model = straightLamella(L);
+  model.supports = hingeAndRoller(L, "LEFT", "RIGHT");
+  CheckOptions options;
+  options.bucklingModes = 0;
+  options.maxNonlinearElements = 10;  // the lamella has 20 elements
+  const fs::path folder = scratch("first_order");
+  const CheckResult r = runCheck(model, folder, options);
+  const CaseResult& c = r.cases[0];
+  EXPECT_FALSE(c.nonlinear);
+  const double expected = 5.0 * lineLoad() * std::pow(L, 4) / (384.0 * kE * weakI());
+  EXPECT_NEAR(c.maxDisplacementM, expected, 0.01 * expected);
+  EXPECT_LT(c.equilibriumResidual, 1e-6);
+  std::ifstream linear(folder / "self_weight.inp"), nonlinear(folder / "nl_self_weight.inp");
+  const std::string a((std::istreambuf_iterator<char>(linear)), {}),
+      b((std::istreambuf_iterator<char>(nonlinear)), {});
+  EXPECT_EQ(a.find("NLGEOM"), std::string::npos);
+  EXPECT_NE(b.find("*STEP, NLGEOM"), std::string::npos);
+  EXPECT_FALSE(fs::exists(folder / "nl_self_weight.frd"));  // written, not run
 }
 
 TEST(StructuralCheck, PinnedColumnBucklesAtTheEulerLoad) {
@@ -273,6 +301,13 @@ TEST(StructuralCheck, BucklingVerdictNamesItsThresholds) {
   EXPECT_NE(bucklingVerdict(12.0).find(">= 10"), std::string::npos);
   EXPECT_NE(bucklingVerdict(5.0).find("[3, 10)"), std::string::npos);
   EXPECT_NE(bucklingVerdict(2.0).find("< 3"), std::string::npos);
+  EXPECT_EQ(bucklingVerdict(2.0).find("below 1"), std::string::npos);
+  EXPECT_NE(bucklingVerdict(0.9).find("below 1 it buckles under the load case itself"),
+            std::string::npos);
+  // First-order cases: below 10 the verdict sends the engineer to the nonlinear decks.
+  EXPECT_NE(bucklingVerdict(5.0, true).find("nl_<case>.inp"), std::string::npos);
+  EXPECT_EQ(bucklingVerdict(12.0, true).find("nl_<case>.inp"), std::string::npos);
+  EXPECT_EQ(bucklingVerdict(5.0, false).find("nl_<case>.inp"), std::string::npos);
 }
 
 }  // namespace

@@ -130,9 +130,69 @@ bool clipSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen
 // One page of a patch's planar grid: the part inside the window [lo, hi] (model metres) at the
 // view `v`, every member clipped to it (a member cut by the window is labelled inside, at the
 // cut), the connections inside with their notch arrows, and the ids laid out.
+using Window = std::pair<Eigen::Vector2d, Eigen::Vector2d>;  // lower left, upper right (m)
+
+// The windows of a patch's detail pages and their scale 1:n: the grid cut into equal windows
+// drawn at least twice as large as the overview's 1:`overviewN` (the standard scale at or above
+// 1:overviewN/2.5, enlarged until at most 8 windows are needed), empty windows skipped, top row
+// first as the overview reads. None when no larger scale needs 8 or fewer.
+std::vector<Window> detailWindows(const AssemblyPatch& p, const Eigen::Vector2d& lo,
+                                  const Eigen::Vector2d& hi, double overviewN, const PageFrame& f,
+                                  double& n) {
+  const Eigen::Vector2d extent = (hi - lo).cwiseMax(1e-3);
+  const double areaX = (f.areaWidth - 20.0) / 1000.0, areaY = (f.areaHeight - 12.0) / 1000.0;
+  int nx = 1, ny = 1;
+  for (n = fittingScale({overviewN / 2.5, 1.0}, {1.0, 1.0}); n < overviewN;
+       n = fittingScale({n * 1.01, 1.0}, {1.0, 1.0})) {
+    nx = static_cast<int>(std::ceil(extent.x() / (areaX * n) - 1e-9));
+    ny = static_cast<int>(std::ceil(extent.y() / (areaY * n) - 1e-9));
+    if (nx * ny <= 8) break;
+  }
+  std::vector<Window> windows;
+  if (n >= overviewN) return windows;
+  for (int j = ny - 1; j >= 0; --j) {
+    for (int i = 0; i < nx; ++i) {
+      const Eigen::Vector2d a = lo + Eigen::Vector2d(extent.x() * i / nx, extent.y() * j / ny);
+      const Eigen::Vector2d b =
+          lo + Eigen::Vector2d(extent.x() * (i + 1) / nx, extent.y() * (j + 1) / ny);
+      const bool any = std::any_of(p.connections.begin(), p.connections.end(), [&](const auto& c) {
+        return (c.planar.array() >= a.array()).all() && (c.planar.array() <= b.array()).all();
+      });
+      if (any) windows.emplace_back(a, b);
+    }
+  }
+  return windows;
+}
+
+// The detail windows outlined on the overview, dashed, each tagged "detail k" at its upper left
+// corner: the key to the detail pages. Drawn before the ids, which mask its lines and keep off its
+// tags.
+void drawKeyMap(cairo_t* cr, const View& v, const std::vector<Window>& windows,
+                PageLabels& labels) {
+  cairo_save(cr);
+  cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
+  cairo_set_line_width(cr, 0.25);
+  const double dash[] = {2.0, 1.2};
+  cairo_set_dash(cr, dash, 2, 0.0);
+  cairo_set_font_size(cr, 2.4);
+  for (size_t k = 0; k < windows.size(); ++k) {
+    const Eigen::Vector2d a = v.page({windows[k].first.x(), windows[k].second.y()});
+    const Eigen::Vector2d b = v.page({windows[k].second.x(), windows[k].first.y()});
+    cairo_new_path(cr);
+    cairo_rectangle(cr, a.x(), a.y(), b.x() - a.x(), b.y() - a.y());
+    cairo_stroke(cr);
+    const std::string tag = fmt::format("detail {}", k + 1);
+    const Eigen::Vector2d box = labels.extent(tag, 2.4);
+    cairo_move_to(cr, a.x() + 0.8, a.y() - 0.8);
+    cairo_show_text(cr, tag.c_str());
+    labels.reserve({a.x() + 0.5, a.y() - 0.8 - box.y(), a.x() + 1.1 + box.x(), a.y() - 0.4});
+  }
+  cairo_restore(cr);
+}
+
 PageLabelCounts planarPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p, const View& v,
                            const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
-                           const std::string& title) {
+                           const std::string& title, const std::vector<Window>& keyMap = {}) {
   const PageFrame f = pageFrame(paper, true);
   cairo_t* cr = pdf.beginPage(f);
   PageLabels labels(cr, f);
@@ -176,22 +236,25 @@ PageLabelCounts planarPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatc
     }
     labels.reserveDot(q, 0.5, {slideU, slideV}, 3.0);
   }
+  drawKeyMap(cr, v, keyMap, labels);
   const PageLabelCounts counts = layOutLabels(labels, spots, ids, dots, size);
   cairo_set_source_rgb(cr, 0, 0, 0);
   drawTitleBand(cr, f, title,
                 "plan on the ground, scale " + scaleText(v.n) + " on " + toString(paper) +
                     "; u lamellas red, v blue; arrows: where each slotted bolt slides while "
                     "deploying (red along u, blue along v)" +
-                    leftOutNote(counts, p.patchId),
+                    leftOutNote(counts, p.patchId) +
+                    (keyMap.empty()
+                         ? std::string()
+                         : fmt::format("; dashed: the {} detail pages that follow", keyMap.size())),
                 v.n);
   pdf.endPage();
   return counts;
 }
 
-// The whole planar grid on one page; where that leaves connection ids out, detail pages follow:
-// the grid cut into windows drawn at least twice as large (the standard scale at or above 1:n/2.5,
-// at most 8 pages, empty windows skipped), so that the crew finds the ids the overview had no
-// room for.
+// The whole planar grid on one page; where that leaves connection ids out, detail pages follow
+// (detailWindows), outlined on the overview as its key map, so that the crew finds the ids the
+// overview had no room for.
 void planarPages(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p) {
   std::vector<Eigen::Vector2d> points;
   for (const auto& m : p.members) points.push_back(m.planarStart), points.push_back(m.planarEnd);
@@ -202,34 +265,18 @@ void planarPages(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p) {
   const View overview = fit(points, f);
   const std::string title =
       "patch P" + std::to_string(p.patchId) + ": planar grid as laid out and bolted";
-  const PageLabelCounts counts = planarPage(pdf, paper, p, overview, lo, hi, title);
-  if (counts.connectionsLeftOut == 0) return;
-  const Eigen::Vector2d extent = (hi - lo).cwiseMax(1e-3);
-  const double areaX = (f.areaWidth - 20.0) / 1000.0, areaY = (f.areaHeight - 12.0) / 1000.0;
-  double n = fittingScale({overview.n / 2.5, 1.0}, {1.0, 1.0});
-  int nx = 1, ny = 1;
-  for (; n < overview.n; n = fittingScale({n * 1.01, 1.0}, {1.0, 1.0})) {
-    nx = static_cast<int>(std::ceil(extent.x() / (areaX * n) - 1e-9));
-    ny = static_cast<int>(std::ceil(extent.y() / (areaY * n) - 1e-9));
-    if (nx * ny <= 8) break;
-  }
-  if (n >= overview.n) return;
-  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> windows;
-  for (int j = ny - 1; j >= 0; --j) {  // top row first, as the overview reads
-    for (int i = 0; i < nx; ++i) {
-      const Eigen::Vector2d a = lo + Eigen::Vector2d(extent.x() * i / nx, extent.y() * j / ny);
-      const Eigen::Vector2d b =
-          lo + Eigen::Vector2d(extent.x() * (i + 1) / nx, extent.y() * (j + 1) / ny);
-      const bool any = std::any_of(p.connections.begin(), p.connections.end(), [&](const auto& c) {
-        return (c.planar.array() >= a.array()).all() && (c.planar.array() <= b.array()).all();
-      });
-      if (any) windows.emplace_back(a, b);
-    }
-  }
+  // The overview is laid out once to learn whether ids are left out; the PDF keeps only the page
+  // drawn with its key map (a page is drawn to a scratch document first).
+  PdfDocument trial;
+  const PageLabelCounts counts = planarPage(trial, paper, p, overview, lo, hi, title);
+  double n = overview.n;
+  const std::vector<Window> windows = counts.connectionsLeftOut > 0
+                                          ? detailWindows(p, lo, hi, overview.n, f, n)
+                                          : std::vector<Window>{};
+  planarPage(pdf, paper, p, overview, lo, hi, title, windows);
   for (size_t k = 0; k < windows.size(); ++k) {
     const auto& [a, b] = windows[k];
-    const View v = fit({a, b}, f);
-    View at = v;
+    View at = fit({a, b}, f);
     at.n = n;  // the detail scale, the window centred
     const Eigen::Vector2d size = (b - a) * 1000.0 / n;
     at.px = f.areaX + (f.areaWidth - size.x()) / 2.0;

@@ -22,6 +22,7 @@ class PageLabels {
   PageLabels(cairo_t* cr, const PageFrame& f);
   // Keeps labels off a square of half side `half` around `centre` (a dot, a point of an arrow).
   void reserve(const Eigen::Vector2d& centre, double half);
+  void reserve(const drawing::LabelBox& box) { layout_.reserve(box); }
   // A connection's dot and its notch arrows (page directions, `arrowLength` long).
   void reserveDot(const Eigen::Vector2d& q, double radius,
                   std::initializer_list<Eigen::Vector2d> arrows, double arrowLength);

@@ -3,6 +3,7 @@
 #include "tests/support/fabrication_hand_grid.hpp"
 #include "tests/support/tool_run.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -123,7 +124,7 @@ TEST(AssemblyDrawings, IdsNeverOverlapWhereTheGridConvergesAndDetailPagesCarryTh
       ++seen[w.text];
       if (w.text.rfind("P3-C", 0) == 0) ++connections, connectionsAnywhere.insert(w.text);
     }
-    if (band.find("detail") != std::string::npos) {
+    if (band.find("bolted: detail") != std::string::npos) {
       ++details;
       EXPECT_NE(band.find("scale 1:100"), std::string::npos) << band;
       continue;
@@ -141,6 +142,14 @@ TEST(AssemblyDrawings, IdsNeverOverlapWhereTheGridConvergesAndDetailPagesCarryTh
   EXPECT_EQ(overviews, 1);
   EXPECT_EQ(deployed, 1);
   EXPECT_GE(details, 2);
+  // The overview is the key to them: each detail's window outlined and tagged.
+  std::string overview;
+  for (const auto& w : pages[1]) overview += w.text + " ";
+  EXPECT_NE(overview.find(fmt::format("dashed: the {} detail pages that follow", details)),
+            std::string::npos)
+      << overview;
+  for (int k = 1; k <= details; ++k)
+    EXPECT_NE(overview.find(fmt::format("detail {} ", k)), std::string::npos) << k;
   EXPECT_GE(connectionsAnywhere.size(), 1450u);  // of 1,464 (1,453 when written)
 }
 

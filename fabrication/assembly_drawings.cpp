@@ -127,9 +127,6 @@ bool clipSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen
   return t0 < t1;
 }
 
-// One page of a patch's planar grid: the part inside the window [lo, hi] (model metres) at the
-// view `v`, every member clipped to it (a member cut by the window is labelled inside, at the
-// cut), the connections inside with their notch arrows, and the ids laid out.
 using Window = std::pair<Eigen::Vector2d, Eigen::Vector2d>;  // lower left, upper right (m)
 
 // The windows of a patch's detail pages and their scale 1:n: the grid cut into equal windows
@@ -190,6 +187,10 @@ void drawKeyMap(cairo_t* cr, const View& v, const std::vector<Window>& windows,
   cairo_restore(cr);
 }
 
+// One page of a patch's planar grid: the part inside the window [lo, hi] (model metres) at the
+// view `v`, every member clipped to it (a member cut by the window is labelled inside, at the
+// cut), the connections inside with their notch arrows, and the ids laid out; `keyMap`: the
+// detail windows to outline (the overview).
 PageLabelCounts planarPage(PdfDocument& pdf, PaperSize paper, const AssemblyPatch& p, const View& v,
                            const Eigen::Vector2d& lo, const Eigen::Vector2d& hi,
                            const std::string& title, const std::vector<Window>& keyMap = {}) {

@@ -113,47 +113,35 @@ std::vector<FeSupport> hingeAndRoller(double L, const std::string& hingeName,
   return {hinge, roller};
 }
 
+// Nonlinear (NLGEOM) and, above loads.max_nonlinear_fe_elements, first order (one linear solve):
+// both give the closed form of a small deflection and close the equilibrium; a first-order case
+// has its nonlinear deck written beside for the engineer, not run.
 TEST(StructuralCheck, SimplySupportedLamellaUnderSelfWeightMatchesClosedForm) {
   SKIP_WITHOUT_CCX();
   const double L = 2.0;
   FeModel model = straightLamella(L);
   model.supports = hingeAndRoller(L, "LEFT", "RIGHT");
-  CheckOptions options;
-  options.bucklingModes = 0;
-  const CheckResult r = runCheck(model, scratch("simply_supported"), options);
-  const double expected = 5.0 * lineLoad() * std::pow(L, 4) / (384.0 * kE * weakI());
-  const CaseResult& c = r.cases[0];
-  EXPECT_NEAR(c.maxDisplacementM, expected, 0.01 * expected);
-  EXPECT_LT(c.equilibriumResidual, 1e-6);
-  // Midspan moment q L^2 / 8.
-  const double sigma = lineLoad() * L * L / 8.0 / (kW * kT * kT / 6.0);
-  EXPECT_NEAR(c.top[0].loadStressPa, sigma, 0.05 * sigma);
-}
-
-// Above loads.max_nonlinear_fe_elements the cases are first order (one linear solve): the same
-// closed form (small deflection), equilibrium to the solver's precision, the nonlinear deck
-// written beside for the engineer.
-TEST(StructuralCheck, AboveTheNonlinearLimitTheCaseIsFirstOrderAndMatchesClosedForm) {
-  SKIP_WITHOUT_CCX();
-  const double L = 2.0;
-  FeModel model = straightLamella(L);
-  model.supports = hingeAndRoller(L, "LEFT", "RIGHT");
-  CheckOptions options;
-  options.bucklingModes = 0;
-  options.maxNonlinearElements = 10;  // the lamella has 20 elements
-  const fs::path folder = scratch("first_order");
-  const CheckResult r = runCheck(model, folder, options);
-  const CaseResult& c = r.cases[0];
-  EXPECT_FALSE(c.nonlinear);
-  const double expected = 5.0 * lineLoad() * std::pow(L, 4) / (384.0 * kE * weakI());
-  EXPECT_NEAR(c.maxDisplacementM, expected, 0.01 * expected);
-  EXPECT_LT(c.equilibriumResidual, 1e-6);
-  std::ifstream linear(folder / "self_weight.inp"), nonlinear(folder / "nl_self_weight.inp");
-  const std::string a((std::istreambuf_iterator<char>(linear)), {}),
-      b((std::istreambuf_iterator<char>(nonlinear)), {});
-  EXPECT_EQ(a.find("NLGEOM"), std::string::npos);
-  EXPECT_NE(b.find("*STEP, NLGEOM"), std::string::npos);
-  EXPECT_FALSE(fs::exists(folder / "nl_self_weight.frd"));  // written, not run
+  for (const int nonlinearLimit : {0, 10}) {  // the lamella has 20 elements
+    SCOPED_TRACE(nonlinearLimit == 0 ? "nonlinear" : "first order");
+    CheckOptions options;
+    options.bucklingModes = 0;
+    options.maxNonlinearElements = nonlinearLimit;
+    const fs::path folder = scratch("simply_supported_" + std::to_string(nonlinearLimit));
+    const CheckResult r = runCheck(model, folder, options);
+    const double expected = 5.0 * lineLoad() * std::pow(L, 4) / (384.0 * kE * weakI());
+    const CaseResult& c = r.cases[0];
+    EXPECT_EQ(c.nonlinear, nonlinearLimit == 0);
+    EXPECT_NEAR(c.maxDisplacementM, expected, 0.01 * expected);
+    EXPECT_LT(c.equilibriumResidual, 1e-6);
+    // Midspan moment q L^2 / 8.
+    const double sigma = lineLoad() * L * L / 8.0 / (kW * kT * kT / 6.0);
+    EXPECT_NEAR(c.top[0].loadStressPa, sigma, 0.05 * sigma);
+    std::ifstream deck(folder / "self_weight.inp");
+    const std::string text((std::istreambuf_iterator<char>(deck)), {});
+    EXPECT_EQ(text.find("*STEP, NLGEOM") != std::string::npos, c.nonlinear);
+    EXPECT_EQ(fs::exists(folder / "nl_self_weight.inp"), !c.nonlinear);
+    EXPECT_FALSE(fs::exists(folder / "nl_self_weight.frd"));  // written, never run
+  }
 }
 
 TEST(StructuralCheck, PinnedColumnBucklesAtTheEulerLoad) {

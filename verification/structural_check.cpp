@@ -276,14 +276,23 @@ CheckResult runCheck(const FeModel& model, const fs::path& folder, const CheckOp
   return out;
 }
 
-DerSelfWeight derSelfWeight(const rods::RodNetwork& network, rods::SimulationOptions options) {
-  DerSelfWeight out;
+rods::SimulationRun derWeightless(const rods::RodNetwork& network,
+                                  rods::SimulationOptions options) {
   options.compareWithoutNotches = false;
   options.historyEvery = 0;
   options.model.gravity = false;
-  out.weightless = rods::simulateRods(network, nullptr, options);
-  if (!out.weightless.solver.converged)
+  rods::SimulationRun weightless = rods::simulateRods(network, nullptr, options);
+  if (!weightless.solver.converged)
     throw SolverFailure("rod simulation: the weightless equilibrium did not converge");
+  return weightless;
+}
+
+DerSelfWeight derSelfWeightFrom(const rods::RodNetwork& network, rods::SimulationRun weightless,
+                                rods::SimulationOptions options) {
+  DerSelfWeight out;
+  out.weightless = std::move(weightless);
+  options.compareWithoutNotches = false;
+  options.historyEvery = 0;
   rods::RodNetwork start = network;
   rods::startFrom(start, out.weightless);
   options.model.gravity = true;
@@ -292,6 +301,10 @@ DerSelfWeight derSelfWeight(const rods::RodNetwork& network, rods::SimulationOpt
   if (!out.loaded.solver.converged)
     throw SolverFailure("rod simulation: the self-weight equilibrium did not converge");
   return out;
+}
+
+DerSelfWeight derSelfWeight(const rods::RodNetwork& network, rods::SimulationOptions options) {
+  return derSelfWeightFrom(network, derWeightless(network, options), options);
 }
 
 SagComparison compareSag(const DerSelfWeight& der, const FeMesh& mesh,

@@ -107,6 +107,11 @@ struct DerSelfWeight {
   rods::SimulationRun weightless, loaded;
 };
 DerSelfWeight derSelfWeight(const rods::RodNetwork& network, rods::SimulationOptions options);
+// Its two halves: the weightless equilibrium (the FE model's geometry), and the self-weight solve
+// from it (only needed to compare with a solved FE case).
+rods::SimulationRun derWeightless(const rods::RodNetwork& network, rods::SimulationOptions options);
+DerSelfWeight derSelfWeightFrom(const rods::RodNetwork& network, rods::SimulationRun weightless,
+                                rods::SimulationOptions options);
 
 struct SagComparison {
   double rmsM = 0.0;  // over the centreline vertices the FE mesh has nodes at

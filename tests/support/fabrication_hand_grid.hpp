@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -98,12 +99,37 @@ using egg::test::haveTool;
 using egg::test::runTool;
 using egg::test::ToolRun;
 
-// A fresh, empty folder for one test (the process id keeps parallel runs of other checkouts apart).
+// The scratch folders of this test program, removed when its tests end (kept with
+// EGG_KEEP_TEST_FILES set, to look at what a test wrote).
+class ScratchFolders : public ::testing::Environment {
+ public:
+  static ScratchFolders& instance() {
+    static ScratchFolders* const folders = [] {
+      auto* f = new ScratchFolders;
+      ::testing::AddGlobalTestEnvironment(f);  // gtest owns it
+      return f;
+    }();
+    return *folders;
+  }
+  void add(const std::filesystem::path& dir) { dirs_.push_back(dir); }
+  void TearDown() override {
+    if (std::getenv("EGG_KEEP_TEST_FILES")) return;
+    std::error_code ignored;
+    for (const auto& dir : dirs_) std::filesystem::remove_all(dir, ignored);
+  }
+
+ private:
+  std::vector<std::filesystem::path> dirs_;
+};
+
+// A fresh, empty folder for one test (the process id keeps parallel runs of other checkouts
+// apart), removed when the test program ends.
 inline std::filesystem::path scratchDir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("egg_fabrication_test_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  ScratchFolders::instance().add(dir);
   return dir;
 }
 

@@ -31,15 +31,19 @@ inline bool scene(const uint8_t* data, size_t size) {
   }
 }
 
-// A folder of this process for the inputs that must be files.
+// A folder of this process for the inputs that must be files, removed when the process ends.
 inline const std::filesystem::path& scratch() {
-  static const std::filesystem::path dir = [] {
-    const auto d =
+  struct Folder {
+    std::filesystem::path dir =
         std::filesystem::temp_directory_path() / ("egg_fuzz_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return dir;
+    Folder() { std::filesystem::create_directories(dir); }
+    ~Folder() {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  };
+  static const Folder folder;
+  return folder.dir;
 }
 
 // The mesh loader of the extension `ext` (".obj", ".stl", ".ply", ".off", ".gltf", ".glb"): assimp

@@ -17,12 +17,26 @@ namespace egg::app {
 namespace {
 namespace fs = std::filesystem;
 
+fs::path scratchRoot() {
+  return fs::temp_directory_path() / ("egg-test-stress-" + std::to_string(::getpid()));
+}
+
 fs::path scratch(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("egg-test-stress-" + std::to_string(::getpid())) / name;
+  const fs::path d = scratchRoot() / name;
   fs::create_directories(d);
   return d;
 }
+
+// The suites' folders of every test, removed when the tests end.
+class ScratchCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(scratchRoot(), ignored);
+  }
+};
+[[maybe_unused]] ::testing::Environment* const kCleanup =
+    ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
 
 // The issue's list (issue 18): every named class of stiff and extreme case is in the suite.
 TEST(StressSuite, SuiteHoldsEveryClassOfTheIssue) {

@@ -81,6 +81,8 @@ TEST(ChildProcess, ACrashIsItsSignalAndTheMemoryIsTheChilds) {
 // process group. A middle process plays egg: it starts a hanging child through runChild, which
 // writes its pid to a pipe; the middle process is then killed with SIGKILL.
 TEST(ChildProcess, AChildDoesNotOutliveAKilledParent) {
+  // Named and removed by this process: the middle one is killed before it could remove it.
+  const LogFile log("orphan");
   int fds[2];
   ASSERT_EQ(::pipe(fds), 0);
   const pid_t middle = ::fork();
@@ -95,7 +97,7 @@ TEST(ChildProcess, AChildDoesNotOutliveAKilledParent) {
           for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
           return 0;
         },
-        60.0, LogFile("orphan"));
+        60.0, log.path);
     ::_exit(0);
   }
   ::close(fds[1]);

@@ -142,6 +142,18 @@ TEST(AssemblyDrawings, IdsNeverOverlapWhereTheGridConvergesAndDetailPagesCarryTh
   EXPECT_EQ(overviews, 1);
   EXPECT_EQ(deployed, 1);
   EXPECT_GE(details, 2);
+  // Every page an ISO A3 (the default paper), detail pages included.
+  const auto info = test::runTool("pdfinfo -f 1 -l " + std::to_string(pages.size()) + " " +
+                                  (dir / "assembly.pdf").string());
+  int a3 = 0, sized = 0;
+  std::istringstream lines(info.output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("Page ", 0) != 0 || line.find(" size:") == std::string::npos) continue;
+    ++sized;
+    if (line.find("(A3)") != std::string::npos) ++a3;
+  }
+  EXPECT_EQ(sized, static_cast<int>(pages.size())) << info.output;
+  EXPECT_EQ(a3, sized) << info.output;
   // The overview is the key to them: each detail's window outlined and tagged.
   std::string overview;
   for (const auto& w : pages[1]) overview += w.text + " ";

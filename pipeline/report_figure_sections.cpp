@@ -72,29 +72,29 @@ std::string patchGridsSection(const std::vector<std::pair<int, std::string>>& pl
   return out;
 }
 
-// deployed.svg inlined (it is an <svg id="deployed">, so it also gets its PNG preview).
-std::string deployedSection(const std::string& deployedSvg) {
-  std::string out =
-      "<h2 id=\"deployed-grid\">Deployed grid: deviation from the design surface</h2>\n";
-  const size_t start = deployedSvg.find("<svg");
-  if (start == std::string::npos)
-    return out +
-           "<p class=\"missing\">No deployed grid: the simulation did not run "
-           "(deployed.svg).</p>\n";
-  return out + "<div class=\"figure\">\n" + prefixIds(deployedSvg.substr(start), "deployed-") +
-         "</div>\n";
+namespace {
+
+// A figure of the run inlined under its heading, its ids prefixed (it is an <svg id="...">, so it
+// also gets its PNG preview); `missing` when the file holds no <svg>.
+std::string inlinedFigure(const std::string& heading, const std::string& svg,
+                          const std::string& missing, const std::string& prefix) {
+  const size_t start = svg.find("<svg");
+  if (start == std::string::npos) return heading + "<p class=\"missing\">" + missing + "</p>\n";
+  return heading + "<div class=\"figure\">\n" + prefixIds(svg.substr(start), prefix) + "</div>\n";
 }
 
-// elevations.svg inlined (an <svg id="elevations">: it gets its PNG preview).
+}  // namespace
+
+std::string deployedSection(const std::string& deployedSvg) {
+  return inlinedFigure(
+      "<h2 id=\"deployed-grid\">Deployed grid: deviation from the design surface</h2>\n",
+      deployedSvg, "No deployed grid: the simulation did not run (deployed.svg).", "deployed-");
+}
+
 std::string elevationsSection(const std::string& elevationsSvg) {
-  std::string out = "<h2 id=\"elevations-and-sections\">Elevations and sections</h2>\n";
-  const size_t start = elevationsSvg.find("<svg");
-  if (start == std::string::npos)
-    return out +
-           "<p class=\"missing\">No elevations: the simulation did not run "
-           "(elevations.svg).</p>\n";
-  return out + "<div class=\"figure\">\n" + prefixIds(elevationsSvg.substr(start), "elevations-") +
-         "</div>\n";
+  return inlinedFigure("<h2 id=\"elevations-and-sections\">Elevations and sections</h2>\n",
+                       elevationsSvg, "No elevations: the simulation did not run (elevations.svg).",
+                       "elevations-");
 }
 
 }  // namespace egg::pipeline::report_sections

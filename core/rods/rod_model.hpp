@@ -109,6 +109,30 @@ class RodModel {
   void setStiffTermsFactor(double factor) { stiffFactor_ = factor; }
   double stiffTermsFactor() const { return stiffFactor_; }
 
+  // ---- deployment (deployment.hpp): supports moved between solves, and what a crew measures ----
+  int anchorCount() const { return static_cast<int>(anchors_.size()); }
+  // Moves anchor k (network order) to hold its rod point at `position` on the contact surface with
+  // the lamella normal along `normal`, placed as the constructor places it (half a thickness off
+  // for the rod's layer). Throws InvalidInput for a bad index or a zero normal.
+  void setAnchor(int anchor, const Eigen::Vector3d& position, const Eigen::Vector3d& normal);
+  // The force (N) the support applies to the rod at the current state: the position penalty's pull
+  // -dE_a/dq (at an equilibrium, the constraint's reaction).
+  Eigen::Vector3d anchorForce(int anchor) const;
+  // Force (N) with which a sliding bolt side (0: the connection's rod a, 1: rod b) presses on a
+  // notch end: the notch barrier E_n's derivative along the rod. 0 for a plain hole or a bolt
+  // farther than one edge from both ends.
+  double notchEndForce(int connection, int side) const;
+  // Angle (rad, 0..pi) between the two rods' tangents at a bolt.
+  double crossingAngle(int connection) const;
+  struct VertexStrain {
+    double weakCurvature = 0.0;    // 1/m, about the lamella's weak axis (normal curvature)
+    double strongCurvature = 0.0;  // 1/m, in the lamella's plane (geodesic curvature)
+    double twistRate = 0.0;        // rad/m
+  };
+  // At every interior vertex of a rod, the material curvatures and twist the bending and twisting
+  // energies use (rod_energies.hpp), divided by the vertex's Voronoi length.
+  std::vector<VertexStrain> vertexStrains(int rod) const;
+
   // ---- energy ----
   // Total energy at unknowns z with the current reference frames and bolt edges; +inf where z is
   // outside the domain (a bolt past its notch or edge, an edge flipped against its reference).

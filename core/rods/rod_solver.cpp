@@ -447,6 +447,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     if (result.decrement <= options.tolerance * energyScale) {
       result.status = SolverStatus::Converged;
       result.converged = true;
+      result.stableEquilibrium = exactDirection;
       result.reason = format("Newton decrement %.3g J below %.3g x energy scale %.3g J",
                              result.decrement, options.tolerance, energyScale);
       return result;

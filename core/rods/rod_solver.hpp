@@ -78,6 +78,9 @@ struct SolverResult {
   int boltEdgeSwitches = 0;      // reprojections of sliding bolts onto neighbouring edges
   int factorisations = 0;        // Cholesky factorisations (shift trials included)
   int energyEvaluations = 0;     // line-search trials
+  // Converged with the exact Hessian positive definite at the last step: a stable equilibrium (a
+  // minimum, not a saddle). false when a shift or the projected Hessian gave the last direction.
+  bool stableEquilibrium = false;
   int observations = 0;          // calls of options.observer
   double observerSeconds = 0.0;  // wall time spent in them
   SolverPhases phases;

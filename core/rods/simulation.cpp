@@ -182,16 +182,28 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   if (!weightless.empty()) run.maxSagM = largestDisplacement();
   run.solver.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  run.unknowns = model.dofCount();
+  recordState(model, run);
+  if (surface) {
+    std::vector<Eigen::Vector3d> contact;
+    for (const auto& points : run.contactPoints) contact.insert(contact.end(), points.begin(), points.end());
+    run.deviation = measureDeviation(contact, *surface, options.scaleFactor);
+  }
+  return run;
+}
 
-  std::vector<Eigen::Vector3d> contact;
+void recordState(const RodModel& model, SimulationRun& run) {
+  run.unknowns = model.dofCount();
+  run.vertices = 0;
+  run.centrelines.clear();
+  run.normals.clear();
+  run.contactPoints.clear();
+  run.boltPositionsM.clear();
   for (int r = 0; r < model.rodCount(); ++r) {
     run.centrelines.push_back(model.centreline(r));
     std::vector<Eigen::Vector3d> normals, points;
     for (int i = 0; i < model.vertexCount(r); ++i) {
       normals.push_back(model.vertexNormal(r, i));
       points.push_back(model.contactPoint(r, i));
-      contact.push_back(points.back());
     }
     run.normals.push_back(std::move(normals));
     run.contactPoints.push_back(std::move(points));
@@ -200,8 +212,6 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   for (int c = 0; c < model.boltCount(); ++c) {
     run.boltPositionsM.push_back({model.boltPosition(c, 0), model.boltPosition(c, 1)});
   }
-  if (surface) run.deviation = measureDeviation(contact, *surface, options.scaleFactor);
-  return run;
 }
 
 SimulationResult simulateGrid(const RodNetwork& network, const TriMesh& surface,

@@ -88,6 +88,10 @@ struct SimulationResult {
 // connections do not match.
 void startFrom(RodNetwork& network, const SimulationRun& run);
 
+// The model's current state as a run's geometry: unknowns, vertices, centrelines, lamella normals,
+// contact points and bolt positions (the solver fields and the deviation are left as they are).
+void recordState(const RodModel& model, SimulationRun& run);
+
 // One run; `surface` may be null (no error measure).
 SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* surface,
                            const SimulationOptions& options);

@@ -1,0 +1,273 @@
+#include "core/rods/deployment.hpp"
+
+#include "core/errors.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+namespace egg::rods {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Normal `from` turned towards `to` by the fraction t of the angle between them.
+Eigen::Vector3d turnNormal(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double t) {
+  const Eigen::Quaterniond full = Eigen::Quaterniond::FromTwoVectors(from, to);
+  return Eigen::Quaterniond::Identity().slerp(t, full) * from;
+}
+
+// The lamellas' own elastic energy (J): bending about both axes and twisting at every interior
+// vertex, stretching of every edge. Not the solver's energy, whose penalties and pseudo-friction
+// (Section 2.5) change as bolts move between edges without any work being done.
+double elasticEnergy(const RodModel& model) {
+  double energy = 0.0;
+  for (int r = 0; r < model.rodCount(); ++r) {
+    const RodStiffness& k = model.stiffness(r);
+    const double h = model.restEdgeLength(r);
+    for (const RodModel::VertexStrain& s : model.vertexStrains(r)) {
+      energy += 0.5 * h *
+                (k.bendingWeak * s.weakCurvature * s.weakCurvature +
+                 k.bendingStrong * s.strongCurvature * s.strongCurvature +
+                 k.twisting * s.twistRate * s.twistRate);
+    }
+    for (int i = 0; i + 1 < model.vertexCount(r); ++i) {
+      const double strain = (model.vertex(r, i + 1) - model.vertex(r, i)).norm() / h - 1.0;
+      energy += 0.5 * k.stretching * h * strain * strain;
+    }
+  }
+  return energy;
+}
+
+struct Measurer {
+  const RodNetwork& network;
+  const DeploymentOptions& options;
+
+  void operator()(const RodModel& model, DeploymentStep& step) const {
+    step.energyJ = elasticEnergy(model);
+    step.maxBendingStressPa = step.maxTorsionStressPa = step.maxStressRatio = 0.0;
+    for (int r = 0; r < model.rodCount(); ++r) {
+      const Rod& rod = network.rods[r];
+      for (const RodModel::VertexStrain& s : model.vertexStrains(r)) {
+        const double sigma = rod.material.youngsModulusPa *
+                             (std::abs(s.weakCurvature) * 0.5 * rod.section.thicknessM +
+                              std::abs(s.strongCurvature) * 0.5 * rod.section.widthM);
+        const double tau = rod.material.shearModulusPa * rod.section.thicknessM * std::abs(s.twistRate);
+        step.maxBendingStressPa = std::max(step.maxBendingStressPa, sigma);
+        step.maxTorsionStressPa = std::max(step.maxTorsionStressPa, tau);
+        double ratio = 0.0;
+        if (options.bendingStrengthPa > 0.0) ratio = sigma / options.bendingStrengthPa;
+        if (options.shearStrengthPa > 0.0) ratio = std::max(ratio, tau / options.shearStrengthPa);
+        if (ratio > step.maxStressRatio) {
+          step.maxStressRatio = ratio;
+          step.maxStressRod = r;
+        }
+      }
+    }
+    step.maxNotchForceN = step.maxNotchTravelM = 0.0;
+    step.jammedBolts = 0;
+    step.minCrossingAngleRad = model.boltCount() ? M_PI : 0.0;
+    step.maxCrossingAngleRad = 0.0;
+    for (int c = 0; c < model.boltCount(); ++c) {
+      const Connection& con = network.connections[c];
+      for (int side = 0; side < 2; ++side) {
+        const double force = model.notchEndForce(c, side);
+        step.maxNotchForceN = std::max(step.maxNotchForceN, force);
+        if (force > options.jamForceN) ++step.jammedBolts;
+        const double flatS = side == 0 ? con.startAM.value_or(con.sAM) : con.startBM.value_or(con.sBM);
+        step.maxNotchTravelM =
+            std::max(step.maxNotchTravelM, std::abs(model.boltPosition(c, side) - flatS));
+      }
+      const double angle = model.crossingAngle(c);
+      step.minCrossingAngleRad = std::min(step.minCrossingAngleRad, angle);
+      step.maxCrossingAngleRad = std::max(step.maxCrossingAngleRad, angle);
+    }
+    step.supportForcesN.clear();
+    step.maxSupportForceN = 0.0;
+    for (int a = 0; a < model.anchorCount(); ++a) {
+      step.supportForcesN.push_back(model.anchorForce(a));
+      step.maxSupportForceN = std::max(step.maxSupportForceN, step.supportForcesN.back().norm());
+    }
+    step.contactPoints.clear();
+    if (options.keepFrames) {
+      for (int r = 0; r < model.rodCount(); ++r) {
+        std::vector<Eigen::Vector3d> points;
+        for (int i = 0; i < model.vertexCount(r); ++i) points.push_back(model.contactPoint(r, i));
+        step.contactPoints.push_back(std::move(points));
+      }
+    }
+  }
+};
+
+double largestMove(const RodModel& before, const RodModel& after) {
+  double largest = 0.0;
+  for (int r = 0; r < after.rodCount(); ++r)
+    for (int i = 0; i < after.vertexCount(r); ++i)
+      largest = std::max(largest, (after.vertex(r, i) - before.vertex(r, i)).norm());
+  return largest;
+}
+
+void placeSupports(RodModel& model, const SupportState& state) {
+  if (static_cast<int>(state.positions.size()) != model.anchorCount() ||
+      state.normals.size() != state.positions.size())
+    throw InvalidInput("deployment: the path holds " + std::to_string(state.positions.size()) +
+                       " supports (" + std::to_string(state.normals.size()) +
+                       " normals), the grid has " + std::to_string(model.anchorCount()) +
+                       " anchors");
+  for (int a = 0; a < model.anchorCount(); ++a)
+    model.setAnchor(a, state.positions[a], state.normals[a]);
+}
+
+}  // namespace
+
+void DeploymentOptions::validate() const {
+  model.validate();
+  solver.validate();
+  if (steps < 1) throw InvalidInput("DeploymentOptions.steps must be >= 1");
+  if (maxRefinements < 0 || maxRefinements > 12)
+    throw InvalidInput("DeploymentOptions.maxRefinements must be in 0..12");
+  if (!(snapEnergyDrop > 0.0 && snapEnergyDrop < 1.0))
+    throw InvalidInput("DeploymentOptions.snapEnergyDrop must be in (0, 1)");
+  if (!(stressRatioStep > 0.0)) throw InvalidInput("DeploymentOptions.stressRatioStep must be > 0");
+  if (!(jamForceN > 0.0)) throw InvalidInput("DeploymentOptions.jamForceN must be > 0");
+  if (!(bendingStrengthPa >= 0.0) || !(shearStrengthPa >= 0.0))
+    throw InvalidInput("DeploymentOptions strengths must be >= 0");
+}
+
+SupportPath straightSupportPath(const SupportState& from, const SupportState& to) {
+  if (from.positions.size() != to.positions.size() || from.normals.size() != from.positions.size() ||
+      to.normals.size() != to.positions.size())
+    throw InvalidInput("straightSupportPath: the two support states differ in size");
+  for (size_t a = 0; a < from.normals.size(); ++a) {
+    const Eigen::Vector3d n0 = from.normals[a].normalized(), n1 = to.normals[a].normalized();
+    if (!n0.allFinite() || !n1.allFinite() || n0.dot(n1) < -0.999)
+      throw InvalidInput("straightSupportPath: support " + std::to_string(a) +
+                         " would turn its normal by half a turn (or has none)");
+  }
+  return [from, to](double t) {
+    SupportState state;
+    for (size_t a = 0; a < from.positions.size(); ++a) {
+      state.positions.push_back((1.0 - t) * from.positions[a] + t * to.positions[a]);
+      state.normals.push_back(
+          turnNormal(from.normals[a].normalized(), to.normals[a].normalized(), t));
+    }
+    return state;
+  };
+}
+
+DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
+                        const DeploymentOptions& options) {
+  options.validate();
+  if (!path) throw InvalidInput("deployment: no support path");
+  const auto start = std::chrono::steady_clock::now();
+  ModelOptions modelOptions = options.model;
+  modelOptions.gravity = false;
+  RodModel model(flat, modelOptions);
+  const Measurer measure{flat, options};
+  DeploymentResult result;
+
+  DeploymentStep first;
+  placeSupports(model, path(0.0));
+  SolverOptions solverOptions = options.solver;
+  // The flat grid is its own equilibrium (zero energy, Section 2.3): this solve only settles the
+  // discretisation.
+  result.last.solver = minimiseEnergy(model, solverOptions);
+  first.status = result.last.solver.status;
+  first.iterations = result.last.solver.iterations;
+  first.stable = result.last.solver.stableEquilibrium;
+  first.seconds = result.last.solver.seconds;
+  first.supportPositionsM = path(0.0).positions;
+  measure(model, first);
+  result.iterations = first.iterations;
+  result.steps.push_back(std::move(first));
+  if (!result.last.solver.converged) {
+    result.reason = "the flat grid does not settle: " + result.last.solver.reason;
+    recordState(model, result.last);
+    result.seconds = secondsSince(start);
+    return result;
+  }
+  // Later steps start next to an equilibrium: no need to soften the stiff terms (rod_solver.hpp).
+  solverOptions.stiffnessContinuation = false;
+
+  // Steps as (t, depth); a rejected step is replaced by its two halves.
+  std::vector<std::pair<double, int>> pending;
+  for (int k = options.steps; k >= 1; --k)
+    pending.emplace_back(static_cast<double>(k) / options.steps, 0);
+  double tDone = 0.0;
+  result.completed = true;
+  while (!pending.empty()) {
+    const auto [t, depth] = pending.back();
+    pending.pop_back();
+    const double spent = secondsSince(start);
+    if (spent > options.solver.timeLimitS) {
+      result.completed = false;
+      result.reason = "time limit " + std::to_string(options.solver.timeLimitS) + " s reached at t = " +
+                      std::to_string(tDone);
+      break;
+    }
+    solverOptions.timeLimitS = std::max(1e-3, options.solver.timeLimitS - spent);
+    RodModel trial = model;
+    DeploymentStep step;
+    step.t = t;
+    const SupportState supports = path(t);
+    placeSupports(trial, supports);
+    const SolverResult solved = minimiseEnergy(trial, solverOptions);
+    step.status = solved.status;
+    step.iterations = solved.iterations;
+    step.seconds = solved.seconds;
+    step.stable = solved.stableEquilibrium;
+    step.supportPositionsM = supports.positions;
+    measure(trial, step);
+    step.maxVertexMoveM = largestMove(model, trial);
+    const DeploymentStep& previous = result.steps.back();
+    const double drop = previous.energyJ - step.energyJ;
+    const bool dropped =
+        solved.converged && drop > options.snapEnergyDrop * std::max(previous.energyJ, model.energyUnit());
+    const bool steep = solved.converged &&
+                       std::abs(step.maxStressRatio - previous.maxStressRatio) > options.stressRatioStep;
+    if ((!solved.converged || dropped || steep) && depth < options.maxRefinements) {
+      pending.emplace_back(t, depth + 1);
+      pending.emplace_back(0.5 * (tDone + t), depth + 1);
+      continue;
+    }
+    result.iterations += solved.iterations;
+    if (!solved.converged) {
+      result.completed = false;
+      result.reason = "no equilibrium at t = " + std::to_string(t) + " (a step of " +
+                      std::to_string(t - tDone) + "): " + solved.reason;
+      result.last.solver = solved;
+      break;
+    }
+    step.snap = dropped;
+    result.snaps += step.snap;
+    result.jammedSteps += step.jammedBolts > 0;
+    model = std::move(trial);
+    result.last.solver = solved;
+    tDone = t;
+    result.steps.push_back(std::move(step));
+  }
+  result.peakStep = 0;
+  for (size_t k = 1; k < result.steps.size(); ++k) {
+    const DeploymentStep& s = result.steps[k];
+    const DeploymentStep& peak = result.steps[result.peakStep];
+    const bool higher = options.bendingStrengthPa > 0.0 || options.shearStrengthPa > 0.0
+                            ? s.maxStressRatio > peak.maxStressRatio
+                            : s.maxBendingStressPa > peak.maxBendingStressPa;
+    if (higher) result.peakStep = static_cast<int>(k);
+  }
+  recordState(model, result.last);
+  result.last.solver.iterations = result.iterations;
+  result.seconds = secondsSince(start);
+  result.last.solver.seconds = result.seconds;
+  return result;
+}
+
+}  // namespace egg::rods

@@ -107,6 +107,13 @@ struct LoadsChoice {
   int maxNonlinearFeElements = 1000;  // above: first-order (linear static) cases
 };
 
+// The deployment stage (output "deployment", docs/deployment.md).
+struct DeploymentChoice {
+  int steps = 10;                // equal support moves from the flat grid to the deployed one
+  double jamForceN = 10.0;       // a bolt pressing on a notch end harder than this is jammed
+  double snapEnergyDrop = 0.05;  // energy drop over one finest step that is a snap-through
+};
+
 struct Scene {
   std::filesystem::path path;  // where it was read from (for messages, relative files)
   std::string name;
@@ -117,6 +124,7 @@ struct Scene {
   FabricationChoice fabrication;
   AcceptanceLimits acceptance;  // the verdict's limits (acceptance.hpp, docs/acceptance.md)
   LoadsChoice loads;
+  DeploymentChoice deployment;
   std::vector<std::string> outputs{"report",   "plan",     "cut_files",
                                    "stickers", "supports", "previews"};
 

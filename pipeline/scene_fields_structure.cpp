@@ -243,6 +243,19 @@ void addStructureSections(std::vector<SceneSection>& sections) {
                 "beam elements above which the load cases are solved first order (linear "
                 "static), their nonlinear decks written beside (0: always nonlinear)")},
        checkLoads});
+  sections.push_back(
+      {"deployment",
+       "The path from the flat grid to the deployed one (output \"deployment\", "
+       "docs/deployment.md).",
+       {integer("steps", EGG_AT(deployment.steps), 1, 1000,
+                "equal, synchronised support moves from the flat grid to the deployed supports "
+                "(a step that fails or jumps is split in halves up to 4 times)"),
+        number("jam_force_n", EGG_AT(deployment.jamForceN), 1e-6, 1e9,
+               "a sliding bolt at a notch end pressing on it harder than this is jammed"),
+        number("snap_energy_drop", EGG_AT(deployment.snapEnergyDrop), 1e-6, 0.99,
+               "a drop of the lamellas' elastic energy over one finest step by more than this "
+               "fraction is a snap-through")},
+       {}});
 }
 
 }  // namespace egg::pipeline

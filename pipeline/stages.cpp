@@ -1,5 +1,6 @@
 #include "pipeline/stages.hpp"
 
+#include "pipeline/deployment_stage.hpp"
 #include "pipeline/fabrication_stage.hpp"
 #include "pipeline/grid_stage.hpp"
 #include "pipeline/patching_stage.hpp"
@@ -22,14 +23,16 @@ const char* toString(StageId stage) {
     case StageId::Simulation: return "simulation";
     case StageId::Fabrication: return "fabrication";
     case StageId::Verification: return "verification";
+    case StageId::Deployment: return "deployment";
   }
   return "unknown";
 }
 
 const std::vector<StageId>& allStages() {
   static const std::vector<StageId> stages{
-      StageId::Surface, StageId::Patching,   StageId::Design,      StageId::Propagation,
-      StageId::Grid,    StageId::Simulation, StageId::Fabrication, StageId::Verification};
+      StageId::Surface,     StageId::Patching,     StageId::Design,
+      StageId::Propagation, StageId::Grid,         StageId::Simulation,
+      StageId::Fabrication, StageId::Verification, StageId::Deployment};
   return stages;
 }
 
@@ -57,6 +60,8 @@ const std::vector<Stage>& stageTable() {
        fabricationStage},
       // The FE check of the deployed structure with CalculiX (docs/verification.md).
       {S::Verification, {S::Simulation}, 0.9, nullptr, verificationSkipReason, verificationStage},
+      // The path from the flat grid to the deployed one, patch by patch (docs/deployment.md).
+      {S::Deployment, {S::Simulation}, 0.95, nullptr, deploymentSkipReason, deploymentStage},
   };
   return table;
 }
@@ -74,6 +79,9 @@ const std::vector<Output>& outputTable() {
       {"cut_files", {S::Fabrication}, "cut/sheet_NN.svg, .dxf, sheets.pdf, bom.csv"},
       {"stickers", {S::Fabrication}, "cut/stickers_NN.svg, .dxf, stickers.pdf"},
       {"supports", {S::Fabrication}, "supports/supports.csv, supports/support_NNN.stl"},
+      {"deployment",
+       {S::Deployment},
+       "deployment.csv, deployment.svg, deployment.glb (the path from the flat grid)"},
       {"fem", {S::Verification}, "fem/model.inp, fem/<case>.inp, .dat, .frd, fem/buckle.*"},
       // The supports come from the fabrication stage (none when it is off).
       {"model",

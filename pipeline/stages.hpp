@@ -18,7 +18,8 @@ enum class StageId {
   Grid,
   Simulation,
   Fabrication,
-  Verification
+  Verification,
+  Deployment
 };
 // The key of the stage in report.json "stages" ("surface", ..., "fabrication").
 const char* toString(StageId stage);

@@ -60,7 +60,8 @@ struct Measurer {
         const double sigma = rod.material.youngsModulusPa *
                              (std::abs(s.weakCurvature) * 0.5 * rod.section.thicknessM +
                               std::abs(s.strongCurvature) * 0.5 * rod.section.widthM);
-        const double tau = rod.material.shearModulusPa * rod.section.thicknessM * std::abs(s.twistRate);
+        const double tau =
+            rod.material.shearModulusPa * rod.section.thicknessM * std::abs(s.twistRate);
         step.maxBendingStressPa = std::max(step.maxBendingStressPa, sigma);
         step.maxTorsionStressPa = std::max(step.maxTorsionStressPa, tau);
         double ratio = 0.0;
@@ -73,7 +74,7 @@ struct Measurer {
       }
     }
     step.maxNotchForceN = step.maxNotchTravelM = 0.0;
-    step.jammedBolts = 0;
+    step.notchForcesN.clear();
     step.minCrossingAngleRad = model.boltCount() ? M_PI : 0.0;
     step.maxCrossingAngleRad = 0.0;
     for (int c = 0; c < model.boltCount(); ++c) {
@@ -81,8 +82,9 @@ struct Measurer {
       for (int side = 0; side < 2; ++side) {
         const double force = model.notchEndForce(c, side);
         step.maxNotchForceN = std::max(step.maxNotchForceN, force);
-        if (force > options.jamForceN) ++step.jammedBolts;
-        const double flatS = side == 0 ? con.startAM.value_or(con.sAM) : con.startBM.value_or(con.sBM);
+        step.notchForcesN.push_back(force);
+        const double flatS =
+            side == 0 ? con.startAM.value_or(con.sAM) : con.startBM.value_or(con.sBM);
         step.maxNotchTravelM =
             std::max(step.maxNotchTravelM, std::abs(model.boltPosition(c, side) - flatS));
       }
@@ -143,8 +145,8 @@ void DeploymentOptions::validate() const {
 }
 
 SupportPath straightSupportPath(const SupportState& from, const SupportState& to) {
-  if (from.positions.size() != to.positions.size() || from.normals.size() != from.positions.size() ||
-      to.normals.size() != to.positions.size())
+  if (from.positions.size() != to.positions.size() ||
+      from.normals.size() != from.positions.size() || to.normals.size() != to.positions.size())
     throw InvalidInput("straightSupportPath: the two support states differ in size");
   for (size_t a = 0; a < from.normals.size(); ++a) {
     const Eigen::Vector3d n0 = from.normals[a].normalized(), n1 = to.normals[a].normalized();
@@ -209,8 +211,8 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
     const double spent = secondsSince(start);
     if (spent > options.solver.timeLimitS) {
       result.completed = false;
-      result.reason = "time limit " + std::to_string(options.solver.timeLimitS) + " s reached at t = " +
-                      std::to_string(tDone);
+      result.reason = "time limit " + std::to_string(options.solver.timeLimitS) +
+                      " s reached at t = " + std::to_string(tDone);
       break;
     }
     solverOptions.timeLimitS = std::max(1e-3, options.solver.timeLimitS - spent);
@@ -228,11 +230,21 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
     measure(trial, step);
     step.maxVertexMoveM = largestMove(model, trial);
     const DeploymentStep& previous = result.steps.back();
-    const double drop = previous.energyJ - step.energyJ;
+    // The energy the step should reach on a smooth path: the last step's rate carried on (a path
+    // that unloads loses energy smoothly); a snap falls below it by a finite part at any step.
+    double predicted = previous.energyJ;
+    if (result.steps.size() >= 2) {
+      const DeploymentStep& before = result.steps[result.steps.size() - 2];
+      if (previous.t > before.t)
+        predicted +=
+            (previous.energyJ - before.energyJ) / (previous.t - before.t) * (t - previous.t);
+    }
+    const double drop = std::min(previous.energyJ, predicted) - step.energyJ;
     const bool dropped =
-        solved.converged && drop > options.snapEnergyDrop * std::max(previous.energyJ, model.energyUnit());
-    const bool steep = solved.converged &&
-                       std::abs(step.maxStressRatio - previous.maxStressRatio) > options.stressRatioStep;
+        solved.converged &&
+        drop > options.snapEnergyDrop * std::max(previous.energyJ, model.energyUnit());
+    const bool steep = solved.converged && std::abs(step.maxStressRatio - previous.maxStressRatio) >
+                                               options.stressRatioStep;
     if ((!solved.converged || dropped || steep) && depth < options.maxRefinements) {
       pending.emplace_back(t, depth + 1);
       pending.emplace_back(0.5 * (tDone + t), depth + 1);
@@ -247,6 +259,11 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
       break;
     }
     step.snap = dropped;
+    step.jammedBolts = 0;
+    for (size_t k = 0; k < step.notchForcesN.size(); ++k) {
+      const double force = step.notchForcesN[k];
+      if (force > options.jamForceN && force > 1.1 * previous.notchForcesN[k]) ++step.jammedBolts;
+    }
     result.snaps += step.snap;
     result.jammedSteps += step.jammedBolts > 0;
     model = std::move(trial);

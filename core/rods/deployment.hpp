@@ -9,9 +9,9 @@
 // angles, and whether the grid snapped.
 //
 // Self-weight is left out: the path is the elastic one the supports impose (the flat grid is
-// carried by the crew or the ground until it is fixed, which this model does not know). A weightless
-// equilibrium does not depend on where the flat grid lies, so its rigid placement (flat_grid.hpp)
-// only sets how far each support travels.
+// carried by the crew or the ground until it is fixed, which this model does not know). A
+// weightless equilibrium does not depend on where the flat grid lies, so its rigid placement
+// (flat_grid.hpp) only sets how far each support travels.
 #include "core/rods/rod_model.hpp"
 #include "core/rods/rod_network.hpp"
 #include "core/rods/rod_solver.hpp"
@@ -49,14 +49,17 @@ struct DeploymentOptions {
   // A step that does not converge, or whose energy drops, is split in halves up to this depth (a
   // step of 1 / (steps 2^depth)); a drop that persists at the finest step is a snap-through.
   int maxRefinements = 4;
-  // An energy drop over one step by more than this fraction of the energy before it (at the
-  // finest step): under imposed support motion the elastic energy of a stable path changes by
-  // about the step size, a snap releases a finite part of it at once.
+  // An energy drop over one step, below both the energy before it and the last step's trend
+  // carried on, by more than this fraction of the energy before it (at the finest step): under
+  // imposed support motion the elastic energy of a stable path changes smoothly with the step, a
+  // snap releases a finite part of it at once.
   double snapEnergyDrop = 0.05;
   // A step whose peak stress ratio changes by more than this is split too (the peak is resolved).
   double stressRatioStep = 0.2;
-  // A sliding bolt within one edge of a notch end and pressing on it with more than this (N) is
-  // jammed: the notch is too short for the path, and a crew would have to force it.
+  // A sliding bolt within one edge of a notch end pressing on it with more than this (N), harder
+  // than at the step before (the path pushes it on), is jammed: the notch is too short for the
+  // path, and a crew would have to force it. The flat grid's bolts rest at their notch ends by
+  // design (s_bar, Section 2.4.5), where the barrier E_n holds them: not a jam.
   double jamForceN = 10.0;
   // Stress ratios max(sigma / f_m, tau / f_v); 0: not computed.
   double bendingStrengthPa = 0.0;
@@ -77,9 +80,10 @@ struct DeploymentStep {
   double maxTorsionStressPa = 0.0;  // G t |theta'|
   double maxStressRatio = 0.0;      // max over rods of max(sigma / f_m, tau / f_v)
   int maxStressRod = -1;
-  double maxNotchForceN = 0.0;   // largest force of a bolt on a notch end
-  int jammedBolts = 0;           // bolt sides at a notch end pressing with more than jamForceN
-  double maxNotchTravelM = 0.0;  // largest |bolt position - its flat position| along a rod
+  double maxNotchForceN = 0.0;       // largest force of a bolt on a notch end
+  int jammedBolts = 0;               // bolt sides jammed (DeploymentOptions::jamForceN)
+  std::vector<double> notchForcesN;  // per connection, rod a then rod b
+  double maxNotchTravelM = 0.0;      // largest |bolt position - its flat position| along a rod
   double minCrossingAngleRad = 0.0, maxCrossingAngleRad = 0.0;
   double maxVertexMoveM = 0.0;  // largest vertex displacement from the previous step
   std::vector<Eigen::Vector3d> supportPositionsM;  // per anchor, where the support holds the grid

@@ -62,7 +62,8 @@ std::vector<RodModel::VertexStrain> RodModel::vertexStrains(int rod) const {
   std::vector<VertexStrain> strains;
   const auto frameOfEdge = [&](int edge) {
     const V3<double> e = constant<double>(vertex(rod, edge + 1) - vertex(rod, edge));
-    return materialFrame(e, state_[thetaDof(rod, edge)], references_[edgeReferenceBase_[rod] + edge]);
+    return materialFrame(e, state_[thetaDof(rod, edge)],
+                         references_[edgeReferenceBase_[rod] + edge]);
   };
   for (int i = 1; i < r.edges; ++i) {
     const Eigen::Vector3d e0 = vertex(rod, i) - vertex(rod, i - 1);
@@ -77,7 +78,8 @@ std::vector<RodModel::VertexStrain> RodModel::vertexStrains(int rod) const {
     // tangent, its angle to the second's normal about that tangent.
     const Eigen::Vector3d v = t0.cross(t1);
     const double c = t0.dot(t1);
-    const Eigen::Vector3d carried = c * normal0 + v.cross(normal0) + (v.dot(normal0) / (c + 1.0)) * v;
+    const Eigen::Vector3d carried =
+        c * normal0 + v.cross(normal0) + (v.dot(normal0) / (c + 1.0)) * v;
     const double twist = std::atan2(carried.cross(normal1).dot(t1), carried.dot(normal1));
     const double voronoi = r.h;  // uniform rest edges: (h + h) / 2
     VertexStrain s;

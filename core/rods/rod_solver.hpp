@@ -75,9 +75,9 @@ struct SolverResult {
   double gradientNorm = 0.0;  // Euclidean norm over free unknowns (mixed N, N m)
   double decrement = 0.0;     // last Newton decrement, J
   double seconds = 0.0;
-  int boltEdgeSwitches = 0;      // reprojections of sliding bolts onto neighbouring edges
-  int factorisations = 0;        // Cholesky factorisations (shift trials included)
-  int energyEvaluations = 0;     // line-search trials
+  int boltEdgeSwitches = 0;   // reprojections of sliding bolts onto neighbouring edges
+  int factorisations = 0;     // Cholesky factorisations (shift trials included)
+  int energyEvaluations = 0;  // line-search trials
   // Converged with the exact Hessian positive definite at the last step: a stable equilibrium (a
   // minimum, not a saddle). false when a shift or the projected Hessian gave the last direction.
   bool stableEquilibrium = false;

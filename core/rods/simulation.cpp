@@ -169,6 +169,11 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     }
     if (step == 0 && steps > 0) {
       recordReference();
+      for (int r = 0; r < model.rodCount(); ++r) {
+        std::vector<Eigen::Vector3d> points;
+        for (int i = 0; i < model.vertexCount(r); ++i) points.push_back(model.contactPoint(r, i));
+        run.weightlessContactPoints.push_back(std::move(points));
+      }
       if (options.fastenBoltsUnderLoad && run.solver.converged) model.fastenBolts();
     }
     if (!run.solver.converged) {
@@ -185,7 +190,8 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
   recordState(model, run);
   if (surface) {
     std::vector<Eigen::Vector3d> contact;
-    for (const auto& points : run.contactPoints) contact.insert(contact.end(), points.begin(), points.end());
+    for (const auto& points : run.contactPoints)
+      contact.insert(contact.end(), points.begin(), points.end());
     run.deviation = measureDeviation(contact, *surface, options.scaleFactor);
   }
   return run;

@@ -64,6 +64,9 @@ struct SimulationRun {
       contactPoints;  // per rod vertex, on the contact surface between the layers
   std::vector<std::array<double, 2>> boltPositionsM;  // per connection: s along rod a, rod b
   std::optional<DeviationStats> deviation;            // contact points vs surface (when given)
+  // Self-weight runs with load steps: the contact points at the weightless equilibrium (step 0),
+  // per rod vertex (the deployment stage's end state is compared with them).
+  std::vector<std::vector<Eigen::Vector3d>> weightlessContactPoints;
   double maxSagM =
       0.0;  // self-weight runs: largest vertex displacement from the weightless equilibrium
   // options.historyEvery > 0 and a surface: the deviation from the start to the final state (the

@@ -62,7 +62,7 @@ TEST(Stages, EveryOutputIsKnownToTheTable) {
     EXPECT_FALSE(output.needs.empty()) << output.name;
   }
   EXPECT_EQ(names, (std::set<std::string>{"report", "previews", "plan", "cut_files", "stickers",
-                                          "supports", "fem", "model"}));
+                                          "supports", "fem", "model", "deployment"}));
 }
 
 }  // namespace

@@ -237,13 +237,16 @@ TEST(Deployment, PathAndOptionsAreChecked) {
   const CylinderGrid grid;
   DeploymentOptions o = options();
   o.steps = 0;
-  EXPECT_THROW(deploy(grid.network(0.03), [&](double) { return grid.supports(0.0); }, o),
+  EXPECT_THROW(deploy(
+                   grid.network(0.03), [&](double) { return grid.supports(0.0); }, o),
                InvalidInput);
   o = options();
   SupportState tooFew = grid.supports(0.0);
   tooFew.positions.pop_back();
   tooFew.normals.pop_back();
-  EXPECT_THROW(deploy(grid.network(0.03), [&](double) { return tooFew; }, o), InvalidInput);
+  EXPECT_THROW(deploy(
+                   grid.network(0.03), [&](double) { return tooFew; }, o),
+               InvalidInput);
   SupportState flipped = grid.supports(0.0);
   flipped.normals[0] = -flipped.normals[0];
   EXPECT_THROW(straightSupportPath(grid.supports(0.0), flipped), InvalidInput);

@@ -1,0 +1,306 @@
+#include "pipeline/deployment_stage.hpp"
+
+#include "assembly/flat_grid.hpp"
+#include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
+#include "core/materials/materials.hpp"
+#include "core/rods/deployment.hpp"
+#include "core/timing.hpp"
+#include "export/deployment_glb.hpp"
+#include "pipeline/plot_frame.hpp"
+
+#include <fmt/core.h>
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <sstream>
+
+namespace egg::pipeline {
+
+using nlohmann::json;
+
+namespace {
+
+struct PatchDeployment {
+  int patch = 0;
+  std::optional<rods::DeploymentResult> result;
+  std::string failure;  // an error before any step (not a non-converged step)
+  double placementRmsM = 0.0;
+  double endVsSimulationRmsM = -1.0;  // against the simulation's weightless equilibrium
+};
+
+double rmsBetween(const std::vector<std::vector<Eigen::Vector3d>>& a,
+                  const std::vector<std::vector<Eigen::Vector3d>>& b) {
+  if (a.size() != b.size() || a.empty()) return -1.0;
+  double sum = 0.0;
+  long count = 0;
+  for (size_t r = 0; r < a.size(); ++r) {
+    if (a[r].size() != b[r].size()) return -1.0;
+    for (size_t i = 0; i < a[r].size(); ++i, ++count) sum += (a[r][i] - b[r][i]).squaredNorm();
+  }
+  return std::sqrt(sum / std::max<long>(count, 1));
+}
+
+rods::DeploymentOptions deploymentOptions(const Scene& scene, int patches) {
+  rods::DeploymentOptions o;
+  o.model = scene.simulation.rods.model;
+  o.solver = scene.simulation.rods.solver;
+  if (patches > 1) o.solver.threads = 1;  // patches in parallel, as the simulation stage
+  o.steps = scene.deployment.steps;
+  o.jamForceN = scene.deployment.jamForceN;
+  o.snapEnergyDrop = scene.deployment.snapEnergyDrop;
+  const MaterialProperties& material = materialByName(scene.lamella.material);
+  o.bendingStrengthPa = material.bendingStrengthPa;
+  o.shearStrengthPa = material.shearStrengthPa;
+  return o;
+}
+
+json stepJson(const rods::DeploymentStep& s) {
+  return {{"t", s.t},
+          {"converged", s.status == rods::SolverStatus::Converged},
+          {"iterations", s.iterations},
+          {"energy_j", s.energyJ},
+          {"stable", s.stable},
+          {"snap", s.snap},
+          {"max_stress_ratio", s.maxStressRatio},
+          {"max_bending_stress_mpa", s.maxBendingStressPa * 1e-6},
+          {"max_torsion_stress_mpa", s.maxTorsionStressPa * 1e-6},
+          {"max_notch_force_n", s.maxNotchForceN},
+          {"jammed_bolts", s.jammedBolts},
+          {"max_notch_travel_m", s.maxNotchTravelM},
+          {"crossing_angle_deg",
+           {s.minCrossingAngleRad * 180.0 / M_PI, s.maxCrossingAngleRad * 180.0 / M_PI}},
+          {"max_support_force_n", s.maxSupportForceN},
+          {"max_vertex_move_m", s.maxVertexMoveM}};
+}
+
+json patchJson(const PatchDeployment& d) {
+  json entry{{"patch", d.patch}};
+  if (!d.failure.empty()) {
+    entry["completed"] = false;
+    entry["failure"] = d.failure;
+    return entry;
+  }
+  const rods::DeploymentResult& r = *d.result;
+  const rods::DeploymentStep& peak = r.steps[r.peakStep];
+  const rods::DeploymentStep& end = r.steps.back();
+  double supportForce = 0.0, notchForce = 0.0, angleMin = M_PI, angleMax = 0.0;
+  json steps = json::array();
+  for (const auto& s : r.steps) {
+    supportForce = std::max(supportForce, s.maxSupportForceN);
+    notchForce = std::max(notchForce, s.maxNotchForceN);
+    angleMin = std::min(angleMin, s.minCrossingAngleRad);
+    angleMax = std::max(angleMax, s.maxCrossingAngleRad);
+    steps.push_back(stepJson(s));
+  }
+  entry.update({{"completed", r.completed},
+                {"steps", static_cast<int>(r.steps.size()) - 1},
+                {"iterations", r.iterations},
+                {"seconds", r.seconds},
+                {"snaps", r.snaps},
+                {"jammed_steps", r.jammedSteps},
+                {"peak_t", peak.t},
+                {"peak_stress_ratio", peak.maxStressRatio},
+                {"end_t", end.t},
+                {"end_stress_ratio", end.maxStressRatio},
+                {"max_support_force_n", supportForce},
+                {"max_notch_force_n", notchForce},
+                {"crossing_angle_deg", {angleMin * 180.0 / M_PI, angleMax * 180.0 / M_PI}},
+                {"flat_placement_rms_m", d.placementRmsM},
+                {"end_vs_simulation_rms_m",
+                 d.endVsSimulationRmsM >= 0.0 ? json(d.endVsSimulationRmsM) : json(nullptr)},
+                {"path", steps}});
+  if (!r.completed) entry["reason"] = r.reason;
+  return entry;
+}
+
+std::string csvOf(const std::vector<PatchDeployment>& runs) {
+  std::ostringstream out;
+  out << "patch,step,t,support,x_m,y_m,z_m,force_x_n,force_y_n,force_z_n,step_max_stress_ratio,"
+         "step_max_notch_force_n,step_jammed_bolts,step_snap,step_min_crossing_deg,"
+         "step_max_crossing_deg\n";
+  for (const PatchDeployment& d : runs) {
+    if (!d.result) continue;
+    for (size_t k = 0; k < d.result->steps.size(); ++k) {
+      const rods::DeploymentStep& s = d.result->steps[k];
+      for (size_t a = 0; a < s.supportPositionsM.size(); ++a) {
+        const Eigen::Vector3d& p = s.supportPositionsM[a];
+        const Eigen::Vector3d f =
+            a < s.supportForcesN.size() ? s.supportForcesN[a] : Eigen::Vector3d::Zero();
+        out << fmt::format(
+            "P{},{},{:.6f},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.2f},{:.2f},{:.4f},{:.3f},{},{},"
+            "{:.2f},{:.2f}\n",
+            d.patch, k, s.t, a, p.x(), p.y(), p.z(), f.x(), f.y(), f.z(), s.maxStressRatio,
+            s.maxNotchForceN, s.jammedBolts, s.snap ? 1 : 0, s.minCrossingAngleRad * 180.0 / M_PI,
+            s.maxCrossingAngleRad * 180.0 / M_PI);
+      }
+    }
+  }
+  return out.str();
+}
+
+// Two panels against t: the peak stress ratio (with the limit 1) and the largest support force.
+std::string chartSvg(const std::vector<PatchDeployment>& runs) {
+  double ratioMax = 1.0, forceMax = 1.0;
+  for (const auto& d : runs)
+    if (d.result)
+      for (const auto& s : d.result->steps) {
+        ratioMax = std::max(ratioMax, s.maxStressRatio);
+        forceMax = std::max(forceMax, s.maxSupportForceN);
+      }
+  const double width = 900, height = 340;
+  std::ostringstream svg;
+  svg << fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} "
+      "{1}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" "
+      "fill=\"white\"/>\n",
+      width, height);
+  const char* colours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a",
+                           "#66a61e", "#e6ab02", "#a6761d", "#666666"};
+  for (int panel = 0; panel < 2; ++panel) {
+    PlotFrame f;
+    f.left = 70 + panel * 440;
+    f.top = 40;
+    f.width = 360;
+    f.height = 240;
+    f.yMax = panel == 0 ? 1.1 * ratioMax : 1.1 * forceMax;
+    svg << fmt::format("<text x=\"{}\" y=\"24\" font-weight=\"bold\">{}</text>\n", f.left,
+                       panel == 0 ? "Peak stress ratio (bending + torsion) per step"
+                                  : "Largest support force per step (N)");
+    svg << fmt::format(
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" "
+        "stroke=\"#444\"/>\n",
+        f.left, f.top, f.width, f.height);
+    const double step = tickStep(f.yMax, 5);
+    for (double y = 0.0; y <= f.yMax + 1e-12; y += step)
+      svg << fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:g}</text>\n", f.left - 6,
+                         f.py(y) + 4, y);
+    for (double x = 0.0; x <= 1.0 + 1e-9; x += 0.25)
+      svg << fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{:g}</text>\n", f.px(x),
+                         f.top + f.height + 16, x);
+    svg << fmt::format(
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">path t (0 flat, 1 "
+        "deployed)</text>\n",
+        f.left + f.width / 2, f.top + f.height + 34);
+    if (panel == 0)
+      svg << fmt::format(
+          "<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"#c00\" "
+          "stroke-dasharray=\"6 4\"/><text x=\"{1}\" y=\"{3}\" fill=\"#c00\" "
+          "text-anchor=\"end\">limit 1</text>\n",
+          f.left, f.left + f.width, f.py(1.0), f.py(1.0) - 4);
+    int k = 0;
+    for (const auto& d : runs) {
+      if (!d.result) continue;
+      std::string points;
+      for (const auto& s : d.result->steps)
+        points += fmt::format("{:.1f},{:.1f} ", f.px(s.t),
+                              f.py(panel == 0 ? s.maxStressRatio : s.maxSupportForceN));
+      const char* colour = colours[k++ % 8];
+      svg << fmt::format(
+          "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", points,
+          colour);
+      for (const auto& s : d.result->steps)
+        if (s.snap)
+          svg << fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"#c00\"/>\n",
+                             f.px(s.t), f.py(panel == 0 ? s.maxStressRatio : s.maxSupportForceN));
+      if (panel == 1)
+        svg << fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">P{}</text>\n", f.left + f.width + 6,
+                           f.top + 12 + 14 * (k - 1), colour, d.patch);
+    }
+  }
+  svg << fmt::format(
+      "<text x=\"70\" y=\"{}\" fill=\"#444\">Red dots: snap-through. Supports move "
+      "together along straight lines; self-weight not included.</text>\n</svg>\n",
+      height - 6);
+  return svg.str();
+}
+
+}  // namespace
+
+std::string deploymentSkipReason(const RunState& state) {
+  for (const auto& p : state.patches)
+    if (p.egg && p.network) return {};
+  return "no simulated patch to deploy";
+}
+
+void deploymentStage(RunState& state) {
+  const Scene& scene = state.scene;
+  const Stopwatch watch;
+  std::vector<PatchDeployment> runs;
+  std::vector<const SolvedPatch*> sources;
+  for (const auto& p : state.patches)
+    if (p.egg && p.network) {
+      runs.push_back({p.id});
+      sources.push_back(&p);
+    }
+  const rods::DeploymentOptions options = deploymentOptions(scene, static_cast<int>(runs.size()));
+  tbb::parallel_for(size_t(0), runs.size(), [&](size_t i) {
+    const SolvedPatch& patch = *sources[i];
+    try {
+      const assembly::FlatGrid flat = assembly::flatGrid(patch.egg->grid, *patch.network);
+      runs[i].placementRmsM = flat.placementRmsM;
+      runs[i].result =
+          rods::deploy(flat.network, rods::straightSupportPath(flat.flat, flat.deployed), options);
+      if (patch.simulation) {
+        const rods::SimulationRun& sim = patch.simulation->deployed;
+        runs[i].endVsSimulationRmsM = rmsBetween(
+            runs[i].result->last.contactPoints,
+            sim.weightlessContactPoints.empty() ? sim.contactPoints : sim.weightlessContactPoints);
+      }
+    } catch (const Error& e) {
+      runs[i].failure = e.what();
+    }
+  });
+  json section{{"ran", true},
+               {"path",
+                "synchronised: every support along a straight line from its place on the "
+                "flat grid to its deployed place, normals turned at a uniform rate"},
+               {"self_weight", false},
+               {"steps_requested", scene.deployment.steps},
+               {"jam_force_n", scene.deployment.jamForceN},
+               {"snap_energy_drop", scene.deployment.snapEnergyDrop}};
+  json patches = json::array();
+  std::vector<exporter::DeploymentAnimation> animations;
+  for (const PatchDeployment& d : runs) {
+    patches.push_back(patchJson(d));
+    if (!d.failure.empty()) {
+      state.failures.push_back(fmt::format("deployment: patch P{}: {}", d.patch, d.failure));
+      continue;
+    }
+    const rods::DeploymentResult& r = *d.result;
+    if (!r.completed)
+      state.failures.push_back(fmt::format("deployment: patch P{}: {}", d.patch, r.reason));
+    if (r.snaps > 0)
+      state.report.warn(fmt::format(
+          "deployment: patch P{} snaps through at {} step(s) of the synchronised path (first at "
+          "t = {:.3f}): the crew would feel it jump; guide it there or change the supports",
+          d.patch, r.snaps,
+          std::find_if(r.steps.begin(), r.steps.end(), [](const auto& s) { return s.snap; })->t));
+    if (r.jammedSteps > 0)
+      state.report.warn(fmt::format(
+          "deployment: patch P{}: a bolt jams at a notch end in {} step(s) (more than {} N): "
+          "lengthen that notch or free the bolt",
+          d.patch, r.jammedSteps, scene.deployment.jamForceN));
+    const auto& peak = r.steps[r.peakStep];
+    if (peak.maxStressRatio > 1.0)
+      state.report.warn(fmt::format(
+          "deployment: patch P{}: stress ratio {:.2f} at t = {:.3f} on the way (end state {:.2f})",
+          d.patch, peak.maxStressRatio, peak.t, r.steps.back().maxStressRatio));
+    exporter::DeploymentAnimation animation;
+    animation.name = fmt::format("P{}", d.patch);
+    for (const auto& s : r.steps) animation.frames.push_back({s.t, s.contactPoints});
+    animations.push_back(std::move(animation));
+  }
+  section["patches"] = patches;
+  section["seconds"] = watch.seconds();
+  state.report.section("deployment") = section;
+  writeFileAtomically(state.staging / "deployment.csv", csvOf(runs));
+  writeFileAtomically(state.staging / "deployment.svg", chartSvg(runs));
+  if (!animations.empty())
+    writeFileAtomically(state.staging / "deployment.glb", exporter::deploymentGlbBytes(animations));
+}
+
+}  // namespace egg::pipeline

@@ -1,0 +1,86 @@
+// The "deployment" output on a 2 x 2 patch layout (issue 42): every patch driven from its flat
+// grid to its supports, report.json deployment{}, deployment.csv, deployment.svg and a
+// deployment.glb the Khronos validator accepts.
+#include "pipeline/deployment_stage.hpp"
+
+#include "pipeline/pipeline.hpp"
+#include "tests/export/node_check.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace egg::pipeline {
+namespace {
+
+namespace fs = std::filesystem;
+
+Scene twoByTwoScene() {
+  return parseScene(nlohmann::json::parse(R"({
+    "name": "bump_2x2_deployment",
+    "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1.0, "sigma": 1.5}, "edge_length_m": 0.4},
+    "patching": {"patches": [[[-3,-3,0],[0,-3,0],[0,0,1],[-3,0,0]], [[0,-3,0],[3,-3,0],[3,0,0],[0,0,1]],
+                             [[-3,0,0],[0,0,1],[0,3,0],[-3,3,0]], [[0,0,1],[3,0,0],[3,3,0],[0,3,0]]]},
+    "grid": {"map_resolution": 30, "members_per_family": 4},
+    "lamella": {"width_m": 0.05, "thickness_m": 0.005},
+    "simulation": {"enabled": true, "gravity": false, "join_patches": false},
+    "deployment": {"steps": 6},
+    "outputs": ["report", "deployment"]})"),
+                    "/virtual/bump_2x2_deployment.json");
+}
+
+TEST(DeploymentStage, EveryPatchOfATwoByTwoLayoutDeploysFromItsFlatGridToTheSimulatedShape) {
+  const fs::path out =
+      fs::temp_directory_path() / ("egg_deployment_2x2_" + std::to_string(::getpid()));
+  PipelineOptions options;
+  options.outDir = out;
+  const PipelineResult result = runPipeline(twoByTwoScene(), options);
+  const auto& section = result.report["deployment"];
+  ASSERT_TRUE(section.value("ran", false)) << result.report.dump(1).substr(0, 4000);
+  ASSERT_EQ(section["patches"].size(), 4u);
+  size_t rows = 0;
+  for (const auto& p : section["patches"]) {
+    SCOPED_TRACE("patch " + std::to_string(p["patch"].get<int>()));
+    ASSERT_TRUE(p["completed"].get<bool>()) << p.dump(1).substr(0, 2000);
+    const auto& path = p["path"];
+    ASSERT_GE(path.size(), 7u);  // the flat grid and at least the 6 steps asked for
+    EXPECT_EQ(path.front()["t"], 0.0);
+    EXPECT_EQ(path.back()["t"], 1.0);
+    // The flat grid is the planar layout: all but stress free (the notch barriers hold the bolts
+    // at their planar ends, Section 2.4.5).
+    EXPECT_LT(path.front()["max_stress_ratio"].get<double>(), 0.05);
+    // The weightless simulation's equilibrium is where the path ends, to the sliding bolts' path
+    // dependence (pseudo-friction and notch barriers, Section 2.5): 0.2-2.3 mm here.
+    EXPECT_LT(p["end_vs_simulation_rms_m"].get<double>(), 5e-3);
+    EXPECT_GE(p["peak_stress_ratio"].get<double>(), p["end_stress_ratio"].get<double>());
+    rows += path.size();
+  }
+  // One row per support and step.
+  std::ifstream csv(out / "deployment.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("patch,step,t,support,x_m,y_m,z_m,force_x_n", 0), 0u);
+  size_t lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  EXPECT_GE(lines, rows * 4);  // at least the 4 corners of every patch are supports
+  EXPECT_GT(fs::file_size(out / "deployment.svg"), 1000u);
+  EXPECT_EQ(std::system(("rsvg-convert -o " + (out / "deployment.png").string() + " " +
+                         (out / "deployment.svg").string())
+                            .c_str()),
+            0);
+  ASSERT_TRUE(fs::exists(out / "deployment.glb"));
+  if (const std::string why = exporter::testing::nodeChecksUnavailable(); !why.empty()) {
+    fs::remove_all(out);
+    GTEST_SKIP() << why;
+  }
+  const auto glb =
+      exporter::testing::runNodeScript("check_glb.mjs", (out / "deployment.glb").string());
+  EXPECT_EQ(glb.exitCode, 0) << glb.output;
+  if (!std::getenv("EGG_KEEP_TEST_FILES")) fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace egg::pipeline

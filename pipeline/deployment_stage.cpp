@@ -17,6 +17,7 @@
 #include <cmath>
 #include <optional>
 #include <sstream>
+#include <tuple>
 
 namespace egg::pipeline {
 
@@ -28,6 +29,9 @@ struct PatchDeployment {
   int patch = 0;
   std::optional<rods::DeploymentResult> result;
   std::string failure;  // an error before any step (not a non-converged step)
+  std::string path;     // the path chosen: "corners first" or "all supports together"
+  std::string choice;   // why
+  json alternative;     // the other path's summary, when it ran
   double placementRmsM = 0.0;
   double endVsSimulationRmsM = -1.0;  // against the simulation's weightless equilibrium
 };
@@ -97,6 +101,9 @@ json patchJson(const PatchDeployment& d) {
     steps.push_back(stepJson(s));
   }
   entry.update({{"completed", r.completed},
+                {"path_kind", d.path},
+                {"path_choice", d.choice},
+                {"engaged_from_t", r.engagedFromT >= 0.0 ? json(r.engagedFromT) : json(nullptr)},
                 {"steps", static_cast<int>(r.steps.size()) - 1},
                 {"iterations", r.iterations},
                 {"seconds", r.seconds},
@@ -114,6 +121,7 @@ json patchJson(const PatchDeployment& d) {
                  d.endVsSimulationRmsM >= 0.0 ? json(d.endVsSimulationRmsM) : json(nullptr)},
                 {"path", steps}});
   if (!r.completed) entry["reason"] = r.reason;
+  if (!d.alternative.is_null()) entry["alternative"] = d.alternative;
   return entry;
 }
 
@@ -144,12 +152,13 @@ std::string csvOf(const std::vector<PatchDeployment>& runs) {
 
 // Two panels against t: the peak stress ratio (with the limit 1) and the largest support force.
 std::string chartSvg(const std::vector<PatchDeployment>& runs) {
-  double ratioMax = 1.0, forceMax = 1.0;
+  double ratioMax = 1.0, forceMax = 1.0, tMax = 1.0;  // forces in kN
   for (const auto& d : runs)
     if (d.result)
       for (const auto& s : d.result->steps) {
         ratioMax = std::max(ratioMax, s.maxStressRatio);
-        forceMax = std::max(forceMax, s.maxSupportForceN);
+        forceMax = std::max(forceMax, 1e-3 * s.maxSupportForceN);
+        tMax = std::max(tMax, s.t);
       }
   const double width = 900, height = 340;
   std::ostringstream svg;
@@ -167,9 +176,10 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs) {
     f.width = 360;
     f.height = 240;
     f.yMax = panel == 0 ? 1.1 * ratioMax : 1.1 * forceMax;
+    f.xMax = tMax > 1.0 ? 2.0 : 1.0;
     svg << fmt::format("<text x=\"{}\" y=\"24\" font-weight=\"bold\">{}</text>\n", f.left,
                        panel == 0 ? "Peak stress ratio (bending + torsion) per step"
-                                  : "Largest support force per step (N)");
+                                  : "Largest support force per step (kN)");
     svg << fmt::format(
         "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" "
         "stroke=\"#444\"/>\n",
@@ -178,13 +188,13 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs) {
     for (double y = 0.0; y <= f.yMax + 1e-12; y += step)
       svg << fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:g}</text>\n", f.left - 6,
                          f.py(y) + 4, y);
-    for (double x = 0.0; x <= 1.0 + 1e-9; x += 0.25)
+    for (double x = 0.0; x <= f.xMax + 1e-9; x += 0.25 * f.xMax)
       svg << fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{:g}</text>\n", f.px(x),
                          f.top + f.height + 16, x);
-    svg << fmt::format(
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">path t (0 flat, 1 "
-        "deployed)</text>\n",
-        f.left + f.width / 2, f.top + f.height + 34);
+    svg << fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
+                       f.left + f.width / 2, f.top + f.height + 34,
+                       f.xMax > 1.0 ? "t: 0 flat, 1 corners placed, 2 every support fixed"
+                                    : "t: 0 flat, 1 deployed");
     if (panel == 0)
       svg << fmt::format(
           "<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"#c00\" "
@@ -197,7 +207,7 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs) {
       std::string points;
       for (const auto& s : d.result->steps)
         points += fmt::format("{:.1f},{:.1f} ", f.px(s.t),
-                              f.py(panel == 0 ? s.maxStressRatio : s.maxSupportForceN));
+                              f.py(panel == 0 ? s.maxStressRatio : 1e-3 * s.maxSupportForceN));
       const char* colour = colours[k++ % 8];
       svg << fmt::format(
           "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", points,
@@ -205,7 +215,8 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs) {
       for (const auto& s : d.result->steps)
         if (s.snap)
           svg << fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"#c00\"/>\n",
-                             f.px(s.t), f.py(panel == 0 ? s.maxStressRatio : s.maxSupportForceN));
+                             f.px(s.t),
+                             f.py(panel == 0 ? s.maxStressRatio : 1e-3 * s.maxSupportForceN));
       if (panel == 1)
         svg << fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">P{}</text>\n", f.left + f.width + 6,
                            f.top + 12 + 14 * (k - 1), colour, d.patch);
@@ -213,7 +224,7 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs) {
   }
   svg << fmt::format(
       "<text x=\"70\" y=\"{}\" fill=\"#444\">Red dots: snap-through. Supports move "
-      "together along straight lines; self-weight not included.</text>\n</svg>\n",
+      "along straight lines; self-weight not included.</text>\n</svg>\n",
       height - 6);
   return svg.str();
 }
@@ -239,19 +250,63 @@ void deploymentStage(RunState& state) {
   const rods::DeploymentOptions options = deploymentOptions(scene, static_cast<int>(runs.size()));
   tbb::parallel_for(size_t(0), runs.size(), [&](size_t i) {
     const SolvedPatch& patch = *sources[i];
+    PatchDeployment& run = runs[i];
     try {
       const assembly::FlatGrid flat = assembly::flatGrid(patch.egg->grid, *patch.network);
-      runs[i].placementRmsM = flat.placementRmsM;
-      runs[i].result =
-          rods::deploy(flat.network, rods::straightSupportPath(flat.flat, flat.deployed), options);
+      run.placementRmsM = flat.placementRmsM;
+      const rods::SupportPath path = rods::straightSupportPath(flat.flat, flat.deployed);
+      // Corners first: the crew moves the patch's four corner supports and fixes the rest of the
+      // boundary once the grid stands. Every boundary support moved at once along straight lines
+      // shortens the boundary lamellas' short spans between them (a chord of the flat and the
+      // deployed positions is shorter than both) and buckles them.
+      std::vector<bool> corners(patch.network->anchors.size(), false);
+      int cornerCount = 0;
+      for (size_t a = 0; a < patch.egg->grid.anchors.size() && a < corners.size(); ++a)
+        if (patch.egg->grid.anchors[a].reason == "corner") corners[a] = true, ++cornerCount;
+      const bool twoPaths = cornerCount >= 3 && cornerCount < static_cast<int>(corners.size());
+      rods::DeploymentOptions cornerOptions = options;
+      if (twoPaths) cornerOptions.movedSupports = corners;
+      rods::DeploymentResult first = rods::deploy(flat.network, path, cornerOptions);
+      run.path = twoPaths ? "corners first" : "all supports together";
+      run.choice = twoPaths ? "" : "the grid's only supports are its corners";
+      const auto fine = [&](const rods::DeploymentResult& r) {
+        return r.completed && r.snaps == 0 && r.jammedSteps == 0 &&
+               r.steps[r.peakStep].maxStressRatio <= 1.0;
+      };
+      const auto summary = [](const std::string& name, const rods::DeploymentResult& r) {
+        return json{{"path", name},
+                    {"completed", r.completed},
+                    {"peak_stress_ratio", r.steps[r.peakStep].maxStressRatio},
+                    {"snaps", r.snaps},
+                    {"jammed_steps", r.jammedSteps},
+                    {"seconds", r.seconds}};
+      };
+      if (twoPaths && fine(first)) {
+        run.choice = "corners first stays within the limits (no snap, no jam, stress ratio <= 1)";
+      } else if (twoPaths) {
+        rods::DeploymentResult all = rods::deploy(flat.network, path, options);
+        const auto rank = [](const rods::DeploymentResult& r) {
+          return std::make_tuple(!r.completed, r.steps[r.peakStep].maxStressRatio, r.snaps);
+        };
+        if (rank(all) < rank(first)) {
+          run.alternative = summary("corners first", first);
+          first = std::move(all);
+          run.path = "all supports together";
+          run.choice = "a lower peak stress ratio than corners first";
+        } else {
+          run.alternative = summary("all supports together", all);
+          run.choice = "a lower peak stress ratio than all supports together";
+        }
+      }
+      run.result = std::move(first);
       if (patch.simulation) {
         const rods::SimulationRun& sim = patch.simulation->deployed;
-        runs[i].endVsSimulationRmsM = rmsBetween(
-            runs[i].result->last.contactPoints,
+        run.endVsSimulationRmsM = rmsBetween(
+            run.result->last.contactPoints,
             sim.weightlessContactPoints.empty() ? sim.contactPoints : sim.weightlessContactPoints);
       }
     } catch (const Error& e) {
-      runs[i].failure = e.what();
+      run.failure = e.what();
     }
   });
   json section{{"ran", true},

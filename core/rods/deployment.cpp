@@ -134,6 +134,7 @@ void DeploymentOptions::validate() const {
   model.validate();
   solver.validate();
   if (steps < 1) throw InvalidInput("DeploymentOptions.steps must be >= 1");
+  if (engageSteps < 1) throw InvalidInput("DeploymentOptions.engageSteps must be >= 1");
   if (maxRefinements < 0 || maxRefinements > 12)
     throw InvalidInput("DeploymentOptions.maxRefinements must be in 0..12");
   if (!(snapEnergyDrop > 0.0 && snapEnergyDrop < 1.0))
@@ -176,6 +177,15 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
   const Measurer measure{flat, options};
   DeploymentResult result;
 
+  if (!options.movedSupports.empty() &&
+      static_cast<int>(options.movedSupports.size()) != model.anchorCount())
+    throw InvalidInput("deployment: movedSupports names " +
+                       std::to_string(options.movedSupports.size()) + " supports, the grid has " +
+                       std::to_string(model.anchorCount()) + " anchors");
+  const auto moved = [&](int a) {
+    return options.movedSupports.empty() || options.movedSupports[a];
+  };
+  for (int a = 0; a < model.anchorCount(); ++a) model.setAnchorActive(a, moved(a));
   DeploymentStep first;
   placeSupports(model, path(0.0));
   SolverOptions solverOptions = options.solver;
@@ -199,77 +209,99 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
   // Later steps start next to an equilibrium: no need to soften the stiff terms (rod_solver.hpp).
   solverOptions.stiffnessContinuation = false;
 
-  // Steps as (t, depth); a rejected step is replaced by its two halves.
-  std::vector<std::pair<double, int>> pending;
-  for (int k = options.steps; k >= 1; --k)
-    pending.emplace_back(static_cast<double>(k) / options.steps, 0);
-  double tDone = 0.0;
-  result.completed = true;
-  while (!pending.empty()) {
-    const auto [t, depth] = pending.back();
-    pending.pop_back();
-    const double spent = secondsSince(start);
-    if (spent > options.solver.timeLimitS) {
-      result.completed = false;
-      result.reason = "time limit " + std::to_string(options.solver.timeLimitS) +
-                      " s reached at t = " + std::to_string(tDone);
-      break;
-    }
-    solverOptions.timeLimitS = std::max(1e-3, options.solver.timeLimitS - spent);
-    RodModel trial = model;
-    DeploymentStep step;
-    step.t = t;
-    const SupportState supports = path(t);
-    placeSupports(trial, supports);
-    const SolverResult solved = minimiseEnergy(trial, solverOptions);
-    step.status = solved.status;
-    step.iterations = solved.iterations;
-    step.seconds = solved.seconds;
-    step.stable = solved.stableEquilibrium;
-    step.supportPositionsM = supports.positions;
-    measure(trial, step);
-    step.maxVertexMoveM = largestMove(model, trial);
-    const DeploymentStep& previous = result.steps.back();
-    // The energy the step should reach on a smooth path: the last step's rate carried on (a path
-    // that unloads loses energy smoothly); a snap falls below it by a finite part at any step.
-    double predicted = previous.energyJ;
-    if (result.steps.size() >= 2) {
-      const DeploymentStep& before = result.steps[result.steps.size() - 2];
-      if (previous.t > before.t)
-        predicted +=
-            (previous.energyJ - before.energyJ) / (previous.t - before.t) * (t - previous.t);
-    }
-    const double drop = std::min(previous.energyJ, predicted) - step.energyJ;
-    const bool dropped =
-        solved.converged &&
-        drop > options.snapEnergyDrop * std::max(previous.energyJ, model.energyUnit());
-    const bool steep = solved.converged && std::abs(step.maxStressRatio - previous.maxStressRatio) >
-                                               options.stressRatioStep;
-    if ((!solved.converged || dropped || steep) && depth < options.maxRefinements) {
-      pending.emplace_back(t, depth + 1);
-      pending.emplace_back(0.5 * (tDone + t), depth + 1);
-      continue;
-    }
-    result.iterations += solved.iterations;
-    if (!solved.converged) {
-      result.completed = false;
-      result.reason = "no equilibrium at t = " + std::to_string(t) + " (a step of " +
-                      std::to_string(t - tDone) + "): " + solved.reason;
+  // One phase: the supports follow `phasePath` over `steps` equal steps of its own parameter,
+  // recorded as t = tOffset + parameter. Steps as (parameter, depth); a rejected step is replaced
+  // by its two halves.
+  const auto runPhase = [&](const SupportPath& phasePath, double tOffset, int steps) {
+    std::vector<std::pair<double, int>> pending;
+    for (int k = steps; k >= 1; --k) pending.emplace_back(static_cast<double>(k) / steps, 0);
+    double done = 0.0;
+    while (!pending.empty()) {
+      const auto [u, depth] = pending.back();
+      pending.pop_back();
+      const double t = tOffset + u;
+      const double spent = secondsSince(start);
+      if (spent > options.solver.timeLimitS) {
+        result.completed = false;
+        result.reason = "time limit " + std::to_string(options.solver.timeLimitS) +
+                        " s reached at t = " + std::to_string(tOffset + done);
+        return;
+      }
+      solverOptions.timeLimitS = std::max(1e-3, options.solver.timeLimitS - spent);
+      RodModel trial = model;
+      DeploymentStep step;
+      step.t = t;
+      const SupportState supports = phasePath(u);
+      placeSupports(trial, supports);
+      const SolverResult solved = minimiseEnergy(trial, solverOptions);
+      step.status = solved.status;
+      step.iterations = solved.iterations;
+      step.seconds = solved.seconds;
+      step.stable = solved.stableEquilibrium;
+      step.supportPositionsM = supports.positions;
+      measure(trial, step);
+      step.maxVertexMoveM = largestMove(model, trial);
+      const DeploymentStep& previous = result.steps.back();
+      // The energy the step should reach on a smooth path: the last step's rate carried on (a
+      // path that unloads loses energy smoothly); a snap falls below it by a finite part at any
+      // step.
+      double predicted = previous.energyJ;
+      if (result.steps.size() >= 2) {
+        const DeploymentStep& before = result.steps[result.steps.size() - 2];
+        if (previous.t > before.t)
+          predicted +=
+              (previous.energyJ - before.energyJ) / (previous.t - before.t) * (t - previous.t);
+      }
+      const double drop = std::min(previous.energyJ, predicted) - step.energyJ;
+      const bool dropped =
+          solved.converged &&
+          drop > options.snapEnergyDrop * std::max(previous.energyJ, model.energyUnit());
+      const bool steep =
+          solved.converged &&
+          std::abs(step.maxStressRatio - previous.maxStressRatio) > options.stressRatioStep;
+      if ((!solved.converged || dropped || steep) && depth < options.maxRefinements) {
+        pending.emplace_back(u, depth + 1);
+        pending.emplace_back(0.5 * (done + u), depth + 1);
+        continue;
+      }
+      result.iterations += solved.iterations;
+      if (!solved.converged) {
+        result.completed = false;
+        result.reason = "no equilibrium at t = " + std::to_string(t) + " (a step of " +
+                        std::to_string(u - done) + "): " + solved.reason;
+        result.last.solver = solved;
+        return;
+      }
+      step.snap = dropped;
+      step.jammedBolts = 0;
+      for (size_t k = 0; k < step.notchForcesN.size(); ++k) {
+        const double force = step.notchForcesN[k];
+        if (force > options.jamForceN && force > 1.1 * previous.notchForcesN[k]) ++step.jammedBolts;
+      }
+      result.snaps += step.snap;
+      result.jammedSteps += step.jammedBolts > 0;
+      model = std::move(trial);
       result.last.solver = solved;
-      break;
+      done = u;
+      result.steps.push_back(std::move(step));
     }
-    step.snap = dropped;
-    step.jammedBolts = 0;
-    for (size_t k = 0; k < step.notchForcesN.size(); ++k) {
-      const double force = step.notchForcesN[k];
-      if (force > options.jamForceN && force > 1.1 * previous.notchForcesN[k]) ++step.jammedBolts;
+  };
+  result.completed = true;
+  runPhase(path, 0.0, options.steps);
+  // The supports held only at the end: switched on where the grid now is, then moved to their
+  // places.
+  std::vector<int> engaged;
+  for (int a = 0; a < model.anchorCount(); ++a)
+    if (!moved(a)) engaged.push_back(a);
+  if (result.completed && !engaged.empty()) {
+    const SupportState end = path(1.0);
+    SupportState from = end;
+    for (int a : engaged) {
+      model.anchorPlace(a, from.positions[a], from.normals[a]);
+      model.setAnchorActive(a, true);
     }
-    result.snaps += step.snap;
-    result.jammedSteps += step.jammedBolts > 0;
-    model = std::move(trial);
-    result.last.solver = solved;
-    tDone = t;
-    result.steps.push_back(std::move(step));
+    result.engagedFromT = 1.0;
+    runPhase(straightSupportPath(from, end), 1.0, std::max(1, options.engageSteps));
   }
   result.peakStep = 0;
   for (size_t k = 1; k < result.steps.size(); ++k) {

@@ -64,6 +64,12 @@ struct DeploymentOptions {
   // Stress ratios max(sigma / f_m, tau / f_v); 0: not computed.
   double bendingStrengthPa = 0.0;
   double shearStrengthPa = 0.0;
+  // Which supports the path moves (per anchor; empty: all). The others hold nothing on the way;
+  // when the path ends they are switched on where the grid then is and moved to their places
+  // (path(1)) in engageSteps steps, recorded as t in (1, 2]: a crew fixes the rest of the boundary
+  // once the grid stands.
+  std::vector<bool> movedSupports;
+  int engageSteps = 4;
   bool keepFrames = true;  // every step's contact points (the animation)
   void validate() const;   // throws InvalidInput naming the field
 };
@@ -98,6 +104,7 @@ struct DeploymentResult {
   std::string reason;                 // why not
   int snaps = 0;                      // steps flagged as snap-through
   int jammedSteps = 0;                // steps with a jammed bolt
+  double engagedFromT = -1.0;         // t where the supports held only at the end were switched on
   int peakStep = 0;                   // the step with the largest stress ratio (bending stress
                                       // when no strengths are given)
   SimulationRun last;                 // the last state reached (geometry and solver totals)

@@ -232,6 +232,8 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
     const RodData& r = rods_[a.rod];
     data.positionWeight = options.anchorWeight * r.stiffness.stretching / r.h;
     data.angleWeight = options.anchorAngleWeight * r.stiffness.twisting / r.h;
+    data.fullPositionWeight = data.positionWeight;
+    data.fullAngleWeight = data.angleWeight;
     anchors_.push_back(data);
   }
 

@@ -115,6 +115,12 @@ class RodModel {
   // the lamella normal along `normal`, placed as the constructor places it (half a thickness off
   // for the rod's layer). Throws InvalidInput for a bad index or a zero normal.
   void setAnchor(int anchor, const Eigen::Vector3d& position, const Eigen::Vector3d& normal);
+  // A support that is off holds nothing (its penalty weights are zero, its stencil stays, so the
+  // Hessian's pattern does not change); on again, it holds with its full weights.
+  void setAnchorActive(int anchor, bool active);
+  // Where anchor k's rod point is now, as a support would hold it: the point on the contact surface
+  // (half a thickness back from the centreline) and the lamella normal there.
+  void anchorPlace(int anchor, Eigen::Vector3d& position, Eigen::Vector3d& normal) const;
   // The force (N) the support applies to the rod at the current state: the position penalty's pull
   // -dE_a/dq (at an equilibrium, the constraint's reaction).
   Eigen::Vector3d anchorForce(int anchor) const;
@@ -194,6 +200,7 @@ class RodModel {
     RodPoint point;
     Eigen::Vector3d target, targetNormal;
     double positionWeight = 0.0, angleWeight = 0.0;
+    double fullPositionWeight = 0.0, fullAngleWeight = 0.0;  // while active (setAnchorActive)
   };
   struct PointLoad {
     int dof;

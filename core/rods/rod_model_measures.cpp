@@ -25,6 +25,22 @@ void RodModel::setAnchor(int anchor, const Eigen::Vector3d& position,
   a.targetNormal = n;
 }
 
+void RodModel::setAnchorActive(int anchor, bool active) {
+  AnchorData& a = anchors_.at(anchor);
+  a.positionWeight = active ? a.fullPositionWeight : 0.0;
+  a.angleWeight = active ? a.fullAngleWeight : 0.0;
+}
+
+void RodModel::anchorPlace(int anchor, Eigen::Vector3d& position, Eigen::Vector3d& normal) const {
+  const AnchorData& a = anchors_.at(anchor);
+  const Eigen::Vector3d q = (1.0 - a.point.beta) * vertex(a.point.rod, a.point.edge) +
+                            a.point.beta * vertex(a.point.rod, a.point.edge + 1);
+  normal = edgeNormal(a.point.rod, a.point.edge);
+  const RodData& r = rods_[a.point.rod];
+  const double side = r.layer == 0 ? -0.5 : 0.5;
+  position = q - side * r.thickness * normal;
+}
+
 Eigen::Vector3d RodModel::anchorForce(int anchor) const {
   const AnchorData& a = anchors_.at(anchor);
   const Eigen::Vector3d q = (1.0 - a.point.beta) * vertex(a.point.rod, a.point.edge) +

@@ -48,7 +48,13 @@ TEST(DeploymentStage, EveryPatchOfATwoByTwoLayoutDeploysFromItsFlatGridToTheSimu
     const auto& path = p["path"];
     ASSERT_GE(path.size(), 7u);  // the flat grid and at least the 6 steps asked for
     EXPECT_EQ(path.front()["t"], 0.0);
-    EXPECT_EQ(path.back()["t"], 1.0);
+    // Corners first (t 0..1), then the shared sides' supports fixed (t 1..2): the lower peak here.
+    EXPECT_EQ(p["path_kind"], "corners first");
+    EXPECT_EQ(p["engaged_from_t"], 1.0);
+    EXPECT_EQ(path.back()["t"], 2.0);
+    ASSERT_TRUE(p.contains("alternative"));
+    EXPECT_LT(p["peak_stress_ratio"].get<double>(),
+              p["alternative"]["peak_stress_ratio"].get<double>());
     // The flat grid is the planar layout: all but stress free (the notch barriers hold the bolts
     // at their planar ends, Section 2.4.5).
     EXPECT_LT(path.front()["max_stress_ratio"].get<double>(), 0.05);

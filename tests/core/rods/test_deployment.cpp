@@ -175,6 +175,33 @@ TEST(Deployment, StraightSupportMovesEndInTheSimulationsEquilibrium) {
   EXPECT_NEAR(crown, 0.0, 2e-3);
 }
 
+TEST(Deployment, SupportsHeldOnlyAtTheEndAreFixedWhereTheGridStandsThenPulledToTheirPlaces) {
+  const CylinderGrid grid;
+  const double curvature = 1.0 / 1.5;
+  DeploymentOptions o = options();
+  o.steps = 8;
+  o.engageSteps = 3;
+  const RodNetwork network = grid.network(0.03);
+  // The supports on the v lamellas move; those on the outer u lamellas hold nothing on the way.
+  for (const Anchor& a : network.anchors) o.movedSupports.push_back(a.rod >= grid.uCount);
+  const SupportPath path = straightSupportPath(grid.supports(0.0), grid.supports(curvature));
+  const DeploymentResult result = deploy(network, path, o);
+  ASSERT_TRUE(result.completed) << result.reason;
+  EXPECT_EQ(result.engagedFromT, 1.0);
+  EXPECT_EQ(result.steps.back().t, 2.0);
+  for (const DeploymentStep& step : result.steps) {
+    for (size_t a = 0; a < network.anchors.size(); ++a)
+      if (!o.movedSupports[a] && step.t <= 1.0) EXPECT_EQ(step.supportForcesN[a].norm(), 0.0);
+  }
+  // The end is the fully supported cylinder: the arcs' bending stress.
+  const double t = CylinderGrid::thickness;
+  const double expected = 10.0e9 * 0.5 * t / (1.0 / curvature + 0.5 * t);
+  EXPECT_NEAR(result.steps.back().maxBendingStressPa, expected, 0.02 * expected);
+  EXPECT_LT(result.steps.back().maxNotchTravelM, 1e-4);
+  o.movedSupports.pop_back();
+  EXPECT_THROW(deploy(network, path, o), InvalidInput);
+}
+
 // A strip clamped at both ends, compressed by Delta = L / 100 and bulging up, whose clamps are then
 // turned to make it bulge down: the up shape is an inverted arch that holds until the clamp angle
 // reaches mu* sqrt(Delta / L), mu* ~ 1.78 (shallow-arch theory: Pandey et al. 2014, Gomez, Moulton

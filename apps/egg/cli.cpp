@@ -43,6 +43,7 @@ void buildCli(CLI::App& app, Action& action) {
   registerPipelineBench(*bench, action);
   registerSimBench(*bench, action);
   registerFemBench(*bench, action);
+  registerDeploymentBench(*bench, action);
 }
 
 // Parses the line into `action`. The exit code when the line itself ends the run (--help and

@@ -36,8 +36,10 @@ void registerGeodesicCommand(CLI::App& parent,
 void registerGeodesicBench(CLI::App& bench, Action& action);  // apps/bench/geodesic_bench.cpp
 void registerSimBench(CLI::App& bench, Action& action);       // sim_commands.cpp (egg bench sim)
 void registerFemBench(CLI::App& bench, Action& action);       // apps/bench/fem_bench.cpp
-void registerGridBench(CLI::App& bench, Action& action);      // grid_commands.cpp (egg bench grid)
-void registerLayoutBench(CLI::App& bench, Action& action);    // layout_bench.cpp (egg bench layout)
+void registerDeploymentBench(CLI::App& bench,
+                             Action& action);               // apps/bench/deployment_bench.cpp
+void registerGridBench(CLI::App& bench, Action& action);    // grid_commands.cpp (egg bench grid)
+void registerLayoutBench(CLI::App& bench, Action& action);  // layout_bench.cpp (egg bench layout)
 void registerPatchingBench(CLI::App& bench,
                            Action& action);  // patching_bench.cpp (egg bench patching)
 void registerPipelineBench(CLI::App& bench,

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <string>
+#include <utility>
 
 namespace egg::app {
 namespace fs = std::filesystem;
@@ -112,6 +114,24 @@ std::vector<PipelineStressCase> pipelineStressCases() {
     add("alpha_bar_0.05", "near_collapsed_quads",
         "bump 10 m, alpha_bar 0.05 rad (quads nearly collapsed)", s);
   }
+  {
+    // Deployment (issue 42): the path from the flat grid, soft and stiff sections, and a sharp bump
+    // whose long notches end with bolts pressing on them.
+    for (const auto& [name, material] :
+         {std::pair<std::string, std::string>{"deploy_soft_birch", "birch_plywood"},
+          {"deploy_stiff_steel", "steel_s235"}}) {
+      json s = baseScene(name);
+      s["lamella"]["material"] = material;
+      s["outputs"] = {"report", "deployment"};
+      add(name, "deployment", "bump 10 m, " + material + ", deployed from the flat grid", s);
+    }
+    json s = baseScene("deploy_peak");
+    s["surface"]["params"]["height"] = 3.0;
+    s["surface"]["params"]["sigma"] = 1.2;
+    s["outputs"] = {"report", "deployment"};
+    add("deploy_sharp_peak", "deployment",
+        "bump 10 m, 3 m high, sigma 1.2 m, deployed from the flat grid (long notches)", s);
+  }
   add("sliver_triangles", "sliver_triangles", "bump 10 m as 200 x 4 cells (triangles 50:1)",
       meshScene("sliver"))
       .writeMesh = [](const fs::path& p) {
@@ -195,6 +215,10 @@ PipelineStressRow classify(const PipelineStressCase& c, const ChildOutcome& o, c
       if (sim.contains("max_error_m") && sim["max_error_m"].is_number())
         row.maxErrorM = sim["max_error_m"].get<double>();
     }
+    if (report.contains("deployment") && report["deployment"].contains("patches"))
+      for (const json& p : report["deployment"]["patches"])
+        for (const char* k : {"peak_stress_ratio", "end_stress_ratio", "max_support_force_n"})
+          finite = finite && (p.contains("failure") || finiteNumber(p, k));
     if (report.contains("patches") && report["patches"].is_array())
       for (const json& p : report["patches"])
         for (const char* k : {"eta_u", "eta_v", "alpha_bar_rad", "area_m2"})

@@ -47,7 +47,7 @@ TEST(StressSuite, SuiteHoldsEveryClassOfTheIssue) {
   }
   for (const char* k : {"width_thickness", "youngs_modulus", "scale", "nearly_flat", "sharp_k_peak",
                         "near_collapsed_quads", "sliver_triangles", "holes", "disconnected",
-                        "non_manifold", "million_faces"})
+                        "non_manifold", "million_faces", "deployment"})
     EXPECT_TRUE(kinds.count(k)) << k;
   // Fixed: the same cases, in the same order, every call.
   const auto a = pipelineStressCases(), b = pipelineStressCases();

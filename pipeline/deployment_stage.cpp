@@ -34,6 +34,7 @@ struct PatchDeployment {
   json alternative;     // the other path's summary, when it ran
   double placementRmsM = 0.0;
   double endVsSimulationRmsM = -1.0;  // against the simulation's weightless equilibrium
+  double boltOffsetMaxM = -1.0;       // largest bolt position difference from the simulation's
 };
 
 double rmsBetween(const std::vector<std::vector<Eigen::Vector3d>>& a,
@@ -100,26 +101,28 @@ json patchJson(const PatchDeployment& d) {
     angleMax = std::max(angleMax, s.maxCrossingAngleRad);
     steps.push_back(stepJson(s));
   }
-  entry.update({{"completed", r.completed},
-                {"path_kind", d.path},
-                {"path_choice", d.choice},
-                {"engaged_from_t", r.engagedFromT >= 0.0 ? json(r.engagedFromT) : json(nullptr)},
-                {"steps", static_cast<int>(r.steps.size()) - 1},
-                {"iterations", r.iterations},
-                {"seconds", r.seconds},
-                {"snaps", r.snaps},
-                {"jammed_steps", r.jammedSteps},
-                {"peak_t", peak.t},
-                {"peak_stress_ratio", peak.maxStressRatio},
-                {"end_t", end.t},
-                {"end_stress_ratio", end.maxStressRatio},
-                {"max_support_force_n", supportForce},
-                {"max_notch_force_n", notchForce},
-                {"crossing_angle_deg", {angleMin * 180.0 / M_PI, angleMax * 180.0 / M_PI}},
-                {"flat_placement_rms_m", d.placementRmsM},
-                {"end_vs_simulation_rms_m",
-                 d.endVsSimulationRmsM >= 0.0 ? json(d.endVsSimulationRmsM) : json(nullptr)},
-                {"path", steps}});
+  entry.update(
+      {{"completed", r.completed},
+       {"path_kind", d.path},
+       {"path_choice", d.choice},
+       {"engaged_from_t", r.engagedFromT >= 0.0 ? json(r.engagedFromT) : json(nullptr)},
+       {"steps", static_cast<int>(r.steps.size()) - 1},
+       {"iterations", r.iterations},
+       {"seconds", r.seconds},
+       {"snaps", r.snaps},
+       {"jammed_steps", r.jammedSteps},
+       {"peak_t", peak.t},
+       {"peak_stress_ratio", peak.maxStressRatio},
+       {"end_t", end.t},
+       {"end_stress_ratio", end.maxStressRatio},
+       {"max_support_force_n", supportForce},
+       {"max_notch_force_n", notchForce},
+       {"crossing_angle_deg", {angleMin * 180.0 / M_PI, angleMax * 180.0 / M_PI}},
+       {"flat_placement_rms_m", d.placementRmsM},
+       {"end_vs_simulation_rms_m",
+        d.endVsSimulationRmsM >= 0.0 ? json(d.endVsSimulationRmsM) : json(nullptr)},
+       {"end_bolt_offset_max_m", d.boltOffsetMaxM >= 0.0 ? json(d.boltOffsetMaxM) : json(nullptr)},
+       {"path", steps}});
   if (!r.completed) entry["reason"] = r.reason;
   if (!d.alternative.is_null()) entry["alternative"] = d.alternative;
   return entry;
@@ -301,6 +304,16 @@ void deploymentStage(RunState& state) {
       run.result = std::move(first);
       if (patch.simulation) {
         const rods::SimulationRun& sim = patch.simulation->deployed;
+        // Where the bolts stopped in their notches against where the simulation put them: pseudo-
+        // friction (Section 2.5) can hold a bolt short on the way, as wood's friction does.
+        if (sim.boltPositionsM.size() == run.result->last.boltPositionsM.size()) {
+          run.boltOffsetMaxM = 0.0;
+          for (size_t c = 0; c < sim.boltPositionsM.size(); ++c)
+            for (int side = 0; side < 2; ++side)
+              run.boltOffsetMaxM = std::max(
+                  run.boltOffsetMaxM,
+                  std::abs(sim.boltPositionsM[c][side] - run.result->last.boltPositionsM[c][side]));
+        }
         run.endVsSimulationRmsM = rmsBetween(
             run.result->last.contactPoints,
             sim.weightlessContactPoints.empty() ? sim.contactPoints : sim.weightlessContactPoints);

@@ -166,7 +166,8 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs) {
   const double width = 900, height = 340;
   std::ostringstream svg;
   svg << fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} "
+      "<svg id=\"deployment-chart\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" "
+      "height=\"{1}\" viewBox=\"0 0 {0} "
       "{1}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" "
       "fill=\"white\"/>\n",
       width, height);
@@ -323,9 +324,13 @@ void deploymentStage(RunState& state) {
     }
   });
   json section{{"ran", true},
-               {"path",
-                "synchronised: every support along a straight line from its place on the "
-                "flat grid to its deployed place, normals turned at a uniform rate"},
+               {"paths",
+                "corners first: the corner supports move together along straight lines from "
+                "their places on the flat grid to their deployed places (normals turned at a "
+                "uniform rate), t 0..1, then the other supports are fixed where the grid stands "
+                "and pulled to their places, t 1..2; all supports together: every support so, t "
+                "0..1. Corners first is kept when it stays within the limits, else the path with "
+                "the lower peak stress ratio"},
                {"self_weight", false},
                {"steps_requested", scene.deployment.steps},
                {"jam_force_n", scene.deployment.jamForceN},

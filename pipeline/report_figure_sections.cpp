@@ -97,4 +97,8 @@ std::string elevationsSection(const std::string& elevationsSvg) {
                        "elevations-");
 }
 
+std::string deploymentFigure(const std::string& deploymentSvg) {
+  return inlinedFigure("", deploymentSvg, "No deployment chart (deployment.svg).", "deployment-");
+}
+
 }  // namespace egg::pipeline::report_sections

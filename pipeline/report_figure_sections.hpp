@@ -14,5 +14,7 @@ std::string planSection(const std::string& planSvg, const std::string& curvature
 std::string patchGridsSection(const std::vector<std::pair<int, std::string>>& planarSvgs);
 std::string deployedSection(const std::string& deployedSvg);
 std::string elevationsSection(const std::string& elevationsSvg);
+// deployment.svg inlined (the deployment section's chart; report_html.cpp writes its heading).
+std::string deploymentFigure(const std::string& deploymentSvg);
 
 }  // namespace egg::pipeline::report_sections

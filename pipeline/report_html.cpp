@@ -365,6 +365,37 @@ svg.chart{display:block;margin:8px 0}.figure{border:1px solid #ddd;display:inlin
 
 // The FE check (output "fem"): what ccx found per load case, buckling, the cross-check against
 // the rods, and the figure; or why it was not solved.
+// The deployment (docs/deployment.md): per patch the path chosen and why, the peak stress ratio on
+// the way beside the end state's, snaps, jams, the largest support force; then the chart.
+std::string deploymentSection(const json& report, const std::string& figureSvg) {
+  const json d = at(report, "deployment");
+  if (!d.is_object() || !d.value("ran", false)) return "";
+  std::string html =
+      "<h2 id=\"deployment\">Deployment: from the flat grid to the supports</h2>\n<p>" +
+      text(at(d, "paths")) +
+      ". Self-weight is not included.</p>\n<table>\n<tr><th>patch</th>"
+      "<th>path</th><th>why</th><th>steps</th><th>peak stress ratio</th><th>at t</th>"
+      "<th>end state</th><th>snaps</th><th>jammed steps</th><th>largest support force "
+      "(kN)</th><th>end vs simulation (mm)</th></tr>\n";
+  for (const auto& p : at(d, "patches")) {
+    if (p.contains("failure")) {
+      html += "<tr><td>P" + text(at(p, "patch")) +
+              "</td><td colspan=\"10\">failed: " + text(at(p, "failure")) + "</td></tr>\n";
+      continue;
+    }
+    const json end = at(p, "end_vs_simulation_rms_m");
+    html += "<tr><td>P" + text(at(p, "patch")) + "</td><td>" + text(at(p, "path_kind")) +
+            "</td><td>" + text(at(p, "path_choice")) + "</td><td>" + text(at(p, "steps")) +
+            "</td><td>" + text(at(p, "peak_stress_ratio"), 3) + "</td><td>" +
+            text(at(p, "peak_t"), 3) + "</td><td>" + text(at(p, "end_stress_ratio"), 3) +
+            "</td><td>" + text(at(p, "snaps")) + "</td><td>" + text(at(p, "jammed_steps")) +
+            "</td><td>" + text(json(1e-3 * at(p, "max_support_force_n").get<double>()), 4) +
+            "</td><td>" + (end.is_number() ? text(json(1e3 * end.get<double>()), 3) : "-") +
+            "</td></tr>\n";
+  }
+  return html + "</table>\n" + report_sections::deploymentFigure(figureSvg);
+}
+
 std::string verificationSection(const json& report, const std::string& figureSvg) {
   const json stage = at(at(report, "stages"), "verification");
   const json v = at(report, "verification");
@@ -450,7 +481,8 @@ std::string reportHtml(const json& report, const ReportFiles& files) {
           deployedViewSection(files.deployedViewJson) +
           report_sections::deployedSection(files.deployedSvg) +
           report_sections::elevationsSection(files.elevationsSvg) +
-          verificationSection(report, files.verificationSvg) + fabricationSection(report) +
+          verificationSection(report, files.verificationSvg) +
+          deploymentSection(report, files.deploymentSvg) + fabricationSection(report) +
           bomSection(files.bomCsv);
   return html + "</body>\n</html>\n";
 }
@@ -498,6 +530,7 @@ std::vector<std::string> writeReportHtml(const std::filesystem::path& runDir, co
   files.deployedSvg = readIfThere("deployed.svg");
   files.elevationsSvg = readIfThere("elevations.svg");
   files.verificationSvg = readIfThere("fem/verification.svg");
+  files.deploymentSvg = readIfThere("deployment.svg");
   files.deployedViewJson = readIfThere("deployed.json");
   const std::string html = reportHtml(report, files);
   writeFileAtomically(runDir / "report.html", html);

@@ -25,6 +25,7 @@ struct ReportFiles {
   std::string deployedSvg;       // deployed.svg (deviation_plan.hpp), after the simulation figures
   std::string elevationsSvg;     // elevations.svg (elevations.hpp), after deployed.svg
   std::string verificationSvg;   // fem/verification.svg, in the structural check's section
+  std::string deploymentSvg;     // deployment.svg, in the deployment's section
   std::string deployedViewJson;  // deployed.json: the 3D view's data
 };
 

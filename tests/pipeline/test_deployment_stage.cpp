@@ -77,6 +77,13 @@ TEST(DeploymentStage, EveryPatchOfATwoByTwoLayoutDeploysFromItsFlatGridToTheSimu
                          (out / "deployment.svg").string())
                             .c_str()),
             0);
+  // report.html's section: the table and the chart inlined.
+  std::ifstream page(out / "report.html");
+  std::stringstream html;
+  html << page.rdbuf();
+  EXPECT_NE(html.str().find("<h2 id=\"deployment\">"), std::string::npos);
+  EXPECT_NE(html.str().find("<td>P3</td><td>corners first</td>"), std::string::npos);
+  EXPECT_NE(html.str().find("<svg id=\"deployment-chart\""), std::string::npos);
   ASSERT_TRUE(fs::exists(out / "deployment.glb"));
   if (const std::string why = exporter::testing::nodeChecksUnavailable(); !why.empty()) {
     fs::remove_all(out);

@@ -49,13 +49,32 @@ double rmsBetween(const std::vector<std::vector<Eigen::Vector3d>>& a,
   return std::sqrt(sum / std::max<long>(count, 1));
 }
 
+// The force at which a bolt pressing on the end of its notch crushes the lamella there: the
+// embedment capacity f_h d t. Timber: f_h,k = 0.082 (1 - 0.01 d) rho_k (solid timber, EN 1995-1-1
+// eq. 8.32) or 0.11 (1 - 0.01 d) rho_k (plywood, eq. 8.36), MPa with d in mm and rho_k in kg/m3
+// (the catalogue's density stands for rho_k). Other materials (GFRP, steel): their bending
+// strength as the bearing stress, a lower bound of their bearing resistance.
+double embedmentCapacityN(const Scene& scene) {
+  const MaterialProperties& m = materialByName(scene.lamella.material);
+  const double d = scene.fabricationOptions().boltDiameterMm;
+  const bool timber = m.densityKgM3 < 1000.0;
+  const bool plywood = m.name.find("plywood") != std::string::npos;
+  const double fhPa = timber ? (plywood ? 0.11 : 0.082) * (1.0 - 0.01 * d) * m.densityKgM3 * 1e6
+                             : m.bendingStrengthPa;
+  return fhPa * d * 1e-3 * scene.lamella.thicknessM;
+}
+
+double jamForceN(const Scene& scene) {
+  return scene.deployment.jamForceN > 0.0 ? scene.deployment.jamForceN : embedmentCapacityN(scene);
+}
+
 rods::DeploymentOptions deploymentOptions(const Scene& scene, int patches) {
   rods::DeploymentOptions o;
   o.model = scene.simulation.rods.model;
   o.solver = scene.simulation.rods.solver;
   if (patches > 1) o.solver.threads = 1;  // patches in parallel, as the simulation stage
   o.steps = scene.deployment.steps;
-  o.jamForceN = scene.deployment.jamForceN;
+  o.jamForceN = jamForceN(scene);
   o.snapEnergyDrop = scene.deployment.snapEnergyDrop;
   const MaterialProperties& material = materialByName(scene.lamella.material);
   o.bendingStrengthPa = material.bendingStrengthPa;
@@ -333,7 +352,10 @@ void deploymentStage(RunState& state) {
                 "the lower peak stress ratio"},
                {"self_weight", false},
                {"steps_requested", scene.deployment.steps},
-               {"jam_force_n", scene.deployment.jamForceN},
+               {"jam_force_n", jamForceN(scene)},
+               {"jam_force_from", scene.deployment.jamForceN > 0.0
+                                      ? "deployment.jam_force_n"
+                                      : "the bolt's embedment capacity in the lamella"},
                {"snap_energy_drop", scene.deployment.snapEnergyDrop}};
   json patches = json::array();
   std::vector<exporter::DeploymentAnimation> animations;
@@ -353,10 +375,11 @@ void deploymentStage(RunState& state) {
           d.patch, r.snaps,
           std::find_if(r.steps.begin(), r.steps.end(), [](const auto& s) { return s.snap; })->t));
     if (r.jammedSteps > 0)
-      state.report.warn(fmt::format(
-          "deployment: patch P{}: a bolt jams at a notch end in {} step(s) (more than {} N): "
-          "lengthen that notch or free the bolt",
-          d.patch, r.jammedSteps, scene.deployment.jamForceN));
+      state.report.warn(
+          fmt::format("deployment: patch P{}: a bolt jams at a notch end in {} step(s) (pressing "
+                      "harder than {:.0f} N): "
+                      "lengthen that notch or free the bolt",
+                      d.patch, r.jammedSteps, jamForceN(scene)));
     const auto& peak = r.steps[r.peakStep];
     if (peak.maxStressRatio > 1.0)
       state.report.warn(fmt::format(

@@ -109,8 +109,10 @@ struct LoadsChoice {
 
 // The deployment stage (output "deployment", docs/deployment.md).
 struct DeploymentChoice {
-  int steps = 10;                // equal support moves from the flat grid to the deployed one
-  double jamForceN = 10.0;       // a bolt pressing on a notch end harder than this is jammed
+  int steps = 10;  // equal support moves from the flat grid to the deployed one
+  // A bolt pressing on a notch end harder than this is jammed; 0: the bolt's embedment capacity in
+  // the lamella (docs/deployment.md).
+  double jamForceN = 0.0;
   double snapEnergyDrop = 0.05;  // energy drop over one finest step that is a snap-through
 };
 

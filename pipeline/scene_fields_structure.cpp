@@ -250,8 +250,9 @@ void addStructureSections(std::vector<SceneSection>& sections) {
        {integer("steps", EGG_AT(deployment.steps), 1, 1000,
                 "equal, synchronised support moves from the flat grid to the deployed supports "
                 "(a step that fails or jumps is split in halves up to 4 times)"),
-        number("jam_force_n", EGG_AT(deployment.jamForceN), 1e-6, 1e9,
-               "a sliding bolt at a notch end pressing on it harder than this is jammed"),
+        number("jam_force_n", EGG_AT(deployment.jamForceN), 0.0, 1e9,
+               "a sliding bolt at a notch end pressing on it harder than this is jammed (0: the "
+               "bolt's embedment capacity in the lamella, EN 1995-1-1 8.5)"),
         number("snap_energy_drop", EGG_AT(deployment.snapEnergyDrop), 1e-6, 0.99,
                "a drop of the lamellas' elastic energy over one finest step by more than this "
                "fraction is a snap-through")},

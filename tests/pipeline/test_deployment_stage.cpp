@@ -48,13 +48,20 @@ TEST(DeploymentStage, EveryPatchOfATwoByTwoLayoutDeploysFromItsFlatGridToTheSimu
     const auto& path = p["path"];
     ASSERT_GE(path.size(), 7u);  // the flat grid and at least the 6 steps asked for
     EXPECT_EQ(path.front()["t"], 0.0);
-    // Corners first (t 0..1), then the shared sides' supports fixed (t 1..2): the lower peak here.
+    // Corners first (t 0..1), then the shared sides' supports fixed (t 1..2).
     EXPECT_EQ(p["path_kind"], "corners first");
     EXPECT_EQ(p["engaged_from_t"], 1.0);
     EXPECT_EQ(path.back()["t"], 2.0);
-    ASSERT_TRUE(p.contains("alternative"));
-    EXPECT_LT(p["peak_stress_ratio"].get<double>(),
-              p["alternative"]["peak_stress_ratio"].get<double>());
+    // Kept because it stays within the limits, or run beside the other path and lower.
+    if (p.contains("alternative")) {
+      EXPECT_LT(p["peak_stress_ratio"].get<double>(),
+                p["alternative"]["peak_stress_ratio"].get<double>());
+    } else {
+      EXPECT_NE(p["path_choice"].get<std::string>().find("within the limits"), std::string::npos);
+      EXPECT_LE(p["peak_stress_ratio"].get<double>(), 1.0);
+      EXPECT_EQ(p["snaps"], 0);
+      EXPECT_EQ(p["jammed_steps"], 0);
+    }
     // The flat grid is the planar layout: all but stress free (the notch barriers hold the bolts
     // at their planar ends, Section 2.4.5).
     EXPECT_LT(path.front()["max_stress_ratio"].get<double>(), 0.05);

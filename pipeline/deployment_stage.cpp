@@ -252,6 +252,81 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs) {
   return svg.str();
 }
 
+// One patch: corners first, and all supports together when corners first misses a limit; the
+// path kept and why.
+PatchDeployment deployPatch(const SolvedPatch& patch, const rods::DeploymentOptions& options) {
+  PatchDeployment run;
+  run.patch = patch.id;
+  try {
+    const assembly::FlatGrid flat = assembly::flatGrid(patch.egg->grid, *patch.network);
+    run.placementRmsM = flat.placementRmsM;
+    const rods::SupportPath path = rods::straightSupportPath(flat.flat, flat.deployed);
+    // Corners first: the crew moves the patch's four corner supports and fixes the rest of the
+    // boundary once the grid stands. Every boundary support moved at once along straight lines
+    // shortens the boundary lamellas' short spans between them (a chord of the flat and the
+    // deployed positions is shorter than both) and buckles them.
+    std::vector<bool> corners(patch.network->anchors.size(), false);
+    int cornerCount = 0;
+    for (size_t a = 0; a < patch.egg->grid.anchors.size() && a < corners.size(); ++a)
+      if (patch.egg->grid.anchors[a].reason == "corner") corners[a] = true, ++cornerCount;
+    const bool twoPaths = cornerCount >= 3 && cornerCount < static_cast<int>(corners.size());
+    rods::DeploymentOptions cornerOptions = options;
+    if (twoPaths) cornerOptions.movedSupports = corners;
+    rods::DeploymentResult first = rods::deploy(flat.network, path, cornerOptions);
+    run.path = twoPaths ? "corners first" : "all supports together";
+    run.choice = twoPaths ? "" : "the grid's only supports are its corners";
+    const auto fine = [&](const rods::DeploymentResult& r) {
+      return r.completed && r.snaps == 0 && r.jammedSteps == 0 &&
+             r.steps[r.peakStep].maxStressRatio <= 1.0;
+    };
+    const auto summary = [](const std::string& name, const rods::DeploymentResult& r) {
+      return json{{"path", name},
+                  {"completed", r.completed},
+                  {"peak_stress_ratio", r.steps[r.peakStep].maxStressRatio},
+                  {"snaps", r.snaps},
+                  {"jammed_steps", r.jammedSteps},
+                  {"seconds", r.seconds}};
+    };
+    if (twoPaths && fine(first)) {
+      run.choice = "corners first stays within the limits (no snap, no jam, stress ratio <= 1)";
+    } else if (twoPaths) {
+      rods::DeploymentResult all = rods::deploy(flat.network, path, options);
+      const auto rank = [](const rods::DeploymentResult& r) {
+        return std::make_tuple(!r.completed, r.steps[r.peakStep].maxStressRatio, r.snaps);
+      };
+      if (rank(all) < rank(first)) {
+        run.alternative = summary("corners first", first);
+        first = std::move(all);
+        run.path = "all supports together";
+        run.choice = "a lower peak stress ratio than corners first";
+      } else {
+        run.alternative = summary("all supports together", all);
+        run.choice = "a lower peak stress ratio than all supports together";
+      }
+    }
+    run.result = std::move(first);
+    if (patch.simulation) {
+      const rods::SimulationRun& sim = patch.simulation->deployed;
+      // Where the bolts stopped in their notches against where the simulation put them: pseudo-
+      // friction (Section 2.5) can hold a bolt short on the way, as wood's friction does.
+      if (sim.boltPositionsM.size() == run.result->last.boltPositionsM.size()) {
+        run.boltOffsetMaxM = 0.0;
+        for (size_t c = 0; c < sim.boltPositionsM.size(); ++c)
+          for (int side = 0; side < 2; ++side)
+            run.boltOffsetMaxM = std::max(
+                run.boltOffsetMaxM,
+                std::abs(sim.boltPositionsM[c][side] - run.result->last.boltPositionsM[c][side]));
+      }
+      run.endVsSimulationRmsM = rmsBetween(
+          run.result->last.contactPoints,
+          sim.weightlessContactPoints.empty() ? sim.contactPoints : sim.weightlessContactPoints);
+    }
+  } catch (const Error& e) {
+    run.failure = e.what();
+  }
+  return run;
+}
+
 }  // namespace
 
 std::string deploymentSkipReason(const RunState& state) {
@@ -271,77 +346,8 @@ void deploymentStage(RunState& state) {
       sources.push_back(&p);
     }
   const rods::DeploymentOptions options = deploymentOptions(scene, static_cast<int>(runs.size()));
-  tbb::parallel_for(size_t(0), runs.size(), [&](size_t i) {
-    const SolvedPatch& patch = *sources[i];
-    PatchDeployment& run = runs[i];
-    try {
-      const assembly::FlatGrid flat = assembly::flatGrid(patch.egg->grid, *patch.network);
-      run.placementRmsM = flat.placementRmsM;
-      const rods::SupportPath path = rods::straightSupportPath(flat.flat, flat.deployed);
-      // Corners first: the crew moves the patch's four corner supports and fixes the rest of the
-      // boundary once the grid stands. Every boundary support moved at once along straight lines
-      // shortens the boundary lamellas' short spans between them (a chord of the flat and the
-      // deployed positions is shorter than both) and buckles them.
-      std::vector<bool> corners(patch.network->anchors.size(), false);
-      int cornerCount = 0;
-      for (size_t a = 0; a < patch.egg->grid.anchors.size() && a < corners.size(); ++a)
-        if (patch.egg->grid.anchors[a].reason == "corner") corners[a] = true, ++cornerCount;
-      const bool twoPaths = cornerCount >= 3 && cornerCount < static_cast<int>(corners.size());
-      rods::DeploymentOptions cornerOptions = options;
-      if (twoPaths) cornerOptions.movedSupports = corners;
-      rods::DeploymentResult first = rods::deploy(flat.network, path, cornerOptions);
-      run.path = twoPaths ? "corners first" : "all supports together";
-      run.choice = twoPaths ? "" : "the grid's only supports are its corners";
-      const auto fine = [&](const rods::DeploymentResult& r) {
-        return r.completed && r.snaps == 0 && r.jammedSteps == 0 &&
-               r.steps[r.peakStep].maxStressRatio <= 1.0;
-      };
-      const auto summary = [](const std::string& name, const rods::DeploymentResult& r) {
-        return json{{"path", name},
-                    {"completed", r.completed},
-                    {"peak_stress_ratio", r.steps[r.peakStep].maxStressRatio},
-                    {"snaps", r.snaps},
-                    {"jammed_steps", r.jammedSteps},
-                    {"seconds", r.seconds}};
-      };
-      if (twoPaths && fine(first)) {
-        run.choice = "corners first stays within the limits (no snap, no jam, stress ratio <= 1)";
-      } else if (twoPaths) {
-        rods::DeploymentResult all = rods::deploy(flat.network, path, options);
-        const auto rank = [](const rods::DeploymentResult& r) {
-          return std::make_tuple(!r.completed, r.steps[r.peakStep].maxStressRatio, r.snaps);
-        };
-        if (rank(all) < rank(first)) {
-          run.alternative = summary("corners first", first);
-          first = std::move(all);
-          run.path = "all supports together";
-          run.choice = "a lower peak stress ratio than corners first";
-        } else {
-          run.alternative = summary("all supports together", all);
-          run.choice = "a lower peak stress ratio than all supports together";
-        }
-      }
-      run.result = std::move(first);
-      if (patch.simulation) {
-        const rods::SimulationRun& sim = patch.simulation->deployed;
-        // Where the bolts stopped in their notches against where the simulation put them: pseudo-
-        // friction (Section 2.5) can hold a bolt short on the way, as wood's friction does.
-        if (sim.boltPositionsM.size() == run.result->last.boltPositionsM.size()) {
-          run.boltOffsetMaxM = 0.0;
-          for (size_t c = 0; c < sim.boltPositionsM.size(); ++c)
-            for (int side = 0; side < 2; ++side)
-              run.boltOffsetMaxM = std::max(
-                  run.boltOffsetMaxM,
-                  std::abs(sim.boltPositionsM[c][side] - run.result->last.boltPositionsM[c][side]));
-        }
-        run.endVsSimulationRmsM = rmsBetween(
-            run.result->last.contactPoints,
-            sim.weightlessContactPoints.empty() ? sim.contactPoints : sim.weightlessContactPoints);
-      }
-    } catch (const Error& e) {
-      run.failure = e.what();
-    }
-  });
+  tbb::parallel_for(size_t(0), runs.size(),
+                    [&](size_t i) { runs[i] = deployPatch(*sources[i], options); });
   json section{{"ran", true},
                {"paths",
                 "corners first: the corner supports move together along straight lines from "

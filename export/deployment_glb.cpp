@@ -1,10 +1,10 @@
 #include "export/deployment_glb.hpp"
 
 #include "core/errors.hpp"
+#include "export/gltf_buffer.hpp"
 
 #include <tiny_gltf.h>
 
-#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -76,18 +76,8 @@ class AnimationBuilder {
  private:
   int accessor(const void* bytes, size_t size, int component, int type, size_t count, int target,
                const std::vector<double>& lo, const std::vector<double>& hi) {
-    auto& data = gltf_.buffers[0].data;
-    const size_t offset = (data.size() + 3) / 4 * 4;
-    data.resize(offset + size);
-    std::memcpy(data.data() + offset, bytes, size);
-    tinygltf::BufferView v;
-    v.buffer = 0;
-    v.byteOffset = offset;
-    v.byteLength = size;
-    v.target = target;
-    gltf_.bufferViews.push_back(v);
     tinygltf::Accessor a;
-    a.bufferView = static_cast<int>(gltf_.bufferViews.size()) - 1;
+    a.bufferView = appendBufferView(gltf_, bytes, size, target);
     a.componentType = component;
     a.type = type;
     a.count = count;

@@ -1,6 +1,7 @@
 #include "export/glb_writer.hpp"
 
 #include "core/errors.hpp"
+#include "export/gltf_buffer.hpp"
 
 #include <tiny_gltf.h>
 #include <nlohmann/json.hpp>
@@ -9,7 +10,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -110,17 +110,7 @@ class GltfBuilder {
 
  private:
   int view(const void* bytes, size_t size, int target) {
-    auto& data = gltf_.buffers[0].data;
-    const size_t offset = (data.size() + 3) / 4 * 4;  // accessors align to their component size
-    data.resize(offset + size);
-    std::memcpy(data.data() + offset, bytes, size);
-    tinygltf::BufferView v;
-    v.buffer = 0;
-    v.byteOffset = offset;
-    v.byteLength = size;
-    v.target = target;
-    gltf_.bufferViews.push_back(v);
-    return static_cast<int>(gltf_.bufferViews.size()) - 1;
+    return appendBufferView(gltf_, bytes, size, target);
   }
 
   int vec3(const std::vector<Eigen::Vector3d>& points, bool bounds) {

@@ -25,38 +25,29 @@ Eigen::Vector3d turnNormal(const Eigen::Vector3d& from, const Eigen::Vector3d& t
   return Eigen::Quaterniond::Identity().slerp(t, full) * from;
 }
 
-// The lamellas' own elastic energy (J): bending about both axes and twisting at every interior
-// vertex, stretching of every edge. Not the solver's energy, whose penalties and pseudo-friction
-// (Section 2.5) change as bolts move between edges without any work being done.
-double elasticEnergy(const RodModel& model) {
-  double energy = 0.0;
-  for (int r = 0; r < model.rodCount(); ++r) {
-    const RodStiffness& k = model.stiffness(r);
-    const double h = model.restEdgeLength(r);
-    for (const RodModel::VertexStrain& s : model.vertexStrains(r)) {
-      energy += 0.5 * h *
-                (k.bendingWeak * s.weakCurvature * s.weakCurvature +
-                 k.bendingStrong * s.strongCurvature * s.strongCurvature +
-                 k.twisting * s.twistRate * s.twistRate);
-    }
-    for (int i = 0; i + 1 < model.vertexCount(r); ++i) {
-      const double strain = (model.vertex(r, i + 1) - model.vertex(r, i)).norm() / h - 1.0;
-      energy += 0.5 * k.stretching * h * strain * strain;
-    }
-  }
-  return energy;
-}
-
 struct Measurer {
   const RodNetwork& network;
   const DeploymentOptions& options;
 
   void operator()(const RodModel& model, DeploymentStep& step) const {
-    step.energyJ = elasticEnergy(model);
+    // The lamellas' own elastic energy (J): bending about both axes and twisting at every interior
+    // vertex, stretching of every edge. Not the solver's energy, whose penalties and
+    // pseudo-friction (Section 2.5) change as bolts move between edges without work being done.
+    step.energyJ = 0.0;
     step.maxBendingStressPa = step.maxTorsionStressPa = step.maxStressRatio = 0.0;
     for (int r = 0; r < model.rodCount(); ++r) {
       const Rod& rod = network.rods[r];
+      const RodStiffness& k = model.stiffness(r);
+      const double h = model.restEdgeLength(r);
+      for (int i = 0; i + 1 < model.vertexCount(r); ++i) {
+        const double strain = (model.vertex(r, i + 1) - model.vertex(r, i)).norm() / h - 1.0;
+        step.energyJ += 0.5 * k.stretching * h * strain * strain;
+      }
       for (const RodModel::VertexStrain& s : model.vertexStrains(r)) {
+        step.energyJ += 0.5 * h *
+                        (k.bendingWeak * s.weakCurvature * s.weakCurvature +
+                         k.bendingStrong * s.strongCurvature * s.strongCurvature +
+                         k.twisting * s.twistRate * s.twistRate);
         const double sigma = rod.material.youngsModulusPa *
                              (std::abs(s.weakCurvature) * 0.5 * rod.section.thicknessM +
                               std::abs(s.strongCurvature) * 0.5 * rod.section.widthM);
@@ -187,7 +178,8 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
   };
   for (int a = 0; a < model.anchorCount(); ++a) model.setAnchorActive(a, moved(a));
   DeploymentStep first;
-  placeSupports(model, path(0.0));
+  const SupportState flatSupports = path(0.0);
+  placeSupports(model, flatSupports);
   SolverOptions solverOptions = options.solver;
   // The flat grid is its own equilibrium (zero energy, Section 2.3): this solve only settles the
   // discretisation.
@@ -196,7 +188,7 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
   first.iterations = result.last.solver.iterations;
   first.stable = result.last.solver.stableEquilibrium;
   first.seconds = result.last.solver.seconds;
-  first.supportPositionsM = path(0.0).positions;
+  first.supportPositionsM = flatSupports.positions;
   measure(model, first);
   result.iterations = first.iterations;
   result.steps.push_back(std::move(first));

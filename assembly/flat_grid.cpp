@@ -122,9 +122,18 @@ FlatGrid flatGrid(const EggGrid& grid, const rods::RodNetwork& deployed) {
     rod.guess = {place(m.planarStart), place(m.planarEnd)};
     rod.guessNormals = {bestNormal, bestNormal};
   }
-  for (rods::Connection& c : result.network.connections) {
+  const auto pointOn = [&](int r, double s) {
+    const rods::Rod& rod = result.network.rods[r];
+    const double f = rod.lengthM > 0.0 ? s / rod.lengthM : 0.0;
+    return (rod.guess[0] + f * (rod.guess[1] - rod.guess[0])).eval();
+  };
+  for (size_t k = 0; k < result.network.connections.size(); ++k) {
+    rods::Connection& c = result.network.connections[k];
     c.startAM = c.sAM;
     c.startBM = c.sBM;
+    const double misfit = (pointOn(c.rodA, c.sAM) - pointOn(c.rodB, c.sBM)).norm();
+    if (misfit > result.boltMisfitMaxM)
+      result.boltMisfitMaxM = misfit, result.boltMisfitMaxConnection = static_cast<int>(k);
   }
   for (size_t a = 0; a < deployed.anchors.size(); ++a) {
     const rods::Anchor& anchor = deployed.anchors[a];

@@ -14,6 +14,11 @@ struct FlatGrid {
   rods::SupportState flat;      // the anchors on the flat grid
   rods::SupportState deployed;  // the anchors of the deployed network
   double placementRmsM = 0.0;   // the rigid placement's fit over the connections (m)
+  // Largest distance, over the bolts, between the two straight lamellas' points where the bolt
+  // sits (its flat position along each): how far the flat layout misses assembling without
+  // strain, the planar grid's crossings against straight members of the rods' lengths (m).
+  double boltMisfitMaxM = 0.0;
+  int boltMisfitMaxConnection = -1;
 };
 
 // `deployed` is rodNetworkFromGrid(grid) (u members first, then v), possibly with more anchors

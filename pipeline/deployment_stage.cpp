@@ -33,6 +33,7 @@ struct PatchDeployment {
   std::string choice;   // why
   json alternative;     // the other path's summary, when it ran
   double placementRmsM = 0.0;
+  double flatMisfitM = 0.0;
   double endVsSimulationRmsM = -1.0;  // against the simulation's weightless equilibrium
   double boltOffsetMaxM = -1.0;       // largest bolt position difference from the simulation's
 };
@@ -138,6 +139,7 @@ json patchJson(const PatchDeployment& d) {
        {"max_notch_force_n", notchForce},
        {"crossing_angle_deg", {angleMin * 180.0 / M_PI, angleMax * 180.0 / M_PI}},
        {"flat_placement_rms_m", d.placementRmsM},
+       {"flat_bolt_misfit_max_m", d.flatMisfitM},
        {"end_vs_simulation_rms_m",
         d.endVsSimulationRmsM >= 0.0 ? json(d.endVsSimulationRmsM) : json(nullptr)},
        {"end_bolt_offset_max_m", d.boltOffsetMaxM >= 0.0 ? json(d.boltOffsetMaxM) : json(nullptr)},
@@ -260,6 +262,7 @@ PatchDeployment deployPatch(const SolvedPatch& patch, const rods::DeploymentOpti
   try {
     const assembly::FlatGrid flat = assembly::flatGrid(patch.egg->grid, *patch.network);
     run.placementRmsM = flat.placementRmsM;
+    run.flatMisfitM = flat.boltMisfitMaxM;
     const rods::SupportPath path = rods::straightSupportPath(flat.flat, flat.deployed);
     // Corners first: the crew moves the patch's four corner supports and fixes the rest of the
     // boundary once the grid stands. Every boundary support moved at once along straight lines

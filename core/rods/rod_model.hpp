@@ -125,8 +125,8 @@ class RodModel {
   // -dE_a/dq (at an equilibrium, the constraint's reaction).
   Eigen::Vector3d anchorForce(int anchor) const;
   // Force (N) with which a sliding bolt side (0: the connection's rod a, 1: rod b) presses on a
-  // notch end: the notch barrier E_n's derivative along the rod. 0 for a plain hole or a bolt
-  // farther than one edge from both ends.
+  // notch end: the notch barrier E_n's derivative along the rod, both ends' pushes together. 0 for
+  // a plain hole or a bolt farther than one edge from both ends.
   double notchEndForce(int connection, int side) const;
   // Angle (rad, 0..pi) between the two rods' tangents at a bolt.
   double crossingAngle(int connection) const;

@@ -53,15 +53,16 @@ double RodModel::notchEndForce(int connection, int side) const {
   const BoltSide& s = (side == 0) == b.aIsLower ? b.lower : b.upper;
   if (s.betaDof < 0) return 0.0;
   // E_n = unit (0.1 ln d)^2 within one edge of an end, d the distance in edges
-  // (sliderEnergy, rod_energies.hpp): dE/dd = 0.02 unit ln(d) / d, a force of that over h.
+  // (sliderEnergy, rod_energies.hpp): dE/dd = 0.02 unit ln(d) / d, a force of that over h. A notch
+  // shorter than two edges holds the bolt within one edge of both ends: the force on the bolt is
+  // the difference of the two barriers' pushes (each alone grows without bound as d -> 0 and would
+  // report a centred bolt in a 1 mm notch as pressing with kilonewtons).
   const SliderParameters p = sliderParameters(s);
   const double at = (s.point.edge + state_[s.betaDof]) * p.edgeLength;
-  double force = 0.0;
-  for (const double d : {(at - p.notchMin) / p.edgeLength, (p.notchMax - at) / p.edgeLength}) {
-    if (d < 1.0 && d > 0.0)
-      force = std::max(force, std::abs(0.02 * p.unit * std::log(d) / d) / p.edgeLength);
-  }
-  return force;
+  const auto push = [&](double d) {
+    return d < 1.0 && d > 0.0 ? -0.02 * p.unit * std::log(d) / d / p.edgeLength : 0.0;
+  };
+  return std::abs(push((at - p.notchMin) / p.edgeLength) - push((p.notchMax - at) / p.edgeLength));
 }
 
 double RodModel::crossingAngle(int connection) const {

@@ -90,6 +90,17 @@ TEST(FlatGrid, ARigidlyMovedPlanarGridIsPlacedBackOntoItself) {
 
 TEST(FlatGrid, NormalsOnTheOtherSideTurnTheFlatGridOver) { expectFlatIsTheDeployedGrid(true); }
 
+// A bolt drilled 7 mm off the planar crossing along its u lamella: the straight lamellas miss each
+// other there by 7 mm (the flat grid cannot be bolted without strain); elsewhere they meet.
+TEST(FlatGrid, ABoltDrilledOffTheCrossingIsMeasuredAsTheFlatMisfit) {
+  EggGrid grid = movedGrid(Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), false);
+  EXPECT_LT(flatGrid(grid, rodNetworkFromGrid(grid, {})).boltMisfitMaxM, 1e-12);
+  grid.connections[2].sBarU += 0.007;
+  const FlatGrid flat = flatGrid(grid, rodNetworkFromGrid(grid, {}));
+  EXPECT_NEAR(flat.boltMisfitMaxM, 0.007, 1e-12);
+  EXPECT_EQ(flat.boltMisfitMaxConnection, 2);
+}
+
 TEST(FlatGrid, ANetworkOfAnotherGridIsRefused) {
   const EggGrid grid = movedGrid(Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), false);
   rods::RodNetwork deployed = rodNetworkFromGrid(grid, {});

@@ -82,6 +82,37 @@ TEST(RodModel, NotchLimitHoldsTheBoltInItsSlot) {
   EXPECT_LT(s, 0.41);
 }
 
+// Rod 0, held only by the bolt, pulled along its axis by 10 N at its start: it slides until the
+// bolt reaches the notch end, which then takes the whole pull (the tension keeps the rod straight
+// and stable about the bolt).
+TEST(RodModel, NotchEndForceIsThePullTheNotchEndHolds) {
+  ModelOptions options = edges(20);
+  options.frictionMu = 0.01;
+  // Slot [0.4, 0.625]: its end mid-edge, where pseudo-friction does not push.
+  RodModel model(crossing(0.5, 0.5, Notch{0.1, 0.125}), options);
+  for (int i = 0; i < model.vertexCount(1); ++i) model.fixVertex(1, i);
+  for (int j = 0; j + 1 < model.vertexCount(1); ++j) model.fixTwist(1, j);
+  model.addPointLoad(0, 0, Eigen::Vector3d(-10.0, 0.0, 0.0));
+  const SolverResult result = minimiseEnergy(model, SolverOptions{});
+  ASSERT_TRUE(result.converged) << result.reason;
+  EXPECT_GT(model.boltPosition(0, 0), 0.62);
+  EXPECT_NEAR(model.notchEndForce(0, 0), 10.0, 0.05);
+  EXPECT_EQ(model.notchEndForce(0, 1), 0.0);  // rod 1's hole is plain
+}
+
+// A notch shorter than two edges keeps the bolt within one edge of both ends; unloaded, the bolt
+// presses on neither (each barrier alone pushes with thousands of newtons there). The bolt sits
+// mid-edge, where pseudo-friction does not push either.
+TEST(RodModel, NotchEndForceOfAnUnloadedBoltInAShortNotchIsZero) {
+  RodModel model(crossing(0.525, 0.525, Notch{0.001, 0.001}), edges(20));
+  model.fixVertex(1, 0);
+  model.fixVertex(0, 0);
+  const SolverResult result = minimiseEnergy(model, SolverOptions{});
+  ASSERT_TRUE(result.converged) << result.reason;
+  EXPECT_NEAR(model.boltPosition(0, 0), 0.525, 1e-6);
+  EXPECT_LT(model.notchEndForce(0, 0), 1e-6);
+}
+
 TEST(RodModel, PlainHoleKeepsTheBoltWhereItWasDrilled) {
   SlidingCase c(Notch{0.3, 0.1}, /*notches=*/false);
   EXPECT_EQ(c.model.slidingSideCount(), 0);

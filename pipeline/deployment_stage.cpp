@@ -74,6 +74,7 @@ rods::DeploymentOptions deploymentOptions(const Scene& scene, int patches) {
   o.model = scene.simulation.rods.model;
   o.solver = scene.simulation.rods.solver;
   if (patches > 1) o.solver.threads = 1;  // patches in parallel, as the simulation stage
+  o.solver.timeLimitS = scene.deployment.timeLimitS;
   o.steps = scene.deployment.steps;
   o.jamForceN = jamForceN(scene);
   o.snapEnergyDrop = scene.deployment.snapEnergyDrop;
@@ -123,6 +124,7 @@ json patchJson(const PatchDeployment& d) {
   }
   entry.update(
       {{"completed", r.completed},
+       {"timed_out", r.timedOut},
        {"path_kind", d.path},
        {"path_choice", d.choice},
        {"engaged_from_t", r.engagedFromT >= 0.0 ? json(r.engagedFromT) : json(nullptr)},
@@ -292,6 +294,10 @@ PatchDeployment deployPatch(const SolvedPatch& patch, const rods::DeploymentOpti
     };
     if (twoPaths && fine(first)) {
       run.choice = "corners first stays within the limits (no snap, no jam, stress ratio <= 1)";
+    } else if (twoPaths && first.timedOut) {
+      run.choice =
+          "corners first ran out of time (deployment.time_limit_s); the other path was "
+          "not tried";
     } else if (twoPaths) {
       rods::DeploymentResult all = rods::deploy(flat.network, path, options);
       const auto rank = [](const rods::DeploymentResult& r) {

@@ -114,6 +114,7 @@ struct DeploymentChoice {
   // the lamella (docs/deployment.md).
   double jamForceN = 0.0;
   double snapEnergyDrop = 0.05;  // energy drop over one finest step that is a snap-through
+  double timeLimitS = 900.0;     // wall-clock limit of one path of one patch
 };
 
 struct Scene {

@@ -255,7 +255,10 @@ void addStructureSections(std::vector<SceneSection>& sections) {
                "bolt's embedment capacity in the lamella, EN 1995-1-1 8.5)"),
         number("snap_energy_drop", EGG_AT(deployment.snapEnergyDrop), 1e-6, 0.99,
                "a drop of the lamellas' elastic energy over one finest step by more than this "
-               "fraction is a snap-through")},
+               "fraction is a snap-through"),
+        number("time_limit_s", EGG_AT(deployment.timeLimitS), 1.0, 1e6,
+               "wall-clock limit of one patch's path: a path not at its end by then is reported "
+               "up to where it got, as a failure of the run")},
        {}});
 }
 

@@ -194,6 +194,7 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
   result.steps.push_back(std::move(first));
   if (!result.last.solver.converged) {
     result.reason = "the flat grid does not settle: " + result.last.solver.reason;
+    result.timedOut = result.last.solver.status == SolverStatus::TimeLimit;
     recordState(model, result.last);
     result.seconds = secondsSince(start);
     return result;
@@ -215,6 +216,7 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
       const double spent = secondsSince(start);
       if (spent > options.solver.timeLimitS) {
         result.completed = false;
+        result.timedOut = true;
         result.reason = "time limit " + std::to_string(options.solver.timeLimitS) +
                         " s reached at t = " + std::to_string(tOffset + done);
         return;
@@ -248,9 +250,11 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
       const bool dropped =
           solved.converged &&
           drop > options.snapEnergyDrop * std::max(previous.energyJ, model.energyUnit());
+      // Relative above the limit: a path at five times the strength is resolved to a unit, not to
+      // a fifth of one (the refinement would otherwise multiply the steps of a hopeless path).
       const bool steep =
-          solved.converged &&
-          std::abs(step.maxStressRatio - previous.maxStressRatio) > options.stressRatioStep;
+          solved.converged && std::abs(step.maxStressRatio - previous.maxStressRatio) >
+                                  options.stressRatioStep * std::max(1.0, previous.maxStressRatio);
       if ((!solved.converged || dropped || steep) && depth < options.maxRefinements) {
         pending.emplace_back(u, depth + 1);
         pending.emplace_back(0.5 * (done + u), depth + 1);
@@ -259,6 +263,7 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
       result.iterations += solved.iterations;
       if (!solved.converged) {
         result.completed = false;
+        result.timedOut = solved.status == SolverStatus::TimeLimit;
         result.reason = "no equilibrium at t = " + std::to_string(t) + " (a step of " +
                         std::to_string(u - done) + "): " + solved.reason;
         result.last.solver = solved;

@@ -54,7 +54,8 @@ struct DeploymentOptions {
   // imposed support motion the elastic energy of a stable path changes smoothly with the step, a
   // snap releases a finite part of it at once.
   double snapEnergyDrop = 0.05;
-  // A step whose peak stress ratio changes by more than this is split too (the peak is resolved).
+  // A step whose peak stress ratio changes by more than this (times the ratio, above 1) is split
+  // too: the peak is resolved where it nears the limit.
   double stressRatioStep = 0.2;
   // A sliding bolt within one edge of a notch end pressing on it with more than this (N), harder
   // than at the step before (the path pushes it on), is jammed: the notch is too short for the
@@ -102,6 +103,7 @@ struct DeploymentResult {
   std::vector<DeploymentStep> steps;  // steps[0]: the flat grid (t = 0)
   bool completed = false;             // every step converged up to t = 1
   std::string reason;                 // why not
+  bool timedOut = false;              // stopped by options.solver.timeLimitS
   int snaps = 0;                      // steps flagged as snap-through
   int jammedSteps = 0;                // steps with a jammed bolt
   double engagedFromT = -1.0;         // t where the supports held only at the end were switched on

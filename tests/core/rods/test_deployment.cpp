@@ -260,6 +260,20 @@ TEST(Deployment, InvertedArchSnapsThroughWhereShallowArchTheoryPutsTheFold) {
   EXPECT_LT(midHeight(result.steps.back()), 0.0);
 }
 
+// A path that runs out of its time limit stops where it got, says so, and is not complete.
+TEST(Deployment, APathOutOfTimeStopsWhereItGotAndSaysSo) {
+  const CylinderGrid grid;
+  DeploymentOptions o = options();
+  o.steps = 5;
+  o.solver.timeLimitS = 1e-4;
+  const DeploymentResult result = deploy(
+      grid.network(0.03), [&](double t) { return grid.supports(t / 1.5); }, o);
+  EXPECT_FALSE(result.completed);
+  EXPECT_TRUE(result.timedOut);
+  EXPECT_FALSE(result.reason.empty());
+  EXPECT_LT(result.steps.size(), 6u);
+}
+
 TEST(Deployment, PathAndOptionsAreChecked) {
   const CylinderGrid grid;
   DeploymentOptions o = options();

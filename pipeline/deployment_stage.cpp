@@ -94,6 +94,7 @@ json stepJson(const rods::DeploymentStep& s) {
           {"max_stress_ratio", s.maxStressRatio},
           {"max_bending_stress_mpa", s.maxBendingStressPa * 1e-6},
           {"max_torsion_stress_mpa", s.maxTorsionStressPa * 1e-6},
+          {"max_axial_stress_mpa", s.maxAxialStressPa * 1e-6},
           {"max_notch_force_n", s.maxNotchForceN},
           {"jammed_bolts", s.jammedBolts},
           {"max_notch_travel_m", s.maxNotchTravelM},

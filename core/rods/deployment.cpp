@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace egg::rods {
 
@@ -34,26 +35,35 @@ struct Measurer {
     // vertex, stretching of every edge. Not the solver's energy, whose penalties and
     // pseudo-friction (Section 2.5) change as bolts move between edges without work being done.
     step.energyJ = 0.0;
-    step.maxBendingStressPa = step.maxTorsionStressPa = step.maxStressRatio = 0.0;
+    step.maxBendingStressPa = step.maxTorsionStressPa = step.maxAxialStressPa = 0.0;
+    step.maxStressRatio = 0.0;
+    std::vector<double> strains;
     for (int r = 0; r < model.rodCount(); ++r) {
       const Rod& rod = network.rods[r];
       const RodStiffness& k = model.stiffness(r);
-      const double h = model.restEdgeLength(r);
+      const double h = model.restEdgeLength(r), e = rod.material.youngsModulusPa;
+      strains.clear();
       for (int i = 0; i + 1 < model.vertexCount(r); ++i) {
-        const double strain = (model.vertex(r, i + 1) - model.vertex(r, i)).norm() / h - 1.0;
-        step.energyJ += 0.5 * k.stretching * h * strain * strain;
+        strains.push_back((model.vertex(r, i + 1) - model.vertex(r, i)).norm() / h - 1.0);
+        step.energyJ += 0.5 * k.stretching * h * strains.back() * strains.back();
+        step.maxAxialStressPa = std::max(step.maxAxialStressPa, e * std::abs(strains.back()));
       }
-      for (const RodModel::VertexStrain& s : model.vertexStrains(r)) {
+      const std::vector<RodModel::VertexStrain> vertexStrains = model.vertexStrains(r);
+      for (size_t v = 0; v < vertexStrains.size(); ++v) {  // interior vertex v + 1
+        const RodModel::VertexStrain& s = vertexStrains[v];
         step.energyJ += 0.5 * h *
                         (k.bendingWeak * s.weakCurvature * s.weakCurvature +
                          k.bendingStrong * s.strongCurvature * s.strongCurvature +
                          k.twisting * s.twistRate * s.twistRate);
-        const double sigma = rod.material.youngsModulusPa *
-                             (std::abs(s.weakCurvature) * 0.5 * rod.section.thicknessM +
-                              std::abs(s.strongCurvature) * 0.5 * rod.section.widthM);
+        const double bending = e * (std::abs(s.weakCurvature) * 0.5 * rod.section.thicknessM +
+                                    std::abs(s.strongCurvature) * 0.5 * rod.section.widthM);
+        // A path that pulls supports apart stretches the lamellas: their axial stress adds to the
+        // bending stress at the extreme fibre (against f_m: the catalogue has no tensile
+        // strength).
+        const double sigma = bending + e * std::max(std::abs(strains[v]), std::abs(strains[v + 1]));
         const double tau =
             rod.material.shearModulusPa * rod.section.thicknessM * std::abs(s.twistRate);
-        step.maxBendingStressPa = std::max(step.maxBendingStressPa, sigma);
+        step.maxBendingStressPa = std::max(step.maxBendingStressPa, bending);
         step.maxTorsionStressPa = std::max(step.maxTorsionStressPa, tau);
         double ratio = 0.0;
         if (options.bendingStrengthPa > 0.0) ratio = sigma / options.bendingStrengthPa;

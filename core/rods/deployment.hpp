@@ -85,7 +85,8 @@ struct DeploymentStep {
   bool snap = false;     // the energy dropped at the finest step: the grid jumped (snap-through)
   double maxBendingStressPa = 0.0;  // E (|kappa_weak| t / 2 + |kappa_strong| w / 2)
   double maxTorsionStressPa = 0.0;  // G t |theta'|
-  double maxStressRatio = 0.0;      // max over rods of max(sigma / f_m, tau / f_v)
+  double maxAxialStressPa = 0.0;    // E |stretching strain| (supports pulling the grid apart)
+  double maxStressRatio = 0.0;      // max over rods of max((bending + axial) / f_m, tau / f_v)
   int maxStressRod = -1;
   double maxNotchForceN = 0.0;       // largest force of a bolt on a notch end
   int jammedBolts = 0;               // bolt sides jammed (DeploymentOptions::jamForceN)

@@ -127,7 +127,10 @@ TEST(Deployment, CylinderRolledUpStepByStepHasTheArcsBendingStressAndNoNotchTrav
     EXPECT_NEAR(step.maxCrossingAngleRad, M_PI / 2, 1e-3);
     EXPECT_FALSE(step.snap);
     EXPECT_TRUE(step.stable);
-    EXPECT_NEAR(step.maxStressRatio, step.maxBendingStressPa / 30e6, 1e-9);
+    // Rolled up, not stretched: the axial stress is the penalties' (Section 2.5) residue.
+    EXPECT_LT(step.maxAxialStressPa, 1e-3 * expected + 1e3);
+    EXPECT_GE(step.maxStressRatio, step.maxBendingStressPa / 30e6);
+    EXPECT_LE(step.maxStressRatio, (step.maxBendingStressPa + step.maxAxialStressPa) / 30e6);
   }
   EXPECT_EQ(result.peakStep, static_cast<int>(result.steps.size()) - 1);
   EXPECT_EQ(result.snaps, 0);
@@ -258,6 +261,38 @@ TEST(Deployment, InvertedArchSnapsThroughWhereShallowArchTheoryPutsTheFold) {
   // a snap), and after the snap it stays down.
   EXPECT_GT(midHeight(result.steps[10]), 0.0);
   EXPECT_LT(midHeight(result.steps.back()), 0.0);
+}
+
+// A lamella held at both ends whose supports move 1 mm apart along it: stretched by 1e-3, an
+// axial stress E 1e-3 = 10 MPa at the end (within the supports' penalty compliance, ~1 %), which
+// the stress ratio counts with the bending stress against f_m.
+TEST(Deployment, SupportsPullingALamellaApartGiveItsAxialStress) {
+  RodNetwork network;
+  Rod rod;
+  rod.lengthM = 1.0;
+  rod.section = {0.02, 0.002};
+  rod.material = {10.0e9, 3.8e9, 600.0};
+  rod.guess = {Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()};
+  rod.guessNormals = {Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ()};
+  network.rods.push_back(rod);
+  network.anchors.push_back({0, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ()});
+  network.anchors.push_back({0, 1.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ()});
+  SupportState from, to;
+  for (const Anchor& a : network.anchors) {
+    from.positions.push_back(a.position);
+    from.normals.push_back(a.normal);
+  }
+  to = from;
+  to.positions[1].x() += 1e-3;
+  DeploymentOptions o = options();
+  o.steps = 2;
+  const DeploymentResult result = deploy(network, straightSupportPath(from, to), o);
+  ASSERT_TRUE(result.completed) << result.reason;
+  const DeploymentStep& end = result.steps.back();
+  EXPECT_NEAR(end.maxAxialStressPa, 10.0e6, 0.02 * 10.0e6);
+  EXPECT_NEAR(result.steps[1].maxAxialStressPa, 5.0e6, 0.02 * 5.0e6);  // halfway
+  EXPECT_LT(end.maxBendingStressPa, 1e4);
+  EXPECT_NEAR(end.maxStressRatio, end.maxAxialStressPa / 30e6, 1e-3);
 }
 
 // A path that runs out of its time limit stops where it got, says so, and is not complete.

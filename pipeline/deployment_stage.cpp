@@ -195,8 +195,10 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs) {
       "{1}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" "
       "fill=\"white\"/>\n",
       width, height);
-  const char* colours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a",
-                           "#66a61e", "#e6ab02", "#a6761d", "#666666"};
+  // 16 distinct colours: the Lilium and the Yas have 16 patches.
+  const char* colours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02",
+                           "#a6761d", "#666666", "#1f78b4", "#e31a1c", "#6a3d9a", "#b15928",
+                           "#33a02c", "#ff7f00", "#fb9a99", "#a6cee3"};
   for (int panel = 0; panel < 2; ++panel) {
     PlotFrame f;
     f.left = 70 + panel * 440;
@@ -206,7 +208,7 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs) {
     f.yMax = panel == 0 ? 1.1 * ratioMax : 1.1 * forceMax;
     f.xMax = tMax > 1.0 ? 2.0 : 1.0;
     svg << fmt::format("<text x=\"{}\" y=\"24\" font-weight=\"bold\">{}</text>\n", f.left,
-                       panel == 0 ? "Peak stress ratio (bending + torsion) per step"
+                       panel == 0 ? "Peak stress ratio (bending + axial, torsion) per step"
                                   : "Largest support force per step (kN)");
     svg << fmt::format(
         "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" "
@@ -236,7 +238,7 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs) {
       for (const auto& s : d.result->steps)
         points += fmt::format("{:.1f},{:.1f} ", f.px(s.t),
                               f.py(panel == 0 ? s.maxStressRatio : 1e-3 * s.maxSupportForceN));
-      const char* colour = colours[k++ % 8];
+      const char* colour = colours[k++ % 16];
       svg << fmt::format(
           "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", points,
           colour);

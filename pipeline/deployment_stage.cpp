@@ -7,6 +7,7 @@
 #include "core/rods/deployment.hpp"
 #include "core/timing.hpp"
 #include "export/deployment_glb.hpp"
+#include "pipeline/deployment_joining.hpp"
 #include "pipeline/plot_frame.hpp"
 
 #include <fmt/core.h>
@@ -37,18 +38,6 @@ struct PatchDeployment {
   double endVsSimulationRmsM = -1.0;  // against the simulation's weightless equilibrium
   double boltOffsetMaxM = -1.0;       // largest bolt position difference from the simulation's
 };
-
-double rmsBetween(const std::vector<std::vector<Eigen::Vector3d>>& a,
-                  const std::vector<std::vector<Eigen::Vector3d>>& b) {
-  if (a.size() != b.size() || a.empty()) return -1.0;
-  double sum = 0.0;
-  long count = 0;
-  for (size_t r = 0; r < a.size(); ++r) {
-    if (a[r].size() != b[r].size()) return -1.0;
-    for (size_t i = 0; i < a[r].size(); ++i, ++count) sum += (a[r][i] - b[r][i]).squaredNorm();
-  }
-  return std::sqrt(sum / std::max<long>(count, 1));
-}
 
 // The force at which a bolt pressing on the end of its notch crushes the lamella there: the
 // embedment capacity f_h d t. Timber: f_h,k = 0.082 (1 - 0.01 d) rho_k (solid timber, EN 1995-1-1
@@ -152,42 +141,118 @@ json patchJson(const PatchDeployment& d) {
   return entry;
 }
 
-std::string csvOf(const std::vector<PatchDeployment>& runs) {
+std::string csvRows(const std::string& name, const rods::DeploymentResult& r) {
+  std::string out;
+  for (size_t k = 0; k < r.steps.size(); ++k) {
+    const rods::DeploymentStep& s = r.steps[k];
+    for (size_t a = 0; a < s.supportPositionsM.size(); ++a) {
+      const Eigen::Vector3d& p = s.supportPositionsM[a];
+      const Eigen::Vector3d f =
+          a < s.supportForcesN.size() ? s.supportForcesN[a] : Eigen::Vector3d::Zero();
+      out += fmt::format(
+          "{},{},{:.6f},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.2f},{:.2f},{:.4f},{:.3f},{},{},"
+          "{:.2f},{:.2f}\n",
+          name, k, s.t, a, p.x(), p.y(), p.z(), f.x(), f.y(), f.z(), s.maxStressRatio,
+          s.maxNotchForceN, s.jammedBolts, s.snap ? 1 : 0, s.minCrossingAngleRad * 180.0 / M_PI,
+          s.maxCrossingAngleRad * 180.0 / M_PI);
+    }
+  }
+  return out;
+}
+
+// One row per step and support: the patches' paths, then the joining ("joined").
+std::string csvOf(const std::vector<PatchDeployment>& runs, const JoiningRun& joining) {
   std::ostringstream out;
   out << "patch,step,t,support,x_m,y_m,z_m,force_x_n,force_y_n,force_z_n,step_max_stress_ratio,"
          "step_max_notch_force_n,step_jammed_bolts,step_snap,step_min_crossing_deg,"
          "step_max_crossing_deg\n";
-  for (const PatchDeployment& d : runs) {
-    if (!d.result) continue;
-    for (size_t k = 0; k < d.result->steps.size(); ++k) {
-      const rods::DeploymentStep& s = d.result->steps[k];
-      for (size_t a = 0; a < s.supportPositionsM.size(); ++a) {
-        const Eigen::Vector3d& p = s.supportPositionsM[a];
-        const Eigen::Vector3d f =
-            a < s.supportForcesN.size() ? s.supportForcesN[a] : Eigen::Vector3d::Zero();
-        out << fmt::format(
-            "P{},{},{:.6f},{},{:.4f},{:.4f},{:.4f},{:.2f},{:.2f},{:.2f},{:.4f},{:.3f},{},{},"
-            "{:.2f},{:.2f}\n",
-            d.patch, k, s.t, a, p.x(), p.y(), p.z(), f.x(), f.y(), f.z(), s.maxStressRatio,
-            s.maxNotchForceN, s.jammedBolts, s.snap ? 1 : 0, s.minCrossingAngleRad * 180.0 / M_PI,
-            s.maxCrossingAngleRad * 180.0 / M_PI);
-      }
-    }
-  }
+  for (const PatchDeployment& d : runs)
+    if (d.result) out << csvRows(fmt::format("P{}", d.patch), *d.result);
+  if (joining.result) out << csvRows("joined", *joining.result);
   return out.str();
 }
 
-// Two panels against t: the peak stress ratio (with the limit 1) and the largest support force.
-std::string chartSvg(const std::vector<PatchDeployment>& runs) {
-  double ratioMax = 1.0, forceMax = 1.0, tMax = 1.0;  // forces in kN
-  for (const auto& d : runs)
-    if (d.result)
-      for (const auto& s : d.result->steps) {
-        ratioMax = std::max(ratioMax, s.maxStressRatio);
-        forceMax = std::max(forceMax, 1e-3 * s.maxSupportForceN);
-        tMax = std::max(tMax, s.t);
-      }
-  const double width = 900, height = 340;
+// One line of a chart panel: (t, value) per step, snaps marked.
+struct Series {
+  std::string label, colour;
+  std::vector<std::pair<double, double>> points;
+  std::vector<std::pair<double, double>> snaps;
+  bool dashed = false;
+};
+
+// A panel of the chart: a frame with y ticks, t ticks, the limit line when asked, the series and
+// their labels on the right.
+void drawPanel(std::ostringstream& svg, const PlotFrame& f, const std::string& title,
+               const std::string& xLabel, bool limitLine, const std::vector<Series>& series,
+               bool labels) {
+  svg << fmt::format("<text x=\"{}\" y=\"{}\" font-weight=\"bold\">{}</text>\n", f.left, f.top - 16,
+                     title);
+  svg << fmt::format(
+      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n",
+      f.left, f.top, f.width, f.height);
+  const double step = tickStep(f.yMax, 5);
+  for (double y = 0.0; y <= f.yMax + 1e-12; y += step)
+    svg << fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:g}</text>\n", f.left - 6,
+                       f.py(y) + 4, y);
+  for (double x = f.xMin; x <= f.xMax + 1e-9; x += (f.xMax > 2.0 ? 0.5 : 0.25 * f.xMax))
+    svg << fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{:g}</text>\n", f.px(x),
+                       f.top + f.height + 16, x);
+  svg << fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
+                     f.left + f.width / 2, f.top + f.height + 34, xLabel);
+  if (limitLine)
+    svg << fmt::format(
+        "<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"#c00\" "
+        "stroke-dasharray=\"6 4\"/><text x=\"{1}\" y=\"{3}\" fill=\"#c00\" "
+        "text-anchor=\"end\">limit 1</text>\n",
+        f.left, f.left + f.width, f.py(1.0), f.py(1.0) - 4);
+  for (size_t k = 0; k < series.size(); ++k) {
+    const Series& line = series[k];
+    std::string points;
+    for (const auto& [t, y] : line.points)
+      points += fmt::format("{:.1f},{:.1f} ", f.px(t), f.py(y));
+    svg << fmt::format(
+        "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"{}/>\n", points,
+        line.colour, line.dashed ? " stroke-dasharray=\"5 3\"" : "");
+    for (const auto& [t, y] : line.snaps)
+      svg << fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"#c00\"/>\n", f.px(t),
+                         f.py(y));
+    if (labels)
+      svg << fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", f.left + f.width + 6,
+                         f.top + 12 + 14 * k, line.colour, line.label);
+  }
+}
+
+double largestOf(const std::vector<Series>& series, double floor) {
+  for (const auto& line : series)
+    for (const auto& point : line.points) floor = std::max(floor, point.second);
+  return floor;
+}
+
+// Against t: the peak stress ratio (with the limit 1) and the largest support force per patch;
+// below, when the patches were joined, the same for the joining with the joints' pull.
+std::string chartSvg(const std::vector<PatchDeployment>& runs, const JoiningRun& joining) {
+  // 16 distinct colours: the Lilium and the Yas have 16 patches.
+  const char* colours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02",
+                           "#a6761d", "#666666", "#1f78b4", "#e31a1c", "#6a3d9a", "#b15928",
+                           "#33a02c", "#ff7f00", "#fb9a99", "#a6cee3"};
+  std::vector<Series> ratios, forces;
+  double tMax = 1.0;
+  for (const auto& d : runs) {
+    if (!d.result) continue;
+    Series ratio{fmt::format("P{}", d.patch), colours[ratios.size() % 16], {}, {}};
+    Series force = ratio;
+    for (const auto& s : d.result->steps) {
+      ratio.points.emplace_back(s.t, s.maxStressRatio);
+      force.points.emplace_back(s.t, 1e-3 * s.maxSupportForceN);
+      if (s.snap)
+        ratio.snaps.push_back(ratio.points.back()), force.snaps.push_back(force.points.back());
+      tMax = std::max(tMax, s.t);
+    }
+    ratios.push_back(std::move(ratio));
+    forces.push_back(std::move(force));
+  }
+  const bool joined = joining.result.has_value();
+  const double width = 960, height = joined ? 660 : 340;
   std::ostringstream svg;
   svg << fmt::format(
       "<svg id=\"deployment-chart\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" "
@@ -195,67 +260,46 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs) {
       "{1}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" "
       "fill=\"white\"/>\n",
       width, height);
-  // 16 distinct colours: the Lilium and the Yas have 16 patches.
-  const char* colours[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02",
-                           "#a6761d", "#666666", "#1f78b4", "#e31a1c", "#6a3d9a", "#b15928",
-                           "#33a02c", "#ff7f00", "#fb9a99", "#a6cee3"};
-  for (int panel = 0; panel < 2; ++panel) {
-    PlotFrame f;
-    f.left = 70 + panel * 440;
-    f.top = 40;
-    f.width = 360;
-    f.height = 240;
-    f.yMax = panel == 0 ? 1.1 * ratioMax : 1.1 * forceMax;
-    f.xMax = tMax > 1.0 ? 2.0 : 1.0;
-    svg << fmt::format("<text x=\"{}\" y=\"24\" font-weight=\"bold\">{}</text>\n", f.left,
-                       panel == 0 ? "Peak stress ratio (bending + axial, torsion) per step"
-                                  : "Largest support force per step (kN)");
-    svg << fmt::format(
-        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" "
-        "stroke=\"#444\"/>\n",
-        f.left, f.top, f.width, f.height);
-    const double step = tickStep(f.yMax, 5);
-    for (double y = 0.0; y <= f.yMax + 1e-12; y += step)
-      svg << fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:g}</text>\n", f.left - 6,
-                         f.py(y) + 4, y);
-    for (double x = 0.0; x <= f.xMax + 1e-9; x += 0.25 * f.xMax)
-      svg << fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{:g}</text>\n", f.px(x),
-                         f.top + f.height + 16, x);
-    svg << fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
-                       f.left + f.width / 2, f.top + f.height + 34,
-                       f.xMax > 1.0 ? "t: 0 flat, 1 corners placed, 2 every support fixed"
-                                    : "t: 0 flat, 1 deployed");
-    if (panel == 0)
-      svg << fmt::format(
-          "<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"#c00\" "
-          "stroke-dasharray=\"6 4\"/><text x=\"{1}\" y=\"{3}\" fill=\"#c00\" "
-          "text-anchor=\"end\">limit 1</text>\n",
-          f.left, f.left + f.width, f.py(1.0), f.py(1.0) - 4);
-    int k = 0;
-    for (const auto& d : runs) {
-      if (!d.result) continue;
-      std::string points;
-      for (const auto& s : d.result->steps)
-        points += fmt::format("{:.1f},{:.1f} ", f.px(s.t),
-                              f.py(panel == 0 ? s.maxStressRatio : 1e-3 * s.maxSupportForceN));
-      const char* colour = colours[k++ % 16];
-      svg << fmt::format(
-          "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", points,
-          colour);
-      for (const auto& s : d.result->steps)
-        if (s.snap)
-          svg << fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"#c00\"/>\n",
-                             f.px(s.t),
-                             f.py(panel == 0 ? s.maxStressRatio : 1e-3 * s.maxSupportForceN));
-      if (panel == 1)
-        svg << fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">P{}</text>\n", f.left + f.width + 6,
-                           f.top + 12 + 14 * (k - 1), colour, d.patch);
+  PlotFrame f;
+  f.top = 40;
+  f.width = 360;
+  f.height = 240;
+  f.xMax = tMax > 1.0 ? 2.0 : 1.0;
+  const std::string xLabel =
+      f.xMax > 1.0 ? "t: 0 flat, 1 corners placed, 2 every support fixed" : "t: 0 flat, 1 deployed";
+  f.left = 70;
+  f.yMax = 1.1 * largestOf(ratios, 1.0);
+  drawPanel(svg, f, "Peak stress ratio (bending + axial, torsion) per step", xLabel, true, ratios,
+            false);
+  f.left = 510;
+  f.yMax = 1.1 * largestOf(forces, 1.0);
+  drawPanel(svg, f, "Largest support force per step (kN)", xLabel, false, forces, true);
+  if (joined) {
+    Series ratio{"joined", "#000000", {}, {}}, support{"supports", "#000000", {}, {}},
+        pull{"joints", "#1f78b4", {}, {}, true};
+    for (const auto& s : joining.result->steps) {
+      ratio.points.emplace_back(s.t, s.maxStressRatio);
+      support.points.emplace_back(s.t, 1e-3 * s.maxSupportForceN);
+      pull.points.emplace_back(s.t, 1e-3 * s.maxJoinForceN);
+      if (s.snap) ratio.snaps.push_back(ratio.points.back());
     }
+    const std::string joinLabel =
+        joining.selfWeight ? "t: 0 patches standing, 1 self-weight, 2 joints bolted, 3 shoring off"
+                           : "t: 0 patches standing, 1 joints bolted, 2 shoring off";
+    f.top = 360;
+    f.xMax = joining.result->steps.back().t > 0.0 ? std::ceil(joining.result->steps.back().t) : 1.0;
+    f.left = 70;
+    f.yMax = 1.1 * largestOf({ratio}, 1.0);
+    drawPanel(svg, f, "Joining the patches: peak stress ratio", joinLabel, true, {ratio}, false);
+    f.left = 510;
+    f.yMax = 1.1 * largestOf({support, pull}, 1.0);
+    drawPanel(svg, f, "Joining: largest support and joint forces (kN)", joinLabel, false,
+              {support, pull}, true);
   }
   svg << fmt::format(
       "<text x=\"70\" y=\"{}\" fill=\"#444\">Red dots: snap-through. Supports move "
-      "along straight lines; self-weight not included.</text>\n</svg>\n",
-      height - 6);
+      "along straight lines; self-weight not included{}.</text>\n</svg>\n",
+      height - 6, joined && joining.selfWeight ? " until the joining" : "");
   return svg.str();
 }
 
@@ -329,7 +373,7 @@ PatchDeployment deployPatch(const SolvedPatch& patch, const rods::DeploymentOpti
                 run.boltOffsetMaxM,
                 std::abs(sim.boltPositionsM[c][side] - run.result->last.boltPositionsM[c][side]));
       }
-      run.endVsSimulationRmsM = rmsBetween(
+      run.endVsSimulationRmsM = contactRmsM(
           run.result->last.contactPoints,
           sim.weightlessContactPoints.empty() ? sim.contactPoints : sim.weightlessContactPoints);
     }
@@ -360,6 +404,11 @@ void deploymentStage(RunState& state) {
   const rods::DeploymentOptions options = deploymentOptions(scene, static_cast<int>(runs.size()));
   tbb::parallel_for(size_t(0), runs.size(),
                     [&](size_t i) { runs[i] = deployPatch(*sources[i], options); });
+  // Then the standing patches joined into the structure the joined simulation solved.
+  std::vector<const rods::DeploymentResult*> ends(state.patches.size(), nullptr);
+  for (size_t i = 0; i < runs.size(); ++i)
+    if (runs[i].result) ends[sources[i] - state.patches.data()] = &*runs[i].result;
+  const JoiningRun joining = joinDeployed(state, ends, options);
   json section{{"ran", true},
                {"paths",
                 "corners first: the corner supports move together along straight lines from "
@@ -409,10 +458,31 @@ void deploymentStage(RunState& state) {
     animations.push_back(std::move(animation));
   }
   section["patches"] = patches;
+  section["joined"] = joiningJson(joining);
+  if (!joining.failure.empty())
+    state.failures.push_back("deployment: joining the patches: " + joining.failure);
+  if (joining.result) {
+    const rods::DeploymentResult& r = *joining.result;
+    if (!r.completed) state.failures.push_back("deployment: joining the patches: " + r.reason);
+    if (r.snaps > 0)
+      state.report.warn(fmt::format(
+          "deployment: joining the patches snaps through at {} step(s) (first at t = {:.3f})",
+          r.snaps,
+          std::find_if(r.steps.begin(), r.steps.end(), [](const auto& s) { return s.snap; })->t));
+    const auto& peak = r.steps[r.peakStep];
+    if (peak.maxStressRatio > 1.0)
+      state.report.warn(fmt::format(
+          "deployment: joining the patches: stress ratio {:.2f} at t = {:.3f} (end state {:.2f})",
+          peak.maxStressRatio, peak.t, r.steps.back().maxStressRatio));
+    exporter::DeploymentAnimation animation;
+    animation.name = "joined";
+    for (const auto& s : r.steps) animation.frames.push_back({s.t, s.contactPoints});
+    animations.push_back(std::move(animation));
+  }
   section["seconds"] = watch.seconds();
   state.report.section("deployment") = section;
-  writeFileAtomically(state.staging / "deployment.csv", csvOf(runs));
-  writeFileAtomically(state.staging / "deployment.svg", chartSvg(runs));
+  writeFileAtomically(state.staging / "deployment.csv", csvOf(runs, joining));
+  writeFileAtomically(state.staging / "deployment.svg", chartSvg(runs, joining));
   if (!animations.empty())
     writeFileAtomically(state.staging / "deployment.glb", exporter::deploymentGlbBytes(animations));
 }

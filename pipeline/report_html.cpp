@@ -373,7 +373,8 @@ std::string deploymentSection(const json& report, const std::string& figureSvg) 
   std::string html =
       "<h2 id=\"deployment\">Deployment: from the flat grid to the supports</h2>\n<p>" +
       text(at(d, "paths")) +
-      ". Self-weight is not included.</p>\n<table>\n<tr><th>patch</th>"
+      ". Self-weight is not included on the patches' paths; the joining (row \"joined\") carries "
+      "it when the simulation does.</p>\n<table>\n<tr><th>patch</th>"
       "<th>path</th><th>why</th><th>steps</th><th>peak stress ratio</th><th>at t</th>"
       "<th>end state</th><th>snaps</th><th>jammed steps</th><th>largest support force "
       "(kN)</th><th>end vs simulation (mm)</th></tr>\n";
@@ -392,6 +393,23 @@ std::string deploymentSection(const json& report, const std::string& figureSvg) 
             "</td><td>" + text(json(1e-3 * at(p, "max_support_force_n").get<double>()), 4) +
             "</td><td>" + (end.is_number() ? text(json(1e3 * end.get<double>()), 3) : "-") +
             "</td></tr>\n";
+  }
+  const json joined = at(d, "joined");
+  if (joined.is_object() && joined.value("ran", false)) {
+    if (joined.contains("failure")) {
+      html += "<tr><td>joined</td><td colspan=\"10\">failed: " + text(at(joined, "failure")) +
+              "</td></tr>\n";
+    } else {
+      const json end = at(joined, "end_vs_joined_simulation_rms_m");
+      html += "<tr><td>joined</td><td>joining</td><td>" + text(at(joined, "phases")) + "</td><td>" +
+              text(at(joined, "steps")) + "</td><td>" + text(at(joined, "peak_stress_ratio"), 3) +
+              "</td><td>" + text(at(joined, "peak_t"), 3) + "</td><td>" +
+              text(at(joined, "end_stress_ratio"), 3) + "</td><td>" + text(at(joined, "snaps")) +
+              "</td><td>" + text(at(joined, "jammed_steps")) + "</td><td>" +
+              text(json(1e-3 * at(joined, "max_support_force_n").get<double>()), 4) + "</td><td>" +
+              (end.is_number() ? text(json(1e3 * end.get<double>()), 3) : "-") +
+              " (joined)</td></tr>\n";
+    }
   }
   return html + "</table>\n" + report_sections::deploymentFigure(figureSvg);
 }

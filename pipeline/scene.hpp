@@ -114,7 +114,8 @@ struct DeploymentChoice {
   // the lamella (docs/deployment.md).
   double jamForceN = 0.0;
   double snapEnergyDrop = 0.05;  // energy drop over one finest step that is a snap-through
-  double timeLimitS = 900.0;     // wall-clock limit of one path of one patch
+  double timeLimitS = 900.0;     // wall-clock limit of one path of one patch (and of the joining)
+  bool joinPatches = true;       // then join the standing patches as the joined simulation did
 };
 
 struct Scene {

@@ -258,7 +258,12 @@ void addStructureSections(std::vector<SceneSection>& sections) {
                "fraction is a snap-through"),
         number("time_limit_s", EGG_AT(deployment.timeLimitS), 1.0, 1e6,
                "wall-clock limit of one patch's path: a path not at its end by then is reported "
-               "up to where it got, as a failure of the run")},
+               "up to where it got, as a failure of the run"),
+        boolean(
+            "join_patches", EGG_AT(deployment.joinPatches),
+            "when the joined simulation ran: join the standing patches as a crew would "
+            "(self-weight, joints pulled closed and bolted, shoring let go) and compare the end "
+            "with the joined simulation")},
        {}});
 }
 

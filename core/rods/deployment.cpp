@@ -29,6 +29,9 @@ Eigen::Vector3d turnNormal(const Eigen::Vector3d& from, const Eigen::Vector3d& t
 struct Measurer {
   const RodNetwork& network;
   const DeploymentOptions& options;
+  // Connections from this index on are joints between patches (joinDeployedPatches): measured by
+  // their gap and force, not as crossings of the grid (two boundary lamellas lie along each other).
+  int firstJoin = std::numeric_limits<int>::max();
 
   void operator()(const RodModel& model, DeploymentStep& step) const {
     // The lamellas' own elastic energy (J): bending about both axes and twisting at every interior
@@ -76,9 +79,14 @@ struct Measurer {
     }
     step.maxNotchForceN = step.maxNotchTravelM = 0.0;
     step.notchForcesN.clear();
-    step.minCrossingAngleRad = model.boltCount() ? M_PI : 0.0;
+    step.minCrossingAngleRad = std::min(firstJoin, model.boltCount()) > 0 ? M_PI : 0.0;
     step.maxCrossingAngleRad = 0.0;
-    for (int c = 0; c < model.boltCount(); ++c) {
+    step.maxJoinGapM = step.maxJoinForceN = 0.0;
+    for (int c = std::min(firstJoin, model.boltCount()); c < model.boltCount(); ++c) {
+      step.maxJoinGapM = std::max(step.maxJoinGapM, model.boltGap(c).norm());
+      step.maxJoinForceN = std::max(step.maxJoinForceN, model.boltForce(c).norm());
+    }
+    for (int c = 0; c < std::min(firstJoin, model.boltCount()); ++c) {
       const Connection& con = network.connections[c];
       for (int side = 0; side < 2; ++side) {
         const double force = model.notchEndForce(c, side);
@@ -127,6 +135,142 @@ void placeSupports(RodModel& model, const SupportState& state) {
                        " anchors");
   for (int a = 0; a < model.anchorCount(); ++a)
     model.setAnchor(a, state.positions[a], state.normals[a]);
+}
+
+// One phase of a path at a time: `control` sets the model's supports, bolts or loads for the
+// phase's parameter u in (0, 1] and records them in the step; the step is solved from the last
+// equilibrium, measured, and recorded as t = tOffset + u. Steps as (parameter, depth); a rejected
+// step is replaced by its two halves.
+struct PathRunner {
+  using Control = std::function<void(RodModel&, double, DeploymentStep&)>;
+  RodModel& model;
+  DeploymentResult& result;
+  const DeploymentOptions& options;
+  const Measurer& measure;
+  SolverOptions& solverOptions;
+  std::chrono::steady_clock::time_point start;
+
+  void phase(const Control& control, double tOffset, int steps) {
+    std::vector<std::pair<double, int>> pending;
+    for (int k = steps; k >= 1; --k) pending.emplace_back(static_cast<double>(k) / steps, 0);
+    double done = 0.0;
+    while (!pending.empty()) {
+      const auto [u, depth] = pending.back();
+      pending.pop_back();
+      const double t = tOffset + u;
+      const double spent = secondsSince(start);
+      if (spent > options.solver.timeLimitS) {
+        result.completed = false;
+        result.timedOut = true;
+        result.reason = "time limit " + std::to_string(options.solver.timeLimitS) +
+                        " s reached at t = " + std::to_string(tOffset + done);
+        return;
+      }
+      solverOptions.timeLimitS = std::max(1e-3, options.solver.timeLimitS - spent);
+      RodModel trial = model;
+      DeploymentStep step;
+      step.t = t;
+      control(trial, u, step);
+      const SolverResult solved = minimiseEnergy(trial, solverOptions);
+      step.status = solved.status;
+      step.iterations = solved.iterations;
+      step.seconds = solved.seconds;
+      step.stable = solved.stableEquilibrium;
+      measure(trial, step);
+      step.maxVertexMoveM = largestMove(model, trial);
+      const DeploymentStep& previous = result.steps.back();
+      // The energy the step should reach on a smooth path: the last step's rate carried on (a
+      // path that unloads loses energy smoothly); a snap falls below it by a finite part at any
+      // step.
+      double predicted = previous.energyJ;
+      if (result.steps.size() >= 2) {
+        const DeploymentStep& before = result.steps[result.steps.size() - 2];
+        if (previous.t > before.t)
+          predicted +=
+              (previous.energyJ - before.energyJ) / (previous.t - before.t) * (t - previous.t);
+      }
+      const double drop = std::min(previous.energyJ, predicted) - step.energyJ;
+      const bool dropped =
+          solved.converged &&
+          drop > options.snapEnergyDrop * std::max(previous.energyJ, model.energyUnit());
+      // Relative above the limit: a path at five times the strength is resolved to a unit, not to
+      // a fifth of one (the refinement would otherwise multiply the steps of a hopeless path).
+      const bool steep =
+          solved.converged && std::abs(step.maxStressRatio - previous.maxStressRatio) >
+                                  options.stressRatioStep * std::max(1.0, previous.maxStressRatio);
+      if ((!solved.converged || dropped || steep) && depth < options.maxRefinements) {
+        pending.emplace_back(u, depth + 1);
+        pending.emplace_back(0.5 * (done + u), depth + 1);
+        continue;
+      }
+      result.iterations += solved.iterations;
+      if (!solved.converged) {
+        result.completed = false;
+        result.timedOut = solved.status == SolverStatus::TimeLimit;
+        result.reason = "no equilibrium at t = " + std::to_string(t) + " (a step of " +
+                        std::to_string(u - done) + "): " + solved.reason;
+        result.last.solver = solved;
+        return;
+      }
+      step.snap = dropped;
+      step.jammedBolts = 0;
+      for (size_t k = 0; k < step.notchForcesN.size(); ++k) {
+        const double force = step.notchForcesN[k];
+        if (force > options.jamForceN && force > 1.1 * previous.notchForcesN[k]) ++step.jammedBolts;
+      }
+      result.snaps += step.snap;
+      result.jammedSteps += step.jammedBolts > 0;
+      model = std::move(trial);
+      result.last.solver = solved;
+      done = u;
+      result.steps.push_back(std::move(step));
+    }
+  }
+};
+
+// The state the path starts from, solved and measured as step 0 (t = 0). False when it does not
+// settle (result says why and holds that state). Later steps start next to an equilibrium: no
+// need to soften the stiff terms (rod_solver.hpp).
+bool firstStep(RodModel& model, const Measurer& measure, std::vector<Eigen::Vector3d> supports,
+               const std::string& what, SolverOptions& solverOptions,
+               std::chrono::steady_clock::time_point start, DeploymentResult& result) {
+  DeploymentStep first;
+  result.last.solver = minimiseEnergy(model, solverOptions);
+  first.status = result.last.solver.status;
+  first.iterations = result.last.solver.iterations;
+  first.stable = result.last.solver.stableEquilibrium;
+  first.seconds = result.last.solver.seconds;
+  first.supportPositionsM = std::move(supports);
+  measure(model, first);
+  result.iterations = first.iterations;
+  result.steps.push_back(std::move(first));
+  if (!result.last.solver.converged) {
+    result.reason = what + " does not settle: " + result.last.solver.reason;
+    result.timedOut = result.last.solver.status == SolverStatus::TimeLimit;
+    recordState(model, result.last);
+    result.seconds = secondsSince(start);
+    return false;
+  }
+  solverOptions.stiffnessContinuation = false;
+  return true;
+}
+
+// The peak step, the last state and the totals.
+void finish(const RodModel& model, const DeploymentOptions& options,
+            std::chrono::steady_clock::time_point start, DeploymentResult& result) {
+  result.peakStep = 0;
+  for (size_t k = 1; k < result.steps.size(); ++k) {
+    const DeploymentStep& s = result.steps[k];
+    const DeploymentStep& peak = result.steps[result.peakStep];
+    const bool higher = options.bendingStrengthPa > 0.0 || options.shearStrengthPa > 0.0
+                            ? s.maxStressRatio > peak.maxStressRatio
+                            : s.maxBendingStressPa > peak.maxBendingStressPa;
+    if (higher) result.peakStep = static_cast<int>(k);
+  }
+  recordState(model, result.last);
+  result.last.solver.iterations = result.iterations;
+  result.seconds = secondsSince(start);
+  result.last.solver.seconds = result.seconds;
 }
 
 }  // namespace
@@ -187,114 +331,24 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
     return options.movedSupports.empty() || options.movedSupports[a];
   };
   for (int a = 0; a < model.anchorCount(); ++a) model.setAnchorActive(a, moved(a));
-  DeploymentStep first;
   const SupportState flatSupports = path(0.0);
   placeSupports(model, flatSupports);
   SolverOptions solverOptions = options.solver;
   // The flat grid is its own equilibrium (zero energy, Section 2.3): this solve only settles the
   // discretisation.
-  result.last.solver = minimiseEnergy(model, solverOptions);
-  first.status = result.last.solver.status;
-  first.iterations = result.last.solver.iterations;
-  first.stable = result.last.solver.stableEquilibrium;
-  first.seconds = result.last.solver.seconds;
-  first.supportPositionsM = flatSupports.positions;
-  measure(model, first);
-  result.iterations = first.iterations;
-  result.steps.push_back(std::move(first));
-  if (!result.last.solver.converged) {
-    result.reason = "the flat grid does not settle: " + result.last.solver.reason;
-    result.timedOut = result.last.solver.status == SolverStatus::TimeLimit;
-    recordState(model, result.last);
-    result.seconds = secondsSince(start);
+  if (!firstStep(model, measure, flatSupports.positions, "the flat grid", solverOptions, start,
+                 result))
     return result;
-  }
-  // Later steps start next to an equilibrium: no need to soften the stiff terms (rod_solver.hpp).
-  solverOptions.stiffnessContinuation = false;
-
-  // One phase: the supports follow `phasePath` over `steps` equal steps of its own parameter,
-  // recorded as t = tOffset + parameter. Steps as (parameter, depth); a rejected step is replaced
-  // by its two halves.
-  const auto runPhase = [&](const SupportPath& phasePath, double tOffset, int steps) {
-    std::vector<std::pair<double, int>> pending;
-    for (int k = steps; k >= 1; --k) pending.emplace_back(static_cast<double>(k) / steps, 0);
-    double done = 0.0;
-    while (!pending.empty()) {
-      const auto [u, depth] = pending.back();
-      pending.pop_back();
-      const double t = tOffset + u;
-      const double spent = secondsSince(start);
-      if (spent > options.solver.timeLimitS) {
-        result.completed = false;
-        result.timedOut = true;
-        result.reason = "time limit " + std::to_string(options.solver.timeLimitS) +
-                        " s reached at t = " + std::to_string(tOffset + done);
-        return;
-      }
-      solverOptions.timeLimitS = std::max(1e-3, options.solver.timeLimitS - spent);
-      RodModel trial = model;
-      DeploymentStep step;
-      step.t = t;
-      const SupportState supports = phasePath(u);
-      placeSupports(trial, supports);
-      const SolverResult solved = minimiseEnergy(trial, solverOptions);
-      step.status = solved.status;
-      step.iterations = solved.iterations;
-      step.seconds = solved.seconds;
-      step.stable = solved.stableEquilibrium;
-      step.supportPositionsM = supports.positions;
-      measure(trial, step);
-      step.maxVertexMoveM = largestMove(model, trial);
-      const DeploymentStep& previous = result.steps.back();
-      // The energy the step should reach on a smooth path: the last step's rate carried on (a
-      // path that unloads loses energy smoothly); a snap falls below it by a finite part at any
-      // step.
-      double predicted = previous.energyJ;
-      if (result.steps.size() >= 2) {
-        const DeploymentStep& before = result.steps[result.steps.size() - 2];
-        if (previous.t > before.t)
-          predicted +=
-              (previous.energyJ - before.energyJ) / (previous.t - before.t) * (t - previous.t);
-      }
-      const double drop = std::min(previous.energyJ, predicted) - step.energyJ;
-      const bool dropped =
-          solved.converged &&
-          drop > options.snapEnergyDrop * std::max(previous.energyJ, model.energyUnit());
-      // Relative above the limit: a path at five times the strength is resolved to a unit, not to
-      // a fifth of one (the refinement would otherwise multiply the steps of a hopeless path).
-      const bool steep =
-          solved.converged && std::abs(step.maxStressRatio - previous.maxStressRatio) >
-                                  options.stressRatioStep * std::max(1.0, previous.maxStressRatio);
-      if ((!solved.converged || dropped || steep) && depth < options.maxRefinements) {
-        pending.emplace_back(u, depth + 1);
-        pending.emplace_back(0.5 * (done + u), depth + 1);
-        continue;
-      }
-      result.iterations += solved.iterations;
-      if (!solved.converged) {
-        result.completed = false;
-        result.timedOut = solved.status == SolverStatus::TimeLimit;
-        result.reason = "no equilibrium at t = " + std::to_string(t) + " (a step of " +
-                        std::to_string(u - done) + "): " + solved.reason;
-        result.last.solver = solved;
-        return;
-      }
-      step.snap = dropped;
-      step.jammedBolts = 0;
-      for (size_t k = 0; k < step.notchForcesN.size(); ++k) {
-        const double force = step.notchForcesN[k];
-        if (force > options.jamForceN && force > 1.1 * previous.notchForcesN[k]) ++step.jammedBolts;
-      }
-      result.snaps += step.snap;
-      result.jammedSteps += step.jammedBolts > 0;
-      model = std::move(trial);
-      result.last.solver = solved;
-      done = u;
-      result.steps.push_back(std::move(step));
-    }
-  };
   result.completed = true;
-  runPhase(path, 0.0, options.steps);
+  PathRunner runner{model, result, options, measure, solverOptions, start};
+  const auto follow = [](const SupportPath& phasePath) {
+    return [phasePath](RodModel& m, double u, DeploymentStep& step) {
+      const SupportState supports = phasePath(u);
+      placeSupports(m, supports);
+      step.supportPositionsM = supports.positions;
+    };
+  };
+  runner.phase(follow(path), 0.0, options.steps);
   // The supports held only at the end: switched on where the grid now is, then moved to their
   // places.
   std::vector<int> engaged;
@@ -308,21 +362,89 @@ DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
       model.setAnchorActive(a, true);
     }
     result.engagedFromT = 1.0;
-    runPhase(straightSupportPath(from, end), 1.0, std::max(1, options.engageSteps));
+    runner.phase(follow(straightSupportPath(from, end)), 1.0, std::max(1, options.engageSteps));
   }
-  result.peakStep = 0;
-  for (size_t k = 1; k < result.steps.size(); ++k) {
-    const DeploymentStep& s = result.steps[k];
-    const DeploymentStep& peak = result.steps[result.peakStep];
-    const bool higher = options.bendingStrengthPa > 0.0 || options.shearStrengthPa > 0.0
-                            ? s.maxStressRatio > peak.maxStressRatio
-                            : s.maxBendingStressPa > peak.maxBendingStressPa;
-    if (higher) result.peakStep = static_cast<int>(k);
+  finish(model, options, start, result);
+  return result;
+}
+
+void JoiningOptions::validate() const {
+  deployment.validate();
+  if (weightSteps < 1 || joinSteps < 1 || releaseSteps < 1)
+    throw InvalidInput("JoiningOptions: weightSteps, joinSteps and releaseSteps must be >= 1");
+  if (!(minWeightFactor > 0.0 && minWeightFactor < 1.0))
+    throw InvalidInput("JoiningOptions.minWeightFactor must be in (0, 1)");
+}
+
+DeploymentResult joinDeployedPatches(const RodNetwork& network, int firstJoin,
+                                     const std::vector<bool>& temporarySupports,
+                                     const JoiningOptions& options) {
+  options.validate();
+  const int connections = static_cast<int>(network.connections.size());
+  if (firstJoin < 0 || firstJoin > connections)
+    throw InvalidInput("joining: the joints start at connection " + std::to_string(firstJoin) +
+                       " of " + std::to_string(connections));
+  if (temporarySupports.size() != network.anchors.size())
+    throw InvalidInput("joining: temporarySupports names " +
+                       std::to_string(temporarySupports.size()) + " supports, the network has " +
+                       std::to_string(network.anchors.size()) + " anchors");
+  const DeploymentOptions& o = options.deployment;
+  const auto start = std::chrono::steady_clock::now();
+  ModelOptions modelOptions = o.model;
+  modelOptions.gravity = options.selfWeight;
+  RodModel model(network, modelOptions);
+  Measurer measure{network, o};
+  measure.firstJoin = firstJoin;
+  DeploymentResult result;
+  const auto supportPositions = [&](const RodModel& m) {
+    std::vector<Eigen::Vector3d> positions(m.anchorCount());
+    Eigen::Vector3d normal;
+    for (int a = 0; a < m.anchorCount(); ++a) m.anchorPlace(a, positions[a], normal);
+    return positions;
+  };
+  // t = 0: every patch where its deployment left it, on all its supports, weightless, the joints
+  // open.
+  model.setLoadFactor(0.0);
+  for (int c = firstJoin; c < connections; ++c) model.setBoltWeight(c, 0.0);
+  SolverOptions solverOptions = o.solver;
+  if (!firstStep(model, measure, supportPositions(model), "the deployed patches", solverOptions,
+                 start, result))
+    return result;
+  result.completed = true;
+  PathRunner runner{model, result, o, measure, solverOptions, start};
+  // Penalty weights change over decades: a geometric ramp closes a joint (or lets a support go)
+  // evenly in the gap, where a linear one would do it all in its first step.
+  const auto ramp = [&](double u) { return std::pow(options.minWeightFactor, 1.0 - u); };
+  double t = 0.0;
+  if (options.selfWeight) {
+    runner.phase(
+        [&](RodModel& m, double u, DeploymentStep& step) {
+          m.setLoadFactor(u);
+          step.supportPositionsM = supportPositions(m);
+        },
+        t, options.weightSteps);
+    t += 1.0;
   }
-  recordState(model, result.last);
-  result.last.solver.iterations = result.iterations;
-  result.seconds = secondsSince(start);
-  result.last.solver.seconds = result.seconds;
+  if (result.completed && firstJoin < connections) {
+    runner.phase(
+        [&](RodModel& m, double u, DeploymentStep& step) {
+          for (int c = firstJoin; c < connections; ++c) m.setBoltWeight(c, ramp(u));
+          step.supportPositionsM = supportPositions(m);
+        },
+        t, options.joinSteps);
+    t += 1.0;
+  }
+  if (result.completed && std::find(temporarySupports.begin(), temporarySupports.end(), true) !=
+                              temporarySupports.end()) {
+    runner.phase(
+        [&](RodModel& m, double u, DeploymentStep& step) {
+          for (int a = 0; a < m.anchorCount(); ++a)
+            if (temporarySupports[a]) m.setAnchorWeight(a, u < 1.0 ? ramp(1.0 - u) : 0.0);
+          step.supportPositionsM = supportPositions(m);
+        },
+        t, options.releaseSteps);
+  }
+  finish(model, o, start, result);
   return result;
 }
 

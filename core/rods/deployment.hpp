@@ -94,6 +94,8 @@ struct DeploymentStep {
   double maxNotchTravelM = 0.0;      // largest |bolt position - its flat position| along a rod
   double minCrossingAngleRad = 0.0, maxCrossingAngleRad = 0.0;
   double maxVertexMoveM = 0.0;  // largest vertex displacement from the previous step
+  double maxJoinGapM = 0.0;    // joining: the widest open joint between patches (RodModel::boltGap)
+  double maxJoinForceN = 0.0;  // joining: the largest force pulling a joint closed
   std::vector<Eigen::Vector3d> supportPositionsM;  // per anchor, where the support holds the grid
   std::vector<Eigen::Vector3d> supportForcesN;     // per anchor, the force it applies to the grid
   double maxSupportForceN = 0.0;
@@ -120,5 +122,32 @@ struct DeploymentResult {
 // network's anchors.
 DeploymentResult deploy(const RodNetwork& flat, const SupportPath& path,
                         const DeploymentOptions& options);
+
+// Joining deployed patches (beyond the thesis, which bolts adjacent grids "along their common
+// lamellae", 3.5.3, and names the joined structure future work, 3.7.1). The patches stand where
+// their own deployments left them, each on its supports, some of which are temporary (the shoring
+// of the shared sides, which the finished structure does without). A crew then:
+//   t 0..1  lets the patches take their self-weight (load factor t; skipped when selfWeight is
+//   off), t 1..2  pulls the joints between the patches' boundary lamellas closed and bolts them:
+//   the
+//           join bolts' weights from minWeightFactor to full, geometrically (a clamp tightened),
+//   t 2..3  lets go of the temporary supports: their weights from full to minWeightFactor,
+//           geometrically (jacks lowered), and off at t = 3.
+// Every step is solved and measured as in deploy(), the joints by their gap and force.
+struct JoiningOptions {
+  DeploymentOptions deployment;  // model, solver (its time limit for the whole joining), limits
+  bool selfWeight = true;
+  int weightSteps = 4, joinSteps = 8, releaseSteps = 8;
+  double minWeightFactor = 1e-6;
+  void validate() const;  // throws InvalidInput naming the field
+};
+
+// `network`: the joined structure (joinPatches) with its rods' guesses and bolt starts where the
+// patches' deployments ended (startFrom), and every support the patches stood on; connections
+// from firstJoin on are the joints; temporarySupports marks (per anchor) the supports let go at
+// the end. Throws InvalidInput when they do not match the network.
+DeploymentResult joinDeployedPatches(const RodNetwork& network, int firstJoin,
+                                     const std::vector<bool>& temporarySupports,
+                                     const JoiningOptions& options);
 
 }  // namespace egg::rods

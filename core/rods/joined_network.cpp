@@ -32,6 +32,7 @@ JoinedNetwork joinPatches(const std::vector<RodNetwork>& patches,
       joined.network.anchors.push_back(a);
     }
   }
+  joined.firstJoin = static_cast<int>(joined.network.connections.size());
   for (size_t j = 0; j < joins.size(); ++j) {
     const PatchJoin& join = joins[j];
     const std::string name = "join " + std::to_string(j);

@@ -25,6 +25,8 @@ struct PatchJoin {
 struct JoinedNetwork {
   RodNetwork network;
   std::vector<int> firstRod;  // per patch: index of its first rod in `network`
+  // The patches' own connections come first, in patch order; the joins follow, from this index.
+  int firstJoin = 0;
 };
 
 // Throws InvalidInput naming the join (bad patch/rod index, position outside the rod, lamellas in

@@ -144,6 +144,8 @@ RodModel::RodModel(const RodNetwork& network, const ModelOptions& options) : opt
                           std::min(ra.stiffness.stretching / ra.h, rb.stiffness.stretching / rb.h);
     bolt.angleWeight = options.connectionAngleWeight *
                        std::min(ra.stiffness.twisting / ra.h, rb.stiffness.twisting / rb.h);
+    bolt.fullPositionWeight = bolt.positionWeight;
+    bolt.fullAngleWeight = bolt.angleWeight;
     bolts_.push_back(bolt);
   }
   dofCount_ = dof;

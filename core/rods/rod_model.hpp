@@ -118,6 +118,18 @@ class RodModel {
   // A support that is off holds nothing (its penalty weights are zero, its stencil stays, so the
   // Hessian's pattern does not change); on again, it holds with its full weights.
   void setAnchorActive(int anchor, bool active);
+  // A support or bolt held with `factor` (0..1) of its full penalty weights: the joining of
+  // deployed patches (deployment.hpp) tightens the joints between patches and lets go of the
+  // temporary supports gradually, as a crew's clamps and jacks do. Throws InvalidInput for a bad
+  // index or a factor outside [0, 1].
+  void setAnchorWeight(int anchor, double factor);
+  void setBoltWeight(int connection, double factor);
+  // How far a bolt's two lamellas are from where it holds them (m): the bolt point on the upper
+  // lamella from the one on the lower, less the layers' offset along their normals (the residual
+  // of E_q, Section 2.5; zero when the joint is closed). The force the bolt then applies to the
+  // lower lamella (N), -dE_q/dq at its point.
+  Eigen::Vector3d boltGap(int connection) const;
+  Eigen::Vector3d boltForce(int connection) const;
   // Where anchor k's rod point is now, as a support would hold it: the point on the contact surface
   // (half a thickness back from the centreline) and the lamella normal there.
   void anchorPlace(int anchor, Eigen::Vector3d& position, Eigen::Vector3d& normal) const;
@@ -192,8 +204,9 @@ class RodModel {
     bool aIsLower = true;   // the connection's rod a is the lower one
     double offset = 0.0;    // (t_lower + t_upper)/2
     double positionWeight = 0.0, angleWeight = 0.0;
-    double fastenedWeight = 0.0;                  // 0 until fastenBolts()
-    double fastenedCos = 0.0, fastenedSin = 0.0;  // sine about fastenedAxis
+    double fullPositionWeight = 0.0, fullAngleWeight = 0.0;  // setBoltWeight's factor 1
+    double fastenedWeight = 0.0;                             // 0 until fastenBolts()
+    double fastenedCos = 0.0, fastenedSin = 0.0;             // sine about fastenedAxis
     Eigen::Vector3d fastenedAxis = Eigen::Vector3d::UnitZ();
   };
   struct AnchorData {

@@ -31,6 +31,46 @@ void RodModel::setAnchorActive(int anchor, bool active) {
   a.angleWeight = active ? a.fullAngleWeight : 0.0;
 }
 
+void RodModel::setAnchorWeight(int anchor, double factor) {
+  if (anchor < 0 || anchor >= anchorCount() || !(factor >= 0.0 && factor <= 1.0))
+    throw InvalidInput("setAnchorWeight: anchor " + std::to_string(anchor) + " of " +
+                       std::to_string(anchorCount()) + ", factor " + std::to_string(factor) +
+                       " (0..1)");
+  AnchorData& a = anchors_[anchor];
+  a.positionWeight = factor * a.fullPositionWeight;
+  a.angleWeight = factor * a.fullAngleWeight;
+}
+
+void RodModel::setBoltWeight(int connection, double factor) {
+  if (connection < 0 || connection >= boltCount() || !(factor >= 0.0 && factor <= 1.0))
+    throw InvalidInput("setBoltWeight: connection " + std::to_string(connection) + " of " +
+                       std::to_string(boltCount()) + ", factor " + std::to_string(factor) +
+                       " (0..1)");
+  Bolt& b = bolts_[connection];
+  b.positionWeight = factor * b.fullPositionWeight;
+  b.angleWeight = factor * b.fullAngleWeight;
+}
+
+Eigen::Vector3d RodModel::boltGap(int connection) const {
+  const Bolt& b = bolts_.at(connection);
+  const auto point = [&](const BoltSide& s) {
+    const double t = beta(state_, s);  // a sliding bolt's coordinate is an unknown
+    return ((1.0 - t) * vertex(s.point.rod, s.point.edge) +
+            t * vertex(s.point.rod, s.point.edge + 1))
+        .eval();
+  };
+  // E_q's residuals r1 = d + o m_lower, r2 = -d - o m_upper (connection_derivatives.cpp), d the
+  // lower point less the upper: their half difference is the gap, upper from lower.
+  const Eigen::Vector3d normals = edgeNormal(b.lower.point.rod, b.lower.point.edge) +
+                                  edgeNormal(b.upper.point.rod, b.upper.point.edge);
+  return point(b.upper) - point(b.lower) - 0.5 * b.offset * normals;
+}
+
+Eigen::Vector3d RodModel::boltForce(int connection) const {
+  // dE/dq_lower = 2 w (r1 - r2) = -4 w gap.
+  return 4.0 * stiffFactor_ * bolts_.at(connection).positionWeight * boltGap(connection);
+}
+
 void RodModel::anchorPlace(int anchor, Eigen::Vector3d& position, Eigen::Vector3d& normal) const {
   const AnchorData& a = anchors_.at(anchor);
   const Eigen::Vector3d q = (1.0 - a.point.beta) * vertex(a.point.rod, a.point.edge) +

@@ -204,6 +204,8 @@ void recordState(const RodModel& model, SimulationRun& run) {
   run.normals.clear();
   run.contactPoints.clear();
   run.boltPositionsM.clear();
+  run.boltGapsM.clear();
+  run.boltForcesN.clear();
   for (int r = 0; r < model.rodCount(); ++r) {
     run.centrelines.push_back(model.centreline(r));
     std::vector<Eigen::Vector3d> normals, points;
@@ -217,6 +219,8 @@ void recordState(const RodModel& model, SimulationRun& run) {
   }
   for (int c = 0; c < model.boltCount(); ++c) {
     run.boltPositionsM.push_back({model.boltPosition(c, 0), model.boltPosition(c, 1)});
+    run.boltGapsM.push_back(model.boltGap(c).norm());
+    run.boltForcesN.push_back(model.boltForce(c).norm());
   }
 }
 

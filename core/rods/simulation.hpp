@@ -63,7 +63,11 @@ struct SimulationRun {
   std::vector<std::vector<Eigen::Vector3d>>
       contactPoints;  // per rod vertex, on the contact surface between the layers
   std::vector<std::array<double, 2>> boltPositionsM;  // per connection: s along rod a, rod b
-  std::optional<DeviationStats> deviation;            // contact points vs surface (when given)
+  // Per connection: how far the bolt leaves its two lamellas from where it holds them, and the
+  // force it then applies (RodModel::boltGap, boltForce): the joints between patches of a joined
+  // run stay open where the patches' boundary lamellas do not fit.
+  std::vector<double> boltGapsM, boltForcesN;
+  std::optional<DeviationStats> deviation;  // contact points vs surface (when given)
   // Self-weight runs with load steps: the contact points at the weightless equilibrium (step 0),
   // per rod vertex (the deployment stage's end state is compared with them).
   std::vector<std::vector<Eigen::Vector3d>> weightlessContactPoints;

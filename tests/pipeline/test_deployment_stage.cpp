@@ -18,8 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Scene twoByTwoScene() {
-  return parseScene(nlohmann::json::parse(R"({
+Scene deploymentTwoByTwoScene(bool joined = false) {
+  nlohmann::json scene = nlohmann::json::parse(R"({
     "name": "bump_2x2_deployment",
     "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1.0, "sigma": 1.5}, "edge_length_m": 0.4},
     "patching": {"patches": [[[-3,-3,0],[0,-3,0],[0,0,1],[-3,0,0]], [[0,-3,0],[3,-3,0],[3,0,0],[0,0,1]],
@@ -28,8 +28,12 @@ Scene twoByTwoScene() {
     "lamella": {"width_m": 0.05, "thickness_m": 0.005},
     "simulation": {"enabled": true, "gravity": false, "join_patches": false},
     "deployment": {"steps": 6},
-    "outputs": ["report", "deployment"]})"),
-                    "/virtual/bump_2x2_deployment.json");
+    "outputs": ["report", "deployment"]})");
+  if (joined) {
+    scene["simulation"]["gravity"] = true;
+    scene["simulation"]["join_patches"] = true;
+  }
+  return parseScene(scene, "/virtual/bump_2x2_deployment.json");
 }
 
 TEST(DeploymentStage, EveryPatchOfATwoByTwoLayoutDeploysFromItsFlatGridToTheSimulatedShape) {
@@ -37,7 +41,7 @@ TEST(DeploymentStage, EveryPatchOfATwoByTwoLayoutDeploysFromItsFlatGridToTheSimu
       fs::temp_directory_path() / ("egg_deployment_2x2_" + std::to_string(::getpid()));
   PipelineOptions options;
   options.outDir = out;
-  const PipelineResult result = runPipeline(twoByTwoScene(), options);
+  const PipelineResult result = runPipeline(deploymentTwoByTwoScene(), options);
   const auto& section = result.report["deployment"];
   ASSERT_TRUE(section.value("ran", false)) << result.report.dump(1).substr(0, 4000);
   ASSERT_EQ(section["patches"].size(), 4u);
@@ -92,6 +96,60 @@ TEST(DeploymentStage, EveryPatchOfATwoByTwoLayoutDeploysFromItsFlatGridToTheSimu
   EXPECT_NE(html.str().find("<td>P3</td><td>corners first</td>"), std::string::npos);
   EXPECT_NE(html.str().find("<svg id=\"deployment-chart\""), std::string::npos);
   ASSERT_TRUE(fs::exists(out / "deployment.glb"));
+  if (const std::string why = exporter::testing::nodeChecksUnavailable(); !why.empty()) {
+    fs::remove_all(out);
+    GTEST_SKIP() << why;
+  }
+  const auto glb =
+      exporter::testing::runNodeScript("check_glb.mjs", (out / "deployment.glb").string());
+  EXPECT_EQ(glb.exitCode, 0) << glb.output;
+  if (!std::getenv("EGG_KEEP_TEST_FILES")) fs::remove_all(out);
+}
+
+TEST(DeploymentStage, TheStandingPatchesAreJoinedAndEndWhereTheJoinedSimulationStands) {
+  const fs::path out =
+      fs::temp_directory_path() / ("egg_deployment_joined_" + std::to_string(::getpid()));
+  PipelineOptions options;
+  options.outDir = out;
+  const PipelineResult result = runPipeline(deploymentTwoByTwoScene(true), options);
+  const auto& joined = result.report["deployment"]["joined"];
+  ASSERT_TRUE(joined.value("ran", false)) << joined.dump(1).substr(0, 2000);
+  ASSERT_TRUE(joined["completed"].get<bool>()) << joined.dump(1).substr(0, 2000);
+  EXPECT_TRUE(joined["self_weight"].get<bool>());
+  EXPECT_EQ(joined["joints"], result.report["simulation"]["joined"]["bolts"]);
+  const auto& path = joined["path"];
+  EXPECT_EQ(path.front()["t"], 0.0);
+  // Self-weight (t 0..1), the joints (1..2), and the shoring (2..3) where there is any: here every
+  // side connection is one of the grid's own anchors.
+  EXPECT_EQ(path.back()["t"].get<double>(),
+            joined["temporary_supports"].get<int>() > 0 ? 3.0 : 2.0);
+  // The joints were open before the bolts pulled; what stays open is the misfit of the two
+  // patches' boundary lamellas, the same in the joined simulation (0.2096 and 0.2104 mm here).
+  EXPECT_GT(joined["join_gap_before_m"].get<double>(), joined["end_join_gap_m"].get<double>());
+  const double simulated = joined["joined_simulation_join_gap_m"].get<double>();
+  EXPECT_GT(simulated, 0.0);
+  EXPECT_NEAR(joined["end_join_gap_m"].get<double>(), simulated, 0.1 * simulated);
+  // The end is the joined simulation's equilibrium, to the sliding bolts' path dependence that
+  // each patch's own path already carries (up to 2.3 mm here, the test above): 5.6 mm measured.
+  EXPECT_LT(joined["end_vs_joined_simulation_rms_m"].get<double>(), 1e-2);
+  // Its rows in the CSV, its panels in the chart, its animation in the GLB.
+  std::ifstream csv(out / "deployment.csv");
+  std::string line;
+  size_t rows = 0;
+  while (std::getline(csv, line)) rows += line.rfind("joined,", 0) == 0;
+  EXPECT_GE(rows, path.size());
+  std::ifstream chart(out / "deployment.svg");
+  std::stringstream svg;
+  svg << chart.rdbuf();
+  EXPECT_NE(svg.str().find("Joining the patches"), std::string::npos);
+  EXPECT_EQ(std::system(("rsvg-convert -o " + (out / "deployment.png").string() + " " +
+                         (out / "deployment.svg").string())
+                            .c_str()),
+            0);
+  std::ifstream page(out / "report.html");
+  std::stringstream html;
+  html << page.rdbuf();
+  EXPECT_NE(html.str().find("<td>joined</td>"), std::string::npos);
   if (const std::string why = exporter::testing::nodeChecksUnavailable(); !why.empty()) {
     fs::remove_all(out);
     GTEST_SKIP() << why;

@@ -126,15 +126,25 @@ JoiningRun joinDeployed(const RunState& state,
 
 json joiningJson(const JoiningRun& run) {
   if (!run.skipped.empty()) return {{"ran", false}, {"skipped_reason", run.skipped}};
+  // The phases that ran, in order, each over one unit of t (joinDeployedPatches).
+  std::vector<std::string> phases;
+  if (run.selfWeight)
+    phases.push_back(
+        "the patches take their self-weight on their supports"
+        " and shoring");
+  if (run.joints > 0)
+    phases.push_back(
+        "the joints between their boundary lamellas are pulled closed and bolted (the bolts' "
+        "stiffness raised geometrically from 1e-6 of its full value, as a clamp is tightened)");
+  if (run.temporarySupports > 0)
+    phases.push_back(
+        "the shoring of the shared sides is let go (its stiffness lowered so, then off, as jacks "
+        "are lowered)");
+  std::string described;
+  for (size_t k = 0; k < phases.size(); ++k)
+    described += fmt::format("{}t {}..{}: {}", k ? "; " : "", k, k + 1, phases[k]);
   json j{{"ran", true},
-         {"phases",
-          std::string(run.selfWeight ? "t 0..1: the patches take their self-weight on their "
-                                       "supports and shoring; "
-                                     : "") +
-              "then the joints between their boundary lamellas are pulled closed and bolted (the "
-              "bolts' stiffness raised geometrically from 1e-6 of its full value, as a clamp is "
-              "tightened); then the shoring of the shared sides is let go (its stiffness lowered "
-              "so, as jacks are lowered), each over one unit of t"},
+         {"phases", described},
          {"joints", run.joints},
          {"temporary_supports", run.temporarySupports},
          {"self_weight", run.selfWeight}};

@@ -283,9 +283,12 @@ std::string chartSvg(const std::vector<PatchDeployment>& runs, const JoiningRun&
       pull.points.emplace_back(s.t, 1e-3 * s.maxJoinForceN);
       if (s.snap) ratio.snaps.push_back(ratio.points.back());
     }
-    const std::string joinLabel =
-        joining.selfWeight ? "t: 0 patches standing, 1 self-weight, 2 joints bolted, 3 shoring off"
-                           : "t: 0 patches standing, 1 joints bolted, 2 shoring off";
+    // The phases that ran, each over one unit of t (joinDeployedPatches).
+    std::string joinLabel = "t: 0 patches standing";
+    int phase = 0;
+    if (joining.selfWeight) joinLabel += fmt::format(", {} self-weight", ++phase);
+    if (joining.joints > 0) joinLabel += fmt::format(", {} joints bolted", ++phase);
+    if (joining.temporarySupports > 0) joinLabel += fmt::format(", {} shoring off", ++phase);
     f.top = 360;
     f.xMax = joining.result->steps.back().t > 0.0 ? std::ceil(joining.result->steps.back().t) : 1.0;
     f.left = 70;

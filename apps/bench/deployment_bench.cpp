@@ -73,6 +73,28 @@ int runDeploymentBench(const DeploymentBenchArgs& args) {
                      ? ""
                      : "  NOT COMPLETED: " + p.value("reason", std::string()));
     }
+    // The joining of the standing patches (docs/deployment.md): its row, end against the joined
+    // simulation, and the joints' gap at the end beside the joined simulation's.
+    const nlohmann::json j = d.value("joined", nlohmann::json::object());
+    if (j.value("ran", false) && j.contains("failure")) {
+      ok = false;
+      fmt::print(out, "{:<12} {:>5}  FAILED: {}\n", stem, "join", j["failure"].get<std::string>());
+    } else if (j.value("ran", false)) {
+      ok = ok && j.value("completed", false);
+      const auto& end = j["end_vs_joined_simulation_rms_m"];
+      fmt::print(out,
+                 "{:<12} {:>5} {:<22} {:>5} {:>5.2f} {:>6.3f} {:>6.2f} {:>5} {:>6} {:>9.1f} "
+                 "{:>8.2f} {:>7.1f}  joints {} gap {:.2f} mm (joined simulation {:.2f} mm){}\n",
+                 stem, "join", "joining", j.value("steps", 0), j.value("peak_stress_ratio", 0.0),
+                 j.value("peak_t", 0.0), j.value("end_stress_ratio", 0.0), j.value("snaps", 0),
+                 j.value("jammed_steps", 0), 1e-3 * j.value("max_support_force_n", 0.0),
+                 end.is_number() ? 1e3 * end.get<double>() : NAN, j.value("seconds", 0.0),
+                 j.value("joints", 0), 1e3 * j.value("end_join_gap_m", 0.0),
+                 1e3 * j.value("joined_simulation_join_gap_m", 0.0),
+                 j.value("completed", false)
+                     ? ""
+                     : "  NOT COMPLETED: " + j.value("reason", std::string()));
+    }
     fmt::print(out, "{:<12} stage {:.1f} s\n", stem, d.value("seconds", 0.0));
     std::fflush(out);
     rows.push_back({{"scene", name}, {"deployment", d}});

@@ -131,6 +131,16 @@ std::vector<PipelineStressCase> pipelineStressCases() {
     s["outputs"] = {"report", "deployment"};
     add("deploy_sharp_peak", "deployment",
         "bump 10 m, 3 m high, sigma 1.2 m, deployed from the flat grid (long notches)", s);
+    // Nine patches deployed one by one, then joined (self-weight, joints, shoring let go).
+    s = baseScene("deploy_joined");
+    s["patching"]["max_patch_size_m"] = 6;
+    s["grid"]["members_per_family"] = 6;
+    s["deployment"] = {{"steps", 6}};
+    s["outputs"] = {"report", "deployment"};
+    // About 25 s on two idle cores (nine patch paths, then the joining): twice that as a margin.
+    add("deploy_joined_patches", "deployment",
+        "bump 10 m in 9 patches, each deployed from its flat grid, then joined", s)
+        .timeLimitS = 120.0;
   }
   add("sliver_triangles", "sliver_triangles", "bump 10 m as 200 x 4 cells (triangles 50:1)",
       meshScene("sliver"))
@@ -219,6 +229,11 @@ PipelineStressRow classify(const PipelineStressCase& c, const ChildOutcome& o, c
       for (const json& p : report["deployment"]["patches"])
         for (const char* k : {"peak_stress_ratio", "end_stress_ratio", "max_support_force_n"})
           finite = finite && (p.contains("failure") || finiteNumber(p, k));
+    if (report.contains("deployment") && report["deployment"].contains("joined") &&
+        report["deployment"]["joined"].value("ran", false) &&
+        !report["deployment"]["joined"].contains("failure"))
+      for (const char* k : {"peak_stress_ratio", "end_stress_ratio", "max_join_force_n"})
+        finite = finite && finiteNumber(report["deployment"]["joined"], k);
     if (report.contains("patches") && report["patches"].is_array())
       for (const json& p : report["patches"])
         for (const char* k : {"eta_u", "eta_v", "alpha_bar_rad", "area_m2"})

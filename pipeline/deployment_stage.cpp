@@ -401,7 +401,8 @@ void deploymentStage(RunState& state) {
   std::vector<const SolvedPatch*> sources;
   for (const auto& p : state.patches)
     if (p.egg && p.network) {
-      runs.push_back({p.id});
+      runs.emplace_back();
+      runs.back().patch = p.id;
       sources.push_back(&p);
     }
   const rods::DeploymentOptions options = deploymentOptions(scene, static_cast<int>(runs.size()));

@@ -124,6 +124,20 @@ JoiningRun joinDeployed(const RunState& state,
   return run;
 }
 
+json pathTotalsJson(const rods::DeploymentResult& r) {
+  const auto& peak = r.steps[r.peakStep];
+  return {{"completed", r.completed},
+          {"timed_out", r.timedOut},
+          {"steps", static_cast<int>(r.steps.size()) - 1},
+          {"iterations", r.iterations},
+          {"seconds", r.seconds},
+          {"snaps", r.snaps},
+          {"jammed_steps", r.jammedSteps},
+          {"peak_t", peak.t},
+          {"peak_stress_ratio", peak.maxStressRatio},
+          {"end_stress_ratio", r.steps.back().maxStressRatio}};
+}
+
 json joiningJson(const JoiningRun& run) {
   if (!run.skipped.empty()) return {{"ran", false}, {"skipped_reason", run.skipped}};
   // The phases that ran, in order, each over one unit of t (joinDeployedPatches).
@@ -174,18 +188,8 @@ json joiningJson(const JoiningRun& run) {
                      {"jammed_bolts", s.jammedBolts},
                      {"max_vertex_move_m", s.maxVertexMoveM}});
   }
-  const auto& peak = r.steps[r.peakStep];
-  j.update({{"completed", r.completed},
-            {"timed_out", r.timedOut},
-            {"steps", static_cast<int>(r.steps.size()) - 1},
-            {"iterations", r.iterations},
-            {"seconds", r.seconds},
-            {"snaps", r.snaps},
-            {"jammed_steps", r.jammedSteps},
-            {"peak_t", peak.t},
-            {"peak_stress_ratio", peak.maxStressRatio},
-            {"end_stress_ratio", r.steps.back().maxStressRatio},
-            {"max_support_force_n", supportForce},
+  j.update(pathTotalsJson(r));
+  j.update({{"max_support_force_n", supportForce},
             {"max_join_force_n", joinForce},
             {"join_gap_before_m", gapBefore},
             {"end_join_gap_m", r.steps.back().maxJoinGapM},

@@ -101,7 +101,6 @@ json patchJson(const PatchDeployment& d) {
     return entry;
   }
   const rods::DeploymentResult& r = *d.result;
-  const rods::DeploymentStep& peak = r.steps[r.peakStep];
   const rods::DeploymentStep& end = r.steps.back();
   double supportForce = 0.0, notchForce = 0.0, angleMin = M_PI, angleMax = 0.0;
   json steps = json::array();
@@ -112,21 +111,12 @@ json patchJson(const PatchDeployment& d) {
     angleMax = std::max(angleMax, s.maxCrossingAngleRad);
     steps.push_back(stepJson(s));
   }
+  entry.update(pathTotalsJson(r));
   entry.update(
-      {{"completed", r.completed},
-       {"timed_out", r.timedOut},
-       {"path_kind", d.path},
+      {{"path_kind", d.path},
        {"path_choice", d.choice},
        {"engaged_from_t", r.engagedFromT >= 0.0 ? json(r.engagedFromT) : json(nullptr)},
-       {"steps", static_cast<int>(r.steps.size()) - 1},
-       {"iterations", r.iterations},
-       {"seconds", r.seconds},
-       {"snaps", r.snaps},
-       {"jammed_steps", r.jammedSteps},
-       {"peak_t", peak.t},
-       {"peak_stress_ratio", peak.maxStressRatio},
        {"end_t", end.t},
-       {"end_stress_ratio", end.maxStressRatio},
        {"max_support_force_n", supportForce},
        {"max_notch_force_n", notchForce},
        {"crossing_angle_deg", {angleMin * 180.0 / M_PI, angleMax * 180.0 / M_PI}},

@@ -36,6 +36,33 @@ Scene deploymentTwoByTwoScene(bool joined = false) {
   return parseScene(scene, "/virtual/bump_2x2_deployment.json");
 }
 
+std::string deploymentFileText(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// deployment.svg rendered by librsvg's command line, as a person would open it.
+bool chartRenders(const fs::path& out) {
+  return std::system(("rsvg-convert -o " + (out / "deployment.png").string() + " " +
+                      (out / "deployment.svg").string())
+                         .c_str()) == 0;
+}
+
+// deployment.glb through the Khronos validator (when Node.js and its packages are there), then the
+// run folder removed unless EGG_KEEP_TEST_FILES.
+void expectValidGlbThenCleanUp(const fs::path& out) {
+  if (const std::string why = exporter::testing::nodeChecksUnavailable(); !why.empty()) {
+    fs::remove_all(out);
+    GTEST_SKIP() << why;
+  }
+  const auto glb =
+      exporter::testing::runNodeScript("check_glb.mjs", (out / "deployment.glb").string());
+  EXPECT_EQ(glb.exitCode, 0) << glb.output;
+  if (!std::getenv("EGG_KEEP_TEST_FILES")) fs::remove_all(out);
+}
+
 TEST(DeploymentStage, EveryPatchOfATwoByTwoLayoutDeploysFromItsFlatGridToTheSimulatedShape) {
   const fs::path out =
       fs::temp_directory_path() / ("egg_deployment_2x2_" + std::to_string(::getpid()));
@@ -84,26 +111,14 @@ TEST(DeploymentStage, EveryPatchOfATwoByTwoLayoutDeploysFromItsFlatGridToTheSimu
   while (std::getline(csv, line)) ++lines;
   EXPECT_GE(lines, rows * 4);  // at least the 4 corners of every patch are supports
   EXPECT_GT(fs::file_size(out / "deployment.svg"), 1000u);
-  EXPECT_EQ(std::system(("rsvg-convert -o " + (out / "deployment.png").string() + " " +
-                         (out / "deployment.svg").string())
-                            .c_str()),
-            0);
+  EXPECT_TRUE(chartRenders(out));
   // report.html's section: the table and the chart inlined.
-  std::ifstream page(out / "report.html");
-  std::stringstream html;
-  html << page.rdbuf();
-  EXPECT_NE(html.str().find("<h2 id=\"deployment\">"), std::string::npos);
-  EXPECT_NE(html.str().find("<td>P3</td><td>corners first</td>"), std::string::npos);
-  EXPECT_NE(html.str().find("<svg id=\"deployment-chart\""), std::string::npos);
+  const std::string html = deploymentFileText(out / "report.html");
+  EXPECT_NE(html.find("<h2 id=\"deployment\">"), std::string::npos);
+  EXPECT_NE(html.find("<td>P3</td><td>corners first</td>"), std::string::npos);
+  EXPECT_NE(html.find("<svg id=\"deployment-chart\""), std::string::npos);
   ASSERT_TRUE(fs::exists(out / "deployment.glb"));
-  if (const std::string why = exporter::testing::nodeChecksUnavailable(); !why.empty()) {
-    fs::remove_all(out);
-    GTEST_SKIP() << why;
-  }
-  const auto glb =
-      exporter::testing::runNodeScript("check_glb.mjs", (out / "deployment.glb").string());
-  EXPECT_EQ(glb.exitCode, 0) << glb.output;
-  if (!std::getenv("EGG_KEEP_TEST_FILES")) fs::remove_all(out);
+  expectValidGlbThenCleanUp(out);
 }
 
 TEST(DeploymentStage, TheStandingPatchesAreJoinedAndEndWhereTheJoinedSimulationStands) {
@@ -138,26 +153,11 @@ TEST(DeploymentStage, TheStandingPatchesAreJoinedAndEndWhereTheJoinedSimulationS
   size_t rows = 0;
   while (std::getline(csv, line)) rows += line.rfind("joined,", 0) == 0;
   EXPECT_GE(rows, path.size());
-  std::ifstream chart(out / "deployment.svg");
-  std::stringstream svg;
-  svg << chart.rdbuf();
-  EXPECT_NE(svg.str().find("Joining the patches"), std::string::npos);
-  EXPECT_EQ(std::system(("rsvg-convert -o " + (out / "deployment.png").string() + " " +
-                         (out / "deployment.svg").string())
-                            .c_str()),
-            0);
-  std::ifstream page(out / "report.html");
-  std::stringstream html;
-  html << page.rdbuf();
-  EXPECT_NE(html.str().find("<td>joined</td>"), std::string::npos);
-  if (const std::string why = exporter::testing::nodeChecksUnavailable(); !why.empty()) {
-    fs::remove_all(out);
-    GTEST_SKIP() << why;
-  }
-  const auto glb =
-      exporter::testing::runNodeScript("check_glb.mjs", (out / "deployment.glb").string());
-  EXPECT_EQ(glb.exitCode, 0) << glb.output;
-  if (!std::getenv("EGG_KEEP_TEST_FILES")) fs::remove_all(out);
+  EXPECT_NE(deploymentFileText(out / "deployment.svg").find("Joining the patches"),
+            std::string::npos);
+  EXPECT_TRUE(chartRenders(out));
+  EXPECT_NE(deploymentFileText(out / "report.html").find("<td>joined</td>"), std::string::npos);
+  expectValidGlbThenCleanUp(out);
 }
 
 }  // namespace

@@ -110,8 +110,10 @@ JoiningRun joinDeployed(const RunState& state,
     o.weightSteps = std::max(1, scene.deployment.steps / 2);
     o.joinSteps = o.releaseSteps = scene.deployment.steps;
     run.result = rods::joinDeployedPatches(in.network, in.firstJoin, in.temporary, o);
-    run.endVsSimulationRmsM =
-        contactRmsM(run.result->last.contactPoints, state.joined->contactPoints);
+    // Against an equilibrium only: an unconverged joined simulation leaves the comparison null.
+    if (state.joined->solver.converged)
+      run.endVsSimulationRmsM =
+          contactRmsM(run.result->last.contactPoints, state.joined->contactPoints);
     // The joined simulation's own joints, as its solve left them.
     const rods::SimulationRun& simulated = *state.joined;
     for (size_t c = in.firstJoin; c < simulated.boltGapsM.size(); ++c) {

@@ -104,6 +104,9 @@ JoiningRun joinDeployed(const RunState& state,
     o.deployment = options;
     // One structure, one solve at a time: its stencils on every thread (as the joined simulation).
     o.deployment.solver.threads = std::max(1, tbb::this_task_arena::max_concurrency());
+    // Every patch starts at an equilibrium of its own: no far-off guess to soften towards (as the
+    // joined simulation's warm start).
+    o.deployment.solver.stiffnessContinuation = false;
     // Like for like with the joined simulation, which carries self-weight when the scene says so.
     o.selfWeight = scene.simulation.rods.model.gravity;
     run.selfWeight = o.selfWeight;

@@ -129,6 +129,26 @@ JoiningRun joinDeployed(const RunState& state,
   return run;
 }
 
+json stepJson(const rods::DeploymentStep& s) {
+  return {{"t", s.t},
+          {"converged", s.status == rods::SolverStatus::Converged},
+          {"iterations", s.iterations},
+          {"energy_j", s.energyJ},
+          {"stable", s.stable},
+          {"snap", s.snap},
+          {"max_stress_ratio", s.maxStressRatio},
+          {"max_bending_stress_mpa", s.maxBendingStressPa * 1e-6},
+          {"max_torsion_stress_mpa", s.maxTorsionStressPa * 1e-6},
+          {"max_axial_stress_mpa", s.maxAxialStressPa * 1e-6},
+          {"max_notch_force_n", s.maxNotchForceN},
+          {"jammed_bolts", s.jammedBolts},
+          {"max_notch_travel_m", s.maxNotchTravelM},
+          {"crossing_angle_deg",
+           {s.minCrossingAngleRad * 180.0 / M_PI, s.maxCrossingAngleRad * 180.0 / M_PI}},
+          {"max_support_force_n", s.maxSupportForceN},
+          {"max_vertex_move_m", s.maxVertexMoveM}};
+}
+
 json pathTotalsJson(const rods::DeploymentResult& r) {
   const auto& peak = r.steps[r.peakStep];
   return {{"completed", r.completed},
@@ -180,18 +200,10 @@ json joiningJson(const JoiningRun& run) {
     joinForce = std::max(joinForce, s.maxJoinForceN);
     // The widest joint before the bolts pull (the first phases' states, weight on).
     if (s.t <= (run.selfWeight ? 1.0 : 0.0) + 1e-12) gapBefore = std::max(gapBefore, s.maxJoinGapM);
-    steps.push_back({{"t", s.t},
-                     {"converged", s.status == rods::SolverStatus::Converged},
-                     {"iterations", s.iterations},
-                     {"energy_j", s.energyJ},
-                     {"snap", s.snap},
-                     {"max_stress_ratio", s.maxStressRatio},
-                     {"max_join_gap_m", s.maxJoinGapM},
-                     {"max_join_force_n", s.maxJoinForceN},
-                     {"max_support_force_n", s.maxSupportForceN},
-                     {"max_notch_force_n", s.maxNotchForceN},
-                     {"jammed_bolts", s.jammedBolts},
-                     {"max_vertex_move_m", s.maxVertexMoveM}});
+    json step = stepJson(s);
+    step["max_join_gap_m"] = s.maxJoinGapM;
+    step["max_join_force_n"] = s.maxJoinForceN;
+    steps.push_back(std::move(step));
   }
   j.update(pathTotalsJson(r));
   j.update({{"max_support_force_n", supportForce},

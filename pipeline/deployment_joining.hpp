@@ -37,6 +37,9 @@ JoiningRun joinDeployed(const RunState& state,
 double contactRmsM(const std::vector<std::vector<Eigen::Vector3d>>& a,
                    const std::vector<std::vector<Eigen::Vector3d>>& b);
 
+// One step of a path in report.json: t, convergence, energy, stresses, forces, crossing angles.
+nlohmann::json stepJson(const rods::DeploymentStep& step);
+
 // A path's totals in report.json (a patch's path and the joining alike): completed, timed_out,
 // steps, iterations, seconds, snaps, jammed_steps, peak_t, peak_stress_ratio, end_stress_ratio.
 nlohmann::json pathTotalsJson(const rods::DeploymentResult& result);

@@ -73,26 +73,6 @@ rods::DeploymentOptions deploymentOptions(const Scene& scene, int patches) {
   return o;
 }
 
-json stepJson(const rods::DeploymentStep& s) {
-  return {{"t", s.t},
-          {"converged", s.status == rods::SolverStatus::Converged},
-          {"iterations", s.iterations},
-          {"energy_j", s.energyJ},
-          {"stable", s.stable},
-          {"snap", s.snap},
-          {"max_stress_ratio", s.maxStressRatio},
-          {"max_bending_stress_mpa", s.maxBendingStressPa * 1e-6},
-          {"max_torsion_stress_mpa", s.maxTorsionStressPa * 1e-6},
-          {"max_axial_stress_mpa", s.maxAxialStressPa * 1e-6},
-          {"max_notch_force_n", s.maxNotchForceN},
-          {"jammed_bolts", s.jammedBolts},
-          {"max_notch_travel_m", s.maxNotchTravelM},
-          {"crossing_angle_deg",
-           {s.minCrossingAngleRad * 180.0 / M_PI, s.maxCrossingAngleRad * 180.0 / M_PI}},
-          {"max_support_force_n", s.maxSupportForceN},
-          {"max_vertex_move_m", s.maxVertexMoveM}};
-}
-
 json patchJson(const PatchDeployment& d) {
   json entry{{"patch", d.patch}};
   if (!d.failure.empty()) {

@@ -73,6 +73,13 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
   });
 }
 
+json phasesJson(const rods::SolverPhases& phases) {
+  return {{"derivatives", phases.derivativesS},
+          {"symbolic_analysis", phases.analysisS},
+          {"factorisation", phases.factorS},
+          {"line_search", phases.lineSearchS}};
+}
+
 json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& scene) {
   const rods::SimulationOptions& options = scene.simulation.rods;
   // Errors over all patches pooled by point count, so a big patch weighs as much as its points.
@@ -108,7 +115,9 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
         {"unknowns", sim.deployed.unknowns},
         {"factorisations", sim.deployed.solver.factorisations},  // Cholesky, shift trials included
         {"energy_evaluations", sim.deployed.solver.energyEvaluations},  // line-search trials
-        {"seconds", sim.seconds}};
+        {"seconds", sim.seconds},
+        {"phases_s", phasesJson(sim.deployed.solver.phases)},
+        {"symbolic_analyses", sim.deployed.solver.phases.analyses}};
     // Under self-weight, how far the grid sagged from its weightless equilibrium (a "collapsed"
     // status means it fell through: Section 3.5.2, Fig. 3.11).
     if (scene.simulation.rods.model.gravity) entry["max_sag_m"] = sim.deployed.maxSagM;

@@ -36,6 +36,9 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
                      bool holdSharedSides = false,
                      const std::function<void(int, int)>& patchDone = {});
 
+// Where a solve's wall time went (report.json `phases_s`, per patch and for the joined run).
+nlohmann::json phasesJson(const rods::SolverPhases& phases);
+
 // report.json simulation{} of the patch-by-patch runs (errors pooled over all patches).
 nlohmann::json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& scene);
 

@@ -97,7 +97,8 @@ EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double th
 
 BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0,
                                           const EdgeFrameDerivatives& f1,
-                                          const RodStiffness& stiffness, double voronoiLength) {
+                                          const RodStiffness& stiffness, double voronoiLength,
+                                          bool gaussNewton) {
   // Curvature binormal and reference twist over (e0, e1), from bilinear products.
   const V3<D3>&t0 = f0.tangent, &u0 = f0.director, &w0 = f0.binormal;
   const V3<D3>&t1 = f1.tangent, &u1 = f1.director, &w1 = f1.binormal;
@@ -147,6 +148,7 @@ BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0,
     const double s = 2.0 * term.c * w;
     g += s * gw;
     H.noalias() += (2.0 * term.c) * gw * gw.transpose();
+    if (gaussNewton) continue;
     for (int i = 0; i < 3; ++i) {
       lambda[i] += s * ac[i]->v;
       const double sk = s * kbc[i]->v;
@@ -161,7 +163,7 @@ BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0,
       }
     }
   }
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 3 && !gaussNewton; ++i) {
     for (int k = 0; k < 6; ++k) {
       for (int l = 0; l < 6; ++l) H(k, l) += lambda[i] * kbc[i]->hessian(k, l);
     }
@@ -182,7 +184,7 @@ BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0,
   gt[7] = 1.0;
   g += (k * twist) * gt;
   H.noalias() += k * gt * gt.transpose();
-  for (int i = 0; i < 6; ++i) {
+  for (int i = 0; i < 6 && !gaussNewton; ++i) {
     for (int j = 0; j < 6; ++j) H(i, j) += (k * twist) * reference.hessian(i, j);
   }
   out.energy = bending + 0.5 * k * twist * twist;

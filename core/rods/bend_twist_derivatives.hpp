@@ -48,9 +48,13 @@ struct BendTwistDerivatives {
 
 // f0, f1: the frames of the edges before and after the vertex (e0 = x1 - x0, e1 = x2 - x1),
 // from edgeFrameDerivatives.
+// `gaussNewton`: the Hessian without the curvatures' and the twist's own second derivatives,
+// sum 2 c grad w grad w^T + k grad tw grad tw^T: positive semidefinite by construction (the
+// projected Newton fallback's, rod_solver.hpp).
 BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0,
                                           const EdgeFrameDerivatives& f1,
-                                          const RodStiffness& stiffness, double voronoiLength);
+                                          const RodStiffness& stiffness, double voronoiLength,
+                                          bool gaussNewton = false);
 
 // The same over the stencil's unknowns (x0, x1, x2, theta0, theta1) with e0 = x1 - x0 and
 // e1 = x2 - x1: gradient A^T g and Hessian A^T H A for the constant map A. Assembling these 11

@@ -35,11 +35,12 @@ struct ModelOptions {
   void validate() const;  // throws InvalidInput naming the field
 };
 
-// Which Hessian RodModel::derivatives assembles: the exact one, or one with the penalty
+// Which Hessian RodModel::derivatives assembles: the exact one; one with the penalty
 // constraints' stencils (bolts, fastened joints, anchors) replaced by their nearest positive
 // semidefinite matrices (projected Newton), the rods' own bending, twisting and stretching kept
-// exact: the solver's fallback where the exact Hessian is indefinite (rod_solver.cpp).
-enum class HessianTerms { Exact, ProjectedConstraints };
+// exact; or one with every stencil projected. The projected ones are the solver's fallbacks where
+// the exact Hessian is indefinite (rod_solver.cpp).
+enum class HessianTerms { Exact, ProjectedConstraints, ProjectedAll };
 
 // The buffers of RodModel::derivatives, kept by the caller between calls so that a Newton run
 // allocates them once (on the Yas's joined structure, fresh buffers at every iteration cost a

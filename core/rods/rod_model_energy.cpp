@@ -5,6 +5,7 @@
 
 #include "core/rods/connection_derivatives.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include <tbb/blocked_range.h>
@@ -56,6 +57,13 @@ Eigen::Matrix<double, N, N> projectedHessian(const H& hessian) {
   Eigen::Matrix<double, N, N> m;
   for (int i = 0; i < N; ++i)
     for (int j = 0; j <= i; ++j) m(i, j) = m(j, i) = hessian(i, j);
+  // Most stencils are semidefinite already: a Cholesky factorisation (a tenth of an
+  // eigendecomposition's cost) tells them apart. Their Hessians are singular (rigid motions), so
+  // it is tried with the diagonal raised by round-off; it only decides, m is returned unchanged.
+  // (A pivoted LDL^T is no such test: it reported indefinite stencils as semidefinite.)
+  Eigen::Matrix<double, N, N> raised = m;
+  raised.diagonal().array() += 1e-12 * m.diagonal().cwiseAbs().maxCoeff();
+  if (Eigen::LLT<Eigen::Matrix<double, N, N>>(raised).info() == Eigen::Success) return m;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eigen(m);
   if (eigen.eigenvalues().minCoeff() >= 0.0) return m;
   return eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
@@ -91,7 +99,9 @@ struct DerivativeSum {
   template <size_t N, class F, class D>
   void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& /*values*/,
                   const F& /*f*/, const D& d, bool projectable) {
-    const auto result = d();
+    // Every stencil projected: the bending and twisting stencils' Gauss-Newton Hessian, which is
+    // semidefinite already (bend_twist_derivatives.hpp) and costs no eigendecomposition.
+    const auto result = d(terms == HessianTerms::ProjectedAll);
     add(
         dofs, result.energy, result.gradient, [&](int i, int j) { return result.hessian(i, j); },
         projectable);
@@ -99,7 +109,8 @@ struct DerivativeSum {
   template <size_t N, class G, class H>
   void add(const std::array<int, N>& dofs, double energy, const G& g, const H& hessian,
            bool projectable) {
-    if (projectable && terms == HessianTerms::ProjectedConstraints) {
+    if (terms == HessianTerms::ProjectedAll ||
+        (projectable && terms == HessianTerms::ProjectedConstraints)) {
       const auto projected = projectedHessian<static_cast<int>(N)>(hessian);
       scatter(dofs, energy, g, [&](int i, int j) { return projected(i, j); });
     } else {
@@ -235,9 +246,9 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
                                           materialFrame(e1, v[10], references_[index]),
                                           data.stiffness, data.h);
           },
-          [&]() {
+          [&](bool gaussNewton) {
             return onVertices(bendTwistDerivatives((*frames)[index - 1], (*frames)[index],
-                                                   data.stiffness, data.h));
+                                                   data.stiffness, data.h, gaussNewton));
           },
           false);
     }
@@ -264,7 +275,7 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
           return connectionEnergy(v3(v, 0), v3(v, 3), mg, v[7], v3(v, 8), v3(v, 11), mh, v[15],
                                   b.offset, stiffFactor_ * b.positionWeight, b.angleWeight);
         },
-        [&]() {
+        [&](bool /*gaussNewton*/) {
           auto at = [&](int i) { return Eigen::Vector3d(values[i], values[i + 1], values[i + 2]); };
           const EdgeFrameDerivatives& fg =
               (*frames)[edgeReferenceBase_[b.lower.point.rod] + b.lower.point.edge];

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <future>
+#include <memory>
 #include <string>
 #include <thread>
 #include <utility>
@@ -67,6 +68,11 @@ class PhaseTimer {
   Clock::time_point start_;
 };
 
+}  // namespace
+
+// Named, not anonymous: SolverWorkspace::State (declared in the header) holds one.
+namespace solver_detail {
+
 // The Hessian of the free unknowns as a sparse lower triangle whose pattern changes only when a
 // bolt moves to another edge: the triplets of the model come in the same order every iteration,
 // so each is mapped once to its slot in the matrix and later iterations only add values (no
@@ -76,12 +82,13 @@ class FreeHessian {
   explicit FreeHessian(std::vector<int> freeIndex, int freeCount)
       : freeIndex_(std::move(freeIndex)), matrix_(freeCount, freeCount) {}
 
-  // The triplets are the parts' in order (DerivativeBuffers). Returns true when the pattern
-  // changed (the factorisation needs a new symbolic analysis).
+  // The triplets are the parts' in order (DerivativeBuffers). Returns true when the matrix's
+  // pattern changed (the factorisation needs a new symbolic analysis). New triplets may leave it
+  // as it was: a fastened joint's stencil adds entries only where its bolt's already has some.
   bool assemble(const std::vector<std::vector<Eigen::Triplet<double>>>& parts) {
     size_t count = 0;
     for (const auto& part : parts) count += part.size();
-    bool same = count == rows_.size();
+    bool same = count == rows_.size(), patternChanged = false;
     for (size_t p = 0, k = 0; same && p < parts.size(); ++p) {
       for (size_t i = 0; same && i < parts[p].size(); ++i, ++k)
         same = parts[p][i].row() == rows_[k] && parts[p][i].col() == cols_[k];
@@ -90,14 +97,14 @@ class FreeHessian {
       std::vector<Eigen::Triplet<double>> triplets;
       triplets.reserve(count);
       for (const auto& part : parts) triplets.insert(triplets.end(), part.begin(), part.end());
-      rebuild(triplets);
+      patternChanged = rebuild(triplets);
     }
     base_.assign(matrix_.nonZeros(), 0.0);
     for (size_t p = 0, k = 0; p < parts.size(); ++p) {
       for (size_t i = 0; i < parts[p].size(); ++i, ++k)
         if (slot_[k] >= 0) base_[slot_[k]] += parts[p][i].value();
     }
-    return !same;
+    return patternChanged;
   }
   // Diagonal of the assembled (unshifted) Hessian.
   Eigen::VectorXd diagonal() const {
@@ -122,7 +129,8 @@ class FreeHessian {
   }
 
  private:
-  void rebuild(const std::vector<Eigen::Triplet<double>>& triplets) {
+  // Maps the triplets to their slots; true when the matrix's pattern is not the one before.
+  bool rebuild(const std::vector<Eigen::Triplet<double>>& triplets) {
     const int n = static_cast<int>(matrix_.rows());
     std::vector<Eigen::Triplet<double>> pattern;
     pattern.reserve(triplets.size() + n);
@@ -132,8 +140,16 @@ class FreeHessian {
     }
     for (int i = 0; i < n; ++i)
       pattern.emplace_back(i, i, 0.0);  // every diagonal entry exists (shifts)
+    const std::vector<int> outerBefore(matrix_.outerIndexPtr(),
+                                       matrix_.outerIndexPtr() + matrix_.outerSize() + 1);
+    const std::vector<int> innerBefore(matrix_.innerIndexPtr(),
+                                       matrix_.innerIndexPtr() + matrix_.nonZeros());
     matrix_.setFromTriplets(pattern.begin(), pattern.end());
     matrix_.makeCompressed();
+    const bool changed =
+        !std::equal(outerBefore.begin(), outerBefore.end(), matrix_.outerIndexPtr()) ||
+        !std::equal(innerBefore.begin(), innerBefore.end(), matrix_.innerIndexPtr(),
+                    matrix_.innerIndexPtr() + matrix_.nonZeros());
     second_ = matrix_;
     auto slotOf = [&](int r, int c) {
       const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[c];
@@ -151,6 +167,7 @@ class FreeHessian {
     }
     diagonalSlot_.resize(n);
     for (int i = 0; i < n; ++i) diagonalSlot_[i] = slotOf(i, i);
+    return changed;
   }
 
   std::vector<int> freeIndex_;
@@ -158,6 +175,10 @@ class FreeHessian {
   std::vector<int> rows_, cols_, slot_, diagonalSlot_;
   std::vector<double> base_;
 };
+
+}  // namespace solver_detail
+
+namespace {
 
 // The calls of SolverOptions::observer of one minimiseEnergy, with their count and cost (which the
 // progress' seconds leave out, so that an error-against-time record does not count its own
@@ -246,9 +267,9 @@ bool stopsBeforeStep(double energy, const Eigen::VectorXd& g, const SolverOption
 // iteration one after the other, 1.2 pairs). An unshifted first trial is tried alone: it
 // fails rarely (3 of 19 times there), and a second factorisation would be wasted work.
 // `shift`: the last shift in, the one taken out; false when no trial gave a direction.
-bool newtonDirection(FreeHessian& hessian, Factorisation (&solvers)[2], const Eigen::VectorXd& g,
-                     const Eigen::VectorXd& scale, int threads, double& shift, SolverResult& result,
-                     Eigen::VectorXd& direction) {
+bool newtonDirection(solver_detail::FreeHessian& hessian, Factorisation (&solvers)[2],
+                     const Eigen::VectorXd& g, const Eigen::VectorXd& scale, int threads,
+                     double& shift, SolverResult& result, Eigen::VectorXd& direction) {
   bool factored = false;
   std::vector<double> trials;
   for (double trial = shift * 0.1 < 1e-10 ? 0.0 : shift * 0.1; trials.size() < 30;
@@ -321,9 +342,29 @@ bool lineSearch(RodModel& model, const Eigen::VectorXd& z, const Eigen::VectorXd
   return accepted;
 }
 
+}  // namespace
+
+// The Hessian's pattern and slots, the factorisations with their symbolic analysis and the
+// derivative buffers, for the free unknowns `freeIndex` (SolverWorkspace in rod_solver.hpp).
+struct SolverWorkspace::State {
+  std::vector<int> freeIndex;
+  std::unique_ptr<solver_detail::FreeHessian> hessian;
+  Factorisation solvers[2];   // two: see newtonDirection
+  bool analysed = false;      // solvers[0] holds the analysis of the hessian's pattern
+  bool pairAnalysed = false;  // solvers[1] too
+  DerivativeBuffers buffers;
+};
+
+SolverWorkspace::SolverWorkspace() : state_(std::make_unique<State>()) {}
+SolverWorkspace::~SolverWorkspace() = default;
+SolverWorkspace::SolverWorkspace(SolverWorkspace&&) noexcept = default;
+SolverWorkspace& SolverWorkspace::operator=(SolverWorkspace&&) noexcept = default;
+
+namespace {
+
 // Newton with line search on the model as it is (one stage of the continuation).
 SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_point start,
-                    int iterationsBefore, Observation& observe) {
+                    int iterationsBefore, Observation& observe, SolverWorkspace::State& workspace) {
   auto elapsed = [&]() { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
   const int n = model.dofCount();
@@ -335,13 +376,20 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
 
   SolverResult result;
   Eigen::VectorXd gradient(n);
-  DerivativeBuffers buffers;
-  FreeHessian hessian(freeIndex, freeCount);
-  Factorisation solvers[2];  // two: see newtonDirection
-  double shift = 0.0;        // relative diagonal shift that last made the Hessian positive definite
+  // Other unknowns fixed than in the workspace's last run: a new Hessian and a new analysis.
+  if (!workspace.hessian || workspace.freeIndex != freeIndex) {
+    workspace.freeIndex = freeIndex;
+    workspace.hessian = std::make_unique<solver_detail::FreeHessian>(freeIndex, freeCount);
+    workspace.analysed = workspace.pairAnalysed = false;
+  }
+  DerivativeBuffers& buffers = workspace.buffers;
+  solver_detail::FreeHessian& hessian = *workspace.hessian;
+  Factorisation(&solvers)[2] = workspace.solvers;
+  double shift = 0.0;  // relative diagonal shift that last made the Hessian positive definite
   // Projected-Newton fallback: where the exact Hessian is indefinite (a bolt or a compressed edge
-  // far from its rest state), the constraint and stretching stencils are projected onto positive
-  // semidefinite matrices before any diagonal shift is tried. The shift is relative to a diagonal
+  // far from its rest state), the constraints' stencils (or every stencil, with
+  // SolverOptions::projectAllWhenIndefinite) are projected onto positive semidefinite matrices
+  // before any diagonal shift is tried. The shift is relative to a diagonal
   // that stretching dominates: any shift large enough for an indefinite bolt stencil also swamps
   // the soft bending and sagging modes, and Newton crawls (the Yas's joined structure: 479
   // iterations shift-bound). After a failed exact trial the exact Hessian is skipped for 1, 2, 4
@@ -349,6 +397,9 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
   // factorisation every time, and one that reaches a stable equilibrium ends with exact Newton
   // steps (quadratic convergence).
   int skipExact = 0, exactBackoff = 1;
+  // The projected Hessian of the fallback (SolverOptions::projectAllWhenIndefinite).
+  HessianTerms projected = options.projectAllWhenIndefinite ? HessianTerms::ProjectedAll
+                                                            : HessianTerms::ProjectedConstraints;
 
   for (int iteration = 0;; ++iteration) {
     const double reached = elapsed();
@@ -358,9 +409,8 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     double energy = 0.0;
     {
       const PhaseTimer timer(result.phases.derivativesS);
-      energy =
-          model.derivatives(z, gradient, buffers, options.threads,
-                            tryExact ? HessianTerms::Exact : HessianTerms::ProjectedConstraints);
+      energy = model.derivatives(z, gradient, buffers, options.threads,
+                                 tryExact ? HessianTerms::Exact : projected);
     }
     Eigen::VectorXd g(freeCount);
     for (int i = 0; i < n; ++i) {
@@ -378,11 +428,16 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       newPattern = hessian.assemble(buffers.triplets);
     }
     // A new pattern needs a new symbolic analysis; the second factorisation copies the first's.
-    if (newPattern) {
+    if (newPattern || !workspace.analysed) {
       const PhaseTimer timer(result.phases.analysisS);
       ++result.phases.analyses;
       solvers[0].analyzePattern(hessian.shifted(0.0, Eigen::VectorXd()));
-      if (options.threads >= 2) solvers[1] = solvers[0];
+      workspace.analysed = true;
+      workspace.pairAnalysed = false;
+    }
+    if (options.threads >= 2 && !workspace.pairAnalysed) {
+      solvers[1] = solvers[0];
+      workspace.pairAnalysed = true;
     }
 
     Eigen::VectorXd direction;
@@ -414,7 +469,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       } else {
         skipExact = exactBackoff;
         exactBackoff = std::min(2 * exactBackoff, 8);
-        assembleTerms(HessianTerms::ProjectedConstraints);
+        assembleTerms(projected);
       }
     }
     if (!factored) factored = shifted();
@@ -436,6 +491,9 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
       exactBackoff = 1;
       assembleTerms(HessianTerms::Exact);
       exactDirection = !tryExact && unshifted();  // tried: it failed at this state
+      // Every stencil projected hides the rods' own negative curvature too: from here on only
+      // the constraints' are, so that the shift search finds the way off a saddle.
+      if (!exactDirection) projected = HessianTerms::ProjectedConstraints;
       factored = exactDirection || shifted();
       if (!factored) {
         result.status = SolverStatus::Stalled;
@@ -485,6 +543,12 @@ SolverPhases& SolverPhases::operator+=(const SolverPhases& o) {
 }
 
 SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
+  SolverWorkspace workspace;
+  return minimiseEnergy(model, options, workspace);
+}
+
+SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options,
+                            SolverWorkspace& workspace) {
   options.validate();
   const auto start = Clock::now();
   Observation observe(options.observer, start);
@@ -496,7 +560,7 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
     stage.tolerance = std::max(options.tolerance, 1e-6);  // warm starts only: no need to be exact
     for (double factor = options.continuationStart; factor < 0.99; factor *= 10.0) {
       model.setStiffTermsFactor(factor * finalFactor);
-      const SolverResult r = newton(model, stage, start, iterations, observe);
+      const SolverResult r = newton(model, stage, start, iterations, observe, workspace.state());
       iterations = r.iterations;
       switches += r.boltEdgeSwitches;
       factorisations += r.factorisations;
@@ -519,7 +583,7 @@ SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options) {
     }
     model.setStiffTermsFactor(finalFactor);
   }
-  SolverResult result = newton(model, options, start, iterations, observe);
+  SolverResult result = newton(model, options, start, iterations, observe, workspace.state());
   result.boltEdgeSwitches += switches;
   result.factorisations += factorisations;
   result.energyEvaluations += evaluations;

@@ -8,6 +8,7 @@
 #include "core/rods/rod_model.hpp"
 
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace egg::rods {
@@ -39,6 +40,15 @@ struct SolverOptions {
   // reaches the same equilibrium in ~10-20 iterations.
   bool stiffnessContinuation = true;
   double continuationStart = 1e-4;  // first softening factor; factors grow tenfold up to 1
+  // Where the exact Hessian is indefinite, project every stencil (the rods' stretching, bending
+  // and twisting too), not only the penalty constraints'. For a start next to a stable
+  // equilibrium whose indefiniteness is transient (the joined structure from its patches'
+  // equilibria, pulled together at misfitting joints): there the constraints' projection still
+  // needs a diagonal shift that stalls Newton. Not for buckling or sliding paths, where the
+  // rods' negative curvature is the physics (projected, Newton heads for the unstable state);
+  // the solver drops back to the constraints' projection when a projected run ends on a state
+  // whose exact Hessian is indefinite.
+  bool projectAllWhenIndefinite = false;
   // Optional, e.g. the error against run time of the simulation stage (simulation.hpp history):
   // called on the state of every iteration whose number is a multiple of observeEvery when the
   // step leaving it is accepted (iteration 0 is the start), and on the state the call returns with
@@ -86,8 +96,28 @@ struct SolverResult {
   SolverPhases phases;
 };
 
+// What consecutive Newton runs on one model share (a continuation's stages, a simulation's load
+// steps): the derivative pass's buffers, the Hessian's pattern and the factorisations' symbolic
+// analysis, which is redone only when the pattern changes (a bolt moved to another edge) or other
+// unknowns are fixed. Results do not depend on it: the analysis is a function of the pattern.
+class SolverWorkspace {
+ public:
+  SolverWorkspace();
+  ~SolverWorkspace();
+  SolverWorkspace(SolverWorkspace&&) noexcept;
+  SolverWorkspace& operator=(SolverWorkspace&&) noexcept;
+  struct State;  // rod_solver.cpp
+  State& state() { return *state_; }
+
+ private:
+  std::unique_ptr<State> state_;
+};
+
 // Runs Newton from the model's current state and leaves the model at the last accepted state
 // (never at a non-finite one).
 SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options);
+// The same with a workspace kept by the caller between runs on the same model.
+SolverResult minimiseEnergy(RodModel& model, const SolverOptions& options,
+                            SolverWorkspace& workspace);
 
 }  // namespace egg::rods

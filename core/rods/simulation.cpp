@@ -131,6 +131,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     }
     return largest;
   };
+  SolverWorkspace workspace;  // the load steps share the Hessian's pattern and its analysis
   for (step = 0; step <= steps; ++step) {
     model.setLoadFactor(steps == 0 ? 1.0 : static_cast<double>(step) / steps);
     const double spent =
@@ -138,7 +139,7 @@ SimulationRun simulateRods(const RodNetwork& network, const SurfaceDistance* sur
     solverOptions.timeLimitS = std::max(1e-3, options.solver.timeLimitS - spent);
     solverOptions.maxIterations = std::max(1, options.solver.maxIterations - iterations);
     callStart = spent - observing;
-    run.solver = minimiseEnergy(model, solverOptions);
+    run.solver = minimiseEnergy(model, solverOptions, workspace);
     // Later load steps start next to an equilibrium: no need to soften the stiff terms again.
     solverOptions.stiffnessContinuation = false;
     iterations = run.solver.iterations += iterations;

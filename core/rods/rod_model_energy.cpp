@@ -4,6 +4,7 @@
 #include "core/rods/rod_model.hpp"
 
 #include "core/rods/connection_derivatives.hpp"
+#include "core/rods/stretching_derivatives.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -223,8 +224,15 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
       for (int k = 0; k < 6; ++k) dofs[k] = vertexDof(r, j) + k;
       for (int k = 0; k < 6; ++k) values[k] = z[dofs[k]];
       const double stiffness = stiffFactor_ * data.stiffness.stretching, h = data.h;
-      visit(dofs, values,
-            [&](const auto& v) { return stretchingEnergy(v3(v, 0), v3(v, 3), stiffness, h); });
+      visit.closedForm(
+          dofs, values,
+          [&](const auto& v) { return stretchingEnergy(v3(v, 0), v3(v, 3), stiffness, h); },
+          [&](bool /*gaussNewton*/) {
+            return stretchingDerivatives(Eigen::Vector3d(values[0], values[1], values[2]),
+                                         Eigen::Vector3d(values[3], values[4], values[5]),
+                                         stiffness, h);
+          },
+          false);
     }
     for (int i = 1; i < data.edges; ++i) {
       if (!mine()) continue;

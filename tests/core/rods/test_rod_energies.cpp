@@ -1,6 +1,7 @@
 // Finite-difference checks of the exact (HyperDual) gradients and Hessians of every energy term,
 // and closed-form values of bending and twisting for simple configurations.
 #include "core/rods/rod_energies.hpp"
+#include "core/rods/stretching_derivatives.hpp"
 
 #include "tests/core/rods/rod_test_references.hpp"
 
@@ -71,6 +72,25 @@ TEST(RodEnergies, StretchingGradientAndHessianMatchFiniteDifferences) {
   const std::array<double, 6> x{0.1, -0.2, 0.3, 1.2, 0.4, -0.1};
   expectExactDerivatives(
       x, [](const auto& v) { return stretchingEnergy(v3(v, 0), v3(v, 3), 5.0e3, 0.9); });
+}
+
+// The closed form the derivative pass uses, against the HyperDual<6> evaluation of the same
+// energy (exact forward-mode AD), stretched and compressed.
+TEST(RodEnergies, StretchingClosedFormMatchesHyperDual) {
+  for (const double scale : {1.3, 0.7}) {
+    const Eigen::Vector3d x0(0.1, -0.2, 0.3), x1 = x0 + scale * Eigen::Vector3d(0.8, 0.5, -0.3);
+    const StretchingDerivatives d = stretchingDerivatives(x0, x1, 5.0e3, 0.9);
+    using D = HyperDual<6>;
+    std::array<D, 6> v;
+    for (int i = 0; i < 6; ++i) v[i] = D::variable(i < 3 ? x0[i] : x1[i - 3], i);
+    const D a = stretchingEnergy(v3(v, 0), v3(v, 3), 5.0e3, 0.9);
+    EXPECT_NEAR(d.energy, a.v, 1e-13 * a.v);
+    for (int i = 0; i < 6; ++i) {
+      EXPECT_NEAR(d.gradient[i], a.g[i], 1e-12 * a.g.cwiseAbs().maxCoeff());
+      for (int j = 0; j < 6; ++j)
+        EXPECT_NEAR(d.hessian(i, j), a.hessian(i, j), 1e-12 * 5.0e3 / 0.9) << i << " " << j;
+    }
+  }
 }
 
 TEST(RodEnergies, BendTwistGradientAndHessianMatchFiniteDifferences) {

@@ -16,11 +16,13 @@
 #include <fmt/core.h>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <mutex>
+#include <vector>
 
 namespace egg::pipeline {
 
@@ -49,9 +51,8 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
   // own threads would only compete with TBB's); the simulation is bit-identical for any count.
   const int solved = solvedCount(patches);
   std::atomic<int> done{0};
-  tbb::parallel_for(size_t(0), patches.size(), [&](size_t i) {
+  auto simulateOne = [&](size_t i) {
     auto& patch = patches[i];
-    if (!patch.egg) return;
     // One patch's failure must not discard the others' results: record it and go on.
     try {
       rods::RodNetwork network = assembly::rodNetworkFromGrid(patch.egg->grid, convert);
@@ -70,6 +71,21 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
       patch.simulationFailure = e.what();
     }
     if (patchDone) patchDone(++done, solved);
+  };
+  // Largest grids first (by bolts), each worker taking the next patch when it is free (longest
+  // first): a split of the index range fixes which thread gets which patches, whatever their
+  // sizes, and the last patch can then run alone on one core while the other waits.
+  std::vector<size_t> order;
+  for (size_t i = 0; i < patches.size(); ++i)
+    if (patches[i].egg) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return patches[a].egg->grid.connections.size() > patches[b].egg->grid.connections.size();
+  });
+  std::atomic<size_t> next{0};
+  const int workers = std::max(
+      1, std::min(static_cast<int>(order.size()), tbb::this_task_arena::max_concurrency()));
+  tbb::parallel_for(0, workers, [&](int) {
+    for (size_t k = next++; k < order.size(); k = next++) simulateOne(order[k]);
   });
 }
 

@@ -1,7 +1,9 @@
 #pragma once
-// Small rod networks shared by the rod model tests: straight rods and two rods crossing at a bolt.
+// Small rod networks shared by the rod model tests: straight rods, two rods crossing at a bolt,
+// and a small bolted vault.
 #include "core/rods/rod_model.hpp"
 #include "core/rods/rod_network.hpp"
+#include "core/rods/sample_grids.hpp"
 
 #include <Eigen/Core>
 
@@ -39,6 +41,19 @@ inline ModelOptions edges(int n) {
   options.minEdgesPerRod = n;
   options.maxEdgesPerRod = n;
   return options;
+}
+
+// A 3 x 3 m cylindrical vault of 50 x 5 mm lamellas at 0.75 m, notched (cylinderGrid's default
+// notch fraction).
+inline SampleGrid smallVault() {
+  CylinderGridParameters parameters;
+  parameters.radiusM = 3.0;
+  parameters.halfAngleRad = 0.6;
+  parameters.lengthM = 3.0;
+  parameters.spacingM = 0.75;
+  parameters.section = {0.05, 0.005};
+  parameters.meshEdgeM = 0.05;  // chordal error 0.05^2 / (8 R) = 0.1 mm, well below t/2
+  return cylinderGrid(parameters);
 }
 
 }  // namespace egg::rods::testing

@@ -5,6 +5,7 @@
 #include "core/rods/rod_solver.hpp"
 #include "core/rods/sample_grids.hpp"
 #include "core/rods/simulation.hpp"
+#include "tests/core/rods/rod_test_networks.hpp"
 
 #include <gtest/gtest.h>
 #include <Eigen/Eigenvalues>
@@ -16,23 +17,11 @@
 namespace egg::rods {
 namespace {
 
-SampleGrid projectionVault() {
-  CylinderGridParameters parameters;
-  parameters.radiusM = 3.0;
-  parameters.halfAngleRad = 0.6;
-  parameters.lengthM = 3.0;
-  parameters.spacingM = 0.75;
-  parameters.section = {0.05, 0.005};
-  parameters.notchFraction = 0.2;
-  parameters.meshEdgeM = 0.05;
-  return cylinderGrid(parameters);
-}
-
 // The vault's equilibrium under self-weight, then every rod of the upper layer moved 3 mm along x:
 // each bolt starts 3 mm open, held by the penalty (its force ~ 1e9 N/m x 3 mm) that compresses
 // the lamellas at first, as a misfitting joint of the joined structure does.
 struct MisfitStart {
-  SampleGrid grid = projectionVault();
+  SampleGrid grid = testing::smallVault();
   SimulationRun equilibrium;
   RodNetwork start;
   MisfitStart() {

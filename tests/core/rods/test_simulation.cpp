@@ -4,6 +4,7 @@
 
 #include "core/errors.hpp"
 #include "core/rods/sample_grids.hpp"
+#include "tests/core/rods/rod_test_networks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,16 +14,7 @@
 namespace egg::rods {
 namespace {
 
-SampleGrid smallVault() {
-  CylinderGridParameters parameters;
-  parameters.radiusM = 3.0;
-  parameters.halfAngleRad = 0.6;
-  parameters.lengthM = 3.0;
-  parameters.spacingM = 0.75;
-  parameters.section = {0.05, 0.005};
-  parameters.meshEdgeM = 0.05;  // chordal error 0.05^2 / (8 R) = 0.1 mm, well below t/2
-  return cylinderGrid(parameters);
-}
+using testing::smallVault;
 
 TEST(Simulation, ContactPointsOfTheGuessLieOnTheSurface) {
   const SampleGrid grid = smallVault();

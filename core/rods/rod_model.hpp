@@ -38,8 +38,9 @@ struct ModelOptions {
 // Which Hessian RodModel::derivatives assembles: the exact one; one with the penalty
 // constraints' stencils (bolts, fastened joints, anchors) replaced by their nearest positive
 // semidefinite matrices (projected Newton), the rods' own bending, twisting and stretching kept
-// exact; or one with every stencil projected. The projected ones are the solver's fallbacks where
-// the exact Hessian is indefinite (rod_solver.cpp).
+// exact; or one with every stencil semidefinite: stretching and the constraints projected, bending
+// and twisting by their Gauss-Newton Hessian (bend_twist_derivatives.hpp). The last two are the
+// solver's fallbacks where the exact Hessian is indefinite (rod_solver.cpp).
 enum class HessianTerms { Exact, ProjectedConstraints, ProjectedAll };
 
 // The buffers of RodModel::derivatives, kept by the caller between calls so that a Newton run

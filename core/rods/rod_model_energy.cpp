@@ -1,6 +1,6 @@
 // The energy of the discretised grid (RodModel, Section 2.5): the stencils of every term, their
 // double evaluation for line searches and their exact derivatives for Newton (HyperDual, or
-// closed forms for the bend/twist and bolt stencils).
+// closed forms for the stretching, bend/twist and bolt stencils).
 #include "core/rods/rod_model.hpp"
 
 #include "core/rods/connection_derivatives.hpp"

@@ -46,6 +46,61 @@ V3<D6> bilinearCross(const V3<D3>& a, const V3<D3>& b) {
           bilinearSum<2>({&a.x, &a.y}, {&b.y, &b.x}, {1.0, -1.0})};
 }
 
+// The two bending terms of edge E (its variables: e_E at 3E, theta_E at 6 + E) with w = kb.a:
+// gradient 2 c w grad w; Hessian 2 c (grad w grad w^T + w Hess w), where Hess w = sum_i (a_i Hess
+// kb_i + kb_i Hess a_i + grad kb_i grad a_i^T + grad a_i grad kb_i^T). The a_i Hess kb_i parts of
+// all four terms are summed by the caller (lambda); the rest is gathered over the edge's two terms
+// before it is added (one 6x4 product for the mixed parts instead of one per term). E is a
+// template parameter so that every index is a constant.
+template <int E>
+void bendEdge(const Frame<D4>& frame, double weak, double strong, const Eigen::Vector3d& kbv,
+              const Eigen::Matrix<double, 3, 6>& kbJ, bool gaussNewton, double& bending,
+              Eigen::Vector3d& lambda, Vec8& g, Mat8& H) {
+  Eigen::Matrix<double, 3, 4> mixed = Eigen::Matrix<double, 3, 4>::Zero();  // sum s grad a
+  Eigen::Matrix4d own = Eigen::Matrix4d::Zero();                            // sum s kb_i Hess a_i
+  for (int term = 0; term < 2; ++term) {
+    const V3<D4>& a = term == 0 ? frame.side : frame.normal;
+    const double c = term == 0 ? weak : strong;
+    const D4* ac[3] = {&a.x, &a.y, &a.z};
+    Eigen::Vector3d av;
+    Eigen::Matrix<double, 3, 4> aJ;
+    for (int i = 0; i < 3; ++i) {
+      av[i] = ac[i]->v;
+      aJ.row(i) = ac[i]->g.transpose();
+    }
+    const double w = kbv.dot(av);
+    Vec8 gw;
+    gw.head<6>().noalias() = kbJ.transpose() * av;
+    const Eigen::Vector4d ga = aJ.transpose() * kbv;
+    gw.segment<3>(3 * E) += ga.head<3>();
+    gw[6 + E] = ga[3];
+    gw[7 - E] = 0.0;
+    bending += c * w * w;
+    const double s = 2.0 * c * w;
+    g += s * gw;
+    H.noalias() += (2.0 * c) * gw * gw.transpose();
+    if (gaussNewton) continue;
+    lambda += s * av;
+    mixed += s * aJ;
+    for (int i = 0; i < 3; ++i) {
+      const double sk = s * kbv[i];
+      for (int p = 0; p < 4; ++p)
+        for (int q = 0; q <= p; ++q) own(p, q) += sk * ac[i]->h(p, q);
+    }
+  }
+  if (gaussNewton) return;
+  own.triangularView<Eigen::StrictlyUpper>() = own.transpose();
+  const Eigen::Matrix<double, 6, 4> cross = kbJ.transpose() * mixed;  // sum s grad kb_i grad a_i^T
+  H.block<6, 3>(0, 3 * E) += cross.leftCols<3>();
+  H.block<3, 6>(3 * E, 0) += cross.leftCols<3>().transpose();
+  H.block<6, 1>(0, 6 + E) += cross.col(3);
+  H.block<1, 6>(6 + E, 0) += cross.col(3).transpose();
+  H.block<3, 3>(3 * E, 3 * E) += own.topLeftCorner<3, 3>();
+  H.block<3, 1>(3 * E, 6 + E) += own.block<3, 1>(0, 3);
+  H.block<1, 3>(6 + E, 3 * E) += own.block<1, 3>(3, 0);
+  H(6 + E, 6 + E) += own(3, 3);
+}
+
 }  // namespace
 
 // The tangent, transported director u and v = t x u depend on the edge vector only: they are
@@ -54,6 +109,13 @@ V3<D6> bilinearCross(const V3<D3>& a, const V3<D3>& b) {
 // the second derivatives in theta are -m1, -m2 (the same expressions as materialFrame).
 EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta,
                                           const EdgeReference& reference) {
+  EdgeFrameDerivatives out;
+  edgeFrameDerivatives(edge, theta, reference, out);
+  return out;
+}
+
+void edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta, const EdgeReference& reference,
+                          EdgeFrameDerivatives& out) {
   const V3<D3> e{D3::variable(edge.x(), 0), D3::variable(edge.y(), 1), D3::variable(edge.z(), 2)};
   const D3 length = norm(e);
   const V3<D3> t = (1.0 / length) * e;
@@ -83,7 +145,6 @@ EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double th
     r.h(3, 3) = -r.v;
     return r;
   };
-  EdgeFrameDerivatives out;
   out.frame.tangent = {lift(t.x), lift(t.y), lift(t.z)};
   out.tangent = t;
   out.director = u;
@@ -92,7 +153,6 @@ EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double th
                       turned(u.z, v.z, c, s, -s, c)};
   out.frame.side = {turned(v.x, u.x, c, -s, -s, -c), turned(v.y, u.y, c, -s, -s, -c),
                     turned(v.z, u.z, c, -s, -s, -c)};
-  return out;
 }
 
 BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0,
@@ -120,52 +180,31 @@ BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0,
   g.setZero();
   H.setZero();
   const D6* kbc[3] = {&kb.x, &kb.y, &kb.z};
-
-  // Bending: the four material curvatures, weighted as in bendTwistEnergyOfEdges.
-  const double scale = 0.25 / voronoiLength;
-  struct Term {
-    const V3<D4>* a;
-    int edge;
-    double c;
-  };
-  const Term terms[4] = {{&f0.frame.side, 0, scale * stiffness.bendingWeak},
-                         {&f1.frame.side, 1, scale * stiffness.bendingWeak},
-                         {&f0.frame.normal, 0, scale * stiffness.bendingStrong},
-                         {&f1.frame.normal, 1, scale * stiffness.bendingStrong}};
-  double lambda[3] = {0.0, 0.0, 0.0};  // sum over terms of 2 c w a: weights of Hess kb
-  double bending = 0.0;
-  for (const Term& term : terms) {
-    const D4* ac[3] = {&term.a->x, &term.a->y, &term.a->z};
-    const int at[4] = {3 * term.edge, 3 * term.edge + 1, 3 * term.edge + 2, 6 + term.edge};
-    double w = 0.0;
-    Vec8 gw = Vec8::Zero();
-    for (int i = 0; i < 3; ++i) {
-      w += kbc[i]->v * ac[i]->v;
-      for (int k = 0; k < 6; ++k) gw[k] += kbc[i]->g[k] * ac[i]->v;
-      for (int p = 0; p < 4; ++p) gw[at[p]] += kbc[i]->v * ac[i]->g[p];
-    }
-    bending += term.c * w * w;
-    const double s = 2.0 * term.c * w;
-    g += s * gw;
-    H.noalias() += (2.0 * term.c) * gw * gw.transpose();
-    if (gaussNewton) continue;
-    for (int i = 0; i < 3; ++i) {
-      lambda[i] += s * ac[i]->v;
-      const double sk = s * kbc[i]->v;
-      for (int p = 0; p < 4; ++p) {
-        for (int q = 0; q < 4; ++q) H(at[p], at[q]) += sk * ac[i]->hessian(p, q);
-        // Mixed terms grad kb_i grad a_i^T and their transpose.
-        const double sa = s * ac[i]->g[p];
-        for (int k = 0; k < 6; ++k) {
-          H(k, at[p]) += sa * kbc[i]->g[k];
-          H(at[p], k) += sa * kbc[i]->g[k];
-        }
-      }
-    }
+  Eigen::Vector3d kbv;
+  Eigen::Matrix<double, 3, 6> kbJ;  // gradient of kb over (e0, e1), one row per component
+  for (int i = 0; i < 3; ++i) {
+    kbv[i] = kbc[i]->v;
+    kbJ.row(i) = kbc[i]->g.transpose();
   }
-  for (int i = 0; i < 3 && !gaussNewton; ++i) {
+
+  // Bending: the four material curvatures w = kb.a, weighted as in bendTwistEnergyOfEdges, two
+  // per edge (a = m2 with the weak stiffness, a = m1 with the strong one).
+  const double scale = 0.25 / voronoiLength;
+  Eigen::Vector3d lambda =
+      Eigen::Vector3d::Zero();  // sum over terms of 2 c w a: weights of Hess kb
+  double bending = 0.0;
+  bendEdge<0>(f0.frame, scale * stiffness.bendingWeak, scale * stiffness.bendingStrong, kbv, kbJ,
+              gaussNewton, bending, lambda, g, H);
+  bendEdge<1>(f1.frame, scale * stiffness.bendingWeak, scale * stiffness.bendingStrong, kbv, kbJ,
+              gaussNewton, bending, lambda, g, H);
+  if (!gaussNewton) {
     for (int k = 0; k < 6; ++k) {
-      for (int l = 0; l < 6; ++l) H(k, l) += lambda[i] * kbc[i]->hessian(k, l);
+      for (int l = 0; l <= k; ++l) {
+        const double h =
+            lambda[0] * kbc[0]->h(k, l) + lambda[1] * kbc[1]->h(k, l) + lambda[2] * kbc[2]->h(k, l);
+        H(k, l) += h;
+        if (l != k) H(l, k) += h;
+      }
     }
   }
 
@@ -192,34 +231,25 @@ BendTwistDerivatives bendTwistDerivatives(const EdgeFrameDerivatives& f0,
 }
 
 BendTwistVertexDerivatives onVertices(const BendTwistDerivatives& d) {
-  // Column a of the map: the stencil variables that unknown a enters, with their signs
-  // (x0: -e0; x1: +e0, -e1; x2: +e1; thetas: themselves).
-  int count[11], variable[11][2];
-  double sign[11][2];
-  for (int k = 0; k < 3; ++k) {
-    count[k] = 1, variable[k][0] = k, sign[k][0] = -1.0;
-    count[3 + k] = 2, variable[3 + k][0] = k, sign[3 + k][0] = 1.0, variable[3 + k][1] = 3 + k,
-              sign[3 + k][1] = -1.0;
-    count[6 + k] = 1, variable[6 + k][0] = 3 + k, sign[6 + k][0] = 1.0;
-  }
-  count[9] = 1, variable[9][0] = 6, sign[9][0] = 1.0;
-  count[10] = 1, variable[10][0] = 7, sign[10][0] = 1.0;
+  // A maps (x0, x1, x2, theta0, theta1) to (e0, e1, theta0, theta1): x0 enters e0 with -1, x1
+  // e0 with +1 and e1 with -1, x2 e1 with +1. Applied as block differences, first to the
+  // columns (T = H A, 8 x 11), then to the rows (A^T T).
+  const Mat8& h = d.hessian;
+  Eigen::Matrix<double, 8, 11> t;
+  t.middleCols<3>(0) = -h.leftCols<3>();
+  t.middleCols<3>(3) = h.leftCols<3>() - h.middleCols<3>(3);
+  t.middleCols<3>(6) = h.middleCols<3>(3);
+  t.rightCols<2>() = h.rightCols<2>();
   BendTwistVertexDerivatives out;
   out.energy = d.energy;
-  for (int a = 0; a < 11; ++a) {
-    double g = 0.0;
-    for (int p = 0; p < count[a]; ++p) g += sign[a][p] * d.gradient[variable[a][p]];
-    out.gradient[a] = g;
-    for (int b = 0; b <= a; ++b) {
-      double h = 0.0;
-      for (int p = 0; p < count[a]; ++p) {
-        for (int q = 0; q < count[b]; ++q)
-          h += sign[a][p] * sign[b][q] * d.hessian(variable[a][p], variable[b][q]);
-      }
-      out.hessian(a, b) = h;
-      out.hessian(b, a) = h;
-    }
-  }
+  out.hessian.middleRows<3>(0) = -t.topRows<3>();
+  out.hessian.middleRows<3>(3) = t.topRows<3>() - t.middleRows<3>(3);
+  out.hessian.middleRows<3>(6) = t.middleRows<3>(3);
+  out.hessian.bottomRows<2>() = t.bottomRows<2>();
+  out.gradient.segment<3>(0) = -d.gradient.head<3>();
+  out.gradient.segment<3>(3) = d.gradient.head<3>() - d.gradient.segment<3>(3);
+  out.gradient.segment<3>(6) = d.gradient.segment<3>(3);
+  out.gradient.tail<2>() = d.gradient.tail<2>();
   return out;
 }
 

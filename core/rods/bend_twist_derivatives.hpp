@@ -39,6 +39,10 @@ struct EdgeFrameDerivatives {
 
 EdgeFrameDerivatives edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta,
                                           const EdgeReference& reference);
+// The same written into `out` (the derivative pass keeps one per edge: no copy of its ~300
+// numbers).
+void edgeFrameDerivatives(const Eigen::Vector3d& edge, double theta, const EdgeReference& reference,
+                          EdgeFrameDerivatives& out);
 
 struct BendTwistDerivatives {
   double energy = 0.0;

@@ -45,7 +45,7 @@ struct EnergySum {
   // A stencil with closed-form derivatives `d` (not needed for the energy alone).
   template <size_t N, class F, class D>
   void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& values, const F& f,
-                  const D& /*d*/, bool /*projectable*/) {
+                  const D& /*d*/, bool /*projectable*/, bool /*projectedByD*/ = false) {
     (*this)(dofs, values, f);
   }
 };
@@ -100,15 +100,20 @@ struct DerivativeSum {
   // The same with the derivatives computed in closed form by d() (energy, gradient, full Hessian).
   // `projectable`: false for the bending and twisting stencils, which HessianTerms::
   // ProjectedConstraints keeps exact.
+  // `projectedByD`: d(true) returns a positive semidefinite Hessian (stretching's projection in
+  // closed form, bending and twisting's Gauss-Newton Hessian): with every stencil projected, it is
+  // scattered as it is, with no Cholesky test or eigendecomposition.
   template <size_t N, class F, class D>
   void closedForm(const std::array<int, N>& dofs, const std::array<double, N>& /*values*/,
-                  const F& /*f*/, const D& d, bool projectable) {
-    // Every stencil projected: the bending and twisting stencils' Gauss-Newton Hessian, which is
-    // semidefinite already (bend_twist_derivatives.hpp) and costs no eigendecomposition.
-    const auto result = d(terms == HessianTerms::ProjectedAll);
-    add(
-        dofs, result.energy, result.gradient, [&](int i, int j) { return result.hessian(i, j); },
-        projectable);
+                  const F& /*f*/, const D& d, bool projectable, bool projectedByD = false) {
+    const bool all = terms == HessianTerms::ProjectedAll;
+    const auto result = d(all);
+    auto hessian = [&](int i, int j) { return result.hessian(i, j); };
+    if (all && projectedByD) {
+      scatter(dofs, result.energy, result.gradient, hessian);
+    } else {
+      add(dofs, result.energy, result.gradient, hessian, projectable);
+    }
   }
   template <size_t N, class G, class H>
   void add(const std::array<int, N>& dofs, double energy, const G& g, const H& hessian,
@@ -189,7 +194,7 @@ void RodModel::frameDerivatives(const Eigen::VectorXd& z, int threads,
         const int index = edgeReferenceBase_[r] + j;
         if (index % kParts != part) continue;
         const Eigen::Vector3d e = z.segment<3>(vertexDof(r, j + 1)) - z.segment<3>(vertexDof(r, j));
-        frames[index] = edgeFrameDerivatives(e, z[thetaDof(r, j)], references_[index]);
+        edgeFrameDerivatives(e, z[thetaDof(r, j)], references_[index], frames[index]);
       }
     }
   });
@@ -230,12 +235,12 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
       visit.closedForm(
           dofs, values,
           [&](const auto& v) { return stretchingEnergy(v3(v, 0), v3(v, 3), stiffness, h); },
-          [&](bool /*gaussNewton*/) {
+          [&](bool projected) {
             return stretchingDerivatives(Eigen::Vector3d(values[0], values[1], values[2]),
                                          Eigen::Vector3d(values[3], values[4], values[5]),
-                                         stiffness, h);
+                                         stiffness, h, projected);
           },
-          false);
+          false, true);
     }
     for (int i = 1; i < data.edges; ++i) {
       if (!mine()) continue;
@@ -261,7 +266,7 @@ void RodModel::forEachStencil(const Eigen::VectorXd& z, Visitor&& visit, int par
             return onVertices(bendTwistDerivatives((*frames)[index - 1], (*frames)[index],
                                                    data.stiffness, data.h, gaussNewton));
           },
-          false);
+          false, true);
     }
   }
   for (const Bolt& b : bolts_) {

@@ -6,6 +6,7 @@
 #include "tests/core/rods/rod_test_references.hpp"
 
 #include <gtest/gtest.h>
+#include <Eigen/Eigenvalues>
 
 #include <array>
 #include <cmath>
@@ -90,6 +91,26 @@ TEST(RodEnergies, StretchingClosedFormMatchesHyperDual) {
       for (int j = 0; j < 6; ++j)
         EXPECT_NEAR(d.hessian(i, j), a.hessian(i, j), 1e-12 * 5.0e3 / 0.9) << i << " " << j;
     }
+  }
+}
+
+// The projected fallback's stretching Hessian (rod_solver.hpp): the nearest positive
+// semidefinite matrix, here in closed form, equals the eigen-projection (negative eigenvalues set
+// to zero) of the exact Hessian; a stretched edge's Hessian is semidefinite and stays as it is.
+TEST(RodEnergies, StretchingProjectedHessianIsTheNearestSemidefiniteOne) {
+  for (const double scale : {1.3, 0.7}) {
+    const Eigen::Vector3d x0(0.1, -0.2, 0.3), x1 = x0 + scale * Eigen::Vector3d(0.8, 0.5, -0.3);
+    const StretchingDerivatives exact = stretchingDerivatives(x0, x1, 5.0e3, 0.9);
+    const StretchingDerivatives projected = stretchingDerivatives(x0, x1, 5.0e3, 0.9, true);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(exact.hessian);
+    const Eigen::Matrix<double, 6, 6> nearest = eigen.eigenvectors() *
+                                                eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
+                                                eigen.eigenvectors().transpose();
+    EXPECT_EQ(eigen.eigenvalues().minCoeff() < -1.0, scale < 1.0);  // compressed: indefinite
+    EXPECT_LT((projected.hessian - nearest).cwiseAbs().maxCoeff(), 1e-9 * 5.0e3 / 0.9);
+    EXPECT_EQ(projected.energy, exact.energy);
+    EXPECT_EQ(projected.gradient, exact.gradient);
+    if (scale > 1.0) EXPECT_EQ(projected.hessian, exact.hessian);
   }
 }
 

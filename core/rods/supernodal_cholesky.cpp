@@ -17,15 +17,20 @@
 namespace egg::rods {
 namespace {
 
-// Position in the factor of each unknown. CHOLMOD's analysis tries AMD and METIS (nested
-// dissection) and keeps the one with the fewer nonzeros in L, postordered: on the small patch
-// grids AMD wins, on the joined Yas (~150k unknowns) METIS fills about half as much
-// (docs/measurements.md). Only the ordering is CHOLMOD's; the factorisation stays ours.
+// Position in the factor of each unknown. CHOLMOD's analysis tries AMD and, on a large grid,
+// METIS (nested dissection), and keeps the one with the fewer nonzeros in L, postordered. Nested
+// dissection pays off only on large grids: over the three samples' patch grids and the joined
+// Great Court and Lilium (up to 23k unknowns) AMD filled less or at most 1.3 % more, and METIS took
+// three quarters of the analysis' time (80 of 107 ms on the joined Great Court); on the joined
+// Yas (143k unknowns) METIS fills 12 % less (docs/measurements.md). Only the ordering is
+// CHOLMOD's; the factorisation stays ours.
+constexpr int kNestedDissectionFrom = 40000;  // unknowns
+
 std::vector<int> fillReducingOrder(const Eigen::SparseMatrix<double>& lower) {
   const int n = static_cast<int>(lower.rows());
   cholmod_common common;
   cholmod_start(&common);
-  common.nmethods = 2;
+  common.nmethods = n >= kNestedDissectionFrom ? 2 : 1;
   common.method[0].ordering = CHOLMOD_AMD;
   common.method[1].ordering = CHOLMOD_METIS;
   common.postorder = 1;

@@ -110,6 +110,7 @@ nlohmann::json joinedSection(const JoinedRun& joined) {
   j["energy_evaluations"] = run.solver.energyEvaluations;  // line-search trials
   j["phases_s"] = phasesJson(run.solver.phases);
   j["symbolic_analyses"] = run.solver.phases.analyses;
+  j["derivative_passes"] = run.solver.phases.derivativePasses;
   j["status"] = rods::toString(run.solver.status);
   if (!joined.simulation->converged) j["reason"] = joined.simulation->reason;
   if (run.deviation) {

@@ -65,6 +65,12 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
       // figure compares patches and scenes of any size.
       options.scaleFactor = boundingBox(patch.egg->patch.mesh).size().norm();
       if (solved > 1) options.solver.threads = 1;
+      // Where the exact Hessian is indefinite, project every stencil as the joined run does
+      // (rod_solver.hpp): the full-stiffness stage after the continuation starts next to the
+      // weightless equilibrium, and its indefiniteness is transient (bolts pulled into place,
+      // edges compressed on the way). Great Court patches: that stage 6/7/18/22 -> 5/5/10/15
+      // iterations, 107 -> 46 factorisations, patch RMSEs within 1e-8 m (docs/measurements.md).
+      options.solver.projectAllWhenIndefinite = true;
       patch.simulation = rods::simulateGrid(network, surface, options);
       patch.network = std::move(network);
     } catch (const Error& e) {
@@ -133,7 +139,8 @@ json simulationSection(const std::vector<SolvedPatch>& patches, const Scene& sce
         {"energy_evaluations", sim.deployed.solver.energyEvaluations},  // line-search trials
         {"seconds", sim.seconds},
         {"phases_s", phasesJson(sim.deployed.solver.phases)},
-        {"symbolic_analyses", sim.deployed.solver.phases.analyses}};
+        {"symbolic_analyses", sim.deployed.solver.phases.analyses},
+        {"derivative_passes", sim.deployed.solver.phases.derivativePasses}};
     // Under self-weight, how far the grid sagged from its weightless equilibrium (a "collapsed"
     // status means it fell through: Section 3.5.2, Fig. 3.11).
     if (scene.simulation.rods.model.gravity) entry["max_sag_m"] = sim.deployed.maxSagM;

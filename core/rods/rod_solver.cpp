@@ -409,6 +409,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     double energy = 0.0;
     {
       const PhaseTimer timer(result.phases.derivativesS);
+      ++result.phases.derivativePasses;
       energy = model.derivatives(z, gradient, buffers, options.threads,
                                  tryExact ? HessianTerms::Exact : projected);
     }
@@ -444,6 +445,7 @@ SolverResult newton(RodModel& model, const SolverOptions& options, Clock::time_p
     bool exactDirection = false;  // from the unshifted exact Hessian: positive definite
     auto assembleTerms = [&](HessianTerms terms) {  // at the same state: g and energy unchanged
       const PhaseTimer timer(result.phases.derivativesS);
+      ++result.phases.derivativePasses;
       model.derivatives(z, gradient, buffers, options.threads, terms);
       hessian.assemble(buffers.triplets);
     };
@@ -539,6 +541,7 @@ SolverPhases& SolverPhases::operator+=(const SolverPhases& o) {
   factorS += o.factorS;
   lineSearchS += o.lineSearchS;
   analyses += o.analyses;
+  derivativePasses += o.derivativePasses;
   return *this;
 }
 

@@ -73,6 +73,7 @@ struct SolverPhases {
   double factorS = 0.0;       // numeric factorisations and solves, shift trials included
   double lineSearchS = 0.0;   // energy evaluations of the line search
   int analyses = 0;           // symbolic analyses: a new pattern (a bolt moved to another edge)
+  int derivativePasses = 0;  // passes over every stencil (two at a state whose exact Hessian fails)
   SolverPhases& operator+=(const SolverPhases& o);
 };
 

@@ -43,7 +43,8 @@ struct SolverOptions {
   // Where the exact Hessian is indefinite, project every stencil (the rods' stretching, bending
   // and twisting too), not only the penalty constraints'. For a start next to a stable
   // equilibrium whose indefiniteness is transient (the joined structure from its patches'
-  // equilibria, pulled together at misfitting joints): there the constraints' projection still
+  // equilibria, pulled together at misfitting joints; a patch's grid after the stiffness
+  // continuation, its bolts pulled into place): there the constraints' projection still
   // needs a diagonal shift that stalls Newton. Not for buckling or sliding paths, where the
   // rods' negative curvature is the physics (projected, Newton heads for the unstable state);
   // the solver drops back to the constraints' projection when a projected run ends on a state

@@ -68,8 +68,7 @@ void simulatePatches(std::vector<SolvedPatch>& patches, const TriMesh& surface, 
       // Where the exact Hessian is indefinite, project every stencil as the joined run does
       // (rod_solver.hpp): the full-stiffness stage after the continuation starts next to the
       // weightless equilibrium, and its indefiniteness is transient (bolts pulled into place,
-      // edges compressed on the way). Great Court patches: that stage 6/7/18/22 -> 5/5/10/15
-      // iterations, 107 -> 46 factorisations, patch RMSEs within 1e-8 m (docs/measurements.md).
+      // edges compressed on the way). Measured in docs/measurements.md (issue 36).
       options.solver.projectAllWhenIndefinite = true;
       patch.simulation = rods::simulateGrid(network, surface, options);
       patch.network = std::move(network);

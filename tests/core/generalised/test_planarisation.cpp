@@ -134,7 +134,6 @@ TEST(Planarisation, ASphericalGridKeepsShortNotches) {
   auto rim = [&](double phi) {
     return Vec3(std::sin(cap) * std::cos(phi), std::sin(cap) * std::sin(phi), std::cos(cap));
   };
-  const double rimRadius = std::sin(cap);
   const std::vector<double> offsets{-0.45, -0.15, 0.15, 0.45};  // fractions of the rim radius
   std::vector<std::array<Vec3, 2>> arcs;                        // unit vectors of the ends
   for (double c : offsets) arcs.push_back({rim(M_PI - std::asin(c)), rim(std::asin(c))});
@@ -161,7 +160,6 @@ TEST(Planarisation, ASphericalGridKeepsShortNotches) {
   for (int i = 0; i + 1 < g; ++i) p.neighbours.push_back({i, i + 1});
   for (int j = g; j + 1 < 2 * g; ++j) p.neighbours.push_back({j + 1, j});
   p.widthM = 0.1;
-  (void)rimRadius;
   const PlanarisationResult r = planarise(p);
   const double spacing = radius * 0.3 * std::sin(cap);  // between neighbouring members, ~1.4 m
   const double longest = *std::max_element(r.notchLengthsM.begin(), r.notchLengthsM.end());
@@ -181,9 +179,7 @@ TEST(Planarisation, TheOverlapConstraintsSeparateOverlappingLamellas) {
   p.initial = disturbed(exact, 0.02, 11);
   const std::vector<NeighbourPair> neighbours = p.neighbours;
   auto largestOverlap = [&](const PlanarisationResult& r) {
-    std::vector<double> x;
-    for (const auto& s : r.endpoints) x.insert(x.end(), {s[0].x(), s[0].y(), s[1].x(), s[1].y()});
-    const auto e = overlapDistances(p, neighbours[0], x, nullptr);
+    const auto e = overlapDistances(p, neighbours[0], flatten(r.endpoints), nullptr);
     return *std::max_element(e.begin(), e.end());
   };
   p.neighbours.clear();  // no fabrication constraints: the flat grid itself, notch-free

@@ -1,0 +1,91 @@
+#include "core/generalised/generalised_design.hpp"
+
+#include "core/errors.hpp"
+#include "core/rods/simulation.hpp"
+#include "samples/generators/samples.hpp"
+
+#include <gtest/gtest.h>
+
+namespace egg::generalised {
+namespace {
+
+struct DesignTestCase {
+  TriMesh mesh;
+  std::unique_ptr<GridDomain> domain;
+  GeneralisedLayout layout;
+};
+
+// A 6 x 6 line layout on a sphere cap of radius 10 m, 5 m footprint radius.
+DesignTestCase designTestCap() {
+  DesignTestCase c;
+  c.mesh = samples::generateSample("sphere", {{"radius", 10.0}, {"extent", 5.0}}, 0.3);
+  c.domain = std::make_unique<GridDomain>(c.mesh);
+  LayoutParameters parameters;
+  parameters.lines = {6, 6};
+  parameters.angleRad = 0.3;
+  c.layout = layoutFromLines(*c.domain, parameters);
+  return c;
+}
+
+TEST(GeneralisedDesign, CapLayoutIsCutPlanarWithEveryLengthKeptAndNoOverlap) {
+  const auto c = designTestCap();
+  GeneralisedDesignOptions options;
+  options.section = {0.08, 0.01};
+  const auto design = designGeneralisedGrid(*c.domain, c.layout, options);
+  ASSERT_EQ(design.planar.endpoints.size(), c.layout.members.size());
+  for (size_t i = 0; i < c.layout.members.size(); ++i) {
+    const auto& m = c.layout.members[i];
+    const auto& e = design.planar.endpoints[i];
+    EXPECT_NEAR((e[1] - e[0]).norm(), c.domain->distance(m.start, m.end), 1e-9);
+  }
+  EXPECT_TRUE(design.planar.overlappingPairs.empty());
+  EXPECT_FALSE(design.neighbours.empty());
+  // A sphere cannot be laid flat: the crossings keep notches, but far shorter ones than in the
+  // grid flattened by projection.
+  EXPECT_GT(design.planar.notchEnergyM2, 0.0);
+  EXPECT_LT(design.planar.notchEnergyM2, 0.5 * design.planar.initialNotchEnergyM2);
+  // The field crossings of Section 4.5.2 lie within a fraction of an edge of the traced ones
+  // (Table 4.1's eps_geo is 6-11 %).
+  EXPECT_LT(design.epsGeoPercent, 15.0);
+  EXPECT_LT(design.maxCrossingDeviationM, c.domain->meanEdgeLengthM());
+  // The rods: one per member, two anchors each on the rim, one bolt per crossing.
+  EXPECT_EQ(design.network.rods.size(), c.layout.members.size());
+  EXPECT_EQ(design.network.anchors.size(), 2 * c.layout.members.size());
+  EXPECT_EQ(design.network.connections.size(), design.fieldCrossings.size());
+  for (const auto& anchor : design.network.anchors)
+    EXPECT_NEAR(anchor.position.head<2>().norm(), 5.0, 1e-6);
+}
+
+TEST(GeneralisedDesign, CapDeploysOntoTheSurfaceOnlyWithItsNotches) {
+  // Held at the rim, the straight lamellas bend onto the sphere; the notches let the bolts slide
+  // to where the surface puts them. With plain holes at the planar crossings the grid cannot
+  // reach the sphere's metric and bulges away from it.
+  const auto c = designTestCap();
+  GeneralisedDesignOptions options;
+  options.section = {0.08, 0.01};
+  const auto design = designGeneralisedGrid(*c.domain, c.layout, options);
+  rods::SimulationOptions simulation;
+  simulation.compareWithoutNotches = true;
+  const auto result = rods::simulateGrid(design.network, c.mesh, simulation);
+  ASSERT_TRUE(result.converged) << result.reason;
+  const double withNotches = result.deployed.deviation->rmseM;
+  const double plainHoles = result.withoutNotches->deviation->rmseM;
+  EXPECT_LT(withNotches, 0.02);  // 2 cm over a 10 m grid
+  EXPECT_GT(plainHoles, 5.0 * withNotches);
+}
+
+TEST(GeneralisedDesign, RejectsAnUnbuildableLayoutNamingTheMembers) {
+  auto c = designTestCap();
+  auto layout = c.layout;
+  // Family 0's first member turned round to cross its neighbour.
+  std::swap(layout.members[0].end, layout.members[1].end);
+  try {
+    designGeneralisedGrid(*c.domain, layout);
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("of one family cross"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace egg::generalised

@@ -1,5 +1,6 @@
 #pragma once
-// Internal: the samples known to the registry, grouped by topic (architectural, test surfaces).
+// Internal: the samples known to the registry, grouped by topic (architectural, test surfaces,
+// Chapter 4 patches).
 #include "samples/generators/samples.hpp"
 #include "samples/generators/surface_spec.hpp"
 
@@ -18,6 +19,7 @@ struct SampleEntry {
 
 std::vector<SampleEntry> architecturalSamples();
 std::vector<SampleEntry> testSurfaceSamples();
+std::vector<SampleEntry> chapter4Samples();  // Table 4.1 analogues (desktop size)
 
 // Shared helpers for the builders.
 // A counter-clockwise axis-aligned rectangle [x0, x1] x [y0, y1] as four straight curves.

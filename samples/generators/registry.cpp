@@ -43,6 +43,7 @@ const std::vector<SampleEntry>& catalogue() {
   static const std::vector<SampleEntry> entries = [] {
     std::vector<SampleEntry> all = architecturalSamples();
     for (auto& entry : testSurfaceSamples()) all.push_back(std::move(entry));
+    for (auto& entry : chapter4Samples()) all.push_back(std::move(entry));
     return all;
   }();
   return entries;

@@ -51,6 +51,30 @@ std::vector<bool> boundaryVertices(const DomainTriangulation& domain) {
   return onBoundary;
 }
 
+// Where the boundary is reflex (a hole, or a bay of a non-convex outer loop), the exact curve
+// lies on the domain side of its chords, so a snap moves the point into its own triangles: by a
+// sagitta far below their height at any sensible edge length, but nothing guarantees it when the
+// curve's radius nears the edge length. A triangle the snaps would invert gets its snapped
+// points back on the chord (a vertex a sagitta off the curve, still on the surface), so the
+// remesher always starts from a valid counter-clockwise triangulation.
+void undoInvertingSnaps(const DomainTriangulation& domain, std::vector<bool>& snapped,
+                        DomainMesh& input) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const auto& t : domain.triangles) {
+      const Vec2 a = input.domain[t[1]] - input.domain[t[0]],
+                 b = input.domain[t[2]] - input.domain[t[0]];
+      if (a.x() * b.y() - a.y() * b.x() > 0) continue;
+      for (int k : t) {
+        if (!snapped[k]) continue;
+        input.domain[k] = domain.points[k];
+        snapped[k] = false;
+        changed = true;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 double boundaryLength(const SurfaceSpec& spec) {
@@ -126,13 +150,16 @@ TriangleSoup meshSurface(const SurfaceSpec& spec, double edgeLength, double expe
   // on the exact boundary curve (a sagitta of ~h^2/8R, far below any triangle's size).
   const double tolerance = 1e-9 * domainDiameter(loops);
   const std::vector<bool> onTriangulationBoundary = boundaryVertices(domain);
+  std::vector<bool> snapped(domain.points.size(), false);
   for (size_t i = 0; i < domain.points.size(); ++i) {
     input.locked[i] = domain.inputIndex[i] >= 0;
     if (input.locked[i] || !onTriangulationBoundary[i]) continue;
     bool onBoundary = false;
-    const Vec2 snapped = snapToBoundary(spec, loops, domain.points[i], tolerance, onBoundary);
-    if (onBoundary) input.domain[i] = snapped;
+    const Vec2 point = snapToBoundary(spec, loops, domain.points[i], tolerance, onBoundary);
+    if (onBoundary) input.domain[i] = point;
+    snapped[i] = onBoundary;
   }
+  undoInvertingSnaps(domain, snapped, input);
   RemeshOptions options;
   // Remeshing with the 4/5 .. 4/3 band settles at a mean edge of about 0.93 of its target (measured
   // on every sample); aim a little long so the mean edge matches the request.

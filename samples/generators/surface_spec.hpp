@@ -29,11 +29,18 @@ struct SurfaceSpec {
   std::string name;
   // Exact map from the parameter domain to R^3.
   std::function<Vec3(const Vec2&)> position;
-  // Outer boundary and holes (nesting decides which side is inside; orientation is free).
-  // Every loop must be convex in the domain: edge midpoints then stay inside the domain.
+  // Outer boundary and holes (nesting decides which side is inside; orientation is free). Loops
+  // may be non-convex (a bay in the outer loop, as for Chapter 4's Moon): meshing works on the
+  // polygon of boundary samples, and every interior vertex, edge midpoint and move stays inside
+  // that polygon (the remesher keeps triangles counter-clockwise). Where the boundary is convex the
+  // polygon lies inside the true domain; where it is reflex (any hole, a bay) the polygon's chords
+  // overhang the true domain by their sagitta (~h^2 / 8R), so such a spec sets inDomain. There a
+  // refinement point snapped back onto the curve moves into its own triangles; the mesher undoes
+  // a snap that would invert one (surface_mesher.cpp).
   std::vector<BoundaryLoop> boundary;
-  // Optional exact domain test (the polygonal boundary cuts chords across curved holes): moves
-  // that would leave the true domain are refused. Empty = the polygon is the domain.
+  // Optional exact domain test (the polygonal boundary cuts chords across reflex stretches: curved
+  // holes, bays): midpoints and moves that would leave the true domain are refused. Empty = the
+  // polygon is the domain.
   std::function<bool(const Vec2&)> inDomain;
   // Interior domain points that must become (fixed) mesh vertices: spot heights, a tip.
   std::vector<Vec2> requiredPoints;

@@ -27,9 +27,10 @@ void expectInvalid(F&& call, std::initializer_list<std::string> fragments) {
 }
 
 TEST(SamplesRegistry, ListsEverySampleWithItsParameters) {
-  const std::vector<std::string> expected{"great_court", "lilium",   "yas",  "plane",
-                                          "sphere",      "cylinder", "cone", "hypar",
-                                          "hyperboloid", "bump",     "waves"};
+  const std::vector<std::string> expected{"great_court", "lilium",    "yas",         "plane",
+                                          "sphere",      "cylinder",  "cone",        "hypar",
+                                          "hyperboloid", "bump",      "waves",       "ch4_moon",
+                                          "ch4_saddle",  "ch4_hills", "ch4_starship"};
   const auto samples = listSamples();
   ASSERT_EQ(samples.size(), expected.size());
   for (size_t i = 0; i < expected.size(); ++i) {
@@ -102,6 +103,7 @@ TEST(SamplesRegistry, RejectsNonPositiveOrAbsurdEdgeLength) {
 double testEdgeLength(const std::string& name) {
   if (name == "great_court" || name == "lilium") return 2.0;
   if (name == "yas") return 5.0;
+  if (name.starts_with("ch4_")) return 0.03;  // desktop-size patches, about 0.6 m across
   return 0.5;
 }
 

@@ -39,6 +39,7 @@ void buildCli(CLI::App& app, Action& action) {
   registerGeodesicBench(*bench, action);
   registerGridBench(*bench, action);
   registerLayoutBench(*bench, action);
+  registerGeneralisedBench(*bench, action);
   registerPatchingBench(*bench, action);
   registerPipelineBench(*bench, action);
   registerSimBench(*bench, action);

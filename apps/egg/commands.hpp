@@ -40,6 +40,8 @@ void registerDeploymentBench(CLI::App& bench,
                              Action& action);               // apps/bench/deployment_bench.cpp
 void registerGridBench(CLI::App& bench, Action& action);    // grid_commands.cpp (egg bench grid)
 void registerLayoutBench(CLI::App& bench, Action& action);  // layout_bench.cpp (egg bench layout)
+void registerGeneralisedBench(CLI::App& bench,
+                              Action& action);  // generalised_bench.cpp (egg bench generalised)
 void registerPatchingBench(CLI::App& bench,
                            Action& action);  // patching_bench.cpp (egg bench patching)
 void registerPipelineBench(CLI::App& bench,

@@ -6,6 +6,7 @@
 #include "core/timing.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -42,7 +43,49 @@ rods::Notch designNotch(double surfaceS, double planarS, double length) {
   return notch;
 }
 
+// The rectangle of a lamella: its four corners, counter-clockwise.
+std::array<Eigen::Vector2d, 4> designRectangle(const Segment2& s, double width) {
+  const Eigen::Vector2d d = (s[1] - s[0]).normalized();
+  const Eigen::Vector2d n = 0.5 * width * Eigen::Vector2d(-d.y(), d.x());
+  return {s[0] - n, s[1] - n, s[1] + n, s[0] + n};
+}
+
+// How far two convex quadrilaterals overlap along their least separating axis (<= 0: apart).
+double designOverlapDepth(const std::array<Eigen::Vector2d, 4>& a,
+                          const std::array<Eigen::Vector2d, 4>& b) {
+  double depth = INFINITY;
+  for (const auto* poly : {&a, &b}) {
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Vector2d edge = (*poly)[k + 1] - (*poly)[k];
+      const Eigen::Vector2d axis = Eigen::Vector2d(-edge.y(), edge.x()).normalized();
+      double loA = INFINITY, hiA = -INFINITY, loB = INFINITY, hiB = -INFINITY;
+      for (const auto& p : a) loA = std::min(loA, axis.dot(p)), hiA = std::max(hiA, axis.dot(p));
+      for (const auto& p : b) loB = std::min(loB, axis.dot(p)), hiB = std::max(hiB, axis.dot(p));
+      depth = std::min(depth, std::min(hiA, hiB) - std::max(loA, loB));
+    }
+  }
+  return depth;
+}
+
 }  // namespace
+
+std::vector<std::pair<int, int>> overlappingLamellas(const std::vector<Segment2>& segments,
+                                                     const std::vector<int>& families,
+                                                     double widthM, double tolerance) {
+  if (families.size() != segments.size())
+    throw InvalidInput("overlappingLamellas: one family per segment is needed");
+  std::vector<std::array<Eigen::Vector2d, 4>> rectangles;
+  for (const auto& s : segments) rectangles.push_back(designRectangle(s, widthM));
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < segments.size(); ++i) {
+    for (size_t j = i + 1; j < segments.size(); ++j) {
+      if (families[i] == families[j] &&
+          designOverlapDepth(rectangles[i], rectangles[j]) > tolerance)
+        pairs.emplace_back(static_cast<int>(i), static_cast<int>(j));
+    }
+  }
+  return pairs;
+}
 
 void GeneralisedDesignOptions::validate() const {
   if (!(section.widthM > 0.0) || !(section.thicknessM > 0.0))
@@ -106,6 +149,16 @@ GeneralisedDesign designGeneralisedGrid(const GridDomain& domain, const Generali
   for (auto [first, second] : design.neighbours) problem.neighbours.push_back({first, second});
   problem.widthM = options.section.widthM;
   design.planar = planarise(problem, options.planarisation);
+
+  std::vector<int> families;
+  for (const auto& m : members) families.push_back(m.family);
+  for (auto [i, j] : overlappingLamellas(design.planar.endpoints, families, problem.widthM)) {
+    const auto& a = members[i];
+    const auto& b = members[j];
+    const bool splitPieces = a.line == b.line && (a.start == b.end || a.end == b.start ||
+                                                  a.start == b.start || a.end == b.end);
+    if (!splitPieces) design.planarOverlaps.emplace_back(i, j);
+  }
 
   // The rods: family 0 in layer 0, family 1 in layer 1 (rod_network.hpp).
   auto& network = design.network;

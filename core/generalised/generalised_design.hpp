@@ -33,9 +33,20 @@ struct GeneralisedDesign {
   PlanarisationProblem planarProblem;
   PlanarisationResult planar;
   std::vector<std::pair<int, int>> neighbours;  // layout member indices (planarProblem.neighbours)
-  rods::RodNetwork network;                     // rods in layout member order
+  // Every pair of lamellas of one family whose planar outlines (centre line +- w/2) overlap by more
+  // than 1e-9 m, checked independently of the planarisation's neighbour constraints; the pieces
+  // of one split member, which share their anchor on the bay, are left out (they meet there on
+  // the surface too).
+  std::vector<std::pair<int, int>> planarOverlaps;
+  rods::RodNetwork network;  // rods in layout member order
   double seconds = 0.0;
 };
+
+// Pairs (i < j) of planar lamellas, centre lines `segments` of width `widthM`, whose rectangles
+// overlap by more than `tolerance` metres (separating axes), among those with equal `families`.
+std::vector<std::pair<int, int>> overlappingLamellas(const std::vector<Segment2>& segments,
+                                                     const std::vector<int>& families,
+                                                     double widthM, double tolerance = 1e-9);
 
 // Throws InvalidInput when the layout cannot be built (layoutProblem) or a crossing of two traced
 // members cannot be found.

@@ -35,19 +35,19 @@ bool layoutInArc(int x, int a, int b, int n) {
 // Appends the member a -> b, split at its first and last contact with a non-convex segment where
 // its shortest connection would touch the boundary (at most `depth` times recursively).
 void layoutAddMember(const GridDomain& domain, GridMemberSpec member, int depth,
-                     GeneralisedLayout& layout) {
+                     std::vector<GridMemberSpec>& members) {
   if (member.start == member.end) return;
-  const auto touching = domain.contacts(member.start, member.end);
-  if (touching.empty() || depth == 0) {
-    layout.members.push_back(member);
+  const auto touching = depth > 0 ? domain.contacts(member.start, member.end) : std::vector<int>{};
+  if (touching.empty()) {
+    members.push_back(member);
     return;
   }
-  ++layout.splitMembers;
   GridMemberSpec before = member, after = member;
   before.end = touching.front();
   after.start = touching.back();
-  layoutAddMember(domain, before, depth - 1, layout);
-  layoutAddMember(domain, after, depth - 1, layout);
+  before.split = after.split = true;
+  layoutAddMember(domain, before, depth - 1, members);
+  layoutAddMember(domain, after, depth - 1, members);
 }
 
 }  // namespace
@@ -75,6 +75,31 @@ bool membersCross(int n, const GridMemberSpec& first, const GridMemberSpec& seco
   return layoutInArc(c, a, b, n) != layoutInArc(d, a, b, n);
 }
 
+std::vector<GridMemberSpec> lineMembers(const GridDomain& domain, const Eigen::Vector2d& direction,
+                                        double offsetM, int family, int line, bool split) {
+  const auto& polygon = domain.projectedBoundary();
+  const int n = static_cast<int>(polygon.size());
+  const Eigen::Vector2d normal(-direction.y(), direction.x());
+  // Where the line enters and leaves the projected boundary, in order along it; each crossing
+  // snaps to the nearer sample of its boundary edge.
+  std::vector<std::pair<double, int>> hits;
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    const double vi = normal.dot(polygon[i]) - offsetM, vj = normal.dot(polygon[j]) - offsetM;
+    if ((vi < 0.0) == (vj < 0.0)) continue;
+    const double tau = vi / (vi - vj);
+    const Eigen::Vector2d at = polygon[i] + tau * (polygon[j] - polygon[i]);
+    hits.emplace_back(direction.dot(at), tau < 0.5 ? i : j);
+  }
+  std::sort(hits.begin(), hits.end());
+  std::vector<GridMemberSpec> members;
+  for (size_t k = 0; k + 1 < hits.size(); k += 2) {
+    layoutAddMember(domain, {family, hits[k].second, hits[k + 1].second, line}, split ? 3 : 0,
+                    members);
+  }
+  return members;
+}
+
 GeneralisedLayout layoutFromLines(const GridDomain& domain, const LayoutParameters& parameters,
                                   const LayoutOptions& options) {
   parameters.validate();
@@ -84,7 +109,7 @@ GeneralisedLayout layoutFromLines(const GridDomain& domain, const LayoutParamete
   GeneralisedLayout layout;
   for (int family = 0; family < 2; ++family) {
     const Eigen::Vector2d direction = layoutDirection(parameters, family);
-    const Eigen::Vector2d normal(-direction.y(), direction.x());  // left of the direction
+    const Eigen::Vector2d normal(-direction.y(), direction.x());
     double low = INFINITY, high = -INFINITY;
     for (const auto& p : polygon) {
       low = std::min(low, normal.dot(p));
@@ -93,20 +118,9 @@ GeneralisedLayout layoutFromLines(const GridDomain& domain, const LayoutParamete
     const double spacing = (high - low) / parameters.lines[family];
     for (int line = 0; line < parameters.lines[family]; ++line) {
       const double c = low + (line + parameters.offsets[family]) * spacing;
-      // Where the line enters and leaves the projected boundary, in order along it; each crossing
-      // snaps to the nearer sample of its boundary edge.
-      std::vector<std::pair<double, int>> hits;
-      for (int i = 0; i < n; ++i) {
-        const int j = (i + 1) % n;
-        const double vi = normal.dot(polygon[i]) - c, vj = normal.dot(polygon[j]) - c;
-        if ((vi < 0.0) == (vj < 0.0)) continue;
-        const double tau = vi / (vi - vj);
-        const Eigen::Vector2d at = polygon[i] + tau * (polygon[j] - polygon[i]);
-        hits.emplace_back(direction.dot(at), tau < 0.5 ? i : j);
-      }
-      std::sort(hits.begin(), hits.end());
-      for (size_t k = 0; k + 1 < hits.size(); k += 2) {
-        layoutAddMember(domain, {family, hits[k].second, hits[k + 1].second, line}, 3, layout);
+      for (const auto& m : lineMembers(domain, direction, c, family, line, true)) {
+        layout.members.push_back(m);
+        layout.splitMembers += m.split ? 1 : 0;
       }
     }
   }

@@ -38,12 +38,13 @@ struct GridMemberSpec {
   int family = 0;  // 0 (g) or 1 (h)
   int start = -1;  // boundary samples; the member runs from start to end
   int end = -1;
-  int line = -1;  // the layout line it came from (neighbours are members of adjacent lines)
+  int line = -1;       // the layout line it came from (neighbours are members of adjacent lines)
+  bool split = false;  // a piece of a member split where it would touch the boundary
 };
 
 struct GeneralisedLayout {
   std::vector<GridMemberSpec> members;
-  int splitMembers = 0;    // members split where they would touch a non-convex segment
+  int splitMembers = 0;    // pieces of members split where they would touch a non-convex segment
   int droppedMembers = 0;  // inside segments without any crossing (corner slivers), left out
 };
 
@@ -53,6 +54,12 @@ struct LayoutOptions {
   double minAnchorSpacingM = 0.0;
   void validate() const;  // throws InvalidInput naming the field
 };
+
+// The members of one straight line of the layout plane, {p : <n, p> = offsetM} with n the
+// direction turned a quarter left, in order along `direction`: one per inside segment of the
+// projected boundary, each split at its contacts with a non-convex segment when `split`.
+std::vector<GridMemberSpec> lineMembers(const GridDomain& domain, const Eigen::Vector2d& direction,
+                                        double offsetM, int family, int line, bool split = true);
 
 GeneralisedLayout layoutFromLines(const GridDomain& domain, const LayoutParameters& parameters,
                                   const LayoutOptions& options = {});

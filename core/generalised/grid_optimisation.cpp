@@ -121,7 +121,7 @@ GridOptimisationResult optimiseGrid(const GridDomain& domain,
   options.validate();
   const Stopwatch clock;
   GridOptimisationResult result;
-  OptimisationSearch search{domain, options};
+  OptimisationSearch search{domain, options, 0, 0, std::numeric_limits<double>::infinity(), {}};
   {
     const double start[4] = {0.0, 0.0, 0.5, 0.5};
     result.initialEGrid = optimisationObjective(4, start, nullptr, &search);

@@ -86,7 +86,9 @@ TEST(Chapter4Surfaces, MoonIsADomeOverAKidneyWhoseBayBendsInwards) {
   // Nothing lies in the bay: no vertex beyond the bottom near y = 0.
   for (auto v : mesh.vertices()) {
     const Vector3d p = toEigen(mesh.point(v));
-    if (std::abs(p.y()) < 0.01) EXPECT_LE(p.x(), bottom + 1e-9);
+    if (std::abs(p.y()) < 0.01) {
+      EXPECT_LE(p.x(), bottom + 1e-9);
+    }
   }
 }
 
@@ -121,7 +123,7 @@ TEST(Chapter4Surfaces, HillsHaveBumpsWithBothCurvatureSigns) {
   expectDiskOfBox(mesh, Vector3d(0.6, 0.475, 0.059));
   const CurvatureField field = computeCurvature(mesh);
   // Bump tops (at fixed fractions of the half-extents 0.3 x 0.2375) are elliptic...
-  for (const Eigen::Vector2d top :
+  for (const Eigen::Vector2d& top :
        {Eigen::Vector2d(-0.135, -0.07125), Eigen::Vector2d(0.12, -0.083125),
         Eigen::Vector2d(0.015, 0.106875)}) {
     const auto values = gaussianNear(mesh, field, top, 0.015);

@@ -39,6 +39,7 @@ TEST(GeneralisedDesign, CapLayoutIsCutPlanarWithEveryLengthKeptAndNoOverlap) {
     EXPECT_NEAR((e[1] - e[0]).norm(), c.domain->distance(m.start, m.end), 1e-9);
   }
   EXPECT_TRUE(design.planar.overlappingPairs.empty());
+  EXPECT_TRUE(design.planarOverlaps.empty());
   EXPECT_FALSE(design.neighbours.empty());
   // A sphere cannot be laid flat: the crossings keep notches, but far shorter ones than in the
   // grid flattened by projection.
@@ -72,6 +73,29 @@ TEST(GeneralisedDesign, CapDeploysOntoTheSurfaceOnlyWithItsNotches) {
   const double plainHoles = result.withoutNotches->deviation->rmseM;
   EXPECT_LT(withNotches, 0.02);  // 2 cm over a 10 m grid
   EXPECT_GT(plainHoles, 5.0 * withNotches);
+}
+
+TEST(GeneralisedDesign, LamellasOfOneFamilyOverlapByHowMuchTheirOutlinesShare) {
+  // Two parallel 1 m lamellas 2 cm wide: 1 cm apart they share 1 cm, 3 cm apart nothing; a
+  // lamella of the other family crossing both lies in the other layer.
+  const std::vector<Segment2> near = {Segment2{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0)},
+                                      Segment2{Eigen::Vector2d(0, 0.01), Eigen::Vector2d(1, 0.01)},
+                                      Segment2{Eigen::Vector2d(0.5, -1), Eigen::Vector2d(0.5, 1)}};
+  const auto pairs = overlappingLamellas(near, {0, 0, 1}, 0.02);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0], std::make_pair(0, 1));
+  EXPECT_EQ(overlappingLamellas(near, {0, 0, 1}, 0.02, 0.0099).size(), 1u);
+  EXPECT_TRUE(overlappingLamellas(near, {0, 0, 1}, 0.02, 0.0101).empty());
+  auto apart = near;
+  apart[1] = Segment2{Eigen::Vector2d(0, 0.03), Eigen::Vector2d(1, 0.03)};
+  EXPECT_TRUE(overlappingLamellas(apart, {0, 0, 1}, 0.02).empty());
+  // End to end along one line, 1 cm apart: apart; 1 cm overlapping: overlapping.
+  const std::vector<Segment2> inLine = {Segment2{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0)},
+                                        Segment2{Eigen::Vector2d(1.01, 0), Eigen::Vector2d(2, 0)}};
+  EXPECT_TRUE(overlappingLamellas(inLine, {0, 0}, 0.02).empty());
+  auto shared = inLine;
+  shared[1][0].x() = 0.99;
+  EXPECT_EQ(overlappingLamellas(shared, {0, 0}, 0.02).size(), 1u);
 }
 
 TEST(GeneralisedDesign, RejectsAnUnbuildableLayoutNamingTheMembers) {

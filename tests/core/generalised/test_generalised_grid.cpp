@@ -60,10 +60,13 @@ TEST(GeneralisedGrid, CapLayoutCrossesWhereTheLinesCrossInsideTheDiskOnBothGeode
     EXPECT_NEAR(c.sGM, 10.0 * angle, 0.25 * domain.meanEdgeLengthM());
   }
   // Members of one family never cross, by construction and by the interleave test.
-  for (size_t i = 0; i < layout.members.size(); ++i)
-    for (size_t j = 0; j < layout.members.size(); ++j)
-      if (layout.members[i].family == layout.members[j].family)
+  for (size_t i = 0; i < layout.members.size(); ++i) {
+    for (size_t j = 0; j < layout.members.size(); ++j) {
+      if (layout.members[i].family == layout.members[j].family) {
         EXPECT_FALSE(membersCross(domain.sampleCount(), layout.members[i], layout.members[j]));
+      }
+    }
+  }
 }
 
 // Where the great circle through p and q meets the cap's rim (z = sqrt(R^2 - extent^2)), the one
@@ -159,6 +162,58 @@ TEST(GeneralisedGrid, BadInputIsNamed) {
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("one boundary loop"), std::string::npos);
   }
+}
+
+}  // namespace
+}  // namespace egg::generalised
+
+namespace egg::generalised {
+namespace {
+
+TEST(GeneralisedGrid, MoonMembersSplitExactlyWhereTheirGeodesicWouldTouchTheBay) {
+  // Lines across the mouth of the moon's bay, swept towards it. A line's member is split into two
+  // exactly when the shortest connection between its anchors would touch the reflex bay - checked
+  // against the traced geodesic, which then bends round a boundary vertex. On the dome the
+  // geodesics bulge away from the crown, towards the bay, so members touch it while the straight
+  // lines of the layout still pass clear: the member count changes where the member touches, not
+  // where the line does.
+  const TriMesh mesh = samples::generateSample("ch4_moon", {}, 0.015);
+  const GridDomain domain(mesh);
+  ASSERT_FALSE(domain.connections().nonConvexSegments.empty());
+  const Eigen::Matrix<double, 3, 2> axes = domain.planeAxes();
+  const Eigen::Vector2d direction = (axes.transpose() * Eigen::Vector3d::UnitY()).normalized();
+  const Eigen::Vector2d normal(-direction.y(), direction.x());
+  double low = INFINITY, high = -INFINITY;
+  for (int i = 0; i < domain.sampleCount(); ++i) {
+    if (!domain.bendsInward()[i]) continue;
+    low = std::min(low, normal.dot(domain.projectedBoundary()[i]));
+    high = std::max(high, normal.dot(domain.projectedBoundary()[i]));
+  }
+  int touchingBeforeTheLine = 0, clear = 0, lineThroughBay = 0;
+  for (int k = 0; k <= 60; ++k) {
+    const double c = (low - 0.08) + (high - low + 0.16) * k / 60.0;
+    const auto whole = lineMembers(domain, direction, c, 0, 0, false);
+    const auto split = lineMembers(domain, direction, c, 0, 0, true);
+    int touching = 0;
+    for (const auto& m : whole) {
+      const auto path = domain.solver().path(geodesic::vertexPoint(mesh, domain.vertex(m.start)),
+                                             geodesic::vertexPoint(mesh, domain.vertex(m.end)));
+      bool touches = false;
+      for (int v : path.bendVertices) {
+        for (int i = 0; i < domain.sampleCount(); ++i)
+          touches = touches || (domain.vertex(i) == v && domain.bendsInward()[i] != 0 &&
+                                i != m.start && i != m.end);
+      }
+      touching += touches ? 1 : 0;
+    }
+    EXPECT_EQ(split.size(), whole.size() + touching) << "line at " << c;
+    if (whole.size() == 1 && touching == 1) ++touchingBeforeTheLine;
+    if (whole.size() == 1 && touching == 0) ++clear;
+    if (whole.size() == 2) ++lineThroughBay;
+  }
+  EXPECT_GT(touchingBeforeTheLine, 0);
+  EXPECT_GT(clear, 0);
+  EXPECT_GT(lineThroughBay, 0);
 }
 
 }  // namespace

@@ -28,6 +28,8 @@ void validate(const SitePlanDrawing& d) {
   if (!(d.widthPx >= 200.0 && d.widthPx <= 20000.0))
     throw InvalidInput(
         fmt::format("plan.svg: width_px must be in [200, 20000], got {}", d.widthPx));
+  if (!d.generalised.empty() && d.layout == nullptr)
+    throw InvalidInput("plan.svg: generalised patches need the layout");
   const int patches = d.layout ? static_cast<int>(d.layout->patches.size()) : 0;
   if (d.layout && d.layout->patchSides.size() != d.layout->patches.size())
     throw InvalidInput("plan.svg: the layout is not finished (finishLayout)");
@@ -138,6 +140,32 @@ std::string cutOffsSvg(const SitePlanDrawing& d, const Projection& proj) {
     }
     out += fmt::format("<g id=\"cutoff-{}\" class=\"cutoff\"><g opacity=\"0.6\">{}</g>{}</g>\n", c,
                        grey.finish(), hatch.finish());
+  }
+  return out;
+}
+
+// Generalised patches: their faces tinted green, under the members.
+std::string generalisedSvg(const SitePlanDrawing& d, const Projection& proj) {
+  std::string out;
+  const TriMesh& lm = d.layout->mesh.mesh;
+  for (const auto& g : d.generalised) {
+    plan::PathChunks tint("fill=\"#dcebd3\" stroke=\"#dcebd3\" stroke-width=\"0.6\"");
+    std::string path;
+    for (int f : g.faces) {
+      if (f < 0 || f >= static_cast<int>(lm.n_faces()))
+        throw InvalidInput(
+            fmt::format("plan.svg: generalised patch {} lists face {} of a mesh with {} faces",
+                        g.id, f, lm.n_faces()));
+      const auto fv = faceVertices(lm, f);
+      path.clear();
+      for (int k = 0; k < 3; ++k)
+        path.append(k == 0 ? "M" : "L")
+            .append(plan::point(proj, toEigen(lm.point(TriMesh::VertexHandle(fv[k])))));
+      path += "Z";
+      tint.add(path);
+    }
+    out +=
+        fmt::format("<g id=\"generalised-{}\" class=\"generalised\">{}</g>\n", g.id, tint.finish());
   }
   return out;
 }
@@ -363,6 +391,23 @@ void cutOffLabels(const SitePlanDrawing& d, const Projection& proj, LabelLayout&
   }
 }
 
+void generalisedLabels(const SitePlanDrawing& d, const Projection& proj, LabelLayout& layout,
+                       Drawn& drawn) {
+  for (const auto& g : d.generalised) {
+    CutOff region;
+    region.faces = g.faces;
+    const Eigen::Vector3d p = plan::cutOffLabelPoint(d.layout->mesh.mesh, region);
+    const std::string second = plan::plainNumber(g.areaM2, g.areaM2 < 10.0 ? 1 : 0) + " m²";
+    Eigen::Vector2d at;
+    if (layout.place(plan::candidatesAround(proj.px(p.x()), proj.py(p.y()), 10.0, 3),
+                     std::max(glyphs(g.id), glyphs(second)), 2, 13, at))
+      drawn.labels += placedLabel(fmt::format("generalised-label-{}", g.id), at, g.id, second, 13,
+                                  " fill=\"#2f5d1e\"");
+    else
+      ++drawn.leftOut;
+  }
+}
+
 void supportsSvg(const SitePlanDrawing& d, const Projection& proj, LabelLayout& layout,
                  Drawn& drawn) {
   drawn.body += "<g id=\"supports\">\n";
@@ -457,6 +502,9 @@ std::string legendSvg(const SitePlanDrawing& d, const Page& page, const Drawn& d
       "<rect x=\"1\" y=\"1\" width=\"28\" height=\"12\" fill=\"#cfcfcf\"/><rect x=\"1\" y=\"1\" "
       "width=\"28\" height=\"12\" fill=\"url(#sp-hatch-cutoff)\"/>",
       "cut-off: surface no patch covers");
+  if (!d.generalised.empty())
+    legend.item("<rect x=\"1\" y=\"1\" width=\"28\" height=\"12\" fill=\"#dcebd3\"/>",
+                "generalised patch (Ch. 4), id, area");
   if (!d.sections.empty())
     legend.item(
         "<path d=\"M0,7h30\" stroke=\"#111\" stroke-dasharray=\"8 2 2 2\"/><circle cx=\"24\" "
@@ -513,6 +561,7 @@ std::string sitePlanSvg(const SitePlanDrawing& d) {
   int holes = 0;
   drawn.body += surfaceSvg(*d.surface, page.proj, holes);
   if (d.coverage != nullptr) drawn.body += cutOffsSvg(d, page.proj);
+  drawn.body += generalisedSvg(d, page.proj);
   drawn.body += membersSvg(d, page.proj);
   drawn.body += sectionsSvg(d, page, labels);
   drawn.body += dimensionsSvg(d, page, labels, drawn.leftOut);
@@ -520,6 +569,7 @@ std::string sitePlanSvg(const SitePlanDrawing& d) {
   double crownZ = 0.0;
   crownSvg(d, page.proj, labels, drawn, crownZ);
   if (d.coverage != nullptr) cutOffLabels(d, page.proj, labels, drawn);
+  generalisedLabels(d, page.proj, labels, drawn);
   supportsSvg(d, page.proj, labels, drawn);
   double legendBottom = 0.0;
   const std::string legend = legendSvg(d, page, drawn, crownZ, legendBottom);

@@ -38,13 +38,22 @@ struct SitePlanSection {
   double atM = 0.0;
 };
 
+// A generalised patch in a cut-off (patching/infill.hpp): its layout-mesh faces, tinted, with its
+// id and surface area.
+struct SitePlanGeneralised {
+  std::string id;  // "G0"
+  std::vector<int> faces;
+  double areaM2 = 0.0;
+};
+
 // What to draw. Pointers must outlive the call; only `surface` is required.
 struct SitePlanDrawing {
   const TriMesh* surface = nullptr;
-  const PatchLayout* layout = nullptr;     // finished (finishLayout): patch outlines
-  std::vector<std::string> patchProblems;  // per layout patch, "" = feasible; may be empty
-  std::vector<double> patchAreasM2;        // per layout patch, surface area (<= 0: unknown)
-  const Coverage* coverage = nullptr;      // cut-offs; needs `layout`
+  const PatchLayout* layout = nullptr;           // finished (finishLayout): patch outlines
+  std::vector<std::string> patchProblems;        // per layout patch, "" = feasible; may be empty
+  std::vector<double> patchAreasM2;              // per layout patch, surface area (<= 0: unknown)
+  const Coverage* coverage = nullptr;            // cut-offs; needs `layout`
+  std::vector<SitePlanGeneralised> generalised;  // needs `layout`
   std::vector<SitePlanMember> members;
   std::vector<SitePlanSupport> supports;
   std::vector<SitePlanSection> sections;
@@ -53,7 +62,8 @@ struct SitePlanDrawing {
 };
 
 // The SVG text. Element ids: "outline", "hole-<i>", "patch-<i>" with "patch-label-<i>",
-// "infeasible-<i>", "cutoff-<i>" with "cutoff-label-<i>", "members", "support-<id>",
+// "infeasible-<i>", "cutoff-<i>" with "cutoff-label-<i>", "generalised-<id>" with
+// "generalised-label-<id>", "members", "support-<id>",
 // "section-<name>", "dim-x"/"dim-y" (overall dimensions, their text "dim-x-label"/"dim-y-label"),
 // "crown", "scale-bar"/"scale-label"; every placed label carries data-box="x0 y0 x1 y1", the box it
 // keeps clear; the root carries data-px-per-m and data-labels-left-out. Throws InvalidInput naming

@@ -6,6 +6,7 @@
 #include "core/io/atomic_file.hpp"
 #include "core/timing.hpp"
 #include "pipeline/cladding_plot.hpp"
+#include "pipeline/infill_stage.hpp"
 #include "pipeline/propagation_stage.hpp"
 #include "pipeline/stages.hpp"
 
@@ -110,6 +111,7 @@ json patchEntry(const SolvedPatch& patch) {
   json corners = json::array();
   for (const auto& c : patch.corners) corners.push_back({c.x(), c.y(), c.z()});
   json entry{{"id", patch.id},
+             {"kind", "quad"},  // generalised patches: report.json generalised_patches[]
              {"corners", corners},
              {"corner_ids", patch.cornerIds},
              {"feasible", patch.egg.has_value()}};
@@ -243,6 +245,7 @@ void gridStage(RunState& state) {
                &state.tracing);
   if (state.members)
     state.report.section("propagation") = propagationSection(*state.members, state.tracing);
+  designInfill(state);
 }
 
 }  // namespace egg::pipeline

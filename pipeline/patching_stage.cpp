@@ -1,6 +1,8 @@
 #include "pipeline/patching_stage.hpp"
+
 #include "core/timing.hpp"
 #include "pipeline/grid_stage.hpp"
+#include "pipeline/infill_stage.hpp"
 #include "pipeline/run_state.hpp"
 
 #include "core/errors.hpp"
@@ -16,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <set>
 
 namespace egg::pipeline {
 
@@ -245,7 +248,39 @@ int writeSitePlan(const RunState& state, const std::filesystem::path& file) {
     drawing.patchProblems.push_back(p.feasible() ? "" : p.failure);
     drawing.patchAreasM2.push_back(p.cut ? p.cut->patch.area : 0.0);
   }
-  drawing.coverage = &run.coverage;
+  // With generalised patches in the cut-offs, what they cover is no longer cut off.
+  patching::Coverage coverage = run.coverage;
+  if (state.infill) {
+    std::set<int> filled;
+    for (size_t i = 0; i < state.infill->pieces.size(); ++i) {
+      const auto& piece = state.infill->pieces[i];
+      if (!piece.design) continue;
+      filled.insert(piece.layoutFaces.begin(), piece.layoutFaces.end());
+      drawing.generalised.push_back({fmt::format("G{}", i), piece.layoutFaces, piece.areaM2});
+    }
+    std::vector<patching::CutOff> left;
+    for (auto cut : coverage.cutOffs) {
+      std::vector<int> faces;
+      for (int f : cut.faces)
+        if (!filled.count(f)) faces.push_back(f);
+      if (faces.size() == cut.faces.size()) {
+        left.push_back(std::move(cut));
+        continue;
+      }
+      if (faces.empty()) continue;
+      const double kept = static_cast<double>(faces.size()) / cut.faces.size();
+      cut.areaM2 *= kept;  // by face count: the plan's label, not a measurement
+      cut.faces = std::move(faces);
+      left.push_back(std::move(cut));
+    }
+    coverage.cutOffs = std::move(left);
+    coverage.coveredAreaM2 += state.infill->designedAreaM2;
+    coverage.fraction =
+        coverage.surfaceAreaM2 > 0 ? coverage.coveredAreaM2 / coverage.surfaceAreaM2 : 0.0;
+    for (const auto& line : infillMemberLines(state))
+      drawing.members.push_back({-1, line.family == 0, false, line.points});
+  }
+  drawing.coverage = &coverage;
   for (const auto& p : state.patches) {
     if (!p.egg) continue;
     for (const auto* family : {&p.egg->grid.u, &p.egg->grid.v})

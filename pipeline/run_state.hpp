@@ -7,6 +7,7 @@
 #include "core/rods/joined_network.hpp"
 #include "core/rods/simulation.hpp"
 #include "fabrication/fabricate.hpp"
+#include "patching/infill.hpp"
 #include "pipeline/patching_stage.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/scene.hpp"
@@ -64,6 +65,10 @@ struct RunState {
   std::optional<rods::SimulationRun> joined;  // simulation: the joined structure's deployment
   std::optional<rods::JoinedNetwork> joinedNetwork;          // simulation: what `joined` deployed
   std::optional<fabrication::FabricationResult> fabricated;  // fabrication (the model's supports)
+  // grid: generalised patches in the quad layout's cut-offs; simulation: each one deployed alone
+  // (one entry per piece, empty where it has no grid or the simulation did not run).
+  std::optional<patching::InfillResult> infill;
+  std::vector<std::optional<rods::SimulationResult>> infillSimulations;
 };
 
 }  // namespace egg::pipeline

@@ -50,6 +50,10 @@ struct PatchingChoice {
   // slope_bounds and the "grid" section's keys). Its lamella width and smoothing are derived
   // (eggOptions()).
   patching::LayoutDesignOptions layout;
+  // Close the cut-offs the quad patches leave (along holes and curved design boundaries) with
+  // generalised patches (Chapter 4, patching/infill.hpp). Default: yes in the workflows, no for a
+  // given layout (its patches are taken as they are).
+  std::optional<bool> generalisedInfill;
 };
 
 // "lamella": the section and material every member is cut from.

@@ -431,6 +431,19 @@ std::vector<SceneSection> makeSections() {
          {{"type", "array"}, {"items", integerSchema(1, 16)}, {"minItems", 2}, {"maxItems", 2}}},
         integer("max_splits", EGG_AT(patching.layout.maxSplits), 0, 10000,
                 "Workflow 1: splits before it gives up"),
+        {"generalised_infill",
+         "true or false",
+         "close the cut-offs the quad patches leave (along holes and curved design boundaries) "
+         "with generalised patches (Chapter 4); default: yes in the workflows, no for a given "
+         "layout",
+         [](JsonSection& j, Scene& s) {
+           if (j.has("generalised_infill"))
+             s.patching.generalisedInfill = j.boolean("generalised_infill", true);
+         },
+         [](const Scene& s) {
+           return s.patching.generalisedInfill ? some(*s.patching.generalisedInfill) : std::nullopt;
+         },
+         {{"type", "boolean"}}},
         {"smoothing",
          "true or false",
          "smooth a patch whose eta fails (2.3.3); default: yes for a given layout, no in the "

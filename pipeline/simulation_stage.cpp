@@ -11,6 +11,7 @@
 #include "core/timing.hpp"
 #include "pipeline/deviation_plan.hpp"
 #include "pipeline/error_time_plot.hpp"
+#include "pipeline/infill_stage.hpp"
 #include "pipeline/joined_simulation.hpp"
 
 #include <fmt/core.h>
@@ -284,6 +285,7 @@ void simulationStage(RunState& state) {
   state.joined = addJoinedSimulation(*state.patching, state.patches, state.surface->mesh, scene,
                                      state.members.has_value(), solvedCount(state.patches), section,
                                      heldAllRound, &state.joinedNetwork);
+  simulateInfill(state);
   if (scene.wants("report"))
     writeDeployedFigures(state.joined ? &*state.joined : nullptr,
                          state.joinedNetwork ? &*state.joinedNetwork : nullptr, state.patches,

@@ -79,8 +79,8 @@ GridDomain::GridDomain(const TriMesh& mesh, const GridDomainOptions& options) : 
                                                    bendsInward_, connectionOptions);
   curvature_ = computeCurvature(mesh_);
   double weighted = 0.0, area = 0.0;
+  // Over every vertex, the boundary's too: members sample kappa_n there as well.
   for (int v = 0; v < static_cast<int>(mesh_.n_vertices()); ++v) {
-    if (curvature_.onBoundary[v]) continue;
     const double k1 = curvature_.kappaMax[v], k2 = curvature_.kappaMin[v];
     weighted += curvature_.mixedArea[v] * 0.5 * (k1 * k1 + k2 * k2);
     area += curvature_.mixedArea[v];

@@ -60,7 +60,7 @@ class GridDomain {
   double meanEdgeLengthM() const { return meanEdge_; }
   double precomputeSeconds() const { return precomputeSeconds_; }
   // Squared curvature scale of the surface: the area-weighted mean of (kappa_1^2 + kappa_2^2) / 2
-  // over interior vertices (1/m^2); makes E_effort dimensionless in E_grid.
+  // over all vertices (1/m^2); makes E_effort dimensionless in E_grid.
   double kappaScale2() const { return kappaScale2_; }
 
   // The plane of least squares through the mesh (its normal the direction of least spread):

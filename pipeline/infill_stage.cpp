@@ -1,6 +1,8 @@
 // Generalised patches in `egg run` (issue 41): see infill_stage.hpp.
 #include "pipeline/infill_stage.hpp"
 
+#include "core/errors.hpp"
+#include "core/io/atomic_file.hpp"
 #include "core/materials/materials.hpp"
 #include "core/timing.hpp"
 
@@ -74,7 +76,132 @@ json infillEntry(const patching::InfillPiece& piece, int index) {
   return entry;
 }
 
+// A notch shorter than this is drilled as a plain hole (mm): the planarisation leaves rounding.
+constexpr double kInfillMinSlotMm = 0.05;
+
+bool infillSlotted(const rods::Notch& notch) {
+  return 1000.0 * (notch.beforeM + notch.afterM) >= kInfillMinSlotMm;
+}
+
+// Lamella ids: G<patch>-A<i> for family g, G<patch>-B<i> for family h, numbered per family.
+std::vector<std::string> infillLamellaIds(const patching::InfillPiece& piece, int index) {
+  std::vector<std::string> ids;
+  int counts[2] = {0, 0};
+  for (const auto& m : piece.optimisation->layout.members)
+    ids.push_back(fmt::format("G{}-{}{}", index, m.family == 0 ? 'A' : 'B', counts[m.family]++));
+  return ids;
+}
+
+// The cut list: one row per lamella; its bolts as "s_bar[notch_from..notch_to]" in mm from the
+// lamella's start (a plain hole without the brackets), its two end anchors at 0 and the length.
+std::string infillCutList(const patching::InfillPiece& piece, int index) {
+  const auto& network = piece.design->network;
+  const auto ids = infillLamellaIds(piece, index);
+  std::vector<std::vector<std::string>> holes(network.rods.size());
+  for (size_t k = 0; k < network.connections.size(); ++k) {
+    const auto& c = network.connections[k];
+    const auto hole = [&](double s, const rods::Notch& notch, int other) {
+      const std::string where = fmt::format("{:.1f}", 1000.0 * s);
+      const std::string slot = infillSlotted(notch)
+                                   ? fmt::format("[{:.1f}..{:.1f}]", 1000.0 * (s - notch.beforeM),
+                                                 1000.0 * (s + notch.afterM))
+                                   : "";
+      return fmt::format("{}{}@{}", where, slot, ids[other]);
+    };
+    holes[c.rodA].push_back(hole(c.sAM, c.notchA, c.rodB));
+    holes[c.rodB].push_back(hole(c.sBM, c.notchB, c.rodA));
+  }
+  std::string csv =
+      "lamella,family,layer,length_mm,width_mm,thickness_mm,anchors_mm,bolts_mm "
+      "(s_bar[slot from..to]@crossing lamella)\n";
+  for (size_t r = 0; r < network.rods.size(); ++r) {
+    const auto& rod = network.rods[r];
+    std::string bolts;
+    for (const auto& h : holes[r]) bolts += (bolts.empty() ? "" : " ") + h;
+    csv += fmt::format("{},{},{},{:.1f},{:.1f},{:.1f},0.0 {:.1f},{}\n", ids[r],
+                       piece.optimisation->layout.members[r].family == 0 ? "g" : "h", rod.layer,
+                       1000.0 * rod.lengthM, 1000.0 * rod.section.widthM,
+                       1000.0 * rod.section.thicknessM, 1000.0 * rod.lengthM, bolts);
+  }
+  return csv;
+}
+
+// The planar layout in mm (1200 px on its longer side), y up: lamella outlines (family g blue, h
+// orange), bolts, notch slots.
+std::string infillPlanarSvg(const patching::InfillPiece& piece, int index) {
+  const auto& endpoints = piece.design->planar.endpoints;
+  const auto& network = piece.design->network;
+  const double width = 1000.0 * piece.design->planarProblem.widthM;
+  Eigen::AlignedBox2d box;
+  for (const auto& e : endpoints) box.extend(1000.0 * e[0]), box.extend(1000.0 * e[1]);
+  const double margin = 2.0 * width + 50.0;
+  const Eigen::Vector2d low = box.min() - Eigen::Vector2d::Constant(margin);
+  const Eigen::Vector2d size = box.sizes() + Eigen::Vector2d::Constant(2 * margin);
+  const auto px = [&](const Eigen::Vector2d& p) {
+    return fmt::format("{:.2f},{:.2f}", p.x() - low.x(), size.y() - (p.y() - low.y()));
+  };
+  const double stroke = std::max(size.maxCoeff() / 1500.0, 0.5);
+  std::string svg = fmt::format(
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
+      "width=\"{8:.0f}\" height=\"{9:.0f}\" viewBox=\"0 0 {0:.2f} {1:.2f}\">\n"
+      "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n"
+      "<text x=\"{2:.1f}\" y=\"{3:.1f}\" font-family=\"sans-serif\" font-size=\"{4:.1f}\">"
+      "G{5}: planar cut layout (mm), {6} lamellas, {7} bolts</text>\n",
+      size.x(), size.y(), 0.3 * margin, 0.5 * margin, 0.25 * margin, index, endpoints.size(),
+      network.connections.size(), 1200.0 * size.x() / size.maxCoeff(),
+      1200.0 * size.y() / size.maxCoeff());
+  const auto ids = infillLamellaIds(piece, index);
+  for (size_t r = 0; r < endpoints.size(); ++r) {
+    const Eigen::Vector2d a = 1000.0 * endpoints[r][0], b = 1000.0 * endpoints[r][1];
+    const Eigen::Vector2d d = (b - a).normalized();
+    const Eigen::Vector2d n = 0.5 * width * Eigen::Vector2d(-d.y(), d.x());
+    const bool g = piece.optimisation->layout.members[r].family == 0;
+    svg += fmt::format(
+        "<path id=\"{}\" d=\"M{}L{}L{}L{}Z\" fill=\"{}\" fill-opacity=\"0.25\" stroke=\"{}\" "
+        "stroke-width=\"{:.2f}\"/>\n",
+        ids[r], px(a - n), px(b - n), px(b + n), px(a + n), g ? "#1f77b4" : "#ff7f0e",
+        g ? "#1f77b4" : "#ff7f0e", stroke);
+  }
+  for (const auto& c : network.connections) {
+    for (int side = 0; side < 2; ++side) {
+      const int rod = side == 0 ? c.rodA : c.rodB;
+      const double s = side == 0 ? c.sAM : c.sBM;
+      const auto& notch = side == 0 ? c.notchA : c.notchB;
+      const Eigen::Vector2d a = 1000.0 * endpoints[rod][0];
+      const Eigen::Vector2d d = (1000.0 * endpoints[rod][1] - a).normalized();
+      if (infillSlotted(notch))
+        svg += fmt::format(
+            "<path d=\"M{}L{}\" stroke=\"#0000ff\" stroke-width=\"{:.2f}\" "
+            "stroke-linecap=\"round\"/>\n",
+            px(a + 1000.0 * (s - notch.beforeM) * d), px(a + 1000.0 * (s + notch.afterM) * d),
+            0.3 * width);
+    }
+    const Eigen::Vector2d a = 1000.0 * endpoints[c.rodA][0];
+    const Eigen::Vector2d d = (1000.0 * endpoints[c.rodA][1] - a).normalized();
+    const Eigen::Vector2d at = a + 1000.0 * c.sAM * d;
+    svg += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"#111111\"/>\n",
+                       at.x() - low.x(), size.y() - (at.y() - low.y()), 0.2 * width);
+  }
+  return svg + "</svg>\n";
+}
+
 }  // namespace
+
+void writeInfillFiles(const RunState& state, const std::filesystem::path& folder) {
+  if (!state.infill) return;
+  for (size_t i = 0; i < state.infill->pieces.size(); ++i) {
+    const auto& piece = state.infill->pieces[i];
+    if (!piece.design) continue;
+    const auto dir = folder / fmt::format("generalised_G{}", i);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec)
+      throw WriteError(dir.string() +
+                       ": cannot create the generalised patch's folder: " + ec.message());
+    writeFileAtomically(dir / "lamellas.csv", infillCutList(piece, static_cast<int>(i)));
+    writeFileAtomically(dir / "planar.svg", infillPlanarSvg(piece, static_cast<int>(i)));
+  }
+}
 
 void designInfill(RunState& state) {
   const Scene& scene = state.scene;

@@ -6,6 +6,8 @@
 // anchors by what holds them, deviation), and coverage counts them.
 #include "pipeline/run_state.hpp"
 
+#include <filesystem>
+
 namespace egg::pipeline {
 
 // Grid stage, when patching.generalised_infill (default: for the workflows' layouts, not a given
@@ -18,6 +20,12 @@ void designInfill(RunState& state);
 // rod options; its entry gets the deviation from the surface. Non-convergence is a run failure,
 // as for a quad patch.
 void simulateInfill(RunState& state);
+
+// Per generalised patch with a grid, the folder generalised_G<i>/ below `folder`: lamellas.csv
+// (the cut list: every lamella's id, family and layer, length, and its bolt holes at their planar
+// positions with the notch each bolt slides along, mm) and planar.svg (the cut layout as bolted on
+// the ground, mm). Throws WriteError when a file cannot be written.
+void writeInfillFiles(const RunState& state, const std::filesystem::path& folder);
 
 // The members of the generalised patches as polylines on the surface (plan.svg), by family.
 struct InfillMemberLine {

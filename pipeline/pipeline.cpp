@@ -5,6 +5,7 @@
 #include "core/timing.hpp"
 #include "pipeline/acceptance.hpp"
 #include "pipeline/grid_stage.hpp"
+#include "pipeline/infill_stage.hpp"
 #include "pipeline/model_stage.hpp"
 #include "pipeline/report_html.hpp"
 #include "pipeline/run_folder.hpp"
@@ -39,6 +40,7 @@ void writeOutputs(RunState& state) {
   if (scene.wants("previews") || scene.wants("report"))
     for (const auto& p : state.patches)
       writePatchFiles(p, state.staging / fmt::format("patch_{:03d}", p.id), scene);
+  if (scene.wants("report")) writeInfillFiles(state, state.staging);
   if (scene.wants("plan")) {
     state.progress("plan", 0.95);
     writePatchesJson(*state.patching, state.staging / "patches.json");

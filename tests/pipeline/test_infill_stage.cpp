@@ -5,9 +5,11 @@
 #include "pipeline/pipeline.hpp"
 
 #include "core/io/atomic_file.hpp"
+#include "tests/support/tool_run.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -64,6 +66,28 @@ TEST(InfillStage, SlowGreatCourtRingIsClosedByFourGeneralisedPatches) {
     EXPECT_LT(g["simulation"]["rmse_m"].get<double>(), 0.1);
   }
   EXPECT_NEAR(area, coverage["covered_area_generalised_patches_m2"].get<double>(), 1e-6);
+  // Each patch's cut list: a row per lamella, its length the member's and every crossing a hole
+  // in both of its lamellas; the planar layout renders.
+  for (int i = 0; i < 4; ++i) {
+    const fs::path dir = result.outDir / ("generalised_G" + std::to_string(i));
+    std::ifstream csv(dir / "lamellas.csv");
+    ASSERT_TRUE(csv.good()) << dir;
+    std::string line;
+    int rows = -1, holes = 0;
+    while (std::getline(csv, line)) {
+      ++rows;
+      if (rows > 0) holes += static_cast<int>(std::count(line.begin(), line.end(), '@'));
+    }
+    EXPECT_EQ(rows, generalised[i]["members"].get<int>());
+    EXPECT_EQ(holes, 2 * generalised[i]["crossings"].get<int>());
+    const auto png =
+        fs::temp_directory_path() / ("egg_infill_planar_" + std::to_string(i) + ".png");
+    const auto run = egg::test::runTool("rsvg-convert -w 1200 -o '" + png.string() + "' '" +
+                                        (dir / "planar.svg").string() + "'");
+    EXPECT_EQ(run.status, 0) << run.output;
+    EXPECT_GT(fs::file_size(png), 2000u);
+    fs::remove(png);
+  }
   std::ifstream plan(result.outDir / "plan.svg");
   std::stringstream text;
   text << plan.rdbuf();

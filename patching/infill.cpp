@@ -145,8 +145,10 @@ void infillDesign(const PatchLayout& layout, const std::set<int>& sideVertices,
     piece.design =
         generalised::designGeneralisedGrid(domain, piece.optimisation->layout, options.design);
     const TriMesh& layoutMesh = layout.mesh.mesh;
-    for (const auto& m : piece.optimisation->layout.members) {
-      for (int sample : {m.start, m.end}) {
+    std::set<int> anchors;  // the pieces of a split member share their anchor on the bay
+    for (const auto& m : piece.optimisation->layout.members) anchors.insert({m.start, m.end});
+    {
+      for (int sample : anchors) {
         const int v = piece.layoutVertex[domain.vertex(sample)];
         if (layoutMesh.is_boundary(TriMesh::VertexHandle(v)))
           ++piece.anchorsOnDesignBoundary;

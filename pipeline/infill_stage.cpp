@@ -16,15 +16,19 @@ namespace {
 
 using nlohmann::json;
 
-// The quad grids' member spacing: per traced patch, its mean side length over the gaps between
-// its members, and the median over the patches.
+// The quad grids' member spacing: per traced patch and family, the mean length of the two sides
+// its members are spaced along (the other family's direction) over the gaps between them; the
+// median over all of them.
 double infillMemberSpacing(const std::vector<SolvedPatch>& patches) {
   std::vector<double> spacings;
   for (const auto& p : patches) {
-    if (!p.egg || p.egg->grid.u.size() < 2) continue;
+    if (!p.egg) continue;
     const auto& sides = p.egg->patch.sideLengths;
-    const double meanSide = (sides[0] + sides[1] + sides[2] + sides[3]) / 4.0;
-    spacings.push_back(meanSide / static_cast<double>(p.egg->grid.u.size() - 1));
+    // The first and last u members are sides 0 and 2 (core/egg/grid.cpp), so the u members are
+    // spaced along sides 1 and 3; the v members, whose outer ones are sides 3 and 1, along 0, 2.
+    const size_t nu = p.egg->grid.u.size(), nv = p.egg->grid.v.size();
+    if (nu >= 2) spacings.push_back(0.5 * (sides[1] + sides[3]) / static_cast<double>(nu - 1));
+    if (nv >= 2) spacings.push_back(0.5 * (sides[0] + sides[2]) / static_cast<double>(nv - 1));
   }
   if (spacings.empty()) return 0.0;
   std::sort(spacings.begin(), spacings.end());

@@ -88,8 +88,14 @@ std::vector<std::pair<int, int>> overlappingLamellas(const std::vector<Segment2>
 }
 
 void GeneralisedDesignOptions::validate() const {
-  if (!(section.widthM > 0.0) || !(section.thicknessM > 0.0))
-    throw InvalidInput("GeneralisedDesignOptions.section: width and thickness must be positive");
+  if (!(section.widthM > 0.0))
+    throw InvalidInput("GeneralisedDesignOptions.section.width_m must be positive");
+  if (!(section.thicknessM > 0.0))
+    throw InvalidInput("GeneralisedDesignOptions.section.thickness_m must be positive");
+  if (!(material.youngsModulusPa > 0.0))
+    throw InvalidInput("GeneralisedDesignOptions.material.youngs_modulus_pa must be positive");
+  if (!(material.shearModulusPa > 0.0))
+    throw InvalidInput("GeneralisedDesignOptions.material.shear_modulus_pa must be positive");
   planarisation.validate();
 }
 
@@ -109,6 +115,7 @@ GeneralisedDesign designGeneralisedGrid(const GridDomain& domain, const Generali
   // The traced crossings: two traced geodesics cross inside a face, where both are straight.
   const double edge = domain.meanEdgeLengthM();
   double deviationSum = 0.0;
+  int measured = 0;
   for (const auto& c : design.fieldCrossings) {
     const auto& g = domain.member(members[c.g].start, members[c.g].end);
     const auto& h = domain.member(members[c.h].start, members[c.h].end);
@@ -121,12 +128,13 @@ GeneralisedDesign designGeneralisedGrid(const GridDomain& domain, const Generali
     design.tracedCrossings.push_back(traced.position);
     design.tracedSGM.push_back(traced.arcLengthFirst);
     design.tracedSHM.push_back(traced.arcLengthSecond);
+    if (!c.found) continue;  // eps_geo measures the field crossings that were found
     const double deviation = (traced.position - c.position).norm();
     deviationSum += deviation;
+    ++measured;
     design.maxCrossingDeviationM = std::max(design.maxCrossingDeviationM, deviation);
   }
-  if (!design.fieldCrossings.empty())
-    design.epsGeoPercent = 100.0 * deviationSum / design.fieldCrossings.size() / edge;
+  if (measured > 0) design.epsGeoPercent = 100.0 * deviationSum / measured / edge;
 
   // Section 4.7: lengths from the distance map, fractions from the traced crossings.
   auto& problem = design.planarProblem;

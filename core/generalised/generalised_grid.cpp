@@ -211,7 +211,8 @@ std::vector<GridCrossing> gridCrossings(const GridDomain& domain, const Generali
     const auto found = geodesic::intersectGeodesics(
         mesh, dA, domain.field(g.end), dC, domain.field(h.end), domain.distance(g.start, g.end),
         domain.distance(h.start, h.end));
-    c.found = found.found;
+    c.found = found.found && found.point.face >= 0;
+    if (found.point.face < 0) return;  // no finite excess anywhere: the fields do not meet
     c.point = found.point;
     c.position = found.position;
     const auto ids = faceVertices(mesh, found.point.face);

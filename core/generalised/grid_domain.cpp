@@ -150,6 +150,11 @@ MemberGeometry GridDomain::traceMember(int a, int b) const {
 }
 
 const MemberGeometry& GridDomain::member(int a, int b) const {
+  if (a == b || a < 0 || b < 0 || a >= sampleCount() || b >= sampleCount()) {
+    throw InvalidInput("generalised grid: a member needs two different boundary samples of 0.." +
+                       std::to_string(sampleCount() - 1) + " (got " + std::to_string(a) + ", " +
+                       std::to_string(b) + ")");
+  }
   const long long key = domainPairKey(a, b, sampleCount());
   {
     std::lock_guard<std::mutex> lock(cacheMutex_);

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -27,6 +28,9 @@ struct OptimisationSearch {
   int buildable = 0;
   double bestEnergy = std::numeric_limits<double>::infinity();
   LayoutParameters bestParameters;
+  // An exception must not cross NLopt's C frames: the objective keeps it and stops the solver.
+  std::exception_ptr failure;
+  nlopt_opt solver = nullptr;
 
   LayoutParameters parametersOf(const double* x) const {
     LayoutParameters p;
@@ -121,13 +125,16 @@ GridOptimisationResult optimiseGrid(const GridDomain& domain,
   options.validate();
   const Stopwatch clock;
   GridOptimisationResult result;
-  OptimisationSearch search{domain, options, 0, 0, std::numeric_limits<double>::infinity(), {}};
+  OptimisationSearch search{domain, options, 0,      0, std::numeric_limits<double>::infinity(),
+                            {},     nullptr, nullptr};
   {
     const double start[4] = {0.0, 0.0, 0.5, 0.5};
     result.initialEGrid = optimisationObjective(4, start, nullptr, &search);
+    if (search.failure) std::rethrow_exception(search.failure);
   }
   // Stage 1: DIRECT-L over rotation (a half turn: the families are ordered), skew and offsets.
   nlopt_opt opt = nlopt_create(NLOPT_GN_DIRECT_L, 4);
+  search.solver = opt;
   const double lower[4] = {0.0, -options.maxSkewRad, 0.0, 0.0};
   const double upper[4] = {std::numbers::pi, options.maxSkewRad, 1.0, 1.0};
   nlopt_set_lower_bounds(opt, lower);
@@ -138,6 +145,8 @@ GridOptimisationResult optimiseGrid(const GridDomain& domain,
   double value = 0.0;
   nlopt_optimize(opt, x, &value);  // stops at maxeval; the best point is kept by the search
   nlopt_destroy(opt);
+  search.solver = nullptr;
+  if (search.failure) std::rethrow_exception(search.failure);
   if (!(search.bestEnergy < kUnbuildableEnergy)) {
     throw InvalidInput("generalised grid: no buildable layout with " +
                        std::to_string(options.lines[0]) + " x " + std::to_string(options.lines[1]) +

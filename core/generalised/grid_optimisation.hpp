@@ -13,8 +13,9 @@
 //  1. global: DIRECT-L (NLopt; Gablonsky and Kelley's locally biased DIRECT) over the layout's
 //     rotation, skew and line offsets (4 numbers). DIRECT divides the box and samples every part
 //     of it, ever finer where the energy is low: it needs no gradient, is deterministic (the same
-//     grid on every run, which a random GA is not), and its samples become dense in the box, so it
-//     cannot miss a basin of the kind Fig. 4.19 shows for lack of a lucky seed;
+//     grid on every run, which a random GA is not), and its samples spread over the whole box
+//     before they gather (dense in it in the limit), so a basin of the kind Fig. 4.19 shows is
+//     found by the division, not by a lucky seed; with a finite budget it is no guarantee;
 //  2. local, in the discrete dual space: each anchor of each member moved by one and two samples
 //     either way (Section 4.5.4's discrete domain), a move kept when the layout stays buildable
 //     (layoutProblem) and E_grid falls, until a sweep keeps nothing. This is the per-anchor

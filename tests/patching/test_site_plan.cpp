@@ -169,6 +169,29 @@ TEST(SitePlan, BadInputNamesWhatDoesNotFit) {
   const std::string svg = sitePlanSvg(alone);
   EXPECT_FALSE(svgtext::element(svg, "outline").empty());
   EXPECT_EQ(svg.find("id=\"patch-"), std::string::npos);
+  EXPECT_EQ(svg.find("id=\"generalised-"), std::string::npos);
+  // A generalised patch is drawn from the layout mesh's faces: without a layout it is bad input,
+  // and a face the mesh does not have is named.
+  alone.generalised.push_back({"G0", {0, 1}, 2.0});
+  try {
+    sitePlanSvg(alone);
+    FAIL() << "a generalised patch was drawn without its layout";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("generalised patches need the layout"), std::string::npos)
+        << e.what();
+  }
+  d = bumpPlan(scene, 4);
+  d.generalised.push_back({"G7", {0, 1 << 30}, 2.0});
+  try {
+    sitePlanSvg(d);
+    FAIL() << "a face outside the layout mesh was drawn";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("generalised patch G7 lists face"), std::string::npos)
+        << e.what();
+  }
+  d.generalised.back().faces = {0, 1, 2};
+  const std::string tinted = sitePlanSvg(d);
+  EXPECT_FALSE(svgtext::element(tinted, "generalised-G7").empty());
 }
 
 }  // namespace

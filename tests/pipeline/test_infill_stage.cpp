@@ -92,7 +92,7 @@ TEST(InfillStage, SlowGreatCourtRingIsClosedByFourGeneralisedPatches) {
   std::stringstream text;
   text << plan.rdbuf();
   EXPECT_NE(text.str().find("id=\"generalised-G0\""), std::string::npos);
-  EXPECT_NE(text.str().find("id=\"generalised-label-G3\""), std::string::npos);
+  EXPECT_NE(text.str().find("id=\"generalised-G3\""), std::string::npos);
   fs::remove_all(result.outDir);
 }
 

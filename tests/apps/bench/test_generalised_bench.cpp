@@ -39,8 +39,9 @@ TEST(GeneralisedBench, MoonIsCutPlanarWithoutOverlapsAndDeploysOntoItsSurface) {
   EXPECT_LE(moon["planar_length_residual_m"].get<double>(), 1e-9);
   EXPECT_EQ(moon["planar_overlapping_neighbours"].get<int>(), 0);
   EXPECT_EQ(moon["planar_overlapping_lamellas"].get<int>(), 0);
-  EXPECT_TRUE(moon["simulation_converged"].get<bool>());
-  // A 0.6 m dome: within a centimetre everywhere (Table 4.1's Moon: 0.38 cm RMS, 0.68 cm max).
+  ASSERT_TRUE(moon["simulation_converged"].get<bool>());
+  ASSERT_TRUE(moon["rms_delta_cm"].is_number()) << moon.dump(1);
+  // A 0.6 m dome: RMS under 5 mm, nowhere farther than 15 mm (Table 4.1's Moon: 0.38 / 0.68 cm).
   EXPECT_LT(moon["rms_delta_cm"].get<double>(), 0.5);
   EXPECT_LT(moon["max_delta_cm"].get<double>(), 1.5);
   EXPECT_GE(moon["e_shape"].get<double>(), 0.0);

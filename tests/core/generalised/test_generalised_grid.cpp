@@ -218,3 +218,21 @@ TEST(GeneralisedGrid, MoonMembersSplitExactlyWhereTheirGeodesicWouldTouchTheBay)
 
 }  // namespace
 }  // namespace egg::generalised
+
+namespace egg::generalised {
+namespace {
+
+TEST(GeneralisedGrid, AMemberNeedsTwoDifferentSamplesInRange) {
+  const TriMesh mesh = samples::generateSample("sphere", {{"radius", 10.0}, {"extent", 5.0}}, 0.6);
+  const GridDomain domain(mesh);
+  EXPECT_THROW(domain.member(3, 3), InvalidInput);
+  EXPECT_THROW(domain.member(-1, 3), InvalidInput);
+  EXPECT_THROW(domain.member(0, domain.sampleCount()), InvalidInput);
+  const auto& forward = domain.member(0, domain.sampleCount() / 2);
+  const auto& backward = domain.member(domain.sampleCount() / 2, 0);
+  EXPECT_NEAR((forward.positions.front() - backward.positions.back()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(forward.effort, backward.effort, 1e-12);
+}
+
+}  // namespace
+}  // namespace egg::generalised

@@ -144,6 +144,14 @@ void infillDesign(const PatchLayout& layout, const std::set<int>& sideVertices,
     }
     piece.design =
         generalised::designGeneralisedGrid(domain, piece.optimisation->layout, options.design);
+    // The optimiser judged the angles at the field crossings; the traced ones decide.
+    if (piece.design->minCrossingAngleRad < options.optimisation.minCrossingAngleRad) {
+      throw InvalidInput(fmt::format(
+          "left as a cut-off: its best grid has lamellas crossing at {:.1f} degrees, below the "
+          "{:.1f} a bolt needs",
+          piece.design->minCrossingAngleRad * 180.0 / M_PI,
+          options.optimisation.minCrossingAngleRad * 180.0 / M_PI));
+    }
     const TriMesh& layoutMesh = layout.mesh.mesh;
     std::set<int> anchors;  // the pieces of a split member share their anchor on the bay
     for (const auto& m : piece.optimisation->layout.members) anchors.insert({m.start, m.end});

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace egg::pipeline {
 namespace {
@@ -59,6 +60,7 @@ json infillEntry(const patching::InfillPiece& piece, int index) {
   entry["e_shape"] = o.energy.eShape;
   entry["e_grid"] = o.energy.eGrid;
   entry["eps_geo_percent"] = d.epsGeoPercent;
+  entry["min_crossing_angle_deg"] = d.minCrossingAngleRad * 180.0 / std::numbers::pi;
   entry["max_crossing_deviation_m"] = d.maxCrossingDeviationM;
   entry["planarisation"] = {{"length_residual_m", d.planar.lengthResidualM},
                             {"notch_energy_m2", d.planar.notchEnergyM2},

@@ -127,6 +127,8 @@ GeneralisedDesign designGeneralisedGrid(const GridDomain& domain, const Generali
     }
     design.tracedCrossings.push_back(traced.position);
     design.tracedSGM.push_back(traced.arcLengthFirst);
+    design.crossingAnglesRad.push_back(
+        crossingAngle(g, traced.arcLengthFirst, h, traced.arcLengthSecond));
     design.tracedSHM.push_back(traced.arcLengthSecond);
     if (!c.found) continue;  // eps_geo measures the field crossings that were found
     const double deviation = (traced.position - c.position).norm();
@@ -134,6 +136,10 @@ GeneralisedDesign designGeneralisedGrid(const GridDomain& domain, const Generali
     ++measured;
     design.maxCrossingDeviationM = std::max(design.maxCrossingDeviationM, deviation);
   }
+  design.minCrossingAngleRad =
+      design.crossingAnglesRad.empty()
+          ? 0.0
+          : *std::min_element(design.crossingAnglesRad.begin(), design.crossingAnglesRad.end());
   if (measured > 0) design.epsGeoPercent = 100.0 * deviationSum / measured / edge;
 
   // Section 4.7: lengths from the distance map, fractions from the traced crossings.

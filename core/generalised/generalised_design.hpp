@@ -26,6 +26,10 @@ struct GeneralisedDesign {
   std::vector<GridCrossing> fieldCrossings;      // Section 4.5.2, from the distance fields
   std::vector<Eigen::Vector3d> tracedCrossings;  // the same crossings of the traced geodesics
   std::vector<double> tracedSGM, tracedSHM;      // arc lengths of the traced crossings
+  // The acute angle between the two traced geodesics at each crossing (radians, in [0, pi/2]) and
+  // the smallest: a bolt through two lamellas crossing at a few degrees holds nothing.
+  std::vector<double> crossingAnglesRad;
+  double minCrossingAngleRad = 0.0;
   // eps_geo of Table 4.1: mean distance between the field crossings and the traced ones, in
   // per cent of the mean edge length; and the largest such distance (metres).
   double epsGeoPercent = 0.0;

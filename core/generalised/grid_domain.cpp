@@ -21,6 +21,17 @@ long long domainPairKey(int a, int b, int n) {
 
 }  // namespace
 
+Eigen::Vector3d memberTangentAt(const MemberGeometry& member, double arcLengthM) {
+  const auto& arc = member.arcLengthM;
+  size_t i = std::upper_bound(arc.begin(), arc.end(), arcLengthM) - arc.begin();
+  i = std::clamp<size_t>(i, 1, arc.size() - 1);
+  return (member.positions[i] - member.positions[i - 1]).normalized();
+}
+
+double crossingAngle(const MemberGeometry& g, double sG, const MemberGeometry& h, double sH) {
+  return std::acos(std::min(1.0, std::abs(memberTangentAt(g, sG).dot(memberTangentAt(h, sH)))));
+}
+
 void GridDomainOptions::validate() const {
   if (!(solver.saddleAngleTolerance >= 0.0))
     throw InvalidInput("GridDomainOptions.solver.saddleAngleTolerance must be >= 0");

@@ -38,6 +38,13 @@ struct MemberGeometry {
   double effort = 0.0;             // E_c of Eq. 4.10 (1/m^2)
 };
 
+// The unit direction of the traced member's segment at arc length s (clamped to the member).
+Eigen::Vector3d memberTangentAt(const MemberGeometry& member, double arcLengthM);
+
+// The acute angle (radians, [0, pi/2]) between members g and h where g is at arc length sG and h
+// at sH: the crossing angle of their lamellas.
+double crossingAngle(const MemberGeometry& g, double sG, const MemberGeometry& h, double sH);
+
 class GridDomain {
  public:
   // Throws InvalidInput unless the mesh is a topological disk (exactly one boundary loop of at

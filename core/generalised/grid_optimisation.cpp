@@ -45,9 +45,17 @@ struct OptimisationSearch {
   double energyOf(const GeneralisedLayout& layout) {
     ++evaluations;
     if (!layoutProblem(domain, layout, options.layout).empty()) return kUnbuildableEnergy;
+    std::vector<std::pair<int, int>> pairs;
+    for (const auto& m : layout.members) pairs.emplace_back(m.start, m.end);
+    domain.prepareMembers(pairs);  // traced in parallel, for the crossing angles and the energy
     const auto crossings = gridCrossings(domain, layout);
     for (const auto& c : crossings) {
       if (!c.found) return kUnbuildableEnergy;
+      const auto& g = layout.members[c.g];
+      const auto& h = layout.members[c.h];
+      if (crossingAngle(domain.member(g.start, g.end), c.sGM, domain.member(h.start, h.end),
+                        c.sHM) < options.minCrossingAngleRad)
+        return kUnbuildableEnergy;
     }
     ++buildable;
     return gridEnergy(domain, layout, crossings, options.energy).eGrid;
@@ -84,6 +92,8 @@ void GridOptimisationOptions::validate() const {
     throw InvalidInput("GridOptimisationOptions.max_skew_rad must be in [0, pi/3)");
   if (globalEvaluations < 1)
     throw InvalidInput("GridOptimisationOptions.global_evaluations must be >= 1");
+  if (!(minCrossingAngleRad >= 0.0 && minCrossingAngleRad < std::numbers::pi / 2))
+    throw InvalidInput("GridOptimisationOptions.min_crossing_angle_rad must be in [0, pi/2)");
   if (maxRefinementSweeps < 0)
     throw InvalidInput("GridOptimisationOptions.max_refinement_sweeps must be >= 0");
   layout.validate();

@@ -53,6 +53,10 @@ struct GridOptimisationOptions {
   double maxSkewRad = 0.35;           // |skew| of the families' angle from 90 degrees
   int globalEvaluations = 400;        // DIRECT-L evaluations
   int maxRefinementSweeps = 4;        // sweeps of the anchor moves (0: none)
+  // A layout with two members crossing at less than this is unbuildable (radians): a bolt through
+  // lamellas a few degrees apart holds nothing, and the notch would run along the lamella. The
+  // angle is the traced members' at the field crossing.
+  double minCrossingAngleRad = 0.2618;  // 15 degrees
   LayoutOptions layout;
   GridEnergyOptions energy;
   void validate() const;  // throws InvalidInput naming the field

@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numbers>
+
 namespace egg::generalised {
 namespace {
 
@@ -109,6 +112,34 @@ TEST(GeneralisedDesign, RejectsAnUnbuildableLayoutNamingTheMembers) {
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("of one family cross"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace egg::generalised
+
+namespace egg::generalised {
+namespace {
+
+TEST(GeneralisedDesign, CrossingAnglesAreTheLinesAnglesOnAPlane) {
+  // On a plane the members are the layout's straight lines between their snapped anchors: the
+  // families cross at 90 degrees minus the skew, to within the turn a snap of half a boundary
+  // edge gives a member of a few metres.
+  const TriMesh mesh = samples::generateSample("plane", {{"length", 6.0}, {"width", 5.0}}, 0.2);
+  const GridDomain domain(mesh);
+  LayoutParameters parameters;
+  parameters.lines = {5, 5};
+  parameters.angleRad = 0.3;
+  parameters.skewRad = 0.5;
+  const auto layout = layoutFromLines(domain, parameters);
+  GeneralisedDesignOptions options;
+  options.section = {0.05, 0.005};
+  const auto design = designGeneralisedGrid(domain, layout, options);
+  ASSERT_FALSE(design.crossingAnglesRad.empty());
+  for (double angle : design.crossingAnglesRad)
+    EXPECT_NEAR(angle, std::numbers::pi / 2 - 0.5, 0.06);
+  EXPECT_NEAR(design.minCrossingAngleRad,
+              *std::min_element(design.crossingAnglesRad.begin(), design.crossingAnglesRad.end()),
+              0.0);
 }
 
 }  // namespace

@@ -74,6 +74,27 @@ TEST(GridOptimisation, FindsNoWorseThanTheThesisRotationSeeds) {
   EXPECT_LE(result.energy.eShape, 1.0);
 }
 
+TEST(GridOptimisation, NoTwoMembersCrossMoreShallowlyThanAllowed) {
+  const TriMesh mesh = samples::generateSample(
+      "bump", {{"length", 0.6}, {"width", 0.45}, {"height", 0.08}, {"sigma", 0.12}}, 0.015);
+  const GridDomain domain(mesh);
+  GridOptimisationOptions options;
+  options.lines = {5, 5};
+  options.globalEvaluations = 150;
+  options.minCrossingAngleRad = 1.2;  // about 69 degrees: the skew may not go far
+  const auto result = optimiseGrid(domain, options);
+  ASSERT_FALSE(result.crossings.empty());
+  for (const auto& c : result.crossings) {
+    const auto& g = result.layout.members[c.g];
+    const auto& h = result.layout.members[c.h];
+    EXPECT_GE(
+        crossingAngle(domain.member(g.start, g.end), c.sGM, domain.member(h.start, h.end), c.sHM),
+        1.2);
+  }
+  options.minCrossingAngleRad = 2.0;  // above a right angle: refused
+  EXPECT_THROW(optimiseGrid(domain, options), InvalidInput);
+}
+
 TEST(GridOptimisation, TooManyLinesForTheBoundaryIsAClearError) {
   const TriMesh mesh = samples::generateSample(
       "bump", {{"length", 0.6}, {"width", 0.45}, {"height", 0.08}, {"sigma", 0.12}}, 0.05);

@@ -157,18 +157,8 @@ std::string cutOffsSvg(const CurvatureDrawing& drawing, const Projection& proj) 
     const CutOff& cut = drawing.coverage->cutOffs[c];
     plan::PathChunks grey("fill=\"#808080\" stroke=\"#808080\" stroke-width=\"0.6\"");
     plan::PathChunks hatch("fill=\"url(#hatch-cutoff)\"");
-    std::string d;
-    for (int f : cut.faces) {
-      if (f < 0 || f >= static_cast<int>(lm.n_faces()))
-        throw InvalidInput(
-            fmt::format("curvature.svg: cut-off {} lists face {} of a layout mesh with {} faces", c,
-                        f, lm.n_faces()));
-      const auto fv = faceVertices(lm, f);
-      d.clear();
-      for (int k = 0; k < 3; ++k)
-        d.append(k == 0 ? "M" : "L")
-            .append(point(proj, toEigen(lm.point(TriMesh::VertexHandle(fv[k])))));
-      d += "Z";
+    for (const auto& d :
+         plan::facePaths(lm, cut.faces, proj, fmt::format("curvature.svg: cut-off {}", c))) {
       grey.add(d);
       hatch.add(d);
     }

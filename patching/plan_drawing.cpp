@@ -1,5 +1,6 @@
 #include "patching/plan_drawing.hpp"
 
+#include "core/errors.hpp"
 #include "core/io/xml_text.hpp"
 
 #include <fmt/core.h>
@@ -12,6 +13,24 @@ namespace egg::patching::plan {
 
 std::string point(const Projection& p, const Eigen::Vector3d& q) {
   return fmt::format("{:.1f},{:.1f}", p.px(q.x()), p.py(q.y()));
+}
+
+std::vector<std::string> facePaths(const TriMesh& mesh, const std::vector<int>& faces,
+                                   const Projection& p, const std::string& owner) {
+  std::vector<std::string> paths;
+  paths.reserve(faces.size());
+  for (int f : faces) {
+    if (f < 0 || f >= static_cast<int>(mesh.n_faces()))
+      throw InvalidInput(
+          fmt::format("{} lists face {} of a layout mesh with {} faces", owner, f, mesh.n_faces()));
+    const auto fv = faceVertices(mesh, f);
+    std::string path;
+    for (int k = 0; k < 3; ++k)
+      path.append(k == 0 ? "M" : "L")
+          .append(point(p, toEigen(mesh.point(TriMesh::VertexHandle(fv[k])))));
+    paths.push_back(path + "Z");
+  }
+  return paths;
 }
 
 std::string pointList(const Projection& p, const std::vector<Eigen::Vector3d>& points) {

@@ -23,6 +23,10 @@ struct Projection {
 
 std::string point(const Projection& p, const Eigen::Vector3d& q);  // "x,y" in px
 std::string pointList(const Projection& p, const std::vector<Eigen::Vector3d>& points);
+// One closed path "M..L..L..Z" per face of `mesh` in `faces`. `owner` starts the message when a
+// face is not the mesh's ("plan.svg: cut-off 2": "... lists face 9 of a layout mesh with 8 faces").
+std::vector<std::string> facePaths(const TriMesh& mesh, const std::vector<int>& faces,
+                                   const Projection& p, const std::string& owner);
 
 // Text with a white halo, so labels stay readable over colours and lines.
 std::string label(double x, double y, const std::string& text, double size,

@@ -117,25 +117,6 @@ std::string membersSvg(const SitePlanDrawing& d, const Projection& proj) {
   return out + "</g>\n";
 }
 
-// One closed path per layout-mesh face of `faces`; `owner` names them when a face is not the
-// mesh's.
-std::vector<std::string> layoutFacePaths(const TriMesh& lm, const std::vector<int>& faces,
-                                         const Projection& proj, const std::string& owner) {
-  std::vector<std::string> paths;
-  for (int f : faces) {
-    if (f < 0 || f >= static_cast<int>(lm.n_faces()))
-      throw InvalidInput(fmt::format("plan.svg: {} lists face {} of a mesh with {} faces", owner, f,
-                                     lm.n_faces()));
-    const auto fv = faceVertices(lm, f);
-    std::string path;
-    for (int k = 0; k < 3; ++k)
-      path.append(k == 0 ? "M" : "L")
-          .append(plan::point(proj, toEigen(lm.point(TriMesh::VertexHandle(fv[k])))));
-    paths.push_back(path + "Z");
-  }
-  return paths;
-}
-
 // Cut-offs: grey under a single hatch (group opacity, so the faces' strokes do not show seams).
 std::string cutOffsSvg(const SitePlanDrawing& d, const Projection& proj) {
   std::string out;
@@ -143,8 +124,8 @@ std::string cutOffsSvg(const SitePlanDrawing& d, const Projection& proj) {
   for (size_t c = 0; c < d.coverage->cutOffs.size(); ++c) {
     plan::PathChunks grey("fill=\"#cfcfcf\" stroke=\"#cfcfcf\" stroke-width=\"0.6\"");
     plan::PathChunks hatch("fill=\"url(#sp-hatch-cutoff)\"");
-    for (const auto& path :
-         layoutFacePaths(lm, d.coverage->cutOffs[c].faces, proj, fmt::format("cut-off {}", c))) {
+    for (const auto& path : plan::facePaths(lm, d.coverage->cutOffs[c].faces, proj,
+                                            fmt::format("plan.svg: cut-off {}", c))) {
       grey.add(path);
       hatch.add(path);
     }
@@ -162,7 +143,7 @@ std::string generalisedSvg(const SitePlanDrawing& d, const Projection& proj) {
   for (const auto& g : d.generalised) {
     plan::PathChunks tint("fill=\"#dcebd3\" stroke=\"#dcebd3\" stroke-width=\"0.6\"");
     for (const auto& path :
-         layoutFacePaths(lm, g.faces, proj, fmt::format("generalised patch {}", g.id)))
+         plan::facePaths(lm, g.faces, proj, fmt::format("plan.svg: generalised patch {}", g.id)))
       tint.add(path);
     out +=
         fmt::format("<g id=\"generalised-{}\" class=\"generalised\">{}</g>\n", g.id, tint.finish());

@@ -11,7 +11,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 #include <limits>
 #include <map>
 #include <set>
@@ -406,6 +405,7 @@ std::vector<AssemblyPatch> assemblyPatches(const std::vector<FabricationPatch>& 
   for (const auto& patch : patches) {
     AssemblyPatch a;
     a.patchId = patch.patchId;
+    a.boltedTo = patch.boltedTo;
     const EggGrid& g = *patch.grid;
     for (bool isU : {true, false}) {
       const auto& family = isU ? g.u : g.v;
@@ -424,11 +424,9 @@ std::vector<AssemblyPatch> assemblyPatches(const std::vector<FabricationPatch>& 
         a.members.push_back(std::move(m));
       }
     }
-    const int nv = static_cast<int>(g.v.size());
-    for (size_t k = 0; k < g.connections.size(); ++k) {
-      const GridConnection& c = g.connections[k];
+    for (const GridConnection& c : g.connections) {
       AssemblyConnection ac;
-      ac.id = fmt::format("P{}-C{}-{}", patch.patchId, k / nv, k % nv);
+      ac.id = fmt::format("P{}-C{}-{}", patch.patchId, c.memberU, c.memberV);
       ac.planar = c.planar;
       ac.spatial = c.spatial;
       auto along = [](const GridMember& m, double l) -> Eigen::Vector2d {
@@ -444,54 +442,6 @@ std::vector<AssemblyPatch> assemblyPatches(const std::vector<FabricationPatch>& 
     out.push_back(std::move(a));
   }
   return out;
-}
-
-std::vector<int> assemblyOrder(const std::vector<AssemblyPatch>& patches,
-                               const std::vector<Support>& supports,
-                               const std::vector<SharedBoundary>& shared,
-                               std::vector<std::string>* reasons) {
-  std::map<int, int> supportCount;
-  for (const auto& s : supports) ++supportCount[s.patchId];
-  std::map<int, std::set<int>> neighbours;
-  for (const auto& s : shared) {
-    neighbours[s.patchA].insert(s.patchB);
-    neighbours[s.patchB].insert(s.patchA);
-  }
-  std::vector<int> order;
-  std::set<int> placed;
-  while (order.size() < patches.size()) {
-    // A new start (the first, or a part of the structure not joined to what stands): the patch
-    // with the most supports, ties the lower id.
-    int start = -1;
-    for (const auto& p : patches) {
-      if (placed.count(p.patchId)) continue;
-      if (start < 0 || supportCount[p.patchId] > supportCount[start]) start = p.patchId;
-    }
-    std::deque<int> queue{start};
-    placed.insert(start);
-    if (reasons) {
-      reasons->push_back("P" + std::to_string(start) + " first: it stands on the most supports (" +
-                         std::to_string(supportCount[start]) +
-                         ") and needs no other patch to hold it");
-    }
-    while (!queue.empty()) {
-      const int p = queue.front();
-      queue.pop_front();
-      order.push_back(p);
-      for (int q : neighbours[p]) {
-        if (placed.count(q)) continue;
-        placed.insert(q);
-        queue.push_back(q);
-        if (reasons) {
-          reasons->push_back(
-              fmt::format("P{} after P{}: it shares a side with P{}, whose lamella "
-                          "on that side is already standing to bolt to",
-                          q, p, p));
-        }
-      }
-    }
-  }
-  return order;
 }
 
 std::string assemblyPdf(const FabricationResult& r) {
@@ -530,8 +480,12 @@ std::string assemblyPdf(const FabricationResult& r) {
       text.line(
           "  c. Stick the PTFE stickers at every slotted connection, then bolt every "
           "connection: tighten at plain holes, leave slotted bolts snug so they can slide.");
-      text.line(
-          "  d. Deploy the patch and fix its boundary joints to its supports (support plan).");
+      text.line(p.boltedTo.empty()
+                    ? "  d. Deploy the patch and fix its boundary joints to its supports (support "
+                      "plan)."
+                    : "  d. Deploy the patch: bolt the member ends that lap onto a standing "
+                      "patch's boundary lamella to it, fix the others to their supports or the "
+                      "ring beam (support plan).");
     }
     text.finish();
   }

@@ -27,6 +27,7 @@ struct AssemblyPatch {
   int patchId = 0;
   std::vector<AssemblyMember> members;  // u then v
   std::vector<AssemblyConnection> connections;
+  std::vector<int> boltedTo;  // FabricationPatch::boltedTo (a generalised patch's ring beam)
 };
 
 // Copies what the drawings need from the patches (lamella ids as `lamellae` name them).

@@ -139,8 +139,13 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches,
   const double t = options.lamellaThicknessMm / 1000.0, w = options.lamellaWidthMm / 1000.0;
 
   // One bolt per connection, one for each group of connections merged on a shared lamella.
-  for (const auto& patch : patches)
+  // A generalised member end's bolt (through its anchor's support or bracket, or through a quad's
+  // boundary lamella) is one more; the BOM sizes it with the two-lamella bolts, a support's blind
+  // hole taking the rest of its length.
+  for (const auto& patch : patches) {
     r.connections += static_cast<int>(patch.grid->connections.size());
+    for (const auto& hole : patch.extraHoles) r.connections += hole.newBolt ? 1 : 0;
+  }
   for (const auto& plan : r.lamellae) {
     for (const auto& f : plan.features) r.connections -= static_cast<int>(f.alsoConnections.size());
   }

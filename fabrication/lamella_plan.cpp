@@ -56,15 +56,15 @@ LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member,
   plan.overhangMm = options.effectiveEndOverhangMm();
   plan.lengthMm = member.planarLength * 1000.0 + 2.0 * plan.overhangMm;
   const bool isU = member.family == Family::U;
-  const int nu = static_cast<int>(grid.u.size()), nv = static_cast<int>(grid.v.size());
-  // The connections on this member: row `index` of the grid for a u member, column for a v member.
-  const int count = isU ? nv : nu;
-  for (int k = 0; k < count; ++k) {
-    const int i = isU ? member.index : k, j = isU ? k : member.index;
-    const GridConnection& c = grid.at(i, j);
+  // The connections on this member: for a quad patch row `index` of the grid (u) or its column
+  // (v); a generalised patch lists only the pairs that cross (assembly/generalised_patch.hpp).
+  for (int k = 0; k < static_cast<int>(grid.connections.size()); ++k) {
+    const GridConnection& c = grid.connections[k];
+    if ((isU ? c.memberU : c.memberV) != member.index) continue;
+    const int i = c.memberU, j = c.memberV;
     LamellaFeature f;
     f.patchId = patch.patchId;
-    f.connection = i * nv + j;
+    f.connection = k;
     f.connectionId = connectionId(patch.patchId, i, j);
     f.xMm = plan.overhangMm + (isU ? c.sBarU : c.sBarV) * 1000.0;
     const double notchMm = (isU ? c.notchU : c.notchV) * 1000.0;
@@ -76,6 +76,26 @@ LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member,
     } else {
       f.demotedNotch = notchMm != 0.0;
     }
+    plan.features.push_back(f);
+  }
+  for (const auto& hole : patch.extraHoles) {
+    if (hole.family != member.family || hole.member != member.index) continue;
+    const double x = plan.overhangMm + hole.sM * 1000.0;
+    // A generalised member end continuing one of this lamella's connections (C0 across the
+    // side) shares its hole: one bolt through three lamellas.
+    const auto same = std::find_if(plan.features.begin(), plan.features.end(), [&](const auto& f) {
+      return f.connection >= 0 && std::abs(f.xMm - x) <= 0.5;
+    });
+    if (same != plan.features.end()) {
+      same->alsoConnections.emplace_back(patch.patchId, -1);
+      same->alsoConnectionIds.push_back(hole.id);
+      continue;
+    }
+    LamellaFeature f;
+    f.patchId = patch.patchId;
+    f.connection = -1;
+    f.connectionId = hole.id;
+    f.xMm = x;
     plan.features.push_back(f);
   }
   std::sort(plan.features.begin(), plan.features.end(),
@@ -103,11 +123,21 @@ std::vector<LamellaPlan> planLamellae(const std::vector<FabricationPatch>& patch
     if (!patch.grid)
       throw InvalidInput("fabrication: patch " + std::to_string(patch.patchId) + " has no grid");
     const EggGrid& grid = *patch.grid;
-    if (grid.connections.size() != grid.u.size() * grid.v.size()) {
-      throw InvalidInput(
-          "fabrication: patch " + std::to_string(patch.patchId) + ": the grid has " +
-          std::to_string(grid.connections.size()) +
-          " connections, expected u x v = " + std::to_string(grid.u.size() * grid.v.size()));
+    for (size_t k = 0; k < grid.connections.size(); ++k) {
+      const GridConnection& c = grid.connections[k];
+      if (c.memberU < 0 || c.memberU >= static_cast<int>(grid.u.size()) || c.memberV < 0 ||
+          c.memberV >= static_cast<int>(grid.v.size()))
+        throw InvalidInput("fabrication: patch " + std::to_string(patch.patchId) + ": connection " +
+                           std::to_string(k) + " joins members " + std::to_string(c.memberU) +
+                           " and " + std::to_string(c.memberV) + " of a grid with " +
+                           std::to_string(grid.u.size()) + " u and " +
+                           std::to_string(grid.v.size()) + " v members");
+    }
+    for (const auto& hole : patch.extraHoles) {
+      const size_t count = hole.family == Family::U ? grid.u.size() : grid.v.size();
+      if (hole.member < 0 || hole.member >= static_cast<int>(count))
+        throw InvalidInput("fabrication: patch " + std::to_string(patch.patchId) + ": hole " +
+                           hole.id + " is on a member the grid does not have");
     }
     if (patch.deployedCentrelines &&
         patch.deployedCentrelines->size() != grid.u.size() + grid.v.size()) {

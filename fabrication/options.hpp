@@ -25,6 +25,30 @@ struct FabricationPatch {
   // patch's lamellas, not by the ground: supports stand only on free sides (Section 3.5.3; Section
   // 2.2: "appropriate support locations are along the boundary"). One patch: all four.
   std::array<bool, 4> freeSides{true, true, true, true};
+  // A generalised patch (Chapter 4) holds its members at their ends, not at connections: the ends
+  // on the design boundary or a hole's rim stand on supports like a quad patch's anchors (its
+  // freeSides are all false: it has no sides in that sense). Quad patches: none.
+  struct EndSupport {
+    std::string id;  // "P<patch>-U<i>-start", "...-end": the member end it holds
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();  // metres, on the design surface
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // unit surface normal there
+  };
+  std::vector<EndSupport> endSupports;
+  // A generalised patch whose member ends bolt to quad patches' boundary lamellas (its ring beam
+  // on their sides): those patches, which must stand before it is deployed. Quad patches: none.
+  std::vector<int> boltedTo;
+  // Bolt holes that are not grid connections (connection -1 in the plans): a generalised member's
+  // end (its anchor bolt, or its bolt through a quad's boundary lamella), and that bolt's hole in
+  // the quad's lamella. `newBolt`: the hole counts a bolt of its own (the member end's hole; not
+  // its partner in the quad's lamella).
+  struct ExtraHole {
+    Family family = Family::U;
+    int member = 0;
+    double sM = 0.0;  // along the member in the plane (metres from its start)
+    std::string id;   // engraved beside it: "P<patch>-U<i>-start" ("-end"), the member end's id
+    bool newBolt = true;
+  };
+  std::vector<ExtraHole> extraHoles;
 };
 
 // How pieces are joined into a lamella longer than a piece (FabricationOptions::spliceJoint).

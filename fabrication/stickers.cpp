@@ -49,58 +49,53 @@ std::vector<Sticker> planStickers(const FabricationPatch& patch,
                                   const FabricationOptions& options) {
   std::vector<Sticker> stickers;
   const EggGrid& grid = *patch.grid;
-  const int nv = static_cast<int>(grid.v.size());
-  for (int i = 0; i < static_cast<int>(grid.u.size()); ++i) {
-    for (int j = 0; j < nv; ++j) {
-      const GridConnection& c = grid.at(i, j);
-      const GridMember& mu = grid.u[i];
-      const GridMember& mv = grid.v[j];
-      const auto features = featuresOf(plans, patch.patchId, i * nv + j);
-      if (features.size() != 2) continue;
-      if (features[0].second->kind != FeatureKind::Slot &&
-          features[1].second->kind != FeatureKind::Slot)
-        continue;
-      const Eigen::Vector2d du = mu.planarEnd - mu.planarStart, dv = mv.planarEnd - mv.planarStart;
-      const double planar = crossingAngle({du.x(), du.y(), 0.0}, {dv.x(), dv.y(), 0.0});
-      const double deployed =
-          crossingAngle(tangentAt(mu.spatial, c.sU), tangentAt(mv.spatial, c.sV));
-      const double w = options.lamellaWidthMm;
-      // The other lamella's footprint is widest at the angle furthest from a right angle.
-      const double half =
-          std::max(contactHalfLengthMm(w, planar), contactHalfLengthMm(w, deployed));
-      for (const auto& [planPointer, f] : features) {
-        const LamellaPlan& plan = *planPointer;
-        Sticker s;
-        s.connectionId = f->connectionId;
-        s.lamellaId = plan.id;
-        s.id = s.connectionId + "/" + s.lamellaId;
-        s.widthMm = w;
-        s.slideMm = f->kind == FeatureKind::Slot ? f->slideMm : 0.0;
-        // The contact centre runs with the bolt from x to x + slide; the footprint reaches `half`
-        // either side, the margin beyond that. At small crossing angles (a compact planar layout)
-        // the footprint is long: it stops halfway to the neighbouring connections (their stickers
-        // cover the rest) and at the strip's ends, but always covers the slot and a bolt radius.
-        double lo = std::min(0.0, s.slideMm) - half - options.stickerMarginMm;
-        double hi = std::max(0.0, s.slideMm) + half + options.stickerMarginMm;
-        double limitLo = -f->xMm, limitHi = plan.lengthMm - f->xMm;
-        for (const auto& other : plan.features) {
-          if (&other == f) continue;
-          const double gap = other.xMm - f->xMm;
-          if (gap > 0) limitHi = std::min(limitHi, gap / 2.0);
-          if (gap < 0) limitLo = std::max(limitLo, gap / 2.0);
-        }
-        const double r = options.boltDiameterMm / 2.0;
-        limitLo = std::min(limitLo, std::min(0.0, s.slideMm) - 2.0 * r);
-        limitHi = std::max(limitHi, std::max(0.0, s.slideMm) + 2.0 * r);
-        s.clipped = lo < limitLo || hi > limitHi;
-        lo = std::max(lo, limitLo);
-        hi = std::min(hi, limitHi);
-        s.lengthMm = hi - lo;
-        s.boltXMm = -lo;
-        s.planarAngleRad = planar;
-        s.deployedAngleRad = deployed;
-        stickers.push_back(s);
+  for (int k = 0; k < static_cast<int>(grid.connections.size()); ++k) {
+    const GridConnection& c = grid.connections[k];
+    const GridMember& mu = grid.u[c.memberU];
+    const GridMember& mv = grid.v[c.memberV];
+    const auto features = featuresOf(plans, patch.patchId, k);
+    if (features.size() != 2) continue;
+    if (features[0].second->kind != FeatureKind::Slot &&
+        features[1].second->kind != FeatureKind::Slot)
+      continue;
+    const Eigen::Vector2d du = mu.planarEnd - mu.planarStart, dv = mv.planarEnd - mv.planarStart;
+    const double planar = crossingAngle({du.x(), du.y(), 0.0}, {dv.x(), dv.y(), 0.0});
+    const double deployed = crossingAngle(tangentAt(mu.spatial, c.sU), tangentAt(mv.spatial, c.sV));
+    const double w = options.lamellaWidthMm;
+    // The other lamella's footprint is widest at the angle furthest from a right angle.
+    const double half = std::max(contactHalfLengthMm(w, planar), contactHalfLengthMm(w, deployed));
+    for (const auto& [planPointer, f] : features) {
+      const LamellaPlan& plan = *planPointer;
+      Sticker s;
+      s.connectionId = f->connectionId;
+      s.lamellaId = plan.id;
+      s.id = s.connectionId + "/" + s.lamellaId;
+      s.widthMm = w;
+      s.slideMm = f->kind == FeatureKind::Slot ? f->slideMm : 0.0;
+      // The contact centre runs with the bolt from x to x + slide; the footprint reaches `half`
+      // either side, the margin beyond that. At small crossing angles (a compact planar layout)
+      // the footprint is long: it stops halfway to the neighbouring connections (their stickers
+      // cover the rest) and at the strip's ends, but always covers the slot and a bolt radius.
+      double lo = std::min(0.0, s.slideMm) - half - options.stickerMarginMm;
+      double hi = std::max(0.0, s.slideMm) + half + options.stickerMarginMm;
+      double limitLo = -f->xMm, limitHi = plan.lengthMm - f->xMm;
+      for (const auto& other : plan.features) {
+        if (&other == f) continue;
+        const double gap = other.xMm - f->xMm;
+        if (gap > 0) limitHi = std::min(limitHi, gap / 2.0);
+        if (gap < 0) limitLo = std::max(limitLo, gap / 2.0);
       }
+      const double r = options.boltDiameterMm / 2.0;
+      limitLo = std::min(limitLo, std::min(0.0, s.slideMm) - 2.0 * r);
+      limitHi = std::max(limitHi, std::max(0.0, s.slideMm) + 2.0 * r);
+      s.clipped = lo < limitLo || hi > limitHi;
+      lo = std::max(lo, limitLo);
+      hi = std::min(hi, limitHi);
+      s.lengthMm = hi - lo;
+      s.boltXMm = -lo;
+      s.planarAngleRad = planar;
+      s.deployedAngleRad = deployed;
+      stickers.push_back(s);
     }
   }
   return stickers;

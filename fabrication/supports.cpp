@@ -24,7 +24,7 @@ std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches,
     const int nu = static_cast<int>(grid.u.size()), nv = static_cast<int>(grid.v.size());
     // On a free side: row 0 (side 0) or the last row (side 2), column 0 (side 3) or the last (1).
     auto onFreeSide = [&](int k) {
-      const int i = k / nv, j = k % nv;
+      const int i = grid.connections[k].memberU, j = grid.connections[k].memberV;
       return (i == 0 && patch.freeSides[0]) || (j == nv - 1 && patch.freeSides[1]) ||
              (i == nu - 1 && patch.freeSides[2]) || (j == 0 && patch.freeSides[3]);
     };
@@ -47,26 +47,38 @@ std::vector<Support> planSupports(const std::vector<FabricationPatch>& patches,
       }
     }
     std::sort(picks.begin(), picks.end());
-    for (const auto& [k, reason] : picks) {
-      const GridConnection& c = grid.connections[k];
+    const auto add = [&](Support s) {
       // Patches meeting at a corner or a shared side anchor the same point: one support there.
-      bool taken = false;
-      for (const auto& other : supports) taken |= (other.position - c.spatial).norm() < 1e-3;
-      if (taken) continue;
-      Support s;
+      for (const auto& other : supports)
+        if ((other.position - s.position).norm() < 1e-3) return;
       s.patchId = patch.patchId;
-      s.connection = k;
-      s.connectionId = "P" + std::to_string(patch.patchId) + "-C" + std::to_string(k / nv) + "-" +
-                       std::to_string(k % nv);
-      s.reason = reason;
-      s.position = c.spatial;
-      s.normal = c.normal.normalized();
+      s.normal = s.normal.normalized();
       if (s.normal.z() < 0.0) s.normal = -s.normal;
       s.inclinationDeg = std::acos(std::clamp(s.normal.z(), -1.0, 1.0)) * 180.0 / M_PI;
       s.directionDeg = std::hypot(s.normal.x(), s.normal.y()) > 1e-12
                            ? std::atan2(s.normal.y(), s.normal.x()) * 180.0 / M_PI
                            : 0.0;
       supports.push_back(s);
+    };
+    for (const auto& [k, reason] : picks) {
+      const GridConnection& c = grid.connections[k];
+      Support s;
+      s.connection = k;
+      s.connectionId = "P" + std::to_string(patch.patchId) + "-C" + std::to_string(c.memberU) +
+                       "-" + std::to_string(c.memberV);
+      s.reason = reason;
+      s.position = c.spatial;
+      s.normal = c.normal;
+      add(s);
+    }
+    for (const auto& end : patch.endSupports) {
+      Support s;
+      s.connection = -1;
+      s.connectionId = end.id;
+      s.reason = "anchor: generalised member end";
+      s.position = end.position;
+      s.normal = end.normal;
+      add(s);
     }
   }
   double lowest = std::numeric_limits<double>::infinity();

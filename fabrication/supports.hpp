@@ -15,7 +15,7 @@ struct Support {
   std::string id;            // "S<nnn>"
   std::string connectionId;  // the connection it holds
   int patchId = 0;
-  int connection = 0;
+  int connection = 0;  // index into the grid's connections; -1: a generalised member end
   std::string
       reason;  // "anchor: corner", "anchor: boundary curvature extremum", "boundary connection"
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // metres

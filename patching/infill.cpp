@@ -153,27 +153,41 @@ void infillDesign(const PatchLayout& layout, const std::set<int>& sideVertices,
           options.optimisation.minCrossingAngleRad * 180.0 / M_PI));
     }
     const TriMesh& layoutMesh = layout.mesh.mesh;
+    const auto holdOf = [&](int sample) {
+      const int v = piece.layoutVertex[domain.vertex(sample)];
+      if (layoutMesh.is_boundary(TriMesh::VertexHandle(v))) return AnchorHold::DesignBoundary;
+      return sideVertices.count(v) ? AnchorHold::PatchSide : AnchorHold::Cut;
+    };
     std::set<int> anchors;  // the pieces of a split member share their anchor on the bay
-    for (const auto& m : piece.optimisation->layout.members) anchors.insert({m.start, m.end});
-    {
-      for (int sample : anchors) {
-        const int v = piece.layoutVertex[domain.vertex(sample)];
-        if (layoutMesh.is_boundary(TriMesh::VertexHandle(v)))
-          ++piece.anchorsOnDesignBoundary;
-        else if (sideVertices.count(v))
-          ++piece.anchorsOnPatchSides;
-        else
-          ++piece.anchorsOnCuts;
+    for (const auto& m : piece.optimisation->layout.members) {
+      anchors.insert({m.start, m.end});
+      piece.memberEndHolds.push_back({holdOf(m.start), holdOf(m.end)});
+    }
+    for (int sample : anchors) {
+      switch (holdOf(sample)) {
+        case AnchorHold::DesignBoundary: ++piece.anchorsOnDesignBoundary; break;
+        case AnchorHold::PatchSide: ++piece.anchorsOnPatchSides; break;
+        case AnchorHold::Cut: ++piece.anchorsOnCuts; break;
       }
     }
   } catch (const InvalidInput& e) {
     piece.failure = e.what();
     piece.optimisation.reset();
     piece.design.reset();
+    piece.memberEndHolds.clear();
   }
 }
 
 }  // namespace
+
+const char* toString(AnchorHold hold) {
+  switch (hold) {
+    case AnchorHold::DesignBoundary: return "design_boundary";
+    case AnchorHold::PatchSide: return "patch_side";
+    case AnchorHold::Cut: return "cut";
+  }
+  return "?";
+}
 
 void InfillOptions::validate() const {
   if (!(minAreaM2 >= 0.0)) throw InvalidInput("InfillOptions.min_area_m2 must be >= 0");

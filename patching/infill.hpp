@@ -16,6 +16,7 @@
 #include "patching/layout.hpp"
 #include "patching/patch_graph.hpp"
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +32,11 @@ struct InfillOptions {
   void validate() const;  // throws InvalidInput naming the field
 };
 
+// What holds a member end of a generalised patch (see above).
+enum class AnchorHold { DesignBoundary, PatchSide, Cut };
+// "design_boundary", "patch_side", "cut" (report.json's spelling).
+const char* toString(AnchorHold hold);
+
 struct InfillPiece {
   int cutOff = -1;                // index into Coverage::cutOffs
   std::vector<int> layoutFaces;   // layout-mesh faces
@@ -43,6 +49,8 @@ struct InfillPiece {
   double precomputeSeconds = 0.0;
   // Anchors (member ends) by what holds them.
   int anchorsOnDesignBoundary = 0, anchorsOnPatchSides = 0, anchorsOnCuts = 0;
+  // Per layout member of the design: what holds its start and its end.
+  std::vector<std::array<AnchorHold, 2>> memberEndHolds;
 };
 
 struct InfillResult {

@@ -378,7 +378,8 @@ void generalisedLabels(const SitePlanDrawing& d, const Projection& proj, LabelLa
     CutOff region;
     region.faces = g.faces;
     const Eigen::Vector3d p = plan::cutOffLabelPoint(d.layout->mesh.mesh, region);
-    const std::string second = plan::plainNumber(g.areaM2, g.areaM2 < 10.0 ? 1 : 0) + " m²";
+    const std::string second = (g.patchId >= 0 ? fmt::format("P{}, ", g.patchId) : std::string()) +
+                               plan::plainNumber(g.areaM2, g.areaM2 < 10.0 ? 1 : 0) + " m²";
     Eigen::Vector2d at;
     if (layout.place(plan::candidatesAround(proj.px(p.x()), proj.py(p.y()), 10.0, 3),
                      std::max(glyphs(g.id), glyphs(second)), 2, 13, at))
@@ -485,7 +486,7 @@ std::string legendSvg(const SitePlanDrawing& d, const Page& page, const Drawn& d
       "cut-off: surface no patch covers");
   if (!d.generalised.empty())
     legend.item("<rect x=\"1\" y=\"1\" width=\"28\" height=\"12\" fill=\"#dcebd3\"/>",
-                "generalised patch (Ch. 4), id, area");
+                "generalised patch (Ch. 4), id, cut-file P, area");
   if (!d.sections.empty())
     legend.item(
         "<path d=\"M0,7h30\" stroke=\"#111\" stroke-dasharray=\"8 2 2 2\"/><circle cx=\"24\" "

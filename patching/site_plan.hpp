@@ -41,7 +41,8 @@ struct SitePlanSection {
 // A generalised patch in a cut-off (patching/infill.hpp): its layout-mesh faces, tinted, with its
 // id and surface area.
 struct SitePlanGeneralised {
-  std::string id;  // "G0"
+  std::string id;    // "G0"
+  int patchId = -1;  // its number in the shop files (lamellas P<patchId>-U<i>), -1: none
   std::vector<int> faces;
   double areaM2 = 0.0;
 };

@@ -1,7 +1,10 @@
 #include "pipeline/fabrication_stage.hpp"
 #include "assembly/boundary_members.hpp"
+#include "assembly/patch_joins.hpp"
 #include "core/errors.hpp"
 #include "core/timing.hpp"
+
+#include <fmt/core.h>
 #include "pipeline/run_state.hpp"
 
 namespace egg::pipeline {
@@ -42,6 +45,55 @@ std::string fabricationSkipReason(const RunState& state) {
   return solvedCount(state.patches) == 0 ? "no solved patch grid to cut" : std::string();
 }
 
+namespace {
+
+std::string endId(const assembly::GeneralisedPatch& g, int rod, bool atStart) {
+  const bool isU = rod < static_cast<int>(g.grid.u.size());
+  return fmt::format("P{}-{}{}-{}", g.patchId, isU ? 'U' : 'V',
+                     isU ? rod : rod - static_cast<int>(g.grid.u.size()),
+                     atStart ? "start" : "end");
+}
+
+// Generalised patches (issue 41) are cut like the quads: their lamellas, holes, slots and stickers
+// on the same sheets. Every member end gets a bolt hole: through its support where it stands on
+// the design boundary or a hole's rim, through the quad's boundary lamella where it laps onto it
+// (that lamella gets the partner hole), or into its bracket on the ring beam.
+void addGeneralisedPatches(const RunState& state,
+                           std::vector<fabrication::FabricationPatch>& grids) {
+  const std::vector<const EggGrid*> quadGrids = gridsOf(state.patches);
+  const std::vector<char> swapped = assembly::layerSwaps(state.patching->graph, quadGrids);
+  for (const auto& g : state.generalised) {
+    fabrication::FabricationPatch entry{g.patchId, &g.grid, std::nullopt};
+    const assembly::RingBeamJoins ring =
+        assembly::ringBeamJoins(g, 0, quadGrids, swapped, state.scene.lamella.widthM);
+    entry.boltedTo = ring.quads;
+    entry.freeSides = {false, false, false, false};
+    const auto& simulation = state.infillSimulations[g.piece];
+    if (simulation) entry.deployedCentrelines = simulation->deployed.centrelines;
+    for (size_t a = 0; a < g.network.anchors.size(); ++a) {
+      const auto& anchor = g.network.anchors[a];
+      const bool isU = anchor.rod < static_cast<int>(g.grid.u.size());
+      const int member = isU ? anchor.rod : anchor.rod - static_cast<int>(g.grid.u.size());
+      const std::string id = endId(g, anchor.rod, a % 2 == 0);
+      entry.extraHoles.push_back({isU ? Family::U : Family::V, member, anchor.sM, id, true});
+      if (g.anchorHolds[a] == patching::AnchorHold::DesignBoundary)
+        entry.endSupports.push_back({id, anchor.position, anchor.normal});
+    }
+    for (const auto& bolt : ring.bolts) {
+      for (auto& quad : grids) {
+        if (quad.patchId != bolt.patchA) continue;
+        const int u = static_cast<int>(quad.grid->u.size());
+        quad.extraHoles.push_back({bolt.rodA < u ? Family::U : Family::V,
+                                   bolt.rodA < u ? bolt.rodA : bolt.rodA - u, bolt.sAM,
+                                   endId(g, bolt.rodB, bolt.sBM == 0.0), false});
+      }
+    }
+    grids.push_back(std::move(entry));
+  }
+}
+
+}  // namespace
+
 void fabricationStage(RunState& state) {
   const Stopwatch watch;
   std::vector<fabrication::FabricationPatch> grids;
@@ -53,6 +105,7 @@ void fabricationStage(RunState& state) {
         assembly::freeSides(state.patching->graph, p.id);  // supports only on the design boundary
     grids.push_back(std::move(entry));
   }
+  addGeneralisedPatches(state, grids);
   // The grid decides whether its parts can be cut (a part wider than the sheet; a lamella whose
   // slots leave no place for a splice is left out and listed, fab.failures): a failure of this
   // run with its report, not bad input (the options themselves were checked when the scene was

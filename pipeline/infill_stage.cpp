@@ -36,8 +36,16 @@ double infillMemberSpacing(const std::vector<SolvedPatch>& patches) {
   return spacings[spacings.size() / 2];
 }
 
-json infillEntry(const patching::InfillPiece& piece, int index) {
+// Generalised patches are numbered after the quad patches, piece i as P<first + i>.
+int infillPatchId(const RunState& state, size_t piece) {
+  int first = 0;
+  for (const auto& p : state.patches) first = std::max(first, p.id + 1);
+  return first + static_cast<int>(piece);
+}
+
+json infillEntry(const patching::InfillPiece& piece, int index, int patchId) {
   json entry{{"id", fmt::format("G{}", index)},
+             {"patch_id", patchId},  // its lamellas are P<patch_id>-U<i>, -V<j> in the shop files
              {"kind", "generalised"},
              {"cut_off", piece.cutOff},
              {"area_m2", piece.areaM2},
@@ -89,20 +97,21 @@ bool infillSlotted(const rods::Notch& notch) {
   return 1000.0 * (notch.beforeM + notch.afterM) >= kInfillMinSlotMm;
 }
 
-// Lamella ids: G<patch>-A<i> for family g, G<patch>-B<i> for family h, numbered per family.
-std::vector<std::string> infillLamellaIds(const patching::InfillPiece& piece, int index) {
+// Lamella ids as fabrication names them: P<patch>-U<i> for family g, P<patch>-V<j> for family h,
+// numbered per family in layout order (assembly/generalised_patch.hpp).
+std::vector<std::string> infillLamellaIds(const patching::InfillPiece& piece, int patchId) {
   std::vector<std::string> ids;
   int counts[2] = {0, 0};
   for (const auto& m : piece.optimisation->layout.members)
-    ids.push_back(fmt::format("G{}-{}{}", index, m.family == 0 ? 'A' : 'B', counts[m.family]++));
+    ids.push_back(fmt::format("P{}-{}{}", patchId, m.family == 0 ? 'U' : 'V', counts[m.family]++));
   return ids;
 }
 
 // The cut list: one row per lamella; its bolts as "s_bar[notch_from..notch_to]" in mm from the
 // lamella's start (a plain hole without the brackets), its two end anchors at 0 and the length.
-std::string infillCutList(const patching::InfillPiece& piece, int index) {
+std::string infillCutList(const patching::InfillPiece& piece, int patchId) {
   const auto& network = piece.design->network;
-  const auto ids = infillLamellaIds(piece, index);
+  const auto ids = infillLamellaIds(piece, patchId);
   std::vector<std::vector<std::string>> holes(network.rods.size());
   for (size_t k = 0; k < network.connections.size(); ++k) {
     const auto& c = network.connections[k];
@@ -134,7 +143,7 @@ std::string infillCutList(const patching::InfillPiece& piece, int index) {
 
 // The planar layout in mm (1200 px on its longer side), y up: lamella outlines (family g blue, h
 // orange), bolts, notch slots.
-std::string infillPlanarSvg(const patching::InfillPiece& piece, int index) {
+std::string infillPlanarSvg(const patching::InfillPiece& piece, int index, int patchId) {
   const auto& endpoints = piece.design->planar.endpoints;
   const auto& network = piece.design->network;
   const double width = 1000.0 * piece.design->planarProblem.widthM;
@@ -152,11 +161,11 @@ std::string infillPlanarSvg(const patching::InfillPiece& piece, int index) {
       "width=\"{8:.0f}\" height=\"{9:.0f}\" viewBox=\"0 0 {0:.2f} {1:.2f}\">\n"
       "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n"
       "<text x=\"{2:.1f}\" y=\"{3:.1f}\" font-family=\"sans-serif\" font-size=\"{4:.1f}\">"
-      "G{5}: planar cut layout (mm), {6} lamellas, {7} bolts</text>\n",
+      "G{5} (P{10}): planar cut layout (mm), {6} lamellas, {7} bolts</text>\n",
       size.x(), size.y(), 0.3 * margin, 0.5 * margin, 0.25 * margin, index, endpoints.size(),
       network.connections.size(), 1200.0 * size.x() / size.maxCoeff(),
-      1200.0 * size.y() / size.maxCoeff());
-  const auto ids = infillLamellaIds(piece, index);
+      1200.0 * size.y() / size.maxCoeff(), patchId);
+  const auto ids = infillLamellaIds(piece, patchId);
   for (size_t r = 0; r < endpoints.size(); ++r) {
     const Eigen::Vector2d a = 1000.0 * endpoints[r][0], b = 1000.0 * endpoints[r][1];
     const Eigen::Vector2d d = (b - a).normalized();
@@ -204,8 +213,9 @@ void writeInfillFiles(const RunState& state, const std::filesystem::path& folder
     if (ec)
       throw WriteError(dir.string() +
                        ": cannot create the generalised patch's folder: " + ec.message());
-    writeFileAtomically(dir / "lamellas.csv", infillCutList(piece, static_cast<int>(i)));
-    writeFileAtomically(dir / "planar.svg", infillPlanarSvg(piece, static_cast<int>(i)));
+    const int patchId = infillPatchId(state, i);
+    writeFileAtomically(dir / "lamellas.csv", infillCutList(piece, patchId));
+    writeFileAtomically(dir / "planar.svg", infillPlanarSvg(piece, static_cast<int>(i), patchId));
   }
 }
 
@@ -229,11 +239,12 @@ void designInfill(RunState& state) {
   state.progress("grid: generalised patches", 0.55);
   state.infill = patching::infillCutOffs(state.patching->layout.layout, coverage, options);
   state.infillSimulations.assign(state.infill->pieces.size(), std::nullopt);
+  state.generalised = assembly::generalisedPatches(*state.infill, infillPatchId(state, 0));
   json entries = json::array();
   std::vector<double> designedPerCutOff(coverage.cutOffs.size(), 0.0);
   for (size_t i = 0; i < state.infill->pieces.size(); ++i) {
     const auto& piece = state.infill->pieces[i];
-    entries.push_back(infillEntry(piece, static_cast<int>(i)));
+    entries.push_back(infillEntry(piece, static_cast<int>(i), infillPatchId(state, i)));
     if (piece.design) designedPerCutOff[piece.cutOff] += piece.areaM2;
   }
   state.report.section("generalised_patches") = entries;
@@ -263,12 +274,11 @@ void designInfill(RunState& state) {
 void simulateInfill(RunState& state) {
   if (!state.infill) return;
   json& entries = state.report.section("generalised_patches");
-  for (size_t i = 0; i < state.infill->pieces.size(); ++i) {
+  for (const auto& patch : state.generalised) {
+    const int i = patch.piece;
     const auto& piece = state.infill->pieces[i];
-    if (!piece.design) continue;
-    state.progress(fmt::format("simulation: generalised patch {}", i), 0.74);
-    const auto result =
-        rods::simulateGrid(piece.design->network, piece.mesh, state.scene.simulation.rods);
+    state.progress(fmt::format("simulation: generalised patch G{}", i), 0.74);
+    const auto result = rods::simulateGrid(patch.network, piece.mesh, state.scene.simulation.rods);
     json deviation{{"converged", result.converged},
                    {"iterations", result.deployed.solver.iterations},
                    {"seconds", result.seconds}};
@@ -288,17 +298,15 @@ void simulateInfill(RunState& state) {
 
 std::vector<InfillMemberLine> infillMemberLines(const RunState& state) {
   std::vector<InfillMemberLine> lines;
-  if (!state.infill) return lines;
-  for (size_t i = 0; i < state.infill->pieces.size(); ++i) {
-    const auto& piece = state.infill->pieces[i];
-    if (!piece.design) continue;
-    const auto& rods = piece.design->network.rods;
-    for (size_t m = 0; m < rods.size(); ++m) {
-      const bool deployed = i < state.infillSimulations.size() && state.infillSimulations[i];
+  for (const auto& patch : state.generalised) {
+    const int i = patch.piece;
+    const bool deployed = i < static_cast<int>(state.infillSimulations.size()) &&
+                          state.infillSimulations[i].has_value();
+    const auto& rods = patch.network.rods;
+    for (size_t r = 0; r < rods.size(); ++r)
       lines.push_back(
-          {static_cast<int>(i), piece.optimisation->layout.members[m].family,
-           deployed ? state.infillSimulations[i]->deployed.contactPoints[m] : rods[m].guess});
-    }
+          {i, rods[r].layer,  // layer = family in the generalised patch's own network
+           deployed ? state.infillSimulations[i]->deployed.contactPoints[r] : rods[r].guess});
   }
   return lines;
 }

@@ -16,7 +16,8 @@
 namespace egg::pipeline {
 
 JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>& patches,
-                         const TriMesh& surface, const Scene& scene) {
+                         const TriMesh& surface, const Scene& scene,
+                         const JoinedGeneralised& generalised) {
   const Stopwatch watch;
   JoinedRun out;
   try {
@@ -48,6 +49,11 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
     out.warmStart = std::all_of(patches.begin(), patches.end(), [](const SolvedPatch& p) {
       return !p.egg || (p.simulation && p.simulation->converged);
     });
+    if (generalised.patches)
+      for (const auto& patch : *generalised.patches) {
+        const auto& own = (*generalised.runs)[patch.piece];
+        out.warmStart = out.warmStart && own && own->converged;
+      }
     if (out.warmStart) {
       for (size_t p = 0; p < patches.size(); ++p) {
         if (!patches[p].egg) continue;
@@ -55,12 +61,45 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
       }
     }
     for (auto& j : out.joins) j.patchA = solvedIndex[j.patchA], j.patchB = solvedIndex[j.patchB];
+    // The generalised patches after the quads, their ends on a quad's side bolted to its
+    // boundary lamella (which stays supported: a free side of the quad layout).
+    std::vector<int> generalisedId;
+    if (generalised.patches) {
+      for (size_t g = 0; g < generalised.patches->size(); ++g) {
+        const assembly::GeneralisedPatch& patch = (*generalised.patches)[g];
+        const int index = static_cast<int>(networks.size());
+        assembly::RingBeamJoins ring =
+            assembly::ringBeamJoins(patch, index, grids, out.swapped, scene.lamella.widthM);
+        rods::RodNetwork network = patch.network;
+        std::vector<char> released(network.anchors.size(), 0);
+        for (int a : ring.releasedAnchors) released[a] = 1;
+        network.anchors.clear();
+        for (size_t a = 0; a < patch.network.anchors.size(); ++a)
+          if (!released[a]) network.anchors.push_back(patch.network.anchors[a]);
+        if (out.warmStart) rods::startFrom(network, (*generalised.runs)[patch.piece]->deployed);
+        networks.push_back(std::move(network));
+        generalisedId.push_back(patch.patchId);
+        for (auto j : ring.bolts) {
+          j.patchA = solvedIndex[j.patchA];
+          out.joins.push_back(j);
+        }
+        ++out.generalisedPatches;
+        out.ringBeamBolts += static_cast<int>(ring.bolts.size());
+        out.ringBeamSameLayer += ring.sameLayer;
+        out.ringBeamUnmatched += ring.unmatched;
+        out.ringBeamMaxGapM = std::max(out.ringBeamMaxGapM, ring.maxGapM);
+      }
+    }
     const rods::JoinedNetwork joined = rods::joinPatches(networks, out.joins);
-    for (auto& j : out.joins) {  // back to layout patch ids for the report
-      j.patchA = static_cast<int>(std::find(solvedIndex.begin(), solvedIndex.end(), j.patchA) -
-                                  solvedIndex.begin());
-      j.patchB = static_cast<int>(std::find(solvedIndex.begin(), solvedIndex.end(), j.patchB) -
-                                  solvedIndex.begin());
+    const int quadNetworks = static_cast<int>(networks.size() - generalisedId.size());
+    const auto layoutId = [&](int network) {
+      if (network >= quadNetworks) return generalisedId[network - quadNetworks];
+      return static_cast<int>(std::find(solvedIndex.begin(), solvedIndex.end(), network) -
+                              solvedIndex.begin());
+    };
+    for (size_t k = 0; k < out.joins.size(); ++k) {  // back to patch ids for the report
+      out.joins[k].patchA = layoutId(out.joins[k].patchA);
+      out.joins[k].patchB = layoutId(out.joins[k].patchB);
     }
     rods::SimulationOptions options = rodsOptions(scene);
     options.compareWithoutNotches = false;  // RMS1/RMS2 stay a per-patch figure
@@ -91,6 +130,18 @@ nlohmann::json joinedSection(const JoinedRun& joined) {
                    {"patches_swapped", std::count(joined.swapped.begin(), joined.swapped.end(), 1)},
                    {"start", joined.warmStart ? "patch_by_patch_equilibria" : "design_surface"},
                    {"seconds", joined.seconds}};
+  if (joined.generalisedPatches > 0)
+    j["generalised_patches"] = {
+        {"patches", joined.generalisedPatches},
+        {"ring_beam_bolts", joined.ringBeamBolts},
+        {"ring_beam_max_gap_m", joined.ringBeamMaxGapM},
+        {"patch_side_ends_anchored_same_layer", joined.ringBeamSameLayer},
+        {"patch_side_ends_anchored_no_lamella", joined.ringBeamUnmatched},
+        {"held_by",
+         "member ends on a quad patch's side are bolted to its boundary lamella where they lie in "
+         "the other layer; that lamella stays supported at its connections (a free side of the "
+         "quad layout); ends in its own layer, on the design boundary, a hole's rim or a cut "
+         "between pieces keep their anchors"}};
   if (!joined.failure.empty()) {
     j["converged"] = false;
     j["failure"] = joined.failure;
@@ -142,7 +193,8 @@ std::string collapsedWhileHeld(const std::vector<SolvedPatch>& patches) {
 std::optional<rods::SimulationRun> addJoinedSimulation(
     const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
     const Scene& scene, bool propagated, int solved, nlohmann::json& simulation,
-    bool patchesHeldAllRound, std::optional<rods::JoinedNetwork>* network) {
+    bool patchesHeldAllRound, std::optional<rods::JoinedNetwork>* network,
+    const JoinedGeneralised& generalised) {
   simulation["patch_by_patch"] = {{"rmse_m", simulation["rmse_m"]},
                                   {"max_error_m", simulation["max_error_m"]},
                                   {"converged", simulation["converged"]},
@@ -161,7 +213,7 @@ std::optional<rods::SimulationRun> addJoinedSimulation(
     simulation["joined"] = {{"ran", false}, {"skipped_reason", skipped}};
     return std::nullopt;
   }
-  JoinedRun joined = simulateJoined(run, patches, surface, scene);
+  JoinedRun joined = simulateJoined(run, patches, surface, scene, generalised);
   simulation["joined"] = joinedSection(joined);
   if (!joined.simulation) return std::nullopt;
   if (network) *network = std::move(joined.network);

@@ -2,6 +2,7 @@
 // The joined simulation of a multi-patch grid (beyond the paper, whose patches were simulated
 // apart, 3.7.1): the patches' rod networks side by side, with the two boundary lamellas of every
 // shared side bolted together at the member ends they share (assembly/patch_joins.hpp).
+#include "assembly/generalised_patch.hpp"
 #include "core/rods/joined_network.hpp"
 #include "pipeline/patching_stage.hpp"
 #include "pipeline/run_state.hpp"
@@ -24,12 +25,25 @@ struct JoinedRun {
   int sidesJoined = 0;                         // shared sides carrying at least one bolt
   int sidesSkipped = 0;                        // shared sides whose lamellas fell in one layer
   bool warmStart = false;  // started from the converged patch-by-patch equilibria
-  std::string failure;     // an error of the joined run (not non-convergence)
+  // Generalised patches (issue 41) in the structure, after the quads: their member ends on a quad's
+  // side bolted to its boundary lamella where they lie in the other layer (ringBeamJoins).
+  int generalisedPatches = 0;
+  int ringBeamBolts = 0, ringBeamSameLayer = 0, ringBeamUnmatched = 0;
+  double ringBeamMaxGapM = 0.0;
+  std::string failure;  // an error of the joined run (not non-convergence)
   double seconds = 0.0;
 };
 
+// The generalised patches of the run, each with its own deployment (per piece, as
+// RunState::infillSimulations) for the warm start.
+struct JoinedGeneralised {
+  const std::vector<assembly::GeneralisedPatch>* patches = nullptr;
+  const std::vector<std::optional<rods::SimulationResult>>* runs = nullptr;
+};
+
 JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>& patches,
-                         const TriMesh& surface, const Scene& scene);
+                         const TriMesh& surface, const Scene& scene,
+                         const JoinedGeneralised& generalised = {});
 
 // report.json simulation.joined{}.
 nlohmann::json joinedSection(const JoinedRun& joined);
@@ -44,7 +58,8 @@ nlohmann::json joinedSection(const JoinedRun& joined);
 std::optional<rods::SimulationRun> addJoinedSimulation(
     const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
     const Scene& scene, bool propagated, int solved, nlohmann::json& simulation,
-    bool patchesHeldAllRound = false, std::optional<rods::JoinedNetwork>* network = nullptr);
+    bool patchesHeldAllRound = false, std::optional<rods::JoinedNetwork>* network = nullptr,
+    const JoinedGeneralised& generalised = {});
 
 // Why the joined run is pointless, or empty: the first patch whose patch-by-patch run (held along
 // all its sides) collapsed under its own weight (Section 3.5.2, Fig. 3.11).

@@ -40,17 +40,38 @@ struct DeployedSource {
   int firstRod = 0, firstBolt = 0;
 };
 
-std::map<int, DeployedSource> deployedSources(const RunState& state, CentrelineSource& source) {
+// Every patch with a grid: the quads in id order, then the generalised patches (issue 41) in piece
+// order, as the joined network holds them (pipeline/joined_simulation.cpp).
+struct ModelGrid {
+  int id = 0;
+  const EggGrid* grid = nullptr;
+  const rods::SimulationRun* own = nullptr;  // its own deployment (patch by patch), if any
+};
+
+std::vector<ModelGrid> modelGrids(const RunState& state) {
+  std::vector<ModelGrid> out;
+  for (const auto& p : state.patches)
+    if (p.egg)
+      out.push_back({p.id, &p.egg->grid, p.simulation ? &p.simulation->deployed : nullptr});
+  for (const auto& g : state.generalised) {
+    const auto& simulation = state.infillSimulations[g.piece];
+    out.push_back({g.patchId, &g.grid, simulation ? &simulation->deployed : nullptr});
+  }
+  return out;
+}
+
+std::map<int, DeployedSource> deployedSources(const RunState& state,
+                                              const std::vector<ModelGrid>& grids,
+                                              CentrelineSource& source) {
   std::map<int, DeployedSource> out;
   if (state.joined) {
-    // The joined network holds every patch with a grid in id order, u then v rods, its bolts
+    // The joined network holds every patch with a grid in that order, u then v rods, its bolts
     // first, then the joins (pipeline/joined_simulation.cpp, core/rods/joined_network.cpp).
     int rods = 0, bolts = 0;
-    for (const auto& p : state.patches) {
-      if (!p.egg) continue;
-      out[p.id] = {&*state.joined, rods, bolts};
-      rods += static_cast<int>(p.egg->grid.u.size() + p.egg->grid.v.size());
-      bolts += static_cast<int>(p.egg->grid.connections.size());
+    for (const auto& g : grids) {
+      out[g.id] = {&*state.joined, rods, bolts};
+      rods += static_cast<int>(g.grid->u.size() + g.grid->v.size());
+      bolts += static_cast<int>(g.grid->connections.size());
     }
     if (static_cast<int>(state.joined->centrelines.size()) != rods ||
         static_cast<int>(state.joined->boltPositionsM.size()) < bolts)
@@ -60,8 +81,8 @@ std::map<int, DeployedSource> deployedSources(const RunState& state, CentrelineS
     source = CentrelineSource::JoinedSimulation;
     return out;
   }
-  for (const auto& p : state.patches)
-    if (p.egg && p.simulation) out[p.id] = {&p.simulation->deployed, 0, 0};
+  for (const auto& g : grids)
+    if (g.own) out[g.id] = {g.own, 0, 0};
   source = out.empty() ? CentrelineSource::Grid : CentrelineSource::PatchSimulation;
   return out;
 }
@@ -115,11 +136,11 @@ exporter::StructureModel structureModel(const RunState& state) {
   model.surface.vertices = soup.vertices;
   for (const auto& t : soup.triangles) model.surface.triangles.emplace_back(t[0], t[1], t[2]);
   const rods::SurfaceDistance distance(surface);
-  const std::map<int, DeployedSource> deployed = deployedSources(state, model.source);
+  const std::vector<ModelGrid> grids = modelGrids(state);
+  const std::map<int, DeployedSource> deployed = deployedSources(state, grids, model.source);
   const std::map<std::string, std::string> sheets = sheetsOf(state);
-  for (const auto& p : state.patches) {
-    if (!p.egg) continue;
-    const EggGrid& grid = p.egg->grid;
+  for (const auto& p : grids) {
+    const EggGrid& grid = *p.grid;
     model.patches.push_back(p.id);
     const auto src = deployed.find(p.id);
     const rods::SimulationRun* run = src == deployed.end() ? nullptr : src->second.run;

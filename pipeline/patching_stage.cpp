@@ -256,7 +256,11 @@ int writeSitePlan(const RunState& state, const std::filesystem::path& file) {
       const auto& piece = state.infill->pieces[i];
       if (!piece.design) continue;
       filled.insert(piece.layoutFaces.begin(), piece.layoutFaces.end());
-      drawing.generalised.push_back({fmt::format("G{}", i), piece.layoutFaces, piece.areaM2});
+      int patchId = -1;
+      for (const auto& g : state.generalised)
+        if (g.piece == static_cast<int>(i)) patchId = g.patchId;
+      drawing.generalised.push_back(
+          {fmt::format("G{}", i), patchId, piece.layoutFaces, piece.areaM2});
     }
     std::vector<patching::CutOff> left;
     for (auto cut : coverage.cutOffs) {

@@ -2,6 +2,7 @@
 // What one `egg run` has computed so far: the stages of the stage table (stages.hpp) read and
 // fill it in data-flow order (docs/architecture.md "Data flow"). Each stage's own work is a free
 // function of its file taking plain inputs; the state only carries results between them.
+#include "assembly/generalised_patch.hpp"
 #include "core/egg/solve_patch.hpp"
 #include "core/geodesic/distance_solver.hpp"
 #include "core/rods/joined_network.hpp"
@@ -68,7 +69,9 @@ struct RunState {
   // grid: generalised patches in the quad layout's cut-offs; simulation: each one deployed alone
   // (one entry per piece, empty where it has no grid or the simulation did not run).
   std::optional<patching::InfillResult> infill;
-  std::vector<std::optional<rods::SimulationResult>> infillSimulations;
+  // The pieces with a grid as patches numbered after the quads (P<n + piece>), in piece order.
+  std::vector<assembly::GeneralisedPatch> generalised;
+  std::vector<std::optional<rods::SimulationResult>> infillSimulations;  // per piece
 };
 
 }  // namespace egg::pipeline

@@ -186,7 +186,8 @@ namespace {
 // deployed.svg and deployed.json: the joined structure when it ran, else every patch's own
 // deployment (3.5.2).
 void writeDeployedFigures(const rods::SimulationRun* joined, const rods::JoinedNetwork* network,
-                          const std::vector<SolvedPatch>& patches, const TriMesh& surface,
+                          const std::vector<SolvedPatch>& patches,
+                          const JoinedGeneralised& generalised, const TriMesh& surface,
                           const std::filesystem::path& folder) {
   // (run, layout patch id, first rod of the patch in the run), in rod order.
   struct Part {
@@ -204,9 +205,16 @@ void writeDeployedFigures(const rods::SimulationRun* joined, const rods::JoinedN
             {joined, p.id, network && k < network->firstRod.size() ? network->firstRod[k] : -1});
         ++k;
       }
+    // Then the generalised patches, when the joined run took them (its network says so).
+    if (network && network->firstRod.size() == k + generalised.patches->size())
+      for (const auto& g : *generalised.patches)
+        parts.push_back({joined, g.patchId, network->firstRod[k++]});
   } else {
     for (const auto& p : patches)
       if (p.simulation) parts.push_back({&p.simulation->deployed, p.id, 0});
+    for (const auto& g : *generalised.patches)
+      if (const auto& own = (*generalised.runs)[g.piece])
+        parts.push_back({&own->deployed, g.patchId, 0});
   }
   if (parts.empty()) return;
   const rods::SurfaceDistance distance(surface);
@@ -282,14 +290,16 @@ void simulationStage(RunState& state) {
   json& section = state.report.section("simulation");
   section = simulationSection(state.patches, scene);
   section["seconds"] = watch.seconds();  // patch by patch (wall, patches in parallel)
+  simulateInfill(state);  // each generalised patch on its own first: the joined run's warm start
   state.joined = addJoinedSimulation(*state.patching, state.patches, state.surface->mesh, scene,
                                      state.members.has_value(), solvedCount(state.patches), section,
-                                     heldAllRound, &state.joinedNetwork);
-  simulateInfill(state);
+                                     heldAllRound, &state.joinedNetwork,
+                                     {&state.generalised, &state.infillSimulations});
   if (scene.wants("report"))
     writeDeployedFigures(state.joined ? &*state.joined : nullptr,
                          state.joinedNetwork ? &*state.joinedNetwork : nullptr, state.patches,
-                         state.surface->mesh, state.staging);
+                         {&state.generalised, &state.infillSimulations}, state.surface->mesh,
+                         state.staging);
   // A deployment that did not reach equilibrium is a failure of the run (exit 1), whose report
   // still carries every figure.
   if (!section["converged"].get<bool>())

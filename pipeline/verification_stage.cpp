@@ -36,10 +36,14 @@ Structure structureOf(const RunState& state) {
     s.deployed = &*state.joined;
     s.what = "joined structure";
     // Rods and connections come patch after patch (core/rods/joined_network.cpp), the join bolts
-    // last; firstRod follows the simulated patches in layout order.
+    // last; firstRod follows the simulated patches in layout order, then the generalised ones.
     std::vector<int> ids;
     for (const auto& p : state.patches)
       if (p.egg) ids.push_back(p.id);
+    for (const auto& g : state.generalised) ids.push_back(g.patchId);
+    if (ids.size() < state.joinedNetwork->firstRod.size())
+      throw InvalidInput(fmt::format("verification: the joined network has {} patches, the run {}",
+                                     state.joinedNetwork->firstRod.size(), ids.size()));
     const auto& first = state.joinedNetwork->firstRod;
     const int rodCount = static_cast<int>(s.network->rods.size());
     std::vector<int> patchOf(rodCount, -1), localOf(rodCount, 0);

@@ -88,6 +88,32 @@ std::vector<std::vector<Word>> pdfWords(const std::filesystem::path& pdf) {
 // title band; the detail pages (1:100) carry nearly all that the overview left out. Before the
 // layout the ids were drawn where they fell: 403 pairs overlapped on the planar page and 1,024 on
 // the deployed one.
+TEST(AssemblyDrawings, GeneralisedPatchesComeAfterThePatchesTheyBoltTo) {
+  // P2 (a generalised patch, issue 41) bolts to P0's and P1's boundary lamellas: though it stands
+  // on the most supports, it is deployed after both. P0 and P1 share a side; P1 has more supports.
+  std::vector<AssemblyPatch> patches(3);
+  patches[0].patchId = 2;
+  patches[0].boltedTo = {0, 1};
+  patches[1].patchId = 0;
+  patches[2].patchId = 1;
+  std::vector<Support> supports;
+  for (int p : {2, 2, 2, 2, 1, 1, 0}) {
+    Support s;
+    s.patchId = p;
+    supports.push_back(s);
+  }
+  SharedBoundary side;
+  side.patchA = 0, side.patchB = 1;
+  std::vector<std::string> reasons;
+  EXPECT_EQ(assemblyOrder(patches, supports, {side}, &reasons), (std::vector<int>{1, 0, 2}));
+  ASSERT_EQ(reasons.size(), 3u);
+  EXPECT_EQ(reasons[0].rfind("P1 first", 0), 0u) << reasons[0];
+  EXPECT_EQ(reasons[1].rfind("P0 after P1", 0), 0u) << reasons[1];
+  EXPECT_EQ(
+      reasons[2],
+      "P2 after P0, P1: its member ends bolt to their boundary lamellas, which stand already");
+}
+
 TEST(AssemblyDrawings, IdsNeverOverlapWhereTheGridConvergesAndDetailPagesCarryTheRest) {
   FabricationResult r;
   r.assembly.push_back(convergingPatch());

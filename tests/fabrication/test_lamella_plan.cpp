@@ -224,9 +224,41 @@ TEST(LamellaPlan, ReversedSharedSideMirrorsTheOtherPatchsHoles) {
 
 TEST(LamellaPlan, InconsistentGridIsRejected) {
   EggGrid grid = handGrid();
-  grid.connections.pop_back();
-  EXPECT_THROW(planLamellae({{4, &grid, std::nullopt}}, handOptions()), InvalidInput);
+  grid.connections.back().memberV = 3;  // the grid has v members 0..2
+  try {
+    planLamellae({{4, &grid, std::nullopt}}, handOptions());
+    ADD_FAILURE() << "a connection to a missing member was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("patch 4: connection 8 joins members 2 and 3"),
+              std::string::npos)
+        << e.what();
+  }
   EXPECT_THROW(planLamellae({{4, nullptr, std::nullopt}}, handOptions()), InvalidInput);
+}
+
+TEST(LamellaPlan, GridWhereNotEveryMemberCrossesEveryOtherCarriesOnlyItsCrossings) {
+  // A generalised patch's grid (issue 41) lists only the pairs that cross: the hand grid without
+  // (1,1) (u1's slot) and (2,0).
+  EggGrid grid = handGrid();
+  grid.connections.erase(grid.connections.begin() + 6);  // (2,0)
+  grid.connections.erase(grid.connections.begin() + 4);  // (1,1)
+  const auto plans = planLamellae({{9, &grid, std::nullopt}}, handOptions());
+  ASSERT_EQ(plans.size(), 6u);
+  const LamellaPlan& u1 = plans[1];
+  ASSERT_EQ(u1.features.size(), 2u);
+  EXPECT_EQ(u1.features[0].connectionId, "P9-C1-0");
+  EXPECT_EQ(u1.features[1].connectionId, "P9-C1-2");
+  EXPECT_NEAR(u1.features[1].xMm, 205.0, 1e-12);
+  // Features name their connection by its index in the list: (1,2) is now the fifth.
+  EXPECT_EQ(u1.features[1].connection, 4);
+  EXPECT_EQ(plans[2].features.size(), 2u);  // u2 lost (2,0)
+  const LamellaPlan& v0 = plans[3];
+  ASSERT_EQ(v0.features.size(), 2u);
+  EXPECT_EQ(v0.features[1].connectionId, "P9-C1-0");
+  EXPECT_EQ(plans[4].features.size(), 2u);  // v1 lost (1,1)
+  const FeatureCounts counts = countFeatures(plans);
+  EXPECT_EQ(counts.slots, 0);  // both slots were at (1,1)
+  EXPECT_EQ(counts.holes, 14);
 }
 
 TEST(LamellaPlan, OverhangTooShortForAnEndSlotIsAnError) {

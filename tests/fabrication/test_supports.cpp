@@ -182,5 +182,31 @@ TEST(Supports, OnlyOnFreeSides) {
   EXPECT_TRUE(planSupports({patch}, testing::handOptions()).empty());
 }
 
+TEST(Supports, GeneralisedMemberEndsStandOnSupportsOncePerPoint) {
+  // A generalised patch (issue 41) holds its members at their ends: those on the design boundary
+  // get supports like anchors, with the tangent plane there; an end where a quad's anchor already
+  // stands shares its support.
+  const EggGrid quad = testing::handGrid();
+  FabricationPatch corner{0, &quad, std::nullopt};
+  corner.freeSides = {true, false, false, false};
+  const EggGrid sparse = testing::handGrid(1.0);
+  FabricationPatch generalised{5, &sparse, std::nullopt};
+  generalised.freeSides = {false, false, false, false};
+  const Eigen::Vector3d tilted = Eigen::Vector3d(0.0, -1.0, 1.0).normalized();
+  generalised.endSupports = {{"P5-U0-start", {1.5, 0.3, 0.5}, -tilted},         // normal flipped up
+                             {"P5-V1-end", {0.0, 0.0, 0.5}, {0.0, 0.0, 1.0}}};  // quad's corner
+  const auto supports = planSupports({corner, generalised}, testing::handOptions());
+  ASSERT_EQ(supports.size(), 3u);
+  EXPECT_EQ(supports[0].connectionId, "P0-C0-0");
+  EXPECT_EQ(supports[1].connectionId, "P0-C0-2");
+  EXPECT_EQ(supports[2].connectionId, "P5-U0-start");
+  EXPECT_EQ(supports[2].patchId, 5);
+  EXPECT_EQ(supports[2].connection, -1);
+  EXPECT_EQ(supports[2].reason, "anchor: generalised member end");
+  EXPECT_NEAR(supports[2].normal.dot(tilted), 1.0, 1e-12);
+  EXPECT_NEAR(supports[2].inclinationDeg, 45.0, 1e-9);
+  EXPECT_NEAR(supports[2].directionDeg, -90.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace egg::fabrication

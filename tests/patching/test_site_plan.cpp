@@ -172,7 +172,7 @@ TEST(SitePlan, BadInputNamesWhatDoesNotFit) {
   EXPECT_EQ(svg.find("id=\"generalised-"), std::string::npos);
   // A generalised patch is drawn from the layout mesh's faces: without a layout it is bad input,
   // and a face the mesh does not have is named.
-  alone.generalised.push_back({"G0", {0, 1}, 2.0});
+  alone.generalised.push_back({"G0", 4, {0, 1}, 2.0});
   try {
     sitePlanSvg(alone);
     FAIL() << "a generalised patch was drawn without its layout";
@@ -181,7 +181,7 @@ TEST(SitePlan, BadInputNamesWhatDoesNotFit) {
         << e.what();
   }
   d = bumpPlan(scene, 4);
-  d.generalised.push_back({"G7", {0, 1 << 30}, 2.0});
+  d.generalised.push_back({"G7", -1, {0, 1 << 30}, 2.0});
   try {
     sitePlanSvg(d);
     FAIL() << "a face outside the layout mesh was drawn";

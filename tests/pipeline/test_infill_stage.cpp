@@ -5,6 +5,7 @@
 #include "pipeline/pipeline.hpp"
 
 #include "core/io/atomic_file.hpp"
+#include "tests/export/node_check.hpp"
 #include "tests/support/tool_run.hpp"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include <unistd.h>
@@ -25,9 +27,9 @@ fs::path infillScratch(const std::string& name) {
   return fs::temp_directory_path() / (name + "_" + std::to_string(getpid()));
 }
 
-Scene infillGreatCourt(bool infill) {
+Scene infillGreatCourt(bool infill, std::vector<std::string> outputs = {"report", "plan"}) {
   Scene scene = loadScene(fs::path(EGG_SOURCE_DIR) / "samples" / "great_court.json");
-  scene.outputs = {"report", "plan"};
+  scene.outputs = std::move(outputs);
   scene.patching.generalisedInfill = infill;
   return scene;
 }
@@ -93,6 +95,101 @@ TEST(InfillStage, SlowGreatCourtRingIsClosedByFourGeneralisedPatches) {
   text << plan.rdbuf();
   EXPECT_NE(text.str().find("id=\"generalised-G0\""), std::string::npos);
   EXPECT_NE(text.str().find("id=\"generalised-G3\""), std::string::npos);
+  fs::remove_all(result.outDir);
+}
+
+// The generalised patches are part of the structure, not drawings beside it: the joined run bolts
+// their member ends to the quads' boundary lamellas, the cut sheets carry their lamellas, their
+// rim anchors stand on supports, the assembly order deploys them after the quads they bolt to, and
+// the 3D model holds them.
+TEST(InfillStage, SlowGreatCourtGeneralisedPatchesAreJoinedCutAndModelled) {
+  PipelineOptions options;
+  options.outDir = infillScratch("egg_infill_gc_joined");
+  const auto result = runPipeline(
+      infillGreatCourt(true, {"report", "cut_files", "stickers", "supports", "model"}), options);
+  EXPECT_TRUE(result.failures.empty()) << nlohmann::json(result.failures).dump(1);
+  const auto& report = result.report;
+  const auto& generalised = report["generalised_patches"];
+  ASSERT_EQ(generalised.size(), 4u);
+  int members = 0, crossings = 0, rimAnchors = 0;
+  for (size_t i = 0; i < generalised.size(); ++i) {
+    // Numbered after the four quads.
+    EXPECT_EQ(generalised[i]["patch_id"].get<int>(), 4 + static_cast<int>(i));
+    members += generalised[i]["members"].get<int>();
+    crossings += generalised[i]["crossings"].get<int>();
+    rimAnchors += generalised[i]["anchors"]["design_boundary"].get<int>();
+  }
+  const auto& joined = report["simulation"]["joined"];
+  ASSERT_TRUE(joined["ran"].get<bool>()) << joined.dump(1);
+  EXPECT_TRUE(joined["converged"].get<bool>()) << joined.dump(1);
+  const auto& ring = joined["generalised_patches"];
+  EXPECT_EQ(ring["patches"].get<int>(), 4);
+  // Every end on a quad side lies on that quad's boundary lamella (the layout mesh carries the
+  // sides): about half the ends (the family in the other layer) are bolted to it.
+  EXPECT_GT(ring["ring_beam_bolts"].get<int>(), 10);
+  EXPECT_EQ(ring["patch_side_ends_anchored_no_lamella"].get<int>(), 0);
+  EXPECT_LT(ring["ring_beam_max_gap_m"].get<double>(), 0.01);
+  // Within Table 3.3's tolerance like the quads alone (7.9 cm joined).
+  EXPECT_LT(joined["rmse_m"].get<double>(), 0.1);
+  // Fabrication: every generalised member a lamella ("P4-U0" ...) with a hole or slot at each of
+  // its crossings and a bolt hole at each end (its anchor bolt, or its bolt through the quad's
+  // boundary lamella), as bom.csv counts them.
+  std::ifstream bom(result.outDir / "bom.csv");
+  std::string row;
+  int lamellas = 0, cutOuts = 0;
+  while (std::getline(bom, row)) {
+    const std::regex generalisedRow(R"(^lamella,P[4-7]-[UV]\d+,.*; (\d+) holes; (\d+) slots;)");
+    std::smatch m;
+    if (!std::regex_search(row, m, generalisedRow)) continue;
+    ++lamellas;
+    cutOuts += std::stoi(m[1]) + std::stoi(m[2]);
+  }
+  EXPECT_EQ(lamellas, members);
+  EXPECT_EQ(cutOuts, 2 * crossings + 2 * members);
+  const auto& fabrication = report["fabrication"];
+  int quadConnections = 0;
+  for (const auto& p : report["patches"])
+    if (p["feasible"].get<bool>()) quadConnections += p["connections"].get<int>();
+  // Shared sides' holes merge; each generalised crossing and member end adds one bolt.
+  EXPECT_GE(fabrication["bolts"].get<int>(), crossings + 2 * members);
+  EXPECT_LE(fabrication["bolts"].get<int>(), quadConnections + crossings + 2 * members);
+  // Supports at the generalised members' ends on the Reading Room's rim (one per point).
+  std::ifstream supports(result.outDir / "supports" / "supports.csv");
+  std::string line;
+  int endSupports = 0;
+  while (std::getline(supports, line))
+    endSupports += line.find("generalised member end") != std::string::npos;
+  EXPECT_GT(endSupports, rimAnchors / 2);
+  EXPECT_LE(endSupports, rimAnchors);
+  // Assembly: the generalised patches after the quads they bolt to.
+  const auto text =
+      egg::test::runTool("pdftotext '" + (result.outDir / "cut" / "assembly.pdf").string() + "' -");
+  ASSERT_EQ(text.status, 0) << text.output;
+  EXPECT_NE(text.output.find("P4 after P"), std::string::npos) << text.output.substr(0, 2000);
+  EXPECT_LT(text.output.find("Patch P0"), text.output.find("Patch P4"));
+  // The 3D model holds every lamella of the quads and the generalised patches.
+  const auto& model = report["model"];
+  int quadMembers = 0;
+  for (const auto& p : report["patches"])
+    if (p["feasible"].get<bool>())
+      quadMembers += p["members_u"].get<int>() + p["members_v"].get<int>();
+  EXPECT_EQ(model["lamellas"].get<int>(), quadMembers + members);
+  EXPECT_EQ(model["centreline_source"], "joined simulation");
+  // Checked by the programs people open them with: the glTF validator and rhino3dm, with a layer
+  // per patch and family for the generalised patches P4-P7 too.
+  if (exporter::testing::nodeChecksUnavailable().empty()) {
+    const int all = quadMembers + members;
+    const auto glb = exporter::testing::runNodeScript(
+        "check_glb.mjs", (result.outDir / "model.glb").string() + " " + std::to_string(all));
+    EXPECT_EQ(glb.exitCode, 0) << glb.output;
+    std::string layers;
+    for (int p = 0; p < 8; ++p)
+      layers += (p ? ",P" : "P") + std::to_string(p) + "-U,P" + std::to_string(p) + "-V";
+    const auto rhino = exporter::testing::runNodeScript(
+        "check_3dm.mjs",
+        (result.outDir / "model.3dm").string() + " " + layers + " " + std::to_string(all));
+    EXPECT_EQ(rhino.exitCode, 0) << rhino.output;
+  }
   fs::remove_all(result.outDir);
 }
 

@@ -154,11 +154,13 @@ RingBeamJoins ringBeamJoins(const GeneralisedPatch& patch, int generalisedIndex,
     }
     if (std::find(out.quads.begin(), out.quads.end(), bestPatch) == out.quads.end())
       out.quads.insert(std::upper_bound(out.quads.begin(), out.quads.end(), bestPatch), bestPatch);
+    const rods::PatchJoin join{bestPatch, bestRod, bestS, generalisedIndex, anchor.rod, anchor.sM};
     if (patch.network.rods[anchor.rod].layer == bestLayer) {
       ++out.sameLayer;
+      out.brackets.push_back(join);
       continue;
     }
-    out.bolts.push_back({bestPatch, bestRod, bestS, generalisedIndex, anchor.rod, anchor.sM});
+    out.bolts.push_back(join);
     out.releasedAnchors.push_back(static_cast<int>(a));
     out.maxGapM = std::max(out.maxGapM, best);
   }

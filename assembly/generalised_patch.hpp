@@ -34,9 +34,11 @@ struct GeneralisedPatch {
 struct RingBeamJoins {
   std::vector<rods::PatchJoin> bolts;  // patchA: the quad's patch id, patchB: `generalisedIndex`
   std::vector<int> releasedAnchors;    // indices into the generalised network's anchors
-  int sameLayer = 0;                   // patch-side ends left anchored: same layer as the lamella
-  int unmatched = 0;                   // patch-side ends farther than the tolerance from a lamella
-  double maxGapM = 0.0;                // largest distance from a bolted end to its lamella
+  // The same-layer ends as where they would bolt: each is fixed to that lamella by a bracket.
+  std::vector<rods::PatchJoin> brackets;
+  int sameLayer = 0;       // patch-side ends left anchored: same layer as the lamella
+  int unmatched = 0;       // patch-side ends farther than the tolerance from a lamella
+  double maxGapM = 0.0;    // largest distance from a bolted end to its lamella
   std::vector<int> quads;  // ascending: the quad patches with an end on their side (either way)
 };
 // `grids` per layout patch id (nullptr: no grid), `swapped` per patch as layerSwaps gives it.

@@ -125,6 +125,10 @@ std::string bomCsv(const FabricationResult& r) {
   s << "ptfe_sticker,," << r.stickers.size() << ",,,," << fmt::sprintf("%.6g", r.stickerAreaM2)
     << ",,,two per notched connection (Section 3.5.1)\n";
   s << "support,," << r.supports.size() << ",,,,,,,see supports/supports.csv\n";
+  for (const auto& bracket : r.ringBeamBrackets)
+    s << "ring_beam_bracket," << bracket.endId << ",1,,,,,,,steel angle fixing the member end to "
+      << bracket.lamellaId << " (its own layer: it butts against it); one bolt through each at "
+      << "the holes engraved " << bracket.endId << "; size by the engineer\n";
   const bool boards = o.stock == CutStock::Boards;
   s << (boards ? "board,," : "lamella_sheet,,") << r.lamellaNesting.sheets << ","
     << (boards ? o.stockLengthMm : o.sheetMm[0]) << ","

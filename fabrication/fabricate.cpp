@@ -107,7 +107,8 @@ void checkScarfs(const LamellaPlan& plan, FabricationResult& r, LamellaStress& s
       crossed = crossed || (f.maxXMm(d) > from && f.minXMm(d) < to);
     const double net = crossed ? (plan.widthMm - d) / plan.widthMm : 1.0;
     // Strip coordinates (mm from the strip's start) to arc length along the member (m).
-    const double a = (from - plan.overhangMm) / 1000.0, b = (to - plan.overhangMm) / 1000.0;
+    const double a = (from + plan.trimStartMm - plan.overhangMm) / 1000.0,
+                 b = (to + plan.trimStartMm - plan.overhangMm) / 1000.0;
     const double sigma = maxStressOver(s.bendingArcM, s.bendingPa, a, b);
     const double tau = maxStressOver(s.torsionArcM, s.torsionPa, a, b);
     const double ratio =
@@ -145,6 +146,8 @@ FabricationResult fabricate(const std::vector<FabricationPatch>& patches,
   for (const auto& patch : patches) {
     r.connections += static_cast<int>(patch.grid->connections.size());
     for (const auto& hole : patch.extraHoles) r.connections += hole.newBolt ? 1 : 0;
+    r.ringBeamBrackets.insert(r.ringBeamBrackets.end(), patch.ringBeamBrackets.begin(),
+                              patch.ringBeamBrackets.end());
   }
   for (const auto& plan : r.lamellae) {
     for (const auto& f : plan.features) r.connections -= static_cast<int>(f.alsoConnections.size());

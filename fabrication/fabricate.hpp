@@ -55,6 +55,7 @@ struct FabricationResult {
   double maxStressRatio = 0.0;
   double maxBendingStressPa = 0.0, maxTorsionStressPa = 0.0;
   std::string maxStressLamella;
+  std::vector<FabricationPatch::RingBeamBracket> ringBeamBrackets;  // of all patches
   std::vector<std::string> warnings;  // Section 3.5.2 rules and other things to look at
   std::vector<std::string>
       unspliceable;  // lamellas left out of the cut files: why each cannot be spliced

@@ -98,6 +98,14 @@ LamellaPlan planMember(const FabricationPatch& patch, const GridMember& member,
     f.xMm = x;
     plan.features.push_back(f);
   }
+  for (const auto& trim : patch.endTrims) {
+    if (trim.family != member.family || trim.member != member.index) continue;
+    (trim.atStart ? plan.trimStartMm : plan.trimEndMm) += trim.trimMm;
+  }
+  plan.lengthMm -= plan.trimStartMm + plan.trimEndMm;
+  for (auto& f : plan.features) f.xMm -= plan.trimStartMm;
+  if (!(plan.lengthMm > 0.0))
+    throw InvalidInput("lamella " + plan.id + ": its end trims leave no strip");
   std::sort(plan.features.begin(), plan.features.end(),
             [](const LamellaFeature& a, const LamellaFeature& b) { return a.xMm < b.xMm; });
   const double d = options.boltDiameterMm;

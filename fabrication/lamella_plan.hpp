@@ -53,6 +53,9 @@ struct LamellaPlan {
   double lengthMm = 0.0;  // whole strip, overhangs included
   double widthMm = 0.0;
   double overhangMm = 0.0;
+  // Cut short at a bracket end (FabricationPatch::endTrims): strip coordinate x lies at arc length
+  // (x + trimStartMm - overhangMm) / 1000 along the member.
+  double trimStartMm = 0.0, trimEndMm = 0.0;
   std::vector<LamellaFeature> features;    // sorted along the strip
   std::vector<double> splicesMm;           // cut positions of the splices, ascending
   std::vector<double> spliceClearancesMm;  // per splice: the free length from the cut (a scarf: its

@@ -49,6 +49,23 @@ struct FabricationPatch {
     bool newBolt = true;
   };
   std::vector<ExtraHole> extraHoles;
+  // A generalised patch's member ends that lie on a quad's boundary lamella in that lamella's own
+  // layer: each butts against it and is fixed by a steel bracket, one bolt through each lamella
+  // (both holes are extraHoles, engraved with the end's id). bom.csv lists them.
+  struct RingBeamBracket {
+    std::string endId;      // "P4-U3-end"
+    std::string lamellaId;  // the quad's boundary lamella, "P1-U0"
+  };
+  std::vector<RingBeamBracket> ringBeamBrackets;
+  // Strips cut short at a bracket end (assembly/generalised_fabrication.hpp): `trimMm` less than
+  // the usual strip (which reaches an overhang beyond the end point) at its start or its end.
+  struct EndTrim {
+    Family family = Family::U;
+    int member = 0;
+    bool atStart = false;
+    double trimMm = 0.0;
+  };
+  std::vector<EndTrim> endTrims;
 };
 
 // How pieces are joined into a lamella longer than a piece (FabricationOptions::spliceJoint).

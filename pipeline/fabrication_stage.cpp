@@ -1,5 +1,6 @@
 #include "pipeline/fabrication_stage.hpp"
 #include "assembly/boundary_members.hpp"
+#include "assembly/generalised_fabrication.hpp"
 #include "assembly/patch_joins.hpp"
 #include "core/errors.hpp"
 #include "core/timing.hpp"
@@ -47,49 +48,32 @@ std::string fabricationSkipReason(const RunState& state) {
 
 namespace {
 
-std::string endId(const assembly::GeneralisedPatch& g, int rod, bool atStart) {
-  const bool isU = rod < static_cast<int>(g.grid.u.size());
-  return fmt::format("P{}-{}{}-{}", g.patchId, isU ? 'U' : 'V',
-                     isU ? rod : rod - static_cast<int>(g.grid.u.size()),
-                     atStart ? "start" : "end");
-}
-
 // Generalised patches (issue 41) are cut like the quads: their lamellas, holes, slots and stickers
-// on the same sheets. Every member end gets a bolt hole: through its support where it stands on
-// the design boundary or a hole's rim, through the quad's boundary lamella where it laps onto it
-// (that lamella gets the partner hole), or into its bracket on the ring beam.
-void addGeneralisedPatches(const RunState& state,
-                           std::vector<fabrication::FabricationPatch>& grids) {
+// on the same sheets, supports under their ends on the rim, bolts and brackets to the quads'
+// boundary lamellas (assembly/generalised_fabrication.hpp).
+void addGeneralisedPatches(RunState& state, std::vector<fabrication::FabricationPatch>& grids) {
   const std::vector<const EggGrid*> quadGrids = gridsOf(state.patches);
   const std::vector<char> swapped = assembly::layerSwaps(state.patching->graph, quadGrids);
+  const auto fabrication = state.scene.fabricationOptions();
+  assembly::GeneralisedFabricationOptions options;
+  options.lamellaWidthM = state.scene.lamella.widthM;
+  options.endOverhangM = fabrication.effectiveEndOverhangMm() / 1000.0;
+  std::vector<std::string> untrimmed;
   for (const auto& g : state.generalised) {
-    fabrication::FabricationPatch entry{g.patchId, &g.grid, std::nullopt};
-    const assembly::RingBeamJoins ring =
-        assembly::ringBeamJoins(g, 0, quadGrids, swapped, state.scene.lamella.widthM);
-    entry.boltedTo = ring.quads;
-    entry.freeSides = {false, false, false, false};
+    const auto ring = assembly::ringBeamJoins(g, 0, quadGrids, swapped, options.lamellaWidthM);
+    for (auto& end : assembly::addGeneralisedToFabrication(g, ring, quadGrids, options, grids))
+      untrimmed.push_back(std::move(end));
     const auto& simulation = state.infillSimulations[g.piece];
-    if (simulation) entry.deployedCentrelines = simulation->deployed.centrelines;
-    for (size_t a = 0; a < g.network.anchors.size(); ++a) {
-      const auto& anchor = g.network.anchors[a];
-      const bool isU = anchor.rod < static_cast<int>(g.grid.u.size());
-      const int member = isU ? anchor.rod : anchor.rod - static_cast<int>(g.grid.u.size());
-      const std::string id = endId(g, anchor.rod, a % 2 == 0);
-      entry.extraHoles.push_back({isU ? Family::U : Family::V, member, anchor.sM, id, true});
-      if (g.anchorHolds[a] == patching::AnchorHold::DesignBoundary)
-        entry.endSupports.push_back({id, anchor.position, anchor.normal});
-    }
-    for (const auto& bolt : ring.bolts) {
-      for (auto& quad : grids) {
-        if (quad.patchId != bolt.patchA) continue;
-        const int u = static_cast<int>(quad.grid->u.size());
-        quad.extraHoles.push_back({bolt.rodA < u ? Family::U : Family::V,
-                                   bolt.rodA < u ? bolt.rodA : bolt.rodA - u, bolt.sAM,
-                                   endId(g, bolt.rodB, bolt.sBM == 0.0), false});
-      }
-    }
-    grids.push_back(std::move(entry));
+    if (simulation) grids.back().deployedCentrelines = simulation->deployed.centrelines;
   }
+  if (untrimmed.empty()) return;
+  std::string list;
+  for (size_t k = 0; k < untrimmed.size() && k < 8; ++k) list += (k ? ", " : "") + untrimmed[k];
+  state.report.warn(fmt::format(
+      "fabrication: {} generalised member ends meet a quad's boundary lamella in its own layer so "
+      "close to a crossing that they cannot be cut back to its face for their bracket; they are "
+      "cut as drawn and overlap the lamella (the bracket detail there is the engineer's): {}{}",
+      untrimmed.size(), list, untrimmed.size() > 8 ? ", ..." : ""));
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "pipeline/report_figure_sections.hpp"
 
+#include "core/io/xml_text.hpp"
+
 #include <fmt/core.h>
 
 namespace egg::pipeline::report_sections {
@@ -99,6 +101,48 @@ std::string elevationsSection(const std::string& elevationsSvg) {
 
 std::string deploymentFigure(const std::string& deploymentSvg) {
   return inlinedFigure("", deploymentSvg, "No deployment chart (deployment.svg).", "deployment-");
+}
+
+std::string generalisedSection(const nlohmann::json& report) {
+  const auto entries = report.find("generalised_patches");
+  if (entries == report.end() || !entries->is_array() || entries->empty()) return "";
+  const auto number = [](const nlohmann::json& j, const char* key, const char* format) {
+    const auto v = j.find(key);
+    return v != j.end() && v->is_number() ? fmt::format(fmt::runtime(format), v->get<double>())
+                                          : std::string("&ndash;");
+  };
+  std::string out =
+      "<h2 id=\"generalised\">Generalised patches (Chapter 4)</h2>\n<p>Patches on the cut-offs "
+      "the quads leave, numbered after them in the cut files (P). E_grid = E_effort (scaled) "
+      "&minus; &lambda; E_shape; &epsilon;_geo: distance-field crossings against the traced ones, "
+      "in % of an edge; RMSE: each patch deployed alone on its anchors.</p>\n<table "
+      "class=\"list\"><tr><th>patch</th><th>P</th><th>area m&sup2;</th><th>members</th>"
+      "<th>crossings</th><th>E_shape</th><th>E_grid</th><th>&epsilon;_geo %</th><th>min angle "
+      "&deg;</th><th>planar residual m</th><th>RMSE m</th><th>why not</th></tr>\n";
+  for (const auto& g : *entries) {
+    const auto simulation = g.value("simulation", nlohmann::json::object());
+    out +=
+        "<tr><td>" + escapeXml(g.value("id", "")) + "</td><td>" +
+        (g.contains("patch_id") ? fmt::format("P{}", g["patch_id"].get<int>()) : "") + "</td><td>" +
+        number(g, "area_m2", "{:.1f}") + "</td><td>" + number(g, "members", "{:.0f}") +
+        "</td><td>" + number(g, "crossings", "{:.0f}") + "</td><td>" +
+        number(g, "e_shape", "{:.2f}") + "</td><td>" + number(g, "e_grid", "{:.3g}") + "</td><td>" +
+        number(g, "eps_geo_percent", "{:.1f}") + "</td><td>" +
+        number(g, "min_crossing_angle_deg", "{:.1f}") + "</td><td>" +
+        number(g.value("planarisation", nlohmann::json::object()), "length_residual_m", "{:.1e}") +
+        "</td><td>" + number(simulation, "rmse_m", "{:.4f}") + "</td><td>" +
+        escapeXml(g.value("reason", "")) + "</td></tr>\n";
+  }
+  out += "</table>\n";
+  const auto joined = report.value("simulation", nlohmann::json::object())
+                          .value("joined", nlohmann::json::object())
+                          .value("generalised_patches", nlohmann::json::object());
+  if (!joined.empty())
+    out += fmt::format(
+        "<p>In the joined structure: {} member ends bolted to a quad's boundary lamella, {} in "
+        "that lamella's own layer held by brackets (anchored in the simulation).</p>\n",
+        joined.value("ring_beam_bolts", 0), joined.value("patch_side_ends_anchored_same_layer", 0));
+  return out;
 }
 
 }  // namespace egg::pipeline::report_sections

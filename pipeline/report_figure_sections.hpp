@@ -1,6 +1,9 @@
 #pragma once
 // The sections of report.html that inline the run's SVG figures (report_html.cpp builds the page):
-// the plan and the curvature sheet, the planar grids, deployed.svg and elevations.svg.
+// the plan and the curvature sheet, the planar grids, deployed.svg and elevations.svg; and the
+// generalised patches' table.
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +17,9 @@ std::string planSection(const std::string& planSvg, const std::string& curvature
 std::string patchGridsSection(const std::vector<std::pair<int, std::string>>& planarSvgs);
 std::string deployedSection(const std::string& deployedSvg);
 std::string elevationsSection(const std::string& elevationsSvg);
+// report.json generalised_patches[] as a table, and how the joined run held them (issue 41); ""
+// when the run has none.
+std::string generalisedSection(const nlohmann::json& report);
 // deployment.svg inlined (the deployment section's chart; report_html.cpp writes its heading).
 std::string deploymentFigure(const std::string& deploymentSvg);
 

@@ -494,8 +494,9 @@ std::string reportHtml(const json& report, const ReportFiles& files) {
     html += "</ul></details></div>\n";
   }
   html += stageTimes(report) + report_sections::planSection(files.planSvg, files.curvatureSvg) +
-          patchesSection(report) + report_sections::patchGridsSection(files.planarSvgs) +
-          claddingSection(report) + simulationSection(report) + errorTimeSection(report) +
+          patchesSection(report) + report_sections::generalisedSection(report) +
+          report_sections::patchGridsSection(files.planarSvgs) + claddingSection(report) +
+          simulationSection(report) + errorTimeSection(report) +
           deployedViewSection(files.deployedViewJson) +
           report_sections::deployedSection(files.deployedSvg) +
           report_sections::elevationsSection(files.elevationsSvg) +

@@ -136,8 +136,9 @@ TEST(InfillStage, SlowGreatCourtGeneralisedPatchesAreJoinedCutAndModelled) {
   // boundary lamella), as bom.csv counts them.
   std::ifstream bom(result.outDir / "bom.csv");
   std::string row;
-  int lamellas = 0, cutOuts = 0;
+  int lamellas = 0, cutOuts = 0, brackets = 0;
   while (std::getline(bom, row)) {
+    brackets += row.rfind("ring_beam_bracket,P", 0) == 0;
     const std::regex generalisedRow(R"(^lamella,P[4-7]-[UV]\d+,.*; (\d+) holes; (\d+) slots;)");
     std::smatch m;
     if (!std::regex_search(row, m, generalisedRow)) continue;
@@ -150,9 +151,12 @@ TEST(InfillStage, SlowGreatCourtGeneralisedPatchesAreJoinedCutAndModelled) {
   int quadConnections = 0;
   for (const auto& p : report["patches"])
     if (p["feasible"].get<bool>()) quadConnections += p["connections"].get<int>();
-  // Shared sides' holes merge; each generalised crossing and member end adds one bolt.
-  EXPECT_GE(fabrication["bolts"].get<int>(), crossings + 2 * members);
-  EXPECT_LE(fabrication["bolts"].get<int>(), quadConnections + crossings + 2 * members);
+  // The ends in a quad lamella's own layer are fixed by brackets, one each.
+  EXPECT_EQ(brackets, ring["patch_side_ends_anchored_same_layer"].get<int>());
+  // Shared sides' holes merge; each generalised crossing and member end adds one bolt, and each
+  // bracket a second through the quad's lamella.
+  EXPECT_GE(fabrication["bolts"].get<int>(), crossings + 2 * members + brackets);
+  EXPECT_LE(fabrication["bolts"].get<int>(), quadConnections + crossings + 2 * members + brackets);
   // Supports at the generalised members' ends on the Reading Room's rim (one per point).
   std::ifstream supports(result.outDir / "supports" / "supports.csv");
   std::string line;

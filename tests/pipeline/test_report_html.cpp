@@ -152,6 +152,33 @@ TEST(ReportHtml, SelfContainedPageWithEverySection) {
   EXPECT_NE(html.find("(3 rows in all)"), std::string::npos);
 }
 
+TEST(ReportHtml, GeneralisedPatchesGetTheirTableOnlyWhenTheRunHasThem) {
+  nlohmann::json report = sampleReport();
+  EXPECT_EQ(reportHtml(report, {}).find("id=\"generalised\""), std::string::npos);
+  report["generalised_patches"] = nlohmann::json::parse(R"([
+    {"id": "G0", "patch_id": 4, "kind": "generalised", "area_m2": 127.06, "members": 15,
+     "crossings": 15, "e_shape": 1.0, "e_grid": -2.1, "eps_geo_percent": 23.2,
+     "min_crossing_angle_deg": 59.04, "planarisation": {"length_residual_m": 1.8e-15},
+     "simulation": {"rmse_m": 0.02164}},
+    {"id": "G1", "patch_id": 5, "kind": "generalised", "area_m2": 1.8, "feasible": false,
+     "reason": "left as a cut-off: <1.8 m^2> is small"}])");
+  report["simulation"]["joined"]["generalised_patches"] = {
+      {"ring_beam_bolts", 37}, {"patch_side_ends_anchored_same_layer", 41}};
+  const std::string html = reportHtml(report, {});
+  EXPECT_NE(html.find("<h2 id=\"generalised\">"), std::string::npos);
+  EXPECT_NE(html.find("<tr><td>G0</td><td>P4</td><td>127.1</td><td>15</td><td>15</td><td>1.00</td>"
+                      "<td>-2.1</td><td>23.2</td><td>59.0</td><td>1.8e-15</td><td>0.0216</td>"
+                      "<td></td></tr>"),
+            std::string::npos)
+      << html.substr(html.find("id=\"generalised\""), 2000);
+  // A piece without a grid: dashes and its reason, escaped.
+  EXPECT_NE(html.find("<td>&ndash;</td><td>left as a cut-off: &lt;1.8 m^2&gt; is small</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("37 member ends bolted to a quad's boundary lamella, 41 in that lamella's "
+                      "own layer held by brackets"),
+            std::string::npos);
+}
+
 TEST(ReportHtml, MissingPartsSayWhy) {
   nlohmann::json report = sampleReport();
   report["simulation"] = {{"ran", false},

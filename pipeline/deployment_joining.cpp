@@ -24,26 +24,23 @@ struct JoiningInput {
   std::vector<bool> temporary;
 };
 
-JoiningInput joiningInput(const RunState& state,
-                          const std::vector<const rods::DeploymentResult*>& ends) {
+JoiningInput joiningInput(const RunState& state, const std::vector<JoiningPart>& parts) {
   const rods::JoinedNetwork& joined = *state.joinedNetwork;
   JoiningInput in{joined.network, joined.firstJoin, {}};
   in.temporary.assign(in.network.anchors.size(), false);
   rods::SimulationRun start;  // the patches' ends, in the joined network's order
-  size_t k = 0;               // the joined network holds the patches with a grid, in layout order
-  for (size_t p = 0; p < state.patches.size(); ++p) {
-    const SolvedPatch& patch = state.patches[p];
-    if (!patch.egg) continue;
-    if (k >= joined.firstRod.size())
-      throw InvalidInput("joining: the joined network has fewer patches than the layout");
-    const rods::SimulationRun& end = ends[p]->last;
-    const int first = joined.firstRod[k++];
+  if (parts.size() != joined.firstRod.size())
+    throw InvalidInput(fmt::format("joining: the joined network has {} patches, the deployment {}",
+                                   joined.firstRod.size(), parts.size()));
+  for (size_t k = 0; k < parts.size(); ++k) {
+    const rods::SimulationRun& end = *parts[k].last;
+    const int first = joined.firstRod[k];
     start.contactPoints.insert(start.contactPoints.end(), end.contactPoints.begin(),
                                end.contactPoints.end());
     start.normals.insert(start.normals.end(), end.normals.begin(), end.normals.end());
     start.boltPositionsM.insert(start.boltPositionsM.end(), end.boltPositionsM.begin(),
                                 end.boltPositionsM.end());
-    for (const rods::Anchor& a : patch.network->anchors) {
+    for (const rods::Anchor& a : parts[k].network->anchors) {
       const bool kept = std::any_of(joined.network.anchors.begin(), joined.network.anchors.end(),
                                     [&](const rods::Anchor& b) {
                                       return b.rod == first + a.rod && std::abs(b.sM - a.sM) < 1e-9;
@@ -75,8 +72,7 @@ double contactRmsM(const std::vector<std::vector<Eigen::Vector3d>>& a,
   return std::sqrt(sum / std::max<long>(count, 1));
 }
 
-JoiningRun joinDeployed(const RunState& state,
-                        const std::vector<const rods::DeploymentResult*>& ends,
+JoiningRun joinDeployed(const RunState& state, const std::vector<JoiningPart>& parts,
                         const rods::DeploymentOptions& options) {
   JoiningRun run;
   const Scene& scene = state.scene;
@@ -88,15 +84,14 @@ JoiningRun joinDeployed(const RunState& state,
     run.skipped = "no joined simulation to join the patches into (simulation.joined)";
     return run;
   }
-  for (size_t p = 0; p < state.patches.size(); ++p) {
-    if (!state.patches[p].egg) continue;
-    if (!ends[p] || !ends[p]->completed || !state.patches[p].network) {
-      run.skipped = fmt::format("patch P{} did not reach its supports", state.patches[p].id);
+  for (const JoiningPart& part : parts) {
+    if (!part.last || !part.reached || !part.network) {
+      run.skipped = fmt::format("patch P{} did not reach its supports", part.id);
       return run;
     }
   }
   try {
-    const JoiningInput in = joiningInput(state, ends);
+    const JoiningInput in = joiningInput(state, parts);
     run.joints = static_cast<int>(in.network.connections.size()) - in.firstJoin;
     run.temporarySupports =
         static_cast<int>(std::count(in.temporary.begin(), in.temporary.end(), true));

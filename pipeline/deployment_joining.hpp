@@ -27,9 +27,16 @@ struct JoiningRun {
   double simulationJoinForceN = 0.0;  // and its largest joint force
 };
 
-// `ends`: per state.patches entry, its deployment (nullptr where it has none).
-JoiningRun joinDeployed(const RunState& state,
-                        const std::vector<const rods::DeploymentResult*>& ends,
+// One patch of the joined network, in its order (the quads with a grid in layout order, then the
+// generalised patches): what it stood on and where it stands before the joining (`last`: a quad's
+// deployment end, a generalised patch's own simulated equilibrium; nullptr or !reached: none).
+struct JoiningPart {
+  int id = 0;
+  const rods::RodNetwork* network = nullptr;
+  const rods::SimulationRun* last = nullptr;
+  bool reached = false;
+};
+JoiningRun joinDeployed(const RunState& state, const std::vector<JoiningPart>& parts,
                         const rods::DeploymentOptions& options);
 
 // RMS distance (m) between two states' points, rod by rod and vertex by vertex; -1 when their

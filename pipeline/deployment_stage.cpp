@@ -378,11 +378,26 @@ void deploymentStage(RunState& state) {
   const rods::DeploymentOptions options = deploymentOptions(scene, static_cast<int>(runs.size()));
   tbb::parallel_for(size_t(0), runs.size(),
                     [&](size_t i) { runs[i] = deployPatch(*sources[i], options); });
-  // Then the standing patches joined into the structure the joined simulation solved.
-  std::vector<const rods::DeploymentResult*> ends(state.patches.size(), nullptr);
-  for (size_t i = 0; i < runs.size(); ++i)
-    if (runs[i].result) ends[sources[i] - state.patches.data()] = &*runs[i].result;
-  const JoiningRun joining = joinDeployed(state, ends, options);
+  // Then the standing patches joined into the structure the joined simulation solved, in its
+  // order: the quads with a grid, then the generalised patches (issue 41). Those are not deployed
+  // along a support path here: their members are held at both ends, fixed one by one to the ring,
+  // which no synchronised straight path models; they join as their own simulation left them.
+  std::vector<JoiningPart> parts;
+  for (const auto& p : state.patches) {
+    if (!p.egg) continue;
+    JoiningPart part{p.id, p.network ? &*p.network : nullptr, nullptr, false};
+    for (const auto& run : runs)
+      if (run.patch == p.id && run.result)
+        part.last = &run.result->last, part.reached = run.result->completed;
+    parts.push_back(part);
+  }
+  if (state.joinedNetwork && state.joinedNetwork->firstRod.size() > parts.size())
+    for (const auto& g : state.generalised) {
+      const auto& own = state.infillSimulations[g.piece];
+      parts.push_back(
+          {g.patchId, &g.network, own ? &own->deployed : nullptr, own && own->converged});
+    }
+  const JoiningRun joining = joinDeployed(state, parts, options);
   json section{{"ran", true},
                {"paths",
                 "corners first: the corner supports move together along straight lines from "
@@ -433,6 +448,11 @@ void deploymentStage(RunState& state) {
   }
   section["patches"] = patches;
   section["joined"] = joiningJson(joining);
+  if (!state.generalised.empty())
+    section["generalised_patches"] =
+        "not deployed along a support path: each joins as its own simulation left it (its members "
+        "are held at both ends and fixed to the ring one by one, which no synchronised straight "
+        "path models)";
   if (!joining.failure.empty())
     state.failures.push_back("deployment: joining the patches: " + joining.failure);
   if (joining.result) {

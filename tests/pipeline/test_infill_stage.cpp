@@ -245,5 +245,53 @@ TEST(InfillStage, AGivenPatchInsideItsSurfaceGetsItsFrameOnlyWhenAsked) {
   fs::remove_all(framed.outDir);
 }
 
+TEST(InfillStage, TwoGivenPatchesInAGeneralisedFrameAreJoinedDeployedAndJoinedAgain) {
+  // Two 3 x 6 m patches side by side on an 8 x 8 m bump, their frame closed by generalised
+  // patches: the joined simulation bolts the quads along their shared side and the generalised
+  // members' ends to the quads' sides; the deployment stands the quads up along their paths and
+  // joins everything, the generalised patches as their own simulations left them.
+  const Scene scene = parseScene(nlohmann::json::parse(R"({
+    "name": "bump_frame_two",
+    "surface": {"sample": "bump", "params": {"length": 8, "width": 8, "height": 1, "sigma": 1.5},
+                "edge_length_m": 0.25},
+    "patching": {"patches": [[[-3,-3,0],[0,-3,0],[0,3,0],[-3,3,0]],
+                             [[0,-3,0],[3,-3,0],[3,3,0],[0,3,0]]], "generalised_infill": true},
+    "grid": {"map_resolution": 30, "members_per_family": 5},
+    "lamella": {"width_m": 0.06, "thickness_m": 0.006},
+    "simulation": {"gravity": false},
+    "outputs": ["report", "deployment", "model"]})"),
+                                 "/virtual/bump_frame_two.json");
+  PipelineOptions options;
+  options.outDir = infillScratch("egg_infill_frame_two");
+  const auto result = runPipeline(scene, options);
+  EXPECT_TRUE(result.failures.empty()) << nlohmann::json(result.failures).dump(1);
+  const auto& report = result.report;
+  EXPECT_GE(report["coverage"]["fraction"].get<double>(), 0.99);
+  int members = 0;
+  for (const auto& g : report["generalised_patches"]) {
+    ASSERT_TRUE(g["feasible"].get<bool>()) << g.dump(1);
+    members += g["members"].get<int>();
+  }
+  const auto& joined = report["simulation"]["joined"];
+  ASSERT_TRUE(joined["ran"].get<bool>()) << joined.dump(1);
+  EXPECT_TRUE(joined["converged"].get<bool>());
+  const int ringBolts = joined["generalised_patches"]["ring_beam_bolts"].get<int>();
+  EXPECT_GT(ringBolts, 0);
+  EXPECT_GT(joined["generalised_patches"]["patch_side_ends_anchored_same_layer"].get<int>(), 0);
+  // The quads' own joints along their shared side, then the ring-beam bolts.
+  EXPECT_GT(joined["bolts"].get<int>(), ringBolts);
+  const auto& deployment = report["deployment"];
+  ASSERT_EQ(deployment["patches"].size(), 2u);  // the quads along their support paths
+  const auto& joining = deployment["joined"];
+  EXPECT_TRUE(joining["completed"].get<bool>()) << joining.dump(1).substr(0, 2000);
+  EXPECT_EQ(joining["joints"].get<int>(), joined["bolts"].get<int>());
+  EXPECT_TRUE(deployment.contains("generalised_patches"));
+  int quadMembers = 0;
+  for (const auto& p : report["patches"])
+    quadMembers += p["members_u"].get<int>() + p["members_v"].get<int>();
+  EXPECT_EQ(report["model"]["lamellas"].get<int>(), quadMembers + members);
+  fs::remove_all(result.outDir);
+}
+
 }  // namespace
 }  // namespace egg::pipeline

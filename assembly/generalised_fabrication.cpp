@@ -53,6 +53,9 @@ std::vector<std::string> addGeneralisedToFabrication(
   };
   // Bracket ends: how far the strip is cut back from the end point (metres along the member).
   std::vector<double> trim(g.network.anchors.size(), 0.0);
+  std::vector<char> onQuad(g.network.anchors.size(), 0);
+  for (const auto* joins : {&ring.bolts, &ring.brackets})
+    for (const auto& join : *joins) onQuad[2 * join.rodB + (join.sBM == 0.0 ? 0 : 1)] = 1;
   for (const auto& bracket : ring.brackets) {
     const int a = 2 * bracket.rodB + (bracket.sBM == 0.0 ? 0 : 1);
     const GridMember& m = memberOf(bracket.rodB);
@@ -61,31 +64,43 @@ std::vector<std::string> addGeneralisedToFabrication(
             ? quadGrids[bracket.patchA]->u[bracket.rodA]
             : quadGrids[bracket.patchA]->v[bracket.rodA - quadGrids[bracket.patchA]->u.size()];
     const Eigen::Vector3d at = g.network.anchors[a].position;
-    const double sine = fabricationDirectionNear(m.spatial, at)
-                            .cross(fabricationDirectionNear(lamella.spatial, at))
-                            .norm();
+    const Eigen::Vector3d along = fabricationDirectionNear(m.spatial, at);
+    const Eigen::Vector3d across = fabricationDirectionNear(lamella.spatial, at);
     // Lamellas meet at 15 degrees or more (the optimiser's limit); a shallower meeting is capped.
-    const double cut = 0.5 * options.lamellaWidthM / std::max(sine, std::sin(15.0 * M_PI / 180.0)) +
-                       options.bracketGapM;
-    // The end's bolt sits an overhang in from the trimmed end; every crossing must stay clear.
+    const double sine = std::max(along.cross(across).norm(), std::sin(15.0 * M_PI / 180.0));
+    const double cosine = std::sqrt(std::max(0.0, 1.0 - sine * sine));
+    // The square end clear of the lamella's face by the gap: its centre line (w/2)/sin back from
+    // the lamella's centre line, and the corner on the acute side (w/2) cos/sin further.
+    const double cut = (0.5 * options.lamellaWidthM * (1.0 + cosine) + options.bracketGapM) / sine;
+    // The end's bolt sits an overhang in from the trimmed end; every crossing's hole or slot must
+    // stay an overhang clear of it.
     const double hole = cut + options.endOverhangM;
+    const bool atStart = bracket.sBM == 0.0;
     double nearest = std::numeric_limits<double>::infinity();
     for (const auto& c : g.grid.connections) {
       const bool onIt =
           bracket.rodB < nu ? c.memberU == bracket.rodB : c.memberV == bracket.rodB - nu;
       if (!onIt) continue;
       const double s = bracket.rodB < nu ? c.sBarU : c.sBarV;
-      nearest = std::min(nearest, bracket.sBM == 0.0 ? s : m.planarLength - s);
+      const double l = bracket.rodB < nu ? c.notchU : c.notchV;
+      nearest =
+          std::min(nearest, atStart ? std::min(s, s + l) : m.planarLength - std::max(s, s + l));
     }
-    const std::string id = fabricationEndId(g, bracket.rodB, bracket.sBM == 0.0);
-    if (hole + options.endOverhangM > nearest || hole >= m.planarLength) {
+    // And the bolt at the other end, trimmed or not.
+    const double otherEnd = trim[a ^ 1] > 0.0 ? trim[a ^ 1] + options.endOverhangM : 0.0;
+    const std::string id = fabricationEndId(g, bracket.rodB, atStart);
+    if (hole + options.endOverhangM > nearest) {
       warnings.push_back(fmt::format("{} (bolt {:.0f} mm, crossing {:.0f} mm from the end)", id,
                                      1000.0 * hole, 1000.0 * nearest));
       continue;
     }
+    if (hole + options.endOverhangM + otherEnd > m.planarLength) {
+      warnings.push_back(fmt::format("{} (bolt {:.0f} mm from the end, too short a member for it)",
+                                     id, 1000.0 * hole));
+      continue;
+    }
     trim[a] = cut;
-    entry.endTrims.push_back(
-        {m.family, m.index, bracket.sBM == 0.0, 1000.0 * (cut + options.endOverhangM)});
+    entry.endTrims.push_back({m.family, m.index, atStart, 1000.0 * (cut + options.endOverhangM)});
   }
   for (size_t a = 0; a < g.network.anchors.size(); ++a) {
     const auto& anchor = g.network.anchors[a];
@@ -95,8 +110,10 @@ std::vector<std::string> addGeneralisedToFabrication(
     const double in = trim[a] > 0.0 ? trim[a] + options.endOverhangM : 0.0;
     entry.extraHoles.push_back(
         {m.family, m.index, a % 2 == 0 ? anchor.sM + in : anchor.sM - in, id, true});
-    if (g.anchorHolds[a] == patching::AnchorHold::DesignBoundary)
-      entry.endSupports.push_back({id, anchor.position, anchor.normal});
+    // A support under it unless a quad's lamella carries it (bolted or by a bracket): on the
+    // design boundary or a hole's rim, at a cut between pieces, or on a side with no lamella in
+    // reach, as the simulations hold it.
+    if (!onQuad[a]) entry.endSupports.push_back({id, anchor.position, anchor.normal});
   }
   // The quad's lamella gets the partner hole of each bolted end (the same bolt) and the hole of
   // each bracket's second bolt.

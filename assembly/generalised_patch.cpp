@@ -33,7 +33,8 @@ double generalisedPolylineLength(const std::vector<Eigen::Vector3d>& points) {
 
 }  // namespace
 
-GeneralisedPatch generalisedPatch(const patching::InfillPiece& piece, int pieceIndex, int patchId) {
+GeneralisedPatch generalisedPatch(const patching::InfillPiece& piece, int pieceIndex, int patchId,
+                                  bool swapLayers) {
   const std::string name = "generalised patch G" + std::to_string(pieceIndex);
   if (!piece.design) throw InvalidInput(name + " has no grid");
   const auto& design = *piece.design;
@@ -47,15 +48,19 @@ GeneralisedPatch generalisedPatch(const patching::InfillPiece& piece, int pieceI
   GeneralisedPatch out;
   out.patchId = patchId;
   out.piece = pieceIndex;
+  out.swappedLayers = swapLayers;
   out.rodOfMember.assign(members.size(), -1);
   std::vector<int> indexInFamily(members.size(), -1);
-  for (int family : {0, 1}) {
-    auto& target = family == 0 ? out.grid.u : out.grid.v;
+  // u: the family in layer 0 (g, or h when the layers are swapped), as in a quad patch's grid.
+  for (int layer : {0, 1}) {
+    const int family = swapLayers ? 1 - layer : layer;
+    auto& target = layer == 0 ? out.grid.u : out.grid.v;
     for (size_t m = 0; m < members.size(); ++m) {
       if (members[m].family != family) continue;
-      const auto& rod = source.rods[m];
+      rods::Rod rod = source.rods[m];
+      rod.layer = layer;
       GridMember member;
-      member.family = family == 0 ? Family::U : Family::V;
+      member.family = layer == 0 ? Family::U : Family::V;
       member.index = static_cast<int>(target.size());
       member.spatial = rod.guess;
       member.normals = rod.guessNormals;
@@ -85,19 +90,24 @@ GeneralisedPatch generalisedPatch(const patching::InfillPiece& piece, int pieceI
     if (bolt.rodA != crossing.g || bolt.rodB != crossing.h || members[bolt.rodA].family != 0)
       throw InvalidInput(name + ": bolt " + std::to_string(k) + " does not join g to h");
     const int g = bolt.rodA, h = bolt.rodB;
+    // The u side of the connection: g's unless the layers are swapped.
+    const int u = swapLayers ? h : g;
+    const double sBarU = swapLayers ? bolt.sBM : bolt.sAM, sBarV = swapLayers ? bolt.sAM : bolt.sBM;
+    const rods::Notch& notchU = swapLayers ? bolt.notchB : bolt.notchA;
+    const rods::Notch& notchV = swapLayers ? bolt.notchA : bolt.notchB;
     GridConnection c;
-    c.memberU = indexInFamily[g];
-    c.memberV = indexInFamily[h];
+    c.memberU = indexInFamily[u];
+    c.memberV = indexInFamily[swapLayers ? g : h];
     c.spatial = design.tracedCrossings[k];
     c.normal =
         generalisedNormalAt(source.rods[g].guess, source.rods[g].guessNormals, design.tracedSGM[k]);
-    const auto& ends = design.planar.endpoints[g];
+    const auto& ends = design.planar.endpoints[u];
     const Eigen::Vector2d along = (ends[1] - ends[0]).normalized();
-    c.planar = ends[0] + bolt.sAM * along;
-    c.sBarU = bolt.sAM;
-    c.sBarV = bolt.sBM;
-    c.notchU = bolt.notchA.afterM - bolt.notchA.beforeM;  // l = s - s_bar (one side is zero)
-    c.notchV = bolt.notchB.afterM - bolt.notchB.beforeM;
+    c.planar = ends[0] + sBarU * along;
+    c.sBarU = sBarU;
+    c.sBarV = sBarV;
+    c.notchU = notchU.afterM - notchU.beforeM;  // l = s - s_bar (one side is zero)
+    c.notchV = notchV.afterM - notchV.beforeM;
     c.sU = c.sBarU + c.notchU;
     c.sV = c.sBarV + c.notchV;
     out.grid.maxNotch = std::max({out.grid.maxNotch, std::abs(c.notchU), std::abs(c.notchV)});
@@ -168,12 +178,20 @@ RingBeamJoins ringBeamJoins(const GeneralisedPatch& patch, int generalisedIndex,
 }
 
 std::vector<GeneralisedPatch> generalisedPatches(const patching::InfillResult& infill,
-                                                 int firstPatchId) {
+                                                 int firstPatchId,
+                                                 const std::vector<const EggGrid*>& quadGrids,
+                                                 const std::vector<char>& quadSwaps,
+                                                 double toleranceM) {
   std::vector<GeneralisedPatch> out;
   for (size_t i = 0; i < infill.pieces.size(); ++i) {
     if (!infill.pieces[i].design) continue;
-    out.push_back(generalisedPatch(infill.pieces[i], static_cast<int>(i),
-                                   firstPatchId + static_cast<int>(i)));
+    const int id = firstPatchId + static_cast<int>(i);
+    GeneralisedPatch plain = generalisedPatch(infill.pieces[i], static_cast<int>(i), id, false);
+    GeneralisedPatch swapped = generalisedPatch(infill.pieces[i], static_cast<int>(i), id, true);
+    const auto bolted = [&](const GeneralisedPatch& g) {
+      return ringBeamJoins(g, 0, quadGrids, quadSwaps, toleranceM).bolts.size();
+    };
+    out.push_back(bolted(swapped) > bolted(plain) ? std::move(swapped) : std::move(plain));
   }
   return out;
 }

@@ -24,6 +24,9 @@ struct GeneralisedPatch {
   rods::RodNetwork network;
   std::vector<patching::AnchorHold> anchorHolds;  // per anchor of `network`
   std::vector<int> rodOfMember;                   // per layout member of the design: its rod
+  // Family h in layer 0 (the grid's u) and g in layer 1: the choice that bolts more of the ends
+  // on the quads' sides to their boundary lamellas (generalisedPatches).
+  bool swappedLayers = false;
 };
 
 // The joined structure (pipeline/joined_simulation.cpp): a generalised member end held on a quad
@@ -47,10 +50,19 @@ RingBeamJoins ringBeamJoins(const GeneralisedPatch& patch, int generalisedIndex,
                             const std::vector<char>& swapped, double toleranceM);
 
 // Throws InvalidInput when the piece has no design or its holds do not match its members.
-GeneralisedPatch generalisedPatch(const patching::InfillPiece& piece, int pieceIndex, int patchId);
+// `swapLayers`: family h in layer 0 and so the grid's u, g in layer 1.
+GeneralisedPatch generalisedPatch(const patching::InfillPiece& piece, int pieceIndex, int patchId,
+                                  bool swapLayers = false);
 
-// Per piece with a design, in piece order, numbered from `firstPatchId`.
+// Per piece with a design, in piece order, numbered from `firstPatchId` (piece i is patch
+// firstPatchId + i), each with its layers as they bolt more member ends to the quads' boundary
+// lamellas (ringBeamJoins with `quadGrids`, `quadSwaps`, `toleranceM`; ties: not swapped). A
+// member end in a lamella's own layer needs a bracket; in a quad patch only the family in the
+// other layer ends on each side, here both do.
 std::vector<GeneralisedPatch> generalisedPatches(const patching::InfillResult& infill,
-                                                 int firstPatchId);
+                                                 int firstPatchId,
+                                                 const std::vector<const EggGrid*>& quadGrids,
+                                                 const std::vector<char>& quadSwaps,
+                                                 double toleranceM);
 
 }  // namespace egg::assembly

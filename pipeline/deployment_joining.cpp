@@ -86,7 +86,10 @@ JoiningRun joinDeployed(const RunState& state, const std::vector<JoiningPart>& p
   }
   for (const JoiningPart& part : parts) {
     if (!part.last || !part.reached || !part.network) {
-      run.skipped = fmt::format("patch P{} did not reach its supports", part.id);
+      run.skipped = fmt::format(
+          "patch P{} has no standing state to join from (its deployment did not reach its "
+          "supports; for a generalised patch, its own simulation did not converge)",
+          part.id);
       return run;
     }
   }
@@ -172,7 +175,8 @@ json joiningJson(const JoiningRun& run) {
         "stiffness raised geometrically from 1e-6 of its full value, as a clamp is tightened)");
   if (run.temporarySupports > 0)
     phases.push_back(
-        "the shoring of the shared sides is let go (its stiffness lowered so, then off, as jacks "
+        "the shoring of the shared sides (and of generalised member ends bolted to a quad) is let "
+        "go (its stiffness lowered so, then off, as jacks "
         "are lowered)");
   std::string described;
   for (size_t k = 0; k < phases.size(); ++k)

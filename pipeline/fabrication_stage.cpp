@@ -71,7 +71,8 @@ void addGeneralisedPatches(RunState& state, std::vector<fabrication::Fabrication
   for (size_t k = 0; k < untrimmed.size() && k < 8; ++k) list += (k ? ", " : "") + untrimmed[k];
   state.report.warn(fmt::format(
       "fabrication: {} generalised member ends meet a quad's boundary lamella in its own layer so "
-      "close to a crossing that they cannot be cut back to its face for their bracket; they are "
+      "close to a crossing or to their other end that they cannot be cut back to its face for "
+      "their bracket; they are "
       "cut as drawn and overlap the lamella (the bracket detail there is the engineer's): {}{}",
       untrimmed.size(), list, untrimmed.size() > 8 ? ", ..." : ""));
 }

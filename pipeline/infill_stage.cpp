@@ -1,6 +1,7 @@
 // Generalised patches in `egg run` (issue 41): see infill_stage.hpp.
 #include "pipeline/infill_stage.hpp"
 
+#include "assembly/patch_joins.hpp"
 #include "core/errors.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/materials/materials.hpp"
@@ -45,7 +46,6 @@ int infillPatchId(const RunState& state, size_t piece) {
 
 json infillEntry(const patching::InfillPiece& piece, int index, int patchId) {
   json entry{{"id", fmt::format("G{}", index)},
-             {"patch_id", patchId},  // its lamellas are P<patch_id>-U<i>, -V<j> in the shop files
              {"kind", "generalised"},
              {"cut_off", piece.cutOff},
              {"area_m2", piece.areaM2},
@@ -55,6 +55,7 @@ json infillEntry(const patching::InfillPiece& piece, int index, int patchId) {
     entry["reason"] = piece.failure;  // as a quad patch's entry names it
     return entry;
   }
+  entry["patch_id"] = patchId;  // its lamellas are P<patch_id>-U<i>, -V<j> in the shop files
   const auto& o = *piece.optimisation;
   const auto& d = *piece.design;
   double maxNotch = 0.0;
@@ -97,21 +98,22 @@ bool infillSlotted(const rods::Notch& notch) {
   return 1000.0 * (notch.beforeM + notch.afterM) >= kInfillMinSlotMm;
 }
 
-// Lamella ids as fabrication names them: P<patch>-U<i> for family g, P<patch>-V<j> for family h,
-// numbered per family in layout order (assembly/generalised_patch.hpp).
-std::vector<std::string> infillLamellaIds(const patching::InfillPiece& piece, int patchId) {
+// Lamella ids as fabrication names them, per layout member: P<patch>-U<i> for the family in layer
+// 0, P<patch>-V<j> for the other (assembly/generalised_patch.hpp).
+std::vector<std::string> infillLamellaIds(const assembly::GeneralisedPatch& patch) {
   std::vector<std::string> ids;
-  int counts[2] = {0, 0};
-  for (const auto& m : piece.optimisation->layout.members)
-    ids.push_back(fmt::format("P{}-{}{}", patchId, m.family == 0 ? 'U' : 'V', counts[m.family]++));
+  const int nu = static_cast<int>(patch.grid.u.size());
+  for (int r : patch.rodOfMember)
+    ids.push_back(fmt::format("P{}-{}{}", patch.patchId, r < nu ? 'U' : 'V', r < nu ? r : r - nu));
   return ids;
 }
 
 // The cut list: one row per lamella; its bolts as "s_bar[notch_from..notch_to]" in mm from the
 // lamella's start (a plain hole without the brackets), its two end anchors at 0 and the length.
-std::string infillCutList(const patching::InfillPiece& piece, int patchId) {
+std::string infillCutList(const patching::InfillPiece& piece,
+                          const assembly::GeneralisedPatch& patch) {
   const auto& network = piece.design->network;
-  const auto ids = infillLamellaIds(piece, patchId);
+  const auto ids = infillLamellaIds(patch);
   std::vector<std::vector<std::string>> holes(network.rods.size());
   for (size_t k = 0; k < network.connections.size(); ++k) {
     const auto& c = network.connections[k];
@@ -134,16 +136,19 @@ std::string infillCutList(const patching::InfillPiece& piece, int patchId) {
     std::string bolts;
     for (const auto& h : holes[r]) bolts += (bolts.empty() ? "" : " ") + h;
     csv += fmt::format("{},{},{},{:.1f},{:.1f},{:.1f},0.0 {:.1f},{}\n", ids[r],
-                       piece.optimisation->layout.members[r].family == 0 ? "g" : "h", rod.layer,
-                       1000.0 * rod.lengthM, 1000.0 * rod.section.widthM,
-                       1000.0 * rod.section.thicknessM, 1000.0 * rod.lengthM, bolts);
+                       piece.optimisation->layout.members[r].family == 0 ? "g" : "h",
+                       patch.network.rods[patch.rodOfMember[r]].layer, 1000.0 * rod.lengthM,
+                       1000.0 * rod.section.widthM, 1000.0 * rod.section.thicknessM,
+                       1000.0 * rod.lengthM, bolts);
   }
   return csv;
 }
 
-// The planar layout in mm (1200 px on its longer side), y up: lamella outlines (family g blue, h
-// orange), bolts, notch slots.
-std::string infillPlanarSvg(const patching::InfillPiece& piece, int index, int patchId) {
+// The planar layout in mm (1200 px on its longer side), y up: lamella outlines (u, the family in
+// layer 0, blue; v orange), bolts, notch slots.
+std::string infillPlanarSvg(const patching::InfillPiece& piece,
+                            const assembly::GeneralisedPatch& patch) {
+  const int index = patch.piece, patchId = patch.patchId;
   const auto& endpoints = piece.design->planar.endpoints;
   const auto& network = piece.design->network;
   const double width = 1000.0 * piece.design->planarProblem.widthM;
@@ -165,12 +170,12 @@ std::string infillPlanarSvg(const patching::InfillPiece& piece, int index, int p
       size.x(), size.y(), 0.3 * margin, 0.5 * margin, 0.25 * margin, index, endpoints.size(),
       network.connections.size(), 1200.0 * size.x() / size.maxCoeff(),
       1200.0 * size.y() / size.maxCoeff(), patchId);
-  const auto ids = infillLamellaIds(piece, patchId);
+  const auto ids = infillLamellaIds(patch);
   for (size_t r = 0; r < endpoints.size(); ++r) {
     const Eigen::Vector2d a = 1000.0 * endpoints[r][0], b = 1000.0 * endpoints[r][1];
     const Eigen::Vector2d d = (b - a).normalized();
     const Eigen::Vector2d n = 0.5 * width * Eigen::Vector2d(-d.y(), d.x());
-    const bool g = piece.optimisation->layout.members[r].family == 0;
+    const bool g = patch.rodOfMember[r] < static_cast<int>(patch.grid.u.size());  // u: blue
     svg += fmt::format(
         "<path id=\"{}\" d=\"M{}L{}L{}L{}Z\" fill=\"{}\" fill-opacity=\"0.25\" stroke=\"{}\" "
         "stroke-width=\"{:.2f}\"/>\n",
@@ -204,18 +209,16 @@ std::string infillPlanarSvg(const patching::InfillPiece& piece, int index, int p
 
 void writeInfillFiles(const RunState& state, const std::filesystem::path& folder) {
   if (!state.infill) return;
-  for (size_t i = 0; i < state.infill->pieces.size(); ++i) {
-    const auto& piece = state.infill->pieces[i];
-    if (!piece.design) continue;
-    const auto dir = folder / fmt::format("generalised_G{}", i);
+  for (const auto& patch : state.generalised) {
+    const auto& piece = state.infill->pieces[patch.piece];
+    const auto dir = folder / fmt::format("generalised_G{}", patch.piece);
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec)
       throw WriteError(dir.string() +
                        ": cannot create the generalised patch's folder: " + ec.message());
-    const int patchId = infillPatchId(state, i);
-    writeFileAtomically(dir / "lamellas.csv", infillCutList(piece, patchId));
-    writeFileAtomically(dir / "planar.svg", infillPlanarSvg(piece, static_cast<int>(i), patchId));
+    writeFileAtomically(dir / "lamellas.csv", infillCutList(piece, patch));
+    writeFileAtomically(dir / "planar.svg", infillPlanarSvg(piece, patch));
   }
 }
 
@@ -239,7 +242,11 @@ void designInfill(RunState& state) {
   state.progress("grid: generalised patches", 0.55);
   state.infill = patching::infillCutOffs(state.patching->layout.layout, coverage, options);
   state.infillSimulations.assign(state.infill->pieces.size(), std::nullopt);
-  state.generalised = assembly::generalisedPatches(*state.infill, infillPatchId(state, 0));
+  // Each patch's layers as they bolt more of its ends to the quads' boundary lamellas.
+  const auto quadGrids = gridsOf(state.patches);
+  state.generalised = assembly::generalisedPatches(
+      *state.infill, infillPatchId(state, 0), quadGrids,
+      assembly::layerSwaps(state.patching->graph, quadGrids), scene.lamella.widthM);
   json entries = json::array();
   std::vector<double> designedPerCutOff(coverage.cutOffs.size(), 0.0);
   for (size_t i = 0; i < state.infill->pieces.size(); ++i) {

@@ -201,12 +201,16 @@ std::optional<rods::SimulationRun> addJoinedSimulation(
                                   {"iterations", simulation["iterations"]},  // summed over patches
                                   {"seconds", simulation.value("seconds", 0.0)}};
   std::string skipped;
+  // Generalised patches bolt to the quads' boundary lamellas whether or not members were
+  // propagated between quads (one quad in a generalised frame is a structure too).
+  const int generalisedCount =
+      generalised.patches ? static_cast<int>(generalised.patches->size()) : 0;
   if (!scene.simulation.joinPatches)
     skipped = "the scene does not join patches (simulation.join_patches = false)";
-  else if (!propagated)
+  else if (!propagated && generalisedCount == 0)
     skipped = "no propagated members: one patch, or no neighbours' member ends to bolt together";
-  else if (solved < 2)
-    skipped = "fewer than two solved patches";
+  else if (solved + generalisedCount < 2 || solved == 0)
+    skipped = "fewer than two solved patches (or no quad for generalised patches to bolt to)";
   else if (patchesHeldAllRound)
     skipped = collapsedWhileHeld(patches);
   if (!skipped.empty()) {

@@ -48,13 +48,14 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
 // report.json simulation.joined{}.
 nlohmann::json joinedSection(const JoinedRun& joined);
 
-// The pipeline's step: when members were propagated, the scene joins patches and two or more
-// are solved, simulates the joined structure; writes simulation.joined{} (or why it did not run)
-// and simulation.patch_by_patch{rmse_m, max_error_m} (the pooled per-patch figures beside it).
-// `patchesHeldAllRound`: the patch-by-patch runs held every patch along all its sides; then a
-// patch that collapsed there skips the joined run (collapsedWhileHeld), which would only spend its
-// whole iteration budget falling (Yas: 500 iterations, ~8 minutes on 142k unknowns).
-// Returns the joined run's deployed state when it ran (for the report's deviation figure).
+// The pipeline's step: when members were propagated (or generalised patches bolt to a quad), the
+// scene joins patches and two or more are solved, simulates the joined structure; writes
+// simulation.joined{} (or why it did not run) and simulation.patch_by_patch{rmse_m, max_error_m}
+// (the pooled per-patch figures beside it). `patchesHeldAllRound`: the patch-by-patch runs held
+// every patch along all its sides; then a patch that collapsed there skips the joined run
+// (collapsedWhileHeld), which would only spend its whole iteration budget falling (Yas: 500
+// iterations, ~8 minutes on 142k unknowns). Returns the joined run's deployed state when it ran
+// (for the report's deviation figure).
 std::optional<rods::SimulationRun> addJoinedSimulation(
     const PatchingRun& run, const std::vector<SolvedPatch>& patches, const TriMesh& surface,
     const Scene& scene, bool propagated, int solved, nlohmann::json& simulation,

@@ -206,15 +206,17 @@ void writeDeployedFigures(const rods::SimulationRun* joined, const rods::JoinedN
         ++k;
       }
     // Then the generalised patches, when the joined run took them (its network says so).
-    if (network && network->firstRod.size() == k + generalised.patches->size())
+    if (network && generalised.patches &&
+        network->firstRod.size() == k + generalised.patches->size())
       for (const auto& g : *generalised.patches)
         parts.push_back({joined, g.patchId, network->firstRod[k++]});
   } else {
     for (const auto& p : patches)
       if (p.simulation) parts.push_back({&p.simulation->deployed, p.id, 0});
-    for (const auto& g : *generalised.patches)
-      if (const auto& own = (*generalised.runs)[g.piece])
-        parts.push_back({&own->deployed, g.patchId, 0});
+    if (generalised.patches)
+      for (const auto& g : *generalised.patches)
+        if (const auto& own = (*generalised.runs)[g.piece])
+          parts.push_back({&own->deployed, g.patchId, 0});
   }
   if (parts.empty()) return;
   const rods::SurfaceDistance distance(surface);

@@ -41,9 +41,12 @@ Structure structureOf(const RunState& state) {
     for (const auto& p : state.patches)
       if (p.egg) ids.push_back(p.id);
     for (const auto& g : state.generalised) ids.push_back(g.patchId);
-    if (ids.size() < state.joinedNetwork->firstRod.size())
-      throw InvalidInput(fmt::format("verification: the joined network has {} patches, the run {}",
-                                     state.joinedNetwork->firstRod.size(), ids.size()));
+    if (ids.size() != state.joinedNetwork->firstRod.size()) {
+      s.network = nullptr;  // cannot be named: not checked (an internal mismatch, said why)
+      s.what = fmt::format("the joined network has {} patches, the run {}",
+                           state.joinedNetwork->firstRod.size(), ids.size());
+      return s;
+    }
     const auto& first = state.joinedNetwork->firstRod;
     const int rodCount = static_cast<int>(s.network->rods.size());
     std::vector<int> patchOf(rodCount, -1), localOf(rodCount, 0);
@@ -140,8 +143,10 @@ void removeScratch(const fs::path& folder) {
 std::string verificationSkipReason(const RunState& state) {
   if (verification::findCcx().empty())
     return "ccx (CalculiX) is not installed (scripts/install-deps.sh installs calculix-ccx)";
-  if (!structureOf(state).network)
-    return "no single deployed structure: neither a joined run nor exactly one simulated patch";
+  if (const Structure s = structureOf(state); !s.network)
+    return s.what.empty() ? "no single deployed structure: neither a joined run nor exactly one "
+                            "simulated patch"
+                          : s.what;
   return {};
 }
 

@@ -129,5 +129,38 @@ TEST(GeneralisedFabrication, AButtingEndNextToACrossingIsCutAsDrawnAndNamed) {
   EXPECT_THROW(addGeneralisedToFabrication(g, ring, {&quad}, options, patches), InvalidInput);
 }
 
+TEST(GeneralisedFabrication, AtAnObliqueMeetingTheSquareEndsCornerIsCutClearToo) {
+  // The butting member meets u0 at about 45 degrees: its centre line is cut (w/2)/sin back from
+  // u0's centre line, and its acute corner reaches (w/2) cos/sin further: both clear by the gap.
+  const EggGrid quad = testing::threeByThree();
+  GeneralisedPatch g = twoMembersOnSide0();
+  auto& m = g.grid.u[0];
+  m.spatial = {{-0.5, -1.0, 0.0}, {0.5, 0.0, 0.05}};
+  g.network.rods[0].guess = m.spatial;
+  g.network.anchors[0].position = m.spatial[0];
+  const RingBeamJoins ring = ringBeamJoins(g, 1, {&quad}, {0}, 0.4);
+  ASSERT_EQ(ring.brackets.size(), 1u);
+  std::vector<fabrication::FabricationPatch> patches{{0, &quad, std::nullopt}};
+  GeneralisedFabricationOptions options;
+  options.lamellaWidthM = 0.4;
+  options.endOverhangM = 0.2;
+  EXPECT_TRUE(addGeneralisedToFabrication(g, ring, {&quad}, options, patches).empty());
+  ASSERT_EQ(patches[1].endTrims.size(), 1u);
+  // Geometry: the cut end's two corners, w/2 either side of the centre line in the tangent plane,
+  // lie at least half the width plus the gap from u0's centre line, the nearer one just so.
+  const Eigen::Vector3d along = (m.spatial[1] - m.spatial[0]).normalized();
+  const Eigen::Vector3d across = Eigen::Vector3d(2.0, 0.0, 0.2).normalized();
+  const Eigen::Vector3d side = Eigen::Vector3d::UnitZ().cross(along).normalized();
+  const double cut = patches[1].endTrims[0].trimMm / 1000.0 - 0.2;  // less the overhang
+  const Eigen::Vector3d end = m.spatial[1] - cut * along;
+  double nearest = INFINITY;
+  for (const double sign : {-1.0, 1.0}) {
+    const Eigen::Vector3d corner = end + sign * 0.2 * side;
+    nearest = std::min(nearest, (corner - corner.dot(across) * across).norm());
+  }
+  EXPECT_GE(nearest, 0.2 + 0.01 - 2e-3);  // the mesh-free plane z = 0.1 x tilts it slightly
+  EXPECT_LE(nearest, 0.2 + 0.01 + 2e-3);
+}
+
 }  // namespace
 }  // namespace egg::assembly

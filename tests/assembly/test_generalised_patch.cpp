@@ -90,6 +90,26 @@ TEST(GeneralisedPatch, CapDesignBecomesASparseGridWithItsRodsInGridOrder) {
     EXPECT_EQ(c.spatial, design.tracedCrossings[k]);
   }
   EXPECT_NO_THROW(rods::validateNetwork(patch.network));
+  // Swapped, h is the grid's u in layer 0 and g its v on top; every bolt the same crossing.
+  const GeneralisedPatch swapped = generalisedPatch(piece, 2, 11, true);
+  EXPECT_TRUE(swapped.swappedLayers);
+  EXPECT_EQ(swapped.grid.u.size(), grid.v.size());
+  EXPECT_EQ(swapped.grid.v.size(), grid.u.size());
+  for (size_t m = 0; m < members.size(); ++m) {
+    const int r = swapped.rodOfMember[m];
+    EXPECT_EQ(r < static_cast<int>(swapped.grid.u.size()), members[m].family == 1);
+    EXPECT_EQ(swapped.network.rods[r].layer, 1 - members[m].family);
+  }
+  ASSERT_EQ(swapped.grid.connections.size(), grid.connections.size());
+  for (size_t k = 0; k < grid.connections.size(); ++k) {
+    const GridConnection &a = grid.connections[k], &b = swapped.grid.connections[k];
+    EXPECT_EQ(a.memberU, b.memberV);
+    EXPECT_EQ(a.memberV, b.memberU);
+    EXPECT_DOUBLE_EQ(a.sBarU, b.sBarV);
+    EXPECT_DOUBLE_EQ(a.notchV, b.notchU);
+    EXPECT_LT((a.planar - b.planar).norm(), 1e-9);  // the same crossing of the two cut lamellas
+  }
+  EXPECT_NO_THROW(rods::validateNetwork(swapped.network));
 }
 
 TEST(GeneralisedPatch, WithoutADesignIsAnError) {

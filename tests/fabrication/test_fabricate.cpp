@@ -35,6 +35,37 @@ const Point kLabelC10 = {222.75, 10.0};                        // connection lab
 
 bool near(double a, double b) { return std::abs(a - b) <= 0.01; }  // the acceptance tolerance
 
+TEST(Fabricate, ExtraHolesCountABoltEachUnlessTheyShareAConnectionsHole) {
+  // A generalised member end's bolt (issue 41): its own hole counts a bolt; its partner on the
+  // quad's lamella, where it falls on a connection's hole, shares that bolt (three lamellas).
+  const EggGrid grid = handGrid();
+  FabricationPatch patch{0, &grid, std::nullopt};
+  patch.extraHoles = {{Family::U, 1, 0.05, "P9-U0-end", true},     // u1 at x = 55 mm: its own
+                      {Family::V, 0, 0.1, "P9-U0-end", false},     // v0's hole of (1,0): shared
+                      {Family::V, 2, 0.05, "P9-V0-start", true}};  // v2 at x = 55 mm: its own
+  patch.ringBeamBrackets = {{"P9-V0-start", "P0-V2"}};
+  const auto r = fabricate({patch}, handOptions());
+  EXPECT_EQ(r.connections, 9 + 2 - 1);
+  const auto& u1 = r.lamellae[1];
+  ASSERT_EQ(u1.features.size(), 4u);
+  EXPECT_EQ(u1.features[1].connectionId, "P9-U0-end");
+  EXPECT_NEAR(u1.features[1].xMm, 55.0, 1e-12);
+  EXPECT_EQ(u1.features[1].connection, -1);
+  const auto& v0 = r.lamellae[3];
+  ASSERT_EQ(v0.features.size(), 3u);
+  EXPECT_EQ(v0.features[1].label(), "P0-C1-0=P9-U0-end");
+  const std::string bom = bomCsv(r);
+  EXPECT_NE(bom.find("ring_beam_bracket,P9-V0-start,1,"), std::string::npos) << bom;
+  EXPECT_NE(bom.find("to P0-V2 (its own layer"), std::string::npos);
+  EXPECT_NE(bom.find("bolt,,10,"), std::string::npos);
+  // The shared hole's bolt clamps three lamellas: one such bolt.
+  const size_t three = bom.find("3 lamellas");
+  ASSERT_NE(three, std::string::npos) << bom;
+  const std::string row = bom.substr(bom.rfind('\n', three) + 1, three - bom.rfind('\n', three));
+  EXPECT_EQ(row.rfind("bolt_size,", 0), 0u) << row;
+  EXPECT_EQ(row.substr(row.find(',', 10) + 1, 2), "1,") << row;
+}
+
 TEST(Fabricate, HandGridCountsMatchTheGrid) {
   const EggGrid grid = handGrid();
   const auto r = fabricate({{0, &grid, std::nullopt}}, handOptions());

@@ -188,10 +188,10 @@ std::vector<GeneralisedPatch> generalisedPatches(const patching::InfillResult& i
     const int id = firstPatchId + static_cast<int>(i);
     GeneralisedPatch plain = generalisedPatch(infill.pieces[i], static_cast<int>(i), id, false);
     GeneralisedPatch swapped = generalisedPatch(infill.pieces[i], static_cast<int>(i), id, true);
-    const auto bolted = [&](const GeneralisedPatch& g) {
-      return ringBeamJoins(g, 0, quadGrids, quadSwaps, toleranceM).bolts.size();
-    };
-    out.push_back(bolted(swapped) > bolted(plain) ? std::move(swapped) : std::move(plain));
+    plain.ring = ringBeamJoins(plain, 0, quadGrids, quadSwaps, toleranceM);
+    swapped.ring = ringBeamJoins(swapped, 0, quadGrids, quadSwaps, toleranceM);
+    out.push_back(swapped.ring.bolts.size() > plain.ring.bolts.size() ? std::move(swapped)
+                                                                      : std::move(plain));
   }
   return out;
 }

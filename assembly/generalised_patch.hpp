@@ -1,6 +1,6 @@
 #pragma once
 // A generalised patch (issue 41, thesis Chapter 4) as the stages after the grid stage take any
-// patch: its members and crossings as an EggGrid (family g as u, h as v) for fabrication and the
+// patch: its members and crossings as an EggGrid (u: the family in layer 0) for fabrication and the
 // 3D model, and its rods in that order for the simulations. Unlike a quad patch's grid, not every
 // u member crosses every v member: `grid.connections` lists only the pairs that cross (memberU,
 // memberV), and EggGrid::at() does not apply. Members are never boundary lamellas (every member
@@ -14,20 +14,6 @@
 #include <vector>
 
 namespace egg::assembly {
-
-struct GeneralisedPatch {
-  int patchId = 0;  // numbered after the layout's quad patches: lamellas "P<id>-U<i>", "P<id>-V<j>"
-  int piece = -1;   // index into InfillResult::pieces ("G<piece>" in report.json and plan.svg)
-  EggGrid grid;     // members u (family g) then v (family h); connections in the design's order
-  // The design's rods in the grid's member order (u then v), its bolts as grid.connections, and
-  // two anchors per member: rod r's start at 2r, its end at 2r + 1.
-  rods::RodNetwork network;
-  std::vector<patching::AnchorHold> anchorHolds;  // per anchor of `network`
-  std::vector<int> rodOfMember;                   // per layout member of the design: its rod
-  // Family h in layer 0 (the grid's u) and g in layer 1: the choice that bolts more of the ends
-  // on the quads' sides to their boundary lamellas (generalisedPatches).
-  bool swappedLayers = false;
-};
 
 // The joined structure (pipeline/joined_simulation.cpp): a generalised member end held on a quad
 // patch's side is bolted to that quad's boundary lamella (the ring beam of the piece's report),
@@ -44,6 +30,24 @@ struct RingBeamJoins {
   double maxGapM = 0.0;    // largest distance from a bolted end to its lamella
   std::vector<int> quads;  // ascending: the quad patches with an end on their side (either way)
 };
+
+struct GeneralisedPatch {
+  int patchId = 0;  // numbered after the layout's quad patches: lamellas "P<id>-U<i>", "P<id>-V<j>"
+  int piece = -1;   // index into InfillResult::pieces ("G<piece>" in report.json and plan.svg)
+  EggGrid grid;     // members u (layer 0) then v (layer 1); connections in the design's order
+  // The design's rods in the grid's member order (u then v), its bolts as grid.connections, and
+  // two anchors per member: rod r's start at 2r, its end at 2r + 1.
+  rods::RodNetwork network;
+  std::vector<patching::AnchorHold> anchorHolds;  // per anchor of `network`
+  std::vector<int> rodOfMember;                   // per layout member of the design: its rod
+  // Family h in layer 0 (the grid's u) and g in layer 1: the choice that bolts more of the ends
+  // on the quads' sides to their boundary lamellas (generalisedPatches).
+  bool swappedLayers = false;
+  // Its ends on the quads' sides as generalisedPatches matched them for that choice (bolts'
+  // patchB is 0: the joined run sets its own index of the patch).
+  RingBeamJoins ring;
+};
+
 // `grids` per layout patch id (nullptr: no grid), `swapped` per patch as layerSwaps gives it.
 RingBeamJoins ringBeamJoins(const GeneralisedPatch& patch, int generalisedIndex,
                             const std::vector<const EggGrid*>& grids,

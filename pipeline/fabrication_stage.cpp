@@ -1,7 +1,6 @@
 #include "pipeline/fabrication_stage.hpp"
 #include "assembly/boundary_members.hpp"
 #include "assembly/generalised_fabrication.hpp"
-#include "assembly/patch_joins.hpp"
 #include "core/errors.hpp"
 #include "core/timing.hpp"
 
@@ -53,15 +52,13 @@ namespace {
 // boundary lamellas (assembly/generalised_fabrication.hpp).
 void addGeneralisedPatches(RunState& state, std::vector<fabrication::FabricationPatch>& grids) {
   const std::vector<const EggGrid*> quadGrids = gridsOf(state.patches);
-  const std::vector<char> swapped = assembly::layerSwaps(state.patching->graph, quadGrids);
   const auto fabrication = state.scene.fabricationOptions();
   assembly::GeneralisedFabricationOptions options;
   options.lamellaWidthM = state.scene.lamella.widthM;
   options.endOverhangM = fabrication.effectiveEndOverhangMm() / 1000.0;
   std::vector<std::string> untrimmed;
   for (const auto& g : state.generalised) {
-    const auto ring = assembly::ringBeamJoins(g, 0, quadGrids, swapped, options.lamellaWidthM);
-    for (auto& end : assembly::addGeneralisedToFabrication(g, ring, quadGrids, options, grids))
+    for (auto& end : assembly::addGeneralisedToFabrication(g, g.ring, quadGrids, options, grids))
       untrimmed.push_back(std::move(end));
     const auto& simulation = state.infillSimulations[g.piece];
     if (simulation) grids.back().deployedCentrelines = simulation->deployed.centrelines;

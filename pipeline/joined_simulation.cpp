@@ -68,8 +68,8 @@ JoinedRun simulateJoined(const PatchingRun& run, const std::vector<SolvedPatch>&
       for (size_t g = 0; g < generalised.patches->size(); ++g) {
         const assembly::GeneralisedPatch& patch = (*generalised.patches)[g];
         const int index = static_cast<int>(networks.size());
-        assembly::RingBeamJoins ring =
-            assembly::ringBeamJoins(patch, index, grids, out.swapped, scene.lamella.widthM);
+        assembly::RingBeamJoins ring = patch.ring;  // matched when the patch was designed
+        for (auto& bolt : ring.bolts) bolt.patchB = index;
         rods::RodNetwork network = patch.network;
         std::vector<char> released(network.anchors.size(), 0);
         for (int a : ring.releasedAnchors) released[a] = 1;

@@ -56,6 +56,14 @@ fabrication::FabricationOptions metreOptions() {
   return o;
 }
 
+// 0.4 m lamellas with 0.2 m overhangs (the metreOptions strips).
+GeneralisedFabricationOptions metreEnds() {
+  GeneralisedFabricationOptions options;
+  options.lamellaWidthM = 0.4;
+  options.endOverhangM = 0.2;
+  return options;
+}
+
 double holeAt(const fabrication::LamellaPlan& plan, const std::string& id) {
   for (const auto& f : plan.features)
     if (f.connectionId == id) return f.xMm;
@@ -70,9 +78,7 @@ TEST(GeneralisedFabrication, LappingEndsBoltThroughTheQuadsLamellaButtingEndsAre
   ASSERT_EQ(ring.bolts.size(), 1u);
   ASSERT_EQ(ring.brackets.size(), 1u);
   std::vector<fabrication::FabricationPatch> patches{{0, &quad, std::nullopt}};
-  GeneralisedFabricationOptions options;
-  options.lamellaWidthM = 0.4;
-  options.endOverhangM = 0.2;
+  GeneralisedFabricationOptions options = metreEnds();
   EXPECT_TRUE(addGeneralisedToFabrication(g, ring, {&quad}, options, patches).empty());
   ASSERT_EQ(patches.size(), 2u);
   const auto& entry = patches[1];
@@ -117,9 +123,7 @@ TEST(GeneralisedFabrication, AButtingEndNextToACrossingIsCutAsDrawnAndNamed) {
   g.grid.connections.push_back(c);
   const RingBeamJoins ring = ringBeamJoins(g, 1, {&quad}, {0}, 0.4);
   std::vector<fabrication::FabricationPatch> patches{{0, &quad, std::nullopt}};
-  GeneralisedFabricationOptions options;
-  options.lamellaWidthM = 0.4;
-  options.endOverhangM = 0.2;
+  GeneralisedFabricationOptions options = metreEnds();
   const auto untrimmed = addGeneralisedToFabrication(g, ring, {&quad}, options, patches);
   ASSERT_EQ(untrimmed.size(), 1u);
   EXPECT_EQ(untrimmed[0], "P4-U0-end (bolt 410 mm, crossing 500 mm from the end)");
@@ -141,9 +145,7 @@ TEST(GeneralisedFabrication, AtAnObliqueMeetingTheSquareEndsCornerIsCutClearToo)
   const RingBeamJoins ring = ringBeamJoins(g, 1, {&quad}, {0}, 0.4);
   ASSERT_EQ(ring.brackets.size(), 1u);
   std::vector<fabrication::FabricationPatch> patches{{0, &quad, std::nullopt}};
-  GeneralisedFabricationOptions options;
-  options.lamellaWidthM = 0.4;
-  options.endOverhangM = 0.2;
+  GeneralisedFabricationOptions options = metreEnds();
   EXPECT_TRUE(addGeneralisedToFabrication(g, ring, {&quad}, options, patches).empty());
   ASSERT_EQ(patches[1].endTrims.size(), 1u);
   // Geometry: the cut end's two corners, w/2 either side of the centre line in the tangent plane,
